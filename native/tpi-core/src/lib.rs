@@ -1,0 +1,30 @@
+//! # tpi-core: planar-facet discretisation of free-form surfaces by tangent plane intersection
+//!
+//! After Manahl and Stavric, "Ornamental Discretisation of Free-form Surfaces". Pattern points
+//! in the unit square are mapped onto a surface's parameter domain; each point's tangent plane
+//! is intersected with the tangent planes of its true neighbours, so that every facet is exactly
+//! planar and three facets meet at most vertices.
+//!
+//! The pipeline runs in one direction:
+//!
+//! ```text
+//! surface + pattern (uv in [0,1]^2)
+//!   -> samples    point, normal, principal frame and curvatures per pattern point
+//!   -> neighbours uv Delaunay candidates, curvature compensation, one consistent dual triangulation
+//!   -> facets     one vertex per dual triangle: the meeting point of three tangent planes
+//!   -> mesh       shared vertices, boundary closed on the surface's boundary
+//!   -> report     planarity, deviation, validity flags, diagnostics
+//! ```
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod diffgeo;
+pub mod error;
+pub mod nurbs;
+pub mod surface;
+pub mod tolerance;
+
+pub use diffgeo::LocalGeometry;
+pub use error::{Direction, TpiError};
+pub use nurbs::{NurbsSpec, NurbsSurface};
+pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};

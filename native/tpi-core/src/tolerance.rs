@@ -1,0 +1,12 @@
+//! Tolerances of the core, each a named, documented constant. Lengths are relative to the
+//! bounding-box diagonal of the input unless stated otherwise.
+
+/// Two pattern points closer than this in normalised uv ([0, 1]^2) are duplicates.
+pub const DUPLICATE_UV_TOLERANCE: f64 = 1e-9;
+
+/// Principal curvatures whose difference is below this fraction of their magnitude are
+/// treated as equal (an umbilic): the principal frame is then Su-aligned.
+pub const UMBILIC_RELATIVE_TOLERANCE: f64 = 1e-12;
+
+/// Largest NURBS degree evaluated (fixed-size buffers avoid per-call allocation).
+pub const MAX_NURBS_DEGREE: usize = 15;
