@@ -18,9 +18,12 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod analytic;
 pub mod diffgeo;
 pub mod error;
 pub mod nurbs;
+pub mod pattern;
+pub mod spec;
 pub mod surface;
 pub mod tolerance;
 
