@@ -1,0 +1,74 @@
+//! Typed diagnostics: what went wrong locally, naming the pattern points affected.
+
+use serde::{Deserialize, Serialize};
+
+/// One local problem found while building the mesh. The rest of the mesh stays valid.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case")]
+pub enum Diagnostic {
+    /// Three tangent planes are nearly parallel (flat or developable region): their meeting
+    /// point ran away, and a finite stand-in near the three points was used instead, so the
+    /// facets of these points are not exact.
+    IllConditionedVertex {
+        /// The three pattern points.
+        points: [u32; 3],
+        /// n_i . (n_j x n_k).
+        determinant: f64,
+        /// Distance of the exact meeting point from the points' centroid (inf if none).
+        distance: f64,
+    },
+    /// Two neighbouring tangent planes at the boundary are parallel, so their common edge
+    /// cannot be followed to the surface's boundary.
+    ParallelPlanes {
+        /// The two pattern points.
+        points: [u32; 2],
+    },
+    /// The common edge of two facets never reaches the surface's boundary.
+    BoundaryNotReached {
+        /// The two pattern points.
+        points: [u32; 2],
+    },
+    /// A facet could not be closed consistently along the boundary.
+    OpenFacet {
+        /// The pattern point.
+        point: u32,
+        /// What went wrong.
+        reason: String,
+    },
+    /// The tangent plane of a facet holding a domain corner is parallel to the corner's normal.
+    CornerUnreachable {
+        /// The pattern point.
+        point: u32,
+        /// Corner index (0: (u0, v0), 1: (u1, v0), 2: (u1, v1), 3: (u0, v1)).
+        corner: u8,
+    },
+    /// A domain corner was claimed by no facet or by several.
+    CornerClaims {
+        /// Corner index.
+        corner: u8,
+        /// How many facets claimed it.
+        claims: u32,
+    },
+    /// The point has (nearly) zero Gaussian curvature: tangent planes around it are close to
+    /// parallel in at least one direction.
+    FlatPoint {
+        /// The pattern point.
+        point: u32,
+        /// Its Gaussian curvature.
+        gaussian_curvature: f64,
+    },
+}
+
+impl Diagnostic {
+    /// The pattern points this diagnostic concerns.
+    pub fn points(&self) -> Vec<u32> {
+        match self {
+            Diagnostic::IllConditionedVertex { points, .. } => points.to_vec(),
+            Diagnostic::ParallelPlanes { points } | Diagnostic::BoundaryNotReached { points } => points.to_vec(),
+            Diagnostic::OpenFacet { point, .. }
+            | Diagnostic::CornerUnreachable { point, .. }
+            | Diagnostic::FlatPoint { point, .. } => vec![*point],
+            Diagnostic::CornerClaims { .. } => Vec::new(),
+        }
+    }
+}

@@ -1,0 +1,388 @@
+//! The pipeline: surface + pattern -> samples -> neighbours -> facets -> mesh -> report.
+//!
+//! [`discretise`] validates the pattern (normalised uv in [0, 1]^2, finite, no duplicates
+//! closer than [`crate::tolerance::DUPLICATE_UV_TOLERANCE`], at least three points, not all
+//! collinear), evaluates point, normal and principal curvatures at every pattern point,
+//! decides the true neighbours ([`crate::neighbours`]), builds one planar facet per pattern
+//! point ([`crate::facets`]) and measures the result ([`crate::quality`]). Facet i always
+//! belongs to pattern point i: none is dropped or reordered.
+//!
+//! The result is bit-identical for any number of threads: parallel stages are order-preserving
+//! maps, and every shared vertex is computed by one canonical expression.
+
+use std::time::Instant;
+
+use glam::DVec3;
+use rayon::prelude::*;
+use serde::ser::{SerializeMap, SerializeStruct};
+use serde::{Serialize, Serializer};
+
+use crate::diagnostics::Diagnostic;
+use crate::diffgeo::LocalGeometry;
+use crate::error::TpiError;
+use crate::facets::{build_facets, FacetParams, VertexKind, DEFAULT_FAR_VERTEX_FACTOR};
+use crate::neighbours::{decide, NeighbourInput, NeighbourStats};
+use crate::planes::Plane;
+use crate::quality::{report, QualityReport, ReportInput};
+use crate::surface::Surface;
+use crate::tolerance::DUPLICATE_UV_TOLERANCE;
+use crate::triangulation::DualTriangulation;
+
+/// Default weld distance of coincident vertices, relative to the bounding-box diagonal.
+pub const DEFAULT_WELD_TOLERANCE: f64 = 1e-10;
+
+/// Default flatness threshold: a point is flat when |K| <= this * max(k1^2, k2^2), or when
+/// both curvatures are below [`DEFAULT_PLANE_CURVATURE`] / diagonal.
+pub const DEFAULT_FLAT_TOLERANCE: f64 = 1e-6;
+
+/// Curvature (times the bounding-box diagonal) below which a point counts as planar.
+pub const DEFAULT_PLANE_CURVATURE: f64 = 1e-9;
+
+/// Options of [`discretise`]. `Default` gives the documented defaults.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DiscretiseOptions {
+    /// Verify and repair the neighbours against the envelope of tangent planes where K > 0.
+    /// Default value: true.
+    pub envelope_repair: bool,
+    /// Compute the quality report (planarity, deviation, validity flags). Default value: true.
+    pub quality_report: bool,
+    /// See [`DEFAULT_FAR_VERTEX_FACTOR`]. Default value: 8.
+    pub far_vertex_factor: f64,
+    /// See [`DEFAULT_WELD_TOLERANCE`]. Default value: 1e-10.
+    pub weld_tolerance: f64,
+    /// See [`DEFAULT_FLAT_TOLERANCE`]. Default value: 1e-6.
+    pub flat_tolerance: f64,
+}
+
+impl Default for DiscretiseOptions {
+    fn default() -> Self {
+        Self {
+            envelope_repair: true,
+            quality_report: true,
+            far_vertex_factor: DEFAULT_FAR_VERTEX_FACTOR,
+            weld_tolerance: DEFAULT_WELD_TOLERANCE,
+            flat_tolerance: DEFAULT_FLAT_TOLERANCE,
+        }
+    }
+}
+
+/// Wall-clock time of each stage in milliseconds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, serde::Deserialize)]
+pub struct Timings {
+    /// Evaluation and curvature at every pattern point.
+    pub samples: f64,
+    /// Global Delaunay triangulation in parameter space.
+    pub delaunay: f64,
+    /// Curvature compensation and envelope repair.
+    pub neighbours: f64,
+    /// Facet vertices, boundary, mesh assembly.
+    pub facets: f64,
+    /// Quality report.
+    pub report: f64,
+    /// Everything.
+    pub total: f64,
+}
+
+/// Pattern point data attached to each facet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Seed {
+    /// Parameters in the surface's own domain.
+    pub uv: [f64; 2],
+    /// Surface point.
+    pub point: DVec3,
+    /// Unit normal Su x Sv.
+    pub normal: DVec3,
+    /// Principal curvatures k1 <= k2.
+    pub curvatures: [f64; 2],
+}
+
+/// A discretised surface: an indexed polygon mesh with one planar facet per pattern point.
+#[derive(Clone, Debug, Default)]
+pub struct Discretisation {
+    /// Mesh vertices.
+    pub vertices: Vec<DVec3>,
+    /// What each vertex is.
+    pub vertex_kinds: Vec<VertexKind>,
+    /// Facet i's loop is `facet_loops[facet_offsets[i]..facet_offsets[i + 1]]`.
+    pub facet_offsets: Vec<u32>,
+    /// Flat facet loops (counter-clockwise seen from the normal).
+    pub facet_loops: Vec<u32>,
+    /// The pattern point of each facet (facet i belongs to pattern point i).
+    pub seeds: Vec<Seed>,
+    /// Triangles of the final dual structure (counter-clockwise in parameter space).
+    pub dual_triangles: Vec<[u32; 3]>,
+    /// The quality report (None when switched off).
+    pub quality: Option<QualityReport>,
+    /// Per-facet flags (see `quality::FLAG_*`), empty when the report is off.
+    pub facet_flags: Vec<u8>,
+    /// Local problems, each naming its pattern points.
+    pub diagnostics: Vec<Diagnostic>,
+    /// Stage timings.
+    pub timings: Timings,
+}
+
+impl Discretisation {
+    /// Number of facets.
+    pub fn facet_count(&self) -> usize {
+        self.seeds.len()
+    }
+
+    /// The vertex loop of facet i.
+    pub fn facet(&self, i: usize) -> &[u32] {
+        &self.facet_loops[self.facet_offsets[i] as usize..self.facet_offsets[i + 1] as usize]
+    }
+
+    /// The symmetric neighbour pairs (i < j) of the dual structure, sorted.
+    pub fn neighbour_pairs(&self) -> Vec<[u32; 2]> {
+        let mut pairs: Vec<[u32; 2]> = self
+            .dual_triangles
+            .iter()
+            .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
+            .map(|[a, b]| [a.min(b), a.max(b)])
+            .collect();
+        pairs.sort_unstable();
+        pairs.dedup();
+        pairs
+    }
+
+    /// The result in the output contract as JSON text; `timings` false leaves out
+    /// `timings_ms` (the only part that differs between runs).
+    pub fn to_json(&self, timings: bool) -> String {
+        let view = ContractView { result: self, timings };
+        serde_json::to_string(&view).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
+    }
+}
+
+struct ContractView<'a> {
+    result: &'a Discretisation,
+    timings: bool,
+}
+
+struct FacetView<'a> {
+    result: &'a Discretisation,
+    index: usize,
+}
+
+impl Serialize for FacetView<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let seed = &self.result.seeds[self.index];
+        let mut s = serializer.serialize_struct("Facet", 6)?;
+        s.serialize_field("seed", &self.index)?;
+        s.serialize_field("uv", &seed.uv)?;
+        s.serialize_field("point", &seed.point.to_array())?;
+        s.serialize_field("normal", &seed.normal.to_array())?;
+        s.serialize_field("vertices", self.result.facet(self.index))?;
+        s.serialize_field("flags", &self.result.facet_flags.get(self.index).copied().unwrap_or(0))?;
+        s.end()
+    }
+}
+
+impl Serialize for ContractView<'_> {
+    fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let r = self.result;
+        let mut map = serializer.serialize_map(None)?;
+        let vertices: Vec<[f64; 3]> = r.vertices.iter().map(|v| v.to_array()).collect();
+        map.serialize_entry("vertices", &vertices)?;
+        let facets: Vec<FacetView<'_>> = (0..r.facet_count()).map(|index| FacetView { result: r, index }).collect();
+        map.serialize_entry("facets", &facets)?;
+        map.serialize_entry("dual_triangles", &r.dual_triangles)?;
+        map.serialize_entry("quality", &r.quality)?;
+        map.serialize_entry("diagnostics", &r.diagnostics)?;
+        if self.timings {
+            map.serialize_entry("timings_ms", &r.timings)?;
+        }
+        map.end()
+    }
+}
+
+/// Checks normalised pattern points: finite, inside [0, 1]^2, no duplicates, at least three.
+pub fn validate_pattern(points: &[[f64; 2]]) -> Result<(), TpiError> {
+    for (index, &[s, t]) in points.iter().enumerate() {
+        if !(s.is_finite() && t.is_finite() && (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t)) {
+            return Err(TpiError::PatternPointOutOfRange { index, s, t });
+        }
+    }
+    if points.len() < 3 {
+        return Err(TpiError::TooFewPatternPoints { found: points.len(), needed: 3 });
+    }
+    // Sort by s; any duplicate pair lies within DUPLICATE_UV_TOLERANCE in s.
+    let mut order: Vec<u32> = (0..points.len() as u32).collect();
+    order.sort_by(|&a, &b| points[a as usize][0].total_cmp(&points[b as usize][0]).then(a.cmp(&b)));
+    for (k, &a) in order.iter().enumerate() {
+        let pa = points[a as usize];
+        for &b in &order[k + 1..] {
+            let pb = points[b as usize];
+            if pb[0] - pa[0] > DUPLICATE_UV_TOLERANCE {
+                break;
+            }
+            let distance = ((pb[0] - pa[0]).powi(2) + (pb[1] - pa[1]).powi(2)).sqrt();
+            if distance <= DUPLICATE_UV_TOLERANCE {
+                let (first, second) = (a.min(b) as usize, a.max(b) as usize);
+                return Err(TpiError::DuplicatePatternPoint { index: second, duplicate_of: first, distance });
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Discretises `surface` with pattern points given in normalised [0, 1]^2 coordinates.
+pub fn discretise(
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    options: &DiscretiseOptions,
+) -> Result<Discretisation, TpiError> {
+    let start = Instant::now();
+    validate_pattern(pattern)?;
+    let domain = surface.domain();
+    let mut timings = Timings::default();
+
+    // Samples.
+    let uv: Vec<[f64; 2]> = pattern.iter().map(|&st| domain.from_normalised(st)).collect();
+    let geometry: Vec<LocalGeometry> =
+        uv.par_iter().map(|&[u, v]| LocalGeometry::from_derivatives(&surface.evaluate(u, v))).collect();
+    if let Some(bad) = geometry.iter().position(|g| !(g.point.is_finite() && g.normal.is_finite())) {
+        return Err(TpiError::NonFinite { field: format!("surface point at pattern point {bad}"), value: f64::NAN });
+    }
+    let planes: Vec<Plane> = geometry.iter().map(|g| Plane { point: g.point, normal: g.normal }).collect();
+    let diagonal = bounding_diagonal(geometry.iter().map(|g| g.point)).max(f64::MIN_POSITIVE);
+    let mut diagnostics = Vec::new();
+    let convex_side = classify_curvature(&geometry, diagonal, options, &mut diagnostics)?;
+    let plane_uv = scaled_parameters(pattern, &geometry, &domain);
+    timings.samples = ms(start);
+
+    // Candidates and true neighbours.
+    let stage = Instant::now();
+    let mut triangulation = DualTriangulation::delaunay(&plane_uv)?;
+    timings.delaunay = ms(stage);
+    let stage = Instant::now();
+    let input = NeighbourInput { plane_uv: &plane_uv, geometry: &geometry, planes: &planes, convex_side: &convex_side };
+    let neighbours: NeighbourStats = decide(&mut triangulation, &input, options.envelope_repair);
+    timings.neighbours = ms(stage);
+
+    // Facets and mesh.
+    let stage = Instant::now();
+    let params = FacetParams { far_vertex_factor: options.far_vertex_factor, weld_distance: options.weld_tolerance * diagonal };
+    let mesh = build_facets(surface, &uv, &planes, &triangulation, &params);
+    diagnostics.extend(mesh.diagnostics.iter().cloned());
+    if !mesh.vertices.is_empty() && mesh.diagnostics.iter().filter(|d| matches!(d, Diagnostic::IllConditionedVertex { .. })).count() == triangulation.len() {
+        return Err(TpiError::DegenerateSurface {
+            reason: "every triple of neighbouring tangent planes is (nearly) parallel: the surface is developable".into(),
+        });
+    }
+    timings.facets = ms(stage);
+
+    let seeds: Vec<Seed> = geometry
+        .iter()
+        .zip(&uv)
+        .map(|(g, &uv)| Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] })
+        .collect();
+    let mut result = Discretisation {
+        vertices: mesh.vertices,
+        vertex_kinds: mesh.vertex_kinds,
+        facet_offsets: mesh.offsets,
+        facet_loops: mesh.loops,
+        seeds,
+        dual_triangles: triangulation.triangles,
+        quality: None,
+        facet_flags: Vec::new(),
+        diagnostics,
+        timings,
+    };
+    if options.quality_report {
+        let stage = Instant::now();
+        let mut diagnosed = vec![false; pattern.len()];
+        for d in &result.diagnostics {
+            for p in d.points() {
+                diagnosed[p as usize] = true;
+            }
+        }
+        let (quality, flags) = report(&ReportInput {
+            surface,
+            uv: &uv,
+            planes: &planes,
+            vertices: &result.vertices,
+            offsets: &result.facet_offsets,
+            loops: &result.facet_loops,
+            diagonal,
+            diagnosed: &diagnosed,
+            neighbours,
+            diagnostic_count: result.diagnostics.len(),
+        });
+        result.quality = Some(quality);
+        result.facet_flags = flags;
+        result.timings.report = ms(stage);
+    }
+    result.timings.total = ms(start);
+    Ok(result)
+}
+
+fn ms(since: Instant) -> f64 {
+    since.elapsed().as_secs_f64() * 1e3
+}
+
+/// Length of the diagonal of the points' axis-aligned bounding box.
+pub fn bounding_diagonal(points: impl Iterator<Item = DVec3>) -> f64 {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for p in points {
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    if lo.is_finite() && hi.is_finite() {
+        (hi - lo).length()
+    } else {
+        0.0
+    }
+}
+
+/// Per point: +1/-1 where strictly convex (the side of the centres of curvature), 0 where
+/// saddle-shaped or flat. Flat points get a diagnostic; a surface flat everywhere is an error.
+fn classify_curvature(
+    geometry: &[LocalGeometry],
+    diagonal: f64,
+    options: &DiscretiseOptions,
+    diagnostics: &mut Vec<Diagnostic>,
+) -> Result<Vec<i8>, TpiError> {
+    let mut planar = 0usize;
+    let mut flat = 0usize;
+    let mut sides = Vec::with_capacity(geometry.len());
+    for (i, g) in geometry.iter().enumerate() {
+        let largest = g.k1.abs().max(g.k2.abs());
+        let gaussian = g.k1 * g.k2;
+        let is_planar = largest * diagonal <= DEFAULT_PLANE_CURVATURE;
+        let is_flat = is_planar || gaussian.abs() <= options.flat_tolerance * largest * largest;
+        planar += usize::from(is_planar);
+        flat += usize::from(is_flat);
+        if is_flat {
+            diagnostics.push(Diagnostic::FlatPoint { point: i as u32, gaussian_curvature: gaussian });
+        }
+        sides.push(if !is_flat && gaussian > 0.0 { if g.k1 > 0.0 { 1 } else { -1 } } else { 0 });
+    }
+    if planar == geometry.len() {
+        return Err(TpiError::DegenerateSurface {
+            reason: "the surface is flat at every pattern point: all tangent planes coincide".into(),
+        });
+    }
+    if flat == geometry.len() {
+        return Err(TpiError::DegenerateSurface {
+            reason: "the Gaussian curvature is zero at every pattern point (a developable surface such as a cylinder): neighbouring tangent planes meet in parallel lines".into(),
+        });
+    }
+    Ok(sides)
+}
+
+/// Normalised pattern coordinates scaled by the surface's mean extent in u and v, so that
+/// the candidate triangulation sees roughly isotropic distances.
+fn scaled_parameters(pattern: &[[f64; 2]], geometry: &[LocalGeometry], domain: &crate::surface::Domain) -> Vec<[f64; 2]> {
+    let n = geometry.len() as f64;
+    let mean_su = geometry.iter().map(|g| g.first_form[0].sqrt()).sum::<f64>() / n;
+    let mean_sv = geometry.iter().map(|g| g.first_form[2].sqrt()).sum::<f64>() / n;
+    let mut su = mean_su * domain.u.length();
+    let mut sv = mean_sv * domain.v.length();
+    if !(su > 0.0 && su.is_finite() && sv > 0.0 && sv.is_finite()) {
+        su = 1.0;
+        sv = 1.0;
+    }
+    let (su, sv) = (su / su.max(sv), sv / su.max(sv));
+    pattern.iter().map(|&[s, t]| [s * su, t * sv]).collect()
+}

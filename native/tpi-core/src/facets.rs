@@ -1,0 +1,618 @@
+//! Facets: one planar polygon per pattern point, closed on the surface's boundary.
+//!
+//! - **Interior vertices.** Every triangle (i, j, k) of the dual structure gives the vertex
+//!   T_i ∩ T_j ∩ T_k ([`crate::planes`]), shared by the three facets. Each facet's loop visits
+//!   the triangles around its point counter-clockwise in parameter space, which is
+//!   counter-clockwise seen from the normal Su x Sv.
+//! - **Boundary.** A vertex is inside when its foot on the surface lies in the domain
+//!   ([`crate::projection`]). Each facet edge is the segment of the line T_i ∩ T_j between the
+//!   vertices of the edge's two triangles; on the convex hull of the pattern it is a ray,
+//!   followed outwards until it leaves the domain. Where an edge crosses the boundary, the
+//!   crossing is found by regula falsi on the inside measure: a point of the line T_i ∩ T_j
+//!   whose foot is on the domain boundary, i.e. where the edge meets the ruled surface of the
+//!   normals along the boundary curve. It is computed once per edge and shared by both
+//!   facets. Between leaving and re-entering the domain, a facet follows the boundary
+//!   counter-clockwise and picks up the domain corners it passes; corner c contributes the
+//!   point where the corner's normal line meets T_i. Every vertex of facet i lies in T_i by
+//!   construction, so every facet is exactly planar.
+//! - **Welding.** Where four or more planes meet in one point (cocircular configurations,
+//!   such as a square grid on a paraboloid of revolution) the two triangles of an edge give
+//!   the same vertex; they are merged when closer than the weld tolerance.
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::diagnostics::Diagnostic;
+use crate::planes::{intersect_three, regularised_meeting_point, Plane};
+use crate::projection::{boundary_parameter, domain_corners, foot, inside_measure};
+use crate::surface::{Domain, Surface};
+use crate::triangulation::{DualTriangulation, Edge, Fan, NO_TRIANGLE};
+
+/// A triangle vertex farther than this many times the triangle's longest side from the
+/// triangle's centroid is ill-conditioned (nearly parallel planes).
+pub const DEFAULT_FAR_VERTEX_FACTOR: f64 = 8.0;
+
+/// Interior sample count used to detect an edge that dips into the domain between two
+/// outside endpoints.
+const OUTSIDE_SEGMENT_SAMPLES: usize = 8;
+
+/// Regula falsi iterations for a boundary crossing.
+const CROSSING_ITERATIONS: usize = 80;
+
+/// A boundary crossing is converged when |inside measure| falls below this (normalised).
+pub const CROSSING_TOLERANCE: f64 = 1e-13;
+
+/// Doublings of the step when following a hull ray outwards.
+const RAY_DOUBLINGS: usize = 60;
+
+/// An outside segment end farther than this many neighbour spacings is not used directly:
+/// the line is followed from the inside end instead.
+const RAY_FAR_FACTOR: f64 = 16.0;
+
+/// What a mesh vertex is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VertexKind {
+    /// Meeting point of three (or more) tangent planes inside the domain.
+    Interior,
+    /// Where a facet edge meets the surface's boundary wall.
+    Boundary,
+    /// Over a domain corner.
+    Corner,
+}
+
+/// Parameters of facet construction.
+#[derive(Clone, Copy, Debug)]
+pub struct FacetParams {
+    /// See [`DEFAULT_FAR_VERTEX_FACTOR`].
+    pub far_vertex_factor: f64,
+    /// Absolute weld distance (model units).
+    pub weld_distance: f64,
+}
+
+/// The indexed polygon mesh before reporting.
+#[derive(Clone, Debug, Default)]
+pub struct FacetMesh {
+    /// Vertex positions.
+    pub vertices: Vec<DVec3>,
+    /// What each vertex is.
+    pub vertex_kinds: Vec<VertexKind>,
+    /// Facet i's loop is `loops[offsets[i]..offsets[i + 1]]`.
+    pub offsets: Vec<u32>,
+    /// Flat vertex loops.
+    pub loops: Vec<u32>,
+    /// Problems found.
+    pub diagnostics: Vec<Diagnostic>,
+}
+
+impl FacetMesh {
+    /// The loop of facet i.
+    pub fn facet(&self, i: usize) -> &[u32] {
+        &self.loops[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Crossing {
+    point: DVec3,
+    wall: f64,
+    /// Leaving the domain when walking the edge in canonical direction (right to left).
+    exit: bool,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Item {
+    Triangle(u32),
+    Crossing(u32),
+    Corner(u8),
+}
+
+struct Context<'a> {
+    surface: &'a dyn Surface,
+    domain: Domain,
+    planes: &'a [Plane],
+}
+
+impl Context<'_> {
+    fn measure(&self, x: DVec3, guess: [f64; 2]) -> ([f64; 2], f64) {
+        let uv = foot(self.surface, &self.domain, x, guess);
+        (uv, inside_measure(&self.domain, uv))
+    }
+}
+
+/// Builds the facets of all pattern points from the dual triangulation.
+pub fn build_facets(
+    surface: &dyn Surface,
+    uv: &[[f64; 2]],
+    planes: &[Plane],
+    tri: &DualTriangulation,
+    params: &FacetParams,
+) -> FacetMesh {
+    let domain = surface.domain();
+    let ctx = Context { surface, domain, planes };
+    let mut diagnostics = Vec::new();
+
+    // 1. Triangle vertices, their conditioning and whether they lie inside.
+    let triangle_vertices: Vec<TriangleVertex> = tri
+        .triangles
+        .par_iter()
+        .map(|&ids| triangle_vertex(&ctx, uv, ids, params.far_vertex_factor))
+        .collect();
+    diagnostics.extend(triangle_vertices.iter().filter_map(|t| t.diagnostic.clone()));
+
+    // 2. Boundary crossings per edge.
+    let (edges, _edge_of) = tri.edges();
+    let per_edge: Vec<(Vec<Crossing>, Option<Diagnostic>)> =
+        edges.par_iter().map(|edge| edge_crossings(&ctx, tri, edge, &triangle_vertices)).collect();
+    let mut crossing_offsets = Vec::with_capacity(edges.len() + 1);
+    let mut crossings = Vec::new();
+    crossing_offsets.push(0u32);
+    for (list, diagnostic) in per_edge {
+        crossings.extend(list);
+        crossing_offsets.push(crossings.len() as u32);
+        diagnostics.extend(diagnostic);
+    }
+    let edge_index = EdgeIndex::new(&edges, uv.len());
+    let corner_owner = corner_owners(&crossings, &crossing_offsets);
+
+    // 3. Facet loops as items.
+    let corners = corner_samples(surface, &domain);
+    let incident = tri.incident_triangles(uv.len());
+    let facet_items: Vec<(Vec<Item>, Vec<Diagnostic>)> = (0..uv.len() as u32)
+        .into_par_iter()
+        .map_init(Vec::new, |fan, i| {
+            facet_items(i, tri, &incident, &edge_index, &crossing_offsets, &crossings, &corner_owner, &triangle_vertices, fan)
+        })
+        .collect();
+
+    // 4. Welding of coincident triangle vertices across interior edges.
+    let mut representative: Vec<u32> = (0..tri.len() as u32).collect();
+    for edge in &edges {
+        if edge.left == NO_TRIANGLE || edge.right == NO_TRIANGLE {
+            continue;
+        }
+        let (a, b) = (edge.left as usize, edge.right as usize);
+        if triangle_vertices[a].point.distance(triangle_vertices[b].point) <= params.weld_distance {
+            let (ra, rb) = (find(&mut representative, a as u32), find(&mut representative, b as u32));
+            if ra != rb {
+                let (low, high) = (ra.min(rb), ra.max(rb));
+                representative[high as usize] = low;
+            }
+        }
+    }
+
+    // 5. Vertex numbering in facet order (deterministic), corners per facet.
+    let mut mesh = FacetMesh { offsets: Vec::with_capacity(uv.len() + 1), ..FacetMesh::default() };
+    mesh.offsets.push(0);
+    let mut triangle_id = vec![u32::MAX; tri.len()];
+    let mut crossing_id = vec![u32::MAX; crossings.len()];
+    let mut corner_claims = [0u32; 4];
+    for (i, (items, facet_diagnostics)) in facet_items.into_iter().enumerate() {
+        diagnostics.extend(facet_diagnostics);
+        let start = mesh.loops.len();
+        for item in items {
+            let id = match item {
+                Item::Triangle(t) => {
+                    let r = find(&mut representative, t) as usize;
+                    if triangle_id[r] == u32::MAX {
+                        triangle_id[r] = push_vertex(&mut mesh, triangle_vertices[r].point, VertexKind::Interior);
+                    }
+                    triangle_id[r]
+                }
+                Item::Crossing(c) => {
+                    if crossing_id[c as usize] == u32::MAX {
+                        crossing_id[c as usize] = push_vertex(&mut mesh, crossings[c as usize].point, VertexKind::Boundary);
+                    }
+                    crossing_id[c as usize]
+                }
+                Item::Corner(c) => {
+                    corner_claims[c as usize] += 1;
+                    let (point, normal) = corners[c as usize];
+                    let plane = &planes[i];
+                    let denominator = plane.normal.dot(normal);
+                    let mu = plane.normal.dot(plane.point - point) / denominator;
+                    let position = point + normal * mu;
+                    if !position.is_finite() || denominator.abs() < 1e-9 {
+                        diagnostics.push(Diagnostic::CornerUnreachable { point: i as u32, corner: c });
+                        continue;
+                    }
+                    push_vertex(&mut mesh, position, VertexKind::Corner)
+                }
+            };
+            let loop_now = &mesh.loops[start..];
+            if loop_now.last() != Some(&id) {
+                mesh.loops.push(id);
+            }
+        }
+        while mesh.loops.len() > start + 1 && mesh.loops[start] == mesh.loops[mesh.loops.len() - 1] {
+            mesh.loops.pop();
+        }
+        if mesh.loops.len() - start < 3 {
+            diagnostics.push(Diagnostic::OpenFacet { point: i as u32, reason: "fewer than three vertices".into() });
+        }
+        mesh.offsets.push(mesh.loops.len() as u32);
+    }
+    for (corner, &claims) in corner_claims.iter().enumerate() {
+        if claims != 1 {
+            diagnostics.push(Diagnostic::CornerClaims { corner: corner as u8, claims });
+        }
+    }
+    mesh.diagnostics = diagnostics;
+    mesh
+}
+
+fn push_vertex(mesh: &mut FacetMesh, position: DVec3, kind: VertexKind) -> u32 {
+    mesh.vertices.push(position);
+    mesh.vertex_kinds.push(kind);
+    (mesh.vertices.len() - 1) as u32
+}
+
+fn find(representative: &mut [u32], mut x: u32) -> u32 {
+    while representative[x as usize] != x {
+        let parent = representative[x as usize];
+        representative[x as usize] = representative[parent as usize];
+        x = parent;
+    }
+    x
+}
+
+fn mean_uv(uv: &[[f64; 2]], ids: &[u32; 3]) -> [f64; 2] {
+    let mut m = [0.0; 2];
+    for &i in ids {
+        m[0] += uv[i as usize][0] / 3.0;
+        m[1] += uv[i as usize][1] / 3.0;
+    }
+    m
+}
+
+/// A triangle's facet vertex and where it lies.
+#[derive(Clone, Debug)]
+struct TriangleVertex {
+    point: DVec3,
+    foot: [f64; 2],
+    /// Inside measure of the foot (positive inside the domain).
+    inside: f64,
+    diagnostic: Option<Diagnostic>,
+}
+
+/// The meeting point of a triangle's three planes. An inside vertex that ran away from its
+/// points (nearly parallel planes) is replaced by a finite stand-in and reported; outside
+/// vertices are only used to steer the boundary clipping, so they may lie far away.
+fn triangle_vertex(ctx: &Context<'_>, uv: &[[f64; 2]], mut ids: [u32; 3], far_factor: f64) -> TriangleVertex {
+    ids.sort_unstable();
+    let [a, b, c] = ids.map(|i| &ctx.planes[i as usize]);
+    let meeting = intersect_three(a, b, c);
+    let centroid = (a.point + b.point + c.point) / 3.0;
+    let longest = a.point.distance(b.point).max(b.point.distance(c.point)).max(c.point.distance(a.point));
+    let distance = meeting.point.distance(centroid);
+    let guess = mean_uv(uv, &ids);
+    if meeting.point.is_finite() {
+        let (foot, inside) = ctx.measure(meeting.point, guess);
+        if distance <= far_factor * longest || inside <= 0.0 {
+            return TriangleVertex { point: meeting.point, foot, inside, diagnostic: None };
+        }
+    }
+    let point = regularised_meeting_point([a, b, c], centroid, 1e-6);
+    let (foot, inside) = ctx.measure(point, guess);
+    let distance = if distance.is_finite() { distance } else { f64::INFINITY };
+    let diagnostic = Diagnostic::IllConditionedVertex { points: ids, determinant: meeting.determinant, distance };
+    TriangleVertex { point, foot, inside, diagnostic: Some(diagnostic) }
+}
+
+/// Edge lookup: for point i, its edges (sorted by the other endpoint).
+struct EdgeIndex {
+    offsets: Vec<u32>,
+    entries: Vec<(u32, u32)>,
+}
+
+impl EdgeIndex {
+    fn new(edges: &[Edge], point_count: usize) -> Self {
+        let mut counts = vec![0u32; point_count + 1];
+        for e in edges {
+            counts[e.lo as usize + 1] += 1;
+            counts[e.hi as usize + 1] += 1;
+        }
+        for i in 0..point_count {
+            counts[i + 1] += counts[i];
+        }
+        let mut fill = counts.clone();
+        let mut entries = vec![(0u32, 0u32); edges.len() * 2];
+        for (id, e) in edges.iter().enumerate() {
+            entries[fill[e.lo as usize] as usize] = (e.hi, id as u32);
+            fill[e.lo as usize] += 1;
+            entries[fill[e.hi as usize] as usize] = (e.lo, id as u32);
+            fill[e.hi as usize] += 1;
+        }
+        for i in 0..point_count {
+            entries[counts[i] as usize..counts[i + 1] as usize].sort_unstable();
+        }
+        Self { offsets: counts, entries }
+    }
+
+    fn edge(&self, a: u32, b: u32) -> Option<u32> {
+        let list = &self.entries[self.offsets[a as usize] as usize..self.offsets[a as usize + 1] as usize];
+        list.binary_search_by_key(&b, |e| e.0).ok().map(|k| list[k].1)
+    }
+}
+
+/// Where a point of the edge's segment comes from.
+#[derive(Clone, Copy)]
+struct SegmentEnd {
+    point: DVec3,
+    guess: [f64; 2],
+    inside: f64,
+}
+
+/// Boundary crossings of one edge, ordered from its right triangle to its left one.
+///
+/// Where one end is inside, the crossing is searched on the line itself, x = x_in + lambda D
+/// with D = n_lo x n_hi, so that it lies in both tangent planes to rounding, whatever the
+/// other end's conditioning. Where both ends are outside, the segment is sampled for a part
+/// that dips into the domain.
+fn edge_crossings(
+    ctx: &Context<'_>,
+    tri: &DualTriangulation,
+    edge: &Edge,
+    triangle_vertices: &[TriangleVertex],
+) -> (Vec<Crossing>, Option<Diagnostic>) {
+    let end_of = |t: u32| {
+        let v = &triangle_vertices[t as usize];
+        SegmentEnd { point: v.point, guess: v.foot, inside: v.inside }
+    };
+    let (lo, hi) = (&ctx.planes[edge.lo as usize], &ctx.planes[edge.hi as usize]);
+    let Some(line) = lo.normal.cross(hi.normal).try_normalize() else {
+        return (Vec::new(), Some(Diagnostic::ParallelPlanes { points: [edge.lo, edge.hi] }));
+    };
+    let spacing = lo.point.distance(hi.point).max(f64::MIN_POSITIVE);
+    let outward = |t: u32| {
+        // Direction along the line away from triangle t's third point.
+        let third = tri.triangles[t as usize].into_iter().find(|&v| v != edge.lo && v != edge.hi).unwrap_or(edge.lo);
+        let chord = hi.point - lo.point;
+        let mut away = (lo.point + hi.point) * 0.5 - ctx.planes[third as usize].point;
+        away -= chord * (away.dot(chord) / chord.length_squared().max(f64::MIN_POSITIVE));
+        if line.dot(away) < 0.0 { -line } else { line }
+    };
+    // (start, end) in canonical order right -> left; None marks a hull side (a ray).
+    let start = (edge.right != NO_TRIANGLE).then(|| end_of(edge.right));
+    let end = (edge.left != NO_TRIANGLE).then(|| end_of(edge.left));
+    let inside = |e: &Option<SegmentEnd>| e.map_or(false, |e| e.inside > 0.0);
+    match (inside(&start), inside(&end)) {
+        (true, true) => (Vec::new(), None),
+        (true, false) | (false, true) => {
+            let forward = inside(&start);
+            let (from, to) = if forward { (start, end) } else { (end, start) };
+            let Some(from) = from else { return (Vec::new(), None) };
+            let (direction, target) = match to {
+                Some(to) if to.point.is_finite() && to.point.distance(from.point) <= RAY_FAR_FACTOR * spacing => {
+                    let chord = to.point - from.point;
+                    (if line.dot(chord) < 0.0 { -line } else { line }, Some(chord.length()))
+                }
+                Some(to) => {
+                    let t = if forward { edge.left } else { edge.right };
+                    let towards = if to.point.is_finite() { to.point - from.point } else { outward(t) };
+                    let _ = t;
+                    (if line.dot(towards) < 0.0 { -line } else { line }, None)
+                }
+                None => {
+                    let t = if forward { edge.right } else { edge.left };
+                    (outward(t), None)
+                }
+            };
+            let outside = match target {
+                Some(length) => {
+                    let point = from.point + direction * length;
+                    let (foot_uv, inside) = ctx.measure(point, from.guess);
+                    if inside > 0.0 {
+                        march_out(ctx, &from, direction, spacing)
+                    } else {
+                        Some((length, SegmentEnd { point, guess: foot_uv, inside }))
+                    }
+                }
+                None => march_out(ctx, &from, direction, spacing),
+            };
+            let Some((length, outside)) = outside else {
+                return (Vec::new(), Some(Diagnostic::BoundaryNotReached { points: [edge.lo, edge.hi] }));
+            };
+            let crossing = refine_crossing(ctx, (0.0, from), (length, outside), from.point, direction);
+            // `refine_crossing` walks from inside to outside: an exit in that direction.
+            (vec![Crossing { exit: forward, ..crossing }], None)
+        }
+        (false, false) => {
+            let (Some(start), Some(end)) = (start, end) else { return (Vec::new(), None) };
+            if !(start.point.is_finite() && end.point.is_finite())
+                || start.point.distance(end.point) > RAY_FAR_FACTOR * spacing
+            {
+                return (Vec::new(), None);
+            }
+            let chord = end.point - start.point;
+            let length = chord.length();
+            let Some(direction) = chord.try_normalize() else { return (Vec::new(), None) };
+            let mut previous = (0.0f64, start);
+            let mut found = Vec::new();
+            for s in 1..=OUTSIDE_SEGMENT_SAMPLES + 1 {
+                let lambda = length * s as f64 / (OUTSIDE_SEGMENT_SAMPLES + 1) as f64;
+                let current = if s == OUTSIDE_SEGMENT_SAMPLES + 1 {
+                    (length, end)
+                } else {
+                    let point = start.point + direction * lambda;
+                    let guess = lerp2(start.guess, end.guess, lambda / length);
+                    let (foot_uv, inside) = ctx.measure(point, guess);
+                    (lambda, SegmentEnd { point, guess: foot_uv, inside })
+                };
+                if (previous.1.inside > 0.0) != (current.1.inside > 0.0) {
+                    let exit = previous.1.inside > 0.0;
+                    let crossing = refine_crossing(ctx, previous, current, start.point, direction);
+                    found.push(Crossing { exit, ..crossing });
+                }
+                previous = current;
+            }
+            (found, None)
+        }
+    }
+}
+
+/// Steps along `direction` from an inside point, doubling, until outside the domain.
+fn march_out(ctx: &Context<'_>, from: &SegmentEnd, direction: DVec3, spacing: f64) -> Option<(f64, SegmentEnd)> {
+    let mut step = spacing;
+    let mut guess = from.guess;
+    for _ in 0..RAY_DOUBLINGS {
+        let point = from.point + direction * step;
+        let (foot_uv, inside) = ctx.measure(point, guess);
+        if inside <= 0.0 {
+            return Some((step, SegmentEnd { point, guess: foot_uv, inside }));
+        }
+        guess = foot_uv;
+        step *= 2.0;
+    }
+    None
+}
+
+fn lerp2(a: [f64; 2], b: [f64; 2], t: f64) -> [f64; 2] {
+    [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t]
+}
+
+/// Regula falsi (Illinois variant) on the inside measure along origin + lambda direction,
+/// between two bracketing samples. The crossing's `exit` is set by the caller.
+fn refine_crossing(
+    ctx: &Context<'_>,
+    low: (f64, SegmentEnd),
+    high: (f64, SegmentEnd),
+    origin: DVec3,
+    direction: DVec3,
+) -> Crossing {
+    let (mut a, mut b) = (low, high);
+    let (mut fa, mut fb) = (a.1.inside, b.1.inside);
+    let mut best = if fa.abs() < fb.abs() { a } else { b };
+    let mut side = 0i8;
+    for _ in 0..CROSSING_ITERATIONS {
+        let mut lambda = (a.0 * fb - b.0 * fa) / (fb - fa);
+        if !lambda.is_finite() || lambda <= a.0.min(b.0) || lambda >= a.0.max(b.0) {
+            lambda = 0.5 * (a.0 + b.0);
+        }
+        let point = origin + direction * lambda;
+        let guess = if (lambda - a.0).abs() < (lambda - b.0).abs() { a.1.guess } else { b.1.guess };
+        let (foot_uv, inside) = ctx.measure(point, guess);
+        let current = (lambda, SegmentEnd { point, guess: foot_uv, inside });
+        if inside.abs() < best.1.inside.abs() {
+            best = current;
+        }
+        if inside.abs() < CROSSING_TOLERANCE || (b.0 - a.0).abs() <= 1e-15 * b.0.abs().max(a.0.abs()) {
+            break;
+        }
+        if (inside > 0.0) == (fa > 0.0) {
+            a = current;
+            fa = inside;
+            if side == -1 {
+                fb *= 0.5;
+            }
+            side = -1;
+        } else {
+            b = current;
+            fb = inside;
+            if side == 1 {
+                fa *= 0.5;
+            }
+            side = 1;
+        }
+    }
+    Crossing { point: best.1.point, wall: boundary_parameter(&ctx.domain, best.1.guess), exit: false }
+}
+
+/// For each domain corner, the crossing that owns it: the last crossing before the corner
+/// along the boundary loop (counter-clockwise). The facet that leaves the domain there
+/// follows the boundary past the corner, so it is the one that holds it.
+fn corner_owners(crossings: &[Crossing], _offsets: &[u32]) -> [Option<u32>; 4] {
+    let mut owner = [None; 4];
+    for (corner, slot) in owner.iter_mut().enumerate() {
+        let mut best: Option<(f64, u32)> = None;
+        for (index, crossing) in crossings.iter().enumerate() {
+            let behind = (corner as f64 - crossing.wall).rem_euclid(4.0);
+            if best.map_or(true, |(b, _)| behind < b) {
+                best = Some((behind, index as u32));
+            }
+        }
+        *slot = best.map(|b| b.1);
+    }
+    owner
+}
+
+/// Point and normal over each domain corner.
+fn corner_samples(surface: &dyn Surface, domain: &Domain) -> [(DVec3, DVec3); 4] {
+    domain_corners(domain).map(|[u, v]| {
+        let d = surface.evaluate(u, v);
+        let geometry = crate::diffgeo::LocalGeometry::from_derivatives(&d);
+        (d.point, geometry.normal)
+    })
+}
+
+/// The loop of facet i as items, with corners inserted along the boundary.
+#[allow(clippy::too_many_arguments)]
+fn facet_items(
+    i: u32,
+    tri: &DualTriangulation,
+    incident: &[u32],
+    edge_index: &EdgeIndex,
+    crossing_offsets: &[u32],
+    crossings: &[Crossing],
+    corner_owner: &[Option<u32>; 4],
+    triangle_vertices: &[TriangleVertex],
+    fan: &mut Vec<u32>,
+) -> (Vec<Item>, Vec<Diagnostic>) {
+    let mut diagnostics = Vec::new();
+    let kind = tri.fan(i, incident[i as usize], fan);
+    if kind == Fan::Broken || fan.is_empty() {
+        diagnostics.push(Diagnostic::OpenFacet { point: i, reason: "no triangles around the point".into() });
+        return (Vec::new(), diagnostics);
+    }
+    // Raw walk: crossings of each incoming edge, then the triangle's vertex if inside.
+    let mut raw: Vec<(Item, Option<(bool, f64)>)> = Vec::with_capacity(fan.len() * 2 + 4);
+    let push_edge = |j: u32, raw: &mut Vec<(Item, Option<(bool, f64)>)>| {
+        let Some(e) = edge_index.edge(i, j) else { return };
+        let range = crossing_offsets[e as usize] as usize..crossing_offsets[e as usize + 1] as usize;
+        let forward = i < j;
+        let mut ids: Vec<usize> = range.collect();
+        if !forward {
+            ids.reverse();
+        }
+        for c in ids {
+            let crossing = crossings[c];
+            let exit = crossing.exit == forward;
+            raw.push((Item::Crossing(c as u32), Some((exit, crossing.wall))));
+        }
+    };
+    for &t in fan.iter() {
+        let vertices = tri.triangles[t as usize];
+        let p = vertices.iter().position(|&v| v == i).unwrap_or(0);
+        let incoming = vertices[(p + 1) % 3];
+        push_edge(incoming, &mut raw);
+        if triangle_vertices[t as usize].inside > 0.0 {
+            raw.push((Item::Triangle(t), None));
+        }
+    }
+    if kind == Fan::Open {
+        let last = tri.triangles[fan[fan.len() - 1] as usize];
+        let p = last.iter().position(|&v| v == i).unwrap_or(0);
+        push_edge(last[(p + 2) % 3], &mut raw);
+    }
+    // Corners follow the exit crossing that owns them; leaving and entering must alternate.
+    let boundary: Vec<bool> = raw.iter().filter_map(|r| r.1.map(|(exit, _)| exit)).collect();
+    if (0..boundary.len()).any(|k| boundary[k] == boundary[(k + 1) % boundary.len()]) {
+        diagnostics.push(Diagnostic::OpenFacet {
+            point: i,
+            reason: "boundary crossings do not alternate between leaving and entering".into(),
+        });
+    }
+    let mut items = Vec::with_capacity(raw.len() + 4);
+    for (item, crossing) in raw {
+        items.push(item);
+        if let (Item::Crossing(c), Some((true, wall))) = (item, crossing) {
+            let mut owned: Vec<(f64, u8)> = (0..4u8)
+                .filter(|&k| corner_owner[k as usize] == Some(c))
+                .map(|k| ((f64::from(k) - wall).rem_euclid(4.0), k))
+                .collect();
+            owned.sort_by(|x, y| x.0.total_cmp(&y.0));
+            items.extend(owned.into_iter().map(|x| Item::Corner(x.1)));
+        }
+    }
+    (items, diagnostics)
+}

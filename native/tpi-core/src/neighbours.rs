@@ -1,0 +1,239 @@
+//! Deciding the true neighbours: which tangent planes are intersected (paper, section 3.2).
+//!
+//! The candidates are the Delaunay triangulation of the pattern points in parameter space.
+//! Two criteria then decide every edge (a, b) of the quadrilateral (c, a, d, b) formed by its
+//! two triangles, and Lawson flips replace the diagonal (a, b) by (c, d) where it fails. The
+//! flips keep the structure a valid triangulation, which is how the per-point answers are
+//! reconciled into one consistent dual (a symmetric neighbour relation whose triangles close
+//! up around every interior point).
+//!
+//! 1. **Curvature compensation** (the paper's method). Locally the surface is its osculating
+//!    paraboloid z = (k1 x^2 + k2 y^2) / 2 in the principal frame, and for an elliptic
+//!    paraboloid z = a x^2 + b y^2 the tangent planes of p and q meet above the line
+//!    a dx (2x - px - qx) + b dy (2y - py - qy) = 0: the perpendicular bisector of p and q
+//!    after the substitution x' = sqrt(a) x, y' = sqrt(b) y. So the true neighbours are the
+//!    Delaunay neighbours in the metric |II| = |k1| dx1^2 + |k2| dx2^2, i.e. the candidates
+//!    scaled by sqrt(kmin/kmax) along the minimum-curvature direction relative to the maximum
+//!    one (the paper states the ratio applied along the maximum direction; the closed form
+//!    above fixes which way it goes). The edge test is the in-circle test in that metric,
+//!    with the metric averaged over the quadrilateral's four points and the points projected
+//!    orthogonally into the plane of their mean normal. |k| makes the same test usable on
+//!    saddles, where the paper's method is only a heuristic; a small isotropic term keeps the
+//!    metric definite where a curvature vanishes.
+//!
+//! 2. **Envelope** (the definition of right where K > 0). With every normal oriented towards
+//!    the centres of curvature (sigma_i n_i, sigma_i = sign of the curvatures), the half-spaces
+//!    H_i = {x : sigma_i n_i.(x - p_i) >= 0} intersect in a convex body whose face in T_i is the
+//!    exact facet of point i. The edge (a, b) is right iff the vertex T_a ∩ T_b ∩ T_c lies in
+//!    H_d (equivalently T_a ∩ T_b ∩ T_d in H_c); otherwise T_d cuts the edge off and (c, d) are
+//!    the neighbours. This local test is applied after the first criterion to every quad whose
+//!    four points are strictly convex, and it wins: the flips it makes are counted as
+//!    "envelope repairs" in the report.
+
+use glam::DVec3;
+
+use crate::diffgeo::LocalGeometry;
+use crate::planes::{intersect_three, Plane};
+use crate::triangulation::{orient, DualTriangulation, NO_TRIANGLE};
+
+/// Relative weight of the isotropic term that keeps the compensation metric definite.
+pub const METRIC_REGULARISATION: f64 = 1e-3;
+
+/// A vertex must lie this far (relative to the quad's size) outside a half-space before
+/// the envelope test flips: ties (four planes through one point, e.g. a square grid on a
+/// paraboloid of revolution) are left alone.
+pub const ENVELOPE_FLIP_TOLERANCE: f64 = 1e-10;
+
+/// Counts of what the neighbour decision did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct NeighbourStats {
+    /// Flips made by the curvature-compensated in-circle test.
+    pub compensation_flips: usize,
+    /// Flips made afterwards by the envelope test (disagreements with the paper's method).
+    pub envelope_repairs: usize,
+    /// Edges the envelope rejects but that could not be flipped (non-convex quadrilateral
+    /// in parameter space) or flip budget exhausted.
+    pub envelope_unresolved: usize,
+}
+
+/// Inputs of the neighbour decision for every pattern point.
+pub struct NeighbourInput<'a> {
+    /// Coordinates the triangulation lives in (scaled parameter space).
+    pub plane_uv: &'a [[f64; 2]],
+    /// Local geometry per point.
+    pub geometry: &'a [LocalGeometry],
+    /// Tangent planes per point.
+    pub planes: &'a [Plane],
+    /// +1 or -1 where the point is strictly convex (K > 0): the side of the centres of
+    /// curvature relative to the normal; 0 elsewhere.
+    pub convex_side: &'a [i8],
+}
+
+/// Runs both criteria to convergence. Deterministic (a stack in edge order).
+pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope: bool) -> NeighbourStats {
+    let mut stats = NeighbourStats::default();
+    stats.compensation_flips = flip_until_stable(tri, input, |tri, t, k| compensation_illegal(tri, input, t, k)).0;
+    if envelope {
+        let (flips, unresolved) = flip_until_stable(tri, input, |tri, t, k| envelope_illegal(tri, input, t, k));
+        stats.envelope_repairs = flips;
+        stats.envelope_unresolved = unresolved;
+    }
+    stats
+}
+
+/// Lawson's flip loop with the given illegality test. Returns (flips, unresolved).
+fn flip_until_stable(
+    tri: &mut DualTriangulation,
+    input: &NeighbourInput<'_>,
+    illegal: impl Fn(&DualTriangulation, usize, usize) -> bool,
+) -> (usize, usize) {
+    let mut stack: Vec<(u32, u32)> = Vec::with_capacity(tri.len() * 2);
+    for (t, tri_vertices) in tri.triangles.iter().enumerate() {
+        for k in 0..3 {
+            let other = tri.neighbours[t][k];
+            if other != NO_TRIANGLE && (other as usize) > t {
+                stack.push((tri_vertices[(k + 1) % 3], tri_vertices[(k + 2) % 3]));
+            }
+        }
+    }
+    stack.reverse();
+    let budget = 20 * tri.len() + 100;
+    let mut flips = 0;
+    let mut unresolved = 0;
+    let mut incident = tri.incident_triangles(input.plane_uv.len());
+    while let Some((a, b)) = stack.pop() {
+        let Some((t, k)) = find_edge(tri, &incident, a, b) else { continue };
+        if !illegal(tri, t, k) {
+            continue;
+        }
+        let t2 = tri.neighbours[t][k];
+        let [c, a, b] = rotated(tri.triangles[t], k);
+        let k2 = tri.neighbours[t2 as usize].iter().position(|&x| x as usize == t).unwrap_or(0);
+        let d = tri.triangles[t2 as usize][k2];
+        let uv = input.plane_uv;
+        let convex = orient(uv[c as usize], uv[a as usize], uv[d as usize]) > 0.0
+            && orient(uv[d as usize], uv[b as usize], uv[c as usize]) > 0.0;
+        if !convex || flips >= budget {
+            unresolved += 1;
+            continue;
+        }
+        let (t1, t2) = tri.flip(t as u32, k);
+        flips += 1;
+        for v in [c, a, d] {
+            incident[v as usize] = t1;
+        }
+        incident[b as usize] = t2;
+        stack.extend_from_slice(&[(a, c), (c, b), (b, d), (d, a)]);
+    }
+    (flips, unresolved)
+}
+
+/// Finds the triangle and opposite position of the interior edge (a, b), if it still exists.
+fn find_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32) -> Option<(usize, usize)> {
+    let mut fan = Vec::new();
+    tri.fan(a, incident[a as usize], &mut fan);
+    for &t in &fan {
+        let vertices = tri.triangles[t as usize];
+        for k in 0..3 {
+            let (from, to) = (vertices[(k + 1) % 3], vertices[(k + 2) % 3]);
+            if from == a && to == b && tri.neighbours[t as usize][k] != NO_TRIANGLE {
+                return Some((t as usize, k));
+            }
+        }
+    }
+    None
+}
+
+fn rotated(x: [u32; 3], k: usize) -> [u32; 3] {
+    [x[k], x[(k + 1) % 3], x[(k + 2) % 3]]
+}
+
+/// The four points (c, a, b, d) of the quad around the edge opposite vertex k of triangle t.
+fn quad(tri: &DualTriangulation, t: usize, k: usize) -> [u32; 4] {
+    let [c, a, b] = rotated(tri.triangles[t], k);
+    let t2 = tri.neighbours[t][k] as usize;
+    let k2 = tri.neighbours[t2].iter().position(|&x| x as usize == t).unwrap_or(0);
+    [c, a, b, tri.triangles[t2][k2]]
+}
+
+/// In-circle test in the averaged curvature-compensation metric.
+fn compensation_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: usize, k: usize) -> bool {
+    let ids = quad(tri, t, k);
+    let geo = ids.map(|i| &input.geometry[i as usize]);
+    let mean_normal = geo.iter().fold(DVec3::ZERO, |acc, g| acc + g.normal);
+    let Some(normal) = mean_normal.try_normalize() else { return false };
+    let e1 = (geo[0].d1 - normal * geo[0].d1.dot(normal)).try_normalize().unwrap_or_else(|| normal.any_orthonormal_vector());
+    let e2 = normal.cross(e1);
+    // Metric G = sum |k| (d.e)(d.e)^T over the four points, in the frame (e1, e2).
+    let mut g = [0.0f64; 3];
+    for point in &geo {
+        for (kappa, dir) in [(point.k1.abs(), point.d1), (point.k2.abs(), point.d2)] {
+            let (x, y) = (dir.dot(e1), dir.dot(e2));
+            g[0] += kappa * x * x;
+            g[1] += kappa * x * y;
+            g[2] += kappa * y * y;
+        }
+    }
+    let trace = g[0] + g[2];
+    if !(trace > 0.0) || !trace.is_finite() {
+        g = [1.0, 0.0, 1.0];
+    } else {
+        g[0] += METRIC_REGULARISATION * trace;
+        g[2] += METRIC_REGULARISATION * trace;
+    }
+    // Cholesky G = L L^T, coordinates x' = L^T x.
+    let l11 = g[0].sqrt();
+    let l21 = g[1] / l11;
+    let l22 = (g[2] - l21 * l21).max(0.0).sqrt();
+    let origin = geo[0].point;
+    let map = |p: DVec3| {
+        let r = p - origin;
+        let (x, y) = (r.dot(e1), r.dot(e2));
+        [l11 * x + l21 * y, l22 * y]
+    };
+    let [c, a, b, d] = geo.map(|g| map(g.point));
+    // Triangle (c, a, b) must be counter-clockwise in this frame for the test to mean anything.
+    if orient(c, a, b) <= 0.0 || orient(d, b, a) <= 0.0 {
+        return false;
+    }
+    in_circle(c, a, b, d) > 0.0
+}
+
+/// Positive when d lies strictly inside the circle through the counter-clockwise a, b, c.
+fn in_circle(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {
+    let (adx, ady) = (a[0] - d[0], a[1] - d[1]);
+    let (bdx, bdy) = (b[0] - d[0], b[1] - d[1]);
+    let (cdx, cdy) = (c[0] - d[0], c[1] - d[1]);
+    let ad = adx * adx + ady * ady;
+    let bd = bdx * bdx + bdy * bdy;
+    let cd = cdx * cdx + cdy * cdy;
+    adx * (bdy * cd - bd * cdy) - ady * (bdx * cd - bd * cdx) + ad * (bdx * cdy - bdy * cdx)
+}
+
+/// The envelope test on a strictly convex quad.
+fn envelope_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: usize, k: usize) -> bool {
+    let [c, a, b, d] = quad(tri, t, k);
+    let side = input.convex_side[c as usize];
+    if side == 0 || [a, b, d].iter().any(|&i| input.convex_side[i as usize] != side) {
+        return false;
+    }
+    let planes = input.planes;
+    let size = [a, b, d]
+        .iter()
+        .map(|&i| planes[i as usize].point.distance(planes[c as usize].point))
+        .fold(0.0, f64::max);
+    let tolerance = ENVELOPE_FLIP_TOLERANCE * size;
+    let s = f64::from(side);
+    let outside = |x: [u32; 3], other: u32| {
+        let vertex = three_plane_vertex(planes, x);
+        let distance = s * planes[other as usize].signed_distance(vertex);
+        vertex.is_finite() && distance < -tolerance
+    };
+    outside([a, b, c], d) && outside([a, b, d], c)
+}
+
+/// The meeting point of the tangent planes of three points, in canonical (ascending) order.
+pub fn three_plane_vertex(planes: &[Plane], mut ids: [u32; 3]) -> DVec3 {
+    ids.sort_unstable();
+    intersect_three(&planes[ids[0] as usize], &planes[ids[1] as usize], &planes[ids[2] as usize]).point
+}

@@ -1,0 +1,97 @@
+//! Closest-point projection onto a surface, extended beyond its boundary.
+//!
+//! The foot of x is the (u, v) minimising |S(u, v) - x|^2, found by Newton's method on
+//! g = J^T (x - S) = 0 with J = [Su Sv] and Hessian J^T J - [[r.Suu, r.Suv], [r.Suv, r.Svv]],
+//! r = x - S. Outside the domain the surface is continued by its tangent plane at the nearest
+//! domain point (S_ext(u, v) = S(c) + Su(c) (u - cu) + Sv(c) (v - cv), c the clamped
+//! parameters), a C1 extension that gives every point in space a foot, so that "inside" and
+//! "outside" the surface's boundary are defined for facet vertices near the edge.
+//!
+//! At the foot, x - S lies along the surface normal; so x lies on the ruled "wall" spanned by
+//! the normals along the boundary curve exactly when its foot lies on the domain boundary.
+//! [`inside_measure`] is the signed normalised distance of the foot to the domain boundary.
+
+use glam::DVec3;
+
+use crate::surface::{Domain, Surface};
+
+/// Newton iterations for a projection (quadratic convergence: 3 to 5 are typical).
+pub const MAX_PROJECTION_ITERATIONS: usize = 16;
+
+/// Stop when the Newton step is below this, in normalised parameters.
+pub const PROJECTION_STEP_TOLERANCE: f64 = 1e-14;
+
+/// The foot of `x` on the (extended) surface, starting from `guess`.
+pub fn foot(surface: &dyn Surface, domain: &Domain, x: DVec3, guess: [f64; 2]) -> [f64; 2] {
+    let (mut u, mut v) = (guess[0], guess[1]);
+    let (du_scale, dv_scale) = (domain.u.length(), domain.v.length());
+    for _ in 0..MAX_PROJECTION_ITERATIONS {
+        let (cu, cv) = domain.clamp(u, v);
+        let d = surface.evaluate(cu, cv);
+        let inside = cu == u && cv == v;
+        let s = d.point + d.su * (u - cu) + d.sv * (v - cv);
+        let r = x - s;
+        let g = [d.su.dot(r), d.sv.dot(r)];
+        let mut h = [d.su.dot(d.su), d.su.dot(d.sv), d.sv.dot(d.sv)];
+        if inside {
+            let full = [h[0] - r.dot(d.suu), h[1] - r.dot(d.suv), h[2] - r.dot(d.svv)];
+            if full[0] > 0.0 && full[0] * full[2] - full[1] * full[1] > 0.0 {
+                h = full;
+            }
+        }
+        let det = h[0] * h[2] - h[1] * h[1];
+        if !(det.abs() > 0.0) || !det.is_finite() {
+            break;
+        }
+        let step_u = (h[2] * g[0] - h[1] * g[1]) / det;
+        let step_v = (h[0] * g[1] - h[1] * g[0]) / det;
+        if !step_u.is_finite() || !step_v.is_finite() {
+            break;
+        }
+        u += step_u;
+        v += step_v;
+        if (step_u / du_scale).abs() + (step_v / dv_scale).abs() < PROJECTION_STEP_TOLERANCE {
+            break;
+        }
+    }
+    [u, v]
+}
+
+/// Signed distance of `uv` from the domain boundary in normalised parameters:
+/// min(s, 1 - s, t, 1 - t), positive inside.
+pub fn inside_measure(domain: &Domain, uv: [f64; 2]) -> f64 {
+    let [s, t] = domain.to_normalised(uv);
+    s.min(1.0 - s).min(t).min(1.0 - t)
+}
+
+/// Position along the boundary loop, in [0, 4): side 0 is v = v0 (u rising), side 1 is
+/// u = u1 (v rising), side 2 is v = v1 (u falling), side 3 is u = u0 (v falling), so that
+/// the loop runs counter-clockwise in parameter space and corner c sits at c.
+pub fn boundary_parameter(domain: &Domain, uv: [f64; 2]) -> f64 {
+    let [s, t] = domain.to_normalised(uv);
+    let s = s.clamp(0.0, 1.0);
+    let t = t.clamp(0.0, 1.0);
+    let distances = [t, 1.0 - s, 1.0 - t, s];
+    let mut side = 0;
+    for k in 1..4 {
+        if distances[k] < distances[side] {
+            side = k;
+        }
+    }
+    match side {
+        0 => s,
+        1 => 1.0 + t,
+        2 => 2.0 + (1.0 - s),
+        _ => (3.0 + (1.0 - t)) % 4.0,
+    }
+}
+
+/// The corners of the domain in boundary-loop order (corner c at boundary parameter c).
+pub fn domain_corners(domain: &Domain) -> [[f64; 2]; 4] {
+    [
+        [domain.u.min, domain.v.min],
+        [domain.u.max, domain.v.min],
+        [domain.u.max, domain.v.max],
+        [domain.u.min, domain.v.max],
+    ]
+}

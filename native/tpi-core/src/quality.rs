@@ -1,0 +1,362 @@
+//! The quality report: what a designer and a fabricator check before trusting a mesh.
+//!
+//! - planarity error: max over facets i and their vertices x of |n_i . (x - p_i)|, relative to
+//!   the bounding-box diagonal of the pattern's surface points (0 up to rounding, since every
+//!   vertex is built in its facets' planes);
+//! - deviation: distance of each mesh vertex from its closest surface point (max and mean);
+//! - convexity and simplicity of each facet, in 2D coordinates of its tangent plane; a facet
+//!   whose loop runs clockwise seen from its normal counts as not simple;
+//! - overlap: two facets sharing an edge overlap when, projected into the first one's plane,
+//!   their centroids lie on the same side of the shared edge (the second folds back over
+//!   the first);
+//! - topology: Euler characteristic V - E + F, boundary loops, valence of interior vertices
+//!   (a vertex is interior when no boundary edge, i.e. an edge of only one facet, touches it).
+
+use std::collections::BTreeMap;
+
+use glam::{DVec2, DVec3};
+use serde::{Deserialize, Serialize};
+
+use crate::neighbours::NeighbourStats;
+use crate::planes::Plane;
+use crate::projection::foot;
+use crate::surface::Surface;
+
+/// Per-facet flag: not convex.
+pub const FLAG_NON_CONVEX: u8 = 1;
+/// Per-facet flag: not a simple polygon (self-intersecting, clockwise, or degenerate).
+pub const FLAG_NON_SIMPLE: u8 = 2;
+/// Per-facet flag: overlaps a neighbour.
+pub const FLAG_OVERLAP: u8 = 4;
+/// Per-facet flag: a diagnostic names this facet's pattern point.
+pub const FLAG_DIAGNOSTIC: u8 = 8;
+
+/// Summary of a discretisation's quality (serialised into the output contract).
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct QualityReport {
+    /// Number of facets (= pattern points).
+    pub facet_count: usize,
+    /// Number of mesh vertices.
+    pub vertex_count: usize,
+    /// Number of mesh edges.
+    pub edge_count: usize,
+    /// Facet count per number of sides.
+    pub side_histogram: BTreeMap<usize, usize>,
+    /// Vertices not on the boundary.
+    pub interior_vertex_count: usize,
+    /// Fraction of interior vertices where exactly three facets meet.
+    pub trivalent_fraction: f64,
+    /// Largest distance of a facet vertex from its facet's tangent plane / bbox diagonal.
+    pub max_planarity_error: f64,
+    /// Largest distance of a mesh vertex from the surface (model units).
+    pub max_deviation: f64,
+    /// Mean distance of mesh vertices from the surface (model units).
+    pub mean_deviation: f64,
+    /// Facets that are not convex.
+    pub non_convex_facets: usize,
+    /// Facets that are not simple polygons.
+    pub non_simple_facets: usize,
+    /// Pairs of neighbouring facets that overlap.
+    pub overlapping_pairs: usize,
+    /// Facets with any flag (non-convex, non-simple, overlapping, or named by a diagnostic).
+    pub flagged_facets: usize,
+    /// V - E + F (1 for a disc).
+    pub euler_characteristic: i64,
+    /// Number of boundary loops (1 for a disc).
+    pub boundary_loops: usize,
+    /// Edges shared by more than two facets.
+    pub non_manifold_edges: usize,
+    /// Smallest facet area.
+    pub min_facet_area: f64,
+    /// Largest facet area.
+    pub max_facet_area: f64,
+    /// Shortest mesh edge.
+    pub min_edge_length: f64,
+    /// Longest mesh edge.
+    pub max_edge_length: f64,
+    /// Bounding-box diagonal used for relative measures.
+    pub bounding_box_diagonal: f64,
+    /// Whether every vertex coordinate is finite.
+    pub all_finite: bool,
+    /// What the neighbour decision did.
+    pub neighbours: NeighbourStats,
+    /// Number of diagnostics.
+    pub diagnostic_count: usize,
+}
+
+/// Inputs of the report.
+pub struct ReportInput<'a> {
+    /// The surface.
+    pub surface: &'a dyn Surface,
+    /// Seeds' parameters (for projection guesses).
+    pub uv: &'a [[f64; 2]],
+    /// Tangent planes.
+    pub planes: &'a [Plane],
+    /// Vertex positions.
+    pub vertices: &'a [DVec3],
+    /// Facet loop offsets.
+    pub offsets: &'a [u32],
+    /// Flat loops.
+    pub loops: &'a [u32],
+    /// Bounding-box diagonal.
+    pub diagonal: f64,
+    /// Pattern points named by diagnostics.
+    pub diagnosed: &'a [bool],
+    /// What the neighbour decision did.
+    pub neighbours: NeighbourStats,
+    /// Number of diagnostics.
+    pub diagnostic_count: usize,
+}
+
+/// Facet `i`'s loop.
+fn facet<'a>(input: &ReportInput<'a>, i: usize) -> &'a [u32] {
+    &input.loops[input.offsets[i] as usize..input.offsets[i + 1] as usize]
+}
+
+/// Computes the report and the per-facet flags.
+pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
+    let facet_count = input.offsets.len().saturating_sub(1);
+    let mut r = QualityReport {
+        facet_count,
+        vertex_count: input.vertices.len(),
+        bounding_box_diagonal: input.diagonal,
+        neighbours: input.neighbours,
+        diagnostic_count: input.diagnostic_count,
+        all_finite: input.vertices.iter().all(|v| v.is_finite()),
+        min_facet_area: f64::INFINITY,
+        min_edge_length: f64::INFINITY,
+        ..QualityReport::default()
+    };
+    let mut flags = vec![0u8; facet_count];
+
+    // Edges: (lo, hi, facet) sorted.
+    let mut edges: Vec<(u32, u32, u32)> = Vec::with_capacity(input.loops.len());
+    for i in 0..facet_count {
+        let l = facet(input, i);
+        for k in 0..l.len() {
+            let (a, b) = (l[k], l[(k + 1) % l.len()]);
+            edges.push((a.min(b), a.max(b), i as u32));
+        }
+    }
+    edges.sort_unstable();
+    let mut on_boundary = vec![false; input.vertices.len()];
+    let mut boundary_parent: Vec<u32> = (0..input.vertices.len() as u32).collect();
+    let mut boundary_vertices = 0usize;
+    let mut k = 0;
+    while k < edges.len() {
+        let mut m = k + 1;
+        while m < edges.len() && edges[m].0 == edges[k].0 && edges[m].1 == edges[k].1 {
+            m += 1;
+        }
+        let (a, b) = (edges[k].0, edges[k].1);
+        r.edge_count += 1;
+        let length = input.vertices[a as usize].distance(input.vertices[b as usize]);
+        r.min_edge_length = r.min_edge_length.min(length);
+        r.max_edge_length = r.max_edge_length.max(length);
+        match m - k {
+            1 => {
+                for v in [a, b] {
+                    if !on_boundary[v as usize] {
+                        on_boundary[v as usize] = true;
+                        boundary_vertices += 1;
+                    }
+                }
+                let (ra, rb) = (root(&mut boundary_parent, a), root(&mut boundary_parent, b));
+                if ra != rb {
+                    boundary_parent[ra.max(rb) as usize] = ra.min(rb);
+                }
+            }
+            2 => {
+                let (f, g) = (edges[k].2 as usize, edges[k + 1].2 as usize);
+                if overlaps(input, f, g, a, b) {
+                    r.overlapping_pairs += 1;
+                    flags[f] |= FLAG_OVERLAP;
+                    flags[g] |= FLAG_OVERLAP;
+                }
+            }
+            _ => r.non_manifold_edges += 1,
+        }
+        k = m;
+    }
+    let used: Vec<bool> = {
+        let mut used = vec![false; input.vertices.len()];
+        for &v in input.loops {
+            used[v as usize] = true;
+        }
+        used
+    };
+    let mut roots = std::collections::BTreeSet::new();
+    for v in 0..input.vertices.len() {
+        if on_boundary[v] {
+            roots.insert(root(&mut boundary_parent, v as u32));
+        }
+    }
+    r.boundary_loops = roots.len();
+    let _ = boundary_vertices;
+    let used_count = used.iter().filter(|&&u| u).count();
+    r.euler_characteristic = used_count as i64 - r.edge_count as i64 + facet_count as i64;
+
+    // Valence of interior vertices.
+    let mut valence = vec![0u32; input.vertices.len()];
+    for &v in input.loops {
+        valence[v as usize] += 1;
+    }
+    for v in 0..input.vertices.len() {
+        if used[v] && !on_boundary[v] {
+            r.interior_vertex_count += 1;
+            if valence[v] == 3 {
+                r.trivalent_fraction += 1.0;
+            }
+        }
+    }
+    if r.interior_vertex_count > 0 {
+        r.trivalent_fraction /= r.interior_vertex_count as f64;
+    }
+
+    // Per-facet shape checks and planarity.
+    for i in 0..facet_count {
+        let l = facet(input, i);
+        *r.side_histogram.entry(l.len()).or_insert(0) += 1;
+        let plane = &input.planes[i];
+        for &v in l {
+            let error = plane.signed_distance(input.vertices[v as usize]).abs() / input.diagonal;
+            r.max_planarity_error = r.max_planarity_error.max(error);
+        }
+        let shape = facet_shape(plane, l.iter().map(|&v| input.vertices[v as usize]));
+        r.min_facet_area = r.min_facet_area.min(shape.area);
+        r.max_facet_area = r.max_facet_area.max(shape.area);
+        if !shape.simple {
+            flags[i] |= FLAG_NON_SIMPLE;
+        }
+        if !shape.convex {
+            flags[i] |= FLAG_NON_CONVEX;
+        }
+        if input.diagnosed.get(i).copied().unwrap_or(false) {
+            flags[i] |= FLAG_DIAGNOSTIC;
+        }
+    }
+    r.non_convex_facets = flags.iter().filter(|&&f| f & FLAG_NON_CONVEX != 0).count();
+    r.non_simple_facets = flags.iter().filter(|&&f| f & FLAG_NON_SIMPLE != 0).count();
+    r.flagged_facets = flags.iter().filter(|&&f| f != 0).count();
+
+    // Deviation from the surface, per vertex (guess: the first facet's seed).
+    let mut guess = vec![None; input.vertices.len()];
+    for i in 0..facet_count {
+        for &v in facet(input, i) {
+            guess[v as usize].get_or_insert(input.uv[i]);
+        }
+    }
+    let domain = input.surface.domain();
+    let deviations: Vec<f64> = {
+        use rayon::prelude::*;
+        (0..input.vertices.len())
+            .into_par_iter()
+            .filter_map(|v| {
+                let g = guess[v]?;
+                let x = input.vertices[v];
+                let [u, w] = foot(input.surface, &domain, x, g);
+                let (cu, cw) = domain.clamp(u, w);
+                Some(input.surface.point_at(cu, cw).distance(x))
+            })
+            .collect()
+    };
+    if !deviations.is_empty() {
+        r.max_deviation = deviations.iter().copied().fold(0.0, f64::max);
+        r.mean_deviation = deviations.iter().sum::<f64>() / deviations.len() as f64;
+    }
+    if facet_count == 0 {
+        r.min_facet_area = 0.0;
+    }
+    if r.edge_count == 0 {
+        r.min_edge_length = 0.0;
+    }
+    (r, flags)
+}
+
+fn root(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        parent[x as usize] = parent[parent[x as usize] as usize];
+        x = parent[x as usize];
+    }
+    x
+}
+
+/// 2D coordinates in a plane: (x - p) . (e1, e2) with e1, e2, n right-handed.
+pub fn plane_frame(plane: &Plane) -> (DVec3, DVec3) {
+    let (e1, e2) = plane.normal.any_orthonormal_pair();
+    (e1, e2)
+}
+
+/// Shape measures of a polygon in its plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FacetShape {
+    /// Area (positive when counter-clockwise seen from the normal).
+    pub area: f64,
+    /// Counter-clockwise, at least 3 vertices, no two non-adjacent edges intersecting.
+    pub simple: bool,
+    /// Simple and every turn to the left.
+    pub convex: bool,
+}
+
+/// Measures a polygon lying (nearly) in `plane`.
+pub fn facet_shape(plane: &Plane, points: impl Iterator<Item = DVec3>) -> FacetShape {
+    let (e1, e2) = plane_frame(plane);
+    let p: Vec<DVec2> = points.map(|x| {
+        let d = x - plane.point;
+        DVec2::new(d.dot(e1), d.dot(e2))
+    }).collect();
+    let n = p.len();
+    if n < 3 {
+        return FacetShape { area: 0.0, simple: false, convex: false };
+    }
+    let mut area = 0.0;
+    let mut scale = 0.0f64;
+    for k in 0..n {
+        area += p[k].perp_dot(p[(k + 1) % n]);
+        scale = scale.max((p[k] - p[(k + 1) % n]).length());
+    }
+    area *= 0.5;
+    let mut simple = area > 0.0;
+    'outer: for a in 0..n {
+        for b in a + 2..n {
+            if a == 0 && b == n - 1 {
+                continue;
+            }
+            if segments_cross(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n]) {
+                simple = false;
+                break 'outer;
+            }
+        }
+    }
+    let tolerance = 1e-12 * scale * scale;
+    let convex = simple
+        && (0..n).all(|k| (p[(k + 1) % n] - p[k]).perp_dot(p[(k + 2) % n] - p[(k + 1) % n]) >= -tolerance);
+    FacetShape { area, simple, convex }
+}
+
+/// Whether the closed segments ab and cd intersect (touching included).
+fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
+    let d1 = (b - a).perp_dot(c - a);
+    let d2 = (b - a).perp_dot(d - a);
+    let d3 = (d - c).perp_dot(a - c);
+    let d4 = (d - c).perp_dot(b - c);
+    ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+}
+
+/// Whether facets f and g, sharing edge (a, b), fold onto the same side of it.
+fn overlaps(input: &ReportInput<'_>, f: usize, g: usize, a: u32, b: u32) -> bool {
+    let plane = &input.planes[f];
+    let (e1, e2) = plane_frame(plane);
+    let to2 = |x: DVec3| {
+        let d = x - plane.point;
+        DVec2::new(d.dot(e1), d.dot(e2))
+    };
+    let centroid = |i: usize| {
+        let l = facet(input, i);
+        l.iter().fold(DVec3::ZERO, |acc, &v| acc + input.vertices[v as usize]) / l.len() as f64
+    };
+    let (pa, pb) = (to2(input.vertices[a as usize]), to2(input.vertices[b as usize]));
+    let side_f = (pb - pa).perp_dot(to2(centroid(f)) - pa);
+    let side_g = (pb - pa).perp_dot(to2(centroid(g)) - pa);
+    side_f * side_g > 0.0
+}

@@ -1,0 +1,242 @@
+//! The dual structure: a triangulation of the pattern points whose edges are "true neighbour"
+//! pairs and whose triangles each give one facet vertex.
+//!
+//! It starts as the Delaunay triangulation of the pattern points in (scaled) parameter space,
+//! built with spade's bulk loader, and is then changed only by edge flips (Lawson's scheme
+//! driven by a geometric criterion, see [`crate::neighbours`]). A flip replaces the diagonal
+//! (a, b) of the convex quadrilateral (c, a, d, b) by (c, d); because it is only applied to
+//! strictly convex quadrilaterals, the structure stays a valid planar triangulation of the
+//! points at all times: the neighbour relation is symmetric and the triangles around every
+//! interior point close up.
+//!
+//! Layout: triangle t has counter-clockwise vertices `triangles[t] = [v0, v1, v2]` and
+//! `neighbours[t][k]`, the triangle across the edge opposite vertex k, i.e. across
+//! (v(k+1), v(k+2)); [`NO_TRIANGLE`] on the convex hull.
+
+use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation as _};
+
+use crate::error::TpiError;
+
+/// Marks a missing neighbour (a hull edge) or an unset index.
+pub const NO_TRIANGLE: u32 = u32::MAX;
+
+#[derive(Clone, Copy)]
+struct Site {
+    position: Point2<f64>,
+    index: u32,
+}
+
+impl HasPosition for Site {
+    type Scalar = f64;
+    fn position(&self) -> Point2<f64> {
+        self.position
+    }
+}
+
+/// A triangulation of points 0..n with counter-clockwise triangles and adjacency.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct DualTriangulation {
+    /// Counter-clockwise vertex triples.
+    pub triangles: Vec<[u32; 3]>,
+    /// Triangle across the edge opposite each vertex, or [`NO_TRIANGLE`].
+    pub neighbours: Vec<[u32; 3]>,
+}
+
+/// One undirected edge of the triangulation with its (up to) two triangles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Edge {
+    /// Smaller endpoint.
+    pub lo: u32,
+    /// Larger endpoint.
+    pub hi: u32,
+    /// Triangle holding the directed edge lo -> hi (counter-clockwise), or [`NO_TRIANGLE`].
+    pub left: u32,
+    /// Triangle holding the directed edge hi -> lo, or [`NO_TRIANGLE`].
+    pub right: u32,
+}
+
+impl DualTriangulation {
+    /// Delaunay triangulation of `points` (any 2D coordinates, validated finite and distinct).
+    pub fn delaunay(points: &[[f64; 2]]) -> Result<Self, TpiError> {
+        if points.len() < 3 {
+            return Err(TpiError::TooFewPatternPoints { found: points.len(), needed: 3 });
+        }
+        let sites: Vec<Site> = points
+            .iter()
+            .enumerate()
+            .map(|(index, p)| Site { position: Point2::new(p[0], p[1]), index: index as u32 })
+            .collect();
+        let delaunay = DelaunayTriangulation::<Site>::bulk_load(sites).map_err(|error| {
+            TpiError::DegenerateSurface { reason: format!("Delaunay triangulation failed: {error:?}") }
+        })?;
+        if delaunay.num_inner_faces() == 0 {
+            return Err(TpiError::CollinearPattern { count: points.len() });
+        }
+        let mut triangles = Vec::with_capacity(delaunay.num_inner_faces());
+        let mut neighbours = Vec::with_capacity(delaunay.num_inner_faces());
+        // spade numbers inner faces from 1 (0 is the outer face).
+        for face in delaunay.inner_faces() {
+            let vertices = face.vertices();
+            triangles.push(vertices.map(|v| v.data().index));
+            let edges = face.adjacent_edges();
+            // edges[k] runs from vertices[k] to vertices[k+1]: it is opposite vertex k+2.
+            let mut across = [NO_TRIANGLE; 3];
+            for (k, edge) in edges.iter().enumerate() {
+                if let Some(other) = edge.rev().face().as_inner() {
+                    across[(k + 2) % 3] = (other.fix().index() - 1) as u32;
+                }
+            }
+            neighbours.push(across);
+        }
+        Ok(Self { triangles, neighbours })
+    }
+
+    /// Number of triangles.
+    pub fn len(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Whether there are no triangles.
+    pub fn is_empty(&self) -> bool {
+        self.triangles.is_empty()
+    }
+
+    /// Position (0, 1, 2) of vertex `v` in triangle `t`.
+    pub fn position_of(&self, t: u32, v: u32) -> Option<usize> {
+        self.triangles[t as usize].iter().position(|&x| x == v)
+    }
+
+    /// Flips the edge opposite vertex `k` of triangle `t`. The caller has checked that the
+    /// quadrilateral is strictly convex. Returns the two new triangles (same indices as before).
+    pub fn flip(&mut self, t: u32, k: usize) -> (u32, u32) {
+        let t1 = t as usize;
+        let t2 = self.neighbours[t1][k] as usize;
+        let [c, a, b] = rotate(self.triangles[t1], k);
+        let [n_bc, n_ca] = {
+            let n = rotate(self.neighbours[t1], k);
+            [n[1], n[2]]
+        };
+        let k2 = self.neighbours[t2].iter().position(|&x| x as usize == t1).unwrap_or(0);
+        let [d, _b, _a] = rotate(self.triangles[t2], k2);
+        let [n_ad, n_db] = {
+            let n = rotate(self.neighbours[t2], k2);
+            [n[1], n[2]]
+        };
+        self.triangles[t1] = [c, a, d];
+        self.neighbours[t1] = [n_ad, t2 as u32, n_ca];
+        self.triangles[t2] = [d, b, c];
+        self.neighbours[t2] = [n_bc, t1 as u32, n_db];
+        self.replace_neighbour(n_ad, t2 as u32, t1 as u32);
+        self.replace_neighbour(n_bc, t1 as u32, t2 as u32);
+        (t1 as u32, t2 as u32)
+    }
+
+    fn replace_neighbour(&mut self, t: u32, old: u32, new: u32) {
+        if t == NO_TRIANGLE {
+            return;
+        }
+        for n in self.neighbours[t as usize].iter_mut() {
+            if *n == old {
+                *n = new;
+            }
+        }
+    }
+
+    /// The undirected edges with their triangles, and for every triangle the edge index
+    /// opposite each of its vertices. Deterministic order (by first triangle, then k).
+    pub fn edges(&self) -> (Vec<Edge>, Vec<[u32; 3]>) {
+        let mut edges = Vec::with_capacity(self.triangles.len() * 3 / 2 + 3);
+        let mut edge_of = vec![[NO_TRIANGLE; 3]; self.triangles.len()];
+        for t in 0..self.triangles.len() {
+            for k in 0..3 {
+                let other = self.neighbours[t][k];
+                if other != NO_TRIANGLE && (other as usize) < t {
+                    continue;
+                }
+                let tri = self.triangles[t];
+                let (from, to) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
+                let id = edges.len() as u32;
+                let (lo, hi, left, right) =
+                    if from < to { (from, to, t as u32, other) } else { (to, from, other, t as u32) };
+                edges.push(Edge { lo, hi, left, right });
+                edge_of[t][k] = id;
+                if other != NO_TRIANGLE {
+                    if let Some(j) = self.neighbours[other as usize].iter().position(|&x| x as usize == t) {
+                        edge_of[other as usize][j] = id;
+                    }
+                }
+            }
+        }
+        (edges, edge_of)
+    }
+
+    /// For every point, one incident triangle (the first in triangle order), or [`NO_TRIANGLE`].
+    pub fn incident_triangles(&self, point_count: usize) -> Vec<u32> {
+        let mut incident = vec![NO_TRIANGLE; point_count];
+        for (t, tri) in self.triangles.iter().enumerate() {
+            for &v in tri {
+                if incident[v as usize] == NO_TRIANGLE {
+                    incident[v as usize] = t as u32;
+                }
+            }
+        }
+        incident
+    }
+
+    /// The fan of triangles around point `v` in counter-clockwise order into `out`, starting
+    /// from any incident triangle `start`. A hull point's fan starts at the triangle holding
+    /// its clockwise-most edge.
+    pub fn fan(&self, v: u32, start: u32, out: &mut Vec<u32>) -> Fan {
+        out.clear();
+        if start == NO_TRIANGLE {
+            return Fan::Broken;
+        }
+        // Rotate clockwise until the hull or back at the start.
+        let mut first = start;
+        for _ in 0..=self.triangles.len() {
+            let Some(k) = self.position_of(first, v) else { return Fan::Broken };
+            // Clockwise neighbour around v: across edge (v, v(k+1)), opposite v(k+2).
+            let previous = self.neighbours[first as usize][(k + 2) % 3];
+            if previous == NO_TRIANGLE || previous == start {
+                break;
+            }
+            first = previous;
+        }
+        let mut current = first;
+        while out.len() <= self.triangles.len() {
+            out.push(current);
+            let Some(k) = self.position_of(current, v) else { return Fan::Broken };
+            // Counter-clockwise neighbour: across edge (v, v(k+2)), opposite v(k+1).
+            let next = self.neighbours[current as usize][(k + 1) % 3];
+            if next == NO_TRIANGLE {
+                return Fan::Open;
+            }
+            if next == first {
+                return Fan::Closed;
+            }
+            current = next;
+        }
+        Fan::Broken
+    }
+}
+
+/// How the triangles around a point close up.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Fan {
+    /// An interior point: the fan closes.
+    Closed,
+    /// A point on the convex hull: the fan runs from hull edge to hull edge.
+    Open,
+    /// The adjacency is inconsistent (never for a structure built by this module).
+    Broken,
+}
+
+/// `x` rotated so that element `k` comes first.
+fn rotate<T: Copy>(x: [T; 3], k: usize) -> [T; 3] {
+    [x[k], x[(k + 1) % 3], x[(k + 2) % 3]]
+}
+
+/// Twice the signed area of (a, b, c): positive when counter-clockwise.
+pub fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+    (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+}
