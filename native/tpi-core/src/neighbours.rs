@@ -128,17 +128,29 @@ fn flip_until_stable(
     (flips, unresolved)
 }
 
-/// Finds the triangle and opposite position of the interior edge (a, b), if it still exists.
+/// Finds the triangle and opposite position of the interior edge (a, b), if it still exists,
+/// by walking the triangles around a (both ways from a known incident triangle).
 fn find_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32) -> Option<(usize, usize)> {
-    let mut fan = Vec::new();
-    tri.fan(a, incident[a as usize], &mut fan);
-    for &t in &fan {
-        let vertices = tri.triangles[t as usize];
-        for k in 0..3 {
-            let (from, to) = (vertices[(k + 1) % 3], vertices[(k + 2) % 3]);
-            if from == a && to == b && tri.neighbours[t as usize][k] != NO_TRIANGLE {
-                return Some((t as usize, k));
+    let start = incident[a as usize];
+    if start == NO_TRIANGLE {
+        return None;
+    }
+    // Direction 1 steps counter-clockwise around a, direction 2 clockwise.
+    for step in [1usize, 2] {
+        let mut t = start;
+        for _ in 0..=tri.len() {
+            let vertices = tri.triangles[t as usize];
+            let p = vertices.iter().position(|&v| v == a)?;
+            // Directed edge a -> v(p+1) is opposite v(p+2).
+            if vertices[(p + 1) % 3] == b {
+                let k = (p + 2) % 3;
+                return (tri.neighbours[t as usize][k] != NO_TRIANGLE).then_some((t as usize, k));
             }
+            let next = tri.neighbours[t as usize][(p + step) % 3];
+            if next == NO_TRIANGLE || next == start {
+                break;
+            }
+            t = next;
         }
     }
     None
