@@ -238,8 +238,13 @@ pub fn discretise(
 
     // Samples.
     let uv: Vec<[f64; 2]> = pattern.iter().map(|&st| domain.from_normalised(st)).collect();
-    let geometry: Vec<LocalGeometry> =
-        uv.par_iter().map(|&[u, v]| LocalGeometry::from_derivatives(&surface.evaluate(u, v))).collect();
+    let (geometry, tangents): (Vec<LocalGeometry>, Vec<[DVec3; 2]>) = uv
+        .par_iter()
+        .map(|&[u, v]| {
+            let d = surface.evaluate(u, v);
+            (LocalGeometry::from_derivatives(&d), [d.su, d.sv])
+        })
+        .unzip();
     if let Some(bad) = geometry.iter().position(|g| !(g.point.is_finite() && g.normal.is_finite())) {
         return Err(TpiError::NonFinite { field: format!("surface point at pattern point {bad}"), value: f64::NAN });
     }
@@ -262,7 +267,7 @@ pub fn discretise(
     // Facets and mesh.
     let stage = Instant::now();
     let params = FacetParams { far_vertex_factor: options.far_vertex_factor, weld_distance: options.weld_tolerance * diagonal };
-    let mesh = build_facets(surface, &uv, &planes, &triangulation, &params);
+    let mesh = build_facets(surface, &uv, &tangents, &planes, &triangulation, &params);
     diagnostics.extend(mesh.diagnostics.iter().cloned());
     if !mesh.vertices.is_empty() && mesh.diagnostics.iter().filter(|d| matches!(d, Diagnostic::IllConditionedVertex { .. })).count() == triangulation.len() {
         return Err(TpiError::DegenerateSurface {

@@ -111,6 +111,8 @@ struct Context<'a> {
     surface: &'a dyn Surface,
     domain: Domain,
     planes: &'a [Plane],
+    uv: &'a [[f64; 2]],
+    tangents: &'a [[DVec3; 2]],
 }
 
 impl Context<'_> {
@@ -118,25 +120,58 @@ impl Context<'_> {
         let uv = foot(self.surface, &self.domain, x, guess);
         (uv, inside_measure(&self.domain, uv))
     }
+
+    /// First-order foot of x seen from pattern point i: uv_i + (J^T J)^-1 J^T (x - p_i).
+    fn linear_foot(&self, i: u32, x: DVec3) -> [f64; 2] {
+        let [su, sv] = self.tangents[i as usize];
+        let r = x - self.planes[i as usize].point;
+        let (e, f, g) = (su.dot(su), su.dot(sv), sv.dot(sv));
+        let (a, b) = (su.dot(r), sv.dot(r));
+        let det = e * g - f * f;
+        let uv = self.uv[i as usize];
+        if !(det > 0.0) {
+            return uv;
+        }
+        [uv[0] + (g * a - f * b) / det, uv[1] + (e * b - f * a) / det]
+    }
+
+    /// Foot of a triangle vertex: Newton from the mean first-order foot of its three points.
+    /// On strongly curved saddles Newton may run to another local minimum far away; then the
+    /// first-order estimate, which stays with the triangle, is kept.
+    fn measure_vertex(&self, ids: [u32; 3], x: DVec3) -> ([f64; 2], f64) {
+        let feet = ids.map(|i| self.linear_foot(i, x));
+        let linear = [(feet[0][0] + feet[1][0] + feet[2][0]) / 3.0, (feet[0][1] + feet[1][1] + feet[2][1]) / 3.0];
+        let (newton, inside) = self.measure(x, linear);
+        let reach = ids
+            .iter()
+            .map(|&i| normalised_distance(&self.domain, self.uv[i as usize], linear))
+            .fold(0.0, f64::max);
+        if normalised_distance(&self.domain, newton, linear) <= 2.0 * reach + 1e-9 {
+            (newton, inside)
+        } else {
+            (linear, inside_measure(&self.domain, linear))
+        }
+    }
 }
 
 /// Builds the facets of all pattern points from the dual triangulation.
 pub fn build_facets(
     surface: &dyn Surface,
     uv: &[[f64; 2]],
+    tangents: &[[DVec3; 2]],
     planes: &[Plane],
     tri: &DualTriangulation,
     params: &FacetParams,
 ) -> FacetMesh {
     let domain = surface.domain();
-    let ctx = Context { surface, domain, planes };
+    let ctx = Context { surface, domain, planes, uv, tangents };
     let mut diagnostics = Vec::new();
 
     // 1. Triangle vertices, their conditioning and whether they lie inside.
     let triangle_vertices: Vec<TriangleVertex> = tri
         .triangles
         .par_iter()
-        .map(|&ids| triangle_vertex(&ctx, uv, ids, params.far_vertex_factor))
+        .map(|&ids| triangle_vertex(&ctx, ids, params.far_vertex_factor))
         .collect();
     diagnostics.extend(triangle_vertices.iter().filter_map(|t| t.diagnostic.clone()));
 
@@ -256,13 +291,11 @@ fn find(representative: &mut [u32], mut x: u32) -> u32 {
     x
 }
 
-fn mean_uv(uv: &[[f64; 2]], ids: &[u32; 3]) -> [f64; 2] {
-    let mut m = [0.0; 2];
-    for &i in ids {
-        m[0] += uv[i as usize][0] / 3.0;
-        m[1] += uv[i as usize][1] / 3.0;
-    }
-    m
+/// Distance of two parameter pairs in normalised coordinates.
+fn normalised_distance(domain: &Domain, a: [f64; 2], b: [f64; 2]) -> f64 {
+    let [s0, t0] = domain.to_normalised(a);
+    let [s1, t1] = domain.to_normalised(b);
+    (s1 - s0).hypot(t1 - t0)
 }
 
 /// A triangle's facet vertex and where it lies.
@@ -278,22 +311,21 @@ struct TriangleVertex {
 /// The meeting point of a triangle's three planes. An inside vertex that ran away from its
 /// points (nearly parallel planes) is replaced by a finite stand-in and reported; outside
 /// vertices are only used to steer the boundary clipping, so they may lie far away.
-fn triangle_vertex(ctx: &Context<'_>, uv: &[[f64; 2]], mut ids: [u32; 3], far_factor: f64) -> TriangleVertex {
+fn triangle_vertex(ctx: &Context<'_>, mut ids: [u32; 3], far_factor: f64) -> TriangleVertex {
     ids.sort_unstable();
     let [a, b, c] = ids.map(|i| &ctx.planes[i as usize]);
     let meeting = intersect_three(a, b, c);
     let centroid = (a.point + b.point + c.point) / 3.0;
     let longest = a.point.distance(b.point).max(b.point.distance(c.point)).max(c.point.distance(a.point));
     let distance = meeting.point.distance(centroid);
-    let guess = mean_uv(uv, &ids);
     if meeting.point.is_finite() {
-        let (foot, inside) = ctx.measure(meeting.point, guess);
+        let (foot, inside) = ctx.measure_vertex(ids, meeting.point);
         if distance <= far_factor * longest || inside <= 0.0 {
             return TriangleVertex { point: meeting.point, foot, inside, diagnostic: None };
         }
     }
     let point = regularised_meeting_point([a, b, c], centroid, 1e-6);
-    let (foot, inside) = ctx.measure(point, guess);
+    let (foot, inside) = ctx.measure_vertex(ids, point);
     let distance = if distance.is_finite() { distance } else { f64::INFINITY };
     let diagnostic = Diagnostic::IllConditionedVertex { points: ids, determinant: meeting.determinant, distance };
     TriangleVertex { point, foot, inside, diagnostic: Some(diagnostic) }
