@@ -1,10 +1,96 @@
-//! NURBS surfaces (owned by the NURBS work; this is the agreed interface).
+//! NURBS surfaces: validation and exact evaluation to second order, agreeing with openNURBS.
+//!
+//! # Geometry
+//!
+//! A NURBS surface of degrees (p, q) with nu x nv control points P_ij and weights w_ij > 0 is
+//!
+//! ```text
+//!            sum_ij N_i,p(u) N_j,q(v) w_ij P_ij      A(u, v)
+//! S(u, v) = ------------------------------------ = ---------
+//!            sum_ij N_i,p(u) N_j,q(v) w_ij           w(u, v)
+//! ```
+//!
+//! where A = (x w, y w, z w) and w are the tensor-product B-splines of the homogeneous control
+//! points [x w, y w, z w, w]. A surface without weights has all w_ij = 1.
+//!
+//! The B-spline basis over the full (textbook) knot vector U_0 <= ... <= U_(n+p) follows the
+//! Cox-de Boor recursion (The NURBS Book, eq. 2.5), with 0/0 read as 0:
+//!
+//! ```text
+//! N_i,0(u) = 1 if U_i <= u < U_(i+1), else 0
+//! N_i,p(u) = (u - U_i) / (U_(i+p) - U_i) N_i,p-1(u) + (U_(i+p+1) - u) / (U_(i+p+1) - U_(i+1)) N_(i+1),p-1(u)
+//! ```
+//!
+//! and its derivatives (eq. 2.7), applied once for the first and twice for the second:
+//!
+//! ```text
+//! N'_i,p(u) = p N_i,p-1(u) / (U_(i+p) - U_i) - p N_(i+1),p-1(u) / (U_(i+p+1) - U_(i+1))
+//! ```
+//!
+//! On the span U_s <= u < U_(s+1) only N_(s-p),p .. N_s,p are non-zero; they are computed as the
+//! triangle of The NURBS Book A2.2, keeping the rows of degree p-2 and p-1 for the derivatives
+//! (the content of A2.3), in fixed-size stack buffers: an evaluation allocates nothing. Every
+//! denominator spans a range of knots that contains the (non-empty) span, so none is zero.
+//!
+//! The derivatives of S are exact, from the derivatives of A and w by the quotient rule
+//! (subscripts are partial derivatives):
+//!
+//! ```text
+//! S   = A / w
+//! Su  = (Au - wu S) / w
+//! Sv  = (Av - wv S) / w
+//! Suu = (Auu - 2 wu Su - wuu S) / w
+//! Suv = (Auv - wu Sv - wv Su - wuv S) / w
+//! Svv = (Avv - 2 wv Sv - wvv S) / w
+//! ```
+//!
+//! # Knot conventions
+//!
+//! - **Rhino (openNURBS)**: count + degree - 1 knots k_0 .. k_(n+p-2). This is what
+//!   RhinoCommon's `KnotsU`/`KnotsV` and rhino3dm return, and what [`NurbsSurface::to_spec`] and
+//!   [`NurbsSurface::knots_u`] emit. The domain is [k_(p-1), k_(n-1)].
+//! - **Textbook**: count + degree + 1 knots U_0 .. U_(n+p), the Rhino vector with one more knot
+//!   at each end: U_(i+1) = k_i. The two end knots U_0 and U_(n+p) are superfluous: they do not
+//!   affect the surface inside its domain [U_p, U_n], so they are checked (finite, non-decreasing)
+//!   and then dropped.
+//!
+//! Either convention is accepted on input; the length tells them apart (they differ by two).
+//! Knots need not be clamped nor uniform, and the domain need not start at 0.
+//!
+//! # Validation
+//!
+//! [`NurbsSurface::new`] returns the first problem found, as a typed [`TpiError`], in this order:
+//! degrees ([`TpiError::InvalidDegree`]: degree 0, degree > [`MAX_NURBS_DEGREE`], or
+//! degree >= count; count = degree + 1 is valid, a Bezier patch), point count
+//! ([`TpiError::PointCount`]), knot counts ([`TpiError::KnotCount`]), knot values
+//! ([`TpiError::NonFinite`] naming e.g. `knots_u[3]`, [`TpiError::KnotsDecreasing`],
+//! [`TpiError::EmptyDomain`], [`TpiError::KnotMultiplicity`]), control points
+//! ([`TpiError::NonFinite`] naming e.g. `points[12][1]`), weights ([`TpiError::WeightCount`],
+//! [`TpiError::NonFinite`] naming e.g. `weights[5]`, [`TpiError::NonPositiveWeight`]).
+//!
+//! Knot multiplicity follows openNURBS: in the Rhino convention no knot value may occur more than
+//! `degree` times (an interior knot of multiplicity degree + 1 would break the surface apart; an
+//! end knot repeated more often than a clamped end needs makes a control point meaningless). For
+//! textbook input the superfluous end knots are not counted, so a clamped textbook vector with
+//! degree + 1 equal end knots is valid. Indices in errors refer to the vector as given.
+//!
+//! # Evaluation
+//!
+//! Evaluation outside the domain is **clamped** to the domain (as the [`Surface`] trait says);
+//! check with [`Domain::check`] first where out-of-domain input must be rejected. A NaN parameter
+//! gives a NaN result, never a panic. At a knot, the span to the right is used (the derivatives
+//! from above, as openNURBS does by default), and at the end of the domain the last non-empty
+//! span (as openNURBS does).
 
-use glam::DVec3;
+use glam::{DVec3, DVec4};
 use serde::{Deserialize, Serialize};
 
-use crate::error::TpiError;
+use crate::error::{check_finite, Direction, TpiError};
 use crate::surface::{Domain, Interval, Surface, SurfaceDerivatives};
+use crate::tolerance::MAX_NURBS_DEGREE;
+
+/// Length of the fixed-size basis buffers: at most degree + 1 basis functions are non-zero.
+const BASIS_LEN: usize = MAX_NURBS_DEGREE + 1;
 
 /// The surface file's NURBS record, as read and written (docs/formats.md).
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -26,7 +112,7 @@ pub struct NurbsSpec {
 }
 
 impl NurbsSpec {
-    /// Validates and builds the surface.
+    /// Validates and builds the surface (see [`NurbsSurface::new`] for the errors).
     pub fn build(&self) -> Result<NurbsSurface, TpiError> {
         NurbsSurface::new(
             self.degree,
@@ -39,29 +125,442 @@ impl NurbsSpec {
     }
 }
 
-/// A validated NURBS surface.
+/// The basis of one parameter direction: degree, control point count and the full knot vector.
+#[derive(Clone, Debug, PartialEq)]
+struct KnotVector {
+    /// Degree p (1..=MAX_NURBS_DEGREE).
+    degree: usize,
+    /// Control point count n (>= p + 1).
+    count: usize,
+    /// Textbook knot vector U_0 .. U_(n+p); the superfluous ends repeat their neighbours.
+    knots: Vec<f64>,
+    /// The last non-empty span s (U_s < U_(s+1)) with p <= s <= n - 1, used at the domain end.
+    last_span: usize,
+}
+
+/// Values (row 0), first (row 1) and second (row 2) derivatives of the degree + 1 basis functions
+/// that are non-zero on one span.
+type BasisDerivatives = [[f64; BASIS_LEN]; 3];
+
+impl KnotVector {
+    /// Validates the knots given in either convention; degree and count are already valid.
+    fn new(direction: Direction, degree: usize, count: usize, given: &[f64]) -> Result<Self, TpiError> {
+        let field = match direction {
+            Direction::U => "knots_u",
+            Direction::V => "knots_v",
+        };
+        let rhino_len = count.saturating_add(degree).saturating_sub(1);
+        let full_len = count.saturating_add(degree).saturating_add(1);
+        // Offset of the Rhino-convention part inside the given vector.
+        let rhino_offset = if given.len() == rhino_len {
+            0
+        } else if given.len() == full_len {
+            1
+        } else {
+            return Err(TpiError::KnotCount {
+                direction,
+                found: given.len(),
+                count,
+                degree,
+                rhino: rhino_len,
+                full: full_len,
+            });
+        };
+
+        for (index, &value) in given.iter().enumerate() {
+            check_finite(|| format!("{field}[{index}]"), value)?;
+        }
+        for index in 1..given.len() {
+            let (previous, value) = (given[index - 1], given[index]);
+            if value < previous {
+                return Err(TpiError::KnotsDecreasing {
+                    direction,
+                    index,
+                    previous,
+                    value,
+                });
+            }
+        }
+        // Finite knots can still span an infinite range, which would overflow every formula.
+        let (first, last) = (given[0], given[given.len() - 1]);
+        check_finite(|| format!("{field}[{}] - {field}[0]", given.len() - 1), last - first)?;
+
+        let rhino = &given[rhino_offset..rhino_offset + rhino_len];
+        let (min, max) = (rhino[degree - 1], rhino[count - 1]);
+        if min >= max {
+            return Err(TpiError::EmptyDomain { direction, min, max });
+        }
+
+        let mut run_start = 0;
+        for index in 1..=rhino.len() {
+            if index == rhino.len() || rhino[index] != rhino[run_start] {
+                let multiplicity = index - run_start;
+                if multiplicity > degree {
+                    return Err(TpiError::KnotMultiplicity {
+                        direction,
+                        index: run_start + rhino_offset,
+                        value: rhino[run_start],
+                        multiplicity,
+                        degree,
+                    });
+                }
+                run_start = index;
+            }
+        }
+
+        let mut knots = Vec::with_capacity(full_len);
+        knots.push(rhino[0]);
+        knots.extend_from_slice(rhino);
+        knots.push(rhino[rhino_len - 1]);
+        // The domain [U_p, U_n] is non-empty, so some span p <= s <= n - 1 is non-empty.
+        let last_span = (degree..count)
+            .rev()
+            .find(|&s| knots[s] < knots[s + 1])
+            .unwrap_or(degree);
+        Ok(Self {
+            degree,
+            count,
+            knots,
+            last_span,
+        })
+    }
+
+    /// The parameter interval [U_p, U_n].
+    fn interval(&self) -> Interval {
+        Interval::new(self.knots[self.degree], self.knots[self.count])
+    }
+
+    /// The knots in Rhino's convention (count + degree - 1).
+    fn rhino_knots(&self) -> &[f64] {
+        &self.knots[1..self.knots.len() - 1]
+    }
+
+    /// Clamps `t` into the domain and finds its non-empty span s, U_s <= t < U_(s+1), by binary
+    /// search; at (or beyond) the domain end the last non-empty span. NaN yields some valid span.
+    fn span(&self, t: f64) -> (usize, f64) {
+        let t = self.interval().clamp(t);
+        if t >= self.knots[self.count] {
+            return (self.last_span, t);
+        }
+        // Invariant: U_low <= t < U_high.
+        let (mut low, mut high) = (self.degree, self.count);
+        while high - low > 1 {
+            let middle = (low + high) / 2;
+            if t < self.knots[middle] {
+                high = middle;
+            } else {
+                low = middle;
+            }
+        }
+        (low, t)
+    }
+
+    /// The degree + 1 basis functions N_(s-p),p .. N_s,p non-zero on span s, at t (The NURBS
+    /// Book A2.2), with the rows of degree p-1 (N_(s-p+1),p-1 ..) and p-2 (N_(s-p+2),p-2 ..)
+    /// of the same triangle.
+    #[inline]
+    fn basis_triangle(&self, span: usize, t: f64) -> ([f64; BASIS_LEN], [f64; BASIS_LEN], [f64; BASIS_LEN]) {
+        let p = self.degree;
+        let knots = &self.knots;
+        let mut left = [0.0; BASIS_LEN];
+        let mut right = [0.0; BASIS_LEN];
+        let mut values = [0.0; BASIS_LEN];
+        let mut degree_minus_1 = [0.0; BASIS_LEN];
+        let mut degree_minus_2 = [0.0; BASIS_LEN];
+        values[0] = 1.0;
+        for j in 1..=p {
+            // `values` holds the basis of degree j - 1 here.
+            if j + 1 == p {
+                degree_minus_2 = values;
+            } else if j == p {
+                degree_minus_1 = values;
+            }
+            left[j] = t - knots[span + 1 - j];
+            right[j] = knots[span + j] - t;
+            let mut saved = 0.0;
+            for r in 0..j {
+                // right[r + 1] + left[j - r] = U_(s+r+1) - U_(s+1-j+r) > 0: the range holds the span.
+                let temp = values[r] / (right[r + 1] + left[j - r]);
+                values[r] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            values[j] = saved;
+        }
+        (values, degree_minus_1, degree_minus_2)
+    }
+
+    /// Basis values only.
+    #[inline]
+    fn basis(&self, span: usize, t: f64) -> [f64; BASIS_LEN] {
+        let p = self.degree;
+        let knots = &self.knots;
+        let mut left = [0.0; BASIS_LEN];
+        let mut right = [0.0; BASIS_LEN];
+        let mut values = [0.0; BASIS_LEN];
+        values[0] = 1.0;
+        for j in 1..=p {
+            left[j] = t - knots[span + 1 - j];
+            right[j] = knots[span + j] - t;
+            let mut saved = 0.0;
+            for r in 0..j {
+                let temp = values[r] / (right[r + 1] + left[j - r]);
+                values[r] = saved + right[r + 1] * temp;
+                saved = left[j - r] * temp;
+            }
+            values[j] = saved;
+        }
+        values
+    }
+
+    /// Values, first and second derivatives of the basis functions non-zero on span s, by
+    /// N'_k,p = p (N_k,p-1 / (U_(k+p) - U_k) - N_(k+1),p-1 / (U_(k+p+1) - U_(k+1))), applied to
+    /// the rows of degree p-1 (first derivative) and, twice, p-2 (second derivative).
+    #[inline]
+    fn basis_derivatives(&self, span: usize, t: f64) -> BasisDerivatives {
+        let p = self.degree;
+        let knots = &self.knots;
+        let (values, degree_minus_1, degree_minus_2) = self.basis_triangle(span, t);
+        let mut first = [0.0; BASIS_LEN];
+        let mut second = [0.0; BASIS_LEN];
+
+        // Row p-1 holds N_(s-p+1+i),p-1 for i in 0..p; its support is [U_(s-p+1+i), U_(s+1+i)].
+        let mut inverse_width = [0.0; BASIS_LEN];
+        for (i, inverse) in inverse_width.iter_mut().enumerate().take(p) {
+            *inverse = 1.0 / (knots[span + 1 + i] - knots[span + 1 + i - p]);
+        }
+        let p_f = p as f64;
+        let mut previous = 0.0;
+        for i in 0..p {
+            let scaled = degree_minus_1[i] * inverse_width[i];
+            first[i] = p_f * (previous - scaled);
+            previous = scaled;
+        }
+        first[p] = p_f * previous;
+
+        if p >= 2 {
+            // First derivatives of row p-1 from row p-2 (N_(s-p+2+i),p-2, support [U_(s-p+2+i), U_(s+1+i)]).
+            let q_f = (p - 1) as f64;
+            let mut lower_first = [0.0; BASIS_LEN];
+            let mut previous = 0.0;
+            for i in 0..p - 1 {
+                let scaled = degree_minus_2[i] / (knots[span + 1 + i] - knots[span + 2 + i - p]);
+                lower_first[i] = q_f * (previous - scaled);
+                previous = scaled;
+            }
+            lower_first[p - 1] = q_f * previous;
+
+            let mut previous = 0.0;
+            for i in 0..p {
+                let scaled = lower_first[i] * inverse_width[i];
+                second[i] = p_f * (previous - scaled);
+                previous = scaled;
+            }
+            second[p] = p_f * previous;
+        }
+        [values, first, second]
+    }
+}
+
+/// A validated NURBS surface, evaluated exactly to second order.
+///
+/// Control points are stored u-major as homogeneous [x w, y w, z w, w] for evaluation, beside the
+/// Euclidean points and weights as given (so that [`NurbsSurface::to_spec`] round-trips exactly).
 #[derive(Clone, Debug, PartialEq)]
 pub struct NurbsSurface {
+    basis_u: KnotVector,
+    basis_v: KnotVector,
+    /// Euclidean control points as given, point (i, j) at i * nv + j.
+    points: Vec<DVec3>,
+    /// Weights as given, if any.
+    weights: Option<Vec<f64>>,
+    /// [x w, y w, z w, w] per control point, same layout as `points`.
+    homogeneous: Vec<DVec4>,
     domain: Domain,
+    net_diagonal: f64,
 }
 
 impl NurbsSurface {
-    /// Validates and builds a NURBS surface; knots in either convention.
+    /// Validates and builds a NURBS surface.
+    ///
+    /// - `degree`, `count`: [u, v] degrees (1..=[`MAX_NURBS_DEGREE`]) and control point counts
+    ///   (>= degree + 1).
+    /// - `knots_u`, `knots_v`: Rhino convention (count + degree - 1 knots) or textbook
+    ///   convention (count + degree + 1), see the module doc.
+    /// - `points`: `count[0] * count[1]` Euclidean control points, point (i, j) at index
+    ///   `i * count[1] + j`.
+    /// - `weights`: optional, same layout, all > 0; `None` is a non-rational surface.
+    ///
+    /// Returns the first problem found as a typed error (order and variants in the module doc);
+    /// never panics.
     pub fn new(
-        _degree: [usize; 2],
-        _count: [usize; 2],
-        _knots_u: &[f64],
-        _knots_v: &[f64],
-        _points: &[DVec3],
-        _weights: Option<&[f64]>,
+        degree: [usize; 2],
+        count: [usize; 2],
+        knots_u: &[f64],
+        knots_v: &[f64],
+        points: &[DVec3],
+        weights: Option<&[f64]>,
     ) -> Result<Self, TpiError> {
-        Err(TpiError::DegenerateSurface { reason: "NURBS evaluation is not implemented yet".into() })
+        for (direction, degree, count) in [(Direction::U, degree[0], count[0]), (Direction::V, degree[1], count[1])] {
+            let reason = if degree == 0 {
+                Some("the degree must be at least 1".to_string())
+            } else if degree > MAX_NURBS_DEGREE {
+                Some(format!("degrees above {MAX_NURBS_DEGREE} are not supported"))
+            } else if degree >= count {
+                Some("a NURBS surface needs at least degree + 1 control points in each direction".to_string())
+            } else {
+                None
+            };
+            if let Some(reason) = reason {
+                return Err(TpiError::InvalidDegree {
+                    direction,
+                    degree,
+                    count,
+                    reason,
+                });
+            }
+        }
+
+        // A product that overflows cannot match any slice length; it is reported saturated.
+        let point_count = count[0].saturating_mul(count[1]);
+        if points.len() != point_count {
+            return Err(TpiError::PointCount {
+                expected: point_count,
+                found: points.len(),
+            });
+        }
+
+        let basis_u = KnotVector::new(Direction::U, degree[0], count[0], knots_u)?;
+        let basis_v = KnotVector::new(Direction::V, degree[1], count[1], knots_v)?;
+
+        for (index, point) in points.iter().enumerate() {
+            for (coordinate, &value) in point.to_array().iter().enumerate() {
+                check_finite(|| format!("points[{index}][{coordinate}]"), value)?;
+            }
+        }
+
+        if let Some(weights) = weights {
+            if weights.len() != point_count {
+                return Err(TpiError::WeightCount {
+                    expected: point_count,
+                    found: weights.len(),
+                });
+            }
+            for (index, &value) in weights.iter().enumerate() {
+                check_finite(|| format!("weights[{index}]"), value)?;
+                if value <= 0.0 {
+                    return Err(TpiError::NonPositiveWeight { index, value });
+                }
+            }
+        }
+
+        let homogeneous: Vec<DVec4> = match weights {
+            Some(weights) => points.iter().zip(weights).map(|(p, &w)| (*p * w).extend(w)).collect(),
+            None => points.iter().map(|p| p.extend(1.0)).collect(),
+        };
+        // Finite points and weights can still overflow to infinity in x * w.
+        check_homogeneous_finite(&homogeneous)?;
+
+        let (net_min, net_max) = points
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(*p), hi.max(*p))
+            });
+        let net_diagonal = robust_length(net_max - net_min);
+        check_finite(|| "bounding-box diagonal of points".to_string(), net_diagonal)?;
+
+        let domain = Domain::new(basis_u.interval(), basis_v.interval());
+        Ok(Self {
+            basis_u,
+            basis_v,
+            points: points.to_vec(),
+            weights: weights.map(<[f64]>::to_vec),
+            homogeneous,
+            domain,
+            net_diagonal,
+        })
     }
 
     /// The record that [`NurbsSpec::build`] turns back into this surface (Rhino knot convention).
     pub fn to_spec(&self) -> NurbsSpec {
-        NurbsSpec { degree: [1, 1], count: [2, 2], knots_u: vec![], knots_v: vec![], points: vec![], weights: None }
+        NurbsSpec {
+            degree: self.degree(),
+            count: self.count(),
+            knots_u: self.knots_u().to_vec(),
+            knots_v: self.knots_v().to_vec(),
+            points: self.points.iter().map(|p| p.to_array()).collect(),
+            weights: self.weights.clone(),
+        }
     }
+
+    /// Degrees [du, dv].
+    pub fn degree(&self) -> [usize; 2] {
+        [self.basis_u.degree, self.basis_v.degree]
+    }
+
+    /// Control point counts [nu, nv].
+    pub fn count(&self) -> [usize; 2] {
+        [self.basis_u.count, self.basis_v.count]
+    }
+
+    /// Knots in u, Rhino convention (count + degree - 1).
+    pub fn knots_u(&self) -> &[f64] {
+        self.basis_u.rhino_knots()
+    }
+
+    /// Knots in v, Rhino convention (count + degree - 1).
+    pub fn knots_v(&self) -> &[f64] {
+        self.basis_v.rhino_knots()
+    }
+
+    /// Euclidean control points, point (i, j) at index i * nv + j.
+    pub fn control_points(&self) -> &[DVec3] {
+        &self.points
+    }
+
+    /// The weights as given, or `None` for a non-rational surface.
+    pub fn weights(&self) -> Option<&[f64]> {
+        self.weights.as_deref()
+    }
+
+    /// Whether the surface was given weights (even if they are all equal).
+    pub fn is_rational(&self) -> bool {
+        self.weights.is_some()
+    }
+
+    /// Length of the diagonal of the control points' axis-aligned bounding box: the scale of
+    /// the surface, for relative tolerances.
+    pub fn bounding_box_diagonal(&self) -> f64 {
+        self.net_diagonal
+    }
+
+    /// `len` homogeneous control points [x w, y w, z w, w] of row i, from column `first_j` on.
+    #[inline]
+    fn homogeneous_row(&self, i: usize, first_j: usize, len: usize) -> &[DVec4] {
+        let start = i * self.basis_v.count + first_j;
+        &self.homogeneous[start..start + len]
+    }
+}
+
+/// |v| without overflow in the squares (coordinates up to f64::MAX / sqrt(3) stay finite).
+fn robust_length(v: DVec3) -> f64 {
+    let largest = v.abs().max_element();
+    if largest == 0.0 || !largest.is_finite() {
+        return largest;
+    }
+    largest * (v / largest).length()
+}
+
+/// Reports the first homogeneous coordinate x * w that overflowed.
+fn check_homogeneous_finite(homogeneous: &[DVec4]) -> Result<(), TpiError> {
+    for (index, h) in homogeneous.iter().enumerate() {
+        for coordinate in 0..3 {
+            check_finite(
+                || format!("points[{index}][{coordinate}] * weights[{index}]"),
+                h[coordinate],
+            )?;
+        }
+    }
+    Ok(())
 }
 
 impl Surface for NurbsSurface {
@@ -69,8 +568,69 @@ impl Surface for NurbsSurface {
         self.domain
     }
 
-    fn evaluate(&self, _u: f64, _v: f64) -> SurfaceDerivatives {
-        let _ = Interval::new(0.0, 1.0);
-        SurfaceDerivatives::default()
+    fn evaluate(&self, u: f64, v: f64) -> SurfaceDerivatives {
+        let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
+        let (span_u, u) = self.basis_u.span(u);
+        let (span_v, v) = self.basis_v.span(v);
+        let nu = self.basis_u.basis_derivatives(span_u, u);
+        let nv = self.basis_v.basis_derivatives(span_v, v);
+
+        // Homogeneous A (xyz) and w with their partial derivatives.
+        let (mut a, mut a_u, mut a_v) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
+        let (mut a_uu, mut a_uv, mut a_vv) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
+        let [nu_0, nu_1, nu_2] = &nu;
+        for (k, ((&n0, &n1), &n2)) in nu_0.iter().zip(nu_1).zip(nu_2).take(pu + 1).enumerate() {
+            let row = self.homogeneous_row(span_u - pu + k, span_v - pv, pv + 1);
+            let (mut t0, mut t1, mut t2) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
+            for (l, &cp) in row.iter().enumerate() {
+                t0 += nv[0][l] * cp;
+                t1 += nv[1][l] * cp;
+                t2 += nv[2][l] * cp;
+            }
+            a += n0 * t0;
+            a_u += n1 * t0;
+            a_uu += n2 * t0;
+            a_v += n0 * t1;
+            a_uv += n1 * t1;
+            a_vv += n0 * t2;
+        }
+
+        let w = a.w;
+        let (w_u, w_v, w_uu, w_uv, w_vv) = (a_u.w, a_v.w, a_uu.w, a_uv.w, a_vv.w);
+        // Multiplying by 1 / w is faster than dividing; subnormal weights make 1 / w overflow.
+        let inverse_w = 1.0 / w;
+        let divide_by_w = |x: DVec3| if inverse_w.is_finite() { x * inverse_w } else { x / w };
+        let point = divide_by_w(a.truncate());
+        let su = divide_by_w(a_u.truncate() - w_u * point);
+        let sv = divide_by_w(a_v.truncate() - w_v * point);
+        let suu = divide_by_w(a_uu.truncate() - 2.0 * w_u * su - w_uu * point);
+        let suv = divide_by_w(a_uv.truncate() - w_u * sv - w_v * su - w_uv * point);
+        let svv = divide_by_w(a_vv.truncate() - 2.0 * w_v * sv - w_vv * point);
+        SurfaceDerivatives {
+            point,
+            su,
+            sv,
+            suu,
+            suv,
+            svv,
+        }
+    }
+
+    fn point_at(&self, u: f64, v: f64) -> DVec3 {
+        let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
+        let (span_u, u) = self.basis_u.span(u);
+        let (span_v, v) = self.basis_v.span(v);
+        let nu = self.basis_u.basis(span_u, u);
+        let nv = self.basis_v.basis(span_v, v);
+        let mut a = DVec4::ZERO;
+        for (k, &basis_u) in nu.iter().enumerate().take(pu + 1) {
+            let row = self.homogeneous_row(span_u - pu + k, span_v - pv, pv + 1);
+            let mut t0 = DVec4::ZERO;
+            for (l, &cp) in row.iter().enumerate() {
+                t0 += nv[l] * cp;
+            }
+            a += basis_u * t0;
+        }
+        a.truncate() / a.w
     }
 }
