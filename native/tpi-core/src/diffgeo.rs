@@ -12,12 +12,15 @@
 //! umbilics they are computed in the orthonormal tangent frame a = Su / |Su|, b = n x a: with
 //! J = [[|Su|, Sv.a], [0, Sv.b]] mapping (du, dv) to frame coordinates, the symmetric matrix
 //! B = J^-T II J^-1 is diagonalised by one Jacobi rotation of angle
-//! phi = atan2(2 B01, B00 - B11) / 2, which is 0 (directions a, b) at an umbilic, never NaN.
+//! phi = atan2(2 B01, B00 - B11) / 2, never NaN. At an umbilic (k2 - k1 below
+//! [`UMBILIC_RELATIVE_TOLERANCE`] of the curvature) the rotation is skipped: k1 = k2 and the
+//! directions are a, b, deterministic rather than rounding noise.
 //! Curvature signs are relative to n: k > 0 where the surface bends towards n.
 
 use glam::DVec3;
 
 use crate::surface::SurfaceDerivatives;
+use crate::tolerance::UMBILIC_RELATIVE_TOLERANCE;
 
 /// Curvature data at one surface point.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -102,6 +105,25 @@ impl LocalGeometry {
         let b01 = i00 * t01;
         let b11 = i01 * t01 + i11 * t11;
 
+        // At an umbilic (k2 - k1 = |(B00 - B11, 2 B01)| negligible against the curvature
+        // itself) every direction is principal; the rotation angle would only amplify rounding
+        // noise, so the frame stays Su-aligned, as documented.
+        let spread = (b00 - b11).hypot(2.0 * b01);
+        let size = b00.abs().max(b11.abs()).max(b01.abs());
+        if spread <= UMBILIC_RELATIVE_TOLERANCE * size {
+            let k = 0.5 * (b00 + b11);
+            return Self {
+                point: d.point,
+                normal: n,
+                first_form: [e, f, g],
+                second_form: [l, m, nn],
+                k1: k,
+                k2: k,
+                d1: a,
+                d2: b,
+                regular: true,
+            };
+        }
         let phi = 0.5 * (2.0 * b01).atan2(b00 - b11);
         let (s, c) = phi.sin_cos();
         // Eigenvalues along the rotated axes.

@@ -31,3 +31,6 @@ pub use diffgeo::LocalGeometry;
 pub use error::{Direction, TpiError};
 pub use nurbs::{NurbsSpec, NurbsSurface};
 pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};
+pub use analytic::{AnalyticKind, AnalyticSurface};
+pub use pattern::{Generator, GridSize, Pattern};
+pub use spec::{SurfaceModel, SurfaceSpec};

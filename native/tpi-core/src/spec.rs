@@ -1,1 +1,573 @@
-//! (stub: being written)
+//! The surface file: a JSON object tagged by `"type"` (docs/formats.md).
+//!
+//! ```json
+//! {"type": "elliptic_paraboloid", "a": 1.0, "b": 0.1, "x": [-1, 1], "y": [-1, 1]}
+//! {"type": "nurbs", "degree": [3, 3], "count": [4, 4], "knots_u": [...], "knots_v": [...],
+//!  "points": [[x, y, z], ...], "weights": [...]}
+//! ```
+//!
+//! [`SurfaceSpec`] is the record as read and written (no validation beyond JSON structure;
+//! unknown types and unknown fields are rejected). [`SurfaceSpec::build`] validates it into a
+//! [`SurfaceModel`], the one surface type the rest of the pipeline takes, which evaluates by
+//! dispatch to the NURBS or analytic implementation and turns back into its record with
+//! [`SurfaceModel::to_spec`].
+//!
+//! Analytic records (all coordinates in model units, u = x, v = y):
+//!
+//! | type | fields | height |
+//! |------|--------|--------|
+//! | `elliptic_paraboloid` | `a`, `b`, `x`, `y` | z = a x^2 + b y^2 |
+//! | `sphere_cap` | `radius`, `x`, `y` | z = sqrt(radius^2 - x^2 - y^2) |
+//! | `ellipsoid_cap` | `a`, `b`, `c`, `x`, `y` | z = c sqrt(1 - x^2/a^2 - y^2/b^2) |
+//! | `hyperbolic_paraboloid` | `a`, `b`, `x`, `y` | z = a x^2 - b y^2 |
+//! | `egg_crate` | `amplitude`, `x`, `y` | z = amplitude sin(x) sin(y) |
+//! | `cylinder` | `radius`, `x`, `y` | z = sqrt(radius^2 - x^2) |
+//! | `plane` | `p`, `q`, `c0`, `x`, `y` | z = p x + q y + c0 |
+//!
+//! `x` and `y` are `[min, max]` pairs giving the rectangle (the parameter domain).
+
+use glam::DVec3;
+use serde::{Deserialize, Serialize};
+
+use crate::analytic::{AnalyticKind, AnalyticSurface};
+use crate::error::TpiError;
+use crate::nurbs::{NurbsSpec, NurbsSurface};
+use crate::surface::{Domain, Surface, SurfaceDerivatives};
+
+/// A surface record as stored in a surface file, tagged by `"type"` (snake_case).
+///
+/// Unknown `"type"` values and unknown fields are rejected when reading.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum SurfaceSpec {
+    /// A NURBS surface (the record of issue 2, see [`NurbsSpec`]).
+    Nurbs(NurbsSpec),
+    /// z = a x^2 + b y^2, a and b non-zero with the same sign.
+    EllipticParaboloid {
+        /// Coefficient of x^2.
+        a: f64,
+        /// Coefficient of y^2.
+        b: f64,
+        /// x range [min, max] (u domain).
+        x: [f64; 2],
+        /// y range [min, max] (v domain).
+        y: [f64; 2],
+    },
+    /// z = sqrt(radius^2 - x^2 - y^2), rectangle strictly inside the disc.
+    SphereCap {
+        /// Sphere radius > 0.
+        radius: f64,
+        /// x range [min, max] (u domain).
+        x: [f64; 2],
+        /// y range [min, max] (v domain).
+        y: [f64; 2],
+    },
+    /// z = c sqrt(1 - x^2/a^2 - y^2/b^2), rectangle strictly inside the ellipse.
+    EllipsoidCap {
+        /// Semi-axis along x, > 0.
+        a: f64,
+        /// Semi-axis along y, > 0.
+        b: f64,
+        /// Semi-axis along z, > 0.
+        c: f64,
+        /// x range [min, max] (u domain).
+        x: [f64; 2],
+        /// y range [min, max] (v domain).
+        y: [f64; 2],
+    },
+    /// z = a x^2 - b y^2, a and b non-zero with the same sign.
+    HyperbolicParaboloid {
+        /// Coefficient of x^2.
+        a: f64,
+        /// Coefficient of -y^2.
+        b: f64,
+        /// x range [min, max] (u domain).
+        x: [f64; 2],
+        /// y range [min, max] (v domain).
+        y: [f64; 2],
+    },
+    /// z = amplitude sin(x) sin(y), amplitude non-zero.
+    EggCrate {
+        /// Amplitude.
+        amplitude: f64,
+        /// x range [min, max] (u domain).
+        x: [f64; 2],
+        /// y range [min, max] (v domain).
+        y: [f64; 2],
+    },
+    /// z = sqrt(radius^2 - x^2), |x| < radius.
+    Cylinder {
+        /// Cylinder radius > 0.
+        radius: f64,
+        /// x range [min, max] (u domain).
+        x: [f64; 2],
+        /// y range [min, max] (v domain).
+        y: [f64; 2],
+    },
+    /// z = p x + q y + c0.
+    Plane {
+        /// Slope in x.
+        p: f64,
+        /// Slope in y.
+        q: f64,
+        /// Height at the origin.
+        c0: f64,
+        /// x range [min, max] (u domain).
+        x: [f64; 2],
+        /// y range [min, max] (v domain).
+        y: [f64; 2],
+    },
+}
+
+impl SurfaceSpec {
+    /// Reads a surface record from JSON text. `context` names the source (a file name, or
+    /// "surface") in the error.
+    ///
+    /// Errors: [`TpiError::Parse`] with the 1-based line and column (in bytes) of the problem:
+    /// malformed JSON, a document that is not an object, a missing, repeated or unknown
+    /// `"type"` (the message lists the known types), an unknown field (the message names it
+    /// and lists the accepted ones), a missing field, or a value of the wrong kind. The
+    /// values themselves are checked by [`SurfaceSpec::build`].
+    ///
+    /// The record is read by type, not through serde's buffered internally-tagged path, so
+    /// that every error carries the exact position of the offending value; the result equals
+    /// what `serde_json::from_str::<SurfaceSpec>` gives for valid input.
+    pub fn from_json(text: &str, context: &str) -> Result<SurfaceSpec, TpiError> {
+        let at = |offset: usize, message: String| {
+            let (line, column) = line_column(text, offset);
+            TpiError::Parse { context: context.to_string(), line, column, message }
+        };
+        // Syntax first, with serde_json's own positions.
+        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| parse_error(e, context))?;
+        let start = text.len() - text.trim_start().len();
+        if !value.is_object() {
+            return Err(at(
+                start,
+                format!("expected a JSON object with a \"type\" field, found {}", json_kind(&value)),
+            ));
+        }
+        let tags = find_members(text, "type");
+        let tag = match tags.as_slice() {
+            [] => return Err(at(start, format!("missing field `type` (one of {})", type_list()))),
+            [tag] => tag,
+            [_, second, ..] => return Err(at(second.key, "duplicate field `type`".to_string())),
+        };
+        let name = match serde_json::from_str::<String>(&text[tag.value.clone()]) {
+            Ok(name) => name,
+            Err(_) => {
+                return Err(at(tag.value.start, format!("`type` must be a string, one of {}", type_list())))
+            }
+        };
+        // The tag is blanked out (same length, so every position stays), then the record is
+        // read as the type's own struct, which rejects unknown fields.
+        let mut blanked = text.as_bytes().to_vec();
+        for byte in &mut blanked[tag.member.clone()] {
+            if *byte != b'\n' {
+                *byte = b' ';
+            }
+        }
+        // The blanked span is ASCII (a key, a known type name, whitespace, a comma), so the
+        // bytes stay valid UTF-8; the fallback is never taken.
+        let body = String::from_utf8(blanked).unwrap_or_default();
+        let err = |e: serde_json::Error| parse_error(e, context);
+        Ok(match name.as_str() {
+            "nurbs" => SurfaceSpec::Nurbs(serde_json::from_str(&body).map_err(err)?),
+            "elliptic_paraboloid" => {
+                let r: TwoCoefficients = serde_json::from_str(&body).map_err(err)?;
+                SurfaceSpec::EllipticParaboloid { a: r.a, b: r.b, x: r.x, y: r.y }
+            }
+            "hyperbolic_paraboloid" => {
+                let r: TwoCoefficients = serde_json::from_str(&body).map_err(err)?;
+                SurfaceSpec::HyperbolicParaboloid { a: r.a, b: r.b, x: r.x, y: r.y }
+            }
+            "sphere_cap" => {
+                let r: Radius = serde_json::from_str(&body).map_err(err)?;
+                SurfaceSpec::SphereCap { radius: r.radius, x: r.x, y: r.y }
+            }
+            "cylinder" => {
+                let r: Radius = serde_json::from_str(&body).map_err(err)?;
+                SurfaceSpec::Cylinder { radius: r.radius, x: r.x, y: r.y }
+            }
+            "ellipsoid_cap" => {
+                let r: SemiAxes = serde_json::from_str(&body).map_err(err)?;
+                SurfaceSpec::EllipsoidCap { a: r.a, b: r.b, c: r.c, x: r.x, y: r.y }
+            }
+            "egg_crate" => {
+                let r: Amplitude = serde_json::from_str(&body).map_err(err)?;
+                SurfaceSpec::EggCrate { amplitude: r.amplitude, x: r.x, y: r.y }
+            }
+            "plane" => {
+                let r: PlaneRecord = serde_json::from_str(&body).map_err(err)?;
+                SurfaceSpec::Plane { p: r.p, q: r.q, c0: r.c0, x: r.x, y: r.y }
+            }
+            other => {
+                return Err(at(
+                    tag.value.start,
+                    format!("unknown surface type `{other}`, expected one of {}", type_list()),
+                ))
+            }
+        })
+    }
+
+    /// Every `"type"` tag, in the order of the enum.
+    pub const TYPE_NAMES: [&'static str; 8] = [
+        "nurbs",
+        "elliptic_paraboloid",
+        "sphere_cap",
+        "ellipsoid_cap",
+        "hyperbolic_paraboloid",
+        "egg_crate",
+        "cylinder",
+        "plane",
+    ];
+
+    /// The `"type"` tag of this record.
+    pub fn type_name(&self) -> &'static str {
+        match self.parts() {
+            Parts::Nurbs(_) => "nurbs",
+            Parts::Analytic(kind, _, _) => kind.type_name(),
+        }
+    }
+
+    /// The record split into NURBS or analytic kind plus rectangle.
+    fn parts(&self) -> Parts<'_> {
+        let (kind, x, y) = match *self {
+            SurfaceSpec::Nurbs(ref n) => return Parts::Nurbs(n),
+            SurfaceSpec::EllipticParaboloid { a, b, x, y } => {
+                (AnalyticKind::EllipticParaboloid { a, b }, x, y)
+            }
+            SurfaceSpec::SphereCap { radius, x, y } => (AnalyticKind::SphereCap { radius }, x, y),
+            SurfaceSpec::EllipsoidCap { a, b, c, x, y } => (AnalyticKind::EllipsoidCap { a, b, c }, x, y),
+            SurfaceSpec::HyperbolicParaboloid { a, b, x, y } => {
+                (AnalyticKind::HyperbolicParaboloid { a, b }, x, y)
+            }
+            SurfaceSpec::EggCrate { amplitude, x, y } => (AnalyticKind::EggCrate { amplitude }, x, y),
+            SurfaceSpec::Cylinder { radius, x, y } => (AnalyticKind::Cylinder { radius }, x, y),
+            SurfaceSpec::Plane { p, q, c0, x, y } => (AnalyticKind::Plane { p, q, c0 }, x, y),
+        };
+        Parts::Analytic(kind, x, y)
+    }
+
+    /// Validates the record and builds the surface.
+    ///
+    /// Errors: the NURBS validation errors of [`NurbsSpec::build`], or the analytic ones of
+    /// [`AnalyticSurface::new`], each naming the offending field.
+    pub fn build(&self) -> Result<SurfaceModel, TpiError> {
+        match self.parts() {
+            Parts::Nurbs(n) => Ok(SurfaceModel::Nurbs(n.build()?)),
+            Parts::Analytic(kind, x, y) => Ok(SurfaceModel::Analytic(AnalyticSurface::new(kind, x, y)?)),
+        }
+    }
+
+    /// The record of an analytic surface.
+    pub fn from_analytic(surface: &AnalyticSurface) -> SurfaceSpec {
+        let (x, y) = (surface.x_range(), surface.y_range());
+        match surface.kind() {
+            AnalyticKind::EllipticParaboloid { a, b } => SurfaceSpec::EllipticParaboloid { a, b, x, y },
+            AnalyticKind::SphereCap { radius } => SurfaceSpec::SphereCap { radius, x, y },
+            AnalyticKind::EllipsoidCap { a, b, c } => SurfaceSpec::EllipsoidCap { a, b, c, x, y },
+            AnalyticKind::HyperbolicParaboloid { a, b } => SurfaceSpec::HyperbolicParaboloid { a, b, x, y },
+            AnalyticKind::EggCrate { amplitude } => SurfaceSpec::EggCrate { amplitude, x, y },
+            AnalyticKind::Cylinder { radius } => SurfaceSpec::Cylinder { radius, x, y },
+            AnalyticKind::Plane { p, q, c0 } => SurfaceSpec::Plane { p, q, c0, x, y },
+        }
+    }
+}
+
+/// A record seen as NURBS or as analytic kind plus rectangle.
+enum Parts<'a> {
+    Nurbs(&'a NurbsSpec),
+    Analytic(AnalyticKind, [f64; 2], [f64; 2]),
+}
+
+/// The analytic records as read by [`SurfaceSpec::from_json`], one struct per field set;
+/// the field names must stay those of the [`SurfaceSpec`] variants (a test reads every type
+/// both ways).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TwoCoefficients {
+    a: f64,
+    b: f64,
+    x: [f64; 2],
+    y: [f64; 2],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Radius {
+    radius: f64,
+    x: [f64; 2],
+    y: [f64; 2],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SemiAxes {
+    a: f64,
+    b: f64,
+    c: f64,
+    x: [f64; 2],
+    y: [f64; 2],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct Amplitude {
+    amplitude: f64,
+    x: [f64; 2],
+    y: [f64; 2],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PlaneRecord {
+    p: f64,
+    q: f64,
+    c0: f64,
+    x: [f64; 2],
+    y: [f64; 2],
+}
+
+fn type_list() -> String {
+    SurfaceSpec::TYPE_NAMES.iter().map(|t| format!("`{t}`")).collect::<Vec<_>>().join(", ")
+}
+
+fn json_kind(v: &serde_json::Value) -> &'static str {
+    match v {
+        serde_json::Value::Null => "null",
+        serde_json::Value::Bool(_) => "a boolean",
+        serde_json::Value::Number(_) => "a number",
+        serde_json::Value::String(_) => "a string",
+        serde_json::Value::Array(_) => "an array",
+        serde_json::Value::Object(_) => "an object",
+    }
+}
+
+/// Maps a serde_json error to [`TpiError::Parse`], keeping its line and column out of the
+/// message.
+pub(crate) fn parse_error(e: serde_json::Error, context: &str) -> TpiError {
+    let message = e.to_string();
+    // serde_json appends " at line L column C"; the position is reported separately.
+    let message = match message.rfind(" at line ") {
+        Some(i) if e.line() > 0 => message[..i].to_string(),
+        _ => message,
+    };
+    // serde_json says only this for both `[1, 2, 3]` read as a pair and text after the end.
+    let message = if message == "trailing characters" {
+        "trailing characters (an array with more elements than expected, or text after the document)"
+            .to_string()
+    } else {
+        message
+    };
+    TpiError::Parse { context: context.to_string(), line: e.line(), column: e.column(), message }
+}
+
+/// 1-based line and column (in bytes, as serde_json counts) of a byte offset.
+fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text.as_bytes()[..offset.min(text.len())];
+    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+    let line_start = before.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    (line, before.len() - line_start + 1)
+}
+
+/// One member of the top-level JSON object, as byte ranges of the text.
+struct Member {
+    /// Start of the key's opening quote.
+    key: usize,
+    /// The value.
+    value: std::ops::Range<usize>,
+    /// The member with one adjacent comma: removing it leaves a valid object.
+    member: std::ops::Range<usize>,
+}
+
+/// The members of the top-level object whose key is `name` (keys compared after unescaping).
+/// The text must be syntactically valid JSON (checked before); on anything unexpected the
+/// scan stops and returns what it found.
+fn find_members(text: &str, name: &str) -> Vec<Member> {
+    let b = text.as_bytes();
+    let mut found = Vec::new();
+    let mut i = skip_ws(b, 0);
+    if b.get(i) != Some(&b'{') {
+        return found;
+    }
+    i += 1;
+    let mut previous_comma: Option<usize> = None;
+    loop {
+        i = skip_ws(b, i);
+        if b.get(i) != Some(&b'"') {
+            return found;
+        }
+        let key = i;
+        let Some(key_end) = skip_string(b, i) else { return found };
+        i = skip_ws(b, key_end);
+        if b.get(i) != Some(&b':') {
+            return found;
+        }
+        let value_start = skip_ws(b, i + 1);
+        let Some(value_end) = skip_value(b, value_start) else { return found };
+        i = skip_ws(b, value_end);
+        let comma = b.get(i) == Some(&b',');
+        if serde_json::from_str::<String>(&text[key..key_end]).is_ok_and(|k| k == name) {
+            let member = if comma {
+                key..i + 1
+            } else if let Some(c) = previous_comma {
+                c..value_end
+            } else {
+                key..value_end
+            };
+            found.push(Member { key, value: value_start..value_end, member });
+        }
+        if !comma {
+            return found;
+        }
+        previous_comma = Some(i);
+        i += 1;
+    }
+}
+
+fn skip_ws(b: &[u8], mut i: usize) -> usize {
+    while matches!(b.get(i), Some(b' ' | b'\t' | b'\n' | b'\r')) {
+        i += 1;
+    }
+    i
+}
+
+/// Index just past the string starting at `i` (an opening quote).
+fn skip_string(b: &[u8], i: usize) -> Option<usize> {
+    let mut j = i + 1;
+    loop {
+        match b.get(j)? {
+            b'\\' => j += 2,
+            b'"' => return Some(j + 1),
+            _ => j += 1,
+        }
+    }
+}
+
+/// Index just past the value starting at `i`.
+fn skip_value(b: &[u8], i: usize) -> Option<usize> {
+    match b.get(i)? {
+        b'"' => skip_string(b, i),
+        b'{' | b'[' => {
+            let mut depth = 0usize;
+            let mut j = i;
+            loop {
+                match b.get(j)? {
+                    b'"' => {
+                        j = skip_string(b, j)?;
+                        continue;
+                    }
+                    b'{' | b'[' => depth += 1,
+                    b'}' | b']' => {
+                        depth -= 1;
+                        if depth == 0 {
+                            return Some(j + 1);
+                        }
+                    }
+                    _ => {}
+                }
+                j += 1;
+            }
+        }
+        _ => {
+            let mut j = i;
+            while !matches!(b.get(j), None | Some(b',' | b'}' | b']' | b' ' | b'\t' | b'\n' | b'\r')) {
+                j += 1;
+            }
+            Some(j)
+        }
+    }
+}
+
+/// A validated surface of any supported kind: what the pipeline samples.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SurfaceModel {
+    /// A NURBS surface.
+    Nurbs(NurbsSurface),
+    /// An analytic graph surface.
+    Analytic(AnalyticSurface),
+}
+
+impl SurfaceModel {
+    /// The record that [`SurfaceSpec::build`] turns back into this surface (NURBS knots in
+    /// Rhino's convention).
+    pub fn to_spec(&self) -> SurfaceSpec {
+        match self {
+            SurfaceModel::Nurbs(n) => SurfaceSpec::Nurbs(n.to_spec()),
+            SurfaceModel::Analytic(a) => SurfaceSpec::from_analytic(a),
+        }
+    }
+
+    /// Evaluation that rejects (u, v) outside the domain (or non-finite) with
+    /// [`TpiError::OutOfDomain`] instead of clamping.
+    pub fn evaluate_checked(&self, u: f64, v: f64) -> Result<SurfaceDerivatives, TpiError> {
+        self.domain().check(u, v)?;
+        Ok(self.evaluate(u, v))
+    }
+}
+
+impl Surface for SurfaceModel {
+    fn domain(&self) -> Domain {
+        match self {
+            SurfaceModel::Nurbs(n) => n.domain(),
+            SurfaceModel::Analytic(a) => a.domain(),
+        }
+    }
+
+    fn evaluate(&self, u: f64, v: f64) -> SurfaceDerivatives {
+        match self {
+            SurfaceModel::Nurbs(n) => n.evaluate(u, v),
+            SurfaceModel::Analytic(a) => a.evaluate(u, v),
+        }
+    }
+
+    fn point_at(&self, u: f64, v: f64) -> DVec3 {
+        match self {
+            SurfaceModel::Nurbs(n) => n.point_at(u, v),
+            SurfaceModel::Analytic(a) => a.point_at(u, v),
+        }
+    }
+}
+
+impl From<AnalyticSurface> for SurfaceModel {
+    fn from(s: AnalyticSurface) -> Self {
+        SurfaceModel::Analytic(s)
+    }
+}
+
+impl From<NurbsSurface> for SurfaceModel {
+    fn from(s: NurbsSurface) -> Self {
+        SurfaceModel::Nurbs(s)
+    }
+}
+
+/// Axis-aligned bounding box `[min, max]` of the surface points sampled on a regular grid of
+/// `samples_per_side` x `samples_per_side` parameters (borders and corners included; at least
+/// 2 per side are used). Non-finite points are skipped; a surface with none finite gives
+/// `[DVec3::ZERO, DVec3::ZERO]`.
+///
+/// This is an approximation from inside (the true box can be slightly larger between
+/// samples); use it for scale (its diagonal), not for containment.
+pub fn sampled_bounding_box<S: Surface + ?Sized>(surface: &S, samples_per_side: usize) -> [DVec3; 2] {
+    let n = samples_per_side.max(2);
+    let domain = surface.domain();
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for i in 0..n {
+        let s = i as f64 / (n - 1) as f64;
+        for j in 0..n {
+            let t = j as f64 / (n - 1) as f64;
+            let [u, v] = domain.from_normalised([s, t]);
+            let p = surface.point_at(u, v);
+            if p.is_finite() {
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+        }
+    }
+    if lo.is_finite() && hi.is_finite() {
+        [lo, hi]
+    } else {
+        [DVec3::ZERO, DVec3::ZERO]
+    }
+}
