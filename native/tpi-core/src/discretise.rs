@@ -25,7 +25,7 @@ use crate::neighbours::{decide, NeighbourInput, NeighbourStats};
 use crate::planes::Plane;
 use crate::quality::{report, QualityReport, ReportInput};
 use crate::surface::Surface;
-use crate::tolerance::DUPLICATE_UV_TOLERANCE;
+use crate::pattern::validate_uv;
 use crate::triangulation::DualTriangulation;
 
 /// Default weld distance of coincident vertices, relative to the bounding-box diagonal.
@@ -195,32 +195,12 @@ impl Serialize for ContractView<'_> {
     }
 }
 
-/// Checks normalised pattern points: finite, inside [0, 1]^2, no duplicates, at least three.
+/// Checks normalised pattern points: finite, inside [0, 1]^2, no duplicates
+/// ([`crate::pattern::validate_uv`]), and at least three of them.
 pub fn validate_pattern(points: &[[f64; 2]]) -> Result<(), TpiError> {
-    for (index, &[s, t]) in points.iter().enumerate() {
-        if !(s.is_finite() && t.is_finite() && (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t)) {
-            return Err(TpiError::PatternPointOutOfRange { index, s, t });
-        }
-    }
+    validate_uv(points)?;
     if points.len() < 3 {
         return Err(TpiError::TooFewPatternPoints { found: points.len(), needed: 3 });
-    }
-    // Sort by s; any duplicate pair lies within DUPLICATE_UV_TOLERANCE in s.
-    let mut order: Vec<u32> = (0..points.len() as u32).collect();
-    order.sort_by(|&a, &b| points[a as usize][0].total_cmp(&points[b as usize][0]).then(a.cmp(&b)));
-    for (k, &a) in order.iter().enumerate() {
-        let pa = points[a as usize];
-        for &b in &order[k + 1..] {
-            let pb = points[b as usize];
-            if pb[0] - pa[0] > DUPLICATE_UV_TOLERANCE {
-                break;
-            }
-            let distance = ((pb[0] - pa[0]).powi(2) + (pb[1] - pa[1]).powi(2)).sqrt();
-            if distance <= DUPLICATE_UV_TOLERANCE {
-                let (first, second) = (a.min(b) as usize, a.max(b) as usize);
-                return Err(TpiError::DuplicatePatternPoint { index: second, duplicate_of: first, distance });
-            }
-        }
     }
     Ok(())
 }

@@ -19,15 +19,26 @@
 #![warn(missing_docs)]
 
 pub mod analytic;
+pub mod diagnostics;
 pub mod diffgeo;
+pub mod discretise;
 pub mod error;
+pub mod facets;
+pub mod neighbours;
 pub mod nurbs;
 pub mod pattern;
+pub mod planes;
+pub mod projection;
+pub mod quality;
 pub mod spec;
 pub mod surface;
+pub mod triangulation;
 pub mod tolerance;
 
+pub use diagnostics::Diagnostic;
 pub use diffgeo::LocalGeometry;
+pub use discretise::{discretise, validate_pattern, Discretisation, DiscretiseOptions, Seed, Timings};
+pub use quality::QualityReport;
 pub use error::{Direction, TpiError};
 pub use nurbs::{NurbsSpec, NurbsSurface};
 pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};

@@ -85,19 +85,7 @@ impl Pattern {
     /// point it duplicates). Range errors are reported before duplicates. An empty pattern is
     /// valid here; the mesh stage asks for enough points.
     pub fn validate(&self) -> Result<(), TpiError> {
-        for (index, &[s, t]) in self.uv.iter().enumerate() {
-            if !in_unit_square(s, t) {
-                return Err(TpiError::PatternPointOutOfRange { index, s, t });
-            }
-        }
-        let mut hash = UvHash::new(DUPLICATE_UV_TOLERANCE, self.uv.len());
-        for (index, &p) in self.uv.iter().enumerate() {
-            if let Some((duplicate_of, distance)) = hash.nearest_within(&self.uv, p) {
-                return Err(TpiError::DuplicatePatternPoint { index, duplicate_of, distance });
-            }
-            hash.insert(p, index);
-        }
-        Ok(())
+        validate_uv(&self.uv)
     }
 
     /// Reads a pattern file (`{"uv": [[s, t], ...]}`) and validates it.
@@ -114,6 +102,23 @@ impl Pattern {
     pub fn to_domain(&self, domain: &Domain) -> Vec<[f64; 2]> {
         self.uv.iter().map(|&st| domain.from_normalised(st)).collect()
     }
+}
+
+/// The checks of [`Pattern::validate`] on a plain slice of normalised points.
+pub fn validate_uv(uv: &[[f64; 2]]) -> Result<(), TpiError> {
+    for (index, &[s, t]) in uv.iter().enumerate() {
+        if !in_unit_square(s, t) {
+            return Err(TpiError::PatternPointOutOfRange { index, s, t });
+        }
+    }
+    let mut hash = UvHash::new(DUPLICATE_UV_TOLERANCE, uv.len());
+    for (index, &p) in uv.iter().enumerate() {
+        if let Some((duplicate_of, distance)) = hash.nearest_within(uv, p) {
+            return Err(TpiError::DuplicatePatternPoint { index, duplicate_of, distance });
+        }
+        hash.insert(p, index);
+    }
+    Ok(())
 }
 
 fn in_unit_square(s: f64, t: f64) -> bool {
