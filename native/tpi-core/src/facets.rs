@@ -36,6 +36,12 @@ pub const DEFAULT_FAR_VERTEX_FACTOR: f64 = 8.0;
 /// outside endpoints.
 const OUTSIDE_SEGMENT_SAMPLES: usize = 8;
 
+/// A segment with both ends outside is searched for a part inside the domain only when it
+/// is at most this many neighbour spacings long: a real facet edge clipping a domain corner
+/// is short, while long edges between two far outside vertices pass high above or below the
+/// surface, where feet "inside" the domain mean nothing.
+const OUTSIDE_SEGMENT_FACTOR: f64 = 4.0;
+
 /// Regula falsi iterations for a boundary crossing.
 const CROSSING_ITERATIONS: usize = 80;
 
@@ -452,7 +458,7 @@ fn edge_crossings(
         (false, false) => {
             let (Some(start), Some(end)) = (start, end) else { return (Vec::new(), None) };
             if !(start.point.is_finite() && end.point.is_finite())
-                || start.point.distance(end.point) > RAY_FAR_FACTOR * spacing
+                || start.point.distance(end.point) > OUTSIDE_SEGMENT_FACTOR * spacing
             {
                 return (Vec::new(), None);
             }
