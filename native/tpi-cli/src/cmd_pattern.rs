@@ -1,0 +1,105 @@
+//! `tpi pattern`: generate a pattern file and preview it with its Voronoi diagram.
+
+use std::fmt::Write;
+use std::path::PathBuf;
+
+use tpi_core::Generator;
+
+use crate::args::{Arg, Args};
+use crate::error::CliError;
+use crate::output::{check_output_path, write_all};
+use crate::{svg, voronoi};
+
+pub const HELP: &str = "\
+tpi pattern: generate pattern points in the unit square
+
+USAGE:
+    tpi pattern GENERATOR --out P.json [--preview P.svg]
+
+GENERATOR (deterministic: the same spec gives the same points everywhere):
+    grid:NUxNV                        NU x NV cell centres
+    grid:spacing=D                    square grid with spacing about D
+    hex:NUxNV                         NU x NV points, rows shifted by half a step
+    hex:spacing=D                     hexagonal grid with spacing about D
+    jitter:NUxNV[:amount=A][:seed=S]  grid points moved randomly within their cells (A in [0, 1])
+    random:N[:seed=S]                 N uniform random points
+    poisson:R[:seed=S]                Poisson-disk points at least R apart (about 0.7/R^2 points)
+
+OPTIONS:
+    --out FILE        the pattern file ({\"uv\": [[s, t], ...]}, docs/formats.md)
+    --preview FILE    an SVG of the points and their Voronoi diagram in the unit square
+    -h, --help        this help
+
+EXAMPLES:
+    tpi pattern hex:24x20 --out hex.json --preview hex.svg
+    tpi pattern random:1000:seed=7 --out random.json
+    tpi pattern poisson:0.03:seed=7 --out poisson.json --preview poisson.svg
+";
+
+/// Runs `tpi pattern`.
+pub fn run(rest: Vec<String>) -> Result<(), CliError> {
+    let mut a = Args::new("pattern", rest);
+    let (mut spec, mut out, mut preview): (Option<String>, Option<PathBuf>, Option<PathBuf>) = (None, None, None);
+    while let Some(arg) = a.next() {
+        match arg {
+            Arg::Option(name, inline) => match name.as_str() {
+                "help" => {
+                    print!("{HELP}");
+                    return Ok(());
+                }
+                "out" | "o" => out = Some(PathBuf::from(a.value(&name, inline)?)),
+                "preview" => preview = Some(PathBuf::from(a.value(&name, inline)?)),
+                _ => return Err(a.unknown(&name)),
+            },
+            Arg::Positional(p) if spec.is_none() => spec = Some(p),
+            Arg::Positional(p) => return Err(a.usage(format!("unexpected argument `{p}`"))),
+        }
+    }
+    let spec = spec.ok_or_else(|| a.usage("a GENERATOR is required, e.g. hex:24x20"))?;
+    if out.is_none() && preview.is_none() {
+        return Err(a.usage("--out (and/or --preview) is required"));
+    }
+    for (path, ext) in [(&out, "json"), (&preview, "svg")] {
+        if let Some(p) = path {
+            if p.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase()) != Some(ext.to_string()) {
+                return Err(a.usage(format!("{} must end in .{ext}", p.display())));
+            }
+            check_output_path(p)?;
+        }
+    }
+    let generator = Generator::parse(&spec).map_err(|e| match e {
+        tpi_core::TpiError::InvalidGenerator { reason, .. } => CliError::input(&spec, format!("invalid pattern generator: {reason}")),
+        other => CliError::input(&spec, other.to_string()),
+    })?;
+    let pattern = generator.generate();
+    pattern.validate().map_err(|e| CliError::input(&spec, e.to_string()))?;
+
+    let mut files = Vec::new();
+    if let Some(p) = &out {
+        files.push((p.clone(), pattern_json(&pattern.uv).into_bytes()));
+    }
+    if let Some(p) = &preview {
+        let cells = voronoi::cells(&pattern.uv);
+        files.push((p.clone(), svg::pattern_preview(&pattern.uv, &cells, &format!("tpi pattern {generator}")).into_bytes()));
+    }
+    write_all(&files)?;
+    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+    eprintln!("tpi: {generator}: {} points -> {}", pattern.len(), names.join(", "));
+    Ok(())
+}
+
+/// The pattern file, one point per line, numbers in shortest round-trip form.
+pub fn pattern_json(uv: &[[f64; 2]]) -> String {
+    let mut s = String::with_capacity(uv.len() * 44 + 16);
+    s.push_str("{\"uv\": [");
+    for (i, p) in uv.iter().enumerate() {
+        s.push_str(if i == 0 { "\n  [" } else { ",\n  [" });
+        let _ = write!(s, "{}, {}]", num(p[0]), num(p[1]));
+    }
+    s.push_str(if uv.is_empty() { "]}\n" } else { "\n]}\n" });
+    s
+}
+
+fn num(x: f64) -> String {
+    serde_json::to_string(&x).unwrap_or_else(|_| "0".into())
+}

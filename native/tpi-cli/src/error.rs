@@ -1,0 +1,97 @@
+//! The CLI's error: a usage mistake (exit code 2) or a problem with an input or output file
+//! (exit code 1). Both print as one line on stderr, `tpi: error: ...`.
+
+use std::fmt;
+use std::io;
+use std::path::Path;
+
+use tpi_core::TpiError;
+
+/// Everything that ends a run with a non-zero exit code.
+#[derive(Debug)]
+pub enum CliError {
+    /// Wrong command line: unknown option, missing value, bad extension. Exit code 2.
+    Usage {
+        /// What is wrong.
+        message: String,
+        /// The subcommand whose `--help` explains the syntax.
+        command: Option<&'static str>,
+    },
+    /// A file (or generator spec, or option value) that cannot be used. Exit code 1.
+    Input {
+        /// The file or value concerned, named first in the message.
+        subject: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+}
+
+impl CliError {
+    /// A usage error of `command`.
+    pub fn usage(command: Option<&'static str>, message: impl Into<String>) -> Self {
+        CliError::Usage { message: message.into(), command }
+    }
+
+    /// A problem with `subject` (a file name, a generator spec, an option).
+    pub fn input(subject: impl fmt::Display, problem: impl Into<String>) -> Self {
+        CliError::Input { subject: subject.to_string(), problem: problem.into() }
+    }
+
+    /// A core error about `subject`. Parse errors carry their own source name (the context
+    /// passed to the core), which is the same file name: it is not repeated.
+    pub fn core(subject: impl fmt::Display, error: &TpiError) -> Self {
+        match error {
+            TpiError::Parse { line, column, message, .. } => {
+                CliError::input(subject, format!("line {line}, column {column}: {message}"))
+            }
+            other => CliError::input(subject, other.to_string()),
+        }
+    }
+
+    /// An I/O error while doing `action` (e.g. "cannot read") on `path`.
+    pub fn io(path: &Path, action: &str, error: &io::Error) -> Self {
+        CliError::input(path.display(), format!("{action}: {}", describe_io(error)))
+    }
+
+    /// The process exit code.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            CliError::Usage { .. } => 2,
+            CliError::Input { .. } => 1,
+        }
+    }
+}
+
+impl fmt::Display for CliError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CliError::Usage { message, command: Some(command) } => {
+                write!(f, "tpi: error: {message} (see `tpi {command} --help`)")
+            }
+            CliError::Usage { message, command: None } => write!(f, "tpi: error: {message} (see `tpi --help`)"),
+            CliError::Input { subject, problem } => write!(f, "tpi: error: {subject}: {problem}"),
+        }
+    }
+}
+
+/// An I/O error as a short lower-case phrase without the "(os error N)" suffix.
+pub fn describe_io(error: &io::Error) -> String {
+    let text = match error.kind() {
+        io::ErrorKind::NotFound => "no such file or directory".to_string(),
+        io::ErrorKind::PermissionDenied => "permission denied".to_string(),
+        io::ErrorKind::InvalidData => "the file is not valid UTF-8 text".to_string(),
+        _ => {
+            let s = error.to_string();
+            let s = match s.find(" (os error") {
+                Some(i) => s[..i].to_string(),
+                None => s,
+            };
+            let mut chars = s.chars();
+            match chars.next() {
+                Some(c) => c.to_lowercase().collect::<String>() + chars.as_str(),
+                None => s,
+            }
+        }
+    };
+    text
+}

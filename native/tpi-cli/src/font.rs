@@ -1,0 +1,41 @@
+//! A 5 x 7 bitmap font for the few characters the PNG legend needs.
+
+const GLYPHS: &[(char, [u8; 7])] = &[
+    ('0', [0b01110, 0b10001, 0b10011, 0b10101, 0b11001, 0b10001, 0b01110]),
+    ('1', [0b00100, 0b01100, 0b00100, 0b00100, 0b00100, 0b00100, 0b01110]),
+    ('2', [0b01110, 0b10001, 0b00001, 0b00010, 0b00100, 0b01000, 0b11111]),
+    ('3', [0b11111, 0b00010, 0b00100, 0b00010, 0b00001, 0b10001, 0b01110]),
+    ('4', [0b00010, 0b00110, 0b01010, 0b10010, 0b11111, 0b00010, 0b00010]),
+    ('5', [0b11111, 0b10000, 0b11110, 0b00001, 0b00001, 0b10001, 0b01110]),
+    ('6', [0b00110, 0b01000, 0b10000, 0b11110, 0b10001, 0b10001, 0b01110]),
+    ('7', [0b11111, 0b00001, 0b00010, 0b00100, 0b01000, 0b01000, 0b01000]),
+    ('8', [0b01110, 0b10001, 0b10001, 0b01110, 0b10001, 0b10001, 0b01110]),
+    ('9', [0b01110, 0b10001, 0b10001, 0b01111, 0b00001, 0b00010, 0b01100]),
+    ('+', [0b00000, 0b00100, 0b00100, 0b11111, 0b00100, 0b00100, 0b00000]),
+    ('<', [0b00010, 0b00100, 0b01000, 0b10000, 0b01000, 0b00100, 0b00010]),
+];
+
+/// Draws `text` with its top left corner at (x, y), each font pixel `scale` x `scale`;
+/// returns the x just past the text. Unknown characters leave a blank.
+pub fn draw_text(rgb: &mut [u8], w: usize, h: usize, mut x: usize, y: usize, scale: usize, text: &str, c: [u8; 3]) -> usize {
+    for ch in text.chars() {
+        if let Some((_, rows)) = GLYPHS.iter().find(|(g, _)| *g == ch) {
+            for (r, bits) in rows.iter().enumerate() {
+                for col in 0..5 {
+                    if bits & (1 << (4 - col)) != 0 {
+                        for dy in 0..scale {
+                            for dx in 0..scale {
+                                let (px, py) = (x + col * scale + dx, y + r * scale + dy);
+                                if px < w && py < h {
+                                    rgb[(py * w + px) * 3..(py * w + px) * 3 + 3].copy_from_slice(&c);
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        x += 6 * scale;
+    }
+    x
+}

@@ -1,0 +1,89 @@
+//! The one-screen summary of a discretisation printed on stderr.
+
+use std::fmt::Write;
+
+use tpi_core::Discretisation;
+
+/// At most this many diagnostics are listed by name.
+const LISTED_DIAGNOSTICS: usize = 3;
+
+/// The summary text (several lines, each ending in a newline).
+pub fn summary(result: &Discretisation, surface: &str, pattern: &str, threads: usize) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "tpi: {surface} with {pattern}: {} facets, {} vertices", result.facet_count(), result.vertices.len());
+    match &result.quality {
+        None => {
+            let _ = writeln!(s, "  quality report: off (--no-report)");
+        }
+        Some(q) => {
+            let sides: Vec<String> = q.side_histogram.iter().map(|(k, n)| format!("{k}:{n}")).collect();
+            let _ = writeln!(s, "  edges {}   sides {}", q.edge_count, sides.join("  "));
+            let _ = writeln!(
+                s,
+                "  interior vertices {}, trivalent {:.1}%",
+                q.interior_vertex_count,
+                100.0 * q.trivalent_fraction
+            );
+            let _ = writeln!(
+                s,
+                "  planarity {:.1e} (max, relative to diagonal {:.4})   deviation max {:.4}  mean {:.4}",
+                q.max_planarity_error,
+                q.bounding_box_diagonal,
+                q.max_deviation,
+                q.mean_deviation
+            );
+            let _ = writeln!(
+                s,
+                "  facet area {:.4} .. {:.4}   edge length {:.4} .. {:.4}",
+                q.min_facet_area, q.max_facet_area, q.min_edge_length, q.max_edge_length
+            );
+            let flags = if q.flagged_facets == 0 { "none".to_string() } else { format!("{} facets", q.flagged_facets) };
+            let _ = writeln!(
+                s,
+                "  flags: {flags} (non-convex {}, non-simple {}, overlapping pairs {}){}",
+                q.non_convex_facets,
+                q.non_simple_facets,
+                q.overlapping_pairs,
+                if q.all_finite { "" } else { "   NON-FINITE VERTICES" }
+            );
+            let _ = writeln!(
+                s,
+                "  topology: Euler characteristic {}, boundary loops {}, non-manifold edges {}",
+                q.euler_characteristic, q.boundary_loops, q.non_manifold_edges
+            );
+            let _ = writeln!(
+                s,
+                "  neighbours: {} compensation flips, {} envelope repairs, {} unresolved",
+                q.neighbours.compensation_flips, q.neighbours.envelope_repairs, q.neighbours.envelope_unresolved
+            );
+        }
+    }
+    let d = &result.diagnostics;
+    if d.is_empty() {
+        let _ = writeln!(s, "  diagnostics: none");
+    } else {
+        let _ = writeln!(s, "  diagnostics: {}", d.len());
+        for diag in d.iter().take(LISTED_DIAGNOSTICS) {
+            let text = serde_json::to_string(diag).unwrap_or_default();
+            let _ = writeln!(s, "    {}", truncate(&text, 110));
+        }
+        if d.len() > LISTED_DIAGNOSTICS {
+            let _ = writeln!(s, "    ... {} more in the JSON output", d.len() - LISTED_DIAGNOSTICS);
+        }
+    }
+    let t = &result.timings;
+    let _ = writeln!(
+        s,
+        "  timings: samples {:.1} ms, delaunay {:.1} ms, neighbours {:.1} ms, facets {:.1} ms, report {:.1} ms, total {:.1} ms ({threads} threads)",
+        t.samples, t.delaunay, t.neighbours, t.facets, t.report, t.total
+    );
+    s
+}
+
+fn truncate(s: &str, n: usize) -> String {
+    if s.chars().count() <= n {
+        s.to_string()
+    } else {
+        s.chars().take(n - 3).collect::<String>() + "..."
+    }
+}

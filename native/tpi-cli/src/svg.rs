@@ -1,0 +1,149 @@
+//! SVG pictures: the mesh's top view (x, y) and a pattern's points with their Voronoi diagram.
+
+use std::collections::BTreeMap;
+use std::fmt::Write;
+
+use tpi_core::Discretisation;
+
+use crate::palette::{hex, side_class, side_colour, side_label, EDGE_COLOUR, FLAG_COLOUR};
+
+/// Longest side of the drawing area, in SVG user units (pixels).
+const DRAWING: f64 = 1000.0;
+const MARGIN: f64 = 20.0;
+const LEGEND_WIDTH: f64 = 150.0;
+
+/// Escapes text for XML content and attributes.
+pub fn escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+/// Top view of the mesh: one `<polygon>` per facet (in facet order, `data-facet` = index),
+/// filled by side count, flagged facets outlined red; a legend on the right.
+pub fn mesh_top_view(result: &Discretisation, title: &str) -> String {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for v in result.vertices.iter().filter(|v| v.is_finite()) {
+        lo = [lo[0].min(v.x), lo[1].min(v.y)];
+        hi = [hi[0].max(v.x), hi[1].max(v.y)];
+    }
+    if !(lo[0] <= hi[0] && lo[1] <= hi[1]) {
+        lo = [0.0, 0.0];
+        hi = [1.0, 1.0];
+    }
+    let span = [(hi[0] - lo[0]).max(1e-300), (hi[1] - lo[1]).max(1e-300)];
+    let scale = DRAWING / span[0].max(span[1]);
+    let (w, h) = (span[0] * scale, span[1] * scale);
+    let width = w + 2.0 * MARGIN + LEGEND_WIDTH;
+    let height = (h + 2.0 * MARGIN).max(300.0);
+    let map = |x: f64, y: f64| (MARGIN + (x - lo[0]) * scale, MARGIN + (hi[1] - y) * scale);
+
+    let mut out = String::new();
+    header(&mut out, width, height, title);
+    let _ = writeln!(out, "<g id=\"facets\" stroke=\"{}\" stroke-width=\"0.7\" stroke-linejoin=\"round\">", hex(EDGE_COLOUR));
+    let mut counts: BTreeMap<usize, usize> = BTreeMap::new();
+    let flagged = |i: usize| result.facet_flags.get(i).copied().unwrap_or(0) != 0;
+    // Flagged facets last, so that their red outlines lie on top.
+    let order = (0..result.facet_count()).filter(|&i| !flagged(i)).chain((0..result.facet_count()).filter(|&i| flagged(i)));
+    let mut any_flagged = false;
+    for i in order {
+        let facet = result.facet(i);
+        *counts.entry(side_class(facet.len())).or_default() += 1;
+        let _ = write!(out, "<polygon data-facet=\"{i}\" data-sides=\"{}\" fill=\"{}\"", facet.len(), hex(side_colour(facet.len())));
+        if flagged(i) {
+            any_flagged = true;
+            let _ = write!(out, " data-flags=\"{}\" stroke=\"{}\" stroke-width=\"2.5\"", result.facet_flags[i], hex(FLAG_COLOUR));
+        }
+        out.push_str(" points=\"");
+        for (k, &vi) in facet.iter().enumerate() {
+            let v = result.vertices[vi as usize];
+            let (x, y) = map(v.x, v.y);
+            if k > 0 {
+                out.push(' ');
+            }
+            let _ = write!(out, "{x:.2},{y:.2}");
+        }
+        out.push_str("\"/>\n");
+    }
+    out.push_str("</g>\n");
+
+    // Legend.
+    let lx = w + 2.0 * MARGIN;
+    let _ = writeln!(out, "<g id=\"legend\" font-family=\"sans-serif\" font-size=\"13\" fill=\"#222\">");
+    let _ = writeln!(out, "<text x=\"{lx:.1}\" y=\"{:.1}\" font-weight=\"bold\">sides</text>", MARGIN + 12.0);
+    let mut y = MARGIN + 24.0;
+    for (&class, &n) in &counts {
+        let _ = writeln!(
+            out,
+            "<rect x=\"{lx:.1}\" y=\"{y:.1}\" width=\"16\" height=\"16\" fill=\"{}\" stroke=\"{}\" stroke-width=\"0.7\"/><text x=\"{:.1}\" y=\"{:.1}\">{}: {n}</text>",
+            hex(side_colour(class)),
+            hex(EDGE_COLOUR),
+            lx + 22.0,
+            y + 13.0,
+            side_label(class)
+        );
+        y += 22.0;
+    }
+    if any_flagged {
+        let n = (0..result.facet_count()).filter(|&i| flagged(i)).count();
+        let _ = writeln!(
+            out,
+            "<rect x=\"{lx:.1}\" y=\"{y:.1}\" width=\"16\" height=\"16\" fill=\"none\" stroke=\"{}\" stroke-width=\"2.5\"/><text x=\"{:.1}\" y=\"{:.1}\">flagged: {n}</text>",
+            hex(FLAG_COLOUR),
+            lx + 22.0,
+            y + 13.0
+        );
+        y += 22.0;
+    }
+    let _ = writeln!(out, "<text x=\"{lx:.1}\" y=\"{:.1}\" font-size=\"11\" fill=\"#666\">top view (x right, y up)</text>", y + 14.0);
+    out.push_str("</g>\n</svg>\n");
+    out
+}
+
+fn header(out: &mut String, width: f64, height: f64, title: &str) {
+    let _ = writeln!(out, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>");
+    let _ = writeln!(
+        out,
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width:.0}\" height=\"{height:.0}\" viewBox=\"0 0 {width:.1} {height:.1}\">"
+    );
+    let _ = writeln!(out, "<title>{}</title>", escape(title));
+    let _ = writeln!(out, "<rect x=\"0\" y=\"0\" width=\"{width:.1}\" height=\"{height:.1}\" fill=\"#ffffff\"/>");
+}
+
+/// The pattern in the unit square (s right, t up): its Voronoi cells clipped to the square
+/// as `<polygon>`s (one per point, in point order) and the points as `<circle>`s.
+pub fn pattern_preview(points: &[[f64; 2]], cells: &[Vec<[f64; 2]>], title: &str) -> String {
+    let size = 800.0;
+    let m = MARGIN;
+    let map = |p: [f64; 2]| (m + p[0] * size, m + (1.0 - p[1]) * size);
+    let total = size + 2.0 * m;
+    let mut out = String::new();
+    header(&mut out, total, total + 20.0, title);
+    let _ = writeln!(out, "<rect x=\"{m}\" y=\"{m}\" width=\"{size}\" height=\"{size}\" fill=\"#f7f7f2\" stroke=\"#222\" stroke-width=\"1\"/>");
+    let _ = writeln!(out, "<g id=\"voronoi\" fill=\"none\" stroke=\"#4e79a7\" stroke-width=\"0.8\" stroke-linejoin=\"round\">");
+    for (i, cell) in cells.iter().enumerate() {
+        let _ = write!(out, "<polygon data-point=\"{i}\" points=\"");
+        for (k, &p) in cell.iter().enumerate() {
+            let (x, y) = map(p);
+            if k > 0 {
+                out.push(' ');
+            }
+            let _ = write!(out, "{x:.2},{y:.2}");
+        }
+        out.push_str("\"/>\n");
+    }
+    out.push_str("</g>\n");
+    let r = (0.35 * size / (points.len().max(1) as f64).sqrt()).clamp(0.6, 4.0);
+    let _ = writeln!(out, "<g id=\"points\" fill=\"#e15759\">");
+    for &p in points {
+        let (x, y) = map(p);
+        let _ = writeln!(out, "<circle cx=\"{x:.2}\" cy=\"{y:.2}\" r=\"{r:.2}\"/>");
+    }
+    out.push_str("</g>\n");
+    let _ = writeln!(
+        out,
+        "<text x=\"{m}\" y=\"{:.1}\" font-family=\"sans-serif\" font-size=\"13\" fill=\"#222\">{} points, Voronoi cells in the unit square (s right, t up)</text>",
+        total + 8.0,
+        points.len()
+    );
+    out.push_str("</svg>\n");
+    out
+}
