@@ -36,7 +36,7 @@ EXAMPLES:
 
 /// |K| below this fraction of the largest squared principal curvature on the grid counts
 /// as K ~ 0 in the report.
-pub const NEAR_ZERO_FRACTION: f64 = 1e-3;
+pub const NEAR_ZERO_FRACTION: f64 = 1e-2;
 
 /// Runs `tpi info`.
 pub fn run(rest: Vec<String>) -> Result<(), CliError> {
@@ -150,15 +150,20 @@ pub fn describe(file: &Path, spec: &SurfaceSpec, model: &SurfaceModel, grid: usi
         let pct = 100.0 * hits.len() as f64 / total;
         let mut line = format!("  {what}: {pct:.1}% of the samples");
         if !hits.is_empty() && hits.len() < samples.len() {
-            let (mut smin, mut smax, mut tmin, mut tmax) = (1.0f64, 0.0f64, 1.0f64, 0.0f64);
-            for &k in &hits {
-                let (si, ti) = ((k % n) as f64 / (n - 1) as f64, (k / n) as f64 / (n - 1) as f64);
-                smin = smin.min(si);
-                smax = smax.max(si);
-                tmin = tmin.min(ti);
-                tmax = tmax.max(ti);
-            }
-            let _ = write!(line, ", within s [{smin:.2}, {smax:.2}] x t [{tmin:.2}, {tmax:.2}] of the unit square");
+            let regions = components(n, &hits);
+            let shown: Vec<String> = regions
+                .iter()
+                .take(3)
+                .map(|r| format!("s [{:.2}, {:.2}] x t [{:.2}, {:.2}]", r[0], r[1], r[2], r[3]))
+                .collect();
+            let more = if regions.len() > 3 { format!(" and {} smaller", regions.len() - 3) } else { String::new() };
+            let _ = write!(
+                line,
+                " in {} region{}: {}{more}",
+                regions.len(),
+                if regions.len() == 1 { "" } else { "s" },
+                shown.join(", ")
+            );
         }
         let _ = writeln!(s, "{line}");
         hits.len()
@@ -206,6 +211,51 @@ pub fn describe(file: &Path, spec: &SurfaceSpec, model: &SurfaceModel, grid: usi
     let _ = writeln!(s, "  t=0 +{}+", "-".repeat(cols));
     let _ = writeln!(s, "      s=0{}s=1", " ".repeat(cols.saturating_sub(4)));
     s
+}
+
+/// Connected regions of the sample indices `hits` on the n x n grid, as normalised bounding
+/// boxes [s0, s1, t0, t1], largest region first. Samples up to two grid steps apart count as
+/// connected, so that thin bands (K ~ 0 between K > 0 and K < 0) break up less.
+fn components(n: usize, hits: &[usize]) -> Vec<[f64; 4]> {
+    let mut member = vec![false; n * n];
+    for &k in hits {
+        member[k] = true;
+    }
+    let mut seen = vec![false; n * n];
+    let mut regions: Vec<(usize, [f64; 4])> = Vec::new();
+    let at = |k: usize| ((k % n) as f64 / (n - 1) as f64, (k / n) as f64 / (n - 1) as f64);
+    for &start in hits {
+        if seen[start] {
+            continue;
+        }
+        seen[start] = true;
+        let mut stack = vec![start];
+        let mut size = 0;
+        let mut b = [1.0f64, 0.0f64, 1.0f64, 0.0f64];
+        while let Some(k) = stack.pop() {
+            size += 1;
+            let (s, t) = at(k);
+            b = [b[0].min(s), b[1].max(s), b[2].min(t), b[3].max(t)];
+            let (i, j) = (k % n, k / n);
+            let mut push = |q: usize| {
+                if member[q] && !seen[q] {
+                    seen[q] = true;
+                    stack.push(q);
+                }
+            };
+            for dj in -2i64..=2 {
+                for di in -2i64..=2 {
+                    let (x, y) = (i as i64 + di, j as i64 + dj);
+                    if (di, dj) != (0, 0) && x >= 0 && y >= 0 && x < n as i64 && y < n as i64 {
+                        push(y as usize * n + x as usize);
+                    }
+                }
+            }
+        }
+        regions.push((size, b));
+    }
+    regions.sort_by(|a, b| b.0.cmp(&a.0));
+    regions.into_iter().map(|(_, b)| b).collect()
 }
 
 /// A number in short form.

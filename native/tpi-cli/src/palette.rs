@@ -42,3 +42,28 @@ pub const EDGE_COLOUR: [u8; 3] = [0x22, 0x22, 0x22];
 pub fn hex(c: [u8; 3]) -> String {
     format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
 }
+
+/// The vertices the pictures are framed on: every finite vertex within a quarter of the
+/// seeds' bounding-box diagonal of that box. A vertex that ran far away (an ill-conditioned
+/// meeting point of nearly parallel planes) would otherwise shrink the whole picture; its
+/// facets are still drawn, clipped by the frame.
+pub fn framing_points(result: &tpi_core::Discretisation) -> Vec<glam::DVec3> {
+    use glam::DVec3;
+    let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+    for s in result.seeds.iter().filter(|s| s.point.is_finite()) {
+        lo = lo.min(s.point);
+        hi = hi.max(s.point);
+    }
+    let finite = result.vertices.iter().copied().filter(|v| v.is_finite());
+    if !(lo.x <= hi.x) {
+        return finite.collect();
+    }
+    let pad = DVec3::splat(0.25 * (hi - lo).length());
+    let (lo, hi) = (lo - pad, hi + pad);
+    let kept: Vec<DVec3> = finite.clone().filter(|v| v.cmpge(lo).all() && v.cmple(hi).all()).collect();
+    if kept.is_empty() {
+        finite.collect()
+    } else {
+        kept
+    }
+}

@@ -36,7 +36,7 @@ pub fn render(result: &Discretisation, width: u32, height: u32) -> Vec<u8> {
         }
     }
 
-    let finite: Vec<DVec3> = result.vertices.iter().copied().filter(|v| v.is_finite()).collect();
+    let finite: Vec<DVec3> = crate::palette::framing_points(result);
     if !finite.is_empty() && result.facet_count() > 0 {
         let camera = Camera::fit(&finite, w as f64, h as f64, ss as f64 * 40.0);
         draw_mesh(&mut canvas, result, &camera, ss);
@@ -162,7 +162,7 @@ impl Camera {
 fn draw_mesh(canvas: &mut Canvas, result: &Discretisation, cam: &Camera, ss: usize) {
     let projected: Vec<(f64, f64, f64)> = result.vertices.iter().map(|&v| cam.project(v)).collect();
     let mut edges: HashMap<(u32, u32), bool> = HashMap::new();
-    let mut total_len = 0.0;
+    let mut lengths: Vec<f64> = Vec::new();
     for i in 0..result.facet_count() {
         let facet = result.facet(i);
         if facet.len() < 3 || facet.iter().any(|&k| !result.vertices[k as usize].is_finite()) {
@@ -190,17 +190,18 @@ fn draw_mesh(canvas: &mut Canvas, result: &Discretisation, cam: &Camera, ss: usi
             let entry = edges.entry(key).or_insert(false);
             *entry |= flagged;
             let (pa, pb) = (projected[a as usize], projected[b as usize]);
-            total_len += ((pa.0 - pb.0).powi(2) + (pa.1 - pb.1).powi(2)).sqrt();
+            lengths.push(((pa.0 - pb.0).powi(2) + (pa.1 - pb.1).powi(2)).sqrt());
         }
     }
-    // Edge width follows the mesh density: thin lines for dense meshes.
-    let mean = total_len / (2 * edges.len()).max(1) as f64 / ss as f64;
-    let radius = ss as f64 * if mean > 12.0 { 0.75 } else { 0.5 };
+    // Edge width follows the mesh density (median edge length on screen): thin lines for dense meshes.
+    lengths.sort_by(f64::total_cmp);
+    let median = lengths.get(lengths.len() / 2).copied().unwrap_or(0.0) / ss as f64;
+    let radius = ss as f64 * if median > 12.0 { 0.75 } else { 0.5 };
     let bias = (cam.extent * 2e-3) as f32;
     let mut ordered: Vec<(&(u32, u32), &bool)> = edges.iter().collect();
     ordered.sort_by_key(|(k, f)| (**f, **k));
     for (&(a, b), &flagged) in ordered {
-        let r = if flagged { radius * 1.6 } else { radius };
+        let r = if flagged { radius * 1.25 } else { radius };
         draw_line(canvas, projected[a as usize], projected[b as usize], r, bias, if flagged { 2 } else { 1 });
     }
 }
@@ -292,7 +293,36 @@ fn fill_triangle(canvas: &mut Canvas, a: (f64, f64, f64), b: (f64, f64, f64), c:
     }
 }
 
+/// The part of segment a-b inside the rectangle [lo, hi]^2 (Liang-Barsky), depth interpolated.
+fn clip_segment(a: (f64, f64, f64), b: (f64, f64, f64), lo: (f64, f64), hi: (f64, f64)) -> Option<((f64, f64, f64), (f64, f64, f64))> {
+    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [(-dx, a.0 - lo.0), (dx, hi.0 - a.0), (-dy, a.1 - lo.1), (dy, hi.1 - a.1)] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+        }
+    }
+    if !(t0 <= t1) {
+        return None;
+    }
+    let at = |t: f64| (a.0 + t * dx, a.1 + t * dy, a.2 + t * (b.2 - a.2));
+    Some((at(t0), at(t1)))
+}
+
 fn draw_line(canvas: &mut Canvas, a: (f64, f64, f64), b: (f64, f64, f64), radius: f64, bias: f32, kind: u8) {
+    let pad = radius + 2.0;
+    let Some((a, b)) = clip_segment(a, b, (-pad, -pad), (canvas.w as f64 + pad, canvas.h as f64 + pad)) else {
+        return;
+    };
     let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
     if !len.is_finite() {
         return;

@@ -21,7 +21,7 @@ pub fn escape(s: &str) -> String {
 /// filled by side count, flagged facets outlined red; a legend on the right.
 pub fn mesh_top_view(result: &Discretisation, title: &str) -> String {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-    for v in result.vertices.iter().filter(|v| v.is_finite()) {
+    for v in crate::palette::framing_points(result) {
         lo = [lo[0].min(v.x), lo[1].min(v.y)];
         hi = [hi[0].max(v.x), hi[1].max(v.y)];
     }
@@ -34,11 +34,15 @@ pub fn mesh_top_view(result: &Discretisation, title: &str) -> String {
     let (w, h) = (span[0] * scale, span[1] * scale);
     let width = w + 2.0 * MARGIN + LEGEND_WIDTH;
     let height = (h + 2.0 * MARGIN).max(300.0);
-    let map = |x: f64, y: f64| (MARGIN + (x - lo[0]) * scale, MARGIN + (hi[1] - y) * scale);
+    let map = |x: f64, y: f64| {
+        let far = 1e6;
+        ((MARGIN + (x - lo[0]) * scale).clamp(-far, far), (MARGIN + (hi[1] - y) * scale).clamp(-far, far))
+    };
 
     let mut out = String::new();
     header(&mut out, width, height, title);
-    let _ = writeln!(out, "<g id=\"facets\" stroke=\"{}\" stroke-width=\"0.7\" stroke-linejoin=\"round\">", hex(EDGE_COLOUR));
+    let _ = writeln!(out, "<clipPath id=\"frame\"><rect x=\"0\" y=\"0\" width=\"{:.1}\" height=\"{height:.1}\"/></clipPath>", w + 2.0 * MARGIN);
+    let _ = writeln!(out, "<g id=\"facets\" clip-path=\"url(#frame)\" stroke=\"{}\" stroke-width=\"0.7\" stroke-linejoin=\"round\">", hex(EDGE_COLOUR));
     let mut counts: BTreeMap<usize, usize> = BTreeMap::new();
     let flagged = |i: usize| result.facet_flags.get(i).copied().unwrap_or(0) != 0;
     // Flagged facets last, so that their red outlines lie on top.
