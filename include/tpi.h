@@ -1,0 +1,1265 @@
+/*
+ * tpi.h: the C interface of tpi, planar-facet discretisation of free-form surfaces by tangent
+ * plane intersection (libtpi.so / tpi.dll / libtpi.dylib, or the static libtpi.a / tpi.lib).
+ *
+ * A surface and pattern points in the unit square go in; a mesh comes out with one exactly
+ * planar facet per pattern point (facet i belongs to pattern point i), three facets meeting at
+ * most vertices, with a quality report and per-point diagnostics.
+ *
+ *   TpiSurface *surface = NULL; TpiPattern *pattern = NULL; TpiDiscretisation *mesh = NULL;
+ *   if (tpi_surface_new_nurbs(3, 3, 4, 4, knots, 6, knots, 6, points, 48, NULL, 0, &surface)
+ *       || tpi_pattern_new_hex(12, 12, &pattern)
+ *       || tpi_discretise(surface, pattern, NULL, &mesh)) {
+ *       char message[512];
+ *       tpi_last_error_message(message, sizeof message, NULL);
+ *       fprintf(stderr, "tpi: %s\n", message);
+ *   }
+ *   ... tpi_discretisation_vertices(mesh, ...) ...
+ *   tpi_discretisation_free(mesh); tpi_pattern_free(pattern); tpi_surface_free(surface);
+ *
+ * CONVENTIONS (every call follows them)
+ *
+ * Status. Every call that can fail returns a TpiStatus: TPI_STATUS_OK (0) or an error code.
+ * The numbers never change and are never reused. A failed call changes nothing: no handle is
+ * created, no output buffer is written (except `*needed`, see below), no object is edited.
+ *
+ * Last error. After a failed call, tpi_last_error_message() gives a message saying what was
+ * wrong, naming the argument, index or field (e.g. "knots_u has 5 knots; with count 4 and
+ * degree 3 expected 6 (Rhino convention) or 8 (textbook convention)"). The message is kept
+ * per thread: read it on the thread that made the failing call, before the next call (every
+ * call except tpi_last_error_message and the *_free calls replaces it; success leaves "").
+ *
+ * Ownership. Opaque handles (TpiSurface, TpiPattern, TpiDiscretisation, TpiDiscreteSurface)
+ * are created by tpi_*_new* calls (and tpi_discretise, tpi_discrete_surface_mesh), which
+ * store the new handle through their last argument `out`; the caller owns it and frees it
+ * with the matching tpi_*_free call exactly once. On failure `*out` is set to NULL, so a
+ * handle from a failed create stays NULL and a later call on it gives
+ * TPI_STATUS_NULL_POINTER. The *_free calls accept NULL. No handle refers to another: a call
+ * that takes a handle as input copies what it needs, so handles may be freed in any order.
+ * Input arrays are only read during the call and never kept. Strings returned as
+ * `const char *` (tpi_version, tpi_status_name) are static and never freed.
+ *
+ * Arrays and lengths. Every array argument comes with its length in elements of its own C
+ * type (doubles for `double *`, uint32_t for `uint32_t *`, structs for a struct pointer;
+ * never bytes and never points): 2 doubles per (u, v) pair, 3 per point. A pointer may be
+ * NULL only when its length is 0. Misaligned pointers give TPI_STATUS_INVALID_ARGUMENT.
+ *
+ * Copy-out. Calls that return variable-size data take (out, capacity, needed): `*needed` is
+ * set to the number of elements the data has (for text, bytes including the terminating NUL)
+ * whenever `needed` is not NULL, also on TPI_STATUS_BUFFER_TOO_SMALL; if `capacity` is smaller
+ * than that, nothing is written to `out` and the call returns TPI_STATUS_BUFFER_TOO_SMALL;
+ * otherwise the data is copied to out[0 .. *needed). `out` may be NULL when `capacity` is 0,
+ * so a call with (NULL, 0, &needed) asks for the size (it returns TPI_STATUS_BUFFER_TOO_SMALL,
+ * or TPI_STATUS_OK when the data is empty).
+ *
+ * Parameters. Pattern points are normalised (s, t) in [0, 1]^2, mapped linearly onto the
+ * surface's domain. Sampling (tpi_surface_evaluate) takes (u, v) in the surface's own domain.
+ * NURBS knots follow Rhino's convention (count + degree - 1 knots, as RhinoCommon's KnotsU and
+ * KnotsV give them).
+ *
+ * Growing structs. TpiOptions and TpiQualityReport start with `struct_size`: set it to
+ * sizeof(the struct) before passing the struct in; the library reads and writes only that
+ * many bytes, so a program built against an older header keeps working with a newer library.
+ *
+ * Panics. Every call runs behind a panic boundary: an internal error never unwinds into or
+ * aborts the host; it returns TPI_STATUS_PANIC (the *_free calls then return quietly), and
+ * the handles passed in stay valid and may be freed.
+ *
+ * THREAD SAFETY
+ *
+ * - All calls may be made from any thread.
+ * - TpiSurface, TpiPattern and TpiDiscretisation are immutable after creation: one handle may
+ *   be used by several threads at the same time.
+ * - TpiDiscreteSurface may also be used by several threads at the same time: calls on one
+ *   object are serialised by a lock inside it (a recompute blocks the other calls on that
+ *   object until it is done). Meshes taken from it are separate immutable handles.
+ * - A *_free call must not overlap any other call on the same handle, and a handle must not
+ *   be used after it was freed.
+ * - The last error message is per thread (see above).
+ * - Discretising uses a pool of worker threads internally (rayon's global pool).
+ */
+
+
+#ifndef TPI_H
+#define TPI_H
+
+/* Generated by cbindgen 0.29.4 from native/tpi-ffi (cbindgen.toml). Do not edit: run `TPI_BLESS=1 cargo test -p tpi-ffi --test header`. */
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/**
+ * Major version of the library this header belongs to (semantic versioning: the ABI only
+ * breaks when it changes).
+ */
+#define TPI_VERSION_MAJOR 0
+
+/**
+ * Minor version of the library this header belongs to.
+ */
+#define TPI_VERSION_MINOR 1
+
+/**
+ * Patch version of the library this header belongs to.
+ */
+#define TPI_VERSION_PATCH 0
+
+/**
+ * Size in bytes of the first version of `TpiOptions`: the smallest `struct_size` accepted.
+ */
+#define TPI_OPTIONS_SIZE_V1 40
+
+/**
+ * Per-facet flag: the facet is not convex (expected on saddle-shaped regions).
+ */
+#define TPI_FACET_NON_CONVEX 1
+
+/**
+ * Per-facet flag: the facet is not a simple polygon (self-intersecting, clockwise seen from
+ * its normal, or degenerate).
+ */
+#define TPI_FACET_NON_SIMPLE 2
+
+/**
+ * Per-facet flag: the facet overlaps a neighbour.
+ */
+#define TPI_FACET_OVERLAP 4
+
+/**
+ * Per-facet flag: a diagnostic names this facet's pattern point.
+ */
+#define TPI_FACET_DIAGNOSTIC 8
+
+/**
+ * The `point` of a diagnostic entry that concerns no single pattern point (a domain corner
+ * claimed by no facet or by several).
+ */
+#define TPI_NO_POINT 4294967295
+
+/**
+ * Size in bytes of the first version of `TpiQualityReport`: the smallest `struct_size`
+ * accepted.
+ */
+#define TPI_QUALITY_REPORT_SIZE_V1 208
+
+/**
+ * The result of every fallible call. The numbers are part of the ABI: they are never changed
+ * and never reused, and new codes are only ever appended.
+ */
+typedef enum TpiStatus {
+    /**
+     * Success.
+     */
+    TPI_STATUS_OK = 0,
+    /**
+     * A required pointer argument was NULL (a handle, an output pointer, or an input array
+     * whose length is not 0).
+     */
+    TPI_STATUS_NULL_POINTER = 1,
+    /**
+     * An argument is invalid: a length that does not fit (an odd number of doubles for
+     * (u, v) pairs), a misaligned pointer, an option out of range, a surface parameter out of
+     * its range, a string that is not UTF-8.
+     */
+    TPI_STATUS_INVALID_ARGUMENT = 2,
+    /**
+     * An output buffer's capacity is smaller than the data; the needed size was stored
+     * through `needed` (when not NULL) and nothing was written to the buffer.
+     */
+    TPI_STATUS_BUFFER_TOO_SMALL = 3,
+    /**
+     * A pattern point index is not smaller than the number of pattern points.
+     */
+    TPI_STATUS_INDEX_OUT_OF_RANGE = 4,
+    /**
+     * A number that must be finite is NaN or infinite.
+     */
+    TPI_STATUS_NON_FINITE = 5,
+    /**
+     * The NURBS data is inconsistent: a degree, a count, a knot vector (length, order,
+     * multiplicity, empty domain), the number of points or weights, or a weight <= 0.
+     */
+    TPI_STATUS_INVALID_NURBS = 6,
+    /**
+     * The pattern is invalid: a point outside [0, 1]^2, two coincident points, fewer than
+     * three points, all points collinear, or a malformed generator.
+     */
+    TPI_STATUS_INVALID_PATTERN = 7,
+    /**
+     * The surface cannot be discretised by tangent plane intersection (flat or developable
+     * at every pattern point).
+     */
+    TPI_STATUS_DEGENERATE = 8,
+    /**
+     * An internal error (a panic) was caught at the boundary. The handles passed to the call
+     * are still valid and may be freed; please report the message.
+     */
+    TPI_STATUS_PANIC = 9,
+    /**
+     * A (u, v) parameter pair lies outside the surface's domain.
+     */
+    TPI_STATUS_OUT_OF_DOMAIN = 10,
+    /**
+     * The requested data was not computed (the quality report was switched off in the
+     * options).
+     */
+    TPI_STATUS_UNAVAILABLE = 11,
+} TpiStatus;
+
+/**
+ * What a diagnostic is about. The numbers are never changed nor reused.
+ */
+typedef enum TpiDiagnosticKind {
+    /**
+     * Three tangent planes are nearly parallel: their meeting point ran away and a stand-in
+     * was used, so the facets of the three points are not exact.
+     */
+    TPI_DIAGNOSTIC_KIND_ILL_CONDITIONED_VERTEX = 1,
+    /**
+     * Two neighbouring tangent planes at the boundary are parallel.
+     */
+    TPI_DIAGNOSTIC_KIND_PARALLEL_PLANES = 2,
+    /**
+     * The common edge of two facets never reaches the surface's boundary.
+     */
+    TPI_DIAGNOSTIC_KIND_BOUNDARY_NOT_REACHED = 3,
+    /**
+     * A facet could not be closed consistently along the boundary.
+     */
+    TPI_DIAGNOSTIC_KIND_OPEN_FACET = 4,
+    /**
+     * The tangent plane of a facet holding a domain corner is parallel to the corner's normal.
+     */
+    TPI_DIAGNOSTIC_KIND_CORNER_UNREACHABLE = 5,
+    /**
+     * A domain corner was claimed by no facet or by several (point is TPI_NO_POINT).
+     */
+    TPI_DIAGNOSTIC_KIND_CORNER_CLAIMS = 6,
+    /**
+     * The point has (nearly) zero Gaussian curvature.
+     */
+    TPI_DIAGNOSTIC_KIND_FLAT_POINT = 7,
+} TpiDiagnosticKind;
+
+/**
+ * A live discrete surface: a surface, its pattern points (normalised, in [0, 1]^2) and the
+ * mesh of the last successful recompute.
+ *
+ * Created by `tpi_discrete_surface_new`, freed by `tpi_discrete_surface_free`. May be used
+ * from several threads at once: calls on one discrete surface are serialised by a lock
+ * inside it (a recompute blocks the other calls on the same object until it is done).
+ */
+typedef struct TpiDiscreteSurface TpiDiscreteSurface;
+
+/**
+ * The result of a discretisation: an indexed polygon mesh with one planar facet per pattern
+ * point (facet i belongs to pattern point i), the dual triangulation, the quality report and
+ * the diagnostics. Immutable.
+ *
+ * Created by `tpi_discretise` or `tpi_discrete_surface_mesh`, freed by
+ * `tpi_discretisation_free`. May be used from several threads at once.
+ */
+typedef struct TpiDiscretisation TpiDiscretisation;
+
+/**
+ * A set of pattern points (s, t) in the normalised square [0, 1]^2, mapped linearly onto a
+ * surface's domain: u = u_min + s (u_max - u_min), v = v_min + t (v_max - v_min). Immutable
+ * once created.
+ *
+ * Created by the `tpi_pattern_new*` calls, freed by `tpi_pattern_free`. May be used from
+ * several threads at once.
+ */
+typedef struct TpiPattern TpiPattern;
+
+/**
+ * A surface: a NURBS surface or an analytic one. Immutable once created.
+ *
+ * Created by the `tpi_surface_new_*` calls, freed by `tpi_surface_free`. May be used from
+ * several threads at once.
+ */
+typedef struct TpiSurface TpiSurface;
+
+/**
+ * Options of a discretisation.
+ *
+ * Growth: fields are only ever appended. `struct_size` must hold `sizeof(TpiOptions)` as the
+ * caller compiled it; the library reads (and `tpi_options_default` writes) only that many
+ * bytes, and gives fields beyond them their defaults. So a program compiled against an
+ * older header keeps working with a newer library. Always start from `tpi_options_default`:
+ *
+ * ```c
+ * TpiOptions options;
+ * options.struct_size = sizeof options;
+ * tpi_options_default(&options);
+ * options.envelope_repair = 0;
+ * ```
+ */
+typedef struct TpiOptions {
+    /**
+     * sizeof(TpiOptions) as compiled by the caller; at least TPI_OPTIONS_SIZE_V1.
+     */
+    uint32_t struct_size;
+    /**
+     * 1: verify and repair the neighbours against the envelope of tangent planes where the
+     * Gaussian curvature is positive; 0: the paper's method alone. Default value: 1.
+     */
+    uint32_t envelope_repair;
+    /**
+     * 1: compute the quality report and the per-facet flags; 0: skip them
+     * (`tpi_discretisation_quality` then gives TPI_STATUS_UNAVAILABLE). Default value: 1.
+     */
+    uint32_t quality_report;
+    /**
+     * Always 0 (padding, kept explicit for other languages).
+     */
+    uint32_t reserved;
+    /**
+     * A facet vertex farther than this many times its dual triangle's longest side from the
+     * triangle's centroid is ill-conditioned (nearly parallel planes) and replaced by a
+     * stand-in, with a diagnostic. Finite, > 0. Default value: 8.
+     */
+    double far_vertex_factor;
+    /**
+     * Vertices closer than this times the bounding-box diagonal are welded. Finite, >= 0.
+     * Default value: 1e-10.
+     */
+    double weld_tolerance;
+    /**
+     * A point is flat when |K| <= flat_tolerance * max(k1^2, k2^2). Finite, >= 0.
+     * Default value: 1e-6.
+     */
+    double flat_tolerance;
+} TpiOptions;
+
+/**
+ * The parameter domain [u_min, u_max] x [v_min, v_max] of a surface.
+ */
+typedef struct TpiDomain {
+    /**
+     * Start of the u interval.
+     */
+    double u_min;
+    /**
+     * End of the u interval.
+     */
+    double u_max;
+    /**
+     * Start of the v interval.
+     */
+    double v_min;
+    /**
+     * End of the v interval.
+     */
+    double v_max;
+} TpiDomain;
+
+/**
+ * Point, normal, principal curvatures and principal directions at one (u, v).
+ *
+ * The normal is Su x Sv normalised (as RhinoCommon's `NormalAt`). Curvatures are signed
+ * relative to the normal: k > 0 where the surface bends towards it; k1 <= k2. (d1, d2,
+ * normal) is a right-handed orthonormal frame. Where Su x Sv vanishes (a pole, a collapsed
+ * edge) `regular` is 0, the normal is a fallback and the curvatures are 0.
+ */
+typedef struct TpiSample {
+    /**
+     * Surface point (x, y, z).
+     */
+    double point[3];
+    /**
+     * Unit normal.
+     */
+    double normal[3];
+    /**
+     * Principal curvatures k1 <= k2.
+     */
+    double curvatures[2];
+    /**
+     * Unit principal direction of k1.
+     */
+    double d1[3];
+    /**
+     * Unit principal direction of k2.
+     */
+    double d2[3];
+    /**
+     * 1 where the surface is regular at this point, 0 where Su x Sv vanishes.
+     */
+    uint32_t regular;
+    /**
+     * Always 0 (padding, kept explicit for other languages).
+     */
+    uint32_t reserved;
+} TpiSample;
+
+/**
+ * The pattern point behind a facet: its parameters in the surface's own domain, surface
+ * point, unit normal (Su x Sv) and principal curvatures k1 <= k2.
+ */
+typedef struct TpiSeed {
+    /**
+     * (u, v) in the surface's domain.
+     */
+    double uv[2];
+    /**
+     * Surface point.
+     */
+    double point[3];
+    /**
+     * Unit normal.
+     */
+    double normal[3];
+    /**
+     * Principal curvatures k1 <= k2 (signed relative to the normal).
+     */
+    double curvatures[2];
+} TpiSeed;
+
+/**
+ * A facet's tangent plane: the plane through `point` with unit normal `normal`. Every vertex
+ * of the facet lies in it.
+ */
+typedef struct TpiPlane {
+    /**
+     * A point of the plane (the seed's surface point).
+     */
+    double point[3];
+    /**
+     * Unit normal (the surface normal at the seed).
+     */
+    double normal[3];
+} TpiPlane;
+
+/**
+ * The quality report as numbers; `tpi_discretisation_quality_json` has the same and the
+ * histogram of facet sizes.
+ *
+ * Growth: fields are only ever appended; set `struct_size` to sizeof(TpiQualityReport)
+ * before the call, and the library writes only that many bytes.
+ */
+typedef struct TpiQualityReport {
+    /**
+     * sizeof(TpiQualityReport) as compiled by the caller; at least
+     * TPI_QUALITY_REPORT_SIZE_V1.
+     */
+    uint32_t struct_size;
+    /**
+     * 1 if every vertex coordinate is finite.
+     */
+    uint32_t all_finite;
+    /**
+     * Number of facets (= pattern points).
+     */
+    uint64_t facet_count;
+    /**
+     * Number of mesh vertices.
+     */
+    uint64_t vertex_count;
+    /**
+     * Number of mesh edges.
+     */
+    uint64_t edge_count;
+    /**
+     * Vertices not on the boundary.
+     */
+    uint64_t interior_vertex_count;
+    /**
+     * Fraction of interior vertices where exactly three facets meet.
+     */
+    double trivalent_fraction;
+    /**
+     * Largest distance of a facet vertex from its facet's tangent plane, relative to the
+     * bounding-box diagonal (0 up to rounding).
+     */
+    double max_planarity_error;
+    /**
+     * Largest distance of a mesh vertex from the surface (model units).
+     */
+    double max_deviation;
+    /**
+     * Mean distance of mesh vertices from the surface (model units).
+     */
+    double mean_deviation;
+    /**
+     * Facets that are not convex.
+     */
+    uint64_t non_convex_facets;
+    /**
+     * Facets that are not simple polygons.
+     */
+    uint64_t non_simple_facets;
+    /**
+     * Pairs of neighbouring facets that overlap.
+     */
+    uint64_t overlapping_pairs;
+    /**
+     * Facets with any flag.
+     */
+    uint64_t flagged_facets;
+    /**
+     * V - E + F (1 for a disc).
+     */
+    int64_t euler_characteristic;
+    /**
+     * Number of boundary loops (1 for a disc).
+     */
+    uint64_t boundary_loops;
+    /**
+     * Edges shared by more than two facets.
+     */
+    uint64_t non_manifold_edges;
+    /**
+     * Smallest facet area.
+     */
+    double min_facet_area;
+    /**
+     * Largest facet area.
+     */
+    double max_facet_area;
+    /**
+     * Shortest mesh edge.
+     */
+    double min_edge_length;
+    /**
+     * Longest mesh edge.
+     */
+    double max_edge_length;
+    /**
+     * Bounding-box diagonal used for relative measures.
+     */
+    double bounding_box_diagonal;
+    /**
+     * Flips made by the curvature-compensated in-circle test.
+     */
+    uint64_t compensation_flips;
+    /**
+     * Flips made by the envelope repair.
+     */
+    uint64_t envelope_repairs;
+    /**
+     * Edges the envelope rejects that could not be flipped.
+     */
+    uint64_t envelope_unresolved;
+    /**
+     * Number of diagnostics.
+     */
+    uint64_t diagnostic_count;
+} TpiQualityReport;
+
+/**
+ * One (pattern point, diagnostic) pair: a diagnostic naming three points gives three
+ * entries, one naming none gives one entry with `point` = TPI_NO_POINT.
+ */
+typedef struct TpiDiagnosticEntry {
+    /**
+     * The pattern point (= facet) index, or TPI_NO_POINT.
+     */
+    uint32_t point;
+    /**
+     * A TpiDiagnosticKind value.
+     */
+    uint32_t kind;
+    /**
+     * Index of the diagnostic in the array of `tpi_discretisation_diagnostics_json`.
+     */
+    uint32_t diagnostic;
+} TpiDiagnosticEntry;
+
+#ifdef __cplusplus
+extern "C" {
+#endif // __cplusplus
+
+/**
+ * The library's version, "MAJOR.MINOR.PATCH", as a static NUL-terminated string (never
+ * freed). Compare it with the TPI_VERSION_* macros to detect a header/library mismatch.
+ */
+const char *tpi_version(void);
+
+/**
+ * The name of a status code as a static NUL-terminated string (e.g. "TPI_STATUS_OK"), or
+ * "TPI_STATUS_UNKNOWN" for a number that is not a status. Never NULL, never freed.
+ */
+const char *tpi_status_name(uint32_t status);
+
+/**
+ * Copies the message of the last failed call on the calling thread, NUL terminated, UTF-8.
+ *
+ * Every call except this one and the `*_free` calls replaces the message: a call that fails
+ * stores what went wrong (naming the argument, index or field), a call that succeeds stores
+ * "". The message is per thread: a call on another thread never changes it. Copy-out
+ * convention; `*needed` counts the NUL (1 for an empty message). This call leaves the
+ * message as it is, also when it fails itself, so a too-small buffer can be retried.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER (`buf` NULL with `capacity` > 0),
+ * TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `buf` is NULL or valid for writing `capacity` chars; `needed` is NULL or valid for
+ * writing a `size_t`.
+ */
+enum TpiStatus tpi_last_error_message(char *buf, size_t capacity, size_t *needed);
+
+/**
+ * Fills `*options` with the defaults (see each field). `options->struct_size` must be set
+ * to sizeof(TpiOptions) first; only that many bytes are written, and `struct_size` is left
+ * as it is.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (`struct_size` smaller than
+ * TPI_OPTIONS_SIZE_V1, e.g. not set).
+ *
+ * # Safety
+ * `options` is NULL or valid for reading and writing `options->struct_size` bytes.
+ */
+enum TpiStatus tpi_options_default(struct TpiOptions *options);
+
+/**
+ * Creates a NURBS surface from the arrays RhinoCommon hands over.
+ *
+ * - `degree_u`, `degree_v`: degrees (1 to 15).
+ * - `count_u`, `count_v`: control point counts (count > degree).
+ * - `knots_u` (`knots_u_len` doubles) and `knots_v`: knot vectors in **Rhino's convention**,
+ *   count + degree - 1 knots each, as `NurbsSurface.KnotsU`/`KnotsV` give them; the domain is
+ *   [knots[degree - 1], knots[count - 1]]. (The textbook convention with two more knots,
+ *   count + degree + 1, is recognised by its length and accepted too.)
+ * - `points` (`points_len` doubles): the Euclidean control points, u-major: point (i, j) is
+ *   `points[3 * (i * count_v + j) + 0..3]`, i.e. `Points.GetControlPoint(i, j).Location`;
+ *   `points_len` must be 3 * count_u * count_v.
+ * - `weights` (`weights_len` doubles): the weights in the same order, all > 0, or NULL (with
+ *   `weights_len` 0) for a non-rational surface. The points are **not** premultiplied.
+ *
+ * On success stores a new handle in `*out`, which the caller frees with `tpi_surface_free`;
+ * on failure `*out` is NULL. Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT
+ * (a length not a multiple of 3, weights_len without weights), TPI_STATUS_NON_FINITE (a NaN
+ * or infinite knot, coordinate or weight), TPI_STATUS_INVALID_NURBS (everything else wrong
+ * with the data, e.g. a wrong number of knots).
+ *
+ * # Safety
+ * Each array pointer is NULL or valid for reading its length in doubles; `out` is NULL or
+ * valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_nurbs(size_t degree_u, size_t degree_v, size_t count_u, size_t count_v, const double *knots_u, size_t knots_u_len, const double *knots_v, size_t knots_v_len, const double *points, size_t points_len, const double *weights, size_t weights_len, struct TpiSurface **out);
+
+/**
+ * Creates the elliptic paraboloid z = a x^2 + b y^2 over [x0, x1] x [y0, y1] (u = x,
+ * v = y); a and b non-zero with the same sign.
+ *
+ * On success `*out` is a new handle (free with `tpi_surface_free`), else NULL. Errors:
+ * TPI_STATUS_NULL_POINTER, TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_ARGUMENT.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_elliptic_paraboloid(double a, double b, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Creates the hyperbolic paraboloid z = a x^2 - b y^2 over [x0, x1] x [y0, y1]; a and b
+ * non-zero with the same sign.
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_hyperbolic_paraboloid(double a, double b, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Creates the sphere cap z = sqrt(r^2 - x^2 - y^2) over [x0, x1] x [y0, y1], which must lie
+ * strictly inside the disc of radius r.
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_sphere_cap(double radius, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Creates the sphere cap over the centred square [-h, h]^2 (needs h > 0 and
+ * h * sqrt(2) < radius).
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_sphere_cap_square(double radius, double half_width, struct TpiSurface **out);
+
+/**
+ * Creates the ellipsoid cap z = c sqrt(1 - x^2/a^2 - y^2/b^2) over [x0, x1] x [y0, y1],
+ * strictly inside the ellipse; a, b, c > 0.
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_ellipsoid_cap(double a, double b, double c, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Creates the egg-crate z = A sin(x) sin(y) over [x0, x1] x [y0, y1]; A non-zero.
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_egg_crate(double amplitude, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Creates the cylinder z = sqrt(r^2 - x^2) over [x0, x1] x [y0, y1] with |x| < r. Its
+ * Gaussian curvature is 0 everywhere, so discretising it fails with TPI_STATUS_DEGENERATE;
+ * it is here for sampling and for tests.
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_cylinder(double radius, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Creates the plane z = p x + q y + c0 over [x0, x1] x [y0, y1]. Discretising it fails with
+ * TPI_STATUS_DEGENERATE; it is here for sampling and for tests.
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_plane(double p, double q, double c0, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Frees a surface. NULL is allowed and does nothing. Handles created from this surface
+ * (patterns do not depend on it; discretisations and discrete surfaces hold their own copy)
+ * stay valid.
+ *
+ * # Safety
+ * `surface` is NULL or a handle from a `tpi_surface_new_*` call that was not freed yet, and
+ * no other call is using it.
+ */
+void tpi_surface_free(struct TpiSurface *surface);
+
+/**
+ * Stores the surface's parameter domain in `*out`.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `surface` is NULL or a live handle; `out` is NULL or valid for writing a `TpiDomain`.
+ */
+enum TpiStatus tpi_surface_domain(const struct TpiSurface *surface, struct TpiDomain *out);
+
+/**
+ * Evaluates the surface at `uv_len / 2` parameter pairs: `uv` holds u0, v0, u1, v1, ... in
+ * the surface's own domain (not normalised). Writes one `TpiSample` per pair to `out`, which
+ * has room for `out_capacity` samples.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (odd `uv_len`),
+ * TPI_STATUS_BUFFER_TOO_SMALL (`out_capacity < uv_len / 2`; nothing written),
+ * TPI_STATUS_NON_FINITE (a NaN or infinite parameter), TPI_STATUS_OUT_OF_DOMAIN (a pair
+ * outside the domain). On an error nothing is written to `out`; the message names the first
+ * offending pair.
+ *
+ * # Safety
+ * `surface` is NULL or a live handle; `uv` is NULL or valid for reading `uv_len` doubles;
+ * `out` is NULL or valid for writing `out_capacity` samples.
+ */
+enum TpiStatus tpi_surface_evaluate(const struct TpiSurface *surface, const double *uv, size_t uv_len, struct TpiSample *out, size_t out_capacity);
+
+/**
+ * Creates a pattern from `uv_len / 2` points: `uv` holds s0, t0, s1, t1, ... in [0, 1].
+ *
+ * The points are validated: each finite and inside [0, 1]^2, no two closer than 1e-9.
+ * Fewer than three points make a valid pattern, but discretising it fails.
+ *
+ * On success `*out` is a new handle (free with `tpi_pattern_free`), else NULL. Errors:
+ * TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (odd `uv_len`),
+ * TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_PATTERN (a point outside the square, a
+ * duplicate; the message names the point).
+ *
+ * # Safety
+ * `uv` is NULL or valid for reading `uv_len` doubles; `out` is NULL or valid for writing a
+ * pointer.
+ */
+enum TpiStatus tpi_pattern_new(const double *uv, size_t uv_len, struct TpiPattern **out);
+
+/**
+ * Creates the square grid of `nu` x `nv` cell centres ((i + 1/2)/nu, (j + 1/2)/nv), point
+ * (i, j) at index i * nv + j (generator `grid:NUxNV`).
+ *
+ * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
+ * TPI_STATUS_INVALID_PATTERN (a count of 0, more than 10^7 points).
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_grid(size_t nu, size_t nv, struct TpiPattern **out);
+
+/**
+ * Creates the hexagonal grid of `nu` x `nv` points: rows at t = (j + 1/2)/nv, points at
+ * s = (i + 1/4)/nu in even rows and (i + 3/4)/nu in odd rows (generator `hex:NUxNV`).
+ *
+ * On success `*out` is a new handle, else NULL. Errors as `tpi_pattern_new_grid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_hex(size_t nu, size_t nv, struct TpiPattern **out);
+
+/**
+ * Creates the `nu` x `nv` grid with each cell centre moved by uniform random offsets in
+ * [-amount/2, amount/2) of the cell's size; `amount` in [0, 1] (generator
+ * `jitter:NUxNV:amount=A:seed=S`). Deterministic for a given seed.
+ *
+ * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
+ * TPI_STATUS_INVALID_PATTERN.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_jitter(size_t nu, size_t nv, double amount, uint64_t seed, struct TpiPattern **out);
+
+/**
+ * Creates `count` uniform random points (generator `random:N:seed=S`). Deterministic for a
+ * given seed.
+ *
+ * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
+ * TPI_STATUS_INVALID_PATTERN.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_random(size_t count, uint64_t seed, struct TpiPattern **out);
+
+/**
+ * Creates a Poisson-disk sampling with minimum distance `radius` (>= 0.001) in normalised
+ * units (generator `poisson:R:seed=S`). Deterministic for a given seed; the number of points
+ * depends on the radius (about 0.7 / radius^2).
+ *
+ * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
+ * TPI_STATUS_INVALID_PATTERN.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_poisson(double radius, uint64_t seed, struct TpiPattern **out);
+
+/**
+ * Creates a pattern from a generator spec, the command line's syntax: `grid:NUxNV`,
+ * `grid:spacing=D`, `hex:NUxNV`, `hex:spacing=D`, `jitter:NUxNV[:amount=A][:seed=S]`,
+ * `jitter:spacing=D[...]`, `random:N[:seed=S]`, `poisson:R[:seed=S]`.
+ *
+ * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
+ * TPI_STATUS_INVALID_ARGUMENT (not UTF-8), TPI_STATUS_INVALID_PATTERN (malformed spec, with
+ * the accepted syntax in the message).
+ *
+ * # Safety
+ * `spec` is NULL or a NUL-terminated string; `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_from_spec(const char *spec, struct TpiPattern **out);
+
+/**
+ * Frees a pattern. NULL is allowed and does nothing.
+ *
+ * # Safety
+ * `pattern` is NULL or a handle from a `tpi_pattern_new*` call that was not freed yet, and
+ * no other call is using it.
+ */
+void tpi_pattern_free(struct TpiPattern *pattern);
+
+/**
+ * Stores the number of points in `*out`.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `pattern` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_pattern_point_count(const struct TpiPattern *pattern, size_t *out);
+
+/**
+ * Copies the points to `out` as s0, t0, s1, t1, ... (2 doubles per point); the copy-out
+ * convention (see the header's introduction): `*needed` = 2 * point count.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `pattern` is NULL or a live handle; `out` is NULL or valid for writing `capacity` doubles;
+ * `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_pattern_points(const struct TpiPattern *pattern, double *out, size_t capacity, size_t *needed);
+
+/**
+ * Discretises `surface` with `pattern`: one planar facet per pattern point.
+ *
+ * `options` may be NULL for the defaults. The surface and the pattern are only read; the
+ * result does not refer to them, so they may be freed afterwards.
+ *
+ * On success `*out` is a new handle (free with `tpi_discretisation_free`), else NULL.
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (bad options),
+ * TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_PATTERN (fewer than three points, duplicates,
+ * all collinear), TPI_STATUS_DEGENERATE (a flat or developable surface).
+ *
+ * # Safety
+ * `surface` and `pattern` are NULL or live handles; `options` is NULL or a `TpiOptions`
+ * with `struct_size` readable bytes; `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_discretise(const struct TpiSurface *surface, const struct TpiPattern *pattern, const struct TpiOptions *options, struct TpiDiscretisation **out);
+
+/**
+ * Frees a discretisation. NULL is allowed and does nothing.
+ *
+ * # Safety
+ * `discretisation` is NULL or a handle that was not freed yet, and no other call is using
+ * it.
+ */
+void tpi_discretisation_free(struct TpiDiscretisation *discretisation);
+
+/**
+ * Stores the number of facets (= pattern points) in `*out`.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_facet_count(const struct TpiDiscretisation *discretisation, size_t *out);
+
+/**
+ * Stores the number of mesh vertices in `*out`.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_vertex_count(const struct TpiDiscretisation *discretisation, size_t *out);
+
+/**
+ * Copies the vertex coordinates x0, y0, z0, x1, ... (3 doubles per vertex). Copy-out
+ * convention; `*needed` = 3 * vertex count.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * doubles; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_vertices(const struct TpiDiscretisation *discretisation, double *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the number of vertices of each facet (one uint32_t per facet, in facet order).
+ * Copy-out convention; `*needed` = facet count.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * uint32_t; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_facet_sizes(const struct TpiDiscretisation *discretisation, uint32_t *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the facets' vertex indices, facet after facet, each loop counter-clockwise seen
+ * from the facet's normal; facet i's loop starts after the sizes of facets 0..i-1.
+ * Copy-out convention; `*needed` = sum of the facet sizes.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * uint32_t; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_facet_indices(const struct TpiDiscretisation *discretisation, uint32_t *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the per-facet flags (TPI_FACET_* bits; one uint8_t per facet). Copy-out
+ * convention; `*needed` = facet count, or 0 when the quality report was switched off.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * uint8_t; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_facet_flags(const struct TpiDiscretisation *discretisation, uint8_t *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the seed of each facet (one TpiSeed per facet; facet i belongs to pattern point
+ * i). Copy-out convention; `*needed` = facet count.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * TpiSeed; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_seeds(const struct TpiDiscretisation *discretisation, struct TpiSeed *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the tangent plane of each facet (one TpiPlane per facet). Copy-out convention;
+ * `*needed` = facet count.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * TpiPlane; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_planes(const struct TpiDiscretisation *discretisation, struct TpiPlane *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the neighbour pairs of the final dual structure: i0, j0, i1, j1, ... (2 uint32_t
+ * per pair, i < j, sorted). Two facets are neighbours when they share an edge. Copy-out
+ * convention; `*needed` = 2 * pair count.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * uint32_t; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_neighbour_pairs(const struct TpiDiscretisation *discretisation, uint32_t *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the triangles of the final dual structure (3 uint32_t pattern point indices per
+ * triangle, counter-clockwise in parameter space); each triangle is one interior mesh
+ * vertex, where its three tangent planes meet. Copy-out convention; `*needed` =
+ * 3 * triangle count.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * uint32_t; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_dual_triangles(const struct TpiDiscretisation *discretisation, uint32_t *out, size_t capacity, size_t *needed);
+
+/**
+ * Fills `*out` with the quality report. Set `out->struct_size` = sizeof(TpiQualityReport)
+ * first; only that many bytes are written.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (`struct_size` below
+ * TPI_QUALITY_REPORT_SIZE_V1), TPI_STATUS_UNAVAILABLE (the report was switched off).
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for reading and writing
+ * `out->struct_size` bytes.
+ */
+enum TpiStatus tpi_discretisation_quality(const struct TpiDiscretisation *discretisation, struct TpiQualityReport *out);
+
+/**
+ * Copies the quality report as JSON text (an object with the fields of TpiQualityReport,
+ * `neighbours` nested, and `side_histogram`: facet count per number of sides), NUL
+ * terminated. Copy-out convention; `*needed` counts the NUL.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL, TPI_STATUS_UNAVAILABLE.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * chars; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_quality_json(const struct TpiDiscretisation *discretisation, char *out, size_t capacity, size_t *needed);
+
+/**
+ * Stores the number of diagnostics (local problems, each naming its pattern points) in
+ * `*out`; the entries of `tpi_discretisation_diagnostic_entries` may be more.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_diagnostic_count(const struct TpiDiscretisation *discretisation, size_t *out);
+
+/**
+ * Copies the per-point diagnostics as (point, kind, diagnostic) entries, in diagnostic
+ * order. Copy-out convention; `*needed` = number of entries.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * entries; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_diagnostic_entries(const struct TpiDiscretisation *discretisation, struct TpiDiagnosticEntry *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the diagnostics as a JSON array, NUL terminated: each element has a `kind`
+ * (snake_case of the TpiDiagnosticKind name, e.g. "flat_point") and its fields (`point` or
+ * `points`, and numbers such as `gaussian_curvature`). Copy-out convention; `*needed`
+ * counts the NUL.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * chars; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_diagnostics_json(const struct TpiDiscretisation *discretisation, char *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the whole result as JSON text in the project's output contract (the command
+ * line's output: vertices, facets with seed, uv, point, normal, vertices and flags,
+ * dual_triangles, quality, diagnostics), NUL terminated. `include_timings` 1 adds
+ * `timings_ms` (which differ between runs); 0 leaves it out. Copy-out convention;
+ * `*needed` counts the NUL.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (`include_timings` not 0 or
+ * 1), TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * chars; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discretisation_json(const struct TpiDiscretisation *discretisation, uint32_t include_timings, char *out, size_t capacity, size_t *needed);
+
+/**
+ * Creates a discrete surface from copies of `surface` and `pattern` (the caller keeps its
+ * handles and may free them at once) and computes its first mesh. `options` may be NULL for
+ * the defaults; they hold for the object's life.
+ *
+ * On success `*out` is a new handle (free with `tpi_discrete_surface_free`), else NULL.
+ * Errors: as `tpi_discretise`.
+ *
+ * # Safety
+ * `surface` and `pattern` are NULL or live handles; `options` is NULL or a `TpiOptions`
+ * with `struct_size` readable bytes; `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_discrete_surface_new(const struct TpiSurface *surface, const struct TpiPattern *pattern, const struct TpiOptions *options, struct TpiDiscreteSurface **out);
+
+/**
+ * Frees a discrete surface. NULL is allowed and does nothing. Meshes taken from it with
+ * `tpi_discrete_surface_mesh` stay valid.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a handle that was not freed yet, and no other call is using
+ * it.
+ */
+void tpi_discrete_surface_free(struct TpiDiscreteSurface *discrete_surface);
+
+/**
+ * Stores the current number of pattern points in `*out` (edits included, recomputed or not).
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discrete_surface_point_count(const struct TpiDiscreteSurface *discrete_surface, size_t *out);
+
+/**
+ * Copies the current pattern points s0, t0, s1, t1, ... (edits included). Copy-out
+ * convention; `*needed` = 2 * point count.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing
+ * `capacity` doubles; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discrete_surface_points(const struct TpiDiscreteSurface *discrete_surface, double *out, size_t capacity, size_t *needed);
+
+/**
+ * Moves pattern point `index` to (s, t) in [0, 1]^2. A pending edit: the mesh changes at
+ * the next `tpi_discrete_surface_recompute`.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INDEX_OUT_OF_RANGE, TPI_STATUS_NON_FINITE,
+ * TPI_STATUS_INVALID_PATTERN (outside the square). On an error nothing changes.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle.
+ */
+enum TpiStatus tpi_discrete_surface_move_point(struct TpiDiscreteSurface *discrete_surface, size_t index, double s, double t);
+
+/**
+ * Appends the pattern point (s, t) in [0, 1]^2; its index (the previous point count) is
+ * stored in `*index` unless `index` is NULL. A pending edit.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_PATTERN. On
+ * an error nothing changes.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle; `index` is NULL or valid for writing a
+ * `size_t`.
+ */
+enum TpiStatus tpi_discrete_surface_add_point(struct TpiDiscreteSurface *discrete_surface, double s, double t, size_t *index);
+
+/**
+ * Removes pattern point `index`; the points after it move down by one index (as the facets
+ * of the next mesh do). A pending edit.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INDEX_OUT_OF_RANGE. On an error nothing
+ * changes.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle.
+ */
+enum TpiStatus tpi_discrete_surface_remove_point(struct TpiDiscreteSurface *discrete_surface, size_t index);
+
+/**
+ * Replaces the surface with a copy of `surface` (e.g. after its control points were
+ * edited); the pattern points stay where they are in the normalised square. The caller
+ * keeps its handle. A pending edit.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `discrete_surface` and `surface` are NULL or live handles.
+ */
+enum TpiStatus tpi_discrete_surface_set_surface(struct TpiDiscreteSurface *discrete_surface, const struct TpiSurface *surface);
+
+/**
+ * Stores the number of edits since the last successful recompute in `*out`; 0 means the
+ * mesh is up to date.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discrete_surface_pending_edits(const struct TpiDiscreteSurface *discrete_surface, size_t *out);
+
+/**
+ * Brings the mesh up to date with the pending edits. With no pending edits this does
+ * nothing and succeeds.
+ *
+ * On an error the edits stay (still pending), the previous mesh stays current, and the
+ * message says what is wrong with the edited input (e.g. a moved point duplicating
+ * another), so the host can undo or fix an edit and recompute again.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_PATTERN, TPI_STATUS_DEGENERATE,
+ * TPI_STATUS_NON_FINITE.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle.
+ */
+enum TpiStatus tpi_discrete_surface_recompute(struct TpiDiscreteSurface *discrete_surface);
+
+/**
+ * Stores in `*out` a new discretisation handle for the current mesh (that of the last
+ * successful recompute), to be read with the `tpi_discretisation_*` calls and freed with
+ * `tpi_discretisation_free`. The mesh is shared, not copied, and it is immutable: later
+ * edits and recomputes make new meshes and leave this one as it is, and it outlives the
+ * discrete surface.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER. On an error `*out` is NULL.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_discrete_surface_mesh(const struct TpiDiscreteSurface *discrete_surface, struct TpiDiscretisation **out);
+
+#ifdef __cplusplus
+}  // extern "C"
+#endif  // __cplusplus
+
+#endif  /* TPI_H */

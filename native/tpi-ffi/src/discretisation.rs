@@ -1,0 +1,724 @@
+//! Discretisation results: the mesh, the adjacency, the quality report, the diagnostics.
+
+use std::ffi::c_char;
+use std::mem::size_of;
+use std::sync::{Arc, OnceLock};
+
+use tpi_core::{discretise, Diagnostic, Discretisation, QualityReport};
+
+use crate::boundary::{
+    check_copy_out, copy_out, copy_out_str, ffi_boundary, flag, try_ref, FfiError, FfiResult, OutPtr, TpiStatus,
+};
+use crate::options::{read_options, TpiOptions};
+use crate::pattern::TpiPattern;
+use crate::surface::TpiSurface;
+
+/// Per-facet flag: the facet is not convex (expected on saddle-shaped regions).
+pub const TPI_FACET_NON_CONVEX: u8 = 1;
+/// Per-facet flag: the facet is not a simple polygon (self-intersecting, clockwise seen from
+/// its normal, or degenerate).
+pub const TPI_FACET_NON_SIMPLE: u8 = 2;
+/// Per-facet flag: the facet overlaps a neighbour.
+pub const TPI_FACET_OVERLAP: u8 = 4;
+/// Per-facet flag: a diagnostic names this facet's pattern point.
+pub const TPI_FACET_DIAGNOSTIC: u8 = 8;
+
+/// The `point` of a diagnostic entry that concerns no single pattern point (a domain corner
+/// claimed by no facet or by several).
+pub const TPI_NO_POINT: u32 = 0xFFFF_FFFF;
+
+/// Size in bytes of the first version of `TpiQualityReport`: the smallest `struct_size`
+/// accepted.
+pub const TPI_QUALITY_REPORT_SIZE_V1: u32 = 208;
+
+/// The result of a discretisation: an indexed polygon mesh with one planar facet per pattern
+/// point (facet i belongs to pattern point i), the dual triangulation, the quality report and
+/// the diagnostics. Immutable.
+///
+/// Created by `tpi_discretise` or `tpi_discrete_surface_mesh`, freed by
+/// `tpi_discretisation_free`. May be used from several threads at once.
+pub struct TpiDiscretisation {
+    result: Arc<Discretisation>,
+    pairs: OnceLock<Vec<u32>>,
+    entries: OnceLock<Vec<TpiDiagnosticEntry>>,
+    json: OnceLock<String>,
+    json_with_timings: OnceLock<String>,
+    quality_json: OnceLock<String>,
+    diagnostics_json: OnceLock<String>,
+}
+
+impl TpiDiscretisation {
+    pub(crate) fn new(result: Arc<Discretisation>) -> Self {
+        Self {
+            result,
+            pairs: OnceLock::new(),
+            entries: OnceLock::new(),
+            json: OnceLock::new(),
+            json_with_timings: OnceLock::new(),
+            quality_json: OnceLock::new(),
+            diagnostics_json: OnceLock::new(),
+        }
+    }
+
+    fn pairs(&self) -> &[u32] {
+        self.pairs.get_or_init(|| self.result.neighbour_pairs().as_flattened().to_vec())
+    }
+
+    fn entries(&self) -> &[TpiDiagnosticEntry] {
+        self.entries.get_or_init(|| {
+            let mut entries = Vec::new();
+            for (index, d) in self.result.diagnostics.iter().enumerate() {
+                let kind = TpiDiagnosticKind::of(d) as u32;
+                let diagnostic = u32::try_from(index).unwrap_or(u32::MAX);
+                let points = d.points();
+                if points.is_empty() {
+                    entries.push(TpiDiagnosticEntry { point: TPI_NO_POINT, kind, diagnostic });
+                }
+                entries.extend(points.into_iter().map(|point| TpiDiagnosticEntry { point, kind, diagnostic }));
+            }
+            entries
+        })
+    }
+
+    fn quality(&self) -> FfiResult<&QualityReport> {
+        self.result.quality.as_ref().ok_or_else(|| {
+            FfiError::new(TpiStatus::Unavailable, "the quality report was switched off (options.quality_report = 0)")
+        })
+    }
+}
+
+fn json_error(e: serde_json::Error) -> FfiError {
+    FfiError::new(TpiStatus::Panic, format!("internal error: JSON serialisation failed: {e}"))
+}
+
+/// Gets or fills a cached string.
+fn cached(cell: &OnceLock<String>, make: impl FnOnce() -> FfiResult<String>) -> FfiResult<&str> {
+    if let Some(text) = cell.get() {
+        return Ok(text);
+    }
+    let text = make()?;
+    Ok(cell.get_or_init(|| text))
+}
+
+/// The pattern point behind a facet: its parameters in the surface's own domain, surface
+/// point, unit normal (Su x Sv) and principal curvatures k1 <= k2.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TpiSeed {
+    /// (u, v) in the surface's domain.
+    pub uv: [f64; 2],
+    /// Surface point.
+    pub point: [f64; 3],
+    /// Unit normal.
+    pub normal: [f64; 3],
+    /// Principal curvatures k1 <= k2 (signed relative to the normal).
+    pub curvatures: [f64; 2],
+}
+
+/// A facet's tangent plane: the plane through `point` with unit normal `normal`. Every vertex
+/// of the facet lies in it.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TpiPlane {
+    /// A point of the plane (the seed's surface point).
+    pub point: [f64; 3],
+    /// Unit normal (the surface normal at the seed).
+    pub normal: [f64; 3],
+}
+
+/// What a diagnostic is about. The numbers are never changed nor reused.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TpiDiagnosticKind {
+    /// Three tangent planes are nearly parallel: their meeting point ran away and a stand-in
+    /// was used, so the facets of the three points are not exact.
+    IllConditionedVertex = 1,
+    /// Two neighbouring tangent planes at the boundary are parallel.
+    ParallelPlanes = 2,
+    /// The common edge of two facets never reaches the surface's boundary.
+    BoundaryNotReached = 3,
+    /// A facet could not be closed consistently along the boundary.
+    OpenFacet = 4,
+    /// The tangent plane of a facet holding a domain corner is parallel to the corner's normal.
+    CornerUnreachable = 5,
+    /// A domain corner was claimed by no facet or by several (point is TPI_NO_POINT).
+    CornerClaims = 6,
+    /// The point has (nearly) zero Gaussian curvature.
+    FlatPoint = 7,
+}
+
+impl TpiDiagnosticKind {
+    /// The kind of a core diagnostic.
+    pub fn of(d: &Diagnostic) -> Self {
+        match d {
+            Diagnostic::IllConditionedVertex { .. } => TpiDiagnosticKind::IllConditionedVertex,
+            Diagnostic::ParallelPlanes { .. } => TpiDiagnosticKind::ParallelPlanes,
+            Diagnostic::BoundaryNotReached { .. } => TpiDiagnosticKind::BoundaryNotReached,
+            Diagnostic::OpenFacet { .. } => TpiDiagnosticKind::OpenFacet,
+            Diagnostic::CornerUnreachable { .. } => TpiDiagnosticKind::CornerUnreachable,
+            Diagnostic::CornerClaims { .. } => TpiDiagnosticKind::CornerClaims,
+            Diagnostic::FlatPoint { .. } => TpiDiagnosticKind::FlatPoint,
+        }
+    }
+}
+
+/// One (pattern point, diagnostic) pair: a diagnostic naming three points gives three
+/// entries, one naming none gives one entry with `point` = TPI_NO_POINT.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct TpiDiagnosticEntry {
+    /// The pattern point (= facet) index, or TPI_NO_POINT.
+    pub point: u32,
+    /// A TpiDiagnosticKind value.
+    pub kind: u32,
+    /// Index of the diagnostic in the array of `tpi_discretisation_diagnostics_json`.
+    pub diagnostic: u32,
+}
+
+/// The quality report as numbers; `tpi_discretisation_quality_json` has the same and the
+/// histogram of facet sizes.
+///
+/// Growth: fields are only ever appended; set `struct_size` to sizeof(TpiQualityReport)
+/// before the call, and the library writes only that many bytes.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TpiQualityReport {
+    /// sizeof(TpiQualityReport) as compiled by the caller; at least
+    /// TPI_QUALITY_REPORT_SIZE_V1.
+    pub struct_size: u32,
+    /// 1 if every vertex coordinate is finite.
+    pub all_finite: u32,
+    /// Number of facets (= pattern points).
+    pub facet_count: u64,
+    /// Number of mesh vertices.
+    pub vertex_count: u64,
+    /// Number of mesh edges.
+    pub edge_count: u64,
+    /// Vertices not on the boundary.
+    pub interior_vertex_count: u64,
+    /// Fraction of interior vertices where exactly three facets meet.
+    pub trivalent_fraction: f64,
+    /// Largest distance of a facet vertex from its facet's tangent plane, relative to the
+    /// bounding-box diagonal (0 up to rounding).
+    pub max_planarity_error: f64,
+    /// Largest distance of a mesh vertex from the surface (model units).
+    pub max_deviation: f64,
+    /// Mean distance of mesh vertices from the surface (model units).
+    pub mean_deviation: f64,
+    /// Facets that are not convex.
+    pub non_convex_facets: u64,
+    /// Facets that are not simple polygons.
+    pub non_simple_facets: u64,
+    /// Pairs of neighbouring facets that overlap.
+    pub overlapping_pairs: u64,
+    /// Facets with any flag.
+    pub flagged_facets: u64,
+    /// V - E + F (1 for a disc).
+    pub euler_characteristic: i64,
+    /// Number of boundary loops (1 for a disc).
+    pub boundary_loops: u64,
+    /// Edges shared by more than two facets.
+    pub non_manifold_edges: u64,
+    /// Smallest facet area.
+    pub min_facet_area: f64,
+    /// Largest facet area.
+    pub max_facet_area: f64,
+    /// Shortest mesh edge.
+    pub min_edge_length: f64,
+    /// Longest mesh edge.
+    pub max_edge_length: f64,
+    /// Bounding-box diagonal used for relative measures.
+    pub bounding_box_diagonal: f64,
+    /// Flips made by the curvature-compensated in-circle test.
+    pub compensation_flips: u64,
+    /// Flips made by the envelope repair.
+    pub envelope_repairs: u64,
+    /// Edges the envelope rejects that could not be flipped.
+    pub envelope_unresolved: u64,
+    /// Number of diagnostics.
+    pub diagnostic_count: u64,
+}
+
+impl TpiQualityReport {
+    fn from_core(q: &QualityReport) -> Self {
+        let n = |x: usize| x as u64;
+        Self {
+            struct_size: size_of::<TpiQualityReport>() as u32,
+            all_finite: u32::from(q.all_finite),
+            facet_count: n(q.facet_count),
+            vertex_count: n(q.vertex_count),
+            edge_count: n(q.edge_count),
+            interior_vertex_count: n(q.interior_vertex_count),
+            trivalent_fraction: q.trivalent_fraction,
+            max_planarity_error: q.max_planarity_error,
+            max_deviation: q.max_deviation,
+            mean_deviation: q.mean_deviation,
+            non_convex_facets: n(q.non_convex_facets),
+            non_simple_facets: n(q.non_simple_facets),
+            overlapping_pairs: n(q.overlapping_pairs),
+            flagged_facets: n(q.flagged_facets),
+            euler_characteristic: q.euler_characteristic,
+            boundary_loops: n(q.boundary_loops),
+            non_manifold_edges: n(q.non_manifold_edges),
+            min_facet_area: q.min_facet_area,
+            max_facet_area: q.max_facet_area,
+            min_edge_length: q.min_edge_length,
+            max_edge_length: q.max_edge_length,
+            bounding_box_diagonal: q.bounding_box_diagonal,
+            compensation_flips: n(q.neighbours.compensation_flips),
+            envelope_repairs: n(q.neighbours.envelope_repairs),
+            envelope_unresolved: n(q.neighbours.envelope_unresolved),
+            diagnostic_count: n(q.diagnostic_count),
+        }
+    }
+}
+
+/// A handle argument.
+///
+/// # Safety
+/// `ptr` is NULL or a live handle.
+unsafe fn handle<'a>(ptr: *const TpiDiscretisation) -> FfiResult<&'a TpiDiscretisation> {
+    // SAFETY: forwarded contract.
+    unsafe { try_ref(ptr, "discretisation") }
+}
+
+/// Copy-out of `len` elements made by `make`, which only runs when the buffer is big enough.
+///
+/// # Safety
+/// As [`copy_out`].
+unsafe fn copy_out_lazy<T: Copy>(
+    len: usize,
+    make: impl FnOnce() -> Vec<T>,
+    out: *mut T,
+    capacity: usize,
+    needed: *mut usize,
+) -> FfiResult {
+    // SAFETY: forwarded contract.
+    unsafe { check_copy_out(len, out, capacity, needed, "out") }?;
+    // SAFETY: forwarded contract.
+    unsafe { copy_out(&make(), out, capacity, needed, "out") }
+}
+
+/// Discretises `surface` with `pattern`: one planar facet per pattern point.
+///
+/// `options` may be NULL for the defaults. The surface and the pattern are only read; the
+/// result does not refer to them, so they may be freed afterwards.
+///
+/// On success `*out` is a new handle (free with `tpi_discretisation_free`), else NULL.
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (bad options),
+/// TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_PATTERN (fewer than three points, duplicates,
+/// all collinear), TPI_STATUS_DEGENERATE (a flat or developable surface).
+///
+/// # Safety
+/// `surface` and `pattern` are NULL or live handles; `options` is NULL or a `TpiOptions`
+/// with `struct_size` readable bytes; `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretise(
+    surface: *const TpiSurface,
+    pattern: *const TpiPattern,
+    options: *const TpiOptions,
+    out: *mut *mut TpiDiscretisation,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract for every argument.
+        let out = unsafe { OutPtr::handle(out, "out") }?;
+        let surface = unsafe { try_ref(surface, "surface") }?;
+        let pattern = unsafe { try_ref(pattern, "pattern") }?;
+        let options = unsafe { read_options(options) }?;
+        let result = discretise(&surface.model, &pattern.pattern.uv, &options)?;
+        out.set_boxed(TpiDiscretisation::new(Arc::new(result)));
+        Ok(())
+    }
+}
+
+/// Frees a discretisation. NULL is allowed and does nothing.
+///
+/// # Safety
+/// `discretisation` is NULL or a handle that was not freed yet, and no other call is using
+/// it.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_free(discretisation: *mut TpiDiscretisation) {
+    crate::boundary::run_infallible((), || {
+        if !discretisation.is_null() {
+            // SAFETY: the caller hands back ownership of a pointer from Box::into_raw.
+            drop(unsafe { Box::from_raw(discretisation) });
+        }
+    })
+}
+
+/// Stores the number of facets (= pattern points) in `*out`.
+///
+/// Errors: TPI_STATUS_NULL_POINTER.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_facet_count(discretisation: *const TpiDiscretisation, out: *mut usize) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        unsafe { OutPtr::new(out, "out") }?.set(d.result.facet_count());
+        Ok(())
+    }
+}
+
+/// Stores the number of mesh vertices in `*out`.
+///
+/// Errors: TPI_STATUS_NULL_POINTER.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_vertex_count(discretisation: *const TpiDiscretisation, out: *mut usize) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        unsafe { OutPtr::new(out, "out") }?.set(d.result.vertices.len());
+        Ok(())
+    }
+}
+
+/// Copies the vertex coordinates x0, y0, z0, x1, ... (3 doubles per vertex). Copy-out
+/// convention; `*needed` = 3 * vertex count.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// doubles; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_vertices(
+    discretisation: *const TpiDiscretisation,
+    out: *mut f64,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        let v = &d.result.vertices;
+        unsafe { copy_out_lazy(3 * v.len(), || v.iter().flat_map(|p| p.to_array()).collect(), out, capacity, needed) }
+    }
+}
+
+/// Copies the number of vertices of each facet (one uint32_t per facet, in facet order).
+/// Copy-out convention; `*needed` = facet count.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// uint32_t; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_facet_sizes(
+    discretisation: *const TpiDiscretisation,
+    out: *mut u32,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        let offsets = &d.result.facet_offsets;
+        let sizes = || offsets.windows(2).map(|w| w[1].saturating_sub(w[0])).collect();
+        unsafe { copy_out_lazy(d.result.facet_count(), sizes, out, capacity, needed) }
+    }
+}
+
+/// Copies the facets' vertex indices, facet after facet, each loop counter-clockwise seen
+/// from the facet's normal; facet i's loop starts after the sizes of facets 0..i-1.
+/// Copy-out convention; `*needed` = sum of the facet sizes.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// uint32_t; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_facet_indices(
+    discretisation: *const TpiDiscretisation,
+    out: *mut u32,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        unsafe { copy_out(&d.result.facet_loops, out, capacity, needed, "out") }
+    }
+}
+
+/// Copies the per-facet flags (TPI_FACET_* bits; one uint8_t per facet). Copy-out
+/// convention; `*needed` = facet count, or 0 when the quality report was switched off.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// uint8_t; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_facet_flags(
+    discretisation: *const TpiDiscretisation,
+    out: *mut u8,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        unsafe { copy_out(&d.result.facet_flags, out, capacity, needed, "out") }
+    }
+}
+
+/// Copies the seed of each facet (one TpiSeed per facet; facet i belongs to pattern point
+/// i). Copy-out convention; `*needed` = facet count.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// TpiSeed; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_seeds(
+    discretisation: *const TpiDiscretisation,
+    out: *mut TpiSeed,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        let seeds = &d.result.seeds;
+        let make = || {
+            seeds
+                .iter()
+                .map(|s| TpiSeed { uv: s.uv, point: s.point.to_array(), normal: s.normal.to_array(), curvatures: s.curvatures })
+                .collect()
+        };
+        unsafe { copy_out_lazy(seeds.len(), make, out, capacity, needed) }
+    }
+}
+
+/// Copies the tangent plane of each facet (one TpiPlane per facet). Copy-out convention;
+/// `*needed` = facet count.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// TpiPlane; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_planes(
+    discretisation: *const TpiDiscretisation,
+    out: *mut TpiPlane,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        let seeds = &d.result.seeds;
+        let make = || seeds.iter().map(|s| TpiPlane { point: s.point.to_array(), normal: s.normal.to_array() }).collect();
+        unsafe { copy_out_lazy(seeds.len(), make, out, capacity, needed) }
+    }
+}
+
+/// Copies the neighbour pairs of the final dual structure: i0, j0, i1, j1, ... (2 uint32_t
+/// per pair, i < j, sorted). Two facets are neighbours when they share an edge. Copy-out
+/// convention; `*needed` = 2 * pair count.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// uint32_t; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_neighbour_pairs(
+    discretisation: *const TpiDiscretisation,
+    out: *mut u32,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        unsafe { copy_out(d.pairs(), out, capacity, needed, "out") }
+    }
+}
+
+/// Copies the triangles of the final dual structure (3 uint32_t pattern point indices per
+/// triangle, counter-clockwise in parameter space); each triangle is one interior mesh
+/// vertex, where its three tangent planes meet. Copy-out convention; `*needed` =
+/// 3 * triangle count.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// uint32_t; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_dual_triangles(
+    discretisation: *const TpiDiscretisation,
+    out: *mut u32,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        unsafe { copy_out(d.result.dual_triangles.as_flattened(), out, capacity, needed, "out") }
+    }
+}
+
+/// Fills `*out` with the quality report. Set `out->struct_size` = sizeof(TpiQualityReport)
+/// first; only that many bytes are written.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (`struct_size` below
+/// TPI_QUALITY_REPORT_SIZE_V1), TPI_STATUS_UNAVAILABLE (the report was switched off).
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for reading and writing
+/// `out->struct_size` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_quality(
+    discretisation: *const TpiDiscretisation,
+    out: *mut TpiQualityReport,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        let out = unsafe { OutPtr::new(out, "out") }?;
+        // SAFETY: checked non-NULL and aligned; struct_size is the first field.
+        let size = unsafe { out.as_ptr().cast::<u32>().read() };
+        if size < TPI_QUALITY_REPORT_SIZE_V1 {
+            return Err(FfiError::invalid(format!(
+                "out->struct_size is {size}; set it to sizeof(TpiQualityReport) (at least {TPI_QUALITY_REPORT_SIZE_V1})"
+            )));
+        }
+        let mut report = TpiQualityReport::from_core(d.quality()?);
+        report.struct_size = size;
+        let bytes = (size as usize).min(size_of::<TpiQualityReport>());
+        // SAFETY: `bytes` bytes are writable (contract) and readable from `report`.
+        unsafe { std::ptr::copy_nonoverlapping((&report as *const TpiQualityReport).cast::<u8>(), out.as_ptr().cast::<u8>(), bytes) };
+        Ok(())
+    }
+}
+
+/// Copies the quality report as JSON text (an object with the fields of TpiQualityReport,
+/// `neighbours` nested, and `side_histogram`: facet count per number of sides), NUL
+/// terminated. Copy-out convention; `*needed` counts the NUL.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL, TPI_STATUS_UNAVAILABLE.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// chars; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_quality_json(
+    discretisation: *const TpiDiscretisation,
+    out: *mut c_char,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        let quality = d.quality()?;
+        let text = cached(&d.quality_json, || serde_json::to_string(quality).map_err(json_error))?;
+        unsafe { copy_out_str(text, out, capacity, needed, "out") }
+    }
+}
+
+/// Stores the number of diagnostics (local problems, each naming its pattern points) in
+/// `*out`; the entries of `tpi_discretisation_diagnostic_entries` may be more.
+///
+/// Errors: TPI_STATUS_NULL_POINTER.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_diagnostic_count(discretisation: *const TpiDiscretisation, out: *mut usize) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        unsafe { OutPtr::new(out, "out") }?.set(d.result.diagnostics.len());
+        Ok(())
+    }
+}
+
+/// Copies the per-point diagnostics as (point, kind, diagnostic) entries, in diagnostic
+/// order. Copy-out convention; `*needed` = number of entries.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// entries; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_diagnostic_entries(
+    discretisation: *const TpiDiscretisation,
+    out: *mut TpiDiagnosticEntry,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        unsafe { copy_out(d.entries(), out, capacity, needed, "out") }
+    }
+}
+
+/// Copies the diagnostics as a JSON array, NUL terminated: each element has a `kind`
+/// (snake_case of the TpiDiagnosticKind name, e.g. "flat_point") and its fields (`point` or
+/// `points`, and numbers such as `gaussian_curvature`). Copy-out convention; `*needed`
+/// counts the NUL.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// chars; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_diagnostics_json(
+    discretisation: *const TpiDiscretisation,
+    out: *mut c_char,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        let text = cached(&d.diagnostics_json, || serde_json::to_string(&d.result.diagnostics).map_err(json_error))?;
+        unsafe { copy_out_str(text, out, capacity, needed, "out") }
+    }
+}
+
+/// Copies the whole result as JSON text in the project's output contract (the command
+/// line's output: vertices, facets with seed, uv, point, normal, vertices and flags,
+/// dual_triangles, quality, diagnostics), NUL terminated. `include_timings` 1 adds
+/// `timings_ms` (which differ between runs); 0 leaves it out. Copy-out convention;
+/// `*needed` counts the NUL.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (`include_timings` not 0 or
+/// 1), TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// chars; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretisation_json(
+    discretisation: *const TpiDiscretisation,
+    include_timings: u32,
+    out: *mut c_char,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let d = unsafe { handle(discretisation) }?;
+        let timings = flag("include_timings", include_timings)?;
+        let cell = if timings { &d.json_with_timings } else { &d.json };
+        let text = cached(cell, || Ok(d.result.to_json(timings)))?;
+        unsafe { copy_out_str(text, out, capacity, needed, "out") }
+    }
+}

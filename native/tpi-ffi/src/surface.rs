@@ -1,0 +1,396 @@
+//! Surface handles: NURBS from RhinoCommon's arrays, the analytic surfaces, sampling.
+
+use glam::DVec3;
+use tpi_core::spec::SurfaceModel;
+use tpi_core::{AnalyticSurface, LocalGeometry, NurbsSurface, Surface, TpiError};
+
+use crate::boundary::{
+    check_copy_out, copy_out, ffi_boundary, finite, try_pairs, try_ref, try_slice, FfiError, OutPtr,
+    TpiStatus,
+};
+
+/// A surface: a NURBS surface or an analytic one. Immutable once created.
+///
+/// Created by the `tpi_surface_new_*` calls, freed by `tpi_surface_free`. May be used from
+/// several threads at once.
+pub struct TpiSurface {
+    pub(crate) model: SurfaceModel,
+}
+
+/// The parameter domain [u_min, u_max] x [v_min, v_max] of a surface.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TpiDomain {
+    /// Start of the u interval.
+    pub u_min: f64,
+    /// End of the u interval.
+    pub u_max: f64,
+    /// Start of the v interval.
+    pub v_min: f64,
+    /// End of the v interval.
+    pub v_max: f64,
+}
+
+/// Point, normal, principal curvatures and principal directions at one (u, v).
+///
+/// The normal is Su x Sv normalised (as RhinoCommon's `NormalAt`). Curvatures are signed
+/// relative to the normal: k > 0 where the surface bends towards it; k1 <= k2. (d1, d2,
+/// normal) is a right-handed orthonormal frame. Where Su x Sv vanishes (a pole, a collapsed
+/// edge) `regular` is 0, the normal is a fallback and the curvatures are 0.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TpiSample {
+    /// Surface point (x, y, z).
+    pub point: [f64; 3],
+    /// Unit normal.
+    pub normal: [f64; 3],
+    /// Principal curvatures k1 <= k2.
+    pub curvatures: [f64; 2],
+    /// Unit principal direction of k1.
+    pub d1: [f64; 3],
+    /// Unit principal direction of k2.
+    pub d2: [f64; 3],
+    /// 1 where the surface is regular at this point, 0 where Su x Sv vanishes.
+    pub regular: u32,
+    /// Always 0 (padding, kept explicit for other languages).
+    pub reserved: u32,
+}
+
+impl TpiSample {
+    fn from_geometry(g: &LocalGeometry) -> Self {
+        Self {
+            point: g.point.to_array(),
+            normal: g.normal.to_array(),
+            curvatures: [g.k1, g.k2],
+            d1: g.d1.to_array(),
+            d2: g.d2.to_array(),
+            regular: u32::from(g.regular),
+            reserved: 0,
+        }
+    }
+}
+
+/// Stores a new surface handle through `out`, or the error.
+fn create(out: *mut *mut TpiSurface, build: impl FnOnce() -> Result<SurfaceModel, FfiError>) -> Result<(), FfiError> {
+    // SAFETY: `out` is NULL or valid for writes (the contract of every create call).
+    let out = unsafe { OutPtr::handle(out, "out") }?;
+    let model = build()?;
+    out.set_boxed(TpiSurface { model });
+    Ok(())
+}
+
+fn analytic(result: Result<AnalyticSurface, TpiError>) -> Result<SurfaceModel, FfiError> {
+    Ok(SurfaceModel::from(result?))
+}
+
+/// Creates a NURBS surface from the arrays RhinoCommon hands over.
+///
+/// - `degree_u`, `degree_v`: degrees (1 to 15).
+/// - `count_u`, `count_v`: control point counts (count > degree).
+/// - `knots_u` (`knots_u_len` doubles) and `knots_v`: knot vectors in **Rhino's convention**,
+///   count + degree - 1 knots each, as `NurbsSurface.KnotsU`/`KnotsV` give them; the domain is
+///   [knots[degree - 1], knots[count - 1]]. (The textbook convention with two more knots,
+///   count + degree + 1, is recognised by its length and accepted too.)
+/// - `points` (`points_len` doubles): the Euclidean control points, u-major: point (i, j) is
+///   `points[3 * (i * count_v + j) + 0..3]`, i.e. `Points.GetControlPoint(i, j).Location`;
+///   `points_len` must be 3 * count_u * count_v.
+/// - `weights` (`weights_len` doubles): the weights in the same order, all > 0, or NULL (with
+///   `weights_len` 0) for a non-rational surface. The points are **not** premultiplied.
+///
+/// On success stores a new handle in `*out`, which the caller frees with `tpi_surface_free`;
+/// on failure `*out` is NULL. Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT
+/// (a length not a multiple of 3, weights_len without weights), TPI_STATUS_NON_FINITE (a NaN
+/// or infinite knot, coordinate or weight), TPI_STATUS_INVALID_NURBS (everything else wrong
+/// with the data, e.g. a wrong number of knots).
+///
+/// # Safety
+/// Each array pointer is NULL or valid for reading its length in doubles; `out` is NULL or
+/// valid for writing a pointer.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn tpi_surface_new_nurbs(
+    degree_u: usize,
+    degree_v: usize,
+    count_u: usize,
+    count_v: usize,
+    knots_u: *const f64,
+    knots_u_len: usize,
+    knots_v: *const f64,
+    knots_v_len: usize,
+    points: *const f64,
+    points_len: usize,
+    weights: *const f64,
+    weights_len: usize,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! {
+        create(out, || {
+            // SAFETY: the caller's contract for each array.
+            let knots_u = unsafe { try_slice(knots_u, knots_u_len, "knots_u") }?;
+            let knots_v = unsafe { try_slice(knots_v, knots_v_len, "knots_v") }?;
+            let flat = unsafe { try_slice(points, points_len, "points") }?;
+            if flat.len() % 3 != 0 {
+                return Err(FfiError::invalid(format!(
+                    "points has {points_len} doubles, which is not a multiple of 3 (x, y, z per control point)"
+                )));
+            }
+            let points: Vec<DVec3> = flat.chunks_exact(3).map(DVec3::from_slice).collect();
+            let weights = if weights.is_null() {
+                if weights_len != 0 {
+                    return Err(FfiError::invalid(format!(
+                        "weights is NULL but weights_len is {weights_len}; pass 0 for a non-rational surface"
+                    )));
+                }
+                None
+            } else {
+                // SAFETY: the caller's contract.
+                Some(unsafe { try_slice(weights, weights_len, "weights") }?)
+            };
+            let surface = NurbsSurface::new([degree_u, degree_v], [count_u, count_v], knots_u, knots_v, &points, weights)
+                .map_err(|e| FfiError::nurbs(&e))?;
+            Ok(SurfaceModel::from(surface))
+        })
+    }
+}
+
+/// Creates the elliptic paraboloid z = a x^2 + b y^2 over [x0, x1] x [y0, y1] (u = x,
+/// v = y); a and b non-zero with the same sign.
+///
+/// On success `*out` is a new handle (free with `tpi_surface_free`), else NULL. Errors:
+/// TPI_STATUS_NULL_POINTER, TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_ARGUMENT.
+///
+/// # Safety
+/// `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_new_elliptic_paraboloid(
+    a: f64,
+    b: f64,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! { create(out, || analytic(AnalyticSurface::elliptic_paraboloid(a, b, [x0, x1], [y0, y1]))) }
+}
+
+/// Creates the hyperbolic paraboloid z = a x^2 - b y^2 over [x0, x1] x [y0, y1]; a and b
+/// non-zero with the same sign.
+///
+/// On success `*out` is a new handle, else NULL. Errors as
+/// `tpi_surface_new_elliptic_paraboloid`.
+///
+/// # Safety
+/// `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_new_hyperbolic_paraboloid(
+    a: f64,
+    b: f64,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! { create(out, || analytic(AnalyticSurface::hyperbolic_paraboloid(a, b, [x0, x1], [y0, y1]))) }
+}
+
+/// Creates the sphere cap z = sqrt(r^2 - x^2 - y^2) over [x0, x1] x [y0, y1], which must lie
+/// strictly inside the disc of radius r.
+///
+/// On success `*out` is a new handle, else NULL. Errors as
+/// `tpi_surface_new_elliptic_paraboloid`.
+///
+/// # Safety
+/// `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_new_sphere_cap(
+    radius: f64,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! { create(out, || analytic(AnalyticSurface::sphere_cap(radius, [x0, x1], [y0, y1]))) }
+}
+
+/// Creates the sphere cap over the centred square [-h, h]^2 (needs h > 0 and
+/// h * sqrt(2) < radius).
+///
+/// On success `*out` is a new handle, else NULL. Errors as
+/// `tpi_surface_new_elliptic_paraboloid`.
+///
+/// # Safety
+/// `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_new_sphere_cap_square(
+    radius: f64,
+    half_width: f64,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! { create(out, || analytic(AnalyticSurface::sphere_cap_square(radius, half_width))) }
+}
+
+/// Creates the ellipsoid cap z = c sqrt(1 - x^2/a^2 - y^2/b^2) over [x0, x1] x [y0, y1],
+/// strictly inside the ellipse; a, b, c > 0.
+///
+/// On success `*out` is a new handle, else NULL. Errors as
+/// `tpi_surface_new_elliptic_paraboloid`.
+///
+/// # Safety
+/// `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn tpi_surface_new_ellipsoid_cap(
+    a: f64,
+    b: f64,
+    c: f64,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! { create(out, || analytic(AnalyticSurface::ellipsoid_cap(a, b, c, [x0, x1], [y0, y1]))) }
+}
+
+/// Creates the egg-crate z = A sin(x) sin(y) over [x0, x1] x [y0, y1]; A non-zero.
+///
+/// On success `*out` is a new handle, else NULL. Errors as
+/// `tpi_surface_new_elliptic_paraboloid`.
+///
+/// # Safety
+/// `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_new_egg_crate(
+    amplitude: f64,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! { create(out, || analytic(AnalyticSurface::egg_crate(amplitude, [x0, x1], [y0, y1]))) }
+}
+
+/// Creates the cylinder z = sqrt(r^2 - x^2) over [x0, x1] x [y0, y1] with |x| < r. Its
+/// Gaussian curvature is 0 everywhere, so discretising it fails with TPI_STATUS_DEGENERATE;
+/// it is here for sampling and for tests.
+///
+/// On success `*out` is a new handle, else NULL. Errors as
+/// `tpi_surface_new_elliptic_paraboloid`.
+///
+/// # Safety
+/// `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_new_cylinder(
+    radius: f64,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! { create(out, || analytic(AnalyticSurface::cylinder(radius, [x0, x1], [y0, y1]))) }
+}
+
+/// Creates the plane z = p x + q y + c0 over [x0, x1] x [y0, y1]. Discretising it fails with
+/// TPI_STATUS_DEGENERATE; it is here for sampling and for tests.
+///
+/// On success `*out` is a new handle, else NULL. Errors as
+/// `tpi_surface_new_elliptic_paraboloid`.
+///
+/// # Safety
+/// `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn tpi_surface_new_plane(
+    p: f64,
+    q: f64,
+    c0: f64,
+    x0: f64,
+    x1: f64,
+    y0: f64,
+    y1: f64,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! { create(out, || analytic(AnalyticSurface::plane(p, q, c0, [x0, x1], [y0, y1]))) }
+}
+
+/// Frees a surface. NULL is allowed and does nothing. Handles created from this surface
+/// (patterns do not depend on it; discretisations and discrete surfaces hold their own copy)
+/// stay valid.
+///
+/// # Safety
+/// `surface` is NULL or a handle from a `tpi_surface_new_*` call that was not freed yet, and
+/// no other call is using it.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_free(surface: *mut TpiSurface) {
+    crate::boundary::run_infallible((), || {
+        if !surface.is_null() {
+            // SAFETY: the caller hands back ownership of a pointer from Box::into_raw.
+            drop(unsafe { Box::from_raw(surface) });
+        }
+    })
+}
+
+/// Stores the surface's parameter domain in `*out`.
+///
+/// Errors: TPI_STATUS_NULL_POINTER.
+///
+/// # Safety
+/// `surface` is NULL or a live handle; `out` is NULL or valid for writing a `TpiDomain`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_domain(surface: *const TpiSurface, out: *mut TpiDomain) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let surface = unsafe { try_ref(surface, "surface") }?;
+        let out = unsafe { OutPtr::new(out, "out") }?;
+        let d = surface.model.domain();
+        out.set(TpiDomain { u_min: d.u.min, u_max: d.u.max, v_min: d.v.min, v_max: d.v.max });
+        Ok(())
+    }
+}
+
+/// Evaluates the surface at `uv_len / 2` parameter pairs: `uv` holds u0, v0, u1, v1, ... in
+/// the surface's own domain (not normalised). Writes one `TpiSample` per pair to `out`, which
+/// has room for `out_capacity` samples.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (odd `uv_len`),
+/// TPI_STATUS_BUFFER_TOO_SMALL (`out_capacity < uv_len / 2`; nothing written),
+/// TPI_STATUS_NON_FINITE (a NaN or infinite parameter), TPI_STATUS_OUT_OF_DOMAIN (a pair
+/// outside the domain). On an error nothing is written to `out`; the message names the first
+/// offending pair.
+///
+/// # Safety
+/// `surface` is NULL or a live handle; `uv` is NULL or valid for reading `uv_len` doubles;
+/// `out` is NULL or valid for writing `out_capacity` samples.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_evaluate(
+    surface: *const TpiSurface,
+    uv: *const f64,
+    uv_len: usize,
+    out: *mut TpiSample,
+    out_capacity: usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let surface = unsafe { try_ref(surface, "surface") }?;
+        let pairs = unsafe { try_pairs(uv, uv_len, "uv") }?;
+        // Capacity first, so that a too-small buffer costs no evaluation.
+        unsafe { check_copy_out(pairs.len(), out, out_capacity, std::ptr::null_mut(), "out") }?;
+        let domain = surface.model.domain();
+        for (index, &[u, v]) in pairs.iter().enumerate() {
+            finite(&format!("uv[{}]", 2 * index), u)?;
+            finite(&format!("uv[{}]", 2 * index + 1), v)?;
+            domain.check(u, v).map_err(|e| FfiError::new(TpiStatus::OutOfDomain, format!("pair {index}: {e}")))?;
+        }
+        let samples: Vec<TpiSample> = pairs
+            .iter()
+            .map(|&[u, v]| TpiSample::from_geometry(&LocalGeometry::from_derivatives(&surface.model.evaluate(u, v))))
+            .collect();
+        // SAFETY: the caller's contract.
+        unsafe { copy_out(&samples, out, out_capacity, std::ptr::null_mut(), "out") }
+    }
+}
