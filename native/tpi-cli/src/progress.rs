@@ -15,8 +15,20 @@ use std::time::{Duration, Instant};
 /// Delay before anything is drawn.
 pub const SHOW_AFTER: Duration = Duration::from_secs(1);
 
+/// Environment variable overriding [`SHOW_AFTER`] in milliseconds (for tests: `0` draws at
+/// once, still only on a terminal).
+pub const DELAY_VARIABLE: &str = "TPI_PROGRESS_DELAY_MS";
+
+fn show_after() -> Duration {
+    std::env::var(DELAY_VARIABLE)
+        .ok()
+        .and_then(|v| v.trim().parse::<u64>().ok())
+        .map_or(SHOW_AFTER, Duration::from_millis)
+}
+
 struct Shared {
     start: Instant,
+    delay: Duration,
     total: usize,
     step: AtomicUsize,
     label: Mutex<String>,
@@ -37,6 +49,7 @@ impl Progress {
         }
         let shared = Arc::new(Shared {
             start: Instant::now(),
+            delay: show_after(),
             total: total.max(1),
             step: AtomicUsize::new(0),
             label: Mutex::new(String::new()),
@@ -90,8 +103,8 @@ fn draw_loop(s: &Shared) {
         if s.done.load(Ordering::Relaxed) {
             break;
         }
-        if elapsed < SHOW_AFTER {
-            std::thread::park_timeout(SHOW_AFTER - elapsed);
+        if elapsed < s.delay {
+            std::thread::park_timeout(s.delay - elapsed);
             continue;
         }
         let step = s.step.load(Ordering::Relaxed).clamp(1, s.total);

@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""Writes the sample surface files of this folder (run from anywhere; standard library only).
+
+The NURBS samples place their control points at the Greville abscissae of their knot
+vectors, so that x and y are exactly linear in u and v and z follows the design function
+closely; `tpi info` on each file shows the curvature this gives.
+"""
+import json
+import math
+import os
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def write(name, record):
+    with open(os.path.join(HERE, name), "w") as f:
+        f.write(format_record(record))
+
+
+def num(x):
+    x = round(x, 12) + 0.0
+    return json.dumps(int(x) if x == int(x) and abs(x) < 1e15 else x)
+
+
+def format_record(r):
+    """JSON with one control point per line, everything else compact."""
+    lines = ["{"]
+    items = list(r.items())
+    for k, (key, value) in enumerate(items):
+        end = "," if k + 1 < len(items) else ""
+        if key == "points":
+            lines.append('  "points": [')
+            for i, p in enumerate(value):
+                lines.append("    [" + ", ".join(num(c) for c in p) + "]" + ("," if i + 1 < len(value) else ""))
+            lines.append("  ]" + end)
+        elif isinstance(value, list):
+            lines.append(f'  "{key}": [' + ", ".join(num(c) for c in value) + "]" + end)
+        elif isinstance(value, str):
+            lines.append(f'  "{key}": "{value}"' + end)
+        else:
+            lines.append(f'  "{key}": {num(value)}' + end)
+    lines.append("}")
+    return "\n".join(lines) + "\n"
+
+
+def greville(knots, degree, count):
+    """Greville abscissae from Rhino-convention knots (count + degree - 1 of them)."""
+    return [sum(knots[i:i + degree]) / degree for i in range(count)]
+
+
+def graph_nurbs(knots_u, knots_v, degree, x_range, y_range, height):
+    nu = len(knots_u) - degree + 1
+    nv = len(knots_v) - degree + 1
+    gu = greville(knots_u, degree, nu)
+    gv = greville(knots_v, degree, nv)
+    u0, u1 = knots_u[degree - 1], knots_u[nu - 1]
+    v0, v1 = knots_v[degree - 1], knots_v[nv - 1]
+    points = []
+    for i in range(nu):  # u-major: point (i, j) at i * nv + j
+        x = x_range[0] + (gu[i] - u0) / (u1 - u0) * (x_range[1] - x_range[0])
+        for j in range(nv):
+            y = y_range[0] + (gv[j] - v0) / (v1 - v0) * (y_range[1] - y_range[0])
+            points.append([x, y, height(x, y)])
+    return {
+        "type": "nurbs",
+        "degree": [degree, degree],
+        "count": [nu, nv],
+        "knots_u": knots_u,
+        "knots_v": knots_v,
+        "points": points,
+    }
+
+
+def main():
+    # Paraboloid of revolution z = -0.08 (x^2 + y^2): a shallow dome, top view of its
+    # mesh = Voronoi diagram of the projected points.
+    write("paraboloid.json", {"type": "elliptic_paraboloid", "a": -0.08, "b": -0.08, "x": [-5, 5], "y": [-5, 5]})
+    # Anisotropic dome: curvature ratio 8 between x and y.
+    write("anisotropic-dome.json", {"type": "elliptic_paraboloid", "a": -0.16, "b": -0.02, "x": [-5, 5], "y": [-5, 5]})
+    # Hyperbolic paraboloid z = 0.08 (x^2 - y^2): K < 0 everywhere.
+    write("hypar.json", {"type": "hyperbolic_paraboloid", "a": 0.08, "b": 0.08, "x": [-5, 5], "y": [-5, 5]})
+
+    # Free-form bicubic dome, 7 x 6 control points, non-uniform clamped knots (Rhino
+    # convention: count + degree - 1), strictly convex: a concave quadratic plus a tilt, a
+    # twist and a cubic lean, which keep the Hessian negative definite.
+    def dome(x, y):
+        return 4.0 * (1 - (x / 7.5) ** 2 - (y / 6.5) ** 2) + 0.3 * x / 6 + 0.25 * (x / 6) * (y / 5) + 0.35 * (x / 6) ** 3
+
+    write("nurbs-dome.json", graph_nurbs([0, 0, 0, 1.5, 4, 7.5, 10, 10, 10], [0, 0, 0, 3, 5.5, 8, 8, 8], 3, [-6, 6], [-5, 5], dome))
+
+    # Mixed-curvature roof, 9 x 7 bicubic: a dome in the middle (K > 0) flowing into
+    # saddle-shaped ends (K < 0, convex along x, concave along y), K = 0 between.
+    def roof(x, y):
+        return (1 - (y / 7.0) ** 2) * (3.0 + 1.5 * math.cos(math.pi * x / 9.0))
+
+    write(
+        "mixed-roof.json",
+        graph_nurbs([0, 0, 0, 1, 2.5, 4, 5.5, 7, 8, 8, 8], [0, 0, 0, 1.5, 3, 4.5, 6, 6, 6], 3, [-10, 10], [-6, 6], roof),
+    )
+
+    # Rational biquadratic patch on a sphere of radius 10: a meridian arc of +-40 deg in
+    # the xz-plane revolved by +-40 deg about the x axis. Exact sphere; weights cos 40 deg
+    # on the middle row and column, their product in the centre.
+    r, a, b = 10.0, math.radians(40), math.radians(40)
+    profile = [(-r * math.sin(a), r * math.cos(a), 1.0), (0.0, r / math.cos(a), math.cos(a)), (r * math.sin(a), r * math.cos(a), 1.0)]
+    arc = [(-math.sin(b), math.cos(b), 1.0), (0.0, 1.0 / math.cos(b), math.cos(b)), (math.sin(b), math.cos(b), 1.0)]
+    points, weights = [], []
+    for x, rad, wi in profile:
+        for cy, cz, wj in arc:
+            points.append([x, rad * cy, rad * cz])
+            weights.append(wi * wj)
+    write(
+        "rational-dome.json",
+        {
+            "type": "nurbs",
+            "degree": [2, 2],
+            "count": [3, 3],
+            "knots_u": [0, 0, 1, 1],
+            "knots_v": [0, 0, 1, 1],
+            "points": points,
+            "weights": weights,
+        },
+    )
+
+
+if __name__ == "__main__":
+    main()
