@@ -254,7 +254,7 @@ fn components(n: usize, hits: &[usize]) -> Vec<[f64; 4]> {
         }
         regions.push((size, b));
     }
-    regions.sort_by(|a, b| b.0.cmp(&a.0));
+    regions.sort_by_key(|r| std::cmp::Reverse(r.0));
     regions.into_iter().map(|(_, b)| b).collect()
 }
 

@@ -15,22 +15,44 @@ const GLYPHS: &[(char, [u8; 7])] = &[
     ('<', [0b00010, 0b00100, 0b01000, 0b10000, 0b01000, 0b00100, 0b00010]),
 ];
 
+/// An RGB image, row-major, 3 bytes a pixel.
+pub struct Image<'a> {
+    /// The pixels.
+    pub rgb: &'a mut [u8],
+    /// Width in pixels.
+    pub w: usize,
+    /// Height in pixels.
+    pub h: usize,
+}
+
+impl Image<'_> {
+    /// Sets one pixel (ignored outside the image).
+    pub fn set(&mut self, x: usize, y: usize, c: [u8; 3]) {
+        if x < self.w && y < self.h {
+            let i = (y * self.w + x) * 3;
+            self.rgb[i..i + 3].copy_from_slice(&c);
+        }
+    }
+
+    /// Fills a rectangle.
+    pub fn fill_rect(&mut self, x: usize, y: usize, rw: usize, rh: usize, c: [u8; 3]) {
+        for py in y..y + rh {
+            for px in x..x + rw {
+                self.set(px, py, c);
+            }
+        }
+    }
+}
+
 /// Draws `text` with its top left corner at (x, y), each font pixel `scale` x `scale`;
 /// returns the x just past the text. Unknown characters leave a blank.
-pub fn draw_text(rgb: &mut [u8], w: usize, h: usize, mut x: usize, y: usize, scale: usize, text: &str, c: [u8; 3]) -> usize {
+pub fn draw_text(img: &mut Image<'_>, mut x: usize, y: usize, scale: usize, text: &str, c: [u8; 3]) -> usize {
     for ch in text.chars() {
         if let Some((_, rows)) = GLYPHS.iter().find(|(g, _)| *g == ch) {
             for (r, bits) in rows.iter().enumerate() {
                 for col in 0..5 {
                     if bits & (1 << (4 - col)) != 0 {
-                        for dy in 0..scale {
-                            for dx in 0..scale {
-                                let (px, py) = (x + col * scale + dx, y + r * scale + dy);
-                                if px < w && py < h {
-                                    rgb[(py * w + px) * 3..(py * w + px) * 3 + 3].copy_from_slice(&c);
-                                }
-                            }
-                        }
+                        img.fill_rect(x + col * scale, y + r * scale, scale, scale, c);
                     }
                 }
             }

@@ -55,7 +55,7 @@ pub fn framing_points(result: &tpi_core::Discretisation) -> Vec<glam::DVec3> {
         hi = hi.max(s.point);
     }
     let finite = result.vertices.iter().copied().filter(|v| v.is_finite());
-    if !(lo.x <= hi.x) {
+    if !lo.is_finite() || !hi.is_finite() {
         return finite.collect();
     }
     let pad = DVec3::splat(0.25 * (hi - lo).length());

@@ -13,7 +13,7 @@ use std::collections::HashMap;
 use glam::{DVec2, DVec3};
 use tpi_core::Discretisation;
 
-use crate::font;
+use crate::font::{self, Image};
 use crate::palette::{side_class, side_colour, EDGE_COLOUR, FLAG_COLOUR};
 
 /// Default picture size.
@@ -42,7 +42,7 @@ pub fn render(result: &Discretisation, width: u32, height: u32) -> Vec<u8> {
         draw_mesh(&mut canvas, result, &camera, ss);
     }
     let mut rgb = canvas.downsample(ss, width as usize, height as usize);
-    legend(&mut rgb, width as usize, height as usize, result);
+    legend(&mut Image { rgb: &mut rgb, w: width as usize, h: height as usize }, result);
     rgb
 }
 
@@ -110,6 +110,9 @@ fn mix(a: [f32; 3], b: [u8; 3], t: f32) -> [f32; 3] {
     [lerp(a[0], b[0] as f32, t), lerp(a[1], b[1] as f32, t), lerp(a[2], b[2] as f32, t)]
 }
 
+/// A projected point: pixel x (right), pixel y (down), depth (larger is farther).
+type Screen = (f64, f64, f64);
+
 /// Orthographic camera: world -> (pixel x, pixel y, depth).
 struct Camera {
     centre: DVec3,
@@ -153,14 +156,14 @@ impl Camera {
     }
 
     /// Pixel x (right), pixel y (down), depth (larger is farther).
-    fn project(&self, p: DVec3) -> (f64, f64, f64) {
+    fn project(&self, p: DVec3) -> Screen {
         let d = p - self.centre;
         (self.offset.x + d.dot(self.right) * self.scale, self.offset.y - d.dot(self.up) * self.scale, d.dot(self.forward))
     }
 }
 
 fn draw_mesh(canvas: &mut Canvas, result: &Discretisation, cam: &Camera, ss: usize) {
-    let projected: Vec<(f64, f64, f64)> = result.vertices.iter().map(|&v| cam.project(v)).collect();
+    let projected: Vec<Screen> = result.vertices.iter().map(|&v| cam.project(v)).collect();
     let mut edges: HashMap<(u32, u32), bool> = HashMap::new();
     let mut lengths: Vec<f64> = Vec::new();
     for i in 0..result.facet_count() {
@@ -261,7 +264,7 @@ fn triangulate(points: &[DVec3], normal: DVec3) -> Vec<[usize; 3]> {
     out
 }
 
-fn fill_triangle(canvas: &mut Canvas, a: (f64, f64, f64), b: (f64, f64, f64), c: (f64, f64, f64), colour: [f32; 3]) {
+fn fill_triangle(canvas: &mut Canvas, a: Screen, b: Screen, c: Screen, colour: [f32; 3]) {
     let area = (b.0 - a.0) * (c.1 - a.1) - (b.1 - a.1) * (c.0 - a.0);
     if !area.is_finite() || area.abs() < 1e-12 {
         return;
@@ -294,7 +297,7 @@ fn fill_triangle(canvas: &mut Canvas, a: (f64, f64, f64), b: (f64, f64, f64), c:
 }
 
 /// The part of segment a-b inside the rectangle [lo, hi]^2 (Liang-Barsky), depth interpolated.
-fn clip_segment(a: (f64, f64, f64), b: (f64, f64, f64), lo: (f64, f64), hi: (f64, f64)) -> Option<((f64, f64, f64), (f64, f64, f64))> {
+fn clip_segment(a: Screen, b: Screen, lo: (f64, f64), hi: (f64, f64)) -> Option<(Screen, Screen)> {
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
     let (mut t0, mut t1) = (0.0f64, 1.0f64);
     for (p, q) in [(-dx, a.0 - lo.0), (dx, hi.0 - a.0), (-dy, a.1 - lo.1), (dy, hi.1 - a.1)] {
@@ -311,14 +314,14 @@ fn clip_segment(a: (f64, f64, f64), b: (f64, f64, f64), lo: (f64, f64), hi: (f64
             }
         }
     }
-    if !(t0 <= t1) {
+    if t0 > t1 || t0.is_nan() || t1.is_nan() {
         return None;
     }
     let at = |t: f64| (a.0 + t * dx, a.1 + t * dy, a.2 + t * (b.2 - a.2));
     Some((at(t0), at(t1)))
 }
 
-fn draw_line(canvas: &mut Canvas, a: (f64, f64, f64), b: (f64, f64, f64), radius: f64, bias: f32, kind: u8) {
+fn draw_line(canvas: &mut Canvas, a: Screen, b: Screen, radius: f64, bias: f32, kind: u8) {
     let pad = radius + 2.0;
     let Some((a, b)) = clip_segment(a, b, (-pad, -pad), (canvas.w as f64 + pad, canvas.h as f64 + pad)) else {
         return;
@@ -354,28 +357,20 @@ fn draw_line(canvas: &mut Canvas, a: (f64, f64, f64), b: (f64, f64, f64), radius
 }
 
 /// Swatches with side counts in the lower left corner (final resolution).
-fn legend(rgb: &mut [u8], w: usize, h: usize, result: &Discretisation) {
+fn legend(img: &mut Image<'_>, result: &Discretisation) {
     let mut classes: Vec<usize> = (0..result.facet_count()).map(|i| side_class(result.facet(i).len())).collect();
     classes.sort_unstable();
     classes.dedup();
-    let scale = if h >= 600 { 2 } else { 1 };
+    let scale = if img.h >= 600 { 2 } else { 1 };
     let box_size = 7 * scale + 4;
     let mut x = 12usize;
-    let y = h.saturating_sub(box_size + 12);
+    let y = img.h.saturating_sub(box_size + 12);
     for class in classes {
         let label = crate::palette::side_label(class);
-        fill_rect(rgb, w, h, x, y, box_size, box_size, [0x22, 0x22, 0x22]);
-        fill_rect(rgb, w, h, x + 1, y + 1, box_size - 2, box_size - 2, side_colour(class));
+        img.fill_rect(x, y, box_size, box_size, [0x22, 0x22, 0x22]);
+        img.fill_rect(x + 1, y + 1, box_size - 2, box_size - 2, side_colour(class));
         x += box_size + 4;
-        x = font::draw_text(rgb, w, h, x, y + 2, scale, &label, [0x22, 0x22, 0x22]) + 10;
-    }
-}
-
-fn fill_rect(rgb: &mut [u8], w: usize, h: usize, x: usize, y: usize, rw: usize, rh: usize, c: [u8; 3]) {
-    for py in y..(y + rh).min(h) {
-        for px in x..(x + rw).min(w) {
-            rgb[(py * w + px) * 3..(py * w + px) * 3 + 3].copy_from_slice(&c);
-        }
+        x = font::draw_text(img, x, y + 2, scale, &label, [0x22, 0x22, 0x22]) + 10;
     }
 }
 
