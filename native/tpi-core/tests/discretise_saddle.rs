@@ -1,0 +1,204 @@
+//! Acceptance: mixed and negative Gaussian curvature (egg-crate, hyperbolic paraboloid) run
+//! without panic or NaN, stay planar, and the report's validity counts and per-facet flags
+//! match an independent check (issue 3, item 7 and "Mixed curvature").
+//!
+//! The independent check follows the report's documented definitions (quality.rs module doc),
+//! written out again here:
+//! - a facet's 2D coordinates are taken in its tangent plane (own right-handed frame about
+//!   the seed normal Su x Sv);
+//! - simple: at least 3 vertices, positive (counter-clockwise) area, and no two non-adjacent
+//!   edges crossing properly;
+//! - convex: simple, and no right turn (a turn counts as right when its cross product is
+//!   below -1e-12 times the squared longest edge);
+//! - overlap: for every edge shared by exactly two facets f < g, projected into f's tangent
+//!   plane, the vertex centroids of f and g lie strictly on the same side of the edge's line
+//!   (one count per shared edge, both facets flagged);
+//! - the diagnostic flag marks every facet whose pattern point a diagnostic names.
+// NaN-safe negated comparisons are intended; index loops read better in geometry checks.
+#![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop, clippy::unnecessary_map_or)]
+
+mod common;
+
+use std::collections::BTreeMap;
+
+use common::*;
+use glam::{DVec2, DVec3};
+use tpi_core::quality::{FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OVERLAP};
+use tpi_core::{discretise, AnalyticSurface, Discretisation, DiscretiseOptions, Surface};
+
+const TOL: f64 = 1e-9;
+
+/// Own flags per facet and own overlap count.
+fn independent_flags(d: &Discretisation) -> (Vec<u8>, usize) {
+    let n = d.facet_count();
+    let mut flags = vec![0u8; n];
+    let project = |plane: usize, xs: &[DVec3]| -> Vec<DVec2> { to_2d(d.seeds[plane].point, d.seeds[plane].normal, xs) };
+    for i in 0..n {
+        let p = project(i, &facet_points(d, i));
+        if !is_simple(&p) {
+            flags[i] |= FLAG_NON_SIMPLE;
+        }
+        if !is_convex(&p) {
+            flags[i] |= FLAG_NON_CONVEX;
+        }
+    }
+    let mut edges: BTreeMap<(u32, u32), Vec<usize>> = BTreeMap::new();
+    for i in 0..n {
+        let l = d.facet(i);
+        for k in 0..l.len() {
+            let (a, b) = (l[k], l[(k + 1) % l.len()]);
+            edges.entry((a.min(b), a.max(b))).or_default().push(i);
+        }
+    }
+    let centroid = |i: usize| {
+        let pts = facet_points(d, i);
+        pts.iter().fold(DVec3::ZERO, |acc, &x| acc + x) / pts.len() as f64
+    };
+    let mut overlaps = 0;
+    for (&(a, b), fs) in &edges {
+        if fs.len() != 2 {
+            continue;
+        }
+        let (f, g) = (fs[0].min(fs[1]), fs[0].max(fs[1]));
+        let q = project(f, &[d.vertices[a as usize], d.vertices[b as usize], centroid(f), centroid(g)]);
+        let side_f = cross2(q[1] - q[0], q[2] - q[0]);
+        let side_g = cross2(q[1] - q[0], q[3] - q[0]);
+        if side_f * side_g > 0.0 {
+            overlaps += 1;
+            flags[f] |= FLAG_OVERLAP;
+            flags[g] |= FLAG_OVERLAP;
+        }
+    }
+    for diagnostic in &d.diagnostics {
+        for p in diagnostic.points() {
+            flags[p as usize] |= FLAG_DIAGNOSTIC;
+        }
+    }
+    (flags, overlaps)
+}
+
+/// Which part of the acceptance a run checks.
+#[derive(Clone, Copy, PartialEq)]
+enum Part {
+    /// No panic, no NaN, facet count, flags and counts against the independent check.
+    Flags,
+    /// Planarity <= 1e-9 relative on every facet.
+    Planarity,
+}
+
+fn check(name: &str, surface: &dyn Surface, pattern: &[[f64; 2]], part: Part) -> Vec<String> {
+    let mut fail = Vec::new();
+    let n = pattern.len();
+    let d = match discretise(surface, pattern, &DiscretiseOptions::default()) {
+        Ok(d) => d,
+        Err(e) => return vec![format!("{name}: discretise failed: {e}")],
+    };
+    let diag = seed_diagonal(&d);
+    if d.facet_count() != n {
+        fail.push(format!("{name}: {} facets for {n} points", d.facet_count()));
+        return fail;
+    }
+    if let Some(v) = d.vertices.iter().position(|v| !v.is_finite()) {
+        fail.push(format!("{name}: vertex {v} = {} is not finite", d.vertices[v]));
+    }
+    let (planarity, worst) = max_planarity(&d, diag);
+    if part == Part::Planarity {
+        if !(planarity <= TOL) {
+            let named: Vec<String> = d.diagnostics.iter().filter(|g| g.points().contains(&(worst as u32))).map(|g| format!("{g:?}")).collect();
+            let diagnosed: std::collections::BTreeSet<u32> = d.diagnostics.iter().flat_map(|g| g.points()).collect();
+            let off_plane: Vec<usize> = (0..n)
+                .filter(|&i| d.facet(i).iter().any(|&v| d.seeds[i].normal.dot(d.vertices[v as usize] - d.seeds[i].point).abs() > TOL * diag))
+                .collect();
+            let undiagnosed: Vec<usize> = off_plane.iter().copied().filter(|&i| !diagnosed.contains(&(i as u32))).collect();
+            fail.push(format!(
+                "{name}: planarity error {planarity:e} (relative) at facet {worst}, diagnostics naming it: {named:?}; {} facets above 1e-9, of which {} not named by any diagnostic",
+                off_plane.len(),
+                undiagnosed.len()
+            ));
+        }
+        return fail;
+    }
+    let Some(q) = d.quality.as_ref() else {
+        fail.push(format!("{name}: no quality report"));
+        return fail;
+    };
+    if !q.all_finite {
+        fail.push(format!("{name}: report says not all finite"));
+    }
+    let (flags, overlaps) = independent_flags(&d);
+    let count = |bit: u8| flags.iter().filter(|&&f| f & bit != 0).count();
+    let mine = (count(FLAG_NON_SIMPLE), count(FLAG_NON_CONVEX), overlaps, flags.iter().filter(|&&f| f != 0).count());
+    let theirs = (q.non_simple_facets, q.non_convex_facets, q.overlapping_pairs, q.flagged_facets);
+    println!(
+        "{name}: {} facets, non-simple {}, non-convex {}, overlapping pairs {}, flagged {} (report {theirs:?}), {} diagnostics, planarity {planarity:.2e}",
+        n,
+        mine.0,
+        mine.1,
+        mine.2,
+        mine.3,
+        d.diagnostics.len()
+    );
+    if mine != theirs {
+        fail.push(format!("{name}: (non-simple, non-convex, overlapping pairs, flagged) independent {mine:?}, report {theirs:?}"));
+    }
+    if d.facet_flags.len() != n {
+        fail.push(format!("{name}: {} facet flags", d.facet_flags.len()));
+    } else {
+        let differing: Vec<(usize, u8, u8)> = (0..n).filter(|&i| flags[i] != d.facet_flags[i]).map(|i| (i, flags[i], d.facet_flags[i])).collect();
+        if !differing.is_empty() {
+            fail.push(format!("{name}: {} facets with different flags (facet, independent, report): {:?}", differing.len(), &differing[..differing.len().min(8)]));
+        }
+    }
+    fail
+}
+
+fn egg_crate_cases() -> Vec<(String, AnalyticSurface, Vec<[f64; 2]>)> {
+    // Several bumps and dips: K > 0 around the extrema, K < 0 around the saddle points
+    // (multiples of pi), parabolic lines between.
+    let s = AnalyticSurface::egg_crate(0.6, [0.3, 6.0], [-0.4, 5.5]).unwrap();
+    let mut rng = Rng::new(41);
+    let mut cases: Vec<(String, AnalyticSurface, Vec<[f64; 2]>)> =
+        [150usize, 480, 1000].into_iter().map(|n| (format!("egg-crate n={n}"), s, uniform_pattern(&mut rng, n))).collect();
+    let s = AnalyticSurface::egg_crate(1.0, [-1.0, 4.0], [-1.0, 4.0]).unwrap();
+    let mut rng = Rng::new(42);
+    cases.push(("egg-crate jittered n=600".into(), s, jittered_pattern(&mut rng, 600)));
+    cases
+}
+
+fn hyperbolic_cases() -> Vec<(String, AnalyticSurface, Vec<[f64; 2]>)> {
+    let s = AnalyticSurface::hyperbolic_paraboloid(0.8, 0.5, [-1.0, 1.0], [-1.2, 0.9]).unwrap();
+    let mut rng = Rng::new(43);
+    let mut cases: Vec<(String, AnalyticSurface, Vec<[f64; 2]>)> =
+        [400usize, 900].into_iter().map(|n| (format!("hyperbolic paraboloid n={n}"), s, uniform_pattern(&mut rng, n))).collect();
+    let grid: Vec<[f64; 2]> = (0..15).flat_map(|j| (0..15).map(move |i| [(i as f64 + 0.5) / 15.0, (j as f64 + 0.5) / 15.0])).collect();
+    cases.push(("hyperbolic paraboloid grid 15x15".into(), s, grid));
+    cases
+}
+
+fn run(cases: Vec<(String, AnalyticSurface, Vec<[f64; 2]>)>, part: Part) {
+    let mut failures = Vec::new();
+    for (name, s, pattern) in &cases {
+        failures.extend(check(name, s, pattern, part));
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn egg_crate_flags_match_independent_check() {
+    run(egg_crate_cases(), Part::Flags);
+}
+
+#[test]
+fn egg_crate_planarity() {
+    run(egg_crate_cases(), Part::Planarity);
+}
+
+#[test]
+fn hyperbolic_paraboloid_flags_match_independent_check() {
+    run(hyperbolic_cases(), Part::Flags);
+}
+
+#[test]
+fn hyperbolic_paraboloid_planarity() {
+    run(hyperbolic_cases(), Part::Planarity);
+}
