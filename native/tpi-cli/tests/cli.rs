@@ -300,7 +300,7 @@ fn threads_and_no_report() {
     let (a, b, c) = (dir.join("a.json"), dir.join("b.json"), dir.join("c.json"));
     let s = sample("paraboloid.json");
     let one = ok(&["discretise", "--surface", &s, "--pattern", "poisson:0.05:seed=3", "--threads", "1", "--out", a.to_str().unwrap()]);
-    assert!(text(&one.stderr).contains("(1 threads)"));
+    assert!(text(&one.stderr).contains("(1 thread)"));
     ok(&["discretise", "--surface", &s, "--pattern", "poisson:0.05:seed=3", "--threads=2", "--out", b.to_str().unwrap()]);
     let (ra, rb) = (read_contract(&a), read_contract(&b));
     assert_eq!(ra.vertices, rb.vertices, "results differ between 1 and 2 threads");
