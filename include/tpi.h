@@ -141,7 +141,7 @@
  * Size in bytes of the first version of `TpiQualityReport`: the smallest `struct_size`
  * accepted.
  */
-#define TPI_QUALITY_REPORT_SIZE_V1 208
+#define TPI_QUALITY_REPORT_SIZE_V1 200
 
 /**
  * The result of every fallible call. The numbers are part of the ABI: they are never changed

@@ -29,7 +29,7 @@ pub const TPI_NO_POINT: u32 = 0xFFFF_FFFF;
 
 /// Size in bytes of the first version of `TpiQualityReport`: the smallest `struct_size`
 /// accepted.
-pub const TPI_QUALITY_REPORT_SIZE_V1: u32 = 208;
+pub const TPI_QUALITY_REPORT_SIZE_V1: u32 = 200;
 
 /// The result of a discretisation: an indexed polygon mesh with one planar facet per pattern
 /// point (facet i belongs to pattern point i), the dual triangulation, the quality report and

@@ -33,16 +33,13 @@ pub mod discrete_surface;
 
 use std::ffi::c_char;
 
+// Everything exported, flat at the crate root (as in the header).
 pub use boundary::{FfiError, FfiResult, TpiStatus};
-pub use discrete_surface::TpiDiscreteSurface;
-pub use discretisation::{
-    TpiDiagnosticEntry, TpiDiagnosticKind, TpiDiscretisation, TpiPlane, TpiQualityReport, TpiSeed,
-    TPI_FACET_DIAGNOSTIC, TPI_FACET_NON_CONVEX, TPI_FACET_NON_SIMPLE, TPI_FACET_OVERLAP, TPI_NO_POINT,
-    TPI_QUALITY_REPORT_SIZE_V1,
-};
-pub use options::{TpiOptions, TPI_OPTIONS_SIZE_V1};
-pub use pattern::TpiPattern;
-pub use surface::{TpiDomain, TpiSample, TpiSurface};
+pub use discrete_surface::*;
+pub use discretisation::*;
+pub use options::*;
+pub use pattern::*;
+pub use surface::*;
 
 use boundary::{copy_out_str, ffi_boundary, last_error, run_infallible};
 
