@@ -54,7 +54,7 @@ pub fn mesh_top_view(result: &Discretisation, title: &str) -> String {
         let _ = write!(out, "<polygon data-facet=\"{i}\" data-sides=\"{}\" fill=\"{}\"", facet.len(), hex(side_colour(facet.len())));
         if flagged(i) {
             any_flagged = true;
-            let _ = write!(out, " data-flags=\"{}\" stroke=\"{}\" stroke-width=\"2.5\"", result.facet_flags[i], hex(FLAG_COLOUR));
+            let _ = write!(out, " data-flags=\"{}\" stroke=\"{}\" stroke-width=\"1.6\"", result.facet_flags[i], hex(FLAG_COLOUR));
         }
         out.push_str(" points=\"");
         for (k, &vi) in facet.iter().enumerate() {
@@ -90,7 +90,7 @@ pub fn mesh_top_view(result: &Discretisation, title: &str) -> String {
         let n = (0..result.facet_count()).filter(|&i| flagged(i)).count();
         let _ = writeln!(
             out,
-            "<rect x=\"{lx:.1}\" y=\"{y:.1}\" width=\"16\" height=\"16\" fill=\"none\" stroke=\"{}\" stroke-width=\"2.5\"/><text x=\"{:.1}\" y=\"{:.1}\">flagged: {n}</text>",
+            "<rect x=\"{lx:.1}\" y=\"{y:.1}\" width=\"16\" height=\"16\" fill=\"none\" stroke=\"{}\" stroke-width=\"1.6\"/><text x=\"{:.1}\" y=\"{:.1}\">flagged: {n}</text>",
             hex(FLAG_COLOUR),
             lx + 22.0,
             y + 13.0
