@@ -1,0 +1,1015 @@
+/*
+ * The C test of the tpi C ABI: every exported function, the full happy path on a NURBS dome
+ * (compared with what the Rust API gives, from the generated tpi_fixture.h, and with an
+ * independent evaluation in C: de Casteljau and the paraboloid's closed-form curvatures), and
+ * every error path: NULL handles and buffers, too-small capacities, NaN input, invalid NURBS,
+ * indices out of range, use after a failed create.
+ *
+ * Built and run (also under valgrind) by tests/run_c_tests.sh.
+ */
+#include <pthread.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "tpi_fixture.h"
+
+/* ---------------------------------------------------------------- helpers */
+
+static TpiSurface *dome_scaled(double z_scale) {
+    double points[DOME_POINTS_LEN];
+    for (size_t k = 0; k < DOME_POINTS_LEN; k++) {
+        points[k] = dome_points[k] * (k % 3 == 2 ? z_scale : 1.0);
+    }
+    TpiSurface *surface = NULL;
+    CHECK_OK(tpi_surface_new_nurbs(DOME_DEGREE, DOME_DEGREE, DOME_COUNT, DOME_COUNT, dome_knots,
+                                   DOME_KNOTS_LEN, dome_knots, DOME_KNOTS_LEN, points,
+                                   DOME_POINTS_LEN, NULL, 0, &surface));
+    CHECK(surface != NULL);
+    return surface;
+}
+
+static TpiSurface *dome(void) { return dome_scaled(1.0); }
+
+static char *discretisation_json(const TpiDiscretisation *d) {
+    size_t needed = 0;
+    TpiStatus status = tpi_discretisation_json(d, 0, NULL, 0, &needed);
+    CHECK(status == TPI_STATUS_BUFFER_TOO_SMALL);
+    char *text = malloc(needed);
+    if (!text) return NULL;
+    size_t again = 0;
+    CHECK_OK(tpi_discretisation_json(d, 0, text, needed, &again));
+    CHECK(again == needed);
+    CHECK(strlen(text) + 1 == needed);
+    return text;
+}
+
+static TpiOptions default_options(void) {
+    TpiOptions options;
+    memset(&options, 0, sizeof options);
+    options.struct_size = sizeof options;
+    CHECK_OK(tpi_options_default(&options));
+    return options;
+}
+
+/* ---------------------------------------------- de Casteljau (independent) */
+
+typedef struct {
+    double x, y, z;
+} V3;
+
+static V3 v3_lerp(V3 a, V3 b, double t) {
+    V3 r = {a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t, a.z + (b.z - a.z) * t};
+    return r;
+}
+
+static V3 v3_sub(V3 a, V3 b) {
+    V3 r = {a.x - b.x, a.y - b.y, a.z - b.z};
+    return r;
+}
+
+static V3 v3_scale(V3 a, double s) {
+    V3 r = {a.x * s, a.y * s, a.z * s};
+    return r;
+}
+
+static V3 v3_cross(V3 a, V3 b) {
+    V3 r = {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+    return r;
+}
+
+static V3 v3_unit(V3 a) {
+    double l = sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+    return v3_scale(a, 1.0 / l);
+}
+
+/* Point and first derivative of the cubic Bezier curve b[0..3] at t. */
+static void cubic(const V3 b[4], double t, V3 *point, V3 *derivative) {
+    V3 b1[3], b2[2];
+    for (int i = 0; i < 3; i++) b1[i] = v3_lerp(b[i], b[i + 1], t);
+    for (int i = 0; i < 2; i++) b2[i] = v3_lerp(b1[i], b1[i + 1], t);
+    *point = v3_lerp(b2[0], b2[1], t);
+    *derivative = v3_scale(v3_sub(b2[1], b2[0]), 3.0);
+}
+
+/* Point, Su, Sv of the bicubic Bezier dome (control point (i, j) u-major) at (u, v). */
+static void dome_bezier(double u, double v, V3 *point, V3 *su, V3 *sv) {
+    V3 rows[4], rows_dv[4];
+    for (int i = 0; i < 4; i++) {
+        V3 column[4];
+        for (int j = 0; j < 4; j++) {
+            const double *p = &dome_points[3 * (i * 4 + j)];
+            V3 c = {p[0], p[1], p[2]};
+            column[j] = c;
+        }
+        cubic(column, v, &rows[i], &rows_dv[i]);
+    }
+    V3 unused;
+    cubic(rows, u, point, su);
+    cubic(rows_dv, u, sv, &unused);
+}
+
+/* ----------------------------------------------------------------- tests */
+
+static void test_version_and_status_names(void) {
+    char expected[64];
+    snprintf(expected, sizeof expected, "%d.%d.%d", TPI_VERSION_MAJOR, TPI_VERSION_MINOR,
+             TPI_VERSION_PATCH);
+    CHECK(tpi_version() != NULL);
+    CHECK(strcmp(tpi_version(), expected) == 0);
+    CHECK(strcmp(tpi_status_name(TPI_STATUS_OK), "TPI_STATUS_OK") == 0);
+    CHECK(strcmp(tpi_status_name(TPI_STATUS_NULL_POINTER), "TPI_STATUS_NULL_POINTER") == 0);
+    CHECK(strcmp(tpi_status_name(TPI_STATUS_PANIC), "TPI_STATUS_PANIC") == 0);
+    CHECK(strcmp(tpi_status_name(TPI_STATUS_UNAVAILABLE), "TPI_STATUS_UNAVAILABLE") == 0);
+    CHECK(strcmp(tpi_status_name(12345), "TPI_STATUS_UNKNOWN") == 0);
+    /* The numbers are part of the ABI. */
+    CHECK(TPI_STATUS_OK == 0 && TPI_STATUS_NULL_POINTER == 1 && TPI_STATUS_INVALID_ARGUMENT == 2);
+    CHECK(TPI_STATUS_BUFFER_TOO_SMALL == 3 && TPI_STATUS_INDEX_OUT_OF_RANGE == 4);
+    CHECK(TPI_STATUS_NON_FINITE == 5 && TPI_STATUS_INVALID_NURBS == 6);
+    CHECK(TPI_STATUS_INVALID_PATTERN == 7 && TPI_STATUS_DEGENERATE == 8 && TPI_STATUS_PANIC == 9);
+    CHECK(TPI_STATUS_OUT_OF_DOMAIN == 10 && TPI_STATUS_UNAVAILABLE == 11);
+    /* Struct sizes as the library sees them. */
+    CHECK(sizeof(TpiOptions) == TPI_OPTIONS_SIZE_V1);
+    CHECK(sizeof(TpiQualityReport) == TPI_QUALITY_REPORT_SIZE_V1);
+    CHECK(sizeof(TpiSample) == 120 && sizeof(TpiSeed) == 80 && sizeof(TpiPlane) == 48);
+    CHECK(sizeof(TpiDiagnosticEntry) == 12 && sizeof(TpiDomain) == 32);
+}
+
+static void test_last_error(void) {
+    TpiPattern *pattern = NULL;
+    CHECK_STATUS(tpi_pattern_new_from_spec(NULL, &pattern), TPI_STATUS_NULL_POINTER);
+    CHECK(pattern == NULL);
+    size_t needed = 0;
+    CHECK_STATUS(tpi_last_error_message(NULL, 0, &needed), TPI_STATUS_BUFFER_TOO_SMALL);
+    CHECK(needed == strlen("spec is NULL") + 1);
+    char small[4] = {'x', 'x', 'x', 'x'};
+    CHECK_STATUS(tpi_last_error_message(small, sizeof small, &needed), TPI_STATUS_BUFFER_TOO_SMALL);
+    CHECK(small[0] == 'x'); /* nothing written */
+    CHECK_STATUS(tpi_last_error_message(NULL, 5, &needed), TPI_STATUS_NULL_POINTER);
+    char message[64];
+    CHECK_OK(tpi_last_error_message(message, sizeof message, NULL));
+    CHECK(strcmp(message, "spec is NULL") == 0); /* reading it changed nothing */
+    /* A success clears it. */
+    CHECK_OK(tpi_pattern_new_grid(2, 2, &pattern));
+    CHECK_OK(tpi_last_error_message(message, sizeof message, &needed));
+    CHECK(message[0] == '\0' && needed == 1);
+    tpi_pattern_free(pattern);
+}
+
+static void test_options(void) {
+    TpiOptions options = default_options();
+    CHECK(options.struct_size == sizeof options);
+    CHECK(options.envelope_repair == 1 && options.quality_report == 1 && options.reserved == 0);
+    CHECK(options.far_vertex_factor == 8.0);
+    CHECK(options.weld_tolerance == 1e-10);
+    CHECK(options.flat_tolerance == 1e-6);
+    CHECK_STATUS(tpi_options_default(NULL), TPI_STATUS_NULL_POINTER);
+    TpiOptions unset;
+    memset(&unset, 0, sizeof unset);
+    CHECK_STATUS(tpi_options_default(&unset), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK(last_error_contains("struct_size"));
+    CHECK(unset.far_vertex_factor == 0.0); /* nothing written */
+}
+
+static void test_dome_sampling(void) {
+    TpiSurface *surface = dome();
+    TpiDomain domain;
+    CHECK_OK(tpi_surface_domain(surface, &domain));
+    CHECK(domain.u_min == 0.0 && domain.u_max == 1.0 && domain.v_min == 0.0 && domain.v_max == 1.0);
+
+    enum { N = SAMPLE_UV_LEN / 2 };
+    TpiSample samples[N];
+    CHECK_OK(tpi_surface_evaluate(surface, sample_uv, SAMPLE_UV_LEN, samples, N));
+    const double c = DOME_HEIGHT / 25.0; /* z = h - c (x^2 + y^2) */
+    for (size_t k = 0; k < N; k++) {
+        const double *e = &expected_samples[14 * k];
+        const TpiSample *s = &samples[k];
+        /* Same numbers as the Rust API. */
+        for (int a = 0; a < 3; a++) {
+            CHECK_CLOSE(s->point[a], e[a], 1e-14);
+            CHECK_CLOSE(s->normal[a], e[3 + a], 1e-14);
+            CHECK_CLOSE(s->d1[a], e[8 + a], 1e-12);
+            CHECK_CLOSE(s->d2[a], e[11 + a], 1e-12);
+        }
+        CHECK_CLOSE(s->curvatures[0], e[6], 1e-12);
+        CHECK_CLOSE(s->curvatures[1], e[7], 1e-12);
+        CHECK(s->regular == 1 && s->reserved == 0);
+
+        /* Independently: de Casteljau point and normal. */
+        V3 p, su, sv;
+        dome_bezier(sample_uv[2 * k], sample_uv[2 * k + 1], &p, &su, &sv);
+        V3 n = v3_unit(v3_cross(su, sv));
+        CHECK_CLOSE(s->point[0], p.x, 1e-12);
+        CHECK_CLOSE(s->point[1], p.y, 1e-12);
+        CHECK_CLOSE(s->point[2], p.z, 1e-12);
+        CHECK_CLOSE(s->normal[0], n.x, 1e-12);
+        CHECK_CLOSE(s->normal[1], n.y, 1e-12);
+        CHECK_CLOSE(s->normal[2], n.z, 1e-12);
+        /* The patch is exactly the paraboloid: z and the curvatures in closed form. */
+        double r2 = p.x * p.x + p.y * p.y;
+        CHECK_CLOSE(p.z, DOME_HEIGHT - c * r2, 1e-12);
+        double w = 1.0 + 4.0 * c * c * r2;
+        CHECK_CLOSE(s->curvatures[0], -2.0 * c / sqrt(w), 1e-9);
+        CHECK_CLOSE(s->curvatures[1], -2.0 * c / (w * sqrt(w)), 1e-9);
+    }
+    tpi_surface_free(surface);
+}
+
+static void test_rational_dome(void) {
+    /* Equal weights do not change a NURBS surface. */
+    double weights[DOME_COUNT * DOME_COUNT];
+    for (size_t k = 0; k < DOME_COUNT * DOME_COUNT; k++) weights[k] = 2.5;
+    TpiSurface *rational = NULL;
+    CHECK_OK(tpi_surface_new_nurbs(3, 3, 4, 4, dome_knots, 6, dome_knots, 6, dome_points,
+                                   DOME_POINTS_LEN, weights, DOME_COUNT * DOME_COUNT, &rational));
+    TpiSample samples[SAMPLE_UV_LEN / 2];
+    CHECK_OK(tpi_surface_evaluate(rational, sample_uv, SAMPLE_UV_LEN, samples, SAMPLE_UV_LEN / 2));
+    for (size_t k = 0; k < SAMPLE_UV_LEN / 2; k++) {
+        for (int a = 0; a < 3; a++) CHECK_CLOSE(samples[k].point[a], expected_samples[14 * k + a], 1e-12);
+    }
+    tpi_surface_free(rational);
+}
+
+static void test_nurbs_errors(void) {
+    TpiSurface *s = NULL;
+    const double bad_knots[5] = {0, 0, 0, 1, 1};
+    /* Wrong knot count: INVALID_NURBS, the handle stays NULL, and the message explains. */
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, bad_knots, 5, dome_knots, 6, dome_points,
+                                       DOME_POINTS_LEN, NULL, 0, &s),
+                 TPI_STATUS_INVALID_NURBS);
+    CHECK(s == NULL);
+    CHECK(last_error_contains("knots_u has 5 knots"));
+    /* Use after the failed create: every call on the NULL handle says so. */
+    TpiDomain domain;
+    CHECK_STATUS(tpi_surface_domain(s, &domain), TPI_STATUS_NULL_POINTER);
+    CHECK(last_error_contains("surface is NULL"));
+    TpiSample sample;
+    const double uv[2] = {0.5, 0.5};
+    CHECK_STATUS(tpi_surface_evaluate(s, uv, 2, &sample, 1), TPI_STATUS_NULL_POINTER);
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new_grid(4, 4, &pattern));
+    TpiDiscretisation *d = NULL;
+    CHECK_STATUS(tpi_discretise(s, pattern, NULL, &d), TPI_STATUS_NULL_POINTER);
+    CHECK(d == NULL);
+    TpiDiscreteSurface *ds = NULL;
+    CHECK_STATUS(tpi_discrete_surface_new(s, pattern, NULL, &ds), TPI_STATUS_NULL_POINTER);
+    CHECK(ds == NULL);
+    tpi_surface_free(s); /* NULL: nothing happens */
+    tpi_pattern_free(pattern);
+
+    /* A handle that was not NULL before a failed create becomes NULL. */
+    s = (TpiSurface *)&domain;
+    CHECK_STATUS(tpi_surface_new_nurbs(0, 3, 4, 4, dome_knots, 6, dome_knots, 6, dome_points,
+                                       DOME_POINTS_LEN, NULL, 0, &s),
+                 TPI_STATUS_INVALID_NURBS);
+    CHECK(s == NULL);
+    CHECK(last_error_contains("degree"));
+
+    double points[DOME_POINTS_LEN];
+    memcpy(points, dome_points, sizeof points);
+    points[7] = NAN;
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, dome_knots, 6, dome_knots, 6, points,
+                                       DOME_POINTS_LEN, NULL, 0, &s),
+                 TPI_STATUS_NON_FINITE);
+    CHECK(last_error_contains("points[2][1]"));
+    const double nan_knots[6] = {0, 0, 0, NAN, 1, 1};
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, dome_knots, 6, nan_knots, 6, dome_points,
+                                       DOME_POINTS_LEN, NULL, 0, &s),
+                 TPI_STATUS_NON_FINITE);
+    const double decreasing[6] = {0, 0, 0.5, 0.2, 1, 1};
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, decreasing, 6, dome_knots, 6, dome_points,
+                                       DOME_POINTS_LEN, NULL, 0, &s),
+                 TPI_STATUS_INVALID_NURBS);
+    /* Lengths. */
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, dome_knots, 6, dome_knots, 6, dome_points,
+                                       DOME_POINTS_LEN - 1, NULL, 0, &s),
+                 TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, dome_knots, 6, dome_knots, 6, dome_points,
+                                       DOME_POINTS_LEN - 3, NULL, 0, &s),
+                 TPI_STATUS_INVALID_NURBS);
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, dome_knots, 6, dome_knots, 6, NULL,
+                                       DOME_POINTS_LEN, NULL, 0, &s),
+                 TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, NULL, 6, dome_knots, 6, dome_points,
+                                       DOME_POINTS_LEN, NULL, 0, &s),
+                 TPI_STATUS_NULL_POINTER);
+    /* Weights. */
+    double weights[16];
+    for (int k = 0; k < 16; k++) weights[k] = 1.0;
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, dome_knots, 6, dome_knots, 6, dome_points,
+                                       DOME_POINTS_LEN, NULL, 16, &s),
+                 TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, dome_knots, 6, dome_knots, 6, dome_points,
+                                       DOME_POINTS_LEN, weights, 15, &s),
+                 TPI_STATUS_INVALID_NURBS);
+    weights[3] = -1.0;
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, dome_knots, 6, dome_knots, 6, dome_points,
+                                       DOME_POINTS_LEN, weights, 16, &s),
+                 TPI_STATUS_INVALID_NURBS);
+    CHECK(last_error_contains("weights[3]"));
+    weights[3] = NAN;
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, dome_knots, 6, dome_knots, 6, dome_points,
+                                       DOME_POINTS_LEN, weights, 16, &s),
+                 TPI_STATUS_NON_FINITE);
+    CHECK_STATUS(tpi_surface_new_nurbs(3, 3, 4, 4, dome_knots, 6, dome_knots, 6, dome_points,
+                                       DOME_POINTS_LEN, NULL, 0, NULL),
+                 TPI_STATUS_NULL_POINTER);
+    CHECK(s == NULL);
+}
+
+static void test_evaluate_errors(void) {
+    TpiSurface *surface = dome();
+    TpiSample samples[2];
+    memset(samples, 0xAB, sizeof samples);
+    const double nan_uv[4] = {0.5, 0.5, NAN, 0.5};
+    CHECK_STATUS(tpi_surface_evaluate(surface, nan_uv, 4, samples, 2), TPI_STATUS_NON_FINITE);
+    CHECK(last_error_contains("uv[2]"));
+    const double outside[4] = {0.5, 0.5, 0.5, 1.5};
+    CHECK_STATUS(tpi_surface_evaluate(surface, outside, 4, samples, 2), TPI_STATUS_OUT_OF_DOMAIN);
+    CHECK(last_error_contains("pair 1"));
+    CHECK_STATUS(tpi_surface_evaluate(surface, outside, 3, samples, 2), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_surface_evaluate(surface, nan_uv, 4, samples, 1), TPI_STATUS_BUFFER_TOO_SMALL);
+    CHECK_STATUS(tpi_surface_evaluate(surface, NULL, 4, samples, 2), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_surface_evaluate(surface, nan_uv, 2, NULL, 1), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_surface_domain(surface, NULL), TPI_STATUS_NULL_POINTER);
+    unsigned char untouched[sizeof samples];
+    memset(untouched, 0xAB, sizeof untouched);
+    CHECK(memcmp(samples, untouched, sizeof samples) == 0); /* failed calls wrote nothing */
+    CHECK_OK(tpi_surface_evaluate(surface, NULL, 0, NULL, 0)); /* nothing to do */
+    tpi_surface_free(surface);
+}
+
+typedef TpiStatus (*MakeSurface)(TpiSurface **out);
+static TpiStatus make_elliptic(TpiSurface **o) { return tpi_surface_new_elliptic_paraboloid(0.1, 0.2, -3, 3, -2, 2, o); }
+static TpiStatus make_hyperbolic(TpiSurface **o) { return tpi_surface_new_hyperbolic_paraboloid(0.1, 0.2, -3, 3, -2, 2, o); }
+static TpiStatus make_sphere(TpiSurface **o) { return tpi_surface_new_sphere_cap(10, -3, 3, -3, 3, o); }
+static TpiStatus make_sphere_square(TpiSurface **o) { return tpi_surface_new_sphere_cap_square(10, 4, o); }
+static TpiStatus make_ellipsoid(TpiSurface **o) { return tpi_surface_new_ellipsoid_cap(10, 8, 5, -3, 3, -3, 3, o); }
+static TpiStatus make_egg_crate(TpiSurface **o) { return tpi_surface_new_egg_crate(1, 0.3, 2.8, 0.3, 2.8, o); }
+static TpiStatus make_cylinder(TpiSurface **o) { return tpi_surface_new_cylinder(5, -3, 3, 0, 10, o); }
+static TpiStatus make_plane(TpiSurface **o) { return tpi_surface_new_plane(0.1, 0.2, 1, 0, 1, 0, 1, o); }
+
+static double height_elliptic(double x, double y) { return 0.1 * x * x + 0.2 * y * y; }
+static double height_hyperbolic(double x, double y) { return 0.1 * x * x - 0.2 * y * y; }
+static double height_sphere(double x, double y) { return sqrt(100 - x * x - y * y); }
+static double height_ellipsoid(double x, double y) { return 5 * sqrt(1 - x * x / 100 - y * y / 64); }
+static double height_egg_crate(double x, double y) { return sin(x) * sin(y); }
+static double height_cylinder(double x, double y) { (void)y; return sqrt(25 - x * x); }
+static double height_plane(double x, double y) { return 0.1 * x + 0.2 * y + 1; }
+
+static void test_analytic_surfaces(void) {
+    struct {
+        MakeSurface make;
+        double (*height)(double, double);
+        TpiStatus discretised;
+    } cases[] = {
+        {make_elliptic, height_elliptic, TPI_STATUS_OK},
+        {make_hyperbolic, height_hyperbolic, TPI_STATUS_OK},
+        {make_sphere, height_sphere, TPI_STATUS_OK},
+        {make_sphere_square, height_sphere, TPI_STATUS_OK},
+        {make_ellipsoid, height_ellipsoid, TPI_STATUS_OK},
+        {make_egg_crate, height_egg_crate, TPI_STATUS_OK},
+        {make_cylinder, height_cylinder, TPI_STATUS_DEGENERATE},
+        {make_plane, height_plane, TPI_STATUS_DEGENERATE},
+    };
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new_hex(6, 6, &pattern));
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        TpiSurface *s = NULL;
+        CHECK_OK(cases[k].make(&s));
+        TpiDomain d;
+        CHECK_OK(tpi_surface_domain(s, &d));
+        double uv[2] = {0.3 * d.u_min + 0.7 * d.u_max, 0.6 * d.v_min + 0.4 * d.v_max};
+        TpiSample sample;
+        CHECK_OK(tpi_surface_evaluate(s, uv, 2, &sample, 1));
+        CHECK_CLOSE(sample.point[0], uv[0], 1e-15);
+        CHECK_CLOSE(sample.point[1], uv[1], 1e-15);
+        CHECK_CLOSE(sample.point[2], cases[k].height(uv[0], uv[1]), 1e-13);
+        TpiDiscretisation *mesh = NULL;
+        CHECK_STATUS(tpi_discretise(s, pattern, NULL, &mesh), cases[k].discretised);
+        CHECK((mesh != NULL) == (cases[k].discretised == TPI_STATUS_OK));
+        tpi_discretisation_free(mesh);
+        tpi_surface_free(s);
+    }
+    tpi_pattern_free(pattern);
+
+    TpiSurface *s = NULL;
+    CHECK_STATUS(tpi_surface_new_elliptic_paraboloid(1, -1, 0, 1, 0, 1, &s), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_surface_new_hyperbolic_paraboloid(0, 1, 0, 1, 0, 1, &s), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_surface_new_sphere_cap(1, -3, 3, -3, 3, &s), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_surface_new_sphere_cap_square(10, -1, &s), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_surface_new_ellipsoid_cap(-1, 1, 1, 0, 0.1, 0, 0.1, &s), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_surface_new_egg_crate(NAN, 0, 1, 0, 1, &s), TPI_STATUS_NON_FINITE);
+    CHECK_STATUS(tpi_surface_new_cylinder(1, -2, 2, 0, 1, &s), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_surface_new_plane(0, 0, 0, 1, 0, 0, 1, &s), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_surface_new_plane(0, 0, INFINITY, 0, 1, 0, 1, &s), TPI_STATUS_NON_FINITE);
+    CHECK_STATUS(tpi_surface_new_sphere_cap(10, -3, 3, -3, 3, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK(s == NULL);
+}
+
+static size_t pattern_size(const TpiPattern *p) {
+    size_t n = 0;
+    CHECK_OK(tpi_pattern_point_count(p, &n));
+    return n;
+}
+
+static void test_patterns(void) {
+    TpiPattern *p = NULL;
+    CHECK_OK(tpi_pattern_new_grid(4, 3, &p));
+    CHECK(pattern_size(p) == 12);
+    double points[24];
+    size_t needed = 0;
+    CHECK_OK(tpi_pattern_points(p, points, 24, &needed));
+    CHECK(needed == 24);
+    CHECK(points[0] == 0.125 && points[1] == 1.0 / 6.0); /* cell centres, u-major */
+    CHECK(points[2] == 0.125 && points[3] == 0.5);
+    CHECK_STATUS(tpi_pattern_points(p, points, 23, &needed), TPI_STATUS_BUFFER_TOO_SMALL);
+    CHECK(needed == 24);
+    CHECK_STATUS(tpi_pattern_points(NULL, points, 24, &needed), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_pattern_point_count(p, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_pattern_point_count(NULL, &needed), TPI_STATUS_NULL_POINTER);
+    tpi_pattern_free(p);
+
+    CHECK_OK(tpi_pattern_new_hex(DOME_HEX_N, DOME_HEX_N, &p));
+    double hex[DOME_PATTERN_LEN];
+    CHECK_OK(tpi_pattern_points(p, hex, DOME_PATTERN_LEN, NULL));
+    CHECK(memcmp(hex, dome_pattern, sizeof hex) == 0);
+    tpi_pattern_free(p);
+
+    CHECK_OK(tpi_pattern_new_jitter(5, 5, 0.4, 7, &p));
+    CHECK(pattern_size(p) == 25);
+    tpi_pattern_free(p);
+    CHECK_OK(tpi_pattern_new_random(30, 3, &p));
+    CHECK(pattern_size(p) == 30);
+    tpi_pattern_free(p);
+    CHECK_OK(tpi_pattern_new_poisson(0.1, 5, &p));
+    CHECK(pattern_size(p) > 20);
+    tpi_pattern_free(p);
+    CHECK_OK(tpi_pattern_new_from_spec("hex:spacing=0.25", &p));
+    CHECK(pattern_size(p) == 4 * 5);
+    tpi_pattern_free(p);
+    p = NULL;
+
+    CHECK_STATUS(tpi_pattern_new_grid(0, 4, &p), TPI_STATUS_INVALID_PATTERN);
+    CHECK_STATUS(tpi_pattern_new_hex(4, 0, &p), TPI_STATUS_INVALID_PATTERN);
+    CHECK_STATUS(tpi_pattern_new_jitter(4, 4, 2.0, 0, &p), TPI_STATUS_INVALID_PATTERN);
+    CHECK_STATUS(tpi_pattern_new_random(0, 0, &p), TPI_STATUS_INVALID_PATTERN);
+    CHECK_STATUS(tpi_pattern_new_poisson(NAN, 0, &p), TPI_STATUS_INVALID_PATTERN);
+    CHECK_STATUS(tpi_pattern_new_from_spec("hexagon:4x4", &p), TPI_STATUS_INVALID_PATTERN);
+    CHECK(last_error_contains("unknown generator kind"));
+    CHECK_STATUS(tpi_pattern_new_grid(3, 3, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK(p == NULL);
+
+    const double uv[6] = {0.1, 0.2, 0.3, 0.4, 0.5, 0.6};
+    CHECK_OK(tpi_pattern_new(uv, 6, &p));
+    CHECK(pattern_size(p) == 3);
+    tpi_pattern_free(p);
+    p = NULL;
+    const double nan_uv[6] = {0.1, 0.2, NAN, 0.4, 0.5, 0.6};
+    CHECK_STATUS(tpi_pattern_new(nan_uv, 6, &p), TPI_STATUS_NON_FINITE);
+    CHECK(last_error_contains("pattern point 1"));
+    const double outside[6] = {0.1, 0.2, 0.3, 1.4, 0.5, 0.6};
+    CHECK_STATUS(tpi_pattern_new(outside, 6, &p), TPI_STATUS_INVALID_PATTERN);
+    const double duplicate[6] = {0.1, 0.2, 0.3, 0.4, 0.1, 0.2};
+    CHECK_STATUS(tpi_pattern_new(duplicate, 6, &p), TPI_STATUS_INVALID_PATTERN);
+    CHECK(last_error_contains("duplicates"));
+    CHECK_STATUS(tpi_pattern_new(uv, 5, &p), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_pattern_new(NULL, 6, &p), TPI_STATUS_NULL_POINTER);
+    CHECK(p == NULL);
+    /* A pattern too small to discretise is still a pattern. */
+    CHECK_OK(tpi_pattern_new(uv, 4, &p));
+    TpiSurface *s = dome();
+    TpiDiscretisation *d = NULL;
+    CHECK_STATUS(tpi_discretise(s, p, NULL, &d), TPI_STATUS_INVALID_PATTERN);
+    CHECK(last_error_contains("at least 3"));
+    CHECK(d == NULL);
+    tpi_surface_free(s);
+    tpi_pattern_free(p);
+}
+
+/* Checks the copy-out error paths of a discretisation getter of element type T. */
+#define CHECK_COPY_OUT(getter, d, T, expected_len)                                                 \
+    do {                                                                                           \
+        size_t needed_ = 777;                                                                      \
+        CHECK_STATUS(getter(NULL, NULL, 0, &needed_), TPI_STATUS_NULL_POINTER);                    \
+        CHECK_STATUS(getter((d), NULL, 1, &needed_), TPI_STATUS_NULL_POINTER);                     \
+        needed_ = 777;                                                                             \
+        CHECK_STATUS(getter((d), NULL, 0, &needed_),                                               \
+                     (expected_len) > 0 ? TPI_STATUS_BUFFER_TOO_SMALL : TPI_STATUS_OK);            \
+        CHECK(needed_ == (size_t)(expected_len));                                                  \
+        if ((expected_len) > 0) {                                                                  \
+            size_t bytes_ = (expected_len) * sizeof(T);                                            \
+            T *buf_ = malloc(bytes_);                                                              \
+            unsigned char *ref_ = malloc(bytes_);                                                  \
+            if (buf_ && ref_) {                                                                    \
+                memset(buf_, 0xAB, bytes_);                                                        \
+                memset(ref_, 0xAB, bytes_);                                                        \
+                needed_ = 0;                                                                       \
+                CHECK_STATUS(getter((d), buf_, (expected_len) - 1, &needed_),                      \
+                             TPI_STATUS_BUFFER_TOO_SMALL);                                         \
+                CHECK(needed_ == (size_t)(expected_len));                                          \
+                CHECK(memcmp(buf_, ref_, bytes_) == 0);                                            \
+                CHECK_OK(getter((d), buf_, (expected_len), NULL));                                 \
+            }                                                                                      \
+            free(buf_);                                                                            \
+            free(ref_);                                                                            \
+        }                                                                                          \
+    } while (0)
+
+static void test_dome_discretisation(void) {
+    TpiSurface *surface = dome();
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new_from_spec(DOME_PATTERN_SPEC, &pattern));
+    TpiOptions options = default_options();
+    TpiDiscretisation *d = NULL;
+    CHECK_OK(tpi_discretise(surface, pattern, &options, &d));
+    CHECK(d != NULL);
+    /* The result does not refer to its inputs. */
+    tpi_surface_free(surface);
+    tpi_pattern_free(pattern);
+
+    size_t facets = 0, vertex_count = 0;
+    CHECK_OK(tpi_discretisation_facet_count(d, &facets));
+    CHECK_OK(tpi_discretisation_vertex_count(d, &vertex_count));
+    CHECK(facets == EXPECTED_FACET_COUNT);
+    CHECK(vertex_count == EXPECTED_VERTEX_COUNT);
+
+    /* Every array equals what the Rust API gives. */
+    double vertices[EXPECTED_VERTICES_LEN];
+    size_t needed = 0;
+    CHECK_OK(tpi_discretisation_vertices(d, vertices, EXPECTED_VERTICES_LEN, &needed));
+    CHECK(needed == EXPECTED_VERTICES_LEN);
+    CHECK(memcmp(vertices, expected_vertices, sizeof vertices) == 0);
+    uint32_t sizes[EXPECTED_FACET_SIZES_LEN];
+    CHECK_OK(tpi_discretisation_facet_sizes(d, sizes, EXPECTED_FACET_SIZES_LEN, &needed));
+    CHECK(memcmp(sizes, expected_facet_sizes, sizeof sizes) == 0);
+    uint32_t indices[EXPECTED_FACET_INDICES_LEN];
+    CHECK_OK(tpi_discretisation_facet_indices(d, indices, EXPECTED_FACET_INDICES_LEN, &needed));
+    CHECK(needed == EXPECTED_FACET_INDICES_LEN);
+    CHECK(memcmp(indices, expected_facet_indices, sizeof indices) == 0);
+    uint8_t flags[EXPECTED_FACET_FLAGS_LEN];
+    CHECK_OK(tpi_discretisation_facet_flags(d, flags, EXPECTED_FACET_FLAGS_LEN, &needed));
+    CHECK(memcmp(flags, expected_facet_flags, sizeof flags) == 0);
+    TpiSeed seeds[EXPECTED_FACET_COUNT];
+    CHECK_OK(tpi_discretisation_seeds(d, seeds, EXPECTED_FACET_COUNT, &needed));
+    CHECK(needed == EXPECTED_FACET_COUNT);
+    for (size_t i = 0; i < EXPECTED_FACET_COUNT; i++) {
+        CHECK(memcmp(&seeds[i], &expected_seeds[10 * i], sizeof(TpiSeed)) == 0);
+        CHECK(seeds[i].uv[0] == dome_pattern[2 * i] && seeds[i].uv[1] == dome_pattern[2 * i + 1]);
+    }
+    TpiPlane planes[EXPECTED_FACET_COUNT];
+    CHECK_OK(tpi_discretisation_planes(d, planes, EXPECTED_FACET_COUNT, &needed));
+    uint32_t pairs[EXPECTED_NEIGHBOUR_PAIRS_LEN];
+    CHECK_OK(tpi_discretisation_neighbour_pairs(d, pairs, EXPECTED_NEIGHBOUR_PAIRS_LEN, &needed));
+    CHECK(needed == EXPECTED_NEIGHBOUR_PAIRS_LEN);
+    CHECK(memcmp(pairs, expected_neighbour_pairs, sizeof pairs) == 0);
+    uint32_t triangles[EXPECTED_DUAL_TRIANGLES_LEN];
+    CHECK_OK(tpi_discretisation_dual_triangles(d, triangles, EXPECTED_DUAL_TRIANGLES_LEN, &needed));
+    CHECK(needed == EXPECTED_DUAL_TRIANGLES_LEN);
+    CHECK(memcmp(triangles, expected_dual_triangles, sizeof triangles) == 0);
+
+    /* Independently: every facet is planar (its vertices lie in its tangent plane), its plane is
+     * its seed's, and every neighbour pair is an edge of a dual triangle. */
+    size_t offset = 0;
+    double worst = 0.0;
+    for (size_t i = 0; i < EXPECTED_FACET_COUNT; i++) {
+        CHECK(memcmp(planes[i].point, seeds[i].point, sizeof planes[i].point) == 0);
+        CHECK(memcmp(planes[i].normal, seeds[i].normal, sizeof planes[i].normal) == 0);
+        CHECK(sizes[i] >= 3);
+        for (uint32_t k = 0; k < sizes[i]; k++) {
+            const double *x = &vertices[3 * indices[offset + k]];
+            double distance = 0.0;
+            for (int a = 0; a < 3; a++) distance += planes[i].normal[a] * (x[a] - planes[i].point[a]);
+            worst = fmax(worst, fabs(distance));
+        }
+        offset += sizes[i];
+    }
+    CHECK(offset == EXPECTED_FACET_INDICES_LEN);
+    CHECK(worst <= 1e-9 * EXPECTED_BOUNDING_BOX_DIAGONAL);
+    for (size_t k = 0; k < EXPECTED_NEIGHBOUR_PAIRS_LEN; k += 2) {
+        CHECK(pairs[k] < pairs[k + 1] && pairs[k + 1] < EXPECTED_FACET_COUNT);
+    }
+
+    /* The quality report as a struct and as JSON. */
+    TpiQualityReport quality;
+    memset(&quality, 0, sizeof quality);
+    quality.struct_size = sizeof quality;
+    CHECK_OK(tpi_discretisation_quality(d, &quality));
+    CHECK(quality.struct_size == sizeof quality);
+    CHECK(quality.facet_count == EXPECTED_FACET_COUNT);
+    CHECK(quality.vertex_count == EXPECTED_VERTEX_COUNT);
+    CHECK(quality.edge_count == EXPECTED_EDGE_COUNT);
+    CHECK(quality.euler_characteristic == EXPECTED_EULER_CHARACTERISTIC);
+    CHECK(quality.diagnostic_count == EXPECTED_DIAGNOSTIC_COUNT);
+    CHECK(quality.max_deviation == EXPECTED_MAX_DEVIATION);
+    CHECK(quality.max_planarity_error == EXPECTED_MAX_PLANARITY_ERROR);
+    CHECK(quality.bounding_box_diagonal == EXPECTED_BOUNDING_BOX_DIAGONAL);
+    CHECK(quality.all_finite == 1);
+    TpiQualityReport too_small;
+    memset(&too_small, 0, sizeof too_small);
+    too_small.struct_size = 8;
+    CHECK_STATUS(tpi_discretisation_quality(d, &too_small), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_discretisation_quality(d, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discretisation_quality(NULL, &quality), TPI_STATUS_NULL_POINTER);
+
+    char quality_json[sizeof expected_quality_json];
+    CHECK_OK(tpi_discretisation_quality_json(d, quality_json, sizeof quality_json, &needed));
+    CHECK(needed == sizeof expected_quality_json);
+    CHECK(strcmp(quality_json, expected_quality_json) == 0);
+
+    size_t diagnostics = 99;
+    CHECK_OK(tpi_discretisation_diagnostic_count(d, &diagnostics));
+    CHECK(diagnostics == EXPECTED_DIAGNOSTIC_COUNT);
+    char diagnostics_json[sizeof expected_diagnostics_json];
+    CHECK_OK(tpi_discretisation_diagnostics_json(d, diagnostics_json, sizeof diagnostics_json, NULL));
+    CHECK(strcmp(diagnostics_json, expected_diagnostics_json) == 0);
+
+    char *json = discretisation_json(d);
+    CHECK(json && strcmp(json, expected_json) == 0);
+    free(json);
+    size_t with_timings = 0;
+    CHECK_STATUS(tpi_discretisation_json(d, 1, NULL, 0, &with_timings), TPI_STATUS_BUFFER_TOO_SMALL);
+    char *timed = malloc(with_timings);
+    if (timed) {
+        CHECK_OK(tpi_discretisation_json(d, 1, timed, with_timings, NULL));
+        CHECK(strstr(timed, "\"timings_ms\"") != NULL);
+        free(timed);
+    }
+    CHECK_STATUS(tpi_discretisation_json(d, 2, NULL, 0, &needed), TPI_STATUS_INVALID_ARGUMENT);
+
+    /* Copy-out error paths of every getter. */
+    CHECK_COPY_OUT(tpi_discretisation_vertices, d, double, EXPECTED_VERTICES_LEN);
+    CHECK_COPY_OUT(tpi_discretisation_facet_sizes, d, uint32_t, EXPECTED_FACET_SIZES_LEN);
+    CHECK_COPY_OUT(tpi_discretisation_facet_indices, d, uint32_t, EXPECTED_FACET_INDICES_LEN);
+    CHECK_COPY_OUT(tpi_discretisation_facet_flags, d, uint8_t, EXPECTED_FACET_FLAGS_LEN);
+    CHECK_COPY_OUT(tpi_discretisation_seeds, d, TpiSeed, EXPECTED_FACET_COUNT);
+    CHECK_COPY_OUT(tpi_discretisation_planes, d, TpiPlane, EXPECTED_FACET_COUNT);
+    CHECK_COPY_OUT(tpi_discretisation_neighbour_pairs, d, uint32_t, EXPECTED_NEIGHBOUR_PAIRS_LEN);
+    CHECK_COPY_OUT(tpi_discretisation_dual_triangles, d, uint32_t, EXPECTED_DUAL_TRIANGLES_LEN);
+    CHECK_COPY_OUT(tpi_discretisation_diagnostic_entries, d, TpiDiagnosticEntry, 0);
+    CHECK_COPY_OUT(tpi_discretisation_quality_json, d, char, sizeof expected_quality_json);
+    CHECK_COPY_OUT(tpi_discretisation_diagnostics_json, d, char, sizeof expected_diagnostics_json);
+    CHECK_STATUS(tpi_discretisation_facet_count(NULL, &needed), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discretisation_facet_count(d, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discretisation_vertex_count(NULL, &needed), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discretisation_diagnostic_count(NULL, &needed), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discretisation_json(NULL, 0, NULL, 0, &needed), TPI_STATUS_NULL_POINTER);
+    tpi_discretisation_free(d);
+}
+
+static void test_options_in_use(void) {
+    TpiSurface *surface = dome();
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new_hex(6, 6, &pattern));
+    TpiOptions options = default_options();
+    options.quality_report = 0;
+    TpiDiscretisation *d = NULL;
+    CHECK_OK(tpi_discretise(surface, pattern, &options, &d));
+    TpiQualityReport quality;
+    memset(&quality, 0, sizeof quality);
+    quality.struct_size = sizeof quality;
+    CHECK_STATUS(tpi_discretisation_quality(d, &quality), TPI_STATUS_UNAVAILABLE);
+    size_t needed = 5;
+    CHECK_STATUS(tpi_discretisation_quality_json(d, NULL, 0, &needed), TPI_STATUS_UNAVAILABLE);
+    CHECK_OK(tpi_discretisation_facet_flags(d, NULL, 0, &needed));
+    CHECK(needed == 0);
+    tpi_discretisation_free(d);
+    d = NULL;
+
+    options = default_options();
+    options.far_vertex_factor = NAN;
+    CHECK_STATUS(tpi_discretise(surface, pattern, &options, &d), TPI_STATUS_NON_FINITE);
+    CHECK(last_error_contains("far_vertex_factor"));
+    options = default_options();
+    options.envelope_repair = 7;
+    CHECK_STATUS(tpi_discretise(surface, pattern, &options, &d), TPI_STATUS_INVALID_ARGUMENT);
+    options = default_options();
+    options.struct_size = 0;
+    CHECK_STATUS(tpi_discretise(surface, pattern, &options, &d), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_discretise(surface, NULL, NULL, &d), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discretise(surface, pattern, NULL, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK(d == NULL);
+    tpi_pattern_free(pattern);
+    tpi_surface_free(surface);
+}
+
+static void test_diagnostics(void) {
+    /* The egg-crate z = sin x sin y has K = -cos(x + y) cos(x - y): over [-pi/2, pi/2]^2 the
+     * 8 x 8 grid points with i + j = 3 or 11 lie on x + y = -pi/2 or pi/2, and those with
+     * i - j = 4 or -4 on x - y = pi/2 or -pi/2, where it is flat: 16 flat points. */
+    const double half_pi = 1.5707963267948966;
+    TpiSurface *surface = NULL;
+    CHECK_OK(tpi_surface_new_egg_crate(1.0, -half_pi, half_pi, -half_pi, half_pi, &surface));
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new_grid(8, 8, &pattern));
+    TpiDiscretisation *d = NULL;
+    CHECK_OK(tpi_discretise(surface, pattern, NULL, &d));
+    size_t count = 0, entries_len = 0, facets = 0;
+    CHECK_OK(tpi_discretisation_diagnostic_count(d, &count));
+    CHECK_OK(tpi_discretisation_facet_count(d, &facets));
+    CHECK(count > 0);
+    TpiStatus status = tpi_discretisation_diagnostic_entries(d, NULL, 0, &entries_len);
+    CHECK(status == TPI_STATUS_BUFFER_TOO_SMALL);
+    CHECK(entries_len >= count);
+    TpiDiagnosticEntry *entries = malloc(entries_len * sizeof *entries);
+    uint8_t *flags = malloc(facets);
+    size_t json_len = 0;
+    CHECK_STATUS(tpi_discretisation_diagnostics_json(d, NULL, 0, &json_len), TPI_STATUS_BUFFER_TOO_SMALL);
+    char *json = malloc(json_len);
+    if (entries && flags && json) {
+        CHECK_OK(tpi_discretisation_diagnostic_entries(d, entries, entries_len, NULL));
+        CHECK_OK(tpi_discretisation_facet_flags(d, flags, facets, NULL));
+        CHECK_OK(tpi_discretisation_diagnostics_json(d, json, json_len, NULL));
+        size_t kinds = 0;
+        for (const char *at = json; (at = strstr(at, "\"kind\"")) != NULL; at++) kinds++;
+        CHECK(kinds == count);
+        uint32_t previous = 0;
+        for (size_t k = 0; k < entries_len; k++) {
+            CHECK(entries[k].kind >= TPI_DIAGNOSTIC_KIND_ILL_CONDITIONED_VERTEX);
+            CHECK(entries[k].kind <= TPI_DIAGNOSTIC_KIND_FLAT_POINT);
+            CHECK(entries[k].diagnostic < count && entries[k].diagnostic >= previous);
+            previous = entries[k].diagnostic;
+            if (entries[k].point != TPI_NO_POINT) {
+                CHECK(entries[k].point < facets);
+                CHECK(entries[k].point < facets && (flags[entries[k].point] & TPI_FACET_DIAGNOSTIC));
+            } else {
+                CHECK(entries[k].kind == TPI_DIAGNOSTIC_KIND_CORNER_CLAIMS);
+            }
+        }
+        CHECK(strstr(json, "\"flat_point\"") != NULL);
+        size_t flat = 0;
+        for (size_t k = 0; k < entries_len; k++) {
+            if (entries[k].kind == TPI_DIAGNOSTIC_KIND_FLAT_POINT) {
+                flat++;
+                uint32_t i = entries[k].point / 8, j = entries[k].point % 8;
+                CHECK(i + j == 3 || i + j == 11 || i == j + 4 || j == i + 4);
+            }
+        }
+        CHECK(flat == 16);
+    }
+    free(entries);
+    free(flags);
+    free(json);
+    tpi_discretisation_free(d);
+    tpi_pattern_free(pattern);
+    tpi_surface_free(surface);
+}
+
+static size_t ds_points(const TpiDiscreteSurface *ds, double **points) {
+    size_t needed = 0;
+    tpi_discrete_surface_points(ds, NULL, 0, &needed);
+    *points = malloc(needed * sizeof **points);
+    if (*points) CHECK_OK(tpi_discrete_surface_points(ds, *points, needed, NULL));
+    return needed;
+}
+
+/* The discrete surface's mesh equals a discretisation from scratch of its current inputs. */
+static void check_against_scratch(const TpiDiscreteSurface *ds, const TpiSurface *surface) {
+    double *points = NULL;
+    size_t len = ds_points(ds, &points);
+    size_t count = 0;
+    CHECK_OK(tpi_discrete_surface_point_count(ds, &count));
+    CHECK(len == 2 * count);
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new(points, len, &pattern));
+    TpiDiscretisation *scratch = NULL, *mesh = NULL;
+    CHECK_OK(tpi_discretise(surface, pattern, NULL, &scratch));
+    CHECK_OK(tpi_discrete_surface_mesh(ds, &mesh));
+    char *a = discretisation_json(mesh);
+    char *b = discretisation_json(scratch);
+    CHECK(a && b && strcmp(a, b) == 0);
+    size_t facets = 0;
+    CHECK_OK(tpi_discretisation_facet_count(mesh, &facets));
+    CHECK(facets == count);
+    free(a);
+    free(b);
+    free(points);
+    tpi_discretisation_free(mesh);
+    tpi_discretisation_free(scratch);
+    tpi_pattern_free(pattern);
+}
+
+static size_t pending(const TpiDiscreteSurface *ds) {
+    size_t n = 99;
+    CHECK_OK(tpi_discrete_surface_pending_edits(ds, &n));
+    return n;
+}
+
+static void test_discrete_surface(void) {
+    TpiSurface *surface = dome();
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new_hex(7, 7, &pattern));
+    TpiDiscreteSurface *ds = NULL;
+    CHECK_OK(tpi_discrete_surface_new(surface, pattern, NULL, &ds));
+    tpi_pattern_free(pattern); /* the discrete surface keeps its own copy */
+    CHECK(pending(ds) == 0);
+    check_against_scratch(ds, surface);
+
+    /* Move: pending until recompute. */
+    TpiDiscretisation *before = NULL;
+    CHECK_OK(tpi_discrete_surface_mesh(ds, &before));
+    CHECK_OK(tpi_discrete_surface_move_point(ds, 10, 0.42, 0.37));
+    CHECK(pending(ds) == 1);
+    TpiDiscretisation *still = NULL;
+    CHECK_OK(tpi_discrete_surface_mesh(ds, &still));
+    char *a = discretisation_json(before);
+    char *b = discretisation_json(still);
+    CHECK(a && b && strcmp(a, b) == 0);
+    free(a);
+    free(b);
+    tpi_discretisation_free(still);
+    CHECK_OK(tpi_discrete_surface_recompute(ds));
+    CHECK(pending(ds) == 0);
+    CHECK_OK(tpi_discrete_surface_recompute(ds)); /* nothing pending: nothing to do */
+    check_against_scratch(ds, surface);
+
+    /* Add and remove. */
+    size_t index = 0, count = 0;
+    CHECK_OK(tpi_discrete_surface_point_count(ds, &count));
+    CHECK_OK(tpi_discrete_surface_add_point(ds, 0.04, 0.96, &index));
+    CHECK(index == count);
+    CHECK_OK(tpi_discrete_surface_add_point(ds, 0.51, 0.49, NULL));
+    CHECK_OK(tpi_discrete_surface_remove_point(ds, 3));
+    CHECK(pending(ds) == 3);
+    CHECK_OK(tpi_discrete_surface_recompute(ds));
+    check_against_scratch(ds, surface);
+
+    /* Replace the surface (its control points were edited). */
+    TpiSurface *taller = dome_scaled(1.5);
+    CHECK_OK(tpi_discrete_surface_set_surface(ds, taller));
+    CHECK_OK(tpi_discrete_surface_recompute(ds));
+    check_against_scratch(ds, taller);
+
+    /* Errors change nothing. */
+    CHECK_OK(tpi_discrete_surface_point_count(ds, &count));
+    CHECK_STATUS(tpi_discrete_surface_move_point(ds, count, 0.5, 0.5), TPI_STATUS_INDEX_OUT_OF_RANGE);
+    CHECK(last_error_contains("out of range"));
+    CHECK_STATUS(tpi_discrete_surface_remove_point(ds, count), TPI_STATUS_INDEX_OUT_OF_RANGE);
+    CHECK_STATUS(tpi_discrete_surface_remove_point(ds, (size_t)-1), TPI_STATUS_INDEX_OUT_OF_RANGE);
+    CHECK_STATUS(tpi_discrete_surface_move_point(ds, 0, NAN, 0.5), TPI_STATUS_NON_FINITE);
+    CHECK_STATUS(tpi_discrete_surface_move_point(ds, 0, 0.5, -0.5), TPI_STATUS_INVALID_PATTERN);
+    CHECK_STATUS(tpi_discrete_surface_add_point(ds, INFINITY, 0.5, &index), TPI_STATUS_NON_FINITE);
+    CHECK_STATUS(tpi_discrete_surface_set_surface(ds, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK(pending(ds) == 0);
+    size_t after = 0;
+    CHECK_OK(tpi_discrete_surface_point_count(ds, &after));
+    CHECK(after == count);
+
+    /* A recompute that fails keeps the edits pending and the last mesh. */
+    double *points = NULL;
+    ds_points(ds, &points);
+    if (points) {
+        CHECK_OK(tpi_discrete_surface_move_point(ds, 0, points[2], points[3])); /* onto point 1 */
+        CHECK_STATUS(tpi_discrete_surface_recompute(ds), TPI_STATUS_INVALID_PATTERN);
+        CHECK(last_error_contains("duplicates"));
+        CHECK(pending(ds) == 1);
+        CHECK_OK(tpi_discrete_surface_move_point(ds, 0, points[0], points[1])); /* undo */
+        CHECK_OK(tpi_discrete_surface_recompute(ds));
+        check_against_scratch(ds, taller);
+        free(points);
+    }
+
+    /* NULL handles and out pointers. */
+    CHECK_STATUS(tpi_discrete_surface_point_count(NULL, &count), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discrete_surface_point_count(ds, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discrete_surface_points(NULL, NULL, 0, &count), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discrete_surface_points(ds, NULL, 4, &count), TPI_STATUS_NULL_POINTER);
+    double two[2];
+    CHECK_STATUS(tpi_discrete_surface_points(ds, two, 2, &count), TPI_STATUS_BUFFER_TOO_SMALL);
+    CHECK(count == 2 * after);
+    CHECK_STATUS(tpi_discrete_surface_move_point(NULL, 0, 0.5, 0.5), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discrete_surface_add_point(NULL, 0.5, 0.5, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discrete_surface_remove_point(NULL, 0), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discrete_surface_set_surface(NULL, surface), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discrete_surface_pending_edits(NULL, &count), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discrete_surface_pending_edits(ds, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discrete_surface_recompute(NULL), TPI_STATUS_NULL_POINTER);
+    TpiDiscretisation *none = NULL;
+    CHECK_STATUS(tpi_discrete_surface_mesh(NULL, &none), TPI_STATUS_NULL_POINTER);
+    CHECK(none == NULL);
+    CHECK_STATUS(tpi_discrete_surface_mesh(ds, NULL), TPI_STATUS_NULL_POINTER);
+
+    /* A mesh taken earlier outlives the discrete surface. */
+    tpi_discrete_surface_free(ds);
+    size_t facets = 0;
+    CHECK_OK(tpi_discretisation_facet_count(before, &facets));
+    CHECK(facets == 49);
+    tpi_discretisation_free(before);
+
+    /* Use after a failed create. */
+    TpiPattern *two_points = NULL;
+    const double uv[4] = {0.2, 0.2, 0.8, 0.8};
+    CHECK_OK(tpi_pattern_new(uv, 4, &two_points));
+    ds = NULL;
+    CHECK_STATUS(tpi_discrete_surface_new(surface, two_points, NULL, &ds), TPI_STATUS_INVALID_PATTERN);
+    CHECK(ds == NULL);
+    CHECK_STATUS(tpi_discrete_surface_move_point(ds, 0, 0.5, 0.5), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discrete_surface_recompute(ds), TPI_STATUS_NULL_POINTER);
+    CHECK(last_error_contains("discrete_surface is NULL"));
+    CHECK_STATUS(tpi_discrete_surface_new(surface, two_points, NULL, NULL), TPI_STATUS_NULL_POINTER);
+    tpi_discrete_surface_free(ds);
+    tpi_pattern_free(two_points);
+    tpi_surface_free(taller);
+    tpi_surface_free(surface);
+}
+
+static void test_free_null(void) {
+    tpi_surface_free(NULL);
+    tpi_pattern_free(NULL);
+    tpi_discretisation_free(NULL);
+    tpi_discrete_surface_free(NULL);
+    CHECK(1);
+}
+
+/* ------------------------------------------------------------- threads */
+
+typedef struct {
+    const TpiSurface *surface;
+    const TpiPattern *pattern;
+    TpiDiscreteSurface *ds;
+    int id;
+    int failures;
+} ThreadArgs;
+
+static void *worker(void *opaque) {
+    ThreadArgs *args = opaque;
+    /* Shared immutable handles: same result as on the main thread. */
+    TpiDiscretisation *d = NULL;
+    if (tpi_discretise(args->surface, args->pattern, NULL, &d) != TPI_STATUS_OK) args->failures++;
+    size_t needed = 0;
+    tpi_discretisation_json(d, 0, NULL, 0, &needed);
+    char *json = malloc(needed ? needed : 1);
+    if (!json || tpi_discretisation_json(d, 0, json, needed, NULL) != TPI_STATUS_OK ||
+        strcmp(json, expected_json) != 0) {
+        args->failures++;
+    }
+    free(json);
+    tpi_discretisation_free(d);
+    /* A per-thread last error. */
+    char spec[32];
+    snprintf(spec, sizeof spec, "bogus%d:1", args->id);
+    TpiPattern *p = NULL;
+    if (tpi_pattern_new_from_spec(spec, &p) != TPI_STATUS_INVALID_PATTERN) args->failures++;
+    char message[512];
+    char mine[32];
+    snprintf(mine, sizeof mine, "`bogus%d`", args->id);
+    if (tpi_last_error_message(message, sizeof message, NULL) != TPI_STATUS_OK ||
+        strstr(message, mine) == NULL) {
+        args->failures++;
+    }
+    /* Concurrent edits of one discrete surface. */
+    for (int k = 0; k < 3; k++) {
+        double s = 0.03 + 0.25 * args->id + 0.05 * k;
+        if (tpi_discrete_surface_add_point(args->ds, s, 0.995, NULL) != TPI_STATUS_OK) args->failures++;
+    }
+    if (tpi_discrete_surface_recompute(args->ds) != TPI_STATUS_OK) args->failures++;
+    return NULL;
+}
+
+static void test_threads(void) {
+    TpiSurface *surface = dome();
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new_from_spec(DOME_PATTERN_SPEC, &pattern));
+    TpiDiscreteSurface *ds = NULL;
+    CHECK_OK(tpi_discrete_surface_new(surface, pattern, NULL, &ds));
+    enum { THREADS = 4 };
+    pthread_t threads[THREADS];
+    ThreadArgs args[THREADS];
+    for (int t = 0; t < THREADS; t++) {
+        ThreadArgs a = {surface, pattern, ds, t, 0};
+        args[t] = a;
+        CHECK(pthread_create(&threads[t], NULL, worker, &args[t]) == 0);
+    }
+    for (int t = 0; t < THREADS; t++) {
+        CHECK(pthread_join(threads[t], NULL) == 0);
+        CHECK(args[t].failures == 0);
+    }
+    size_t count = 0;
+    CHECK_OK(tpi_discrete_surface_point_count(ds, &count));
+    CHECK(count == EXPECTED_FACET_COUNT + 3 * THREADS);
+    CHECK(pending(ds) == 0);
+    check_against_scratch(ds, surface);
+    tpi_discrete_surface_free(ds);
+    tpi_pattern_free(pattern);
+    tpi_surface_free(surface);
+}
+
+int main(void) {
+    test_version_and_status_names();
+    test_last_error();
+    test_options();
+    test_dome_sampling();
+    test_rational_dome();
+    test_nurbs_errors();
+    test_evaluate_errors();
+    test_analytic_surfaces();
+    test_patterns();
+    test_dome_discretisation();
+    test_options_in_use();
+    test_diagnostics();
+    test_discrete_surface();
+    test_free_null();
+    test_threads();
+    return finish("test_tpi");
+}
