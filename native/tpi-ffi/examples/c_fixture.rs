@@ -10,7 +10,6 @@
 //! it always agrees with the current core.)
 
 #[path = "../tests/common/mod.rs"]
-#[allow(dead_code)]
 mod common;
 
 use std::fmt::Write as _;

@@ -420,7 +420,7 @@ pub unsafe extern "C" fn tpi_discretisation_facet_sizes(
         // SAFETY: the caller's contract.
         let d = unsafe { handle(discretisation) }?;
         let offsets = &d.result.facet_offsets;
-        let sizes = || offsets.windows(2).map(|w| w[1].saturating_sub(w[0])).collect();
+        let sizes = || offsets.windows(2).map(|w| match w { [a, b] => b.saturating_sub(*a), _ => 0 }).collect();
         unsafe { copy_out_lazy(d.result.facet_count(), sizes, out, capacity, needed) }
     }
 }
