@@ -436,7 +436,8 @@ typedef struct TpiPlane {
  * histogram of facet sizes.
  *
  * Growth: fields are only ever appended; set `struct_size` to sizeof(TpiQualityReport)
- * before the call, and the library writes only that many bytes.
+ * before the call, and the library writes only that many bytes (and stores in
+ * `struct_size` how many it filled in).
  */
 typedef struct TpiQualityReport {
     /**
@@ -1045,7 +1046,9 @@ enum TpiStatus tpi_discretisation_dual_triangles(const struct TpiDiscretisation 
 
 /**
  * Fills `*out` with the quality report. Set `out->struct_size` = sizeof(TpiQualityReport)
- * first; only that many bytes are written.
+ * first; only that many bytes are written, and on return `struct_size` holds the number of
+ * bytes filled in (smaller than the caller's size when the library is older than the
+ * caller's header).
  *
  * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (`struct_size` below
  * TPI_QUALITY_REPORT_SIZE_V1), TPI_STATUS_UNAVAILABLE (the report was switched off).

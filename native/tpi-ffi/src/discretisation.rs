@@ -179,7 +179,8 @@ pub struct TpiDiagnosticEntry {
 /// histogram of facet sizes.
 ///
 /// Growth: fields are only ever appended; set `struct_size` to sizeof(TpiQualityReport)
-/// before the call, and the library writes only that many bytes.
+/// before the call, and the library writes only that many bytes (and stores in
+/// `struct_size` how many it filled in).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct TpiQualityReport {
@@ -571,7 +572,9 @@ pub unsafe extern "C" fn tpi_discretisation_dual_triangles(
 }
 
 /// Fills `*out` with the quality report. Set `out->struct_size` = sizeof(TpiQualityReport)
-/// first; only that many bytes are written.
+/// first; only that many bytes are written, and on return `struct_size` holds the number of
+/// bytes filled in (smaller than the caller's size when the library is older than the
+/// caller's header).
 ///
 /// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (`struct_size` below
 /// TPI_QUALITY_REPORT_SIZE_V1), TPI_STATUS_UNAVAILABLE (the report was switched off).
@@ -596,8 +599,9 @@ pub unsafe extern "C" fn tpi_discretisation_quality(
             )));
         }
         let mut report = TpiQualityReport::from_core(d.quality()?);
-        report.struct_size = size;
         let bytes = (size as usize).min(size_of::<TpiQualityReport>());
+        // Tells a caller built against a newer header how much was filled in.
+        report.struct_size = bytes as u32;
         // SAFETY: `bytes` bytes are writable (contract) and readable from `report`.
         unsafe { std::ptr::copy_nonoverlapping((&report as *const TpiQualityReport).cast::<u8>(), out.as_ptr().cast::<u8>(), bytes) };
         Ok(())

@@ -379,3 +379,32 @@ fn analytic_surfaces_forward_to_the_core() {
         tpi_pattern_free(p);
     }
 }
+
+#[test]
+fn a_bigger_quality_struct_gets_this_librarys_fields_and_their_size() {
+    #[repr(C)]
+    struct Newer {
+        report: TpiQualityReport,
+        future: [u64; 2],
+    }
+    let surface = dome(3.0);
+    let p = pattern(&jittered_grid(7));
+    let mut d = std::ptr::null_mut();
+    // SAFETY: live handles, valid out pointer.
+    ok(unsafe { tpi_discretise(surface, p, std::ptr::null(), &mut d) });
+    let mut newer = Newer {
+        report: TpiQualityReport { struct_size: size_of::<Newer>() as u32, ..Default::default() },
+        future: [7, 7],
+    };
+    // SAFETY: `newer` holds struct_size bytes.
+    ok(unsafe { tpi_discretisation_quality(d, &mut newer.report) });
+    assert_eq!(newer.report.struct_size, TPI_QUALITY_REPORT_SIZE_V1);
+    assert_eq!(newer.report.facet_count, 49);
+    assert_eq!(newer.future, [7, 7]);
+    // SAFETY: our handles.
+    unsafe {
+        tpi_discretisation_free(d);
+        tpi_pattern_free(p);
+        tpi_surface_free(surface);
+    }
+}
