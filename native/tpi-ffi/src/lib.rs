@@ -52,7 +52,7 @@ pub use surface::*;
 use boundary::{copy_out_str, ffi_boundary, last_error, run_infallible};
 
 /// Major version of the library this header belongs to (semantic versioning: the ABI only
-/// breaks when it changes).
+/// breaks with a new major version, or before 1.0 with a new minor version).
 pub const TPI_VERSION_MAJOR: u32 = 0;
 /// Minor version of the library this header belongs to.
 pub const TPI_VERSION_MINOR: u32 = 1;
