@@ -1,6 +1,10 @@
 #!/usr/bin/env bash
-# Runs every test of the project: the Rust workspace (unit, integration, doc tests, including
-# the openNURBS conformance tests that drive rhino3dm from Python).
+# Runs every test of the project:
+#   1. the Rust workspace (unit, integration and doc tests, including the openNURBS
+#      conformance tests that drive rhino3dm from Python, the CLI's end-to-end tests, the C
+#      ABI's Rust tests and the header check);
+#   2. the C ABI tested from C (tests/run_c_tests.sh: compile against include/tpi.h, run,
+#      run again under valgrind).
 # Installs what it needs when missing, so it also works on a fresh machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -8,5 +12,19 @@ cd "$(dirname "$0")/.."
 if ! python3 -c 'import rhino3dm' 2>/dev/null; then
     python3 -m pip install --quiet --disable-pip-version-check 'rhino3dm==8.*'
 fi
+missing=()
+for tool in cc nm valgrind; do
+    command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+    if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+        DEBIAN_FRONTEND=noninteractive apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq build-essential binutils valgrind >/dev/null
+    else
+        echo "run_all.sh: missing ${missing[*]}: install build-essential binutils valgrind" >&2
+        exit 1
+    fi
+fi
 
 cargo test --workspace --locked
+bash tests/run_c_tests.sh
