@@ -29,24 +29,27 @@ use crate::surface::{Domain, Surface};
 use crate::triangulation::{DualTriangulation, Edge, Fan, NO_TRIANGLE};
 
 /// A triangle vertex farther than this many times the triangle's longest side from the
-/// triangle's centroid is ill-conditioned (nearly parallel planes).
+/// triangle's centroid is ill-conditioned (nearly parallel planes), unless it is an outside
+/// vertex of a triangle at the boundary.
 pub const DEFAULT_FAR_VERTEX_FACTOR: f64 = 8.0;
 
 /// Interior sample count used to detect an edge that dips into the domain between two
 /// outside endpoints.
 const OUTSIDE_SEGMENT_SAMPLES: usize = 8;
 
-/// A segment with both ends outside is searched for a part inside the domain only when it
-/// is at most this many neighbour spacings long: a real facet edge clipping a domain corner
-/// is short, while long edges between two far outside vertices pass high above or below the
-/// surface, where feet "inside" the domain mean nothing.
-const OUTSIDE_SEGMENT_FACTOR: f64 = 4.0;
+/// A point of a facet edge counts as inside the domain only if its distance from the surface
+/// is at most this fraction of its distance from the edge's two pattern points (a facet of
+/// size r deviates about k r^2 / 2 from the surface, far less for any sensible panel size).
+pub const NEAR_SURFACE_RATIO: f64 = 0.25;
 
 /// Regula falsi iterations for a boundary crossing.
 const CROSSING_ITERATIONS: usize = 80;
 
 /// A boundary crossing is converged when |inside measure| falls below this (normalised).
 pub const CROSSING_TOLERANCE: f64 = 1e-13;
+
+/// A crossing search that ends farther than this from the boundary (normalised) has failed.
+const CROSSING_ACCEPTANCE: f64 = 1e-9;
 
 /// Doublings of the step when following a hull ray outwards.
 const RAY_DOUBLINGS: usize = 60;
@@ -104,11 +107,16 @@ struct Crossing {
     wall: f64,
     /// Leaving the domain when walking the edge in canonical direction (right to left).
     exit: bool,
+    /// Whether the search ended on the boundary (|inside measure| below tolerance).
+    converged: bool,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Item {
     Triangle(u32),
+    /// An ill-conditioned triangle's stand-in, moved onto the line of one of its edges
+    /// (shared by the two facets of that edge).
+    EdgePoint { triangle: u32, edge: u32 },
     Crossing(u32),
     Corner(u8),
 }
@@ -213,6 +221,9 @@ pub fn build_facets(
             continue;
         }
         let (a, b) = (edge.left as usize, edge.right as usize);
+        if !(triangle_vertices[a].exact && triangle_vertices[b].exact) {
+            continue;
+        }
         if triangle_vertices[a].point.distance(triangle_vertices[b].point) <= params.weld_distance {
             let (ra, rb) = (find(&mut representative, a as u32), find(&mut representative, b as u32));
             if ra != rb {
@@ -227,6 +238,7 @@ pub fn build_facets(
     mesh.offsets.push(0);
     let mut triangle_id = vec![u32::MAX; tri.len()];
     let mut crossing_id = vec![u32::MAX; crossings.len()];
+    let mut edge_point_id: std::collections::HashMap<(u32, u32), u32> = std::collections::HashMap::new();
     let mut corner_claims = [0u32; 4];
     for (i, (items, facet_diagnostics)) in facet_items.into_iter().enumerate() {
         diagnostics.extend(facet_diagnostics);
@@ -239,6 +251,21 @@ pub fn build_facets(
                         triangle_id[r] = push_vertex(&mut mesh, triangle_vertices[r].point, VertexKind::Interior);
                     }
                     triangle_id[r]
+                }
+                Item::EdgePoint { triangle, edge } => {
+                    let e = &edges[edge as usize];
+                    let stand_in = triangle_vertices[triangle as usize].point;
+                    match edge_point(&planes[e.lo as usize], &planes[e.hi as usize], stand_in, params.far_vertex_factor) {
+                        Some(position) => *edge_point_id
+                            .entry((triangle, edge))
+                            .or_insert_with(|| push_vertex(&mut mesh, position, VertexKind::Interior)),
+                        None => {
+                            // No usable line: a vertex of this facet alone, in its own plane.
+                            let plane = &planes[i];
+                            let position = stand_in - plane.normal * plane.signed_distance(stand_in);
+                            push_vertex(&mut mesh, position, VertexKind::Interior)
+                        }
+                    }
                 }
                 Item::Crossing(c) => {
                     if crossing_id[c as usize] == u32::MAX {
@@ -297,6 +324,14 @@ fn find(representative: &mut [u32], mut x: u32) -> u32 {
     x
 }
 
+/// Whether a triangle lies within twice its own size (in normalised parameters) of the
+/// domain boundary.
+fn near_boundary(ctx: &Context<'_>, ids: [u32; 3]) -> bool {
+    let uv = ids.map(|i| ctx.uv[i as usize]);
+    let size = (0..3).map(|k| normalised_distance(&ctx.domain, uv[k], uv[(k + 1) % 3])).fold(0.0, f64::max);
+    uv.iter().any(|&p| inside_measure(&ctx.domain, p) <= 2.0 * size)
+}
+
 /// Distance of two parameter pairs in normalised coordinates.
 fn normalised_distance(domain: &Domain, a: [f64; 2], b: [f64; 2]) -> f64 {
     let [s0, t0] = domain.to_normalised(a);
@@ -307,7 +342,10 @@ fn normalised_distance(domain: &Domain, a: [f64; 2], b: [f64; 2]) -> f64 {
 /// A triangle's facet vertex and where it lies.
 #[derive(Clone, Debug)]
 struct TriangleVertex {
+    /// The meeting point of the three planes, or the stand-in when not `exact`.
     point: DVec3,
+    /// Whether `point` is the exact meeting point.
+    exact: bool,
     foot: [f64; 2],
     /// Inside measure of the foot (positive inside the domain).
     inside: f64,
@@ -315,8 +353,10 @@ struct TriangleVertex {
 }
 
 /// The meeting point of a triangle's three planes. An inside vertex that ran away from its
-/// points (nearly parallel planes) is replaced by a finite stand-in and reported; outside
-/// vertices are only used to steer the boundary clipping, so they may lie far away.
+/// points (nearly parallel planes) is replaced by a finite stand-in near the points and
+/// reported; facets never use the stand-in itself but its closest points on their edge lines
+/// ([`edge_point`]), so they stay exactly planar. Outside vertices are only used to steer the
+/// boundary clipping, so they may lie far away.
 fn triangle_vertex(ctx: &Context<'_>, mut ids: [u32; 3], far_factor: f64) -> TriangleVertex {
     ids.sort_unstable();
     let [a, b, c] = ids.map(|i| &ctx.planes[i as usize]);
@@ -326,15 +366,38 @@ fn triangle_vertex(ctx: &Context<'_>, mut ids: [u32; 3], far_factor: f64) -> Tri
     let distance = meeting.point.distance(centroid);
     if meeting.point.is_finite() {
         let (foot, inside) = ctx.measure_vertex(ids, meeting.point);
-        if distance <= far_factor * longest || inside <= 0.0 {
-            return TriangleVertex { point: meeting.point, foot, inside, diagnostic: None };
+        // A far vertex is only believable as an outside vertex of a triangle at the boundary
+        // (a sliver along the hull); deep inside it means nearly parallel planes.
+        if distance <= far_factor * longest || (inside <= 0.0 && near_boundary(ctx, ids)) {
+            return TriangleVertex { point: meeting.point, exact: true, foot, inside, diagnostic: None };
         }
     }
     let point = regularised_meeting_point([a, b, c], centroid, 1e-6);
     let (foot, inside) = ctx.measure_vertex(ids, point);
     let distance = if distance.is_finite() { distance } else { f64::INFINITY };
     let diagnostic = Diagnostic::IllConditionedVertex { points: ids, determinant: meeting.determinant, distance };
-    TriangleVertex { point, foot, inside, diagnostic: Some(diagnostic) }
+    TriangleVertex { point, exact: false, foot, inside, diagnostic: Some(diagnostic) }
+}
+
+/// The point of the line T_a ∩ T_b closest to `x`: x - A^T (A A^T)^-1 (A x - b) with
+/// A = [n_a; n_b]. When the planes coincide, the projection of x onto them. None when the
+/// planes are parallel but distinct, or the line lies farther than `far_factor` times the
+/// points' distance from x.
+fn edge_point(a: &Plane, b: &Plane, x: DVec3, far_factor: f64) -> Option<DVec3> {
+    let (ra, rb) = (a.signed_distance(x), b.signed_distance(x));
+    let c = a.normal.dot(b.normal);
+    let det = 1.0 - c * c;
+    let reach = far_factor * a.point.distance(b.point);
+    if det <= 1e-12 {
+        // (Nearly) parallel: usable only if the planes coincide at x.
+        let projected = x - a.normal * ra;
+        return (b.signed_distance(projected).abs() <= 1e-12 * reach.max(f64::MIN_POSITIVE)).then_some(projected);
+    }
+    // (A A^T)^-1 (r_a, r_b) with A A^T = [[1, c], [c, 1]].
+    let la = (ra - c * rb) / det;
+    let lb = (rb - c * ra) / det;
+    let point = x - a.normal * la - b.normal * lb;
+    (point.is_finite() && point.distance(x) <= reach).then_some(point)
 }
 
 /// Edge lookup: for point i, its edges (sorted by the other endpoint).
@@ -393,11 +456,21 @@ fn edge_crossings(
     edge: &Edge,
     triangle_vertices: &[TriangleVertex],
 ) -> (Vec<Crossing>, Option<Diagnostic>) {
+    let (lo, hi) = (&ctx.planes[edge.lo as usize], &ctx.planes[edge.hi as usize]);
+    // An ill-conditioned triangle contributes its stand-in's closest point on this edge's
+    // line (the same point the facets use), or nothing usable.
     let end_of = |t: u32| {
         let v = &triangle_vertices[t as usize];
-        SegmentEnd { point: v.point, guess: v.foot, inside: v.inside }
+        let point = if v.exact { Some(v.point) } else { edge_point(lo, hi, v.point, DEFAULT_FAR_VERTEX_FACTOR) };
+        SegmentEnd { point: point.unwrap_or(DVec3::NAN), guess: v.foot, inside: v.inside }
     };
-    let (lo, hi) = (&ctx.planes[edge.lo as usize], &ctx.planes[edge.hi as usize]);
+    // (start, end) in canonical order right -> left; None marks a hull side (a ray).
+    let start = (edge.right != NO_TRIANGLE).then(|| end_of(edge.right));
+    let end = (edge.left != NO_TRIANGLE).then(|| end_of(edge.left));
+    let inside = |e: &Option<SegmentEnd>| e.map_or(false, |e| e.inside > 0.0);
+    if inside(&start) && inside(&end) {
+        return (Vec::new(), None);
+    }
     let Some(line) = lo.normal.cross(hi.normal).try_normalize() else {
         return (Vec::new(), Some(Diagnostic::ParallelPlanes { points: [edge.lo, edge.hi] }));
     };
@@ -410,16 +483,15 @@ fn edge_crossings(
         away -= chord * (away.dot(chord) / chord.length_squared().max(f64::MIN_POSITIVE));
         if line.dot(away) < 0.0 { -line } else { line }
     };
-    // (start, end) in canonical order right -> left; None marks a hull side (a ray).
-    let start = (edge.right != NO_TRIANGLE).then(|| end_of(edge.right));
-    let end = (edge.left != NO_TRIANGLE).then(|| end_of(edge.left));
-    let inside = |e: &Option<SegmentEnd>| e.map_or(false, |e| e.inside > 0.0);
     match (inside(&start), inside(&end)) {
         (true, true) => (Vec::new(), None),
         (true, false) | (false, true) => {
             let forward = inside(&start);
             let (from, to) = if forward { (start, end) } else { (end, start) };
             let Some(from) = from else { return (Vec::new(), None) };
+            if !from.point.is_finite() {
+                return (Vec::new(), Some(Diagnostic::BoundaryNotReached { points: [edge.lo, edge.hi] }));
+            }
             let (direction, target) = match to {
                 Some(to) if to.point.is_finite() && to.point.distance(from.point) <= RAY_FAR_FACTOR * spacing => {
                     let chord = to.point - from.point;
@@ -456,37 +528,76 @@ fn edge_crossings(
             (vec![Crossing { exit: forward, ..crossing }], None)
         }
         (false, false) => {
-            let (Some(start), Some(end)) = (start, end) else { return (Vec::new(), None) };
-            if !(start.point.is_finite() && end.point.is_finite())
-                || start.point.distance(end.point) > OUTSIDE_SEGMENT_FACTOR * spacing
-            {
-                return (Vec::new(), None);
-            }
-            let chord = end.point - start.point;
-            let length = chord.length();
-            let Some(direction) = chord.try_normalize() else { return (Vec::new(), None) };
-            let mut previous = (0.0f64, start);
-            let mut found = Vec::new();
-            for s in 1..=OUTSIDE_SEGMENT_SAMPLES + 1 {
-                let lambda = length * s as f64 / (OUTSIDE_SEGMENT_SAMPLES + 1) as f64;
-                let current = if s == OUTSIDE_SEGMENT_SAMPLES + 1 {
-                    (length, end)
-                } else {
-                    let point = start.point + direction * lambda;
-                    let guess = lerp2(start.guess, end.guess, lambda / length);
-                    let (foot_uv, inside) = ctx.measure(point, guess);
-                    (lambda, SegmentEnd { point, guess: foot_uv, inside })
-                };
-                if (previous.1.inside > 0.0) != (current.1.inside > 0.0) {
-                    let exit = previous.1.inside > 0.0;
-                    let crossing = refine_crossing(ctx, previous, current, start.point, direction);
-                    found.push(Crossing { exit, ..crossing });
+            // A facet edge can dip into the domain between two outside ends (a corner cut,
+            // or a tiny facet of a point right at the boundary). A hull ray becomes a segment
+            // reaching well past both points.
+            let (a, b) = match (start, end) {
+                (Some(s), Some(e)) => (s, e),
+                (Some(v), None) | (None, Some(v)) => {
+                    let t = if edge.left == NO_TRIANGLE { edge.right } else { edge.left };
+                    let reach = 2.0 * (v.point.distance(lo.point) + v.point.distance(hi.point)) + spacing;
+                    let point = v.point + outward(t) * reach;
+                    (v, SegmentEnd { point, guess: v.guess, inside: -1.0 })
                 }
-                previous = current;
-            }
-            (found, None)
+                (None, None) => return (Vec::new(), None),
+            };
+            let reversed = end.is_none();
+            let (first, last) = if reversed { (b, a) } else { (a, b) };
+            (outside_segment_crossings(ctx, first, last, lo.point, hi.point), None)
         }
     }
+}
+
+/// Crossings of a segment whose two ends are outside the domain, in order from `start`.
+/// The segment is sampled uniformly and at the feet of the two points' perpendiculars (where
+/// their facets are), and a stretch counts as inside only where it runs close to the surface
+/// (within [`NEAR_SURFACE_RATIO`] of its distance to the points): far from them a segment
+/// may pass high over the surface, where a foot inside the domain means nothing.
+fn outside_segment_crossings(ctx: &Context<'_>, start: SegmentEnd, end: SegmentEnd, p: DVec3, q: DVec3) -> Vec<Crossing> {
+    if !(start.point.is_finite() && end.point.is_finite()) {
+        return Vec::new();
+    }
+    let chord = end.point - start.point;
+    let length = chord.length();
+    let Some(direction) = chord.try_normalize() else { return Vec::new() };
+    let mut lambdas: Vec<f64> = (1..=OUTSIDE_SEGMENT_SAMPLES).map(|k| length * k as f64 / (OUTSIDE_SEGMENT_SAMPLES + 1) as f64).collect();
+    for x in [p, q] {
+        let t = (x - start.point).dot(direction);
+        if t > 0.0 && t < length {
+            lambdas.push(t);
+        }
+    }
+    lambdas.sort_by(f64::total_cmp);
+    let mut samples = vec![(0.0, start)];
+    for &lambda in &lambdas {
+        let point = start.point + direction * lambda;
+        let guess = lerp2(start.guess, end.guess, lambda / length);
+        let (foot_uv, inside) = ctx.measure(point, guess);
+        if inside > 0.0 {
+            let (u, v) = ctx.domain.clamp(foot_uv[0], foot_uv[1]);
+            let off_surface = ctx.surface.point_at(u, v).distance(point);
+            if off_surface > NEAR_SURFACE_RATIO * point.distance(p).min(point.distance(q)) {
+                return Vec::new();
+            }
+        }
+        samples.push((lambda, SegmentEnd { point, guess: foot_uv, inside }));
+    }
+    samples.push((length, end));
+    let mut found = Vec::new();
+    for pair in samples.windows(2) {
+        let (previous, current) = (pair[0], pair[1]);
+        if (previous.1.inside > 0.0) != (current.1.inside > 0.0) {
+            let exit = previous.1.inside > 0.0;
+            let crossing = refine_crossing(ctx, previous, current, start.point, direction);
+            // Where the foot jumps (the segment passes a fold of the projection) the bracket
+            // holds no boundary point: such a "crossing" is no crossing.
+            if !crossing.converged {
+                return Vec::new();
+            }
+            found.push(Crossing { exit, ..crossing });
+        }
+    }
+    found
 }
 
 /// Steps along `direction` from an inside point, doubling, until outside the domain.
@@ -553,7 +664,8 @@ fn refine_crossing(
             side = 1;
         }
     }
-    Crossing { point: best.1.point, wall: boundary_parameter(&ctx.domain, best.1.guess), exit: false }
+    let converged = best.1.inside.abs() <= CROSSING_ACCEPTANCE;
+    Crossing { point: best.1.point, wall: boundary_parameter(&ctx.domain, best.1.guess), exit: false, converged }
 }
 
 /// For each domain corner, the crossing that owns it: the last crossing before the corner
@@ -623,8 +735,18 @@ fn facet_items(
         let p = vertices.iter().position(|&v| v == i).unwrap_or(0);
         let incoming = vertices[(p + 1) % 3];
         push_edge(incoming, &mut raw);
-        if triangle_vertices[t as usize].inside > 0.0 {
-            raw.push((Item::Triangle(t), None));
+        let vertex = &triangle_vertices[t as usize];
+        if vertex.inside > 0.0 {
+            if vertex.exact {
+                raw.push((Item::Triangle(t), None));
+            } else {
+                let outgoing = vertices[(p + 2) % 3];
+                for j in [incoming, outgoing] {
+                    if let Some(edge) = edge_index.edge(i, j) {
+                        raw.push((Item::EdgePoint { triangle: t, edge }, None));
+                    }
+                }
+            }
         }
     }
     if kind == Fan::Open {

@@ -54,6 +54,9 @@ pub struct NeighbourStats {
     /// Edges the envelope rejects but that could not be flipped (non-convex quadrilateral
     /// in parameter space) or flip budget exhausted.
     pub envelope_unresolved: usize,
+    /// Triangles on the convex hull of the pattern (in parameter space) that the envelope
+    /// rejects, removed so that the hull follows the envelope's.
+    pub hull_trims: usize,
 }
 
 /// Inputs of the neighbour decision for every pattern point.
@@ -77,8 +80,85 @@ pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope:
         let (flips, unresolved) = flip_until_stable(tri, input, |tri, t, k| envelope_illegal(tri, input, t, k));
         stats.envelope_repairs = flips;
         stats.envelope_unresolved = unresolved;
+        stats.hull_trims = trim_hull(tri, input);
     }
     stats
+}
+
+/// Removes hull triangles whose hull edge the envelope rejects, until none is left.
+///
+/// For a hull edge (i, j) of triangle (i, j, k), the facet edge T_i ∩ T_j runs from the
+/// triangle's vertex outwards, away from k. On the envelope that ray must stay in H_k, i.e.
+/// sigma n_k . d > 0 for its direction d; otherwise k lies beyond the edge in the envelope's
+/// own terms (parameter space and the envelope disagree about the hull, typically for
+/// slivers along the boundary), and the triangle is dropped so that (i, k) and (k, j) become
+/// hull edges. A triangle is kept if dropping it would leave a point without triangles.
+fn trim_hull(tri: &mut DualTriangulation, input: &NeighbourInput<'_>) -> usize {
+    let mut removed = vec![false; tri.len()];
+    let mut triangle_count = vec![0u32; input.plane_uv.len()];
+    for t in &tri.triangles {
+        for &v in t {
+            triangle_count[v as usize] += 1;
+        }
+    }
+    let mut queue: Vec<u32> =
+        (0..tri.len() as u32).filter(|&t| tri.neighbours[t as usize].contains(&NO_TRIANGLE)).collect();
+    queue.reverse();
+    let mut trims = 0;
+    while let Some(t) = queue.pop() {
+        if removed[t as usize] || !hull_rejected(tri, input, t as usize) {
+            continue;
+        }
+        let vertices = tri.triangles[t as usize];
+        if vertices.iter().any(|&v| triangle_count[v as usize] <= 1) {
+            continue;
+        }
+        removed[t as usize] = true;
+        trims += 1;
+        for &v in &vertices {
+            triangle_count[v as usize] -= 1;
+        }
+        for k in 0..3 {
+            let other = tri.neighbours[t as usize][k];
+            if other == NO_TRIANGLE {
+                continue;
+            }
+            for n in tri.neighbours[other as usize].iter_mut() {
+                if *n == t {
+                    *n = NO_TRIANGLE;
+                }
+            }
+            tri.neighbours[t as usize][k] = NO_TRIANGLE;
+            queue.push(other);
+        }
+    }
+    if trims > 0 {
+        tri.remove_triangles(&removed);
+    }
+    trims
+}
+
+/// Whether any hull edge of triangle t is rejected by the envelope (see [`trim_hull`]).
+fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: usize) -> bool {
+    let vertices = tri.triangles[t];
+    let side = input.convex_side[vertices[0] as usize];
+    if side == 0 || vertices.iter().any(|&v| input.convex_side[v as usize] != side) {
+        return false;
+    }
+    let s = f64::from(side);
+    (0..3).any(|k| {
+        if tri.neighbours[t][k] != NO_TRIANGLE {
+            return false;
+        }
+        let [c, a, b] = rotated(vertices, k);
+        let (pa, pb, pc) = (&input.planes[a as usize], &input.planes[b as usize], &input.planes[c as usize]);
+        let Some(line) = pa.normal.cross(pb.normal).try_normalize() else { return false };
+        let chord = pb.point - pa.point;
+        let mut away = (pa.point + pb.point) * 0.5 - pc.point;
+        away -= chord * (away.dot(chord) / chord.length_squared().max(f64::MIN_POSITIVE));
+        let outward = if line.dot(away) < 0.0 { -line } else { line };
+        s * pc.normal.dot(outward) < 0.0
+    })
 }
 
 /// Lawson's flip loop with the given illegality test. Returns (flips, unresolved).

@@ -131,6 +131,34 @@ impl DualTriangulation {
         (t1 as u32, t2 as u32)
     }
 
+    /// Drops the triangles marked in `removed` (their neighbours must already point past
+    /// them) and renumbers the rest, keeping their order.
+    pub fn remove_triangles(&mut self, removed: &[bool]) {
+        let mut new_index = vec![NO_TRIANGLE; self.triangles.len()];
+        let mut next = 0u32;
+        for (t, &gone) in removed.iter().enumerate() {
+            if !gone {
+                new_index[t] = next;
+                next += 1;
+            }
+        }
+        let mut t = 0;
+        self.triangles.retain(|_| {
+            t += 1;
+            !removed[t - 1]
+        });
+        let mut t = 0;
+        self.neighbours.retain(|_| {
+            t += 1;
+            !removed[t - 1]
+        });
+        for n in self.neighbours.iter_mut().flatten() {
+            if *n != NO_TRIANGLE {
+                *n = new_index[*n as usize];
+            }
+        }
+    }
+
     fn replace_neighbour(&mut self, t: u32, old: u32, new: u32) {
         if t == NO_TRIANGLE {
             return;

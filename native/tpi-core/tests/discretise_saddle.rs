@@ -189,6 +189,11 @@ fn egg_crate_flags_match_independent_check() {
 }
 
 #[test]
+fn egg_crate_planarity() {
+    run(egg_crate_cases(), Part::Planarity);
+}
+
+#[test]
 fn hyperbolic_paraboloid_flags_match_independent_check() {
     run(hyperbolic_cases(), Part::Flags);
 }
