@@ -85,14 +85,20 @@ pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope:
     stats
 }
 
-/// Removes hull triangles whose hull edge the envelope rejects, until none is left.
+/// Removes hull triangles the envelope rejects, until none is left.
 ///
-/// For a hull edge (i, j) of triangle (i, j, k), the facet edge T_i ∩ T_j runs from the
-/// triangle's vertex outwards, away from k. On the envelope that ray must stay in H_k, i.e.
-/// sigma n_k . d > 0 for its direction d; otherwise k lies beyond the edge in the envelope's
-/// own terms (parameter space and the envelope disagree about the hull, typically for
-/// slivers along the boundary), and the triangle is dropped so that (i, k) and (k, j) become
-/// hull edges. A triangle is kept if dropping it would leave a point without triangles.
+/// Two tests, both exact consequences of the envelope on a convex surface, where every
+/// half-space H_m = {x : sigma n_m.(x - p_m) >= 0} bounds the convex body:
+/// - the triangle's vertex T_i ∩ T_j ∩ T_k must lie in H_m for every point m nearby (its
+///   points' neighbours and their neighbours); a vertex cut off by another plane is not on
+///   the envelope at all;
+/// - for a hull edge (i, j) of triangle (i, j, k), the facet edge T_i ∩ T_j runs from the
+///   vertex outwards, away from k; on the envelope that ray must stay in H_k, i.e.
+///   sigma n_k . d > 0 for its direction d.
+/// Either failure means parameter space and the envelope disagree about the hull (typically
+/// for slivers along the boundary): the triangle is dropped, so that its other edges become
+/// hull edges, and the triangles behind them are tested in turn. A triangle is kept if
+/// dropping it would leave a point without triangles.
 fn trim_hull(tri: &mut DualTriangulation, input: &NeighbourInput<'_>) -> usize {
     let mut removed = vec![false; tri.len()];
     let mut triangle_count = vec![0u32; input.plane_uv.len()];
@@ -101,12 +107,13 @@ fn trim_hull(tri: &mut DualTriangulation, input: &NeighbourInput<'_>) -> usize {
             triangle_count[v as usize] += 1;
         }
     }
+    let adjacency = point_adjacency(tri, input.plane_uv.len());
     let mut queue: Vec<u32> =
         (0..tri.len() as u32).filter(|&t| tri.neighbours[t as usize].contains(&NO_TRIANGLE)).collect();
     queue.reverse();
     let mut trims = 0;
     while let Some(t) = queue.pop() {
-        if removed[t as usize] || !hull_rejected(tri, input, t as usize) {
+        if removed[t as usize] || !hull_rejected(tri, input, &adjacency, t as usize) {
             continue;
         }
         let vertices = tri.triangles[t as usize];
@@ -138,14 +145,44 @@ fn trim_hull(tri: &mut DualTriangulation, input: &NeighbourInput<'_>) -> usize {
     trims
 }
 
-/// Whether any hull edge of triangle t is rejected by the envelope (see [`trim_hull`]).
-fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: usize) -> bool {
+/// Sorted neighbour lists of every point.
+fn point_adjacency(tri: &DualTriangulation, point_count: usize) -> Vec<Vec<u32>> {
+    let mut adjacency = vec![Vec::new(); point_count];
+    for t in &tri.triangles {
+        for k in 0..3 {
+            adjacency[t[k] as usize].push(t[(k + 1) % 3]);
+            adjacency[t[(k + 1) % 3] as usize].push(t[k]);
+        }
+    }
+    for list in &mut adjacency {
+        list.sort_unstable();
+        list.dedup();
+    }
+    adjacency
+}
+
+/// Whether the envelope rejects hull triangle t (see [`trim_hull`]).
+fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, adjacency: &[Vec<u32>], t: usize) -> bool {
     let vertices = tri.triangles[t];
     let side = input.convex_side[vertices[0] as usize];
     if side == 0 || vertices.iter().any(|&v| input.convex_side[v as usize] != side) {
         return false;
     }
     let s = f64::from(side);
+    let planes = input.planes;
+    let vertex = three_plane_vertex(planes, vertices);
+    let size = (0..3)
+        .map(|k| planes[vertices[k] as usize].point.distance(planes[vertices[(k + 1) % 3] as usize].point))
+        .fold(0.0, f64::max);
+    let tolerance = ENVELOPE_FLIP_TOLERANCE * size;
+    let cut_off = vertices.iter().flat_map(|&v| &adjacency[v as usize]).any(|&m| {
+        adjacency[m as usize].iter().chain(std::iter::once(&m)).any(|&x| {
+            input.convex_side[x as usize] == side && s * planes[x as usize].signed_distance(vertex) < -tolerance
+        })
+    });
+    if cut_off {
+        return true;
+    }
     (0..3).any(|k| {
         if tri.neighbours[t][k] != NO_TRIANGLE {
             return false;

@@ -276,7 +276,6 @@ fn envelope_paraboloid_ratio_10() {
     run("paraboloid a = 10 b", &s, Some(paraboloid), &[1700, 200, 1100, 500], 13);
 }
 
-#[allow(dead_code)] // its test returns with the fix of the hull-sliver bug (issue 3 notes)
 /// Bicubic 6 x 6, clamped non-uniform knots in both directions (domain [1, 3] x [0, 2]),
 /// lifted on a tilted paraboloid-like bump with a small random jitter.
 fn dome_a() -> NurbsSurface {
@@ -320,6 +319,13 @@ fn dome_c() -> NurbsSurface {
         |x, y, _, _| 1.2 - 0.45 * x * x - 0.5 * y * y,
         Some(&w),
     )
+}
+
+#[test]
+fn envelope_nurbs_dome_bicubic_a() {
+    let s = dome_a();
+    assert!(!s.is_rational());
+    run("NURBS dome A (bicubic 6x6)", &s, None, &[1250, 450, 2000, 260], 14);
 }
 
 #[test]
