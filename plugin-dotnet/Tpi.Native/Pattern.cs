@@ -1,0 +1,143 @@
+using System;
+using System.Collections.Generic;
+using Tpi.Native.Interop;
+
+namespace Tpi.Native
+{
+    /// <summary>
+    /// Pattern points (TpiPattern): normalised (s, t) in [0, 1]^2, mapped linearly onto a
+    /// surface's domain. Immutable; may be used from several threads.
+    /// </summary>
+    public sealed class Pattern : IDisposable
+    {
+        internal readonly PatternHandle Handle;
+        static readonly PatternHandle NullHandle = new PatternHandle();
+        PatternPoint[] _points;
+
+        Pattern(PatternHandle handle) { Handle = handle; }
+
+        internal static PatternHandle HandleOf(Pattern pattern)
+        {
+            return pattern == null ? NullHandle : pattern.Handle;
+        }
+
+        static Pattern Created(Status status, PatternHandle handle, string function)
+        {
+            if (status != Status.Ok)
+            {
+                var error = new TpiException(status, TpiLibrary.LastErrorMessage(), function);
+                if (handle != null) handle.Dispose();
+                throw error;
+            }
+            handle.Track();
+            return new Pattern(handle);
+        }
+
+        /// <summary>From s0, t0, s1, t1, ... (validated by the library: finite, inside the square, no duplicates).</summary>
+        public static Pattern FromPoints(IList<double> st)
+        {
+            var uv = TpiLibrary.ArrayOrNull(st);
+            PatternHandle h;
+            var s = UnsafeNativeMethods.tpi_pattern_new(uv, TpiLibrary.Length(uv), out h);
+            return Created(s, h, "tpi_pattern_new");
+        }
+
+        /// <summary>From (s, t) points.</summary>
+        public static Pattern FromPoints(IEnumerable<PatternPoint> points)
+        {
+            var flat = new List<double>();
+            if (points != null)
+                foreach (var p in points) { flat.Add(p.S); flat.Add(p.T); }
+            return FromPoints(flat.ToArray());
+        }
+
+        /// <summary>The square grid of nu x nv cell centres (generator grid:NUxNV).</summary>
+        public static Pattern Grid(int nu, int nv)
+        {
+            PatternHandle h;
+            var s = UnsafeNativeMethods.tpi_pattern_new_grid(TpiLibrary.Size(nu), TpiLibrary.Size(nv), out h);
+            return Created(s, h, "tpi_pattern_new_grid");
+        }
+
+        /// <summary>The hexagonal grid of nu x nv points (generator hex:NUxNV).</summary>
+        public static Pattern Hex(int nu, int nv)
+        {
+            PatternHandle h;
+            var s = UnsafeNativeMethods.tpi_pattern_new_hex(TpiLibrary.Size(nu), TpiLibrary.Size(nv), out h);
+            return Created(s, h, "tpi_pattern_new_hex");
+        }
+
+        /// <summary>The jittered grid (generator jitter:NUxNV:amount=A:seed=S).</summary>
+        public static Pattern Jitter(int nu, int nv, double amount, ulong seed)
+        {
+            PatternHandle h;
+            var s = UnsafeNativeMethods.tpi_pattern_new_jitter(TpiLibrary.Size(nu), TpiLibrary.Size(nv), amount, seed, out h);
+            return Created(s, h, "tpi_pattern_new_jitter");
+        }
+
+        /// <summary>Uniform random points (generator random:N:seed=S).</summary>
+        public static Pattern Random(int count, ulong seed)
+        {
+            PatternHandle h;
+            var s = UnsafeNativeMethods.tpi_pattern_new_random(TpiLibrary.Size(count), seed, out h);
+            return Created(s, h, "tpi_pattern_new_random");
+        }
+
+        /// <summary>Poisson-disk sampling with minimum distance radius (generator poisson:R:seed=S).</summary>
+        public static Pattern Poisson(double radius, ulong seed)
+        {
+            PatternHandle h;
+            var s = UnsafeNativeMethods.tpi_pattern_new_poisson(radius, seed, out h);
+            return Created(s, h, "tpi_pattern_new_poisson");
+        }
+
+        /// <summary>From a generator spec in the command line's syntax, e.g. "hex:12x12" or "grid:spacing=0.05".</summary>
+        public static Pattern FromSpec(string spec)
+        {
+            PatternHandle h;
+            var s = UnsafeNativeMethods.tpi_pattern_new_from_spec(spec == null ? null : TpiLibrary.EncodeUtf8(spec), out h);
+            return Created(s, h, "tpi_pattern_new_from_spec");
+        }
+
+        /// <summary>Number of points.</summary>
+        public int Count
+        {
+            get
+            {
+                UIntPtr n;
+                TpiLibrary.Check(UnsafeNativeMethods.tpi_pattern_point_count(Handle, out n), "tpi_pattern_point_count");
+                return TpiLibrary.ToInt(n);
+            }
+        }
+
+        /// <summary>The points as s0, t0, s1, t1, ... (a fresh copy).</summary>
+        public double[] GetPointArray()
+        {
+            return TpiLibrary.CopyOut<double>((double[] b, UIntPtr c, out UIntPtr n) =>
+                UnsafeNativeMethods.tpi_pattern_points(Handle, b, c, out n), "tpi_pattern_points");
+        }
+
+        /// <summary>The points (read once, then cached: the pattern is immutable).</summary>
+        public IReadOnlyList<PatternPoint> Points
+        {
+            get
+            {
+                if (_points == null) _points = ToPoints(GetPointArray());
+                return Array.AsReadOnly(_points);
+            }
+        }
+
+        internal static PatternPoint[] ToPoints(double[] st)
+        {
+            var points = new PatternPoint[st.Length / 2];
+            for (int i = 0; i < points.Length; i++) points[i] = new PatternPoint(st[2 * i], st[2 * i + 1]);
+            return points;
+        }
+
+        /// <summary>True once disposed.</summary>
+        public bool IsDisposed { get { return Handle.IsClosed; } }
+
+        /// <summary>Frees the native pattern.</summary>
+        public void Dispose() { Handle.Dispose(); }
+    }
+}

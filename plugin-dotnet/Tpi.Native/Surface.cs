@@ -1,0 +1,156 @@
+using System;
+using System.Collections.Generic;
+using Tpi.Native.Interop;
+
+namespace Tpi.Native
+{
+    /// <summary>
+    /// A surface (TpiSurface): NURBS as RhinoCommon hands it over, or one of the analytic
+    /// test surfaces. Immutable; may be used from several threads. Dispose it when done (the
+    /// finalizer frees it otherwise).
+    /// </summary>
+    public sealed class Surface : IDisposable
+    {
+        internal readonly SurfaceHandle Handle;
+        static readonly SurfaceHandle NullHandle = new SurfaceHandle();
+
+        Surface(SurfaceHandle handle) { Handle = handle; }
+
+        internal static SurfaceHandle HandleOf(Surface surface)
+        {
+            // A null Surface reaches the library as NULL, which reports it with its own message.
+            return surface == null ? NullHandle : surface.Handle;
+        }
+
+        static Surface Created(Status status, SurfaceHandle handle, string function)
+        {
+            if (status != Status.Ok)
+            {
+                var error = new TpiException(status, TpiLibrary.LastErrorMessage(), function);
+                if (handle != null) handle.Dispose();
+                throw error;
+            }
+            handle.Track();
+            return new Surface(handle);
+        }
+
+        /// <summary>
+        /// A NURBS surface from the arrays RhinoCommon gives: knots in Rhino's convention
+        /// (count + degree - 1 per direction, <c>NurbsSurface.KnotsU</c>), Euclidean control
+        /// points u-major (point (i, j) at <c>3 * (i * countV + j)</c>, i.e.
+        /// <c>Points.GetControlPoint(i, j).Location</c>), weights in the same order or null for a
+        /// non-rational surface. All validation is the library's: a mistake raises a
+        /// <see cref="TpiException"/> whose message names the argument.
+        /// </summary>
+        public static Surface FromNurbs(int degreeU, int degreeV, int countU, int countV,
+            IList<double> knotsU, IList<double> knotsV, IList<double> points, IList<double> weights = null)
+        {
+            var ku = TpiLibrary.ArrayOrNull(knotsU);
+            var kv = TpiLibrary.ArrayOrNull(knotsV);
+            var p = TpiLibrary.ArrayOrNull(points);
+            var w = TpiLibrary.ArrayOrNull(weights);
+            SurfaceHandle handle;
+            var status = UnsafeNativeMethods.tpi_surface_new_nurbs(TpiLibrary.Size(degreeU), TpiLibrary.Size(degreeV),
+                TpiLibrary.Size(countU), TpiLibrary.Size(countV), ku, TpiLibrary.Length(ku), kv, TpiLibrary.Length(kv),
+                p, TpiLibrary.Length(p), w, TpiLibrary.Length(w), out handle);
+            return Created(status, handle, "tpi_surface_new_nurbs");
+        }
+
+        /// <summary>z = a x^2 + b y^2 over [x0, x1] x [y0, y1].</summary>
+        public static Surface EllipticParaboloid(double a, double b, double x0, double x1, double y0, double y1)
+        {
+            SurfaceHandle h;
+            var s = UnsafeNativeMethods.tpi_surface_new_elliptic_paraboloid(a, b, x0, x1, y0, y1, out h);
+            return Created(s, h, "tpi_surface_new_elliptic_paraboloid");
+        }
+
+        /// <summary>z = a x^2 - b y^2 over [x0, x1] x [y0, y1].</summary>
+        public static Surface HyperbolicParaboloid(double a, double b, double x0, double x1, double y0, double y1)
+        {
+            SurfaceHandle h;
+            var s = UnsafeNativeMethods.tpi_surface_new_hyperbolic_paraboloid(a, b, x0, x1, y0, y1, out h);
+            return Created(s, h, "tpi_surface_new_hyperbolic_paraboloid");
+        }
+
+        /// <summary>z = sqrt(r^2 - x^2 - y^2) over [x0, x1] x [y0, y1].</summary>
+        public static Surface SphereCap(double radius, double x0, double x1, double y0, double y1)
+        {
+            SurfaceHandle h;
+            var s = UnsafeNativeMethods.tpi_surface_new_sphere_cap(radius, x0, x1, y0, y1, out h);
+            return Created(s, h, "tpi_surface_new_sphere_cap");
+        }
+
+        /// <summary>The sphere cap over [-h, h]^2.</summary>
+        public static Surface SphereCapSquare(double radius, double halfWidth)
+        {
+            SurfaceHandle h;
+            var s = UnsafeNativeMethods.tpi_surface_new_sphere_cap_square(radius, halfWidth, out h);
+            return Created(s, h, "tpi_surface_new_sphere_cap_square");
+        }
+
+        /// <summary>z = c sqrt(1 - x^2/a^2 - y^2/b^2) over [x0, x1] x [y0, y1].</summary>
+        public static Surface EllipsoidCap(double a, double b, double c, double x0, double x1, double y0, double y1)
+        {
+            SurfaceHandle h;
+            var s = UnsafeNativeMethods.tpi_surface_new_ellipsoid_cap(a, b, c, x0, x1, y0, y1, out h);
+            return Created(s, h, "tpi_surface_new_ellipsoid_cap");
+        }
+
+        /// <summary>z = A sin(x) sin(y) over [x0, x1] x [y0, y1].</summary>
+        public static Surface EggCrate(double amplitude, double x0, double x1, double y0, double y1)
+        {
+            SurfaceHandle h;
+            var s = UnsafeNativeMethods.tpi_surface_new_egg_crate(amplitude, x0, x1, y0, y1, out h);
+            return Created(s, h, "tpi_surface_new_egg_crate");
+        }
+
+        /// <summary>z = sqrt(r^2 - x^2) (developable: discretising it fails).</summary>
+        public static Surface Cylinder(double radius, double x0, double x1, double y0, double y1)
+        {
+            SurfaceHandle h;
+            var s = UnsafeNativeMethods.tpi_surface_new_cylinder(radius, x0, x1, y0, y1, out h);
+            return Created(s, h, "tpi_surface_new_cylinder");
+        }
+
+        /// <summary>z = p x + q y + c0 (flat: discretising it fails).</summary>
+        public static Surface Plane(double p, double q, double c0, double x0, double x1, double y0, double y1)
+        {
+            SurfaceHandle h;
+            var s = UnsafeNativeMethods.tpi_surface_new_plane(p, q, c0, x0, x1, y0, y1, out h);
+            return Created(s, h, "tpi_surface_new_plane");
+        }
+
+        /// <summary>The parameter domain.</summary>
+        public Domain Domain
+        {
+            get
+            {
+                Domain d;
+                TpiLibrary.Check(UnsafeNativeMethods.tpi_surface_domain(Handle, out d), "tpi_surface_domain");
+                return d;
+            }
+        }
+
+        /// <summary>Point, normal and curvatures at (u, v) in the surface's own domain.</summary>
+        public Sample Evaluate(double u, double v)
+        {
+            return Evaluate(new[] { u, v })[0];
+        }
+
+        /// <summary>Samples at (u0, v0, u1, v1, ...) in the surface's own domain.</summary>
+        public Sample[] Evaluate(double[] uv)
+        {
+            int count = uv == null ? 0 : uv.Length / 2;
+            var samples = new Sample[count];
+            TpiLibrary.Check(UnsafeNativeMethods.tpi_surface_evaluate(Handle, uv, TpiLibrary.Length(uv), samples,
+                TpiLibrary.Size(count)), "tpi_surface_evaluate");
+            return samples;
+        }
+
+        /// <summary>True once disposed.</summary>
+        public bool IsDisposed { get { return Handle.IsClosed; } }
+
+        /// <summary>Frees the native surface.</summary>
+        public void Dispose() { Handle.Dispose(); }
+    }
+}
