@@ -21,12 +21,12 @@ use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
 use crate::error::TpiError;
 use crate::facets::{build_facets, FacetParams, VertexKind, DEFAULT_FAR_VERTEX_FACTOR};
-use crate::neighbours::{decide, NeighbourInput, NeighbourStats};
+use crate::neighbours::{decide, decide_convex, gradient_embedding, NeighbourInput};
 use crate::planes::Plane;
 use crate::quality::{report, QualityReport, ReportInput};
 use crate::surface::Surface;
 use crate::pattern::validate_uv;
-use crate::triangulation::DualTriangulation;
+use crate::triangulation::{orient, DualTriangulation};
 
 /// Default weld distance of coincident vertices, relative to the bounding-box diagonal.
 pub const DEFAULT_WELD_TOLERANCE: f64 = 1e-10;
@@ -237,17 +237,35 @@ pub fn discretise(
 
     // Candidates and true neighbours.
     let stage = Instant::now();
-    let mut triangulation = DualTriangulation::delaunay(&plane_uv)?;
-    timings.delaunay = ms(stage);
-    let stage = Instant::now();
+    check_not_collinear(&plane_uv)?;
     let input = NeighbourInput { plane_uv: &plane_uv, geometry: &geometry, planes: &planes, convex_side: &convex_side };
-    let neighbours: NeighbourStats = decide(&mut triangulation, &input, options.envelope_repair);
-    timings.neighbours = ms(stage);
+    let slopes = if options.envelope_repair { gradient_embedding(&planes, &convex_side) } else { None };
+    let (triangulation, neighbours) = match slopes {
+        // Convex everywhere: the envelope's own structure, computed in slope space.
+        Some(slopes) => {
+            let mut triangulation = DualTriangulation::delaunay(&slopes)?;
+            timings.delaunay = ms(stage);
+            let stage = Instant::now();
+            let stats = decide_convex(&mut triangulation, &slopes, &input);
+            orient_like_parameters(&mut triangulation, &plane_uv);
+            timings.neighbours = ms(stage);
+            (triangulation, stats)
+        }
+        // Anything else: parameter-space candidates, curvature compensation, local repair.
+        None => {
+            let mut triangulation = DualTriangulation::delaunay(&plane_uv)?;
+            timings.delaunay = ms(stage);
+            let stage = Instant::now();
+            let stats = decide(&mut triangulation, &input, options.envelope_repair);
+            timings.neighbours = ms(stage);
+            (triangulation, stats)
+        }
+    };
 
     // Facets and mesh.
     let stage = Instant::now();
     let params = FacetParams { far_vertex_factor: options.far_vertex_factor, weld_distance: options.weld_tolerance * diagonal };
-    let mesh = build_facets(surface, &uv, &tangents, &planes, &triangulation, &params);
+    let mesh = build_facets(surface, &uv, &tangents, &planes, &convex_side, &triangulation, &params);
     diagnostics.extend(mesh.diagnostics.iter().cloned());
     if !mesh.vertices.is_empty() && mesh.diagnostics.iter().filter(|d| matches!(d, Diagnostic::IllConditionedVertex { .. })).count() == triangulation.len() {
         return Err(TpiError::DegenerateSurface {
@@ -299,6 +317,37 @@ pub fn discretise(
     }
     result.timings.total = ms(start);
     Ok(result)
+}
+
+/// Rejects patterns whose points all lie on one line in parameter space (no facet could
+/// close), whatever space the triangulation is then built in.
+fn check_not_collinear(points: &[[f64; 2]]) -> Result<(), TpiError> {
+    let first = points[0];
+    let distance2 = |p: [f64; 2]| (p[0] - first[0]).powi(2) + (p[1] - first[1]).powi(2);
+    let far = points.iter().copied().max_by(|a, b| distance2(*a).total_cmp(&distance2(*b))).unwrap_or(first);
+    let scale = distance2(far);
+    if points.iter().any(|&p| orient(first, far, p).abs() > COLLINEAR_TOLERANCE * scale) {
+        Ok(())
+    } else {
+        Err(TpiError::CollinearPattern { count: points.len() })
+    }
+}
+
+/// Points whose twice-signed triangle area with the pattern's longest chord from its first
+/// point is below this fraction of the chord's squared length count as collinear.
+pub const COLLINEAR_TOLERANCE: f64 = 1e-12;
+
+/// Makes the triangles counter-clockwise in parameter space (the orientation the facet loops
+/// inherit), judged by the majority so that a few slivers cannot decide.
+fn orient_like_parameters(tri: &mut DualTriangulation, uv: &[[f64; 2]]) {
+    let reversed = tri
+        .triangles
+        .iter()
+        .filter(|t| orient(uv[t[0] as usize], uv[t[1] as usize], uv[t[2] as usize]) < 0.0)
+        .count();
+    if 2 * reversed > tri.len() {
+        tri.reverse();
+    }
 }
 
 fn ms(since: Instant) -> f64 {

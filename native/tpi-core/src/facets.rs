@@ -127,6 +127,7 @@ struct Context<'a> {
     planes: &'a [Plane],
     uv: &'a [[f64; 2]],
     tangents: &'a [[DVec3; 2]],
+    convex_side: &'a [i8],
 }
 
 impl Context<'_> {
@@ -174,11 +175,12 @@ pub fn build_facets(
     uv: &[[f64; 2]],
     tangents: &[[DVec3; 2]],
     planes: &[Plane],
+    convex_side: &[i8],
     tri: &DualTriangulation,
     params: &FacetParams,
 ) -> FacetMesh {
     let domain = surface.domain();
-    let ctx = Context { surface, domain, planes, uv, tangents };
+    let ctx = Context { surface, domain, planes, uv, tangents, convex_side };
     let mut diagnostics = Vec::new();
 
     // 1. Triangle vertices, their conditioning and whether they lie inside.
@@ -476,8 +478,16 @@ fn edge_crossings(
     };
     let spacing = lo.point.distance(hi.point).max(f64::MIN_POSITIVE);
     let outward = |t: u32| {
-        // Direction along the line away from triangle t's third point.
+        // Direction along the line away from triangle t's third point k. Where all three are
+        // convex on one side, the envelope decides: the ray stays in H_k, sigma n_k . d > 0.
         let third = tri.triangles[t as usize].into_iter().find(|&v| v != edge.lo && v != edge.hi).unwrap_or(edge.lo);
+        let side = ctx.convex_side[third as usize];
+        if side != 0 && ctx.convex_side[edge.lo as usize] == side && ctx.convex_side[edge.hi as usize] == side {
+            let along = f64::from(side) * ctx.planes[third as usize].normal.dot(line);
+            if along != 0.0 {
+                return if along > 0.0 { line } else { -line };
+            }
+        }
         let chord = hi.point - lo.point;
         let mut away = (lo.point + hi.point) * 0.5 - ctx.planes[third as usize].point;
         away -= chord * (away.dot(chord) / chord.length_squared().max(f64::MIN_POSITIVE));

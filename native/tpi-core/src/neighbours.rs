@@ -34,6 +34,7 @@ use glam::DVec3;
 
 use crate::diffgeo::LocalGeometry;
 use crate::planes::{intersect_three, Plane};
+
 use crate::triangulation::{orient, DualTriangulation, NO_TRIANGLE};
 
 /// Relative weight of the isotropic term that keeps the compensation metric definite.
@@ -75,14 +76,58 @@ pub struct NeighbourInput<'a> {
 /// Runs both criteria to convergence. Deterministic (a stack in edge order).
 pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope: bool) -> NeighbourStats {
     let mut stats = NeighbourStats::default();
-    stats.compensation_flips = flip_until_stable(tri, input, |tri, t, k| compensation_illegal(tri, input, t, k)).0;
+    let uv = input.plane_uv;
+    stats.compensation_flips = flip_until_stable(tri, uv, |tri, t, k| compensation_illegal(tri, input, t, k)).0;
     if envelope {
-        let (flips, unresolved) = flip_until_stable(tri, input, |tri, t, k| envelope_illegal(tri, input, t, k));
+        let (flips, unresolved) = flip_until_stable(tri, uv, |tri, t, k| envelope_illegal(tri, input, t, k));
         stats.envelope_repairs = flips;
         stats.envelope_unresolved = unresolved;
         stats.hull_trims = trim_hull(tri, input);
     }
     stats
+}
+
+/// A hull triangle whose vertex lies farther than this many times its size from its points
+/// is numerically degenerate (its points are collinear to rounding) and is trimmed.
+pub const DEGENERATE_SLIVER_FACTOR: f64 = 1e8;
+
+/// Smallest cosine between any normal and the mean normal for which a convex surface is
+/// treated as a graph over the plane of the mean normal (see [`gradient_embedding`]).
+pub const GRADIENT_MIN_COS: f64 = 0.2;
+
+/// Where every point is strictly convex with the same side and all normals lie within
+/// acos([`GRADIENT_MIN_COS`]) of their mean N, the surface is a graph over the plane
+/// perpendicular to N, each tangent plane is z = a_i x + b_i y + c_i in a frame (e1, e2, N),
+/// with (a_i, b_i) = -(n_i.e1, n_i.e2) / n_i.N, and the envelope is the upper (sigma = +1) or
+/// lower (sigma = -1) envelope of these planes. Its dual is the regular triangulation of the
+/// slopes sigma (a_i, b_i) lifted to -sigma c_i (the lower convex hull of the lifted points,
+/// by Legendre duality): a planar triangulation in slope space whose hull is exactly the
+/// envelope's. Returns the slope coordinates, or None where the conditions fail.
+pub fn gradient_embedding(planes: &[Plane], convex_side: &[i8]) -> Option<Vec<[f64; 2]>> {
+    let side = *convex_side.first()?;
+    if side == 0 || convex_side.iter().any(|&s| s != side) {
+        return None;
+    }
+    let mean = planes.iter().fold(DVec3::ZERO, |acc, p| acc + p.normal).try_normalize()?;
+    let (e1, e2) = mean.any_orthonormal_pair();
+    let s = f64::from(side);
+    planes
+        .iter()
+        .map(|p| {
+            let nz = p.normal.dot(mean);
+            (nz >= GRADIENT_MIN_COS).then(|| [-s * p.normal.dot(e1) / nz, -s * p.normal.dot(e2) / nz])
+        })
+        .collect()
+}
+
+/// The envelope's dual structure for a convex surface, from the Delaunay triangulation of
+/// the slopes ([`gradient_embedding`]) flipped to the regular triangulation by the envelope
+/// test, with convexity judged in slope space where the result is embedded.
+pub fn decide_convex(tri: &mut DualTriangulation, slopes: &[[f64; 2]], input: &NeighbourInput<'_>) -> NeighbourStats {
+    let (flips, unresolved) = flip_until_stable(tri, slopes, |tri, t, k| envelope_illegal(tri, input, t, k));
+    // Rounding can leave slivers along a straight stretch of the hull.
+    let hull_trims = trim_hull(tri, input);
+    NeighbourStats { compensation_flips: 0, envelope_repairs: flips, envelope_unresolved: unresolved, hull_trims }
 }
 
 /// Removes hull triangles the envelope rejects, until none is left.
@@ -175,6 +220,12 @@ fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, adjacency:
         .map(|k| planes[vertices[k] as usize].point.distance(planes[vertices[(k + 1) % 3] as usize].point))
         .fold(0.0, f64::max);
     let tolerance = ENVELOPE_FLIP_TOLERANCE * size;
+    // Three (numerically) collinear planes along a straight stretch of the hull meet at
+    // infinity: such a sliver holds no vertex of the envelope.
+    let centroid = vertices.iter().fold(DVec3::ZERO, |acc, &v| acc + planes[v as usize].point) / 3.0;
+    if !vertex.is_finite() || vertex.distance(centroid) > DEGENERATE_SLIVER_FACTOR * size {
+        return true;
+    }
     let cut_off = vertices.iter().flat_map(|&v| &adjacency[v as usize]).any(|&m| {
         adjacency[m as usize].iter().chain(std::iter::once(&m)).any(|&x| {
             input.convex_side[x as usize] == side && s * planes[x as usize].signed_distance(vertex) < -tolerance
@@ -201,7 +252,7 @@ fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, adjacency:
 /// Lawson's flip loop with the given illegality test. Returns (flips, unresolved).
 fn flip_until_stable(
     tri: &mut DualTriangulation,
-    input: &NeighbourInput<'_>,
+    embedding: &[[f64; 2]],
     illegal: impl Fn(&DualTriangulation, usize, usize) -> bool,
 ) -> (usize, usize) {
     let mut stack: Vec<(u32, u32)> = Vec::with_capacity(tri.len() * 2);
@@ -217,7 +268,7 @@ fn flip_until_stable(
     let budget = 20 * tri.len() + 100;
     let mut flips = 0;
     let mut unresolved = 0;
-    let mut incident = tri.incident_triangles(input.plane_uv.len());
+    let mut incident = tri.incident_triangles(embedding.len());
     while let Some((a, b)) = stack.pop() {
         let Some((t, k)) = find_edge(tri, &incident, a, b) else { continue };
         if !illegal(tri, t, k) {
@@ -227,9 +278,9 @@ fn flip_until_stable(
         let [c, a, b] = rotated(tri.triangles[t], k);
         let k2 = tri.neighbours[t2 as usize].iter().position(|&x| x as usize == t).unwrap_or(0);
         let d = tri.triangles[t2 as usize][k2];
-        let uv = input.plane_uv;
-        let convex = orient(uv[c as usize], uv[a as usize], uv[d as usize]) > 0.0
-            && orient(uv[d as usize], uv[b as usize], uv[c as usize]) > 0.0;
+        let e = embedding;
+        let convex = orient(e[c as usize], e[a as usize], e[d as usize]) > 0.0
+            && orient(e[d as usize], e[b as usize], e[c as usize]) > 0.0;
         if !convex || flips >= budget {
             unresolved += 1;
             continue;

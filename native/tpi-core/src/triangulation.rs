@@ -91,6 +91,14 @@ impl DualTriangulation {
         Ok(Self { triangles, neighbours })
     }
 
+    /// Reverses every triangle's orientation (counter-clockwise becomes clockwise).
+    pub fn reverse(&mut self) {
+        for (t, n) in self.triangles.iter_mut().zip(self.neighbours.iter_mut()) {
+            t.swap(1, 2);
+            n.swap(1, 2);
+        }
+    }
+
     /// Number of triangles.
     pub fn len(&self) -> usize {
         self.triangles.len()
