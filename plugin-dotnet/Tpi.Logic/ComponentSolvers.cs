@@ -1,0 +1,198 @@
+// The Grasshopper components' solve logic as plain data in, plain data out. The components
+// (Tpi.Grasshopper) only convert RhinoCommon types to these inputs and the outputs back, and
+// run Solve on a worker task. Solve never throws for bad input: the library's messages come
+// back in Errors (and become the component's runtime messages).
+using System;
+using System.Collections.Generic;
+using System.Linq;
+using Tpi.Native;
+
+namespace Tpi.Logic
+{
+    /// <summary>Inputs of "TPI Discretise".</summary>
+    public sealed class DiscretiseInput
+    {
+        /// <summary>The surface.</summary>
+        public SurfaceSpec Surface { get; set; }
+        /// <summary>The pattern points: normalised (s, t), or (u, v) in the surface's domain when <see cref="PointsInSurfaceDomain"/>.</summary>
+        public IList<PatternPoint> Points { get; set; }
+        /// <summary>True if <see cref="Points"/> are (u, v) in the surface's domain (e.g. from Surface.ClosestPoint).</summary>
+        public bool PointsInSurfaceDomain { get; set; }
+        /// <summary>Options; null for the library's defaults.</summary>
+        public DiscretisationOptions Options { get; set; }
+    }
+
+    /// <summary>Outputs of "TPI Discretise".</summary>
+    public sealed class DiscretiseOutput
+    {
+        /// <summary>The whole mesh (passed on to "TPI Quality"); null on failure.</summary>
+        public MeshData Mesh { get; internal set; }
+        /// <summary>One closed polyline per facet.</summary>
+        public Vec3[][] Polylines { get; internal set; }
+        /// <summary>The tangent plane of each facet.</summary>
+        public FacetPlane[] Planes { get; internal set; }
+        /// <summary>The triangle mesh with one n-gon per facet.</summary>
+        public NgonMesh NgonMesh { get; internal set; }
+        /// <summary>The quality report as JSON ("" when switched off).</summary>
+        public string QualityJson { get; internal set; }
+        /// <summary>The pattern points actually used (normalised).</summary>
+        public PatternPoint[] Points { get; internal set; }
+        /// <summary>Problems that stopped the solve.</summary>
+        public List<string> Errors { get; private set; }
+        /// <summary>Problems worth a look (diagnostics, flagged facets, clamped points).</summary>
+        public List<string> Warnings { get; private set; }
+        /// <summary>True if a mesh was made.</summary>
+        public bool Success { get { return Mesh != null; } }
+
+        internal DiscretiseOutput() { Errors = new List<string>(); Warnings = new List<string>(); }
+    }
+
+    /// <summary>Inputs of "TPI Pattern": a generator, or a spec string that wins when not empty.</summary>
+    public sealed class PatternInput
+    {
+        /// <summary>The generator and its parameters.</summary>
+        public PatternGenerator Generator { get; set; }
+        /// <summary>A spec in the library's syntax ("hex:12x12", "grid:spacing=0.05"); overrides Generator.</summary>
+        public string Spec { get; set; }
+    }
+
+    /// <summary>Outputs of "TPI Pattern".</summary>
+    public sealed class PatternOutput
+    {
+        /// <summary>The points (normalised).</summary>
+        public PatternPoint[] Points { get; internal set; }
+        /// <summary>The spec that made them.</summary>
+        public string Spec { get; internal set; }
+        /// <summary>Problems that stopped the solve.</summary>
+        public List<string> Errors { get; private set; }
+        internal PatternOutput() { Errors = new List<string>(); Points = new PatternPoint[0]; Spec = string.Empty; }
+    }
+
+    /// <summary>Outputs of "TPI Quality" (one entry per facet, plus the report).</summary>
+    public sealed class QualityOutput
+    {
+        /// <summary>Largest vertex distance from the facet's plane (model units).</summary>
+        public double[] Planarity { get; internal set; }
+        /// <summary>Number of sides of each facet.</summary>
+        public int[] Sides { get; internal set; }
+        /// <summary>TPI_FACET_* bits of each facet.</summary>
+        public int[] Flags { get; internal set; }
+        /// <summary>Flag names of each facet ("" when none), e.g. "NonConvex, Diagnostic".</summary>
+        public string[] FlagNames { get; internal set; }
+        /// <summary>Diagnostic kinds naming each facet ("" when none).</summary>
+        public string[] Diagnostics { get; internal set; }
+        /// <summary>Area of each facet.</summary>
+        public double[] Areas { get; internal set; }
+        /// <summary>Largest vertex distance from the surface (model units; NaN without a report).</summary>
+        public double MaxDeviation { get; internal set; }
+        /// <summary>Mean vertex distance from the surface (NaN without a report).</summary>
+        public double MeanDeviation { get; internal set; }
+        /// <summary>Largest planarity error relative to the bounding-box diagonal (NaN without a report).</summary>
+        public double MaxPlanarityError { get; internal set; }
+        /// <summary>Facet count per number of sides.</summary>
+        public SortedDictionary<int, int> SideHistogram { get; internal set; }
+        /// <summary>The report as JSON ("" without a report).</summary>
+        public string Json { get; internal set; }
+    }
+
+    /// <summary>The components' solve functions.</summary>
+    public static class ComponentSolvers
+    {
+        /// <summary>"TPI Discretise".</summary>
+        public static DiscretiseOutput Discretise(DiscretiseInput input)
+        {
+            var output = new DiscretiseOutput();
+            if (input == null || input.Surface == null) { output.Errors.Add("no surface"); return output; }
+            if (input.Points == null || input.Points.Count == 0) { output.Errors.Add("no pattern points"); return output; }
+            try
+            {
+                using (var surface = input.Surface.CreateNative())
+                {
+                    var domain = input.PointsInSurfaceDomain ? surface.Domain : new Domain(0, 1, 0, 1);
+                    var points = new List<PatternPoint>(input.Points.Count);
+                    for (int i = 0; i < input.Points.Count; i++)
+                    {
+                        PatternPoint p;
+                        string error;
+                        if (InputValidation.TryNormalise(domain, input.Points[i].S, input.Points[i].T, out p, out error)) points.Add(p);
+                        else output.Errors.Add("point " + i + ": " + error);
+                    }
+                    if (output.Errors.Count > 0) return output;
+                    using (var pattern = Native.Pattern.FromPoints(points))
+                    using (var mesh = Discretisation.Create(surface, pattern, input.Options))
+                    {
+                        var data = MeshData.From(mesh);
+                        output.Points = points.ToArray();
+                        output.Mesh = data;
+                        output.Polylines = MeshConversion.FacetPolylines(data);
+                        output.Planes = (FacetPlane[])data.Planes.Clone();
+                        output.NgonMesh = MeshConversion.ToNgonMesh(data);
+                        output.QualityJson = data.QualityJson ?? string.Empty;
+                        int flagged = data.Flags.Count(f => f != FacetFlags.None);
+                        if (flagged > 0) output.Warnings.Add(flagged + " of " + data.FacetCount + " facets are flagged (see TPI Quality)");
+                        if (data.Diagnostics.Length > 0)
+                            output.Warnings.Add(data.Diagnostics.Select(d => d.Diagnostic).Distinct().Count() + " diagnostics: " + data.DiagnosticsJson);
+                    }
+                }
+            }
+            catch (TpiException e)
+            {
+                output.Mesh = null;
+                output.Errors.Add(TpiLibrary.StatusName(e.Status) + ": " + e.NativeMessage);
+            }
+            return output;
+        }
+
+        /// <summary>"TPI Pattern".</summary>
+        public static PatternOutput Pattern(PatternInput input)
+        {
+            var output = new PatternOutput();
+            try
+            {
+                bool bySpec = input != null && !string.IsNullOrWhiteSpace(input.Spec);
+                var generator = input == null || input.Generator == null ? new PatternGenerator() : input.Generator;
+                using (var pattern = bySpec ? Native.Pattern.FromSpec(input.Spec.Trim()) : generator.Create())
+                {
+                    output.Points = pattern.Points.ToArray();
+                    output.Spec = bySpec ? input.Spec.Trim() : generator.ToSpec();
+                }
+            }
+            catch (TpiException e)
+            {
+                output.Errors.Add(TpiLibrary.StatusName(e.Status) + ": " + e.NativeMessage);
+            }
+            return output;
+        }
+
+        /// <summary>"TPI Quality".</summary>
+        public static QualityOutput Quality(MeshData mesh)
+        {
+            if (mesh == null) throw new ArgumentNullException("mesh");
+            var perFacet = new List<string>[mesh.FacetCount];
+            foreach (var entry in mesh.Diagnostics)
+            {
+                if (entry.Point == DiagnosticEntry.NoPoint || entry.Point >= mesh.FacetCount) continue;
+                var list = perFacet[entry.Point] ?? (perFacet[entry.Point] = new List<string>());
+                var name = entry.Kind.ToString();
+                if (!list.Contains(name)) list.Add(name);
+            }
+            var histogram = new SortedDictionary<int, int>();
+            foreach (var s in mesh.FacetSizes) { int n; histogram.TryGetValue(s, out n); histogram[s] = n + 1; }
+            var q = mesh.Quality;
+            return new QualityOutput
+            {
+                Planarity = MeshConversion.PlanarityErrors(mesh),
+                Sides = MeshConversion.SideCounts(mesh),
+                Flags = mesh.Flags.Select(f => (int)f).ToArray(),
+                FlagNames = mesh.Flags.Select(f => f == FacetFlags.None ? string.Empty : f.ToString()).ToArray(),
+                Diagnostics = perFacet.Select(l => l == null ? string.Empty : string.Join(", ", l)).ToArray(),
+                Areas = MeshConversion.FacetAreas(mesh),
+                MaxDeviation = q.HasValue ? q.Value.MaxDeviation : double.NaN,
+                MeanDeviation = q.HasValue ? q.Value.MeanDeviation : double.NaN,
+                MaxPlanarityError = q.HasValue ? q.Value.MaxPlanarityError : double.NaN,
+                SideHistogram = histogram,
+                Json = mesh.QualityJson ?? string.Empty,
+            };
+        }
+    }
+}

@@ -1,0 +1,195 @@
+// The bytes a discrete surface stores in the .3dm (the Rhino adapter writes them with
+// BinaryArchiveWriter.WriteByteArray inside its UserData.Write). Versioned, little-endian,
+// self-checking:
+//
+//   magic      4 bytes  "TPDS"
+//   version    uint16   FormatVersion (readers reject a newer major format with a clear message)
+//   flags      uint16   0
+//   surface    byte kind: 1 = NURBS, 2 = analytic
+//     NURBS:    int32 degreeU, degreeV, countU, countV; array knotsU; array knotsV;
+//               array points (3 per control point, u-major, Euclidean); byte rational; [array weights]
+//     analytic: int32 kind; array parameters
+//   pattern    array s0, t0, s1, t1, ...
+//   options    int32 byte length L, then L bytes: byte envelopeRepair, byte qualityReport,
+//              double farVertexFactor, weldTolerance, flatTolerance (later versions append; a
+//              reader skips what it does not know and gives missing fields their defaults)
+//   generator  int32 byte length, UTF-8
+//   source     16 bytes Guid
+//   crc32      uint32 of everything before it (IEEE polynomial)
+//
+// where "array" is int32 count followed by count doubles.
+using System;
+using System.IO;
+using System.Text;
+using Tpi.Native;
+
+namespace Tpi.Logic
+{
+    /// <summary>Serialises a <see cref="DiscreteSurfaceDocument"/> to bytes and back.</summary>
+    public static class UserDataFormat
+    {
+        /// <summary>The format version written.</summary>
+        public const ushort FormatVersion = 1;
+        static readonly byte[] Magic = { (byte)'T', (byte)'P', (byte)'D', (byte)'S' };
+        const int MaxArray = 1 << 27;
+        const int OptionsV1Length = 2 + 3 * 8;
+
+        /// <summary>The bytes of <paramref name="document"/>.</summary>
+        public static byte[] Write(DiscreteSurfaceDocument document)
+        {
+            if (document == null) throw new ArgumentNullException("document");
+            if (document.Surface == null) throw new ArgumentException("the document has no surface", "document");
+            using (var stream = new MemoryStream())
+            {
+                using (var w = new BinaryWriter(stream, Encoding.UTF8, true))
+                {
+                    w.Write(Magic);
+                    w.Write(FormatVersion);
+                    w.Write((ushort)0);
+                    var nurbs = document.Surface as NurbsSurfaceSpec;
+                    var analytic = document.Surface as AnalyticSurfaceSpec;
+                    if (nurbs != null)
+                    {
+                        w.Write((byte)1);
+                        w.Write(nurbs.DegreeU); w.Write(nurbs.DegreeV); w.Write(nurbs.CountU); w.Write(nurbs.CountV);
+                        WriteArray(w, nurbs.KnotsU); WriteArray(w, nurbs.KnotsV); WriteArray(w, nurbs.Points);
+                        w.Write((byte)(nurbs.IsRational ? 1 : 0));
+                        if (nurbs.IsRational) WriteArray(w, nurbs.Weights);
+                    }
+                    else if (analytic != null)
+                    {
+                        w.Write((byte)2);
+                        w.Write((int)analytic.Kind);
+                        WriteArray(w, analytic.Parameters);
+                    }
+                    else throw new ArgumentException("unknown surface type " + document.Surface.GetType().Name, "document");
+                    w.Write(document.Points.Count * 2);
+                    foreach (var p in document.Points) { w.Write(p.S); w.Write(p.T); }
+                    var o = document.Options ?? DiscretisationOptions.Default();
+                    w.Write(OptionsV1Length);
+                    w.Write((byte)(o.EnvelopeRepair ? 1 : 0));
+                    w.Write((byte)(o.QualityReport ? 1 : 0));
+                    w.Write(o.FarVertexFactor); w.Write(o.WeldTolerance); w.Write(o.FlatTolerance);
+                    var generator = Encoding.UTF8.GetBytes(document.Generator ?? string.Empty);
+                    w.Write(generator.Length); w.Write(generator);
+                    w.Write(document.SourceSurfaceId.ToByteArray());
+                }
+                var body = stream.ToArray();
+                var crc = Crc32(body, 0, body.Length);
+                var all = new byte[body.Length + 4];
+                Buffer.BlockCopy(body, 0, all, 0, body.Length);
+                BitConverter.GetBytes(crc).CopyTo(all, body.Length);
+                if (!BitConverter.IsLittleEndian) Array.Reverse(all, body.Length, 4);
+                return all;
+            }
+        }
+
+        /// <summary>Reads bytes written by <see cref="Write"/>; a <see cref="FormatException"/> says what is wrong.</summary>
+        public static DiscreteSurfaceDocument Read(byte[] bytes)
+        {
+            if (bytes == null) throw new ArgumentNullException("bytes");
+            if (bytes.Length < Magic.Length + 4 + 4) throw new FormatException("discrete surface data is truncated (" + bytes.Length + " bytes)");
+            for (int i = 0; i < Magic.Length; i++)
+                if (bytes[i] != Magic[i]) throw new FormatException("not discrete surface data (wrong magic)");
+            uint stored = (uint)(bytes[bytes.Length - 4] | bytes[bytes.Length - 3] << 8 | bytes[bytes.Length - 2] << 16 | bytes[bytes.Length - 1] << 24);
+            if (stored != Crc32(bytes, 0, bytes.Length - 4)) throw new FormatException("discrete surface data is corrupt (checksum mismatch)");
+            try
+            {
+                using (var r = new BinaryReader(new MemoryStream(bytes, 0, bytes.Length - 4), Encoding.UTF8))
+                {
+                    r.ReadBytes(Magic.Length);
+                    ushort version = r.ReadUInt16();
+                    if (version > FormatVersion)
+                        throw new FormatException("discrete surface data of format " + version + " was written by a newer TPI plugin (this one reads up to " + FormatVersion + ")");
+                    r.ReadUInt16();
+                    var document = new DiscreteSurfaceDocument();
+                    byte kind = r.ReadByte();
+                    if (kind == 1)
+                    {
+                        int du = r.ReadInt32(), dv = r.ReadInt32(), cu = r.ReadInt32(), cv = r.ReadInt32();
+                        var ku = ReadArray(r); var kv = ReadArray(r); var points = ReadArray(r);
+                        var weights = r.ReadByte() != 0 ? ReadArray(r) : null;
+                        document.Surface = new NurbsSurfaceSpec(du, dv, cu, cv, ku, kv, points, weights);
+                    }
+                    else if (kind == 2)
+                    {
+                        var analyticKind = (AnalyticKind)r.ReadInt32();
+                        var parameters = ReadArray(r);
+                        try { document.Surface = new AnalyticSurfaceSpec(analyticKind, parameters); }
+                        catch (ArgumentException e) { throw new FormatException("bad analytic surface: " + e.Message); }
+                    }
+                    else throw new FormatException("unknown surface kind " + kind);
+                    var st = ReadArray(r);
+                    if (st.Length % 2 != 0) throw new FormatException("odd number of pattern coordinates");
+                    for (int i = 0; i < st.Length; i += 2) document.Points.Add(new PatternPoint(st[i], st[i + 1]));
+                    int optionsLength = r.ReadInt32();
+                    if (optionsLength < OptionsV1Length || optionsLength > 4096) throw new FormatException("bad options length " + optionsLength);
+                    var options = new DiscretisationOptions
+                    {
+                        EnvelopeRepair = r.ReadByte() != 0,
+                        QualityReport = r.ReadByte() != 0,
+                        FarVertexFactor = r.ReadDouble(),
+                        WeldTolerance = r.ReadDouble(),
+                        FlatTolerance = r.ReadDouble(),
+                    };
+                    r.ReadBytes(optionsLength - OptionsV1Length); // fields of later versions
+                    document.Options = options;
+                    int generatorLength = r.ReadInt32();
+                    if (generatorLength < 0 || generatorLength > 65536) throw new FormatException("bad generator length " + generatorLength);
+                    document.Generator = Encoding.UTF8.GetString(Exact(r, generatorLength));
+                    document.SourceSurfaceId = new Guid(Exact(r, 16));
+                    return document;
+                }
+            }
+            catch (EndOfStreamException)
+            {
+                throw new FormatException("discrete surface data is truncated");
+            }
+        }
+
+        static void WriteArray(BinaryWriter w, System.Collections.Generic.IReadOnlyList<double> values)
+        {
+            w.Write(values.Count);
+            for (int i = 0; i < values.Count; i++) w.Write(values[i]);
+        }
+
+        static double[] ReadArray(BinaryReader r)
+        {
+            int count = r.ReadInt32();
+            long left = r.BaseStream.Length - r.BaseStream.Position;
+            if (count < 0 || count > MaxArray || 8L * count > left) throw new FormatException("bad array length " + count);
+            var values = new double[count];
+            for (int i = 0; i < count; i++) values[i] = r.ReadDouble();
+            return values;
+        }
+
+        static byte[] Exact(BinaryReader r, int count)
+        {
+            var bytes = r.ReadBytes(count);
+            if (bytes.Length != count) throw new EndOfStreamException();
+            return bytes;
+        }
+
+        static uint[] s_table;
+
+        /// <summary>CRC-32 (IEEE 802.3, as zlib's crc32).</summary>
+        public static uint Crc32(byte[] data, int offset, int count)
+        {
+            var table = s_table;
+            if (table == null)
+            {
+                table = new uint[256];
+                for (uint n = 0; n < 256; n++)
+                {
+                    uint c = n;
+                    for (int k = 0; k < 8; k++) c = (c & 1) != 0 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+                    table[n] = c;
+                }
+                s_table = table;
+            }
+            uint crc = 0xFFFFFFFFu;
+            for (int i = offset; i < offset + count; i++) crc = table[(crc ^ data[i]) & 0xFF] ^ (crc >> 8);
+            return crc ^ 0xFFFFFFFFu;
+        }
+    }
+}
