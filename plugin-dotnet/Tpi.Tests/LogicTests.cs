@@ -500,3 +500,29 @@ namespace Tpi.Tests
         }
     }
 }
+
+namespace Tpi.Tests
+{
+    [TestFixture]
+    public class VoronoiTests
+    {
+        [Test]
+        public void CellsTileTheSquareAndHoldTheirPoints()
+        {
+            var points = LogicData.Hex(7, 5);
+            var cells = VoronoiCells.Compute(points);
+            Assert.AreEqual(points.Length, cells.Length);
+            Assert.AreEqual(1.0, cells.Sum(c => VoronoiCells.Area(c)), 1e-12, "the cells tile the square");
+            for (int i = 0; i < cells.Length; i++)
+            {
+                Assert.Greater(VoronoiCells.Area(cells[i]), 0, "counter-clockwise");
+                // Every corner of cell i is at least as close to point i as to any other point.
+                foreach (var corner in cells[i])
+                    for (int j = 0; j < points.Length; j++)
+                        Assert.LessOrEqual(Dist(corner, points[i]), Dist(corner, points[j]) + 1e-12);
+            }
+        }
+
+        static double Dist(PatternPoint a, PatternPoint b) { return Math.Sqrt((a.S - b.S) * (a.S - b.S) + (a.T - b.T) * (a.T - b.T)); }
+    }
+}
