@@ -13,13 +13,13 @@ if ! python3 -c 'import rhino3dm' 2>/dev/null; then
     python3 -m pip install --quiet --disable-pip-version-check 'rhino3dm==8.*'
 fi
 missing=()
-for tool in cc nm valgrind; do
+for tool in cc nm valgrind script; do
     command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
 done
 if [ ${#missing[@]} -gt 0 ]; then
     if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
         DEBIAN_FRONTEND=noninteractive apt-get update -qq
-        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq build-essential binutils valgrind >/dev/null
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq build-essential binutils valgrind bsdutils >/dev/null
     else
         echo "run_all.sh: missing ${missing[*]}: install build-essential binutils valgrind" >&2
         exit 1

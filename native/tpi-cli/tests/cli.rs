@@ -335,11 +335,12 @@ fn no_progress_line_when_stderr_is_not_a_terminal() {
 
 #[test]
 fn progress_line_on_a_terminal() {
-    // util-linux `script` gives the command a pseudo-terminal; skip where it is missing.
-    if Command::new("script").arg("--version").output().is_err() {
-        eprintln!("skipped: no `script` command");
-        return;
-    }
+    // util-linux `script` (Debian package bsdutils, installed by .ci/run) gives the command a
+    // pseudo-terminal. Missing, the test fails: it must not pass without checking anything.
+    assert!(
+        Command::new("script").arg("--version").output().is_ok(),
+        "the `script` command (Debian package bsdutils) is needed to give tpi a terminal"
+    );
     let dir = scratch("tty");
     let out = dir.join("big.png");
     let command = format!(
