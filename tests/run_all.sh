@@ -13,7 +13,7 @@ if ! python3 -c 'import rhino3dm' 2>/dev/null; then
     python3 -m pip install --quiet --disable-pip-version-check 'rhino3dm==8.*'
 fi
 missing=()
-for tool in cc nm valgrind script; do
+for tool in cc c++ nm valgrind script; do
     command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")
 done
 if [ ${#missing[@]} -gt 0 ]; then

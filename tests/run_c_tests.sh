@@ -12,7 +12,7 @@
 #   TPI_SKIP_BUILD=1  use the library already in TPI_LIB_DIR instead of building it
 #   TPI_C_BUILD_DIR   where test binaries and the generated fixture go
 #                     (default: $CARGO_TARGET_DIR/c-tests)
-#   CC, CXX           C and C++ compilers (default: cc, c++; the C++ header check is skipped
+#   CC, CXX           C and C++ compilers (default: cc, c++; the C++ header check fails
 #                     when there is no C++ compiler)
 #   TPI_NO_VALGRIND=1 skip the valgrind runs (they are part of the acceptance; CI runs them)
 #
@@ -109,8 +109,8 @@ header_compiles_as_c() {
 
 header_compiles_as_cxx() {
     if ! command -v "$CXX" >/dev/null 2>&1; then
-        echo "no C++ compiler ($CXX); skipped"
-        return 0
+        echo "no C++ compiler ($CXX): install g++ (build-essential)"
+        return 1
     fi
     echo '#include "tpi.h"' | "$CXX" -std=c++11 -Wall -Wextra -Werror -fsyntax-only -I include -x c++ -
 }
