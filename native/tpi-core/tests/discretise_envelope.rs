@@ -28,7 +28,7 @@ use std::collections::BTreeSet;
 use common::*;
 use glam::DVec3;
 use tpi_core::facets::VertexKind;
-use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, NurbsSurface, Surface};
+use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, Surface};
 
 /// Relative tolerance of vertex positions and planarity (issue 3).
 const TOL: f64 = 1e-9;
@@ -274,51 +274,6 @@ fn envelope_paraboloid_ratio_10() {
     // Principal curvatures 20 and 2 at the apex.
     let s = AnalyticSurface::elliptic_paraboloid(10.0, 1.0, [-0.4, 0.4], [-1.0, 1.0]).unwrap();
     run("paraboloid a = 10 b", &s, Some(paraboloid), &[1700, 200, 1100, 500], 13);
-}
-
-/// Bicubic 6 x 6, clamped non-uniform knots in both directions (domain [1, 3] x [0, 2]),
-/// lifted on a tilted paraboloid-like bump with a small random jitter.
-fn dome_a() -> NurbsSurface {
-    let mut rng = Rng::new(101);
-    let jitter: Vec<f64> = (0..36).map(|_| rng.range(-0.01, 0.01)).collect();
-    lifted_net(
-        [3, 3],
-        &[1.0, 1.0, 1.0, 1.4, 2.3, 3.0, 3.0, 3.0],
-        &[0.0, 0.0, 0.0, 0.55, 0.7, 2.0, 2.0, 2.0],
-        |s, t| (-1.0 + 2.0 * s, -1.0 + 2.0 * t),
-        |x, y, i, j| 1.0 - 0.55 * x * x - 0.35 * y * y + 0.06 * x * y + jitter[i * 6 + j],
-        None,
-    )
-}
-
-/// Bicubic 7 x 5 with a warped x spacing and strongly non-uniform knots.
-fn dome_b() -> NurbsSurface {
-    let mut rng = Rng::new(202);
-    let jitter: Vec<f64> = (0..35).map(|_| rng.range(-0.006, 0.006)).collect();
-    lifted_net(
-        [3, 3],
-        &[0.0, 0.0, 0.0, 0.12, 0.3, 0.75, 1.0, 1.0, 1.0],
-        &[0.0, 0.0, 0.0, 0.35, 1.0, 1.0, 1.0],
-        |s, t| {
-            let a = 2.0 * s - 1.0;
-            (1.6 * a + 0.2 * a * a * a, 0.8 * (2.0 * t - 1.0))
-        },
-        |x, y, i, j| 0.9 - 0.25 * x * x - 0.8 * y * y - 0.02 * x * x * x + 0.05 * x * y + jitter[i * 5 + j],
-        None,
-    )
-}
-
-/// Rational, degrees (2, 3), 6 x 6, non-uniform knots, non-separable weights in [0.45, 1.55].
-fn dome_c() -> NurbsSurface {
-    let w = |i: usize, j: usize| 1.0 + 0.55 * (1.3 * i as f64 + 0.7 * j as f64).sin() * (0.9 * j as f64 - 0.4 * i as f64).cos();
-    lifted_net(
-        [2, 3],
-        &[0.0, 0.0, 0.2, 0.5, 0.6, 1.0, 1.0],
-        &[-1.0, -1.0, -1.0, -0.2, 0.6, 1.0, 1.0, 1.0],
-        |s, t| (-1.2 + 2.4 * s, -1.0 + 2.0 * t),
-        |x, y, _, _| 1.2 - 0.45 * x * x - 0.5 * y * y,
-        Some(&w),
-    )
 }
 
 #[test]
