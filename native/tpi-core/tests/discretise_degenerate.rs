@@ -9,7 +9,6 @@ mod common;
 use std::collections::BTreeSet;
 
 use common::*;
-use glam::DVec3;
 use tpi_core::{discretise, AnalyticSurface, Diagnostic, DiscretiseOptions, NurbsSurface, Surface, TpiError};
 
 fn sphere() -> AnalyticSurface {
