@@ -1,0 +1,121 @@
+// Checked against: Grasshopper 8 (grasshopper-stubs-typed 8.20.25157; GH_TaskCapableComponent<T>
+// and the nested GH_InputParamManager/GH_OutputParamManager, which the stubs omit, against the
+// Grasshopper SDK). Members used: see plugin-dotnet/API-CHECK.md.
+using System;
+using System.Collections.Generic;
+using System.Drawing;
+using System.Linq;
+using System.Threading.Tasks;
+using Grasshopper.Kernel;
+using Grasshopper.Kernel.Types;
+using Rhino.Geometry;
+using Tpi.Logic;
+using PatternPoint = Tpi.Native.PatternPoint;
+
+namespace Tpi.GhComponents
+{
+    /// <summary>"TPI Discretise": surface + points or uv -> planar panels, planes, n-gon mesh, quality report.</summary>
+    public sealed class DiscretiseComponent : GH_TaskCapableComponent<DiscretiseOutput>
+    {
+        /// <summary>Made by Grasshopper.</summary>
+        public DiscretiseComponent()
+            : base("TPI Discretise", "TPI", "Planar panels on a surface by tangent plane intersection: one planar panel per pattern point.", "Mesh", "TPI")
+        {
+        }
+
+        /// <summary>Never change: old .gh files find the component by it.</summary>
+        public override Guid ComponentGuid { get { return new Guid("A1E4C7B2-0D53-4F6A-9B8E-2C5D7F1A3E64"); } }
+
+        /// <inheritdoc/>
+        protected override Bitmap Icon { get { return Icons.Load("discretise"); } }
+
+        /// <inheritdoc/>
+        protected override void RegisterInputParams(GH_InputParamManager pManager)
+        {
+            pManager.AddSurfaceParameter("Surface", "S", "The surface to panel.", GH_ParamAccess.item);
+            pManager.AddPointParameter("Points", "P", "Pattern points in space (pulled to the surface).", GH_ParamAccess.list);
+            pManager.AddPointParameter("UV", "UV", "Pattern points as normalised (s, t, 0) in [0, 1]^2 (used when P is empty).", GH_ParamAccess.list);
+            pManager.AddBooleanParameter("Envelope", "E", "Verify and repair neighbours against the envelope of tangent planes (K > 0).", GH_ParamAccess.item, true);
+            pManager[1].Optional = true;
+            pManager[2].Optional = true;
+            pManager[3].Optional = true;
+        }
+
+        /// <inheritdoc/>
+        protected override void RegisterOutputParams(GH_OutputParamManager pManager)
+        {
+            pManager.AddCurveParameter("Panels", "P", "One closed planar polyline per pattern point.", GH_ParamAccess.list);
+            pManager.AddPlaneParameter("Planes", "Pl", "The tangent plane of each panel.", GH_ParamAccess.list);
+            pManager.AddMeshParameter("Mesh", "M", "The panels as one mesh with one n-gon per panel.", GH_ParamAccess.item);
+            pManager.AddTextParameter("Quality", "Q", "The quality report (JSON).", GH_ParamAccess.item);
+            pManager.AddGenericParameter("Result", "R", "The whole result, for TPI Quality.", GH_ParamAccess.item);
+        }
+
+        /// <inheritdoc/>
+        protected override void SolveInstance(IGH_DataAccess DA)
+        {
+            var problem = Native.Problem;
+            if (problem != null) { AddRuntimeMessage(GH_RuntimeMessageLevel.Error, problem); return; }
+
+            if (InPreSolve)
+            {
+                var input = CollectInput(DA);
+                if (input != null) TaskList.Add(Task.Run(() => ComponentSolvers.Discretise(input), CancelToken));
+                return;
+            }
+
+            DiscretiseOutput output;
+            if (!GetSolveResults(DA, out output))
+            {
+                var input = CollectInput(DA);
+                if (input == null) return;
+                output = ComponentSolvers.Discretise(input);
+            }
+            if (output == null) return;
+            foreach (var e in output.Errors) AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e);
+            foreach (var w in output.Warnings) AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, w);
+            if (!output.Success) return;
+            DA.SetDataList(0, output.Polylines.Select(p => new PolylineCurve(GhConvert.ToPolyline(p))));
+            DA.SetDataList(1, output.Planes.Select(GhConvert.ToPlane));
+            DA.SetData(2, GhConvert.ToMesh(output.NgonMesh));
+            DA.SetData(3, output.QualityJson);
+            DA.SetData(4, new GH_ObjectWrapper(output.Mesh));
+        }
+
+        /// <summary>Reads the inputs on the UI thread (RhinoCommon calls stay off the worker).</summary>
+        DiscretiseInput CollectInput(IGH_DataAccess DA)
+        {
+            Surface surface = null;
+            if (!DA.GetData(0, ref surface) || surface == null) return null;
+            var spec = GhConvert.ToSpec(surface);
+            if (spec == null) { AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "the surface has no NURBS form"); return null; }
+            var points = new List<Point3d>();
+            DA.GetDataList(1, points);
+            var uv = new List<Point3d>();
+            DA.GetDataList(2, uv);
+            bool envelope = true;
+            DA.GetData(3, ref envelope);
+            var options = Tpi.Native.DiscretisationOptions.Default();
+            options.EnvelopeRepair = envelope;
+            var input = new DiscretiseInput { Surface = spec, Options = options };
+            if (points.Count > 0)
+            {
+                var problems = new List<string>();
+                input.Points = GhConvert.ClosestParameters(surface, points, problems);
+                input.PointsInSurfaceDomain = true;
+                foreach (var p in problems) AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, p);
+                // ClosestPoint works on the original surface; its domain is the NURBS form's.
+            }
+            else if (uv.Count > 0)
+            {
+                input.Points = uv.Select(p => new PatternPoint(p.X, p.Y)).ToList();
+            }
+            else
+            {
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, "give pattern points (P) or normalised uv (UV)");
+                return null;
+            }
+            return input;
+        }
+    }
+}

@@ -1,0 +1,79 @@
+// Checked against: RhinoCommon 8 and Grasshopper 8 (stubs 8.20.25157). Members used: see
+// plugin-dotnet/API-CHECK.md. Conversions between RhinoCommon types and Tpi.Logic data.
+using System.Collections.Generic;
+using System.Linq;
+using Rhino.Geometry;
+using Tpi.Logic;
+using FacetPlane = Tpi.Native.FacetPlane;
+using PatternPoint = Tpi.Native.PatternPoint;
+using Vec3 = Tpi.Native.Vec3;
+
+namespace Tpi.GhComponents
+{
+    internal static class GhConvert
+    {
+        public static NurbsSurfaceSpec ToSpec(Surface surface)
+        {
+            var ns = surface == null ? null : surface.ToNurbsSurface();
+            if (ns == null) return null;
+            int cu = ns.Points.CountU, cv = ns.Points.CountV;
+            var ku = new double[ns.KnotsU.Count];
+            for (int k = 0; k < ku.Length; k++) ku[k] = ns.KnotsU[k];
+            var kv = new double[ns.KnotsV.Count];
+            for (int k = 0; k < kv.Length; k++) kv[k] = ns.KnotsV[k];
+            var points = new double[3 * cu * cv];
+            var weights = ns.IsRational ? new double[cu * cv] : null;
+            for (int i = 0, k = 0; i < cu; i++)
+                for (int j = 0; j < cv; j++, k++)
+                {
+                    var cp = ns.Points.GetControlPoint(i, j);
+                    points[3 * k] = cp.Location.X; points[3 * k + 1] = cp.Location.Y; points[3 * k + 2] = cp.Location.Z;
+                    if (weights != null) weights[k] = cp.Weight;
+                }
+            return new NurbsSurfaceSpec(ns.Degree(0), ns.Degree(1), cu, cv, ku, kv, points, weights);
+        }
+
+        public static Point3d ToPoint(Vec3 v) { return new Point3d(v.X, v.Y, v.Z); }
+
+        public static Polyline ToPolyline(Vec3[] points) { return new Polyline(points.Select(ToPoint)); }
+
+        public static Plane ToPlane(FacetPlane p)
+        {
+            return new Plane(ToPoint(p.Point), new Vector3d(p.Normal.X, p.Normal.Y, p.Normal.Z));
+        }
+
+        public static Mesh ToMesh(NgonMesh ngonMesh)
+        {
+            var mesh = new Mesh();
+            mesh.Vertices.UseDoublePrecisionVertices = true;
+            foreach (var v in ngonMesh.Vertices) mesh.Vertices.Add(v.X, v.Y, v.Z);
+            for (int t = 0; t < ngonMesh.TriangleCount; t++)
+                mesh.Faces.AddFace(ngonMesh.Triangles[3 * t], ngonMesh.Triangles[3 * t + 1], ngonMesh.Triangles[3 * t + 2]);
+            foreach (var ngon in ngonMesh.Ngons) mesh.Ngons.AddNgon(MeshNgon.Create(ngon.BoundaryVertices, ngon.Faces));
+            mesh.Normals.ComputeNormals();
+            return mesh;
+        }
+
+        /// <summary>(u, v) of the closest surface points, in the surface's domain; unreachable points are skipped.</summary>
+        public static List<PatternPoint> ClosestParameters(Surface surface, IEnumerable<Point3d> points, List<string> problems)
+        {
+            var result = new List<PatternPoint>();
+            int index = 0;
+            foreach (var p in points)
+            {
+                double u, v;
+                if (surface.ClosestPoint(p, out u, out v)) result.Add(new PatternPoint(u, v));
+                else problems.Add("point " + index + ": no closest point on the surface");
+                index++;
+            }
+            return result;
+        }
+
+        public static Point3d PointAt(Surface surface, PatternPoint p)
+        {
+            var du = surface.Domain(0);
+            var dv = surface.Domain(1);
+            return surface.PointAt(du.T0 + p.S * (du.T1 - du.T0), dv.T0 + p.T * (dv.T1 - dv.T0));
+        }
+    }
+}

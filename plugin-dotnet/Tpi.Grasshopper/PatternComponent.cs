@@ -1,0 +1,82 @@
+// Checked against: Grasshopper 8 (grasshopper-stubs-typed 8.20.25157; the nested param managers
+// against the Grasshopper SDK). Members used: see plugin-dotnet/API-CHECK.md.
+using System;
+using System.Collections.Generic;
+using System.Drawing;
+using System.Linq;
+using Grasshopper.Kernel;
+using Rhino.Geometry;
+using Tpi.Logic;
+
+namespace Tpi.GhComponents
+{
+    /// <summary>"TPI Pattern": the pattern generators with their parameters.</summary>
+    public sealed class PatternComponent : GH_Component
+    {
+        /// <summary>Made by Grasshopper.</summary>
+        public PatternComponent()
+            : base("TPI Pattern", "TPIPat", "Pattern points in the unit square from a generator (grid, hex, jitter, random, poisson) or a spec such as hex:12x12.", "Mesh", "TPI")
+        {
+        }
+
+        /// <summary>Never change: old .gh files find the component by it.</summary>
+        public override Guid ComponentGuid { get { return new Guid("B7F25D90-3C1E-4A84-8E6B-0F9A2D4C5B17"); } }
+
+        /// <inheritdoc/>
+        protected override Bitmap Icon { get { return Icons.Load("pattern"); } }
+
+        /// <inheritdoc/>
+        protected override void RegisterInputParams(GH_InputParamManager pManager)
+        {
+            pManager.AddTextParameter("Generator", "G", "grid, hex, jitter, random or poisson.", GH_ParamAccess.item, "hex");
+            pManager.AddIntegerParameter("CountU", "U", "Points in u (the count for random).", GH_ParamAccess.item, 10);
+            pManager.AddIntegerParameter("CountV", "V", "Points in v.", GH_ParamAccess.item, 10);
+            pManager.AddNumberParameter("Jitter", "J", "Jitter amount in [0, 1].", GH_ParamAccess.item, 0.5);
+            pManager.AddNumberParameter("Radius", "R", "Poisson-disk radius in the unit square (>= 0.001).", GH_ParamAccess.item, 0.08);
+            pManager.AddIntegerParameter("Seed", "Sd", "Random seed.", GH_ParamAccess.item, 1);
+            pManager.AddTextParameter("Spec", "Sp", "A generator spec (e.g. grid:spacing=0.05); overrides the inputs above.", GH_ParamAccess.item);
+            pManager.AddSurfaceParameter("Surface", "S", "Optional surface to place the points on.", GH_ParamAccess.item);
+            for (int i = 0; i < 8; i++) pManager[i].Optional = true;
+        }
+
+        /// <inheritdoc/>
+        protected override void RegisterOutputParams(GH_OutputParamManager pManager)
+        {
+            pManager.AddPointParameter("UV", "UV", "Pattern points as (s, t, 0) in the unit square.", GH_ParamAccess.list);
+            pManager.AddPointParameter("Points", "P", "Pattern points on the surface (when S is given).", GH_ParamAccess.list);
+            pManager.AddTextParameter("Spec", "Sp", "The generator spec that made the points.", GH_ParamAccess.item);
+        }
+
+        /// <inheritdoc/>
+        protected override void SolveInstance(IGH_DataAccess DA)
+        {
+            var problem = Native.Problem;
+            if (problem != null) { AddRuntimeMessage(GH_RuntimeMessageLevel.Error, problem); return; }
+            string name = "hex", spec = null;
+            int countU = 10, countV = 10, seed = 1;
+            double amount = 0.5, radius = 0.08;
+            Surface surface = null;
+            DA.GetData(0, ref name);
+            DA.GetData(1, ref countU);
+            DA.GetData(2, ref countV);
+            DA.GetData(3, ref amount);
+            DA.GetData(4, ref radius);
+            DA.GetData(5, ref seed);
+            DA.GetData(6, ref spec);
+            DA.GetData(7, ref surface);
+            GeneratorKind kind;
+            if (!PatternGenerator.TryParseKind(name, out kind) && string.IsNullOrWhiteSpace(spec))
+            {
+                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "unknown generator '" + name + "': use grid, hex, jitter, random or poisson");
+                return;
+            }
+            var generator = new PatternGenerator { Kind = kind, CountU = countU, CountV = countV, Amount = amount, Radius = radius, Seed = (ulong)Math.Max(0, seed) };
+            var output = ComponentSolvers.Pattern(new PatternInput { Generator = generator, Spec = spec });
+            foreach (var e in output.Errors) AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e);
+            if (output.Errors.Count > 0) return;
+            DA.SetDataList(0, output.Points.Select(p => new Point3d(p.S, p.T, 0)));
+            if (surface != null) DA.SetDataList(1, output.Points.Select(p => GhConvert.PointAt(surface, p)));
+            DA.SetData(2, output.Spec);
+        }
+    }
+}

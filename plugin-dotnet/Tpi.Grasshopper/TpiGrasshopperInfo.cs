@@ -1,0 +1,46 @@
+// Checked against: Grasshopper 8 (grasshopper-stubs-typed 8.20.25157). Members used: see
+// plugin-dotnet/API-CHECK.md.
+using System;
+using System.Drawing;
+using Grasshopper.Kernel;
+
+namespace Tpi.GhComponents
+{
+    /// <summary>The .gha's description.</summary>
+    public sealed class TpiGrasshopperInfo : GH_AssemblyInfo
+    {
+        /// <inheritdoc/>
+        public override string Name { get { return "TPI"; } }
+        /// <inheritdoc/>
+        public override Bitmap Icon { get { return Icons.Load("discretise"); } }
+        /// <inheritdoc/>
+        public override string Description { get { return "Planar panels on free-form surfaces by tangent plane intersection."; } }
+        /// <summary>Never change: identifies the library in .gh files.</summary>
+        public override Guid Id { get { return new Guid("3C8A1F52-6E0D-4D7B-A2B9-51F0E7C4D6A3"); } }
+        /// <inheritdoc/>
+        public override string AuthorName { get { return "TPI contributors"; } }
+        /// <inheritdoc/>
+        public override string AuthorContact { get { return "https://github.com/ (see README)"; } }
+        /// <inheritdoc/>
+        public override string Version { get { return "0.1.0"; } }
+    }
+
+    /// <summary>The 24x24 icons, embedded as Tpi.Grasshopper.Icons.NAME.png.</summary>
+    internal static class Icons
+    {
+        public static Bitmap Load(string name)
+        {
+            var stream = typeof(Icons).Assembly.GetManifestResourceStream("Tpi.Grasshopper.Icons." + name + ".png");
+            return stream == null ? null : new Bitmap(stream);
+        }
+    }
+
+    /// <summary>Loads the native library once for all components.</summary>
+    internal static class Native
+    {
+        public static string Problem
+        {
+            get { return Tpi.Plugin.NativeLoader.Ensure(); }
+        }
+    }
+}

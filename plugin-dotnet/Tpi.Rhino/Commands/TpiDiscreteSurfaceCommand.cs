@@ -1,0 +1,140 @@
+// Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157). Members used: see
+// plugin-dotnet/API-CHECK.md.
+using System;
+using System.Collections.Generic;
+using Rhino;
+using Rhino.Commands;
+using Rhino.DocObjects;
+using Rhino.Input;
+using Rhino.Input.Custom;
+using Tpi.Logic;
+using PatternPoint = Tpi.Native.PatternPoint;
+
+namespace Tpi.RhinoPlugIn
+{
+    /// <summary>TpiDiscreteSurface: pick a surface, choose a generator or existing points, get a live discrete surface.</summary>
+    public sealed class TpiDiscreteSurfaceCommand : Command
+    {
+        /// <inheritdoc/>
+        public override string EnglishName { get { return "TpiDiscreteSurface"; } }
+
+        /// <inheritdoc/>
+        protected override Result RunCommand(RhinoDoc doc, RunMode mode)
+        {
+            ObjRef surfaceRef;
+            var rc = RhinoGet.GetOneObject("Select a surface to discretise", false, ObjectType.Surface, out surfaceRef);
+            if (rc != Result.Success) return rc;
+            var surface = surfaceRef.Surface();
+            var spec = RhinoConvert.ToSpec(surface);
+            if (spec == null) { RhinoApp.WriteLine("TPI: the surface has no NURBS form."); return Result.Failure; }
+
+            var generator = new PatternGenerator();
+            bool existingPoints;
+            rc = CommandOptions.GetGenerator("Pattern", generator, true, out existingPoints);
+            if (rc != Result.Success) return rc;
+
+            List<PatternPoint> points;
+            string generatorSpec = string.Empty;
+            if (existingPoints)
+            {
+                ObjRef[] pointRefs;
+                rc = RhinoGet.GetMultipleObjects("Select pattern points (projected onto the surface)", false, ObjectType.Point, out pointRefs);
+                if (rc != Result.Success) return rc;
+                points = new List<PatternPoint>();
+                foreach (var r in pointRefs)
+                {
+                    PatternPoint st;
+                    string error;
+                    var point = r.Point();
+                    if (point == null) continue;
+                    if (!RhinoConvert.TryNormalisedClosest(surface, point.Location, out st, out error))
+                    {
+                        RhinoApp.WriteLine("TPI: skipped a point: " + error);
+                        continue;
+                    }
+                    points.Add(st);
+                }
+            }
+            else
+            {
+                var output = ComponentSolvers.Pattern(new PatternInput { Generator = generator });
+                if (output.Errors.Count > 0) { RhinoApp.WriteLine("TPI: " + output.Errors[0]); return Result.Failure; }
+                points = new List<PatternPoint>(output.Points);
+                generatorSpec = output.Spec;
+            }
+
+            try
+            {
+                var document = new DiscreteSurfaceDocument
+                {
+                    Surface = spec,
+                    Points = points,
+                    Options = Tpi.Native.DiscretisationOptions.Default(),
+                    Generator = generatorSpec,
+                    SourceSurfaceId = surfaceRef.ObjectId,
+                };
+                using (var state = new DiscreteSurfaceState(document))
+                {
+                    DiscreteSurfaceObject.Add(doc, state, surfaceRef.ObjectId);
+                    RhinoApp.WriteLine("TPI: {0} planar panels, max deviation {1:G4}.", state.Mesh.FacetCount,
+                        state.Mesh.Quality.HasValue ? state.Mesh.Quality.Value.MaxDeviation : double.NaN);
+                }
+            }
+            catch (Tpi.Native.TpiException e)
+            {
+                RhinoApp.WriteLine("TPI: " + e.NativeMessage);
+                return Result.Failure;
+            }
+            doc.Views.Redraw();
+            return Result.Success;
+        }
+    }
+
+    /// <summary>Command-line options shared by the commands.</summary>
+    internal static class CommandOptions
+    {
+        static readonly string[] Generators = { "Grid", "Hex", "Jitter", "Random", "Poisson" };
+
+        /// <summary>
+        /// Lets the user pick a generator and its parameters (Enter accepts). With
+        /// <paramref name="offerExisting"/>, the option "ExistingPoints" ends the prompt with
+        /// <paramref name="existingPoints"/> true. <paramref name="onChange"/> runs after every
+        /// change of an option (for previews).
+        /// </summary>
+        public static Result GetGenerator(string prompt, PatternGenerator generator, bool offerExisting, out bool existingPoints,
+            Action onChange = null)
+        {
+            existingPoints = false;
+            var countU = new OptionInteger(generator.CountU, 1, 100000);
+            var countV = new OptionInteger(generator.CountV, 1, 100000);
+            var amount = new OptionDouble(generator.Amount, 0.0, 1.0);
+            var radius = new OptionDouble(generator.Radius, 0.001, 1.0);
+            var seed = new OptionInteger((int)generator.Seed, 0, int.MaxValue);
+            while (true)
+            {
+                var get = new GetOption();
+                get.SetCommandPrompt(prompt + " (" + generator.ToSpec() + ")");
+                get.AcceptNothing(true);
+                int kindIndex = get.AddOptionList("Generator", Generators, (int)generator.Kind);
+                get.AddOptionInteger("CountU", ref countU);
+                get.AddOptionInteger("CountV", ref countV);
+                get.AddOptionDouble("Jitter", ref amount);
+                get.AddOptionDouble("Radius", ref radius);
+                get.AddOptionInteger("Seed", ref seed);
+                int existingIndex = offerExisting ? get.AddOption("ExistingPoints") : -1;
+                var result = get.Get();
+                generator.CountU = countU.CurrentValue;
+                generator.CountV = countV.CurrentValue;
+                generator.Amount = amount.CurrentValue;
+                generator.Radius = radius.CurrentValue;
+                generator.Seed = (ulong)seed.CurrentValue;
+                if (result == GetResult.Nothing) return Result.Success;
+                if (result != GetResult.Option) return get.CommandResult();
+                var option = get.Option();
+                if (option.Index == kindIndex) generator.Kind = (GeneratorKind)option.CurrentListOptionIndex;
+                else if (option.Index == existingIndex) { existingPoints = true; return Result.Success; }
+                if (onChange != null) onChange();
+            }
+        }
+    }
+}

@@ -1,0 +1,69 @@
+// Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157). Members used: see
+// plugin-dotnet/API-CHECK.md.
+using System;
+using System.Collections.Generic;
+using System.Linq;
+using Rhino;
+using Rhino.Commands;
+using Rhino.DocObjects;
+using Rhino.Geometry;
+using Rhino.Input;
+using Tpi.Logic;
+
+namespace Tpi.RhinoPlugIn
+{
+    /// <summary>
+    /// TpiPattern: generate a pattern scheme on a surface, previewing the points and their
+    /// Voronoi cells (drawn on the surface, as the paper's figure 9a), then add the points to the
+    /// document (for TpiDiscreteSurface's ExistingPoints, or to edit by hand).
+    /// </summary>
+    public sealed class TpiPatternCommand : Command
+    {
+        /// <inheritdoc/>
+        public override string EnglishName { get { return "TpiPattern"; } }
+
+        /// <inheritdoc/>
+        protected override Result RunCommand(RhinoDoc doc, RunMode mode)
+        {
+            ObjRef surfaceRef;
+            var rc = RhinoGet.GetOneObject("Select a surface for the pattern", false, ObjectType.Surface, out surfaceRef);
+            if (rc != Result.Success) return rc;
+            var surface = surfaceRef.Surface();
+            if (surface == null) return Result.Failure;
+
+            var generator = new PatternGenerator();
+            var conduit = new PreviewConduit();
+            List<Point3d> points = null;
+            Action preview = () =>
+            {
+                var output = ComponentSolvers.Pattern(new PatternInput { Generator = generator });
+                if (output.Errors.Count > 0) RhinoApp.WriteLine("TPI: " + output.Errors[0]);
+                points = output.Points.Select(p => RhinoConvert.PointAt(surface, p)).ToList();
+                var cells = output.Points.Length <= 5000
+                    ? VoronoiCells.Compute(output.Points).Select(c => RhinoConvert.OnSurface(surface, c, 4)).ToList()
+                    : new List<List<Point3d>>();
+                conduit.Set(points, cells);
+                doc.Views.Redraw();
+                RhinoApp.WriteLine("TPI: {0} points ({1}).", points.Count, output.Spec);
+            };
+            try
+            {
+                conduit.Enabled = true;
+                preview();
+                bool unused;
+                rc = CommandOptions.GetGenerator("Pattern, Enter to add the points", generator, false, out unused, preview);
+                if (rc != Result.Success) return rc;
+            }
+            finally
+            {
+                conduit.Enabled = false;
+                doc.Views.Redraw();
+            }
+
+            if (points == null || points.Count == 0) return Result.Nothing;
+            foreach (var p in points) doc.Objects.AddPoint(p);
+            doc.Views.Redraw();
+            return Result.Success;
+        }
+    }
+}

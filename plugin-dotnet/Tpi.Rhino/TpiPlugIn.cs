@@ -1,0 +1,33 @@
+// Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157; protected members against the
+// RhinoCommon source). Members used: see plugin-dotnet/API-CHECK.md.
+using Rhino;
+using Rhino.PlugIns;
+
+namespace Tpi.RhinoPlugIn
+{
+    /// <summary>The TPI plug-in: planar panels by tangent plane intersection.</summary>
+    public sealed class TpiPlugIn : PlugIn
+    {
+        /// <summary>The loaded instance.</summary>
+        public static TpiPlugIn Instance { get; private set; }
+
+        /// <summary>Made by Rhino.</summary>
+        public TpiPlugIn() { Instance = this; }
+
+        /// <summary>Loaded at start-up, so discrete surfaces in an opened file find their class and the watcher runs.</summary>
+        public override PlugInLoadTime LoadTime { get { return PlugInLoadTime.AtStartup; } }
+
+        /// <inheritdoc/>
+        protected override LoadReturnCode OnLoad(ref string errorMessage)
+        {
+            var problem = Tpi.Plugin.NativeLoader.Ensure();
+            if (problem != null)
+            {
+                errorMessage = "TPI: " + problem;
+                return LoadReturnCode.ErrorShowDialog;
+            }
+            SourceSurfaceWatcher.Start();
+            return LoadReturnCode.Success;
+        }
+    }
+}
