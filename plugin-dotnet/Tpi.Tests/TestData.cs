@@ -47,11 +47,15 @@ namespace Tpi.Tests
             NUnit.Framework.Assert.AreEqual(expected.GetFacetIndexArray(), actual.GetFacetIndexArray(), "facet indices");
         }
 
-        /// <summary>Resident set size of this process in bytes (Linux: /proc/self/statm).</summary>
+        /// <summary>Resident set size of this process in bytes (Linux: /proc/self/statm; elsewhere the working set).</summary>
         public static long ResidentBytes()
         {
-            var fields = System.IO.File.ReadAllText("/proc/self/statm").Split(' ');
-            return long.Parse(fields[1]) * 4096;
+            if (System.IO.File.Exists("/proc/self/statm"))
+            {
+                var fields = System.IO.File.ReadAllText("/proc/self/statm").Split(' ');
+                return long.Parse(fields[1]) * Environment.SystemPageSize;
+            }
+            using (var process = System.Diagnostics.Process.GetCurrentProcess()) return process.WorkingSet64;
         }
     }
 }
