@@ -4,7 +4,8 @@
 # Rhino-free logic of the Rhino plugin and the Grasshopper components) and plugin-dotnet/Tpi.Tests
 # with Mono's C# compiler (C# 7.2), and runs the tests against the real libtpi.so found through
 # LD_LIBRARY_PATH (Mono resolves DllImport("tpi") to libtpi.so there). The Rhino and Grasshopper
-# adapters need RhinoCommon and Grasshopper and are not compiled here.
+# adapters need RhinoCommon and Grasshopper, which are not available here: they are only
+# type-checked against fakes of the members listed in plugin-dotnet/API-CHECK.md.
 # Closes with the line "N passed, M failed" and exits non-zero if anything failed.
 #
 # Environment (all optional):
@@ -63,7 +64,7 @@ if [ "${TPI_SKIP_BUILD:-0}" != 1 ]; then
 fi
 [ -f "$LIB_DIR/libtpi.so" ] || fail "no libtpi.so in $LIB_DIR"
 
-mkdir -p "$BUILD_DIR"
+mkdir -p "$BUILD_DIR" "$BUILD_DIR/fakes"
 MCS=(mcs -langversion:7.2 -debug -optimize+ -warn:4 -nologo)
 sources() { find "$1" -name '*.cs' -not -path '*/obj/*' -not -path '*/bin/*' | sort; }
 
@@ -73,6 +74,25 @@ sources() { find "$1" -name '*.cs' -not -path '*/obj/*' -not -path '*/bin/*' | s
 # shellcheck disable=SC2046
 "${MCS[@]}" -warnaserror -target:library -out:"$BUILD_DIR/Tpi.Logic.dll" -doc:"$BUILD_DIR/Tpi.Logic.xml" \
     -r:"$BUILD_DIR/Tpi.Native.dll" $(sources "$PLUGIN/Tpi.Logic") || fail "compiling Tpi.Logic failed"
+# The Rhino and Grasshopper adapters, type-checked against fakes of exactly the RhinoCommon and
+# Grasshopper members listed in plugin-dotnet/API-CHECK.md (the real assemblies are not
+# available here); net48 flavour (NETFRAMEWORK), never run.
+FAKES=$PLUGIN/tools/api-fakes
+"${MCS[@]}" -target:library -out:"$BUILD_DIR/fakes/RhinoCommon.dll" -r:System.Drawing.dll "$FAKES/RhinoCommonFakes.cs" \
+    || fail "compiling the RhinoCommon fakes failed"
+"${MCS[@]}" -target:library -out:"$BUILD_DIR/fakes/Grasshopper.dll" -r:System.Drawing.dll -r:"$BUILD_DIR/fakes/RhinoCommon.dll" \
+    "$FAKES/GrasshopperFakes.cs" || fail "compiling the Grasshopper fakes failed"
+# shellcheck disable=SC2046
+"${MCS[@]}" -warnaserror -target:library -d:NETFRAMEWORK -out:"$BUILD_DIR/fakes/Tpi.Rhino.dll" \
+    -r:"$BUILD_DIR/fakes/RhinoCommon.dll" -r:"$BUILD_DIR/Tpi.Native.dll" -r:"$BUILD_DIR/Tpi.Logic.dll" -r:System.Drawing.dll \
+    $(sources "$PLUGIN/Tpi.Rhino") "$PLUGIN/Shared/NativeLoader.cs" || fail "type check of Tpi.Rhino against the API fakes failed"
+# shellcheck disable=SC2046
+"${MCS[@]}" -warnaserror -target:library -d:NETFRAMEWORK -out:"$BUILD_DIR/fakes/Tpi.Grasshopper.dll" \
+    -r:"$BUILD_DIR/fakes/RhinoCommon.dll" -r:"$BUILD_DIR/fakes/Grasshopper.dll" -r:"$BUILD_DIR/Tpi.Native.dll" \
+    -r:"$BUILD_DIR/Tpi.Logic.dll" -r:System.Drawing.dll \
+    $(sources "$PLUGIN/Tpi.Grasshopper") "$PLUGIN/Shared/NativeLoader.cs" || fail "type check of Tpi.Grasshopper against the API fakes failed"
+echo "adapters type-checked against the API fakes (plugin-dotnet/tools/api-fakes)"
+
 cp "$NUNIT" "$BUILD_DIR/"
 # shellcheck disable=SC2046
 "${MCS[@]}" -target:exe -out:"$BUILD_DIR/Tpi.Tests.exe" -r:"$BUILD_DIR/Tpi.Native.dll" -r:"$BUILD_DIR/Tpi.Logic.dll" \

@@ -1,0 +1,95 @@
+// Fakes of the Grasshopper 8 members listed in plugin-dotnet/API-CHECK.md (stubs and the
+// Grasshopper SDK reference), for the Mono type check of the components only. Keep in step
+// with API-CHECK.md.
+#pragma warning disable 67, 649, 1591
+using System;
+using System.Collections;
+using System.Collections.Generic;
+using System.Drawing;
+using System.Threading;
+using System.Threading.Tasks;
+
+namespace Grasshopper.Kernel
+{
+    public enum GH_ParamAccess { item = 0, list = 1, tree = 2 }
+    public enum GH_RuntimeMessageLevel { Blank = 0, Remark = 1, Warning = 10, Error = 20 }
+
+    public interface IGH_Param
+    {
+        bool Optional { get; set; }
+    }
+
+    public interface IGH_DataAccess
+    {
+        bool GetData<T>(int index, ref T destination);
+        bool GetDataList<T>(int index, List<T> list);
+        bool SetData(int paramIndex, object data);
+        bool SetDataList(int paramIndex, IEnumerable data);
+    }
+
+    public abstract class GH_AssemblyInfo
+    {
+        public virtual string Name { get { return null; } }
+        public virtual Bitmap Icon { get { return null; } }
+        public virtual string Description { get { return null; } }
+        public virtual Guid Id { get { return Guid.Empty; } }
+        public virtual string AuthorName { get { return null; } }
+        public virtual string AuthorContact { get { return null; } }
+        public virtual string Version { get { return null; } }
+    }
+
+    public abstract class GH_Component
+    {
+        protected GH_Component(string name, string nickname, string description, string category, string subCategory) { }
+        public abstract Guid ComponentGuid { get; }
+        protected virtual Bitmap Icon { get { return null; } }
+        protected abstract void RegisterInputParams(GH_InputParamManager pManager);
+        protected abstract void RegisterOutputParams(GH_OutputParamManager pManager);
+        protected abstract void SolveInstance(IGH_DataAccess DA);
+        public void AddRuntimeMessage(GH_RuntimeMessageLevel level, string text) { }
+
+        protected class GH_InputParamManager
+        {
+            public IGH_Param this[int index] { get { return null; } }
+            public int AddSurfaceParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+            public int AddPointParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+            public int AddBooleanParameter(string name, string nickname, string description, GH_ParamAccess access, bool @default) { return 0; }
+            public int AddTextParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+            public int AddTextParameter(string name, string nickname, string description, GH_ParamAccess access, string @default) { return 0; }
+            public int AddIntegerParameter(string name, string nickname, string description, GH_ParamAccess access, int @default) { return 0; }
+            public int AddNumberParameter(string name, string nickname, string description, GH_ParamAccess access, double @default) { return 0; }
+            public int AddGenericParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+        }
+
+        protected class GH_OutputParamManager
+        {
+            public int AddCurveParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+            public int AddPlaneParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+            public int AddMeshParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+            public int AddTextParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+            public int AddGenericParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+            public int AddPointParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+            public int AddNumberParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+            public int AddIntegerParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+        }
+    }
+
+    public abstract class GH_TaskCapableComponent<T> : GH_Component
+    {
+        protected GH_TaskCapableComponent(string name, string nickname, string description, string category, string subCategory)
+            : base(name, nickname, description, category, subCategory) { }
+        public bool InPreSolve { get; set; }
+        protected List<Task<T>> TaskList { get { return null; } }
+        protected CancellationToken CancelToken { get { return CancellationToken.None; } }
+        protected bool GetSolveResults(IGH_DataAccess data, out T result) { result = default(T); return false; }
+    }
+}
+
+namespace Grasshopper.Kernel.Types
+{
+    public class GH_ObjectWrapper
+    {
+        public GH_ObjectWrapper(object obj) { }
+        public object Value { get; set; }
+    }
+}
