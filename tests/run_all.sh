@@ -4,7 +4,10 @@
 #      conformance tests that drive rhino3dm from Python, the CLI's end-to-end tests, the C
 #      ABI's Rust tests and the header check);
 #   2. the C ABI tested from C (tests/run_c_tests.sh: compile against include/tpi.h, run,
-#      run again under valgrind).
+#      run again under valgrind);
+#   3. the .NET binding and the Rhino-free plugin logic with Mono against the real native
+#      library (tests/run_dotnet_tests.sh).
+# Each of 2 and 3 ends with its own line "N passed, N failed".
 # Installs what it needs when missing, so it also works on a fresh machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,3 +31,4 @@ fi
 
 cargo test --workspace --locked
 bash tests/run_c_tests.sh
+bash tests/run_dotnet_tests.sh
