@@ -4,11 +4,13 @@
 //!   quality summary
 //! - `tpi pattern`: pattern files and their Voronoi preview
 //! - `tpi info`: a surface's parameters, domain and curvature regions
+//! - `tpi bench`: stage timings, facets per second and peak memory on benchmark surfaces
 //!
 //! Exit codes: 0 success, 1 bad input or output (one line on stderr, `tpi: error: FILE:
 //! PROBLEM`), 2 usage. See docs/cli.md.
 
 mod args;
+mod bench;
 mod cmd_discretise;
 mod cmd_info;
 mod cmd_pattern;
@@ -39,6 +41,7 @@ COMMANDS:
     discretise   surface + pattern -> mesh of planar facets (JSON, OBJ, SVG, PNG) + report
     pattern      generate pattern points (grid, hex, jitter, random, Poisson-disk) + preview
     info         a surface's parameters, domain and curvature regions
+    bench        time the discretisation stage by stage (docs/performance.md)
     help         this help, or `tpi help COMMAND` for a command's help
 
 OPTIONS:
@@ -85,6 +88,10 @@ fn main() {
                 print!("{}", cmd_info::HELP);
                 Ok(())
             }
+            Some("bench") => {
+                print!("{}", bench::HELP);
+                Ok(())
+            }
             Some(other) => Err(CliError::usage(None, format!("unknown command `{other}`"))),
         },
         Some("-V" | "--version") => {
@@ -94,9 +101,10 @@ fn main() {
         Some("discretise" | "discretize") => cmd_discretise::run(rest),
         Some("pattern") => cmd_pattern::run(rest),
         Some("info") => cmd_info::run(rest),
+        Some("bench") => bench::run(rest),
         Some(other) => Err(CliError::usage(
             None,
-            format!("unknown command `{other}`; the commands are discretise, pattern and info"),
+            format!("unknown command `{other}`; the commands are discretise, pattern, info and bench"),
         )),
     };
     if let Err(e) = result {

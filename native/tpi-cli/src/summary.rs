@@ -74,8 +74,8 @@ pub fn summary(result: &Discretisation, surface: &str, pattern: &str, threads: u
     let t = &result.timings;
     let _ = writeln!(
         s,
-        "  timings: samples {:.1} ms, delaunay {:.1} ms, neighbours {:.1} ms, facets {:.1} ms, report {:.1} ms, total {:.1} ms ({threads} thread{})",
-        t.samples, t.delaunay, t.neighbours, t.facets, t.report, t.total, if threads == 1 { "" } else { "s" }
+        "  timings: samples {:.1} ms, delaunay {:.1} ms, neighbours {:.1} ms, facets {:.1} ms, mesh {:.1} ms, report {:.1} ms, total {:.1} ms ({threads} thread{})",
+        t.samples, t.delaunay, t.neighbours, t.facets, t.mesh, t.report, t.total, if threads == 1 { "" } else { "s" }
     );
     s
 }

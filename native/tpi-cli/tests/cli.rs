@@ -403,7 +403,7 @@ fn info_reports_curvature_regions() {
 
 #[test]
 fn help_for_every_command() {
-    for args in [&["--help"][..], &["help"], &["discretise", "--help"], &["pattern", "--help"], &["info", "-h"], &["help", "pattern"]] {
+    for args in [&["--help"][..], &["help"], &["discretise", "--help"], &["pattern", "--help"], &["info", "-h"], &["help", "pattern"], &["bench", "--help"], &["help", "bench"]] {
         let out = ok(args);
         let help = text(&out.stdout);
         assert!(help.contains("USAGE") && help.contains("EXAMPLES"), "{args:?}: {help}");
@@ -550,4 +550,59 @@ fn output_without_report_or_with_empty_dir_is_fine() {
     assert_eq!(parse_obj(&fs::read_to_string(dir.join("m.obj")).unwrap()).faces.len(), 16);
     fs::remove_file(dir.join("m.obj")).unwrap();
     assert_empty(&dir);
+}
+
+// ---- bench ----
+
+#[test]
+fn bench_prints_the_table_and_json_and_plot() {
+    // Shape only: never the timings.
+    let out = ok(&["bench", "--sizes", "1000", "--repeat", "3"]);
+    let table = text(&out.stdout);
+    let lines: Vec<&str> = table.lines().collect();
+    assert_eq!(lines.len(), 4, "{table}");
+    assert!(lines[0].starts_with("tpi bench: median of 3 runs"), "{table}");
+    let header: Vec<&str> = lines[1].split_whitespace().collect();
+    assert_eq!(
+        header,
+        ["surface", "points", "samples", "delaunay", "neighbours", "facets", "mesh", "report", "total", "facets/s", "peak", "MB"]
+    );
+    for (line, surface) in lines[2..].iter().zip(["paraboloid", "nurbs"]) {
+        let cells: Vec<&str> = line.split_whitespace().collect();
+        assert_eq!(cells.len(), 11, "{line}");
+        assert_eq!(cells[0], surface);
+        assert_eq!(cells[1], "1000");
+        for cell in &cells[2..] {
+            let x: f64 = cell.parse().unwrap_or_else(|_| panic!("`{cell}` in {line}"));
+            assert!(x.is_finite() && x >= 0.0, "{line}");
+        }
+    }
+
+    let dir = scratch("bench");
+    let plot = dir.join("scaling.svg").to_string_lossy().into_owned();
+    let out = ok(&["bench", "--sizes", "300,1000", "--surfaces", "nurbs", "--threads", "1", "--repeat", "1", "--json", "--no-report", "--plot", &plot]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(json["threads"], 1);
+    assert_eq!(json["repeat"], 1);
+    assert_eq!(json["quality_report"], false);
+    let results = json["results"].as_array().expect("results");
+    assert_eq!(results.len(), 2);
+    for (r, n) in results.iter().zip([300, 1000]) {
+        assert_eq!(r["surface"], "nurbs");
+        assert_eq!(r["points"], n);
+        assert_eq!(r["facets"], n);
+        for stage in ["samples", "delaunay", "neighbours", "facets", "mesh", "report", "total"] {
+            assert!(r["median_ms"][stage].as_f64().is_some_and(|t| t >= 0.0), "{stage}: {r}");
+        }
+        assert_eq!(r["median_ms"]["report"], 0.0, "the report is off");
+        assert!(r["facets_per_second"].as_f64().is_some_and(|f| f > 0.0));
+        assert!(r["peak_memory_mb"].as_f64().is_some_and(|m| m >= 0.0));
+    }
+    let svg = fs::read_to_string(&plot).expect("plot written");
+    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>") && svg.contains("polyline"), "{svg}");
+
+    fails(&["bench", "--sizes", "2"], 2, &["--sizes"]);
+    fails(&["bench", "--surfaces", "torus"], 2, &["--surfaces"]);
+    fails(&["bench", "--repeat", "0"], 2, &["--repeat"]);
+    fails(&["bench", "--plot", &dir.join("x.png").to_string_lossy()], 2, &["--plot"]);
 }

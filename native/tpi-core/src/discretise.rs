@@ -75,8 +75,11 @@ pub struct Timings {
     pub delaunay: f64,
     /// Curvature compensation and envelope repair.
     pub neighbours: f64,
-    /// Facet vertices, boundary, mesh assembly.
+    /// Facet vertices (three-plane intersections, inside tests) and boundary crossings.
     pub facets: f64,
+    /// Mesh assembly: welding, shared vertex numbering, facet loops.
+    #[serde(default)]
+    pub mesh: f64,
     /// Quality report.
     pub report: f64,
     /// Everything.
@@ -272,7 +275,8 @@ pub fn discretise(
             reason: "every triple of neighbouring tangent planes is (nearly) parallel: the surface is developable".into(),
         });
     }
-    timings.facets = ms(stage);
+    timings.facets = ms(stage) - mesh.assembly_ms;
+    timings.mesh = mesh.assembly_ms;
 
     let seeds: Vec<Seed> = geometry
         .iter()

@@ -92,6 +92,8 @@ pub struct FacetMesh {
     pub loops: Vec<u32>,
     /// Problems found.
     pub diagnostics: Vec<Diagnostic>,
+    /// Wall-clock time of the assembly (welding, numbering, loops) in milliseconds.
+    pub assembly_ms: f64,
 }
 
 impl FacetMesh {
@@ -217,6 +219,7 @@ pub fn build_facets(
         .collect();
 
     // 4. Welding of coincident triangle vertices across interior edges.
+    let assembly = std::time::Instant::now();
     let mut representative: Vec<u32> = (0..tri.len() as u32).collect();
     for edge in &edges {
         if edge.left == NO_TRIANGLE || edge.right == NO_TRIANGLE {
@@ -308,6 +311,7 @@ pub fn build_facets(
         }
     }
     mesh.diagnostics = diagnostics;
+    mesh.assembly_ms = assembly.elapsed().as_secs_f64() * 1e3;
     mesh
 }
 

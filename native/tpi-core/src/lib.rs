@@ -19,6 +19,7 @@
 #![warn(missing_docs)]
 
 pub mod analytic;
+pub mod benchmark;
 pub mod diagnostics;
 pub mod diffgeo;
 pub mod discretise;

@@ -1,0 +1,462 @@
+//! `tpi bench`: the discretisation's speed on the benchmark surfaces of
+//! `tpi_core::benchmark`, stage by stage, with facets per second and peak memory
+//! (docs/performance.md).
+
+use std::fmt::Write;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use serde::Serialize;
+use tpi_core::benchmark::{nurbs_dome, paraboloid, random_pattern};
+use tpi_core::{discretise, DiscretiseOptions, Surface, Timings};
+
+use crate::args::{Arg, Args};
+use crate::error::CliError;
+use crate::output::{check_output_path, write_all};
+
+pub const HELP: &str = "\
+tpi bench: time the discretisation on the benchmark surfaces
+
+USAGE:
+    tpi bench [--sizes N,N,...] [--surfaces paraboloid,nurbs] [--threads T] [--repeat R]
+              [--no-report] [--json] [--plot FILE.svg]
+
+Discretises N uniform random pattern points (SplitMix64, seed 7 + N) on (a) the paraboloid
+of revolution z = -0.08 (x^2 + y^2) over [-5, 5]^2 and (b) a bicubic NURBS dome with
+12 x 12 control points and non-uniform knots, R times each, and prints the median time of
+every stage in milliseconds: samples (evaluation and curvature, pattern validation),
+Delaunay, neighbours (curvature compensation / envelope), facets (vertices and boundary),
+mesh (assembly), report (quality report) and total, with facets per second, the threads
+used and the process's peak resident memory while that size ran (VmHWM).
+
+OPTIONS:
+    --sizes LIST       pattern sizes (default 1000,10000,100000,1000000)
+    --surfaces LIST    paraboloid, nurbs or both (default both)
+    --threads T        rayon threads (default: all cores)
+    --repeat R         runs per size, the median is reported (default 3; odd is best)
+    --no-report        switch the quality report off (DiscretiseOptions::quality_report)
+    --json             print JSON instead of the table
+    --plot FILE.svg    also write a log-log plot of total time against the pattern size
+    -h, --help         this help
+
+EXAMPLES:
+    tpi bench
+    tpi bench --sizes 1000 --threads 1 --repeat 101
+    tpi bench --sizes 1000,10000,100000,1000000 --json --plot docs/performance-scaling.svg
+";
+
+/// The benchmark's surfaces by name.
+const SURFACES: [&str; 2] = ["paraboloid", "nurbs"];
+
+struct Config {
+    sizes: Vec<usize>,
+    surfaces: Vec<&'static str>,
+    threads: Option<usize>,
+    repeat: usize,
+    report: bool,
+    json: bool,
+    plot: Option<PathBuf>,
+}
+
+/// One surface and size: the medians.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    /// Surface name.
+    pub surface: &'static str,
+    /// Pattern points.
+    pub points: usize,
+    /// Facets (one per pattern point).
+    pub facets: usize,
+    /// Median of each stage and the total, milliseconds.
+    pub median_ms: Timings,
+    /// Facets per second at the median total.
+    pub facets_per_second: f64,
+    /// Peak resident memory of the process while this size ran, in MB (10^6 bytes); 0 where
+    /// the system does not say.
+    pub peak_memory_mb: f64,
+}
+
+/// The whole run.
+#[derive(Debug, Serialize)]
+pub struct Report {
+    /// tpi's version.
+    pub version: &'static str,
+    /// rayon threads used.
+    pub threads: usize,
+    /// Runs per size.
+    pub repeat: usize,
+    /// Whether the quality report was on.
+    pub quality_report: bool,
+    /// One row per surface and size.
+    pub results: Vec<Row>,
+}
+
+/// Runs `tpi bench`.
+pub fn run(rest: Vec<String>) -> Result<(), CliError> {
+    let Some(config) = parse(rest)? else { return Ok(()) };
+    if let Some(plot) = &config.plot {
+        check_output_path(plot)?;
+    }
+    let pool = match config.threads {
+        Some(t) => Some(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .map_err(|e| CliError::input("--threads", e.to_string()))?,
+        ),
+        None => None,
+    };
+    let body = || measure(&config);
+    let report = match &pool {
+        Some(pool) => pool.install(body),
+        None => body(),
+    }?;
+    if config.json {
+        let text = serde_json::to_string_pretty(&report).map_err(|e| CliError::input("JSON", e.to_string()))?;
+        println!("{text}");
+    } else {
+        print!("{}", table(&report));
+    }
+    if let Some(plot) = &config.plot {
+        write_all(&[(plot.clone(), scaling_plot(&report).into_bytes())])?;
+    }
+    Ok(())
+}
+
+fn parse(rest: Vec<String>) -> Result<Option<Config>, CliError> {
+    let mut a = Args::new("bench", rest);
+    let mut config = Config {
+        sizes: vec![1_000, 10_000, 100_000, 1_000_000],
+        surfaces: SURFACES.to_vec(),
+        threads: None,
+        repeat: 3,
+        report: true,
+        json: false,
+        plot: None,
+    };
+    while let Some(arg) = a.next() {
+        match arg {
+            Arg::Option(name, inline) => match name.as_str() {
+                "help" => {
+                    print!("{HELP}");
+                    return Ok(None);
+                }
+                "sizes" => {
+                    let v = a.value(&name, inline)?;
+                    config.sizes = v
+                        .split(',')
+                        .map(|s| match s.trim().replace('_', "").parse::<usize>() {
+                            Ok(n) if (3..=10_000_000).contains(&n) => Ok(n),
+                            _ => Err(a.usage(format!("--sizes {v}: expected whole numbers from 3 to 10000000, comma-separated"))),
+                        })
+                        .collect::<Result<_, _>>()?;
+                }
+                "surfaces" => {
+                    let v = a.value(&name, inline)?;
+                    config.surfaces = v
+                        .split(',')
+                        .map(|s| {
+                            SURFACES
+                                .iter()
+                                .find(|&&known| known == s.trim())
+                                .copied()
+                                .ok_or_else(|| a.usage(format!("--surfaces {v}: the surfaces are paraboloid and nurbs")))
+                        })
+                        .collect::<Result<_, _>>()?;
+                }
+                "threads" => {
+                    let v = a.value(&name, inline)?;
+                    config.threads = match v.parse::<usize>() {
+                        Ok(n) if (1..=1024).contains(&n) => Some(n),
+                        _ => return Err(a.usage(format!("--threads {v}: expected a whole number from 1 to 1024"))),
+                    };
+                }
+                "repeat" => {
+                    let v = a.value(&name, inline)?;
+                    config.repeat = match v.parse::<usize>() {
+                        Ok(n) if (1..=100_000).contains(&n) => n,
+                        _ => return Err(a.usage(format!("--repeat {v}: expected a whole number from 1 to 100000"))),
+                    };
+                }
+                "no-report" => {
+                    a.flag(&name, inline)?;
+                    config.report = false;
+                }
+                "json" => {
+                    a.flag(&name, inline)?;
+                    config.json = true;
+                }
+                "plot" => {
+                    let v = PathBuf::from(a.value(&name, inline)?);
+                    if v.extension().and_then(|e| e.to_str()) != Some("svg") {
+                        return Err(a.usage(format!("--plot {}: the plot is an .svg file", v.display())));
+                    }
+                    config.plot = Some(v);
+                }
+                _ => return Err(a.unknown(&name)),
+            },
+            Arg::Positional(p) => return Err(a.usage(format!("unexpected argument `{p}`"))),
+        }
+    }
+    Ok(Some(config))
+}
+
+fn measure(config: &Config) -> Result<Report, CliError> {
+    let options = DiscretiseOptions { quality_report: config.report, ..DiscretiseOptions::default() };
+    let mut results = Vec::new();
+    for &name in &config.surfaces {
+        let surface: Box<dyn Surface> = match name {
+            "paraboloid" => Box::new(paraboloid()),
+            _ => Box::new(nurbs_dome()),
+        };
+        for &n in &config.sizes {
+            let pattern = random_pattern(n);
+            reset_peak_memory();
+            // One unmeasured run warms caches and the allocator on the smaller sizes.
+            if n <= 100_000 {
+                run_once(surface.as_ref(), &pattern, &options, name)?;
+            }
+            let mut runs = Vec::with_capacity(config.repeat);
+            let mut facets = 0;
+            for _ in 0..config.repeat {
+                let (timings, count) = run_once(surface.as_ref(), &pattern, &options, name)?;
+                facets = count;
+                runs.push(timings);
+            }
+            let median_ms = median_timings(&runs);
+            results.push(Row {
+                surface: name,
+                points: n,
+                facets,
+                facets_per_second: if median_ms.total > 0.0 { facets as f64 / (median_ms.total * 1e-3) } else { 0.0 },
+                median_ms,
+                peak_memory_mb: peak_memory_bytes() as f64 / 1e6,
+            });
+        }
+    }
+    Ok(Report {
+        version: env!("CARGO_PKG_VERSION"),
+        threads: rayon::current_num_threads(),
+        repeat: config.repeat,
+        quality_report: config.report,
+        results,
+    })
+}
+
+fn run_once(
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    options: &DiscretiseOptions,
+    name: &str,
+) -> Result<(Timings, usize), CliError> {
+    let start = Instant::now();
+    let result = discretise(surface, pattern, options).map_err(|e| CliError::core(name, &e))?;
+    let mut timings = result.timings;
+    // The total as the caller sees it (validation and result construction included).
+    timings.total = timings.total.max(start.elapsed().as_secs_f64() * 1e3);
+    let facets = result.facet_count();
+    drop(result);
+    Ok((timings, facets))
+}
+
+/// The median of each field separately.
+fn median_timings(runs: &[Timings]) -> Timings {
+    let median = |f: fn(&Timings) -> f64| {
+        let mut v: Vec<f64> = runs.iter().map(f).collect();
+        v.sort_by(f64::total_cmp);
+        match v.len() {
+            0 => 0.0,
+            n if n % 2 == 1 => v[n / 2],
+            n => 0.5 * (v[n / 2 - 1] + v[n / 2]),
+        }
+    };
+    Timings {
+        samples: median(|t| t.samples),
+        delaunay: median(|t| t.delaunay),
+        neighbours: median(|t| t.neighbours),
+        facets: median(|t| t.facets),
+        mesh: median(|t| t.mesh),
+        report: median(|t| t.report),
+        total: median(|t| t.total),
+    }
+}
+
+/// Resets the kernel's peak-RSS counter of this process (Linux 4.0+); harmless elsewhere.
+fn reset_peak_memory() {
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
+}
+
+/// VmHWM of this process in bytes, or 0 where unknown.
+fn peak_memory_bytes() -> u64 {
+    std::fs::read_to_string("/proc/self/status")
+        .ok()
+        .and_then(|s| {
+            s.lines().find_map(|l| {
+                let rest = l.strip_prefix("VmHWM:")?;
+                rest.trim().trim_end_matches("kB").trim().parse::<u64>().ok()
+            })
+        })
+        .map_or(0, |kb| kb * 1024)
+}
+
+/// The human-readable table.
+pub fn table(report: &Report) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "tpi bench: median of {} run{}, {} thread{}, quality report {} (times in ms)",
+        report.repeat,
+        if report.repeat == 1 { "" } else { "s" },
+        report.threads,
+        if report.threads == 1 { "" } else { "s" },
+        if report.quality_report { "on" } else { "off" }
+    );
+    let _ = writeln!(
+        s,
+        "{:<10} {:>8} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9} {:>10} {:>12} {:>8}",
+        "surface", "points", "samples", "delaunay", "neighbours", "facets", "mesh", "report", "total", "facets/s", "peak MB"
+    );
+    for r in &report.results {
+        let t = &r.median_ms;
+        let _ = writeln!(
+            s,
+            "{:<10} {:>8} {:>9.3} {:>9.3} {:>10.3} {:>9.3} {:>9.3} {:>9.3} {:>10.3} {:>12.0} {:>8.1}",
+            r.surface, r.points, t.samples, t.delaunay, t.neighbours, t.facets, t.mesh, t.report, t.total, r.facets_per_second, r.peak_memory_mb
+        );
+    }
+    s
+}
+
+/// A log-log SVG plot of the median total time against the pattern size, one line per
+/// surface, with dashed n and n log n reference slopes through each line's first point.
+pub fn scaling_plot(report: &Report) -> String {
+    let (width, height) = (640.0, 440.0);
+    let (left, right, top, bottom) = (70.0, 170.0, 40.0, 50.0);
+    let points: Vec<(f64, f64)> = report.results.iter().map(|r| (r.points as f64, r.median_ms.total.max(1e-6))).collect();
+    let (mut x_lo, mut x_hi, mut y_lo, mut y_hi) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    for &(x, y) in &points {
+        x_lo = x_lo.min(x);
+        x_hi = x_hi.max(x);
+        y_lo = y_lo.min(y);
+        y_hi = y_hi.max(y);
+    }
+    if points.is_empty() {
+        (x_lo, x_hi, y_lo, y_hi) = (1e3, 1e6, 1e-1, 1e3);
+    }
+    let decade = |v: f64, up: bool| if up { 10f64.powf(v.log10().ceil()) } else { 10f64.powf(v.log10().floor()) };
+    let (x_lo, x_hi) = (decade(x_lo, false), decade(x_hi * 1.0001, true).max(decade(x_lo, false) * 10.0));
+    let (y_lo, y_hi) = (decade(y_lo, false), decade(y_hi * 1.0001, true).max(decade(y_lo, false) * 10.0));
+    let plot_w = width - left - right;
+    let plot_h = height - top - bottom;
+    let sx = |x: f64| left + (x.log10() - x_lo.log10()) / (x_hi.log10() - x_lo.log10()) * plot_w;
+    let sy = |y: f64| top + plot_h - (y.log10() - y_lo.log10()) / (y_hi.log10() - y_lo.log10()) * plot_h;
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{width}" height="{height}" viewBox="0 0 {width} {height}" font-family="sans-serif" font-size="12">"#
+    );
+    let _ = writeln!(s, r#"<rect width="100%" height="100%" fill="white"/>"#);
+    let _ = writeln!(
+        s,
+        r#"<text x="{}" y="22" text-anchor="middle" font-size="14">tpi bench: median total time, {} thread{}, report {}</text>"#,
+        left + plot_w / 2.0,
+        report.threads,
+        if report.threads == 1 { "" } else { "s" },
+        if report.quality_report { "on" } else { "off" }
+    );
+    // Grid and axes, one line per decade.
+    let mut x = x_lo;
+    while x <= x_hi * 1.0001 {
+        let px = sx(x);
+        let _ = writeln!(s, r##"<line x1="{px:.1}" y1="{top}" x2="{px:.1}" y2="{:.1}" stroke="#ddd"/>"##, top + plot_h);
+        let _ = writeln!(s, r#"<text x="{px:.1}" y="{:.1}" text-anchor="middle">{}</text>"#, top + plot_h + 16.0, si(x));
+        x *= 10.0;
+    }
+    let mut y = y_lo;
+    while y <= y_hi * 1.0001 {
+        let py = sy(y);
+        let _ = writeln!(s, r##"<line x1="{left}" y1="{py:.1}" x2="{:.1}" y2="{py:.1}" stroke="#ddd"/>"##, left + plot_w);
+        let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"#, left - 6.0, py + 4.0, ms_label(y));
+        y *= 10.0;
+    }
+    let _ = writeln!(
+        s,
+        r##"<rect x="{left}" y="{top}" width="{plot_w}" height="{plot_h}" fill="none" stroke="#333"/>"##
+    );
+    let _ = writeln!(
+        s,
+        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">pattern points = facets (n)</text>"#,
+        left + plot_w / 2.0,
+        height - 12.0
+    );
+    let _ = writeln!(
+        s,
+        r#"<text transform="translate(18 {:.1}) rotate(-90)" text-anchor="middle">median total (ms)</text>"#,
+        top + plot_h / 2.0
+    );
+    let colours = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd"];
+    let mut legend_y = top + 10.0;
+    let mut names: Vec<&str> = Vec::new();
+    for r in &report.results {
+        if !names.contains(&r.surface) {
+            names.push(r.surface);
+        }
+    }
+    for (k, name) in names.iter().enumerate() {
+        let colour = colours[k % colours.len()];
+        let line: Vec<(f64, f64)> =
+            report.results.iter().filter(|r| r.surface == *name).map(|r| (r.points as f64, r.median_ms.total.max(1e-6))).collect();
+        let path: Vec<String> = line.iter().map(|&(x, y)| format!("{:.1},{:.1}", sx(x), sy(y))).collect();
+        let _ = writeln!(s, r#"<polyline points="{}" fill="none" stroke="{colour}" stroke-width="2"/>"#, path.join(" "));
+        for &(x, y) in &line {
+            let _ = writeln!(s, r#"<circle cx="{:.1}" cy="{:.1}" r="3.5" fill="{colour}"/>"#, sx(x), sy(y));
+        }
+        // n log n reference through the first point.
+        if let (Some(&(x0, y0)), Some(&(x1, _))) = (line.first(), line.last()) {
+            if x1 > x0 {
+                let y1 = y0 * (x1 * x1.ln()) / (x0 * x0.ln());
+                let _ = writeln!(
+                    s,
+                    r#"<line x1="{:.1}" y1="{:.1}" x2="{:.1}" y2="{:.1}" stroke="{colour}" stroke-dasharray="5 4" stroke-width="1"/>"#,
+                    sx(x0),
+                    sy(y0),
+                    sx(x1),
+                    sy(y1.clamp(y_lo, y_hi))
+                );
+            }
+        }
+        let _ = writeln!(
+            s,
+            r#"<line x1="{:.1}" y1="{legend_y:.1}" x2="{:.1}" y2="{legend_y:.1}" stroke="{colour}" stroke-width="2"/>"#,
+            left + plot_w + 12.0,
+            left + plot_w + 36.0
+        );
+        let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}">{name}</text>"#, left + plot_w + 42.0, legend_y + 4.0);
+        legend_y += 18.0;
+    }
+    let _ = writeln!(
+        s,
+        r##"<line x1="{:.1}" y1="{legend_y:.1}" x2="{:.1}" y2="{legend_y:.1}" stroke="#555" stroke-dasharray="5 4"/>"##,
+        left + plot_w + 12.0,
+        left + plot_w + 36.0
+    );
+    let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}">n log n</text>"#, left + plot_w + 42.0, legend_y + 4.0);
+    let _ = writeln!(s, "</svg>");
+    s
+}
+
+fn si(x: f64) -> String {
+    match x {
+        x if x >= 1e6 => format!("{}M", x / 1e6),
+        x if x >= 1e3 => format!("{}k", x / 1e3),
+        x => format!("{x}"),
+    }
+}
+
+fn ms_label(y: f64) -> String {
+    if y >= 1.0 {
+        format!("{y:.0}")
+    } else {
+        format!("{y}")
+    }
+}
