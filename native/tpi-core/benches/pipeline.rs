@@ -44,6 +44,26 @@ fn samples(c: &mut Criterion) {
     group.finish();
 }
 
+/// One evaluation to second order (no curvature), the unit of every projection.
+fn evaluate(c: &mut Criterion) {
+    let mut group = c.benchmark_group("evaluate");
+    for (name, surface) in surfaces() {
+        let uv: Vec<[f64; 2]> = random_pattern(1000).iter().map(|&st| surface.domain().from_normalised(st)).collect();
+        group.throughput(Throughput::Elements(uv.len() as u64));
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                let mut acc = 0.0;
+                for &[u, v] in &uv {
+                    let d = surface.evaluate(u, v);
+                    acc += d.point.x + d.suu.z;
+                }
+                black_box(acc)
+            })
+        });
+    }
+    group.finish();
+}
+
 /// The global Delaunay triangulation of the pattern (the candidate structure).
 fn delaunay(c: &mut Criterion) {
     let mut group = c.benchmark_group("delaunay");
@@ -79,5 +99,5 @@ fn full(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, samples, delaunay, full);
+criterion_group!(benches, evaluate, samples, delaunay, full);
 criterion_main!(benches);

@@ -283,6 +283,7 @@ pub fn discretise(
         .zip(&uv)
         .map(|(g, &uv)| Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] })
         .collect();
+    let feet = mesh.feet;
     let mut result = Discretisation {
         vertices: mesh.vertices,
         vertex_kinds: mesh.vertex_kinds,
@@ -314,6 +315,7 @@ pub fn discretise(
             diagnosed: &diagnosed,
             neighbours,
             diagnostic_count: result.diagnostics.len(),
+            feet: &feet,
         });
         result.quality = Some(quality);
         result.facet_flags = flags;

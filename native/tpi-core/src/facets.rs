@@ -19,6 +19,8 @@
 //!   such as a square grid on a paraboloid of revolution) the two triangles of an edge give
 //!   the same vertex; they are merged when closer than the weld tolerance.
 
+use std::collections::HashMap;
+
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -94,6 +96,26 @@ pub struct FacetMesh {
     pub diagnostics: Vec<Diagnostic>,
     /// Wall-clock time of the assembly (welding, numbering, loops) in milliseconds.
     pub assembly_ms: f64,
+    /// Per vertex, what is known about its foot on the surface (for the quality report's
+    /// deviation, so that no projection is done twice).
+    pub feet: Vec<FootHint>,
+}
+
+/// What the facet stage knows about a mesh vertex's closest point on the surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum FootHint {
+    /// The foot (Newton's converged projection, in the surface's parameters).
+    Known([f64; 2]),
+    /// Project by Newton from this first-order estimate; accept the result if it lies within
+    /// `2 reach + 1e-9` (normalised) of it, else project from the first facet's seed.
+    Guess {
+        /// First-order foot from the vertex's triangle.
+        linear: [f64; 2],
+        /// Largest normalised distance of the triangle's points from `linear`.
+        reach: f64,
+    },
+    /// Project from the parameters of the first facet that holds the vertex.
+    FromSeed,
 }
 
 impl FacetMesh {
@@ -111,6 +133,8 @@ struct Crossing {
     exit: bool,
     /// Whether the search ended on the boundary (|inside measure| below tolerance).
     converged: bool,
+    /// The Newton foot of `point`, when the search computed it.
+    foot: Option<[f64; 2]>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -118,7 +142,7 @@ enum Item {
     Triangle(u32),
     /// An ill-conditioned triangle's stand-in, moved onto the line of one of its edges
     /// (shared by the two facets of that edge).
-    EdgePoint { triangle: u32, edge: u32 },
+    EdgePoint { triangle: u32, lo: u32, hi: u32 },
     Crossing(u32),
     Corner(u8),
 }
@@ -152,23 +176,45 @@ impl Context<'_> {
         [uv[0] + (g * a - f * b) / det, uv[1] + (e * b - f * a) / det]
     }
 
-    /// Foot of a triangle vertex: Newton from the mean first-order foot of its three points.
-    /// On strongly curved saddles Newton may run to another local minimum far away; then the
-    /// first-order estimate, which stays with the triangle, is kept.
-    fn measure_vertex(&self, ids: [u32; 3], x: DVec3) -> ([f64; 2], f64) {
+    /// The mean first-order foot of x from the three points, and the largest normalised
+    /// distance of the points from it.
+    fn linear_estimate(&self, ids: [u32; 3], x: DVec3) -> ([f64; 2], f64) {
         let feet = ids.map(|i| self.linear_foot(i, x));
         let linear = [(feet[0][0] + feet[1][0] + feet[2][0]) / 3.0, (feet[0][1] + feet[1][1] + feet[2][1]) / 3.0];
-        let (newton, inside) = self.measure(x, linear);
         let reach = ids
             .iter()
             .map(|&i| normalised_distance(&self.domain, self.uv[i as usize], linear))
             .fold(0.0, f64::max);
-        if normalised_distance(&self.domain, newton, linear) <= 2.0 * reach + 1e-9 {
-            (newton, inside)
+        (linear, reach)
+    }
+
+    /// Foot of a triangle vertex: Newton from the mean first-order foot `linear` of its three
+    /// points. On strongly curved saddles Newton may run to another local minimum far away;
+    /// then the first-order estimate, which stays with the triangle (within `reach`), is kept.
+    /// Returns the foot, its inside measure, and whether Newton's result was kept.
+    fn measure_from(&self, x: DVec3, linear: [f64; 2], reach: f64) -> ([f64; 2], f64, bool) {
+        let (newton, inside) = self.measure(x, linear);
+        if accept_newton(&self.domain, newton, linear, reach) {
+            (newton, inside, true)
         } else {
-            (linear, inside_measure(&self.domain, linear))
+            (linear, inside_measure(&self.domain, linear), false)
         }
     }
+}
+
+/// Whether Newton's foot `newton`, started from the first-order estimate `linear` of a
+/// triangle vertex whose points lie within `reach` of it, stayed with the triangle.
+pub fn accept_newton(domain: &Domain, newton: [f64; 2], linear: [f64; 2], reach: f64) -> bool {
+    normalised_distance(domain, newton, linear) <= 2.0 * reach + 1e-9
+}
+
+/// Whether a vertex whose first-order foot is `linear` (triangle reach `reach`) is inside
+/// the domain whatever Newton does: the foot that `Context::measure_from` keeps lies within
+/// 2 reach + 1e-9 of `linear` (normalised), and the inside measure is 1-Lipschitz there, so
+/// a margin beyond that (with room for rounding) decides the test without projecting.
+fn surely_inside(domain: &Domain, linear: [f64; 2], reach: f64) -> bool {
+    let margin = 2.0 * reach + 1e-9;
+    inside_measure(domain, linear) > margin * (1.0 + 1e-9) + 1e-12
 }
 
 /// Builds the facets of all pattern points from the dual triangulation.
@@ -191,119 +237,173 @@ pub fn build_facets(
         .par_iter()
         .map(|&ids| triangle_vertex(&ctx, ids, params.far_vertex_factor))
         .collect();
-    diagnostics.extend(triangle_vertices.iter().filter_map(|t| t.diagnostic.clone()));
+    diagnostics.extend(
+        triangle_vertices
+            .iter()
+            .zip(&tri.triangles)
+            .filter(|(v, _)| !v.exact)
+            .map(|(v, &ids)| ill_conditioned(&ctx, ids, v)),
+    );
 
-    // 2. Boundary crossings per edge.
-    let (edges, _edge_of) = tri.edges();
+    // 2. Boundary crossings, only on the edges where they can be: a hull edge, or an edge
+    // with an outside vertex at either end (in the order of `DualTriangulation::edges`).
+    let edges: Vec<Edge> = crossing_edges(tri, &triangle_vertices);
     let per_edge: Vec<(Vec<Crossing>, Option<Diagnostic>)> =
         edges.par_iter().map(|edge| edge_crossings(&ctx, tri, edge, &triangle_vertices)).collect();
-    let mut crossing_offsets = Vec::with_capacity(edges.len() + 1);
+    let mut crossing_ranges: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(edges.len());
     let mut crossings = Vec::new();
-    crossing_offsets.push(0u32);
-    for (list, diagnostic) in per_edge {
+    for (edge, (list, diagnostic)) in edges.iter().zip(per_edge) {
+        let first = crossings.len() as u32;
         crossings.extend(list);
-        crossing_offsets.push(crossings.len() as u32);
+        if crossings.len() as u32 > first {
+            crossing_ranges.insert((edge.lo, edge.hi), (first, crossings.len() as u32));
+        }
         diagnostics.extend(diagnostic);
     }
-    let edge_index = EdgeIndex::new(&edges, uv.len());
-    let corner_owner = corner_owners(&crossings, &crossing_offsets);
+    let corner_owner = corner_owners(&crossings, &[]);
 
-    // 3. Facet loops as items.
+    // 3. Facet loops as items, in chunks of facets (one buffer per chunk, none per facet).
     let corners = corner_samples(surface, &domain);
     let incident = tri.incident_triangles(uv.len());
-    let facet_items: Vec<(Vec<Item>, Vec<Diagnostic>)> = (0..uv.len() as u32)
+    let lookup = ItemContext {
+        tri,
+        incident: &incident,
+        crossing_ranges: &crossing_ranges,
+        crossings: &crossings,
+        corner_owner: &corner_owner,
+        triangle_vertices: &triangle_vertices,
+    };
+    let chunks: Vec<FacetChunk> = (0..uv.len().div_ceil(FACET_CHUNK))
         .into_par_iter()
-        .map_init(Vec::new, |fan, i| {
-            facet_items(i, tri, &incident, &edge_index, &crossing_offsets, &crossings, &corner_owner, &triangle_vertices, fan)
+        .map(|c| {
+            let mut chunk = FacetChunk::default();
+            let mut fan = Vec::new();
+            for i in c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(uv.len()) {
+                facet_items(i as u32, &lookup, &mut fan, &mut chunk.items, &mut chunk.diagnostics);
+                chunk.ends.push(chunk.items.len() as u32);
+            }
+            chunk
         })
         .collect();
 
     // 4. Welding of coincident triangle vertices across interior edges.
     let assembly = std::time::Instant::now();
-    let mut representative: Vec<u32> = (0..tri.len() as u32).collect();
-    for edge in &edges {
-        if edge.left == NO_TRIANGLE || edge.right == NO_TRIANGLE {
-            continue;
-        }
-        let (a, b) = (edge.left as usize, edge.right as usize);
-        if !(triangle_vertices[a].exact && triangle_vertices[b].exact) {
-            continue;
-        }
-        if triangle_vertices[a].point.distance(triangle_vertices[b].point) <= params.weld_distance {
-            let (ra, rb) = (find(&mut representative, a as u32), find(&mut representative, b as u32));
-            if ra != rb {
-                let (low, high) = (ra.min(rb), ra.max(rb));
-                representative[high as usize] = low;
-            }
+    let weld_pairs: Vec<(u32, u32)> = (0..tri.len())
+        .into_par_iter()
+        .flat_map_iter(|t| {
+            let weld = params.weld_distance;
+            let tv = &triangle_vertices;
+            (0..3).filter_map(move |k| {
+                let other = tri.neighbours[t][k];
+                if other == NO_TRIANGLE || (other as usize) < t {
+                    return None;
+                }
+                let (a, b) = (t, other as usize);
+                (tv[a].exact && tv[b].exact && tv[a].point.distance(tv[b].point) <= weld).then_some((a as u32, b as u32))
+            })
+        })
+        .collect();
+    // Unions in the order of `DualTriangulation::edges` (by triangle, then side): the pairs
+    // were collected in that order.
+    let mut representative: Vec<u32> = if weld_pairs.is_empty() { Vec::new() } else { (0..tri.len() as u32).collect() };
+    for &(a, b) in &weld_pairs {
+        let (ra, rb) = (find(&mut representative, a), find(&mut representative, b));
+        if ra != rb {
+            let (low, high) = (ra.min(rb), ra.max(rb));
+            representative[high as usize] = low;
         }
     }
 
     // 5. Vertex numbering in facet order (deterministic), corners per facet.
     let mut mesh = FacetMesh { offsets: Vec::with_capacity(uv.len() + 1), ..FacetMesh::default() };
+    let vertex_estimate = tri.len() + crossings.len() + 4;
+    mesh.vertices.reserve(vertex_estimate);
+    mesh.vertex_kinds.reserve(vertex_estimate);
+    mesh.feet.reserve(vertex_estimate);
+    mesh.loops.reserve(chunks.iter().map(|c| c.items.len()).sum());
     mesh.offsets.push(0);
     let mut triangle_id = vec![u32::MAX; tri.len()];
     let mut crossing_id = vec![u32::MAX; crossings.len()];
-    let mut edge_point_id: std::collections::HashMap<(u32, u32), u32> = std::collections::HashMap::new();
+    let mut edge_point_id: HashMap<(u32, u32, u32), u32> = HashMap::new();
     let mut corner_claims = [0u32; 4];
-    for (i, (items, facet_diagnostics)) in facet_items.into_iter().enumerate() {
-        diagnostics.extend(facet_diagnostics);
-        let start = mesh.loops.len();
-        for item in items {
-            let id = match item {
-                Item::Triangle(t) => {
-                    let r = find(&mut representative, t) as usize;
-                    if triangle_id[r] == u32::MAX {
-                        triangle_id[r] = push_vertex(&mut mesh, triangle_vertices[r].point, VertexKind::Interior);
+    let mut i = 0usize;
+    for chunk in chunks {
+        let mut start_item = 0usize;
+        let mut walk_diagnostics = chunk.diagnostics.into_iter().peekable();
+        for &end_item in &chunk.ends {
+            // Diagnostics of this facet's walk come before those of its assembly.
+            while let Some((_, d)) = walk_diagnostics.next_if(|(f, _)| *f as usize == i) {
+                diagnostics.push(d);
+            }
+            let items = &chunk.items[start_item..end_item as usize];
+            start_item = end_item as usize;
+            let start = mesh.loops.len();
+            for &item in items {
+                let id = match item {
+                    Item::Triangle(t) => {
+                        let r = if representative.is_empty() { t as usize } else { find(&mut representative, t) as usize };
+                        if triangle_id[r] == u32::MAX {
+                            let v = &triangle_vertices[r];
+                            let hint = if v.newton_foot {
+                                FootHint::Known(v.foot)
+                            } else if v.measured {
+                                FootHint::FromSeed
+                            } else {
+                                FootHint::Guess { linear: v.foot, reach: v.reach }
+                            };
+                            triangle_id[r] = push_vertex(&mut mesh, v.point, VertexKind::Interior, hint);
+                        }
+                        triangle_id[r]
                     }
-                    triangle_id[r]
-                }
-                Item::EdgePoint { triangle, edge } => {
-                    let e = &edges[edge as usize];
-                    let stand_in = triangle_vertices[triangle as usize].point;
-                    match edge_point(&planes[e.lo as usize], &planes[e.hi as usize], stand_in, params.far_vertex_factor) {
-                        Some(position) => *edge_point_id
-                            .entry((triangle, edge))
-                            .or_insert_with(|| push_vertex(&mut mesh, position, VertexKind::Interior)),
-                        None => {
-                            // No usable line: a vertex of this facet alone, in its own plane.
-                            let plane = &planes[i];
-                            let position = stand_in - plane.normal * plane.signed_distance(stand_in);
-                            push_vertex(&mut mesh, position, VertexKind::Interior)
+                    Item::EdgePoint { triangle, lo, hi } => {
+                        let stand_in = triangle_vertices[triangle as usize].point;
+                        match edge_point(&planes[lo as usize], &planes[hi as usize], stand_in, params.far_vertex_factor) {
+                            Some(position) => *edge_point_id.entry((triangle, lo, hi)).or_insert_with(|| {
+                                push_vertex(&mut mesh, position, VertexKind::Interior, FootHint::FromSeed)
+                            }),
+                            None => {
+                                // No usable line: a vertex of this facet alone, in its own plane.
+                                let plane = &planes[i];
+                                let position = stand_in - plane.normal * plane.signed_distance(stand_in);
+                                push_vertex(&mut mesh, position, VertexKind::Interior, FootHint::FromSeed)
+                            }
                         }
                     }
-                }
-                Item::Crossing(c) => {
-                    if crossing_id[c as usize] == u32::MAX {
-                        crossing_id[c as usize] = push_vertex(&mut mesh, crossings[c as usize].point, VertexKind::Boundary);
+                    Item::Crossing(c) => {
+                        if crossing_id[c as usize] == u32::MAX {
+                            let crossing = &crossings[c as usize];
+                            let hint = crossing.foot.map_or(FootHint::FromSeed, FootHint::Known);
+                            crossing_id[c as usize] = push_vertex(&mut mesh, crossing.point, VertexKind::Boundary, hint);
+                        }
+                        crossing_id[c as usize]
                     }
-                    crossing_id[c as usize]
-                }
-                Item::Corner(c) => {
-                    corner_claims[c as usize] += 1;
-                    let (point, normal) = corners[c as usize];
-                    let plane = &planes[i];
-                    let denominator = plane.normal.dot(normal);
-                    let mu = plane.normal.dot(plane.point - point) / denominator;
-                    let position = point + normal * mu;
-                    if !position.is_finite() || denominator.abs() < 1e-9 {
-                        diagnostics.push(Diagnostic::CornerUnreachable { point: i as u32, corner: c });
-                        continue;
+                    Item::Corner(c) => {
+                        corner_claims[c as usize] += 1;
+                        let (point, normal) = corners[c as usize];
+                        let plane = &planes[i];
+                        let denominator = plane.normal.dot(normal);
+                        let mu = plane.normal.dot(plane.point - point) / denominator;
+                        let position = point + normal * mu;
+                        if !position.is_finite() || denominator.abs() < 1e-9 {
+                            diagnostics.push(Diagnostic::CornerUnreachable { point: i as u32, corner: c });
+                            continue;
+                        }
+                        push_vertex(&mut mesh, position, VertexKind::Corner, FootHint::FromSeed)
                     }
-                    push_vertex(&mut mesh, position, VertexKind::Corner)
+                };
+                if mesh.loops.len() == start || mesh.loops[mesh.loops.len() - 1] != id {
+                    mesh.loops.push(id);
                 }
-            };
-            let loop_now = &mesh.loops[start..];
-            if loop_now.last() != Some(&id) {
-                mesh.loops.push(id);
             }
+            while mesh.loops.len() > start + 1 && mesh.loops[start] == mesh.loops[mesh.loops.len() - 1] {
+                mesh.loops.pop();
+            }
+            if mesh.loops.len() - start < 3 {
+                diagnostics.push(Diagnostic::OpenFacet { point: i as u32, reason: "fewer than three vertices".into() });
+            }
+            mesh.offsets.push(mesh.loops.len() as u32);
+            i += 1;
         }
-        while mesh.loops.len() > start + 1 && mesh.loops[start] == mesh.loops[mesh.loops.len() - 1] {
-            mesh.loops.pop();
-        }
-        if mesh.loops.len() - start < 3 {
-            diagnostics.push(Diagnostic::OpenFacet { point: i as u32, reason: "fewer than three vertices".into() });
-        }
-        mesh.offsets.push(mesh.loops.len() as u32);
     }
     for (corner, &claims) in corner_claims.iter().enumerate() {
         if claims != 1 {
@@ -315,9 +415,55 @@ pub fn build_facets(
     mesh
 }
 
-fn push_vertex(mesh: &mut FacetMesh, position: DVec3, kind: VertexKind) -> u32 {
+/// Facets per parallel work item of the loop stage.
+const FACET_CHUNK: usize = 512;
+
+/// The items of a run of consecutive facets: `ends[k]` closes facet k's items.
+#[derive(Default)]
+struct FacetChunk {
+    items: Vec<Item>,
+    ends: Vec<u32>,
+    /// Walk diagnostics with their facet, in facet order.
+    diagnostics: Vec<(u32, Diagnostic)>,
+}
+
+/// What `facet_items` reads.
+struct ItemContext<'a> {
+    tri: &'a DualTriangulation,
+    incident: &'a [u32],
+    crossing_ranges: &'a HashMap<(u32, u32), (u32, u32)>,
+    crossings: &'a [Crossing],
+    corner_owner: &'a [Option<u32>; 4],
+    triangle_vertices: &'a [TriangleVertex],
+}
+
+/// The edges that can hold boundary crossings, in the order of [`DualTriangulation::edges`]:
+/// hull edges, and edges with an outside (or stand-in) vertex at either end.
+fn crossing_edges(tri: &DualTriangulation, tv: &[TriangleVertex]) -> Vec<Edge> {
+    let mut edges = Vec::new();
+    for t in 0..tri.len() {
+        for k in 0..3 {
+            let other = tri.neighbours[t][k];
+            if other != NO_TRIANGLE && (other as usize) < t {
+                continue;
+            }
+            let inside = |x: usize| tv[x].inside > 0.0;
+            if other != NO_TRIANGLE && inside(t) && inside(other as usize) {
+                continue;
+            }
+            let vertices = tri.triangles[t];
+            let (from, to) = (vertices[(k + 1) % 3], vertices[(k + 2) % 3]);
+            let (lo, hi, left, right) = if from < to { (from, to, t as u32, other) } else { (to, from, other, t as u32) };
+            edges.push(Edge { lo, hi, left, right });
+        }
+    }
+    edges
+}
+
+fn push_vertex(mesh: &mut FacetMesh, position: DVec3, kind: VertexKind, foot: FootHint) -> u32 {
     mesh.vertices.push(position);
     mesh.vertex_kinds.push(kind);
+    mesh.feet.push(foot);
     (mesh.vertices.len() - 1) as u32
 }
 
@@ -346,16 +492,36 @@ fn normalised_distance(domain: &Domain, a: [f64; 2], b: [f64; 2]) -> f64 {
 }
 
 /// A triangle's facet vertex and where it lies.
-#[derive(Clone, Debug)]
+#[derive(Clone, Copy, Debug)]
 struct TriangleVertex {
     /// The meeting point of the three planes, or the stand-in when not `exact`.
     point: DVec3,
-    /// Whether `point` is the exact meeting point.
-    exact: bool,
+    /// The foot: Newton's (`newton_foot`), or the first-order estimate.
     foot: [f64; 2],
     /// Inside measure of the foot (positive inside the domain).
     inside: f64,
-    diagnostic: Option<Diagnostic>,
+    /// Largest normalised distance of the triangle's points from the first-order foot.
+    reach: f64,
+    /// Whether `point` is the exact meeting point.
+    exact: bool,
+    /// Whether the foot was measured (Newton tried); a vertex deep inside the domain is
+    /// decided from its first-order foot alone (see `surely_inside`).
+    measured: bool,
+    /// Whether `foot` is Newton's projection.
+    newton_foot: bool,
+}
+
+impl TriangleVertex {
+    /// The foot and inside measure exactly as measuring would give them (Newton from the
+    /// first-order foot), computed now if the vertex was decided without.
+    fn measured_foot(&self, ctx: &Context<'_>) -> ([f64; 2], f64) {
+        if self.measured {
+            (self.foot, self.inside)
+        } else {
+            let (foot, inside, _) = ctx.measure_from(self.point, self.foot, self.reach);
+            (foot, inside)
+        }
+    }
 }
 
 /// The meeting point of a triangle's three planes. An inside vertex that ran away from its
@@ -371,18 +537,42 @@ fn triangle_vertex(ctx: &Context<'_>, mut ids: [u32; 3], far_factor: f64) -> Tri
     let longest = a.point.distance(b.point).max(b.point.distance(c.point)).max(c.point.distance(a.point));
     let distance = meeting.point.distance(centroid);
     if meeting.point.is_finite() {
-        let (foot, inside) = ctx.measure_vertex(ids, meeting.point);
+        let (linear, reach) = ctx.linear_estimate(ids, meeting.point);
+        let near = distance <= far_factor * longest;
+        if near && surely_inside(&ctx.domain, linear, reach) {
+            let inside = inside_measure(&ctx.domain, linear);
+            return TriangleVertex {
+                point: meeting.point,
+                foot: linear,
+                inside,
+                reach,
+                exact: true,
+                measured: false,
+                newton_foot: false,
+            };
+        }
+        let (foot, inside, newton_foot) = ctx.measure_from(meeting.point, linear, reach);
         // A far vertex is only believable as an outside vertex of a triangle at the boundary
         // (a sliver along the hull); deep inside it means nearly parallel planes.
-        if distance <= far_factor * longest || (inside <= 0.0 && near_boundary(ctx, ids)) {
-            return TriangleVertex { point: meeting.point, exact: true, foot, inside, diagnostic: None };
+        if near || (inside <= 0.0 && near_boundary(ctx, ids)) {
+            return TriangleVertex { point: meeting.point, foot, inside, reach, exact: true, measured: true, newton_foot };
         }
     }
     let point = regularised_meeting_point([a, b, c], centroid, 1e-6);
-    let (foot, inside) = ctx.measure_vertex(ids, point);
+    let (linear, reach) = ctx.linear_estimate(ids, point);
+    let (foot, inside, newton_foot) = ctx.measure_from(point, linear, reach);
+    TriangleVertex { point, foot, inside, reach, exact: false, measured: true, newton_foot }
+}
+
+/// The diagnostic of a triangle whose vertex is a stand-in.
+fn ill_conditioned(ctx: &Context<'_>, mut ids: [u32; 3], _vertex: &TriangleVertex) -> Diagnostic {
+    ids.sort_unstable();
+    let [a, b, c] = ids.map(|i| &ctx.planes[i as usize]);
+    let meeting = intersect_three(a, b, c);
+    let centroid = (a.point + b.point + c.point) / 3.0;
+    let distance = meeting.point.distance(centroid);
     let distance = if distance.is_finite() { distance } else { f64::INFINITY };
-    let diagnostic = Diagnostic::IllConditionedVertex { points: ids, determinant: meeting.determinant, distance };
-    TriangleVertex { point, exact: false, foot, inside, diagnostic: Some(diagnostic) }
+    Diagnostic::IllConditionedVertex { points: ids, determinant: meeting.determinant, distance }
 }
 
 /// The point of the line T_a ∩ T_b closest to `x`: x - A^T (A A^T)^-1 (A x - b) with
@@ -404,42 +594,6 @@ fn edge_point(a: &Plane, b: &Plane, x: DVec3, far_factor: f64) -> Option<DVec3> 
     let lb = (rb - c * ra) / det;
     let point = x - a.normal * la - b.normal * lb;
     (point.is_finite() && point.distance(x) <= reach).then_some(point)
-}
-
-/// Edge lookup: for point i, its edges (sorted by the other endpoint).
-struct EdgeIndex {
-    offsets: Vec<u32>,
-    entries: Vec<(u32, u32)>,
-}
-
-impl EdgeIndex {
-    fn new(edges: &[Edge], point_count: usize) -> Self {
-        let mut counts = vec![0u32; point_count + 1];
-        for e in edges {
-            counts[e.lo as usize + 1] += 1;
-            counts[e.hi as usize + 1] += 1;
-        }
-        for i in 0..point_count {
-            counts[i + 1] += counts[i];
-        }
-        let mut fill = counts.clone();
-        let mut entries = vec![(0u32, 0u32); edges.len() * 2];
-        for (id, e) in edges.iter().enumerate() {
-            entries[fill[e.lo as usize] as usize] = (e.hi, id as u32);
-            fill[e.lo as usize] += 1;
-            entries[fill[e.hi as usize] as usize] = (e.lo, id as u32);
-            fill[e.hi as usize] += 1;
-        }
-        for i in 0..point_count {
-            entries[counts[i] as usize..counts[i + 1] as usize].sort_unstable();
-        }
-        Self { offsets: counts, entries }
-    }
-
-    fn edge(&self, a: u32, b: u32) -> Option<u32> {
-        let list = &self.entries[self.offsets[a as usize] as usize..self.offsets[a as usize + 1] as usize];
-        list.binary_search_by_key(&b, |e| e.0).ok().map(|k| list[k].1)
-    }
 }
 
 /// Where a point of the edge's segment comes from.
@@ -468,7 +622,8 @@ fn edge_crossings(
     let end_of = |t: u32| {
         let v = &triangle_vertices[t as usize];
         let point = if v.exact { Some(v.point) } else { edge_point(lo, hi, v.point, DEFAULT_FAR_VERTEX_FACTOR) };
-        SegmentEnd { point: point.unwrap_or(DVec3::NAN), guess: v.foot, inside: v.inside }
+        let (guess, inside) = v.measured_foot(ctx);
+        SegmentEnd { point: point.unwrap_or(DVec3::NAN), guess, inside }
     };
     // (start, end) in canonical order right -> left; None marks a hull side (a ray).
     let start = (edge.right != NO_TRIANGLE).then(|| end_of(edge.right));
@@ -646,6 +801,8 @@ fn refine_crossing(
     let (mut a, mut b) = (low, high);
     let (mut fa, mut fb) = (a.1.inside, b.1.inside);
     let mut best = if fa.abs() < fb.abs() { a } else { b };
+    // Whether `best` is a point this search projected (its guess is then its Newton foot).
+    let mut projected = false;
     let mut side = 0i8;
     for _ in 0..CROSSING_ITERATIONS {
         let mut lambda = (a.0 * fb - b.0 * fa) / (fb - fa);
@@ -658,6 +815,7 @@ fn refine_crossing(
         let current = (lambda, SegmentEnd { point, guess: foot_uv, inside });
         if inside.abs() < best.1.inside.abs() {
             best = current;
+            projected = true;
         }
         if inside.abs() < CROSSING_TOLERANCE || (b.0 - a.0).abs() <= 1e-15 * b.0.abs().max(a.0.abs()) {
             break;
@@ -679,7 +837,13 @@ fn refine_crossing(
         }
     }
     let converged = best.1.inside.abs() <= CROSSING_ACCEPTANCE;
-    Crossing { point: best.1.point, wall: boundary_parameter(&ctx.domain, best.1.guess), exit: false, converged }
+    Crossing {
+        point: best.1.point,
+        wall: boundary_parameter(&ctx.domain, best.1.guess),
+        exit: false,
+        converged,
+        foot: projected.then_some(best.1.guess),
+    }
 }
 
 /// For each domain corner, the crossing that owns it: the last crossing before the corner
@@ -709,39 +873,38 @@ fn corner_samples(surface: &dyn Surface, domain: &Domain) -> [(DVec3, DVec3); 4]
     })
 }
 
-/// The loop of facet i as items, with corners inserted along the boundary.
-#[allow(clippy::too_many_arguments)]
-fn facet_items(
-    i: u32,
-    tri: &DualTriangulation,
-    incident: &[u32],
-    edge_index: &EdgeIndex,
-    crossing_offsets: &[u32],
-    crossings: &[Crossing],
-    corner_owner: &[Option<u32>; 4],
-    triangle_vertices: &[TriangleVertex],
-    fan: &mut Vec<u32>,
-) -> (Vec<Item>, Vec<Diagnostic>) {
-    let mut diagnostics = Vec::new();
-    let kind = tri.fan(i, incident[i as usize], fan);
+/// The loop of facet i as items appended to `items`, with corners inserted along the
+/// boundary; walk diagnostics go to `diagnostics` with the facet's index.
+fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut Vec<Item>, diagnostics: &mut Vec<(u32, Diagnostic)>) {
+    let tri = cx.tri;
+    let kind = tri.fan(i, cx.incident[i as usize], fan);
     if kind == Fan::Broken || fan.is_empty() {
-        diagnostics.push(Diagnostic::OpenFacet { point: i, reason: "no triangles around the point".into() });
-        return (Vec::new(), diagnostics);
+        diagnostics.push((i, Diagnostic::OpenFacet { point: i, reason: "no triangles around the point".into() }));
+        return;
+    }
+    // Fast path: an interior point whose fan vertices are all exact and inside has no
+    // boundary crossing on any of its edges (crossings need an outside end): its loop is its fan.
+    if kind == Fan::Closed && fan.iter().all(|&t| {
+        let v = &cx.triangle_vertices[t as usize];
+        v.exact && v.inside > 0.0
+    }) {
+        items.extend(fan.iter().map(|&t| Item::Triangle(t)));
+        return;
     }
     // Raw walk: crossings of each incoming edge, then the triangle's vertex if inside.
     let mut raw: Vec<(Item, Option<(bool, f64)>)> = Vec::with_capacity(fan.len() * 2 + 4);
     let push_edge = |j: u32, raw: &mut Vec<(Item, Option<(bool, f64)>)>| {
-        let Some(e) = edge_index.edge(i, j) else { return };
-        let range = crossing_offsets[e as usize] as usize..crossing_offsets[e as usize + 1] as usize;
+        let Some(&(first, last)) = cx.crossing_ranges.get(&(i.min(j), i.max(j))) else { return };
         let forward = i < j;
-        let mut ids: Vec<usize> = range.collect();
-        if !forward {
-            ids.reverse();
-        }
-        for c in ids {
-            let crossing = crossings[c];
+        let mut push = |c: u32| {
+            let crossing = cx.crossings[c as usize];
             let exit = crossing.exit == forward;
-            raw.push((Item::Crossing(c as u32), Some((exit, crossing.wall))));
+            raw.push((Item::Crossing(c), Some((exit, crossing.wall))));
+        };
+        if forward {
+            (first..last).for_each(&mut push);
+        } else {
+            (first..last).rev().for_each(&mut push);
         }
     };
     for &t in fan.iter() {
@@ -749,16 +912,14 @@ fn facet_items(
         let p = vertices.iter().position(|&v| v == i).unwrap_or(0);
         let incoming = vertices[(p + 1) % 3];
         push_edge(incoming, &mut raw);
-        let vertex = &triangle_vertices[t as usize];
+        let vertex = &cx.triangle_vertices[t as usize];
         if vertex.inside > 0.0 {
             if vertex.exact {
                 raw.push((Item::Triangle(t), None));
             } else {
                 let outgoing = vertices[(p + 2) % 3];
                 for j in [incoming, outgoing] {
-                    if let Some(edge) = edge_index.edge(i, j) {
-                        raw.push((Item::EdgePoint { triangle: t, edge }, None));
-                    }
+                    raw.push((Item::EdgePoint { triangle: t, lo: i.min(j), hi: i.max(j) }, None));
                 }
             }
         }
@@ -771,22 +932,20 @@ fn facet_items(
     // Corners follow the exit crossing that owns them; leaving and entering must alternate.
     let boundary: Vec<bool> = raw.iter().filter_map(|r| r.1.map(|(exit, _)| exit)).collect();
     if (0..boundary.len()).any(|k| boundary[k] == boundary[(k + 1) % boundary.len()]) {
-        diagnostics.push(Diagnostic::OpenFacet {
-            point: i,
-            reason: "boundary crossings do not alternate between leaving and entering".into(),
-        });
+        diagnostics.push((
+            i,
+            Diagnostic::OpenFacet { point: i, reason: "boundary crossings do not alternate between leaving and entering".into() },
+        ));
     }
-    let mut items = Vec::with_capacity(raw.len() + 4);
     for (item, crossing) in raw {
         items.push(item);
         if let (Item::Crossing(c), Some((true, wall))) = (item, crossing) {
             let mut owned: Vec<(f64, u8)> = (0..4u8)
-                .filter(|&k| corner_owner[k as usize] == Some(c))
+                .filter(|&k| cx.corner_owner[k as usize] == Some(c))
                 .map(|k| ((f64::from(k) - wall).rem_euclid(4.0), k))
                 .collect();
             owned.sort_by(|x, y| x.0.total_cmp(&y.0));
             items.extend(owned.into_iter().map(|x| Item::Corner(x.1)));
         }
     }
-    (items, diagnostics)
 }

@@ -145,21 +145,26 @@ pub fn decide_convex(tri: &mut DualTriangulation, slopes: &[[f64; 2]], input: &N
 /// hull edges, and the triangles behind them are tested in turn. A triangle is kept if
 /// dropping it would leave a point without triangles.
 fn trim_hull(tri: &mut DualTriangulation, input: &NeighbourInput<'_>) -> usize {
-    let mut removed = vec![false; tri.len()];
-    let mut triangle_count = vec![0u32; input.plane_uv.len()];
-    for t in &tri.triangles {
-        for &v in t {
-            triangle_count[v as usize] += 1;
-        }
-    }
-    let adjacency = point_adjacency(tri, input.plane_uv.len());
+    let mut removed: Vec<bool> = Vec::new();
+    let mut triangle_count: Vec<u32> = Vec::new();
+    let mut rings = Rings::default();
     let mut queue: Vec<u32> =
         (0..tri.len() as u32).filter(|&t| tri.neighbours[t as usize].contains(&NO_TRIANGLE)).collect();
     queue.reverse();
     let mut trims = 0;
     while let Some(t) = queue.pop() {
-        if removed[t as usize] || !hull_rejected(tri, input, &adjacency, t as usize) {
+        if removed.get(t as usize).copied().unwrap_or(false) || !hull_rejected(tri, input, &mut rings, t as usize) {
             continue;
+        }
+        if triangle_count.is_empty() {
+            // First trim: the per-point counts (never needed when nothing is trimmed).
+            triangle_count = vec![0u32; input.plane_uv.len()];
+            for tv in &tri.triangles {
+                for &v in tv {
+                    triangle_count[v as usize] += 1;
+                }
+            }
+            removed = vec![false; tri.len()];
         }
         let vertices = tri.triangles[t as usize];
         if vertices.iter().any(|&v| triangle_count[v as usize] <= 1) {
@@ -175,6 +180,8 @@ fn trim_hull(tri: &mut DualTriangulation, input: &NeighbourInput<'_>) -> usize {
             if other == NO_TRIANGLE {
                 continue;
             }
+            rings.remember(tri, other);
+            rings.remember(tri, t);
             for n in tri.neighbours[other as usize].iter_mut() {
                 if *n == t {
                     *n = NO_TRIANGLE;
@@ -190,24 +197,73 @@ fn trim_hull(tri: &mut DualTriangulation, input: &NeighbourInput<'_>) -> usize {
     trims
 }
 
-/// Sorted neighbour lists of every point.
-fn point_adjacency(tri: &DualTriangulation, point_count: usize) -> Vec<Vec<u32>> {
-    let mut adjacency = vec![Vec::new(); point_count];
-    for t in &tri.triangles {
-        for k in 0..3 {
-            adjacency[t[k] as usize].push(t[(k + 1) % 3]);
-            adjacency[t[(k + 1) % 3] as usize].push(t[k]);
+/// Point neighbourhoods of the triangulation as it was before trimming, computed on demand
+/// (only around the hull) by walking fans; trimming changes adjacency, so the neighbours of
+/// a triangle are saved before its first change.
+#[derive(Default)]
+struct Rings {
+    /// Sorted neighbour lists of the points asked for.
+    lists: std::collections::HashMap<u32, Vec<u32>>,
+    /// A triangle holding each point met so far.
+    holder: std::collections::HashMap<u32, u32>,
+    /// Neighbours of changed triangles before their first change.
+    original: std::collections::HashMap<u32, [u32; 3]>,
+}
+
+impl Rings {
+    fn remember(&mut self, tri: &DualTriangulation, t: u32) {
+        self.original.entry(t).or_insert(tri.neighbours[t as usize]);
+    }
+
+    fn neighbours_of(&self, tri: &DualTriangulation, t: u32) -> [u32; 3] {
+        self.original.get(&t).copied().unwrap_or(tri.neighbours[t as usize])
+    }
+
+    /// The sorted neighbours of point v, which triangle `start` holds.
+    fn ring(&mut self, tri: &DualTriangulation, v: u32, start: u32) -> &[u32] {
+        if !self.lists.contains_key(&v) {
+            let mut list = Vec::new();
+            for direction in [1usize, 2] {
+                let mut t = start;
+                for _ in 0..=tri.len() {
+                    let vertices = tri.triangles[t as usize];
+                    let Some(k) = vertices.iter().position(|&x| x == v) else { break };
+                    for &other in &[vertices[(k + 1) % 3], vertices[(k + 2) % 3]] {
+                        list.push(other);
+                        self.holder.entry(other).or_insert(t);
+                    }
+                    let next = self.neighbours_of(tri, t)[(k + direction) % 3];
+                    if next == NO_TRIANGLE || next == start {
+                        break;
+                    }
+                    t = next;
+                }
+            }
+            list.sort_unstable();
+            list.dedup();
+            self.lists.insert(v, list);
         }
+        &self.lists[&v]
     }
-    for list in &mut adjacency {
-        list.sort_unstable();
-        list.dedup();
+
+    /// The neighbours of the neighbours of `vertices` (of one triangle t), and those
+    /// neighbours themselves, as in the adjacency lists of the whole structure.
+    fn second_ring(&mut self, tri: &DualTriangulation, t: u32, vertices: [u32; 3]) -> Vec<u32> {
+        let mut out = Vec::new();
+        for &v in &vertices {
+            let first: Vec<u32> = self.ring(tri, v, t).to_vec();
+            for m in first {
+                let start = self.holder.get(&m).copied().unwrap_or(t);
+                out.push(m);
+                out.extend_from_slice(self.ring(tri, m, start));
+            }
+        }
+        out
     }
-    adjacency
 }
 
 /// Whether the envelope rejects hull triangle t (see [`trim_hull`]).
-fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, adjacency: &[Vec<u32>], t: usize) -> bool {
+fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, rings: &mut Rings, t: usize) -> bool {
     let vertices = tri.triangles[t];
     let side = input.convex_side[vertices[0] as usize];
     if side == 0 || vertices.iter().any(|&v| input.convex_side[v as usize] != side) {
@@ -226,10 +282,8 @@ fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, adjacency:
     if !vertex.is_finite() || vertex.distance(centroid) > DEGENERATE_SLIVER_FACTOR * size {
         return true;
     }
-    let cut_off = vertices.iter().flat_map(|&v| &adjacency[v as usize]).any(|&m| {
-        adjacency[m as usize].iter().chain(std::iter::once(&m)).any(|&x| {
-            input.convex_side[x as usize] == side && s * planes[x as usize].signed_distance(vertex) < -tolerance
-        })
+    let cut_off = rings.second_ring(tri, t as u32, vertices).into_iter().any(|x| {
+        input.convex_side[x as usize] == side && s * planes[x as usize].signed_distance(vertex) < -tolerance
     });
     if cut_off {
         return true;
@@ -250,28 +304,53 @@ fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, adjacency:
 }
 
 /// Lawson's flip loop with the given illegality test. Returns (flips, unresolved).
+///
+/// Every interior edge is tested once in triangle order, then the four outer edges of each
+/// flipped quad are tested again (a stack). The first tests of the edges whose two triangles
+/// no flip has touched yet are done in parallel up front: they read nothing a flip changes,
+/// so the result is the same as testing them one by one.
 fn flip_until_stable(
     tri: &mut DualTriangulation,
     embedding: &[[f64; 2]],
-    illegal: impl Fn(&DualTriangulation, usize, usize) -> bool,
+    illegal: impl Fn(&DualTriangulation, usize, usize) -> bool + Sync,
 ) -> (usize, usize) {
-    let mut stack: Vec<(u32, u32)> = Vec::with_capacity(tri.len() * 2);
-    for (t, tri_vertices) in tri.triangles.iter().enumerate() {
-        for k in 0..3 {
-            let other = tri.neighbours[t][k];
-            if other != NO_TRIANGLE && (other as usize) > t {
-                stack.push((tri_vertices[(k + 1) % 3], tri_vertices[(k + 2) % 3]));
+    use rayon::prelude::*;
+    // Initial stack entries: (a, b, triangle, k) for each interior edge, in triangle order.
+    let initial: Vec<(u32, u32, u32, u8)> = {
+        let mut v = Vec::with_capacity(tri.len() * 3 / 2 + 1);
+        for (t, tri_vertices) in tri.triangles.iter().enumerate() {
+            for k in 0..3 {
+                let other = tri.neighbours[t][k];
+                if other != NO_TRIANGLE && (other as usize) > t {
+                    v.push((tri_vertices[(k + 1) % 3], tri_vertices[(k + 2) % 3], t as u32, k as u8));
+                }
             }
         }
-    }
-    stack.reverse();
+        v
+    };
+    let first_tests: Vec<bool> = {
+        let tri_ref: &DualTriangulation = tri;
+        initial.par_iter().map(|&(_, _, t, k)| illegal(tri_ref, t as usize, k as usize)).collect()
+    };
+    let mut dirty = vec![false; tri.len()];
+    // Stack of (a, b, index of the precomputed first test or u32::MAX).
+    let mut stack: Vec<(u32, u32, u32)> = Vec::with_capacity(initial.len() + 64);
+    stack.extend(initial.iter().enumerate().rev().map(|(n, &(a, b, _, _))| (a, b, n as u32)));
     let budget = 20 * tri.len() + 100;
     let mut flips = 0;
     let mut unresolved = 0;
     let mut incident = tri.incident_triangles(embedding.len());
-    while let Some((a, b)) = stack.pop() {
-        let Some((t, k)) = find_edge(tri, &incident, a, b) else { continue };
-        if !illegal(tri, t, k) {
+    while let Some((a, b, first)) = stack.pop() {
+        let (t, k, verdict) = match initial.get(first as usize) {
+            Some(&(_, _, t0, k0)) if !dirty[t0 as usize] && !dirty[tri.neighbours[t0 as usize][k0 as usize] as usize] => {
+                (t0 as usize, k0 as usize, first_tests[first as usize])
+            }
+            _ => {
+                let Some((t, k)) = find_edge(tri, &incident, a, b) else { continue };
+                (t, k, illegal(tri, t, k))
+            }
+        };
+        if !verdict {
             continue;
         }
         let t2 = tri.neighbours[t][k];
@@ -286,12 +365,14 @@ fn flip_until_stable(
             continue;
         }
         let (t1, t2) = tri.flip(t as u32, k);
+        dirty[t1 as usize] = true;
+        dirty[t2 as usize] = true;
         flips += 1;
         for v in [c, a, d] {
             incident[v as usize] = t1;
         }
         incident[b as usize] = t2;
-        stack.extend_from_slice(&[(a, c), (c, b), (b, d), (d, a)]);
+        stack.extend_from_slice(&[(a, c, u32::MAX), (c, b, u32::MAX), (b, d, u32::MAX), (d, a, u32::MAX)]);
     }
     (flips, unresolved)
 }

@@ -140,7 +140,11 @@ struct KnotVector {
 
 /// Values (row 0), first (row 1) and second (row 2) derivatives of the degree + 1 basis functions
 /// that are non-zero on one span.
-type BasisDerivatives = [[f64; BASIS_LEN]; 3];
+type BasisDerivatives<const N: usize> = [[f64; N]; 3];
+
+/// Buffer length for degrees up to 3 (the common bicubic case gets small, fully unrollable
+/// buffers; the arithmetic is the same as with [`BASIS_LEN`], so are the results).
+const SMALL_BASIS_LEN: usize = 4;
 
 impl KnotVector {
     /// Validates the knots given in either convention; degree and count are already valid.
@@ -259,14 +263,15 @@ impl KnotVector {
     /// Book A2.2), with the rows of degree p-1 (N_(s-p+1),p-1 ..) and p-2 (N_(s-p+2),p-2 ..)
     /// of the same triangle.
     #[inline]
-    fn basis_triangle(&self, span: usize, t: f64) -> ([f64; BASIS_LEN], [f64; BASIS_LEN], [f64; BASIS_LEN]) {
+    fn basis_triangle<const N: usize>(&self, span: usize, t: f64) -> ([f64; N], [f64; N], [f64; N]) {
         let p = self.degree;
+        debug_assert!(p < N);
         let knots = &self.knots;
-        let mut left = [0.0; BASIS_LEN];
-        let mut right = [0.0; BASIS_LEN];
-        let mut values = [0.0; BASIS_LEN];
-        let mut degree_minus_1 = [0.0; BASIS_LEN];
-        let mut degree_minus_2 = [0.0; BASIS_LEN];
+        let mut left = [0.0; N];
+        let mut right = [0.0; N];
+        let mut values = [0.0; N];
+        let mut degree_minus_1 = [0.0; N];
+        let mut degree_minus_2 = [0.0; N];
         values[0] = 1.0;
         for j in 1..=p {
             // `values` holds the basis of degree j - 1 here.
@@ -291,12 +296,13 @@ impl KnotVector {
 
     /// Basis values only.
     #[inline]
-    fn basis(&self, span: usize, t: f64) -> [f64; BASIS_LEN] {
+    fn basis<const N: usize>(&self, span: usize, t: f64) -> [f64; N] {
         let p = self.degree;
+        debug_assert!(p < N);
         let knots = &self.knots;
-        let mut left = [0.0; BASIS_LEN];
-        let mut right = [0.0; BASIS_LEN];
-        let mut values = [0.0; BASIS_LEN];
+        let mut left = [0.0; N];
+        let mut right = [0.0; N];
+        let mut values = [0.0; N];
         values[0] = 1.0;
         for j in 1..=p {
             left[j] = t - knots[span + 1 - j];
@@ -316,15 +322,15 @@ impl KnotVector {
     /// N'_k,p = p (N_k,p-1 / (U_(k+p) - U_k) - N_(k+1),p-1 / (U_(k+p+1) - U_(k+1))), applied to
     /// the rows of degree p-1 (first derivative) and, twice, p-2 (second derivative).
     #[inline]
-    fn basis_derivatives(&self, span: usize, t: f64) -> BasisDerivatives {
+    fn basis_derivatives<const N: usize>(&self, span: usize, t: f64) -> BasisDerivatives<N> {
         let p = self.degree;
         let knots = &self.knots;
-        let (values, degree_minus_1, degree_minus_2) = self.basis_triangle(span, t);
-        let mut first = [0.0; BASIS_LEN];
-        let mut second = [0.0; BASIS_LEN];
+        let (values, degree_minus_1, degree_minus_2) = self.basis_triangle::<N>(span, t);
+        let mut first = [0.0; N];
+        let mut second = [0.0; N];
 
         // Row p-1 holds N_(s-p+1+i),p-1 for i in 0..p; its support is [U_(s-p+1+i), U_(s+1+i)].
-        let mut inverse_width = [0.0; BASIS_LEN];
+        let mut inverse_width = [0.0; N];
         for (i, inverse) in inverse_width.iter_mut().enumerate().take(p) {
             *inverse = 1.0 / (knots[span + 1 + i] - knots[span + 1 + i - p]);
         }
@@ -340,7 +346,7 @@ impl KnotVector {
         if p >= 2 {
             // First derivatives of row p-1 from row p-2 (N_(s-p+2+i),p-2, support [U_(s-p+2+i), U_(s+1+i)]).
             let q_f = (p - 1) as f64;
-            let mut lower_first = [0.0; BASIS_LEN];
+            let mut lower_first = [0.0; N];
             let mut previous = 0.0;
             for i in 0..p - 1 {
                 let scaled = degree_minus_2[i] / (knots[span + 1 + i] - knots[span + 2 + i - p]);
@@ -375,6 +381,8 @@ pub struct NurbsSurface {
     weights: Option<Vec<f64>>,
     /// [x w, y w, z w, w] per control point, same layout as `points`.
     homogeneous: Vec<DVec4>,
+    /// Bezier patches of every span pair (degrees <= 3 only, else empty), see [`BezierPatches`].
+    bezier: BezierPatches,
     domain: Domain,
     net_diagonal: f64,
 }
@@ -469,12 +477,14 @@ impl NurbsSurface {
         check_finite(|| "bounding-box diagonal of points".to_string(), net_diagonal)?;
 
         let domain = Domain::new(basis_u.interval(), basis_v.interval());
+        let bezier = BezierPatches::extract(&basis_u, &basis_v, &homogeneous);
         Ok(Self {
             basis_u,
             basis_v,
             points: points.to_vec(),
             weights: weights.map(<[f64]>::to_vec),
             homogeneous,
+            bezier,
             domain,
             net_diagonal,
         })
@@ -541,6 +551,183 @@ impl NurbsSurface {
     }
 }
 
+/// S and its derivatives from the homogeneous A = (x w, y w, z w, w) and its derivatives.
+#[inline(always)]
+fn quotient_rule(a: DVec4, a_u: DVec4, a_v: DVec4, a_uu: DVec4, a_uv: DVec4, a_vv: DVec4) -> SurfaceDerivatives {
+    let w = a.w;
+    let (w_u, w_v, w_uu, w_uv, w_vv) = (a_u.w, a_v.w, a_uu.w, a_uv.w, a_vv.w);
+    // Multiplying by 1 / w is faster than dividing; subnormal weights make 1 / w overflow.
+    let inverse_w = 1.0 / w;
+    let divide_by_w = |x: DVec3| if inverse_w.is_finite() { x * inverse_w } else { x / w };
+    let point = divide_by_w(a.truncate());
+    let su = divide_by_w(a_u.truncate() - w_u * point);
+    let sv = divide_by_w(a_v.truncate() - w_v * point);
+    let suu = divide_by_w(a_uu.truncate() - 2.0 * w_u * su - w_uu * point);
+    let suv = divide_by_w(a_uv.truncate() - w_u * sv - w_v * su - w_uv * point);
+    let svv = divide_by_w(a_vv.truncate() - 2.0 * w_v * sv - w_vv * point);
+    SurfaceDerivatives { point, su, sv, suu, suv, svv }
+}
+
+/// Largest degree evaluated through Bezier patches.
+const BEZIER_MAX_DEGREE: usize = 3;
+
+/// Largest number of homogeneous points held in Bezier patches (32 bytes each, 64 MiB); a
+/// surface with more spans is evaluated by de Boor's recurrence instead.
+const BEZIER_MAX_POINTS: usize = 1 << 21;
+
+/// The surface cut into Bezier patches, one per pair of spans (The NURBS Book, section 5.4):
+/// on span pair (s, r) the surface's homogeneous form is the tensor-product Bernstein
+/// polynomial of the local parameters ((u - U_s) / (U_(s+1) - U_s), (v - U_r) / ...) with
+/// these (p + 1) x (q + 1) control points. Evaluating Bernstein polynomials needs no division,
+/// which makes an evaluation several times cheaper than de Boor's recurrence (whose divisions
+/// form a serial chain); the patches are computed once, exactly as blossoms of the B-spline
+/// (`blossom`), so the two agree to rounding.
+#[derive(Clone, Debug, Default, PartialEq)]
+struct BezierPatches {
+    /// Patch of span pair (s, r) at ((s - p) * (nv - q) + (r - q)) * (p + 1) * (q + 1), u-major.
+    patches: Vec<DVec4>,
+    /// The same points in Euclidean form where every weight is 1 (a non-rational surface:
+    /// w = 1 and its derivatives vanish), else empty.
+    euclidean: Vec<DVec3>,
+    /// 1 / (U_(s+1) - U_s) per span index s in u (0 for an empty span).
+    inverse_width_u: Vec<f64>,
+    /// Same in v.
+    inverse_width_v: Vec<f64>,
+}
+
+impl BezierPatches {
+    fn extract(basis_u: &KnotVector, basis_v: &KnotVector, homogeneous: &[DVec4]) -> Self {
+        let (p, q) = (basis_u.degree, basis_v.degree);
+        let (nu, nv) = (basis_u.count, basis_v.count);
+        let spans = (nu - p) * (nv - q);
+        let size = (p + 1) * (q + 1);
+        if p > BEZIER_MAX_DEGREE || q > BEZIER_MAX_DEGREE || spans.saturating_mul(size) > BEZIER_MAX_POINTS {
+            return Self::default();
+        }
+        let widths = |b: &KnotVector| -> Vec<f64> {
+            (0..b.knots.len() - 1)
+                .map(|s| {
+                    let w = b.knots[s + 1] - b.knots[s];
+                    if w > 0.0 { 1.0 / w } else { 0.0 }
+                })
+                .collect()
+        };
+        let mut patches = vec![DVec4::ZERO; spans * size];
+        // Step 1, in u: for every control column j and u-span s, the p + 1 Bezier points of
+        // the curve of column j. Step 2, in v: the same on each of those rows.
+        let mut column = vec![DVec4::ZERO; nu];
+        let mut in_u = vec![DVec4::ZERO; (nu - p) * (p + 1) * nv];
+        for j in 0..nv {
+            for (i, c) in column.iter_mut().enumerate() {
+                *c = homogeneous[i * nv + j];
+            }
+            for s in p..nu {
+                if basis_u.knots[s] >= basis_u.knots[s + 1] {
+                    continue;
+                }
+                for k in 0..=p {
+                    in_u[((s - p) * (p + 1) + k) * nv + j] = blossom(basis_u, &column, s, k);
+                }
+            }
+        }
+        let mut row = vec![DVec4::ZERO; nv];
+        for s in p..nu {
+            if basis_u.knots[s] >= basis_u.knots[s + 1] {
+                continue;
+            }
+            for k in 0..=p {
+                row.copy_from_slice(&in_u[((s - p) * (p + 1) + k) * nv..((s - p) * (p + 1) + k + 1) * nv]);
+                for r in q..nv {
+                    if basis_v.knots[r] >= basis_v.knots[r + 1] {
+                        continue;
+                    }
+                    let base = ((s - p) * (nv - q) + (r - q)) * size;
+                    for l in 0..=q {
+                        patches[base + k * (q + 1) + l] = blossom(basis_v, &row, r, l);
+                    }
+                }
+            }
+        }
+        let euclidean = if homogeneous.iter().all(|h| h.w == 1.0) {
+            patches.iter().map(|h| h.truncate()).collect()
+        } else {
+            Vec::new()
+        };
+        Self { patches, euclidean, inverse_width_u: widths(basis_u), inverse_width_v: widths(basis_v) }
+    }
+
+    /// The Euclidean patch of span pair (s, r) (non-rational surfaces only).
+    #[inline]
+    fn euclidean_patch(&self, basis_u: &KnotVector, basis_v: &KnotVector, s: usize, r: usize) -> &[DVec3] {
+        let (p, q) = (basis_u.degree, basis_v.degree);
+        let size = (p + 1) * (q + 1);
+        let base = ((s - p) * (basis_v.count - q) + (r - q)) * size;
+        &self.euclidean[base..base + size]
+    }
+
+    /// The patch of span pair (s, r) and the inverse span widths.
+    #[inline]
+    fn patch(&self, basis_u: &KnotVector, basis_v: &KnotVector, s: usize, r: usize) -> (&[DVec4], f64, f64) {
+        let (p, q) = (basis_u.degree, basis_v.degree);
+        let size = (p + 1) * (q + 1);
+        let base = ((s - p) * (basis_v.count - q) + (r - q)) * size;
+        (&self.patches[base..base + size], self.inverse_width_u[s], self.inverse_width_v[r])
+    }
+}
+
+/// The k-th Bezier point of span s of the B-spline curve with control points `points`: its
+/// blossom at (U_s, ..., U_s, U_(s+1), ..., U_(s+1)) with p - k copies of U_s and k of
+/// U_(s+1), by de Boor's recurrence with a different parameter at each level.
+fn blossom(basis: &KnotVector, points: &[DVec4], s: usize, k: usize) -> DVec4 {
+    let p = basis.degree;
+    let knots = &basis.knots;
+    let mut d: Vec<DVec4> = points[s - p..=s].to_vec();
+    for level in 1..=p {
+        let t = if level <= k { knots[s + 1] } else { knots[s] };
+        for j in (level..=p).rev() {
+            let i = s - p + j;
+            let (lo, hi) = (knots[i], knots[i + p + 1 - level]);
+            let alpha = (t - lo) / (hi - lo);
+            d[j] = (1.0 - alpha) * d[j - 1] + alpha * d[j];
+        }
+    }
+    d[p]
+}
+
+/// Bernstein polynomials of degree p (<= 3) at t.
+#[inline(always)]
+fn bernstein(p: usize, t: f64) -> [f64; BEZIER_MAX_DEGREE + 1] {
+    let s = 1.0 - t;
+    match p {
+        3 => [s * s * s, 3.0 * t * s * s, 3.0 * t * t * s, t * t * t],
+        2 => [s * s, 2.0 * t * s, t * t, 0.0],
+        _ => [s, t, 0.0, 0.0],
+    }
+}
+
+/// Values, first and second derivatives (with respect to the knot parameter, through the
+/// span's inverse width `scale`) of the Bernstein polynomials of degree p (<= 3) at t:
+/// B'_k = p (B^(p-1)_(k-1) - B^(p-1)_k), B''_k = p (p-1) (B^(p-2)_(k-2) - 2 B^(p-2)_(k-1) + B^(p-2)_k).
+#[inline(always)]
+fn bernstein_derivatives(p: usize, t: f64, scale: f64) -> [[f64; BEZIER_MAX_DEGREE + 1]; 3] {
+    let s = 1.0 - t;
+    match p {
+        3 => {
+            let (d, dd) = (3.0 * scale, 6.0 * scale * scale);
+            [
+                [s * s * s, 3.0 * t * s * s, 3.0 * t * t * s, t * t * t],
+                [-d * (s * s), d * (s * s - 2.0 * t * s), d * (2.0 * t * s - t * t), d * (t * t)],
+                [dd * s, dd * (t - 2.0 * s), dd * (s - 2.0 * t), dd * t],
+            ]
+        }
+        2 => {
+            let (d, dd) = (2.0 * scale, 2.0 * scale * scale);
+            [[s * s, 2.0 * t * s, t * t, 0.0], [-d * s, d * (s - t), d * t, 0.0], [dd, -2.0 * dd, dd, 0.0]]
+        }
+        _ => [[s, t, 0.0, 0.0], [-scale, scale, 0.0, 0.0], [0.0; BEZIER_MAX_DEGREE + 1]],
+    }
+}
+
 /// |v| without overflow in the squares (coordinates up to f64::MAX / sqrt(3) stay finite).
 fn robust_length(v: DVec3) -> f64 {
     let largest = v.abs().max_element();
@@ -569,11 +756,126 @@ impl Surface for NurbsSurface {
     }
 
     fn evaluate(&self, u: f64, v: f64) -> SurfaceDerivatives {
+        if !self.bezier.patches.is_empty() {
+            return self.evaluate_bezier(u, v);
+        }
+        if self.basis_u.degree < SMALL_BASIS_LEN && self.basis_v.degree < SMALL_BASIS_LEN {
+            self.evaluate_with::<SMALL_BASIS_LEN>(u, v)
+        } else {
+            self.evaluate_with::<BASIS_LEN>(u, v)
+        }
+    }
+
+    fn point_at(&self, u: f64, v: f64) -> DVec3 {
+        if !self.bezier.patches.is_empty() {
+            return self.point_bezier(u, v);
+        }
+        if self.basis_u.degree < SMALL_BASIS_LEN && self.basis_v.degree < SMALL_BASIS_LEN {
+            self.point_with::<SMALL_BASIS_LEN>(u, v)
+        } else {
+            self.point_with::<BASIS_LEN>(u, v)
+        }
+    }
+}
+
+impl NurbsSurface {
+    /// [`Surface::evaluate`] on the Bezier patch of (u, v)'s span pair: Bernstein values and
+    /// derivatives (no division), then the same contraction and quotient rule as
+    /// [`NurbsSurface::evaluate_with`].
+    #[inline]
+    fn evaluate_bezier(&self, u: f64, v: f64) -> SurfaceDerivatives {
         let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
         let (span_u, u) = self.basis_u.span(u);
         let (span_v, v) = self.basis_v.span(v);
-        let nu = self.basis_u.basis_derivatives(span_u, u);
-        let nv = self.basis_v.basis_derivatives(span_v, v);
+        let (patch, su, sv) = self.bezier.patch(&self.basis_u, &self.basis_v, span_u, span_v);
+        let nu = bernstein_derivatives(pu, (u - self.basis_u.knots[span_u]) * su, su);
+        let nv = bernstein_derivatives(pv, (v - self.basis_v.knots[span_v]) * sv, sv);
+        if !self.bezier.euclidean.is_empty() {
+            // Non-rational: S itself is the polynomial, w = 1.
+            let patch = self.bezier.euclidean_patch(&self.basis_u, &self.basis_v, span_u, span_v);
+            let (mut point, mut su, mut sv) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+            let (mut suu, mut suv, mut svv) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+            for k in 0..=pu {
+                let row = &patch[k * (pv + 1)..(k + 1) * (pv + 1)];
+                let (mut t0, mut t1, mut t2) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+                for (l, &cp) in row.iter().enumerate() {
+                    t0 += nv[0][l] * cp;
+                    t1 += nv[1][l] * cp;
+                    t2 += nv[2][l] * cp;
+                }
+                let (n0, n1, n2) = (nu[0][k], nu[1][k], nu[2][k]);
+                point += n0 * t0;
+                su += n1 * t0;
+                suu += n2 * t0;
+                sv += n0 * t1;
+                suv += n1 * t1;
+                svv += n0 * t2;
+            }
+            return SurfaceDerivatives { point, su, sv, suu, suv, svv };
+        }
+        let (mut a, mut a_u, mut a_v) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
+        let (mut a_uu, mut a_uv, mut a_vv) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
+        for k in 0..=pu {
+            let row = &patch[k * (pv + 1)..(k + 1) * (pv + 1)];
+            let (mut t0, mut t1, mut t2) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
+            for (l, &cp) in row.iter().enumerate() {
+                t0 += nv[0][l] * cp;
+                t1 += nv[1][l] * cp;
+                t2 += nv[2][l] * cp;
+            }
+            let (n0, n1, n2) = (nu[0][k], nu[1][k], nu[2][k]);
+            a += n0 * t0;
+            a_u += n1 * t0;
+            a_uu += n2 * t0;
+            a_v += n0 * t1;
+            a_uv += n1 * t1;
+            a_vv += n0 * t2;
+        }
+        quotient_rule(a, a_u, a_v, a_uu, a_uv, a_vv)
+    }
+
+    /// [`Surface::point_at`] on the Bezier patch of (u, v)'s span pair.
+    #[inline]
+    fn point_bezier(&self, u: f64, v: f64) -> DVec3 {
+        let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
+        let (span_u, u) = self.basis_u.span(u);
+        let (span_v, v) = self.basis_v.span(v);
+        let (patch, su, sv) = self.bezier.patch(&self.basis_u, &self.basis_v, span_u, span_v);
+        let nu = bernstein(pu, (u - self.basis_u.knots[span_u]) * su);
+        let nv = bernstein(pv, (v - self.basis_v.knots[span_v]) * sv);
+        if !self.bezier.euclidean.is_empty() {
+            let patch = self.bezier.euclidean_patch(&self.basis_u, &self.basis_v, span_u, span_v);
+            let mut point = DVec3::ZERO;
+            for k in 0..=pu {
+                let row = &patch[k * (pv + 1)..(k + 1) * (pv + 1)];
+                let mut t0 = DVec3::ZERO;
+                for (l, &cp) in row.iter().enumerate() {
+                    t0 += nv[l] * cp;
+                }
+                point += nu[k] * t0;
+            }
+            return point;
+        }
+        let mut a = DVec4::ZERO;
+        for k in 0..=pu {
+            let row = &patch[k * (pv + 1)..(k + 1) * (pv + 1)];
+            let mut t0 = DVec4::ZERO;
+            for (l, &cp) in row.iter().enumerate() {
+                t0 += nv[l] * cp;
+            }
+            a += nu[k] * t0;
+        }
+        a.truncate() / a.w
+    }
+
+    /// [`Surface::evaluate`] with basis buffers of length N (> both degrees).
+    #[inline]
+    fn evaluate_with<const N: usize>(&self, u: f64, v: f64) -> SurfaceDerivatives {
+        let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
+        let (span_u, u) = self.basis_u.span(u);
+        let (span_v, v) = self.basis_v.span(v);
+        let nu = self.basis_u.basis_derivatives::<N>(span_u, u);
+        let nv = self.basis_v.basis_derivatives::<N>(span_v, v);
 
         // Homogeneous A (xyz) and w with their partial derivatives.
         let (mut a, mut a_u, mut a_v) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
@@ -595,33 +897,17 @@ impl Surface for NurbsSurface {
             a_vv += n0 * t2;
         }
 
-        let w = a.w;
-        let (w_u, w_v, w_uu, w_uv, w_vv) = (a_u.w, a_v.w, a_uu.w, a_uv.w, a_vv.w);
-        // Multiplying by 1 / w is faster than dividing; subnormal weights make 1 / w overflow.
-        let inverse_w = 1.0 / w;
-        let divide_by_w = |x: DVec3| if inverse_w.is_finite() { x * inverse_w } else { x / w };
-        let point = divide_by_w(a.truncate());
-        let su = divide_by_w(a_u.truncate() - w_u * point);
-        let sv = divide_by_w(a_v.truncate() - w_v * point);
-        let suu = divide_by_w(a_uu.truncate() - 2.0 * w_u * su - w_uu * point);
-        let suv = divide_by_w(a_uv.truncate() - w_u * sv - w_v * su - w_uv * point);
-        let svv = divide_by_w(a_vv.truncate() - 2.0 * w_v * sv - w_vv * point);
-        SurfaceDerivatives {
-            point,
-            su,
-            sv,
-            suu,
-            suv,
-            svv,
-        }
+        quotient_rule(a, a_u, a_v, a_uu, a_uv, a_vv)
     }
 
-    fn point_at(&self, u: f64, v: f64) -> DVec3 {
+    /// [`Surface::point_at`] with basis buffers of length N (> both degrees).
+    #[inline]
+    fn point_with<const N: usize>(&self, u: f64, v: f64) -> DVec3 {
         let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
         let (span_u, u) = self.basis_u.span(u);
         let (span_v, v) = self.basis_v.span(v);
-        let nu = self.basis_u.basis(span_u, u);
-        let nv = self.basis_v.basis(span_v, v);
+        let nu = self.basis_u.basis::<N>(span_u, u);
+        let nv = self.basis_v.basis::<N>(span_v, v);
         let mut a = DVec4::ZERO;
         for (k, &basis_u) in nu.iter().enumerate().take(pu + 1) {
             let row = self.homogeneous_row(span_u - pu + k, span_v - pv, pv + 1);

@@ -19,6 +19,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
+use crate::facets::{accept_newton, FootHint};
 use crate::projection::foot;
 use crate::surface::Surface;
 
@@ -106,6 +107,9 @@ pub struct ReportInput<'a> {
     pub neighbours: NeighbourStats,
     /// Number of diagnostics.
     pub diagnostic_count: usize,
+    /// Per vertex, what the facet stage knows about its foot (empty: project every vertex
+    /// from its first facet's seed).
+    pub feet: &'a [FootHint],
 }
 
 /// Facet `i`'s loop.
@@ -129,16 +133,29 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
     };
     let mut flags = vec![0u8; facet_count];
 
-    // Edges: (lo, hi, facet) sorted.
-    let mut edges: Vec<(u32, u32, u32)> = Vec::with_capacity(input.loops.len());
-    for i in 0..facet_count {
-        let l = facet(input, i);
-        for k in 0..l.len() {
-            let (a, b) = (l[k], l[(k + 1) % l.len()]);
-            edges.push((a.min(b), a.max(b), i as u32));
-        }
-    }
-    edges.sort_unstable();
+    // Edges: (lo, hi, facet) sorted, by a counting sort on lo and a sort of each (short) run.
+    let edges = sorted_edges(input, facet_count);
+    // Per facet: centroid (for the overlap test) and shape, in parallel.
+    let shapes: Vec<(DVec3, FacetShape, f64)> = {
+        use rayon::prelude::*;
+        (0..facet_count)
+            .into_par_iter()
+            .map_init(Vec::new, |buffer, i| {
+                let l = facet(input, i);
+                let plane = &input.planes[i];
+                let mut planarity = 0.0f64;
+                let mut centroid = DVec3::ZERO;
+                for &v in l {
+                    let x = input.vertices[v as usize];
+                    planarity = planarity.max(plane.signed_distance(x).abs() / input.diagonal);
+                    centroid += x;
+                }
+                let centroid = if l.is_empty() { DVec3::NAN } else { centroid / l.len() as f64 };
+                let shape = facet_shape_into(plane, l.iter().map(|&v| input.vertices[v as usize]), buffer);
+                (centroid, shape, planarity)
+            })
+            .collect()
+    };
     let mut on_boundary = vec![false; input.vertices.len()];
     let mut boundary_parent: Vec<u32> = (0..input.vertices.len() as u32).collect();
     let mut boundary_vertices = 0usize;
@@ -168,7 +185,7 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
             }
             2 => {
                 let (f, g) = (edges[k].2 as usize, edges[k + 1].2 as usize);
-                if overlaps(input, f, g, a, b) {
+                if overlaps(input, f, g, a, b, shapes[f].0, shapes[g].0) {
                     r.overlapping_pairs += 1;
                     flags[f] |= FLAG_OVERLAP;
                     flags[g] |= FLAG_OVERLAP;
@@ -217,12 +234,8 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
     for i in 0..facet_count {
         let l = facet(input, i);
         *r.side_histogram.entry(l.len()).or_insert(0) += 1;
-        let plane = &input.planes[i];
-        for &v in l {
-            let error = plane.signed_distance(input.vertices[v as usize]).abs() / input.diagonal;
-            r.max_planarity_error = r.max_planarity_error.max(error);
-        }
-        let shape = facet_shape(plane, l.iter().map(|&v| input.vertices[v as usize]));
+        let (_, shape, planarity) = shapes[i];
+        r.max_planarity_error = r.max_planarity_error.max(planarity);
         r.min_facet_area = r.min_facet_area.min(shape.area);
         r.max_facet_area = r.max_facet_area.max(shape.area);
         if !shape.simple {
@@ -254,7 +267,19 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
             .filter_map(|v| {
                 let g = guess[v]?;
                 let x = input.vertices[v];
-                let [u, w] = foot(input.surface, &domain, x, g);
+                let from_seed = || foot(input.surface, &domain, x, g);
+                let [u, w] = match input.feet.get(v) {
+                    Some(&FootHint::Known(f)) => f,
+                    Some(&FootHint::Guess { linear, reach }) => {
+                        let newton = foot(input.surface, &domain, x, linear);
+                        if accept_newton(&domain, newton, linear, reach) {
+                            newton
+                        } else {
+                            from_seed()
+                        }
+                    }
+                    _ => from_seed(),
+                };
                 let (cu, cw) = domain.clamp(u, w);
                 Some(input.surface.point_at(cu, cw).distance(x))
             })
@@ -300,11 +325,17 @@ pub struct FacetShape {
 
 /// Measures a polygon lying (nearly) in `plane`.
 pub fn facet_shape(plane: &Plane, points: impl Iterator<Item = DVec3>) -> FacetShape {
+    facet_shape_into(plane, points, &mut Vec::new())
+}
+
+/// [`facet_shape`] with a caller's buffer for the 2D points (no allocation per facet).
+fn facet_shape_into(plane: &Plane, points: impl Iterator<Item = DVec3>, p: &mut Vec<DVec2>) -> FacetShape {
     let (e1, e2) = plane_frame(plane);
-    let p: Vec<DVec2> = points.map(|x| {
+    p.clear();
+    p.extend(points.map(|x| {
         let d = x - plane.point;
         DVec2::new(d.dot(e1), d.dot(e2))
-    }).collect();
+    }));
     let n = p.len();
     if n < 3 {
         return FacetShape { area: 0.0, simple: false, convex: false };
@@ -343,20 +374,50 @@ fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
     ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
 }
 
-/// Whether facets f and g, sharing edge (a, b), fold onto the same side of it.
-fn overlaps(input: &ReportInput<'_>, f: usize, g: usize, a: u32, b: u32) -> bool {
+/// Whether facets f and g (with centroids `cf`, `cg`), sharing edge (a, b), fold onto the
+/// same side of it.
+fn overlaps(input: &ReportInput<'_>, f: usize, _g: usize, a: u32, b: u32, cf: DVec3, cg: DVec3) -> bool {
     let plane = &input.planes[f];
     let (e1, e2) = plane_frame(plane);
     let to2 = |x: DVec3| {
         let d = x - plane.point;
         DVec2::new(d.dot(e1), d.dot(e2))
     };
-    let centroid = |i: usize| {
-        let l = facet(input, i);
-        l.iter().fold(DVec3::ZERO, |acc, &v| acc + input.vertices[v as usize]) / l.len() as f64
-    };
     let (pa, pb) = (to2(input.vertices[a as usize]), to2(input.vertices[b as usize]));
-    let side_f = (pb - pa).perp_dot(to2(centroid(f)) - pa);
-    let side_g = (pb - pa).perp_dot(to2(centroid(g)) - pa);
+    let side_f = (pb - pa).perp_dot(to2(cf) - pa);
+    let side_g = (pb - pa).perp_dot(to2(cg) - pa);
     side_f * side_g > 0.0
+}
+
+/// Every loop edge as (lo, hi, facet), sorted: counting sort on lo, then each run of equal
+/// lo (a vertex's few edges) sorted, which is the order of a full sort.
+fn sorted_edges(input: &ReportInput<'_>, facet_count: usize) -> Vec<(u32, u32, u32)> {
+    let vertex_count = input.vertices.len();
+    let mut start = vec![0u32; vertex_count + 1];
+    let each = |f: &mut dyn FnMut(u32, u32, u32)| {
+        for i in 0..facet_count {
+            let l = facet(input, i);
+            for k in 0..l.len() {
+                let (a, b) = (l[k], l[(k + 1) % l.len()]);
+                f(a.min(b), a.max(b), i as u32);
+            }
+        }
+    };
+    each(&mut |lo, _, _| start[lo as usize + 1] += 1);
+    for v in 0..vertex_count {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut edges = vec![(0u32, 0u32, 0u32); start[vertex_count] as usize];
+    each(&mut |lo, hi, f| {
+        edges[fill[lo as usize] as usize] = (lo, hi, f);
+        fill[lo as usize] += 1;
+    });
+    for v in 0..vertex_count {
+        let run = &mut edges[start[v] as usize..start[v + 1] as usize];
+        if run.len() > 1 {
+            run.sort_unstable();
+        }
+    }
+    edges
 }

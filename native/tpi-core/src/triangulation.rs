@@ -227,7 +227,27 @@ impl DualTriangulation {
         if start == NO_TRIANGLE {
             return Fan::Broken;
         }
-        // Rotate clockwise until the hull or back at the start.
+        // Counter-clockwise from `start`: a closed fan comes back to it. Its loop then starts
+        // at the triangle after `start` (where the clockwise search below would stop).
+        let mut current = start;
+        while out.len() <= self.triangles.len() {
+            out.push(current);
+            let Some(k) = self.position_of(current, v) else { return Fan::Broken };
+            // Counter-clockwise neighbour: across edge (v, v(k+2)), opposite v(k+1).
+            let next = self.neighbours[current as usize][(k + 1) % 3];
+            if next == NO_TRIANGLE {
+                break;
+            }
+            if next == start {
+                out.rotate_left(1);
+                return Fan::Closed;
+            }
+            current = next;
+        }
+        if out.len() > self.triangles.len() {
+            return Fan::Broken;
+        }
+        // Open: rotate clockwise from `start` to the hull, then walk counter-clockwise.
         let mut first = start;
         for _ in 0..=self.triangles.len() {
             let Some(k) = self.position_of(first, v) else { return Fan::Broken };
@@ -238,21 +258,23 @@ impl DualTriangulation {
             }
             first = previous;
         }
+        if first == start {
+            return Fan::Open;
+        }
+        // Prepend the clockwise part: walk counter-clockwise from `first` up to `start`.
+        let mut prefix = Vec::new();
         let mut current = first;
-        while out.len() <= self.triangles.len() {
-            out.push(current);
+        while current != start && prefix.len() <= self.triangles.len() {
+            prefix.push(current);
             let Some(k) = self.position_of(current, v) else { return Fan::Broken };
-            // Counter-clockwise neighbour: across edge (v, v(k+2)), opposite v(k+1).
             let next = self.neighbours[current as usize][(k + 1) % 3];
             if next == NO_TRIANGLE {
-                return Fan::Open;
-            }
-            if next == first {
-                return Fan::Closed;
+                return Fan::Broken;
             }
             current = next;
         }
-        Fan::Broken
+        out.splice(0..0, prefix);
+        Fan::Open
     }
 }
 
