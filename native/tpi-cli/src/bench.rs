@@ -8,7 +8,8 @@ use std::time::Instant;
 
 use serde::Serialize;
 use tpi_core::benchmark::{nurbs_dome, paraboloid, random_pattern};
-use tpi_core::{discretise, DiscretiseOptions, Surface, Timings};
+use tpi_core::pattern::SplitMix64;
+use tpi_core::{discretise, DiscretiseOptions, LiveSurface, Surface, Timings};
 
 use crate::args::{Arg, Args};
 use crate::error::CliError;
@@ -19,7 +20,7 @@ tpi bench: time the discretisation on the benchmark surfaces
 
 USAGE:
     tpi bench [--sizes N,N,...] [--surfaces paraboloid,nurbs] [--threads T] [--repeat R]
-              [--no-report] [--json] [--plot FILE.svg]
+              [--no-report] [--edits E] [--json] [--plot FILE.svg]
 
 Discretises N uniform random pattern points (SplitMix64, seed 7 + N) on (a) the paraboloid
 of revolution z = -0.08 (x^2 + y^2) over [-5, 5]^2 and (b) a bicubic NURBS dome with
@@ -29,12 +30,19 @@ Delaunay, neighbours (curvature compensation / envelope), facets (vertices and b
 mesh (assembly), report (quality report) and total, with facets per second, the threads
 used and the process's peak resident memory while that size ran (VmHWM).
 
+With --edits E it then times live editing (tpi_core::LiveSurface) on the same surface: E
+drags of random pattern points inside [0.1, 0.9]^2, each by up to half a point spacing,
+and prints the median time of one edit (the local update of structure, facets and report
+data), the share that took the incremental path, and the median time to assemble the
+edited mesh (numbering, loops, the report's aggregates) afterwards.
+
 OPTIONS:
     --sizes LIST       pattern sizes (default 1000,10000,100000,1000000)
     --surfaces LIST    paraboloid, nurbs or both (default both)
     --threads T        rayon threads (default: all cores)
     --repeat R         runs per size, the median is reported (default 3; odd is best)
     --no-report        switch the quality report off (DiscretiseOptions::quality_report)
+    --edits E          also time E live edits per size (default 0: none)
     --json             print JSON instead of the table
     --plot FILE.svg    also write a log-log plot of total time against the pattern size
     -h, --help         this help
@@ -42,6 +50,7 @@ OPTIONS:
 EXAMPLES:
     tpi bench
     tpi bench --sizes 1000 --threads 1 --repeat 101
+    tpi bench --sizes 1000,1000000 --repeat 1 --edits 1001 --surfaces nurbs
     tpi bench --sizes 1000,10000,100000,1000000 --json --plot docs/performance-scaling.svg
 ";
 
@@ -56,6 +65,7 @@ struct Config {
     report: bool,
     json: bool,
     plot: Option<PathBuf>,
+    edits: usize,
 }
 
 /// One surface and size: the medians.
@@ -74,6 +84,22 @@ pub struct Row {
     /// Peak resident memory of the process while this size ran, in MB (10^6 bytes); 0 where
     /// the system does not say.
     pub peak_memory_mb: f64,
+    /// Live editing, with --edits.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edits: Option<EditRow>,
+}
+
+/// Live editing on one surface and size.
+#[derive(Clone, Debug, Serialize)]
+pub struct EditRow {
+    /// Edits timed.
+    pub count: usize,
+    /// Median time of one edit, microseconds.
+    pub median_edit_us: f64,
+    /// Share of the edits that took the incremental path.
+    pub incremental_share: f64,
+    /// Median time to assemble the mesh after an edit, milliseconds.
+    pub median_assembly_ms: f64,
 }
 
 /// The whole run.
@@ -133,6 +159,7 @@ fn parse(rest: Vec<String>) -> Result<Option<Config>, CliError> {
         report: true,
         json: false,
         plot: None,
+        edits: 0,
     };
     while let Some(arg) = a.next() {
         match arg {
@@ -186,6 +213,13 @@ fn parse(rest: Vec<String>) -> Result<Option<Config>, CliError> {
                     a.flag(&name, inline)?;
                     config.json = true;
                 }
+                "edits" => {
+                    let v = a.value(&name, inline)?;
+                    config.edits = match v.parse::<usize>() {
+                        Ok(n) if n <= 1_000_000 => n,
+                        _ => return Err(a.usage(format!("--edits {v}: expected a whole number up to 1000000"))),
+                    };
+                }
                 "plot" => {
                     let v = PathBuf::from(a.value(&name, inline)?);
                     if v.extension().and_then(|e| e.to_str()) != Some("svg") {
@@ -224,6 +258,7 @@ fn measure(config: &Config) -> Result<Report, CliError> {
                 runs.push(timings);
             }
             let median_ms = median_timings(&runs);
+            let edits = if config.edits > 0 { Some(edit_timings(name, &pattern, config.edits, &options)?) } else { None };
             results.push(Row {
                 surface: name,
                 points: n,
@@ -231,6 +266,7 @@ fn measure(config: &Config) -> Result<Report, CliError> {
                 facets_per_second: if median_ms.total > 0.0 { facets as f64 / (median_ms.total * 1e-3) } else { 0.0 },
                 median_ms,
                 peak_memory_mb: peak_memory_bytes() as f64 / 1e6,
+                edits,
             });
         }
     }
@@ -257,6 +293,62 @@ fn run_once(
     let facets = result.facet_count();
     drop(result);
     Ok((timings, facets))
+}
+
+/// Times `count` live drags (see the help) on a live surface of `pattern`.
+fn edit_timings(name: &str, pattern: &[[f64; 2]], count: usize, options: &DiscretiseOptions) -> Result<EditRow, CliError> {
+    let surface: Box<dyn Surface> = match name {
+        "paraboloid" => Box::new(paraboloid()),
+        _ => Box::new(nurbs_dome()),
+    };
+    let mut live = LiveSurface::new(surface, pattern.to_vec(), *options).map_err(|e| CliError::core(name, &e))?;
+    let before = live.stats();
+    let n = pattern.len();
+    let mut rng = SplitMix64::new(97 + n as u64);
+    let mut edit_us = Vec::with_capacity(count);
+    let mut assembly_ms = Vec::with_capacity(count.min(64));
+    let step = 0.5 / (n as f64).sqrt();
+    for k in 0..count {
+        // A point inside [0.1, 0.9]^2, dragged by up to half a spacing.
+        let i = loop {
+            let i = rng.below(n);
+            let p = live.points()[i];
+            if (0.1..=0.9).contains(&p[0]) && (0.1..=0.9).contains(&p[1]) {
+                break i;
+            }
+        };
+        let p = live.points()[i];
+        let q = [p[0] + step * (rng.next_f64() - 0.5), p[1] + step * (rng.next_f64() - 0.5)];
+        let start = Instant::now();
+        let moved = live.move_point(i, q);
+        edit_us.push(start.elapsed().as_secs_f64() * 1e6);
+        moved.map_err(|e| CliError::core(name, &e))?;
+        // Assembling a large mesh after every edit would dominate the run: time a sample.
+        if k < 8 || (k % (count / 32).max(1) == 0 && assembly_ms.len() < 64) {
+            let start = Instant::now();
+            let facets = live.discretisation().facet_count();
+            assembly_ms.push(start.elapsed().as_secs_f64() * 1e3);
+            if facets != n {
+                return Err(CliError::input(name, "live editing lost a facet"));
+            }
+        }
+    }
+    let stats = live.stats();
+    Ok(EditRow {
+        count,
+        median_edit_us: median(edit_us),
+        incremental_share: (stats.incremental - before.incremental) as f64 / count.max(1) as f64,
+        median_assembly_ms: median(assembly_ms),
+    })
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    match v.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => v[n / 2],
+        n => 0.5 * (v[n / 2 - 1] + v[n / 2]),
+    }
 }
 
 /// The median of each field separately.
@@ -323,6 +415,19 @@ pub fn table(report: &Report) -> String {
             "{:<10} {:>8} {:>9.3} {:>9.3} {:>10.3} {:>9.3} {:>9.3} {:>9.3} {:>10.3} {:>12.0} {:>8.1}",
             r.surface, r.points, t.samples, t.delaunay, t.neighbours, t.facets, t.mesh, t.report, t.total, r.facets_per_second, r.peak_memory_mb
         );
+    }
+    if report.results.iter().any(|r| r.edits.is_some()) {
+        let _ = writeln!(s, "live edits (drags inside [0.1, 0.9]^2):");
+        let _ = writeln!(s, "{:<10} {:>8} {:>8} {:>14} {:>12} {:>14}", "surface", "points", "edits", "median edit us", "incremental", "assembly ms");
+        for r in &report.results {
+            if let Some(e) = &r.edits {
+                let _ = writeln!(
+                    s,
+                    "{:<10} {:>8} {:>8} {:>14.1} {:>11.1}% {:>14.3}",
+                    r.surface, r.points, e.count, e.median_edit_us, 100.0 * e.incremental_share, e.median_assembly_ms
+                );
+            }
+        }
     }
     s
 }

@@ -20,10 +20,10 @@ use serde::{Serialize, Serializer};
 use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
 use crate::error::TpiError;
-use crate::facets::{build_facets, FacetParams, VertexKind, DEFAULT_FAR_VERTEX_FACTOR};
-use crate::neighbours::{decide, decide_convex, gradient_embedding, NeighbourInput};
+use crate::facets::{build_facets, FacetMesh, FacetParams, FootHint, TriangleVertex, VertexKind, DEFAULT_FAR_VERTEX_FACTOR};
+use crate::neighbours::{decide, decide_convex, gradient_embedding, slope_frame, NeighbourInput, NeighbourStats, SlopeFrame};
 use crate::planes::Plane;
-use crate::quality::{report, QualityReport, ReportInput};
+use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
 use crate::surface::Surface;
 use crate::pattern::validate_uv;
 use crate::triangulation::{orient, DualTriangulation};
@@ -214,6 +214,38 @@ pub fn discretise(
     pattern: &[[f64; 2]],
     options: &DiscretiseOptions,
 ) -> Result<Discretisation, TpiError> {
+    run(surface, pattern, options, false).map(|(result, _)| result)
+}
+
+/// What the pipeline computed on the way, kept for live editing ([`crate::live`]).
+pub(crate) struct PipelineState {
+    pub(crate) uv: Vec<[f64; 2]>,
+    pub(crate) geometry: Vec<LocalGeometry>,
+    pub(crate) tangents: Vec<[DVec3; 2]>,
+    pub(crate) planes: Vec<Plane>,
+    pub(crate) convex_side: Vec<i8>,
+    /// The slope frame and slopes where the convex path ran.
+    pub(crate) slopes: Option<(SlopeFrame, Vec<[f64; 2]>)>,
+    pub(crate) triangulation: DualTriangulation,
+    pub(crate) triangle_vertices: Vec<TriangleVertex>,
+    pub(crate) vertex_source: Vec<u32>,
+    pub(crate) facet_simple: Vec<bool>,
+    /// The report's foot of every vertex (None: unused, or the report is off).
+    pub(crate) feet: Vec<Option<[f64; 2]>>,
+    pub(crate) neighbours: NeighbourStats,
+    pub(crate) welded: bool,
+    pub(crate) diagonal: f64,
+    /// Bounding box of the surface points.
+    pub(crate) bbox: (DVec3, DVec3),
+}
+
+/// The pipeline; with `keep` also its state.
+pub(crate) fn run(
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    options: &DiscretiseOptions,
+    keep: bool,
+) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let start = Instant::now();
     validate_pattern(pattern)?;
     let domain = surface.domain();
@@ -242,15 +274,15 @@ pub fn discretise(
     let stage = Instant::now();
     check_not_collinear(&plane_uv)?;
     let input = NeighbourInput { plane_uv: &plane_uv, geometry: &geometry, planes: &planes, convex_side: &convex_side };
-    let slopes = if options.envelope_repair { gradient_embedding(&planes, &convex_side) } else { None };
-    let (triangulation, neighbours) = match slopes {
+    let frame = if options.envelope_repair && convex_side.iter().all(|&s| s != 0) { slope_frame(surface) } else { None };
+    let slopes = gradient_embedding(&planes, &convex_side, frame);
+    let (triangulation, neighbours) = match &slopes {
         // Convex everywhere: the envelope's own structure, computed in slope space.
         Some(slopes) => {
-            let mut triangulation = DualTriangulation::delaunay(&slopes)?;
+            let mut triangulation = DualTriangulation::delaunay(slopes)?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
-            let stats = decide_convex(&mut triangulation, &slopes, &input);
-            orient_like_parameters(&mut triangulation, &plane_uv);
+            let stats = decide_convex(&mut triangulation, slopes, &input);
             timings.neighbours = ms(stage);
             (triangulation, stats)
         }
@@ -283,19 +315,23 @@ pub fn discretise(
         .zip(&uv)
         .map(|(g, &uv)| Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] })
         .collect();
-    let feet = mesh.feet;
+    let FacetMesh { vertices, vertex_kinds, offsets, loops, feet, triangle_vertices, vertex_source, facet_simple, welded, .. } = mesh;
+    let kept_triangulation = keep.then(|| triangulation.clone());
+    let dual_triangles = triangulation.triangles;
     let mut result = Discretisation {
-        vertices: mesh.vertices,
-        vertex_kinds: mesh.vertex_kinds,
-        facet_offsets: mesh.offsets,
-        facet_loops: mesh.loops,
+        vertices,
+        vertex_kinds,
+        facet_offsets: offsets,
+        facet_loops: loops,
         seeds,
-        dual_triangles: triangulation.triangles,
+        dual_triangles,
         quality: None,
         facet_flags: Vec::new(),
         diagnostics,
         timings,
     };
+    let mut resolved = Vec::new();
+    let mut feet = feet;
     if options.quality_report {
         let stage = Instant::now();
         let mut diagnosed = vec![false; pattern.len()];
@@ -303,6 +339,10 @@ pub fn discretise(
             for p in d.points() {
                 diagnosed[p as usize] = true;
             }
+        }
+        if keep {
+            resolved = resolve_feet(surface, &uv, &result.vertices, &result.facet_offsets, &result.facet_loops, &feet);
+            feet = resolved.iter().map(|f| f.map_or(FootHint::FromSeed, FootHint::Known)).collect();
         }
         let (quality, flags) = report(&ReportInput {
             surface,
@@ -322,7 +362,28 @@ pub fn discretise(
         result.timings.report = ms(stage);
     }
     result.timings.total = ms(start);
-    Ok(result)
+    let state = keep.then(|| {
+        let (lo, hi) = bounding_box(geometry.iter().map(|g| g.point));
+        let side = convex_side.first().copied().unwrap_or(0);
+        PipelineState {
+            uv,
+            geometry,
+            tangents,
+            planes,
+            convex_side,
+            slopes: frame.zip(slopes).map(|(n, s)| (SlopeFrame::new(n, side), s)),
+            triangulation: kept_triangulation.unwrap_or_default(),
+            triangle_vertices,
+            vertex_source,
+            facet_simple,
+            feet: resolved,
+            neighbours,
+            welded,
+            diagonal,
+            bbox: (lo, hi),
+        }
+    });
+    Ok((result, state))
 }
 
 /// Rejects patterns whose points all lie on one line in parameter space (no facet could
@@ -343,21 +404,19 @@ fn check_not_collinear(points: &[[f64; 2]]) -> Result<(), TpiError> {
 /// point is below this fraction of the chord's squared length count as collinear.
 pub const COLLINEAR_TOLERANCE: f64 = 1e-12;
 
-/// Makes the triangles counter-clockwise in parameter space (the orientation the facet loops
-/// inherit), judged by the majority so that a few slivers cannot decide.
-fn orient_like_parameters(tri: &mut DualTriangulation, uv: &[[f64; 2]]) {
-    let reversed = tri
-        .triangles
-        .iter()
-        .filter(|t| orient(uv[t[0] as usize], uv[t[1] as usize], uv[t[2] as usize]) < 0.0)
-        .count();
-    if 2 * reversed > tri.len() {
-        tri.reverse();
-    }
-}
-
 fn ms(since: Instant) -> f64 {
     since.elapsed().as_secs_f64() * 1e3
+}
+
+/// The points' axis-aligned bounding box (min, max corners).
+pub(crate) fn bounding_box(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
+    let mut lo = DVec3::splat(f64::INFINITY);
+    let mut hi = DVec3::splat(f64::NEG_INFINITY);
+    for p in points {
+        lo = lo.min(p);
+        hi = hi.max(p);
+    }
+    (lo, hi)
 }
 
 /// Length of the diagonal of the points' axis-aligned bounding box.
@@ -387,16 +446,13 @@ fn classify_curvature(
     let mut flat = 0usize;
     let mut sides = Vec::with_capacity(geometry.len());
     for (i, g) in geometry.iter().enumerate() {
-        let largest = g.k1.abs().max(g.k2.abs());
-        let gaussian = g.k1 * g.k2;
-        let is_planar = largest * diagonal <= DEFAULT_PLANE_CURVATURE;
-        let is_flat = is_planar || gaussian.abs() <= options.flat_tolerance * largest * largest;
+        let (side, is_planar, is_flat) = curvature_class(g, diagonal, options);
         planar += usize::from(is_planar);
         flat += usize::from(is_flat);
         if is_flat {
-            diagnostics.push(Diagnostic::FlatPoint { point: i as u32, gaussian_curvature: gaussian });
+            diagnostics.push(Diagnostic::FlatPoint { point: i as u32, gaussian_curvature: g.k1 * g.k2 });
         }
-        sides.push(if !is_flat && gaussian > 0.0 { if g.k1 > 0.0 { 1 } else { -1 } } else { 0 });
+        sides.push(side);
     }
     if planar == geometry.len() {
         return Err(TpiError::DegenerateSurface {
@@ -409,6 +465,16 @@ fn classify_curvature(
         });
     }
     Ok(sides)
+}
+
+/// One point's class: (convex side or 0, planar, flat), see [`classify_curvature`].
+pub(crate) fn curvature_class(g: &LocalGeometry, diagonal: f64, options: &DiscretiseOptions) -> (i8, bool, bool) {
+    let largest = g.k1.abs().max(g.k2.abs());
+    let gaussian = g.k1 * g.k2;
+    let is_planar = largest * diagonal <= DEFAULT_PLANE_CURVATURE;
+    let is_flat = is_planar || gaussian.abs() <= options.flat_tolerance * largest * largest;
+    let side = if !is_flat && gaussian > 0.0 { if g.k1 > 0.0 { 1 } else { -1 } } else { 0 };
+    (side, is_planar, is_flat)
 }
 
 /// Normalised pattern coordinates scaled by the surface's mean extent in u and v, so that

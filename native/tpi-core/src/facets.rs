@@ -99,6 +99,16 @@ pub struct FacetMesh {
     /// Per vertex, what is known about its foot on the surface (for the quality report's
     /// deviation, so that no projection is done twice).
     pub feet: Vec<FootHint>,
+    /// Per triangle of the dual structure, its vertex (for live editing).
+    pub(crate) triangle_vertices: Vec<TriangleVertex>,
+    /// Per mesh vertex, the triangle it is the meeting point of (welds resolved to the
+    /// representative), or `u32::MAX` for boundary, corner and stand-in vertices.
+    pub(crate) vertex_source: Vec<u32>,
+    /// Per facet, whether its loop is just the vertices of its closed fan of triangles
+    /// (all exact and inside): no boundary, no stand-in.
+    pub(crate) facet_simple: Vec<bool>,
+    /// Whether any two triangle vertices were welded.
+    pub(crate) welded: bool,
 }
 
 /// What the facet stage knows about a mesh vertex's closest point on the surface.
@@ -279,8 +289,9 @@ pub fn build_facets(
             let mut chunk = FacetChunk::default();
             let mut fan = Vec::new();
             for i in c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(uv.len()) {
-                facet_items(i as u32, &lookup, &mut fan, &mut chunk.items, &mut chunk.diagnostics);
+                let simple = facet_items(i as u32, &lookup, &mut fan, &mut chunk.items, &mut chunk.diagnostics);
                 chunk.ends.push(chunk.items.len() as u32);
+                chunk.simple.push(simple);
             }
             chunk
         })
@@ -305,6 +316,7 @@ pub fn build_facets(
         .collect();
     // Unions in the order of `DualTriangulation::edges` (by triangle, then side): the pairs
     // were collected in that order.
+    let welded = !weld_pairs.is_empty();
     let mut representative: Vec<u32> = if weld_pairs.is_empty() { Vec::new() } else { (0..tri.len() as u32).collect() };
     for &(a, b) in &weld_pairs {
         let (ra, rb) = (find(&mut representative, a), find(&mut representative, b));
@@ -330,6 +342,7 @@ pub fn build_facets(
     for chunk in chunks {
         let mut start_item = 0usize;
         let mut walk_diagnostics = chunk.diagnostics.into_iter().peekable();
+        mesh.facet_simple.extend_from_slice(&chunk.simple);
         for &end_item in &chunk.ends {
             // Diagnostics of this facet's walk come before those of its assembly.
             while let Some((_, d)) = walk_diagnostics.next_if(|(f, _)| *f as usize == i) {
@@ -344,14 +357,7 @@ pub fn build_facets(
                         let r = if representative.is_empty() { t as usize } else { find(&mut representative, t) as usize };
                         if triangle_id[r] == u32::MAX {
                             let v = &triangle_vertices[r];
-                            let hint = if v.newton_foot {
-                                FootHint::Known(v.foot)
-                            } else if v.measured {
-                                FootHint::FromSeed
-                            } else {
-                                FootHint::Guess { linear: v.foot, reach: v.reach }
-                            };
-                            triangle_id[r] = push_vertex(&mut mesh, v.point, VertexKind::Interior, hint);
+                            triangle_id[r] = push_vertex(&mut mesh, v.point, VertexKind::Interior, v.hint(), r as u32);
                         }
                         triangle_id[r]
                     }
@@ -359,13 +365,13 @@ pub fn build_facets(
                         let stand_in = triangle_vertices[triangle as usize].point;
                         match edge_point(&planes[lo as usize], &planes[hi as usize], stand_in, params.far_vertex_factor) {
                             Some(position) => *edge_point_id.entry((triangle, lo, hi)).or_insert_with(|| {
-                                push_vertex(&mut mesh, position, VertexKind::Interior, FootHint::FromSeed)
+                                push_vertex(&mut mesh, position, VertexKind::Interior, FootHint::FromSeed, u32::MAX)
                             }),
                             None => {
                                 // No usable line: a vertex of this facet alone, in its own plane.
                                 let plane = &planes[i];
                                 let position = stand_in - plane.normal * plane.signed_distance(stand_in);
-                                push_vertex(&mut mesh, position, VertexKind::Interior, FootHint::FromSeed)
+                                push_vertex(&mut mesh, position, VertexKind::Interior, FootHint::FromSeed, u32::MAX)
                             }
                         }
                     }
@@ -373,7 +379,7 @@ pub fn build_facets(
                         if crossing_id[c as usize] == u32::MAX {
                             let crossing = &crossings[c as usize];
                             let hint = crossing.foot.map_or(FootHint::FromSeed, FootHint::Known);
-                            crossing_id[c as usize] = push_vertex(&mut mesh, crossing.point, VertexKind::Boundary, hint);
+                            crossing_id[c as usize] = push_vertex(&mut mesh, crossing.point, VertexKind::Boundary, hint, u32::MAX);
                         }
                         crossing_id[c as usize]
                     }
@@ -388,7 +394,7 @@ pub fn build_facets(
                             diagnostics.push(Diagnostic::CornerUnreachable { point: i as u32, corner: c });
                             continue;
                         }
-                        push_vertex(&mut mesh, position, VertexKind::Corner, FootHint::FromSeed)
+                        push_vertex(&mut mesh, position, VertexKind::Corner, FootHint::FromSeed, u32::MAX)
                     }
                 };
                 if mesh.loops.len() == start || mesh.loops[mesh.loops.len() - 1] != id {
@@ -411,6 +417,8 @@ pub fn build_facets(
         }
     }
     mesh.diagnostics = diagnostics;
+    mesh.welded = welded;
+    mesh.triangle_vertices = triangle_vertices;
     mesh.assembly_ms = assembly.elapsed().as_secs_f64() * 1e3;
     mesh
 }
@@ -425,6 +433,8 @@ struct FacetChunk {
     ends: Vec<u32>,
     /// Walk diagnostics with their facet, in facet order.
     diagnostics: Vec<(u32, Diagnostic)>,
+    /// Per facet, whether its loop is its closed fan (`facet_items`' fast path).
+    simple: Vec<bool>,
 }
 
 /// What `facet_items` reads.
@@ -460,7 +470,8 @@ fn crossing_edges(tri: &DualTriangulation, tv: &[TriangleVertex]) -> Vec<Edge> {
     edges
 }
 
-fn push_vertex(mesh: &mut FacetMesh, position: DVec3, kind: VertexKind, foot: FootHint) -> u32 {
+fn push_vertex(mesh: &mut FacetMesh, position: DVec3, kind: VertexKind, foot: FootHint, source: u32) -> u32 {
+    mesh.vertex_source.push(source);
     mesh.vertices.push(position);
     mesh.vertex_kinds.push(kind);
     mesh.feet.push(foot);
@@ -493,22 +504,35 @@ fn normalised_distance(domain: &Domain, a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// A triangle's facet vertex and where it lies.
 #[derive(Clone, Copy, Debug)]
-struct TriangleVertex {
+pub(crate) struct TriangleVertex {
     /// The meeting point of the three planes, or the stand-in when not `exact`.
-    point: DVec3,
+    pub(crate) point: DVec3,
     /// The foot: Newton's (`newton_foot`), or the first-order estimate.
-    foot: [f64; 2],
+    pub(crate) foot: [f64; 2],
     /// Inside measure of the foot (positive inside the domain).
-    inside: f64,
+    pub(crate) inside: f64,
     /// Largest normalised distance of the triangle's points from the first-order foot.
-    reach: f64,
+    pub(crate) reach: f64,
     /// Whether `point` is the exact meeting point.
-    exact: bool,
+    pub(crate) exact: bool,
     /// Whether the foot was measured (Newton tried); a vertex deep inside the domain is
     /// decided from its first-order foot alone (see `surely_inside`).
-    measured: bool,
+    pub(crate) measured: bool,
     /// Whether `foot` is Newton's projection.
-    newton_foot: bool,
+    pub(crate) newton_foot: bool,
+}
+
+impl TriangleVertex {
+    /// The foot hint of this vertex for the report (see [`FootHint`]).
+    pub(crate) fn hint(&self) -> FootHint {
+        if self.newton_foot {
+            FootHint::Known(self.foot)
+        } else if self.measured {
+            FootHint::FromSeed
+        } else {
+            FootHint::Guess { linear: self.foot, reach: self.reach }
+        }
+    }
 }
 
 impl TriangleVertex {
@@ -562,6 +586,21 @@ fn triangle_vertex(ctx: &Context<'_>, mut ids: [u32; 3], far_factor: f64) -> Tri
     let (linear, reach) = ctx.linear_estimate(ids, point);
     let (foot, inside, newton_foot) = ctx.measure_from(point, linear, reach);
     TriangleVertex { point, foot, inside, reach, exact: false, measured: true, newton_foot }
+}
+
+/// The vertex of one triangle, as [`build_facets`] computes it (for live editing).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn single_triangle_vertex(
+    surface: &dyn Surface,
+    uv: &[[f64; 2]],
+    tangents: &[[DVec3; 2]],
+    planes: &[Plane],
+    convex_side: &[i8],
+    ids: [u32; 3],
+    far_factor: f64,
+) -> TriangleVertex {
+    let ctx = Context { surface, domain: surface.domain(), planes, uv, tangents, convex_side };
+    triangle_vertex(&ctx, ids, far_factor)
 }
 
 /// The diagnostic of a triangle whose vertex is a stand-in.
@@ -875,12 +914,13 @@ fn corner_samples(surface: &dyn Surface, domain: &Domain) -> [(DVec3, DVec3); 4]
 
 /// The loop of facet i as items appended to `items`, with corners inserted along the
 /// boundary; walk diagnostics go to `diagnostics` with the facet's index.
-fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut Vec<Item>, diagnostics: &mut Vec<(u32, Diagnostic)>) {
+/// Returns whether the loop is just the closed fan (the fast path).
+fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut Vec<Item>, diagnostics: &mut Vec<(u32, Diagnostic)>) -> bool {
     let tri = cx.tri;
     let kind = tri.fan(i, cx.incident[i as usize], fan);
     if kind == Fan::Broken || fan.is_empty() {
         diagnostics.push((i, Diagnostic::OpenFacet { point: i, reason: "no triangles around the point".into() }));
-        return;
+        return false;
     }
     // Fast path: an interior point whose fan vertices are all exact and inside has no
     // boundary crossing on any of its edges (crossings need an outside end): its loop is its fan.
@@ -889,7 +929,7 @@ fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut Vec
         v.exact && v.inside > 0.0
     }) {
         items.extend(fan.iter().map(|&t| Item::Triangle(t)));
-        return;
+        return true;
     }
     // Raw walk: crossings of each incoming edge, then the triangle's vertex if inside.
     let mut raw: Vec<(Item, Option<(bool, f64)>)> = Vec::with_capacity(fan.len() * 2 + 4);
@@ -948,4 +988,5 @@ fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut Vec
             items.extend(owned.into_iter().map(|x| Item::Corner(x.1)));
         }
     }
+    false
 }

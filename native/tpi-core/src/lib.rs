@@ -25,6 +25,7 @@ pub mod diffgeo;
 pub mod discretise;
 pub mod error;
 pub mod facets;
+pub mod live;
 pub mod neighbours;
 pub mod nurbs;
 pub mod pattern;
@@ -38,6 +39,7 @@ pub mod tolerance;
 
 pub use diagnostics::Diagnostic;
 pub use diffgeo::LocalGeometry;
+pub use live::{LiveStats, LiveSurface};
 pub use discretise::{discretise, validate_pattern, Discretisation, DiscretiseOptions, Seed, Timings};
 pub use quality::QualityReport;
 pub use error::{Direction, TpiError};

@@ -50,7 +50,11 @@ pub const ENVELOPE_FLIP_TOLERANCE: f64 = 1e-10;
 pub struct NeighbourStats {
     /// Flips made by the curvature-compensated in-circle test.
     pub compensation_flips: usize,
-    /// Flips made afterwards by the envelope test (disagreements with the paper's method).
+    /// Where the envelope overruled the candidates: on mixed surfaces the flips made by the
+    /// envelope test after curvature compensation (disagreements with the paper's method);
+    /// on convex surfaces, whose structure is the envelope's own, the interior edges that
+    /// are not locally Delaunay in slope space (a count of the result, whatever the order of
+    /// the flips that reached it).
     pub envelope_repairs: usize,
     /// Edges the envelope rejects but that could not be flipped (non-convex quadrilateral
     /// in parameter space) or flip budget exhausted.
@@ -82,7 +86,10 @@ pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope:
         let (flips, unresolved) = flip_until_stable(tri, uv, |tri, t, k| envelope_illegal(tri, input, t, k));
         stats.envelope_repairs = flips;
         stats.envelope_unresolved = unresolved;
+        tri.canonicalise(uv.len());
         stats.hull_trims = trim_hull(tri, input);
+    } else {
+        tri.canonicalise(uv.len());
     }
     stats
 }
@@ -96,38 +103,119 @@ pub const DEGENERATE_SLIVER_FACTOR: f64 = 1e8;
 pub const GRADIENT_MIN_COS: f64 = 0.2;
 
 /// Where every point is strictly convex with the same side and all normals lie within
-/// acos([`GRADIENT_MIN_COS`]) of their mean N, the surface is a graph over the plane
-/// perpendicular to N, each tangent plane is z = a_i x + b_i y + c_i in a frame (e1, e2, N),
-/// with (a_i, b_i) = -(n_i.e1, n_i.e2) / n_i.N, and the envelope is the upper (sigma = +1) or
-/// lower (sigma = -1) envelope of these planes. Its dual is the regular triangulation of the
-/// slopes sigma (a_i, b_i) lifted to -sigma c_i (the lower convex hull of the lifted points,
-/// by Legendre duality): a planar triangulation in slope space whose hull is exactly the
-/// envelope's. Returns the slope coordinates, or None where the conditions fail.
-pub fn gradient_embedding(planes: &[Plane], convex_side: &[i8]) -> Option<Vec<[f64; 2]>> {
+/// acos([`GRADIENT_MIN_COS`]) of the surface's mean normal N ([`slope_frame`]), the surface is
+/// a graph over the plane perpendicular to N, each tangent plane is z = a_i x + b_i y + c_i in
+/// a frame (e1, e2, N), with (a_i, b_i) = -(n_i.e1, n_i.e2) / n_i.N, and the envelope is the
+/// upper (sigma = +1) or lower (sigma = -1) envelope of these planes. Its dual is the regular
+/// triangulation of the slopes sigma (a_i, b_i) lifted to -sigma c_i (the lower convex hull of
+/// the lifted points, by Legendre duality): a planar triangulation in slope space whose hull
+/// is exactly the envelope's. Returns the slope coordinates, or None where the conditions fail.
+///
+/// N depends on the surface alone, not on the pattern, so each point's slopes are its own
+/// (which is what lets a live surface update them one point at a time).
+pub fn gradient_embedding(planes: &[Plane], convex_side: &[i8], frame: Option<DVec3>) -> Option<Vec<[f64; 2]>> {
     let side = *convex_side.first()?;
     if side == 0 || convex_side.iter().any(|&s| s != side) {
         return None;
     }
-    let mean = planes.iter().fold(DVec3::ZERO, |acc, p| acc + p.normal).try_normalize()?;
-    let (e1, e2) = mean.any_orthonormal_pair();
-    let s = f64::from(side);
-    planes
-        .iter()
-        .map(|p| {
-            let nz = p.normal.dot(mean);
-            (nz >= GRADIENT_MIN_COS).then(|| [-s * p.normal.dot(e1) / nz, -s * p.normal.dot(e2) / nz])
-        })
-        .collect()
+    let frame = SlopeFrame::new(frame?, side);
+    planes.iter().map(|p| frame.slopes(p)).collect()
+}
+
+/// The frame of the slope embedding: N, (e1, e2) and the convex side.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlopeFrame {
+    /// The unit mean normal of the surface.
+    pub normal: DVec3,
+    /// Tangent axes: (e1, e2, N) right-handed.
+    pub axes: (DVec3, DVec3),
+    /// +1 or -1: the side of the centres of curvature.
+    pub side: f64,
+}
+
+impl SlopeFrame {
+    /// The frame of unit normal `normal` for convex side `side`.
+    pub fn new(normal: DVec3, side: i8) -> Self {
+        Self { normal, axes: normal.any_orthonormal_pair(), side: f64::from(side) }
+    }
+
+    /// The slopes of one tangent plane, or None where its normal is too far from N.
+    pub fn slopes(&self, p: &Plane) -> Option<[f64; 2]> {
+        let nz = p.normal.dot(self.normal);
+        let (e1, e2) = self.axes;
+        (nz >= GRADIENT_MIN_COS).then(|| [-self.side * p.normal.dot(e1) / nz, -self.side * p.normal.dot(e2) / nz])
+    }
+}
+
+/// Samples per side of the grid whose mean normal is the slope frame's N.
+pub const SLOPE_FRAME_SAMPLES: usize = 5;
+
+/// The unit mean of the surface's normals on a [`SLOPE_FRAME_SAMPLES`]^2 grid over its domain
+/// (corners included), or None where it vanishes or is not finite.
+pub fn slope_frame(surface: &dyn crate::surface::Surface) -> Option<DVec3> {
+    let domain = surface.domain();
+    let last = (SLOPE_FRAME_SAMPLES - 1) as f64;
+    let mut sum = DVec3::ZERO;
+    for i in 0..SLOPE_FRAME_SAMPLES {
+        for j in 0..SLOPE_FRAME_SAMPLES {
+            let [u, v] = domain.from_normalised([i as f64 / last, j as f64 / last]);
+            sum += LocalGeometry::from_derivatives(&surface.evaluate(u, v)).normal;
+        }
+    }
+    sum.try_normalize()
 }
 
 /// The envelope's dual structure for a convex surface, from the Delaunay triangulation of
 /// the slopes ([`gradient_embedding`]) flipped to the regular triangulation by the envelope
-/// test, with convexity judged in slope space where the result is embedded.
+/// test, with convexity judged in slope space where the result is embedded; then oriented
+/// counter-clockwise in parameter space (`plane_uv`), put in canonical order and trimmed.
+///
+/// `envelope_repairs` counts the interior edges of the result that are not locally Delaunay
+/// in slope space ([`slope_repairs`]): where the envelope departs from the plain Delaunay
+/// candidates. It depends on the result alone, not on the order of the flips.
 pub fn decide_convex(tri: &mut DualTriangulation, slopes: &[[f64; 2]], input: &NeighbourInput<'_>) -> NeighbourStats {
-    let (flips, unresolved) = flip_until_stable(tri, slopes, |tri, t, k| envelope_illegal(tri, input, t, k));
+    let (_flips, unresolved) = flip_until_stable(tri, slopes, |tri, t, k| envelope_illegal(tri, input, t, k));
+    orient_like(tri, input.plane_uv);
+    tri.canonicalise(input.plane_uv.len());
     // Rounding can leave slivers along a straight stretch of the hull.
     let hull_trims = trim_hull(tri, input);
-    NeighbourStats { compensation_flips: 0, envelope_repairs: flips, envelope_unresolved: unresolved, hull_trims }
+    let envelope_repairs = slope_repairs(tri, slopes);
+    NeighbourStats { compensation_flips: 0, envelope_repairs, envelope_unresolved: unresolved, hull_trims }
+}
+
+/// Makes the triangles counter-clockwise in `uv` (the orientation the facet loops inherit),
+/// judged by the majority so that a few slivers cannot decide.
+pub fn orient_like(tri: &mut DualTriangulation, uv: &[[f64; 2]]) {
+    let reversed = tri
+        .triangles
+        .iter()
+        .filter(|t| orient(uv[t[0] as usize], uv[t[1] as usize], uv[t[2] as usize]) < 0.0)
+        .count();
+    if 2 * reversed > tri.len() {
+        tri.reverse();
+    }
+}
+
+/// Interior edges (each once) whose quad is not locally Delaunay in slope space: the fourth
+/// point strictly inside the circle through the other three.
+pub fn slope_repairs(tri: &DualTriangulation, slopes: &[[f64; 2]]) -> usize {
+    use rayon::prelude::*;
+    (0..tri.len())
+        .into_par_iter()
+        .map(|t| (0..3).filter(|&k| {
+            let other = tri.neighbours[t][k];
+            other != NO_TRIANGLE && (other as usize) > t && slope_edge_repaired(tri, slopes, t, k)
+        }).count())
+        .sum()
+}
+
+/// Whether the interior edge opposite vertex k of triangle t is not locally Delaunay in slope
+/// space (see [`slope_repairs`]).
+pub fn slope_edge_repaired(tri: &DualTriangulation, slopes: &[[f64; 2]], t: usize, k: usize) -> bool {
+    let [c, a, b, d] = quad(tri, t, k).map(|i| slopes[i as usize]);
+    // (c, a, b) in either orientation: the in-circle sign flips with it.
+    let o = orient(c, a, b);
+    o != 0.0 && in_circle(c, a, b, d) * o.signum() > 0.0
 }
 
 /// Removes hull triangles the envelope rejects, until none is left.
@@ -461,7 +549,7 @@ fn compensation_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: 
 }
 
 /// Positive when d lies strictly inside the circle through the counter-clockwise a, b, c.
-fn in_circle(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {
+pub(crate) fn in_circle(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {
     let (adx, ady) = (a[0] - d[0], a[1] - d[1]);
     let (bdx, bdy) = (b[0] - d[0], b[1] - d[1]);
     let (cdx, cdy) = (c[0] - d[0], c[1] - d[1]);
@@ -473,12 +561,16 @@ fn in_circle(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {
 
 /// The envelope test on a strictly convex quad.
 fn envelope_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: usize, k: usize) -> bool {
-    let [c, a, b, d] = quad(tri, t, k);
-    let side = input.convex_side[c as usize];
-    if side == 0 || [a, b, d].iter().any(|&i| input.convex_side[i as usize] != side) {
+    envelope_quad_illegal(input.planes, input.convex_side, quad(tri, t, k))
+}
+
+/// The envelope test on the quad (c, a, b, d) around the edge (a, b): true where T_d cuts
+/// off the vertex T_a ∩ T_b ∩ T_c and T_c the vertex T_a ∩ T_b ∩ T_d (beyond the tolerance).
+pub(crate) fn envelope_quad_illegal(planes: &[Plane], convex_side: &[i8], [c, a, b, d]: [u32; 4]) -> bool {
+    let side = convex_side[c as usize];
+    if side == 0 || [a, b, d].iter().any(|&i| convex_side[i as usize] != side) {
         return false;
     }
-    let planes = input.planes;
     let size = [a, b, d]
         .iter()
         .map(|&i| planes[i as usize].point.distance(planes[c as usize].point))

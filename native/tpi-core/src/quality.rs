@@ -252,34 +252,15 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
     r.non_simple_facets = flags.iter().filter(|&&f| f & FLAG_NON_SIMPLE != 0).count();
     r.flagged_facets = flags.iter().filter(|&&f| f != 0).count();
 
-    // Deviation from the surface, per vertex (guess: the first facet's seed).
-    let mut guess = vec![None; input.vertices.len()];
-    for i in 0..facet_count {
-        for &v in facet(input, i) {
-            guess[v as usize].get_or_insert(input.uv[i]);
-        }
-    }
+    // Deviation from the surface, per vertex (from its foot, see `resolve_feet`).
+    let feet = resolve_feet(input.surface, input.uv, input.vertices, input.offsets, input.loops, input.feet);
     let domain = input.surface.domain();
     let deviations: Vec<f64> = {
         use rayon::prelude::*;
-        (0..input.vertices.len())
-            .into_par_iter()
-            .filter_map(|v| {
-                let g = guess[v]?;
-                let x = input.vertices[v];
-                let from_seed = || foot(input.surface, &domain, x, g);
-                let [u, w] = match input.feet.get(v) {
-                    Some(&FootHint::Known(f)) => f,
-                    Some(&FootHint::Guess { linear, reach }) => {
-                        let newton = foot(input.surface, &domain, x, linear);
-                        if accept_newton(&domain, newton, linear, reach) {
-                            newton
-                        } else {
-                            from_seed()
-                        }
-                    }
-                    _ => from_seed(),
-                };
+        feet.par_iter()
+            .zip(input.vertices.par_iter())
+            .filter_map(|(f, &x)| {
+                let [u, w] = (*f)?;
                 let (cu, cw) = domain.clamp(u, w);
                 Some(input.surface.point_at(cu, cw).distance(x))
             })
@@ -296,6 +277,51 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
         r.min_edge_length = 0.0;
     }
     (r, flags)
+}
+
+/// The foot (closest point's parameters) of every vertex used by a facet, None for unused
+/// vertices: known feet as given; a first-order guess refined by Newton and kept if it stays
+/// with its triangle ([`accept_newton`]); otherwise Newton from the parameters of the first
+/// facet that holds the vertex. Missing hints count as [`FootHint::FromSeed`].
+pub fn resolve_feet(
+    surface: &dyn Surface,
+    uv: &[[f64; 2]],
+    vertices: &[DVec3],
+    offsets: &[u32],
+    loops: &[u32],
+    hints: &[FootHint],
+) -> Vec<Option<[f64; 2]>> {
+    use rayon::prelude::*;
+    let facet_count = offsets.len().saturating_sub(1);
+    let mut seed_of = vec![u32::MAX; vertices.len()];
+    for i in 0..facet_count {
+        for &v in &loops[offsets[i] as usize..offsets[i + 1] as usize] {
+            if seed_of[v as usize] == u32::MAX {
+                seed_of[v as usize] = i as u32;
+            }
+        }
+    }
+    let domain = surface.domain();
+    (0..vertices.len())
+        .into_par_iter()
+        .map(|v| {
+            let seed = *seed_of.get(v).filter(|&&s| s != u32::MAX)?;
+            let x = vertices[v];
+            let from_seed = || foot(surface, &domain, x, uv[seed as usize]);
+            Some(match hints.get(v) {
+                Some(&FootHint::Known(f)) => f,
+                Some(&FootHint::Guess { linear, reach }) => {
+                    let newton = foot(surface, &domain, x, linear);
+                    if accept_newton(&domain, newton, linear, reach) {
+                        newton
+                    } else {
+                        from_seed()
+                    }
+                }
+                _ => from_seed(),
+            })
+        })
+        .collect()
 }
 
 fn root(parent: &mut [u32], mut x: u32) -> u32 {

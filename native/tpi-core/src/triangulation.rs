@@ -91,6 +91,53 @@ impl DualTriangulation {
         Ok(Self { triangles, neighbours })
     }
 
+    /// Puts the triangles in their canonical order, which depends only on the structure (not
+    /// on how it was built): each triangle rotated so that its smallest point comes first
+    /// (orientation kept), the triangles sorted by (first point, second point). A directed
+    /// edge belongs to one triangle, so the key is unique. `point_count` bounds the indices.
+    pub fn canonicalise(&mut self, point_count: usize) {
+        let n = self.triangles.len();
+        for (t, nb) in self.triangles.iter_mut().zip(self.neighbours.iter_mut()) {
+            let k = (0..3).min_by_key(|&k| t[k]).unwrap_or(0);
+            *t = rotate(*t, k);
+            *nb = rotate(*nb, k);
+        }
+        // Counting sort on the first point, then each (short) run sorted on the second.
+        let mut start = vec![0u32; point_count + 1];
+        for t in &self.triangles {
+            start[t[0] as usize + 1] += 1;
+        }
+        for v in 0..point_count {
+            start[v + 1] += start[v];
+        }
+        let mut order = vec![0u32; n];
+        let mut fill = start.clone();
+        for (t, tv) in self.triangles.iter().enumerate() {
+            order[fill[tv[0] as usize] as usize] = t as u32;
+            fill[tv[0] as usize] += 1;
+        }
+        for v in 0..point_count {
+            let run = &mut order[start[v] as usize..start[v + 1] as usize];
+            if run.len() > 1 {
+                run.sort_unstable_by_key(|&t| self.triangles[t as usize][1]);
+            }
+        }
+        if order.iter().enumerate().all(|(k, &t)| k as u32 == t) {
+            return;
+        }
+        let mut new_index = vec![NO_TRIANGLE; n];
+        for (k, &t) in order.iter().enumerate() {
+            new_index[t as usize] = k as u32;
+        }
+        let triangles: Vec<[u32; 3]> = order.iter().map(|&t| self.triangles[t as usize]).collect();
+        let neighbours: Vec<[u32; 3]> = order
+            .iter()
+            .map(|&t| self.neighbours[t as usize].map(|x| if x == NO_TRIANGLE { x } else { new_index[x as usize] }))
+            .collect();
+        self.triangles = triangles;
+        self.neighbours = neighbours;
+    }
+
     /// Reverses every triangle's orientation (counter-clockwise becomes clockwise).
     pub fn reverse(&mut self) {
         for (t, n) in self.triangles.iter_mut().zip(self.neighbours.iter_mut()) {

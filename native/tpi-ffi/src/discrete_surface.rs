@@ -2,15 +2,19 @@
 //! and its current mesh.
 //!
 //! Edits (move, add, remove a point; replace the surface) only change the inputs and count
-//! as pending; `tpi_discrete_surface_recompute` brings the mesh up to date. Today a recompute
-//! discretises from scratch; the API is shaped so that a later version can update only what
-//! the pending edits touched, without changing any signature.
+//! as pending; `tpi_discrete_surface_recompute` brings the mesh up to date. One pending point
+//! edit is applied by the core's live editing (`tpi_core::LiveSurface`), which updates only
+//! the dual structure and facets around the point where it can (a convex surface away from
+//! the boundary) and runs the whole pipeline elsewhere; a batch of several pending edits is
+//! discretised from scratch. Either way the mesh is exactly that of a discretisation of the
+//! edited inputs from scratch. The mesh is assembled when it is asked for
+//! (`tpi_discrete_surface_mesh`) after a recompute.
 
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use tpi_core::pattern::Pattern;
 use tpi_core::spec::SurfaceModel;
-use tpi_core::{discretise, Discretisation, DiscretiseOptions};
+use tpi_core::{Discretisation, DiscretiseOptions, LiveSurface, TpiError};
 
 use crate::boundary::{copy_out, ffi_boundary, finite, index_error, try_ref, FfiResult, OutPtr, TpiStatus};
 use crate::discretisation::TpiDiscretisation;
@@ -29,11 +33,53 @@ pub struct TpiDiscreteSurface {
 }
 
 struct State {
+    /// The inputs with every edit applied (pending ones included).
     surface: SurfaceModel,
     points: Vec<[f64; 2]>,
     options: DiscretiseOptions,
-    mesh: Arc<Discretisation>,
-    pending_edits: usize,
+    /// The live surface of the last successful recompute.
+    live: LiveSurface,
+    /// Its mesh, once assembled (None: assemble from `live` when asked for).
+    mesh: Option<Arc<Discretisation>>,
+    /// Edits since the last successful recompute, in order.
+    pending: Vec<Edit>,
+}
+
+/// One pending edit.
+enum Edit {
+    Move(usize, [f64; 2]),
+    Add([f64; 2]),
+    Remove(usize),
+    Surface,
+}
+
+impl State {
+    /// The current mesh, assembled if needed.
+    fn mesh(&mut self) -> Arc<Discretisation> {
+        let live = &mut self.live;
+        Arc::clone(self.mesh.get_or_insert_with(|| Arc::new(live.take_discretisation())))
+    }
+
+    /// Applies the pending edits: one point edit through live editing, anything else (a
+    /// batch, a new surface) by discretising the edited inputs from scratch. On an error the
+    /// live surface is as before.
+    fn apply_pending(&mut self) -> Result<(), TpiError> {
+        match self.pending.as_slice() {
+            [] => return Ok(()),
+            [Edit::Move(i, st)] => self.live.move_point(*i, *st)?,
+            [Edit::Add(st)] => {
+                self.live.add_point(*st)?;
+            }
+            [Edit::Remove(i)] => self.live.remove_point(*i)?,
+            [Edit::Surface] => self.live.set_surface(Box::new(self.surface.clone()))?,
+            _ => {
+                self.live = LiveSurface::new(Box::new(self.surface.clone()), self.points.clone(), self.options)?;
+            }
+        }
+        self.pending.clear();
+        self.mesh = None;
+        Ok(())
+    }
 }
 
 impl TpiDiscreteSurface {
@@ -86,8 +132,9 @@ pub unsafe extern "C" fn tpi_discrete_surface_new(
         let pattern = unsafe { try_ref(pattern, "pattern") }?;
         let options = unsafe { read_options(options) }?;
         let points = pattern.pattern.uv.clone();
-        let mesh = discretise(&surface.model, &points, &options)?;
-        let state = State { surface: surface.model.clone(), points, options, mesh: Arc::new(mesh), pending_edits: 0 };
+        let mut live = LiveSurface::new(Box::new(surface.model.clone()), points.clone(), options)?;
+        let mesh = Some(Arc::new(live.take_discretisation()));
+        let state = State { surface: surface.model.clone(), points, options, live, mesh, pending: Vec::new() };
         out.set_boxed(TpiDiscreteSurface { state: Mutex::new(state) });
         Ok(())
     }
@@ -173,8 +220,9 @@ pub unsafe extern "C" fn tpi_discrete_surface_move_point(
         let mut state = ds.lock();
         let len = state.points.len();
         let slot = state.points.get_mut(index).ok_or_else(|| index_error("pattern point", index, len))?;
-        *slot = check_point(s, t)?;
-        state.pending_edits = state.pending_edits.saturating_add(1);
+        let point = check_point(s, t)?;
+        *slot = point;
+        state.pending.push(Edit::Move(index, point));
         Ok(())
     }
 }
@@ -202,7 +250,7 @@ pub unsafe extern "C" fn tpi_discrete_surface_add_point(
         let point = check_point(s, t)?;
         let mut state = ds.lock();
         state.points.push(point);
-        state.pending_edits = state.pending_edits.saturating_add(1);
+        state.pending.push(Edit::Add(point));
         if let Some(index) = index {
             index.set(state.points.len() - 1);
         }
@@ -229,7 +277,7 @@ pub unsafe extern "C" fn tpi_discrete_surface_remove_point(discrete_surface: *mu
             return Err(index_error("pattern point", index, len));
         }
         state.points.remove(index);
-        state.pending_edits = state.pending_edits.saturating_add(1);
+        state.pending.push(Edit::Remove(index));
         Ok(())
     }
 }
@@ -254,7 +302,7 @@ pub unsafe extern "C" fn tpi_discrete_surface_set_surface(
         let model = surface.model.clone();
         let mut state = ds.lock();
         state.surface = model;
-        state.pending_edits = state.pending_edits.saturating_add(1);
+        state.pending.push(Edit::Surface);
         Ok(())
     }
 }
@@ -275,7 +323,7 @@ pub unsafe extern "C" fn tpi_discrete_surface_pending_edits(
         // SAFETY: the caller's contract.
         let ds = unsafe { handle(discrete_surface) }?;
         let out = unsafe { OutPtr::new(out, "out") }?;
-        out.set(ds.lock().pending_edits);
+        out.set(ds.lock().pending.len());
         Ok(())
     }
 }
@@ -298,12 +346,7 @@ pub unsafe extern "C" fn tpi_discrete_surface_recompute(discrete_surface: *mut T
         // SAFETY: the caller's contract.
         let ds = unsafe { handle(discrete_surface.cast_const()) }?;
         let mut state = ds.lock();
-        if state.pending_edits == 0 {
-            return Ok(());
-        }
-        let mesh = discretise(&state.surface, &state.points, &state.options)?;
-        state.mesh = Arc::new(mesh);
-        state.pending_edits = 0;
+        state.apply_pending()?;
         Ok(())
     }
 }
@@ -327,7 +370,7 @@ pub unsafe extern "C" fn tpi_discrete_surface_mesh(
         // SAFETY: the caller's contract.
         let out = unsafe { OutPtr::handle(out, "out") }?;
         let ds = unsafe { handle(discrete_surface) }?;
-        let mesh = Arc::clone(&ds.lock().mesh);
+        let mesh = ds.lock().mesh();
         out.set_boxed(TpiDiscretisation::new(mesh));
         Ok(())
     }

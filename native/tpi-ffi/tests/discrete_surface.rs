@@ -232,3 +232,52 @@ fn concurrent_edits_on_one_discrete_surface_are_serialised() {
     let scratch = discretise_from_scratch(f.surface, &points);
     assert_eq!(current_mesh(f.ds), scratch);
 }
+
+#[test]
+fn single_edits_recomputed_one_by_one_give_the_mesh_from_scratch() {
+    // One edit per recompute takes the core's live editing where it can (interior points of
+    // this convex dome); every mesh must still be the one from scratch.
+    let surface = dome(3.0);
+    let mut points = jittered_grid(13);
+    let p = pattern(&points);
+    let mut ds = std::ptr::null_mut();
+    // SAFETY: live handles, default options, valid out pointer.
+    ok(unsafe { tpi_discrete_surface_new(surface, p, std::ptr::null(), &mut ds) });
+    // SAFETY: the discrete surface holds its own copy of the pattern.
+    unsafe { tpi_pattern_free(p) };
+    let mut state = 12345u64;
+    let mut next = || {
+        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for step in 0..60 {
+        let n = points.len();
+        let i = ((next() * n as f64) as usize).min(n - 1);
+        // SAFETY (all calls): live handle.
+        match step % 6 {
+            0..=3 => {
+                let q = [(points[i][0] + 0.03 * (next() - 0.5)).clamp(0.0, 1.0), (points[i][1] + 0.03 * (next() - 0.5)).clamp(0.0, 1.0)];
+                ok(unsafe { tpi_discrete_surface_move_point(ds, i, q[0], q[1]) });
+                points[i] = q;
+            }
+            4 => {
+                let q = [0.2 + 0.6 * next(), 0.2 + 0.6 * next()];
+                ok(unsafe { tpi_discrete_surface_add_point(ds, q[0], q[1], std::ptr::null_mut()) });
+                points.push(q);
+            }
+            _ => {
+                ok(unsafe { tpi_discrete_surface_remove_point(ds, i) });
+                points.remove(i);
+            }
+        }
+        // SAFETY: live handle.
+        ok(unsafe { tpi_discrete_surface_recompute(ds) });
+        assert_eq!(current_points(ds), points);
+        assert_eq!(current_mesh(ds), discretise_from_scratch(surface, &points), "after edit {step}");
+    }
+    // SAFETY: our handles, freed once.
+    unsafe {
+        tpi_discrete_surface_free(ds);
+        tpi_surface_free(surface);
+    }
+}

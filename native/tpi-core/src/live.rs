@@ -1,0 +1,1041 @@
+//! Live editing: a discretised surface that follows edits of its pattern one point at a time.
+//!
+//! [`LiveSurface`] holds a surface, its pattern and what the pipeline computed for them. Moving,
+//! adding or removing one pattern point updates the dual structure where it changed and
+//! recomputes only the facets around it; [`LiveSurface::discretisation`] then assembles the
+//! result, which is the [`crate::discretise`] of the edited pattern, bit for bit (the same
+//! facets in the same order, the same vertex positions and numbering, the same report).
+//!
+//! # The incremental path
+//!
+//! It applies where the dual structure is the envelope's own: a convex surface (every pattern
+//! point strictly convex on the same side, [`crate::neighbours::gradient_embedding`]) with the
+//! envelope repair on. There the structure is the regular triangulation of the tangent planes'
+//! slopes, which does not depend on how it was reached, so a local update (remove the point:
+//! fill its star with regular ears; insert it: split the triangle holding its slopes, then
+//! flip by the envelope test) gives the structure of a full run. An edit takes it when
+//! - the edited point and every point whose triangles change have simple facets before and
+//!   after the edit: closed fans of exact vertices inside the domain (no boundary crossing,
+//!   no corner, no ill-conditioned stand-in, no weld), and the new triangles are counter-
+//!   clockwise in the pattern's coordinates like the rest;
+//! - the surface points' bounding box, which scales the tolerances, does not change;
+//! - the moved or added point is not a duplicate, its slopes lie inside the structure's hull,
+//!   and no flip meets a non-convex quad.
+//!
+//! Otherwise (and for a new surface, a mixed or saddle-shaped surface, the envelope repair
+//! off, welded vertices, points near the boundary) the edit runs the whole pipeline again.
+//! [`LiveStats`] counts both kinds.
+//!
+//! # Cost
+//!
+//! An incremental move evaluates the point once, re-triangulates its star (about 6 triangles
+//! removed, 6 created, a few flips), computes about 12 facet vertices and their feet for the
+//! report, all in O(1) (point location by a grid of pattern cells). Removing a point also
+//! renumbers the points after it (O(n), as the facets after it move down by one).
+//! [`LiveSurface::discretisation`] assembles the mesh in O(n) when asked for after edits
+//! (numbering, loops, the report's aggregates), without projecting anything again.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use crate::diagnostics::Diagnostic;
+use crate::diffgeo::LocalGeometry;
+use crate::discretise::{curvature_class, run, Discretisation, DiscretiseOptions, PipelineState, Seed, Timings};
+use crate::error::TpiError;
+use crate::facets::{accept_newton, single_triangle_vertex, FootHint, TriangleVertex, VertexKind};
+use crate::neighbours::{envelope_quad_illegal, slope_repairs, NeighbourStats, SlopeFrame};
+use crate::planes::Plane;
+use crate::projection::foot;
+use crate::quality::{report, ReportInput};
+use crate::surface::Surface;
+use crate::tolerance::DUPLICATE_UV_TOLERANCE;
+use crate::triangulation::{orient, DualTriangulation, NO_TRIANGLE};
+
+/// How many edits took the incremental path and how many ran the whole pipeline.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct LiveStats {
+    /// Edits applied by a local update.
+    pub incremental: usize,
+    /// Edits (and constructions) that ran the whole pipeline.
+    pub full: usize,
+}
+
+/// A surface with its pattern and discretisation, kept up to date edit by edit.
+pub struct LiveSurface {
+    surface: Box<dyn Surface>,
+    options: DiscretiseOptions,
+    points: Vec<[f64; 2]>,
+    /// The assembled result, None when edits made it stale.
+    mesh: Option<Discretisation>,
+    /// The incremental state, None where the incremental path does not apply.
+    state: Option<State>,
+    stats: LiveStats,
+}
+
+/// A vertex of the last full run that is not a plain triangle vertex (boundary, corner,
+/// stand-in): facets holding one are never touched by a local update.
+#[derive(Clone, Copy, Debug)]
+struct Other {
+    point: DVec3,
+    kind: VertexKind,
+    foot: Option<[f64; 2]>,
+}
+
+/// A vertex of a facet loop: a triangle's (by slot) or one of the last full run's others.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Key {
+    Triangle(u32),
+    Other(u32),
+}
+
+/// The incremental state (see the module doc).
+struct State {
+    uv: Vec<[f64; 2]>,
+    geometry: Vec<LocalGeometry>,
+    tangents: Vec<[DVec3; 2]>,
+    planes: Vec<Plane>,
+    convex_side: Vec<i8>,
+    slopes: Vec<[f64; 2]>,
+    frame: SlopeFrame,
+    /// +1 where the stored (parameter-space counter-clockwise) triangles are counter-clockwise
+    /// in slope space, -1 where they are clockwise there.
+    slope_sign: f64,
+    /// The dual structure with free slots (a free slot's vertices are all `NO_TRIANGLE`).
+    tri: DualTriangulation,
+    free: Vec<u32>,
+    /// Per slot: its vertex and the report's foot of it.
+    vertex: Vec<TriangleVertex>,
+    report_foot: Vec<Option<[f64; 2]>>,
+    /// Per point: one live triangle holding it.
+    holder: Vec<u32>,
+    /// Per facet: None for a simple facet (its loop is its closed fan), else its loop.
+    complex: Vec<Option<Vec<Key>>>,
+    others: Vec<Other>,
+    diagnostics: Vec<Diagnostic>,
+    stats: NeighbourStats,
+    diagonal: f64,
+    bbox: (DVec3, DVec3),
+    grid: Grid,
+}
+
+/// Point location: a square grid over the pattern's unit square, one point per cell.
+struct Grid {
+    size: usize,
+    cell: Vec<u32>,
+}
+
+impl Grid {
+    fn new(points: &[[f64; 2]]) -> Self {
+        let size = ((points.len() as f64 / 4.0).sqrt().ceil() as usize).clamp(1, 4096);
+        let mut grid = Self { size, cell: vec![u32::MAX; size * size] };
+        for (i, &p) in points.iter().enumerate() {
+            let c = grid.index(p);
+            grid.cell[c] = i as u32;
+        }
+        grid
+    }
+
+    fn coordinates(&self, p: [f64; 2]) -> (usize, usize) {
+        let f = |x: f64| ((x * self.size as f64) as usize).min(self.size - 1);
+        (f(p[0]), f(p[1]))
+    }
+
+    fn index(&self, p: [f64; 2]) -> usize {
+        let (i, j) = self.coordinates(p);
+        j * self.size + i
+    }
+
+    /// Some point in or near the cell of `p` whose stored position is still in its cell.
+    fn near(&self, p: [f64; 2], points: &[[f64; 2]]) -> Option<u32> {
+        let (ci, cj) = self.coordinates(p);
+        for ring in 0..self.size as isize {
+            for dj in -ring..=ring {
+                for di in -ring..=ring {
+                    if di.abs() != ring && dj.abs() != ring {
+                        continue;
+                    }
+                    let (i, j) = (ci as isize + di, cj as isize + dj);
+                    if i < 0 || j < 0 || i >= self.size as isize || j >= self.size as isize {
+                        continue;
+                    }
+                    let c = j as usize * self.size + i as usize;
+                    let q = self.cell[c];
+                    if let Some(&pq) = points.get(q as usize) {
+                        if self.index(pq) == c {
+                            return Some(q);
+                        }
+                    }
+                }
+            }
+            if ring > 3 {
+                break;
+            }
+        }
+        None
+    }
+}
+
+/// Why an edit left the incremental path (internal: the edit then runs the whole pipeline).
+struct Fallback;
+
+impl LiveSurface {
+    /// Discretises `surface` with `pattern` (normalised, as [`crate::discretise`]) and keeps
+    /// what the pipeline computed for later edits. Errors as [`crate::discretise`].
+    pub fn new(surface: Box<dyn Surface>, pattern: Vec<[f64; 2]>, options: DiscretiseOptions) -> Result<Self, TpiError> {
+        let mut live = Self { surface, options, points: pattern, mesh: None, state: None, stats: LiveStats::default() };
+        live.recompute_all()?;
+        Ok(live)
+    }
+
+    /// The pattern points (normalised).
+    pub fn points(&self) -> &[[f64; 2]] {
+        &self.points
+    }
+
+    /// The surface.
+    pub fn surface(&self) -> &dyn Surface {
+        self.surface.as_ref()
+    }
+
+    /// The options.
+    pub fn options(&self) -> &DiscretiseOptions {
+        &self.options
+    }
+
+    /// How the edits so far were applied.
+    pub fn stats(&self) -> LiveStats {
+        self.stats
+    }
+
+    /// The discretisation of the current pattern (assembled now if edits made it stale).
+    pub fn discretisation(&mut self) -> &Discretisation {
+        if self.mesh.is_none() {
+            let start = std::time::Instant::now();
+            let mut mesh = match &self.state {
+                Some(state) => state.assemble(self.surface.as_ref(), &self.options),
+                // Without incremental state the mesh is never stale.
+                None => Discretisation::default(),
+            };
+            mesh.timings.total = start.elapsed().as_secs_f64() * 1e3;
+            self.mesh = Some(mesh);
+        }
+        self.mesh.get_or_insert_with(Discretisation::default)
+    }
+
+    /// Takes the discretisation out (assembling it if needed); the next call assembles again.
+    pub fn take_discretisation(&mut self) -> Discretisation {
+        self.discretisation();
+        let mesh = self.mesh.take().unwrap_or_default();
+        if self.state.is_none() {
+            // Without incremental state there is nothing to assemble from: keep a copy.
+            self.mesh = Some(mesh.clone());
+        }
+        mesh
+    }
+
+    /// Moves pattern point `index` to `st` (normalised). On an error (index out of range,
+    /// a point outside the square, a duplicate, a degenerate result) nothing changes.
+    pub fn move_point(&mut self, index: usize, st: [f64; 2]) -> Result<(), TpiError> {
+        if index >= self.points.len() {
+            return Err(TpiError::InvalidParameter {
+                field: "index".into(),
+                value: index as f64,
+                reason: format!("there are {} pattern points", self.points.len()),
+            });
+        }
+        let old = self.points[index];
+        self.points[index] = st;
+        let local = self.state.as_mut().map(|s| s.move_point(self.surface.as_ref(), &self.options, &self.points, index, old));
+        self.finish(local, |points| points[index] = old)
+    }
+
+    /// Appends the pattern point `st` (normalised) and returns its index. On an error
+    /// nothing changes.
+    pub fn add_point(&mut self, st: [f64; 2]) -> Result<usize, TpiError> {
+        self.points.push(st);
+        let index = self.points.len() - 1;
+        let local = self.state.as_mut().map(|s| s.add_point(self.surface.as_ref(), &self.options, &self.points));
+        self.finish(local, |points| {
+            points.pop();
+        })?;
+        Ok(index)
+    }
+
+    /// Removes pattern point `index` (the points after it move down by one). On an error
+    /// nothing changes.
+    pub fn remove_point(&mut self, index: usize) -> Result<(), TpiError> {
+        if index >= self.points.len() {
+            return Err(TpiError::InvalidParameter {
+                field: "index".into(),
+                value: index as f64,
+                reason: format!("there are {} pattern points", self.points.len()),
+            });
+        }
+        let old = self.points.remove(index);
+        let local = self.state.as_mut().map(|s| s.remove_point(self.surface.as_ref(), &self.options, &self.points, index));
+        self.finish(local, |points| points.insert(index, old))
+    }
+
+    /// Replaces the surface (e.g. after its control points were edited): everything is
+    /// recomputed. On an error the previous surface stays.
+    pub fn set_surface(&mut self, surface: Box<dyn Surface>) -> Result<(), TpiError> {
+        let previous = std::mem::replace(&mut self.surface, surface);
+        if let Err(e) = self.recompute_all() {
+            self.surface = previous;
+            self.recompute_all()?;
+            return Err(e);
+        }
+        Ok(())
+    }
+
+    /// After an edit of `points`: keep the local update, or run the whole pipeline; on an
+    /// error undo the edit of the points (`undo`) and restore the previous state.
+    fn finish(&mut self, local: Option<Result<(), Fallback>>, undo: impl FnOnce(&mut Vec<[f64; 2]>)) -> Result<(), TpiError> {
+        if let Some(Ok(())) = local {
+            self.stats.incremental += 1;
+            self.mesh = None;
+            return Ok(());
+        }
+        match self.recompute_all() {
+            Ok(()) => Ok(()),
+            Err(e) => {
+                undo(&mut self.points);
+                self.recompute_all()?;
+                self.stats.full -= 1;
+                Err(e)
+            }
+        }
+    }
+
+    /// Runs the whole pipeline on the current inputs and keeps its state.
+    fn recompute_all(&mut self) -> Result<(), TpiError> {
+        let (result, pipeline) = run(self.surface.as_ref(), &self.points, &self.options, true)?;
+        self.stats.full += 1;
+        self.state = pipeline.and_then(|p| State::from_pipeline(p, &result, &self.points));
+        self.mesh = Some(result);
+        Ok(())
+    }
+}
+
+impl State {
+    /// The incremental state of a full run, or None where the incremental path does not apply.
+    fn from_pipeline(p: PipelineState, result: &Discretisation, points: &[[f64; 2]]) -> Option<Self> {
+        let (frame, slopes) = p.slopes?;
+        if p.welded || p.neighbours.envelope_unresolved > 0 || p.triangulation.is_empty() {
+            return None;
+        }
+        let tri = p.triangulation;
+        let t0 = tri.triangles[0].map(|v| slopes[v as usize]);
+        let slope_sign = orient(t0[0], t0[1], t0[2]).signum();
+        if slope_sign == 0.0 {
+            return None;
+        }
+        let mut report_foot = vec![None; tri.len()];
+        let mut others = Vec::new();
+        let mut key_of = Vec::with_capacity(result.vertices.len());
+        for (v, &source) in p.vertex_source.iter().enumerate() {
+            let foot = p.feet.get(v).copied().flatten();
+            if source != u32::MAX {
+                report_foot[source as usize] = foot;
+                key_of.push(Key::Triangle(source));
+            } else {
+                key_of.push(Key::Other(others.len() as u32));
+                others.push(Other { point: result.vertices[v], kind: result.vertex_kinds[v], foot });
+            }
+        }
+        let complex = (0..result.facet_count())
+            .map(|i| (!p.facet_simple[i]).then(|| result.facet(i).iter().map(|&v| key_of[v as usize]).collect()))
+            .collect();
+        let mut holder = vec![NO_TRIANGLE; points.len()];
+        for (t, tv) in tri.triangles.iter().enumerate() {
+            for &v in tv {
+                holder[v as usize] = t as u32;
+            }
+        }
+        Some(Self {
+            uv: p.uv,
+            geometry: p.geometry,
+            tangents: p.tangents,
+            planes: p.planes,
+            convex_side: p.convex_side,
+            slopes,
+            frame,
+            slope_sign,
+            vertex: p.triangle_vertices,
+            report_foot,
+            tri,
+            free: Vec::new(),
+            holder,
+            complex,
+            others,
+            diagnostics: result.diagnostics.clone(),
+            stats: p.neighbours,
+            diagonal: p.diagonal,
+            bbox: p.bbox,
+            grid: Grid::new(points),
+        })
+    }
+
+    // ---- edits -------------------------------------------------------------------------
+
+    fn move_point(
+        &mut self,
+        surface: &dyn Surface,
+        options: &DiscretiseOptions,
+        points: &[[f64; 2]],
+        i: usize,
+        old: [f64; 2],
+    ) -> Result<(), Fallback> {
+        let (geometry, tangents, plane, slopes, uv) = self.sample(surface, options, points, i)?;
+        if on_box(self.planes[i].point, self.bbox) {
+            return Err(Fallback);
+        }
+        let mut changed = Changed::default();
+        self.remove_from_structure(i as u32, &mut changed)?;
+        let start = self.hole_triangle(&changed);
+        self.uv[i] = uv;
+        self.geometry[i] = geometry;
+        self.tangents[i] = tangents;
+        self.planes[i] = plane;
+        self.slopes[i] = slopes;
+        let near = (points[i][0] - old[0]).abs().max((points[i][1] - old[1]).abs()) * self.grid.size as f64 <= 2.0;
+        let start = if near { start } else { self.grid.near(points[i], points).map(|q| self.holder[q as usize]).unwrap_or(start) };
+        self.insert_into_structure(i as u32, start, &mut changed)?;
+        self.finish_edit(surface, options, points, &changed)?;
+        let old_cell = self.grid.index(old);
+        if self.grid.cell[old_cell] == i as u32 {
+            self.grid.cell[old_cell] = u32::MAX;
+        }
+        let new_cell = self.grid.index(points[i]);
+        self.grid.cell[new_cell] = i as u32;
+        Ok(())
+    }
+
+    fn add_point(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, points: &[[f64; 2]]) -> Result<(), Fallback> {
+        let i = points.len() - 1;
+        let (geometry, tangents, plane, slopes, uv) = self.sample(surface, options, points, i)?;
+        self.uv.push(uv);
+        self.geometry.push(geometry);
+        self.tangents.push(tangents);
+        self.planes.push(plane);
+        self.slopes.push(slopes);
+        self.convex_side.push(self.convex_side[0]);
+        self.holder.push(NO_TRIANGLE);
+        self.complex.push(None);
+        let start = self.grid.near(points[i], points).map(|q| self.holder[q as usize]).unwrap_or(0);
+        let start = self.live_slot(start);
+        let mut changed = Changed::default();
+        self.insert_into_structure(i as u32, start, &mut changed)?;
+        self.finish_edit(surface, options, points, &changed)?;
+        let cell = self.grid.index(points[i]);
+        self.grid.cell[cell] = i as u32;
+        Ok(())
+    }
+
+    fn remove_point(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, points: &[[f64; 2]], k: usize) -> Result<(), Fallback> {
+        if points.len() < 3 || on_box(self.planes[k].point, self.bbox) {
+            return Err(Fallback);
+        }
+        let mut changed = Changed::default();
+        self.remove_from_structure(k as u32, &mut changed)?;
+        // The points around the hole must have had simple facets (old numbering).
+        self.check_simple(&changed, Some(k as u32))?;
+        // Renumber: every point after k moves down by one (facets, diagnostics, the grid).
+        let kk = k as u32;
+        let shift = |v: &mut u32| {
+            if *v != NO_TRIANGLE && *v > kk {
+                *v -= 1;
+            }
+        };
+        for t in self.tri.triangles.iter_mut() {
+            t.iter_mut().for_each(shift);
+        }
+        changed.points.retain(|&p| p != kk);
+        changed.points.iter_mut().for_each(shift);
+        self.uv.remove(k);
+        self.geometry.remove(k);
+        self.tangents.remove(k);
+        self.planes.remove(k);
+        self.slopes.remove(k);
+        self.convex_side.remove(k);
+        self.holder.remove(k);
+        self.complex.remove(k);
+        for d in &mut self.diagnostics {
+            renumber_diagnostic(d, kk);
+        }
+        for c in self.grid.cell.iter_mut() {
+            if *c == kk {
+                *c = u32::MAX;
+            } else if *c != u32::MAX && *c > kk {
+                *c -= 1;
+            }
+        }
+        self.finish_vertices(surface, options, points, &changed)
+    }
+
+    /// Geometry of pattern point i at its (new) place, with the checks of the incremental
+    /// path: finite, strictly convex on the surface's side, slopes defined, strictly inside
+    /// the bounding box, no duplicate.
+    #[allow(clippy::type_complexity)]
+    fn sample(
+        &self,
+        surface: &dyn Surface,
+        options: &DiscretiseOptions,
+        points: &[[f64; 2]],
+        i: usize,
+    ) -> Result<(LocalGeometry, [DVec3; 2], Plane, [f64; 2], [f64; 2]), Fallback> {
+        let st = points[i];
+        if !(st[0].is_finite() && st[1].is_finite() && (0.0..=1.0).contains(&st[0]) && (0.0..=1.0).contains(&st[1])) {
+            return Err(Fallback);
+        }
+        // Duplicates: any point closer than the tolerance sends the edit to the full
+        // pipeline, which reports it exactly as a fresh run would.
+        if self.has_duplicate(points, i) {
+            return Err(Fallback);
+        }
+        let uv = surface.domain().from_normalised(st);
+        let d = surface.evaluate(uv[0], uv[1]);
+        let geometry = LocalGeometry::from_derivatives(&d);
+        if !(geometry.point.is_finite() && geometry.normal.is_finite()) {
+            return Err(Fallback);
+        }
+        let (side, _, _) = curvature_class(&geometry, self.diagonal, options);
+        if side != self.convex_side[0] {
+            return Err(Fallback);
+        }
+        let plane = Plane { point: geometry.point, normal: geometry.normal };
+        let slopes = self.frame.slopes(&plane).ok_or(Fallback)?;
+        if !strictly_inside_box(plane.point, self.bbox) {
+            return Err(Fallback);
+        }
+        Ok((geometry, [d.su, d.sv], plane, slopes, uv))
+    }
+
+    /// Whether the grid's point in the cell of point i is a duplicate of it. A duplicate
+    /// elsewhere would be a neighbour of i in the updated structure, which
+    /// `finish_vertices` checks.
+    fn has_duplicate(&self, points: &[[f64; 2]], i: usize) -> bool {
+        let p = points[i];
+        let q = self.grid.cell[self.grid.index(p)] as usize;
+        q != i && q < points.len() && (points[q][0] - p[0]).hypot(points[q][1] - p[1]) < DUPLICATE_UV_TOLERANCE
+    }
+
+    fn live_slot(&self, t: u32) -> u32 {
+        if (t as usize) < self.tri.len() && self.tri.triangles[t as usize][0] != NO_TRIANGLE {
+            return t;
+        }
+        self.tri.triangles.iter().position(|t| t[0] != NO_TRIANGLE).map_or(0, |t| t as u32)
+    }
+
+    fn hole_triangle(&self, changed: &Changed) -> u32 {
+        changed.created.iter().copied().find(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE).unwrap_or(0)
+    }
+
+    // ---- the structure ----------------------------------------------------------------
+
+    fn new_slot(&mut self, vertices: [u32; 3], neighbours: [u32; 3]) -> u32 {
+        if let Some(t) = self.free.pop() {
+            self.tri.triangles[t as usize] = vertices;
+            self.tri.neighbours[t as usize] = neighbours;
+            t
+        } else {
+            self.tri.triangles.push(vertices);
+            self.tri.neighbours.push(neighbours);
+            self.vertex.push(self.vertex[0]);
+            self.report_foot.push(None);
+            (self.tri.triangles.len() - 1) as u32
+        }
+    }
+
+    fn free_slot(&mut self, t: u32) {
+        self.tri.triangles[t as usize] = [NO_TRIANGLE; 3];
+        self.tri.neighbours[t as usize] = [NO_TRIANGLE; 3];
+        self.free.push(t);
+    }
+
+    /// Sets the neighbour of t across the edge (a, b) (t holds it) to `other`.
+    fn link(&mut self, t: u32, a: u32, b: u32, other: u32) {
+        if t == NO_TRIANGLE {
+            return;
+        }
+        let tv = self.tri.triangles[t as usize];
+        for k in 0..3 {
+            let (x, y) = (tv[(k + 1) % 3], tv[(k + 2) % 3]);
+            if (x == a && y == b) || (x == b && y == a) {
+                self.tri.neighbours[t as usize][k] = other;
+            }
+        }
+    }
+
+    /// Slope-space orientation of (a, b, c) in the stored convention (positive: like the
+    /// stored triangles).
+    fn orientation(&self, a: u32, b: u32, c: u32) -> f64 {
+        let s = &self.slopes;
+        self.slope_sign * orient(s[a as usize], s[b as usize], s[c as usize])
+    }
+
+    /// Removes point v: its star becomes a hole, filled with regular ears.
+    fn remove_from_structure(&mut self, v: u32, changed: &mut Changed) -> Result<(), Fallback> {
+        let start = self.holder[v as usize];
+        if start == NO_TRIANGLE || self.complex[v as usize].is_some() {
+            return Err(Fallback);
+        }
+        let mut fan = Vec::new();
+        if self.tri.fan(v, start, &mut fan) != crate::triangulation::Fan::Closed {
+            return Err(Fallback);
+        }
+        // The link: for each fan triangle (v, a, b) counter-clockwise, the edge (a, b) and the
+        // triangle beyond it.
+        let mut link: Vec<u32> = Vec::with_capacity(fan.len());
+        let mut outer: Vec<u32> = Vec::with_capacity(fan.len());
+        for &t in &fan {
+            let tv = self.tri.triangles[t as usize];
+            let k = tv.iter().position(|&x| x == v).ok_or(Fallback)?;
+            link.push(tv[(k + 1) % 3]);
+            outer.push(self.tri.neighbours[t as usize][k]);
+        }
+        for &t in &fan {
+            self.free_slot(t);
+        }
+        changed.points.extend_from_slice(&link);
+        // Ears: (link[k-1], link[k], link[k+1]) convex in slope space, holding no other link
+        // point, and whose vertex no other link point's tangent plane cuts off.
+        // `edge_out[k]` is the triangle beyond the polygon edge (link[k], link[k+1]).
+        let mut poly = link;
+        let mut edge_out = outer;
+        while poly.len() > 3 {
+            let m = poly.len();
+            let ear = (0..m).find(|&k| {
+                let (a, b, c) = (poly[(k + m - 1) % m], poly[k], poly[(k + 1) % m]);
+                self.orientation(a, b, c) > 0.0
+                    && poly.iter().all(|&x| x == a || x == b || x == c || !self.in_triangle(x, a, b, c))
+                    && self.regular_ear(a, b, c, &poly)
+            });
+            let k = ear.ok_or(Fallback)?;
+            let (kp, kn) = ((k + m - 1) % m, (k + 1) % m);
+            let (a, b, c) = (poly[kp], poly[k], poly[kn]);
+            // Triangle (a, b, c): opposite a is edge (b, c) = polygon edge k; opposite c is
+            // edge (a, b) = polygon edge k-1; opposite b is the new diagonal (c, a).
+            let (out_bc, out_ab) = (edge_out[k], edge_out[kp]);
+            let t = self.new_slot([a, b, c], [out_bc, NO_TRIANGLE, out_ab]);
+            self.link(out_bc, b, c, t);
+            self.link(out_ab, a, b, t);
+            changed.created.push(t);
+            // The polygon loses b; the edge (a, c) is now bounded by t.
+            poly.remove(k);
+            edge_out.remove(k);
+            let kp = if k == 0 { poly.len() - 1 } else { k - 1 };
+            edge_out[kp] = t;
+        }
+        let (a, b, c) = (poly[0], poly[1], poly[2]);
+        if self.orientation(a, b, c) <= 0.0 {
+            return Err(Fallback);
+        }
+        // edge_out[k] lies beyond (poly[k], poly[k+1]): opposite poly[k+2].
+        let t = self.new_slot([a, b, c], [edge_out[1], edge_out[2], edge_out[0]]);
+        for k in 0..3 {
+            self.link(edge_out[k], poly[k], poly[(k + 1) % 3], t);
+        }
+        changed.created.push(t);
+        self.holder[v as usize] = NO_TRIANGLE;
+        for &t in &changed.created {
+            for &x in &self.tri.triangles[t as usize] {
+                self.holder[x as usize] = t;
+            }
+        }
+        // The ears are regular among the link points; make sure no edge needs a flip.
+        let created = changed.created.clone();
+        self.legalise(created.iter().flat_map(|&t| (0..3).map(move |k| (t, k))).collect(), changed)
+    }
+
+    /// Whether x lies strictly inside triangle (a, b, c) in slope space.
+    fn in_triangle(&self, x: u32, a: u32, b: u32, c: u32) -> bool {
+        self.orientation(a, b, x) > 0.0 && self.orientation(b, c, x) > 0.0 && self.orientation(c, a, x) > 0.0
+    }
+
+    /// Whether no other polygon point's tangent plane cuts off the vertex of (a, b, c).
+    fn regular_ear(&self, a: u32, b: u32, c: u32, poly: &[u32]) -> bool {
+        let mut ids = [a, b, c];
+        ids.sort_unstable();
+        let planes = &self.planes;
+        let p = ids.map(|i| &planes[i as usize]);
+        let vertex = crate::planes::intersect_three(p[0], p[1], p[2]).point;
+        if !vertex.is_finite() {
+            return false;
+        }
+        let size = [b, c].iter().map(|&i| planes[i as usize].point.distance(planes[a as usize].point)).fold(0.0, f64::max);
+        let tolerance = crate::neighbours::ENVELOPE_FLIP_TOLERANCE * size;
+        let s = self.frame.side;
+        poly.iter().all(|&x| x == a || x == b || x == c || s * planes[x as usize].signed_distance(vertex) >= -tolerance)
+    }
+
+    /// Inserts point v (not in the structure) at its slopes, starting the search at `start`.
+    fn insert_into_structure(&mut self, v: u32, start: u32, changed: &mut Changed) -> Result<(), Fallback> {
+        let t = self.locate(v, start)?;
+        let [a, b, c] = self.tri.triangles[t as usize];
+        let [n_a, n_b, n_c] = self.tri.neighbours[t as usize];
+        self.free_slot(t);
+        // Three triangles (v, b, c), (v, c, a), (v, a, b); across the edge opposite v lies
+        // the old neighbour, the other two are each other.
+        let t1 = self.new_slot([v, b, c], [n_a, NO_TRIANGLE, NO_TRIANGLE]);
+        let t2 = self.new_slot([v, c, a], [n_b, NO_TRIANGLE, NO_TRIANGLE]);
+        let t3 = self.new_slot([v, a, b], [n_c, NO_TRIANGLE, NO_TRIANGLE]);
+        // In (v, b, c): opposite b is (c, v) = t2's (v, c); opposite c is (v, b) = t3's (b, v).
+        self.tri.neighbours[t1 as usize] = [n_a, t2, t3];
+        self.tri.neighbours[t2 as usize] = [n_b, t3, t1];
+        self.tri.neighbours[t3 as usize] = [n_c, t1, t2];
+        self.link(n_a, b, c, t1);
+        self.link(n_b, c, a, t2);
+        self.link(n_c, a, b, t3);
+        changed.created.extend_from_slice(&[t1, t2, t3]);
+        changed.points.extend_from_slice(&[v, a, b, c]);
+        for (x, t) in [(v, t1), (a, t2), (b, t3), (c, t1)] {
+            self.holder[x as usize] = t;
+        }
+        self.legalise(vec![(t1, 0), (t2, 0), (t3, 0)], changed)
+    }
+
+    /// The live triangle whose slope-space interior holds point v's slopes, by a walk from
+    /// `start` (Fallback on the hull, on an edge, or when the walk takes too long).
+    fn locate(&self, v: u32, start: u32) -> Result<u32, Fallback> {
+        let mut t = self.live_slot(start);
+        let limit = 4 * self.tri.len() + 16;
+        let mut turn = 0usize;
+        for _ in 0..limit {
+            let tv = self.tri.triangles[t as usize];
+            let mut moved = false;
+            // Try the edges in a rotating order (a walk that cannot cycle for long).
+            turn = turn.wrapping_add(1);
+            for j in 0..3 {
+                let k = (j + turn) % 3;
+                let (a, b) = (tv[(k + 1) % 3], tv[(k + 2) % 3]);
+                let o = self.orientation(a, b, v);
+                if o < 0.0 {
+                    let next = self.tri.neighbours[t as usize][k];
+                    if next == NO_TRIANGLE {
+                        return Err(Fallback);
+                    }
+                    t = next;
+                    moved = true;
+                    break;
+                }
+                if o == 0.0 {
+                    return Err(Fallback);
+                }
+            }
+            if !moved {
+                return Ok(t);
+            }
+        }
+        Err(Fallback)
+    }
+
+    /// Lawson's flips by the envelope test from the given (triangle, side) pairs.
+    fn legalise(&mut self, mut stack: Vec<(u32, usize)>, changed: &mut Changed) -> Result<(), Fallback> {
+        let mut budget = 64 + 8 * stack.len();
+        while let Some((t, k)) = stack.pop() {
+            if self.tri.triangles[t as usize][0] == NO_TRIANGLE {
+                continue;
+            }
+            let other = self.tri.neighbours[t as usize][k];
+            if other == NO_TRIANGLE {
+                continue;
+            }
+            let tv = self.tri.triangles[t as usize];
+            let [c, a, b] = [tv[k], tv[(k + 1) % 3], tv[(k + 2) % 3]];
+            let k2 = self.tri.neighbours[other as usize].iter().position(|&x| x == t).ok_or(Fallback)?;
+            let d = self.tri.triangles[other as usize][k2];
+            if !envelope_quad_illegal(&self.planes, &self.convex_side, [c, a, b, d]) {
+                continue;
+            }
+            if self.orientation(c, a, d) <= 0.0 || self.orientation(d, b, c) <= 0.0 || budget == 0 {
+                return Err(Fallback);
+            }
+            budget -= 1;
+            let (t1, t2) = self.tri.flip(t, k);
+            changed.created.extend_from_slice(&[t1, t2]);
+            changed.points.extend_from_slice(&[a, b, c, d]);
+            for (x, s) in [(c, t1), (a, t1), (d, t1), (b, t2)] {
+                self.holder[x as usize] = s;
+            }
+            // New triangles (c, a, d) and (d, b, c): test their outer edges.
+            for (s, vertices) in [(t1, [c, a, d]), (t2, [d, b, c])] {
+                for k in 0..3 {
+                    if self.tri.neighbours[s as usize][k] != if s == t1 { t2 } else { t1 } {
+                        let _ = vertices;
+                        stack.push((s, k));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// After a move or an add: every changed point's facet was simple; the new triangles'
+    /// vertices are computed and checked, and the changed points' facets are simple again.
+    fn finish_edit(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, points: &[[f64; 2]], changed: &Changed) -> Result<(), Fallback> {
+        self.check_simple(changed, None)?;
+        self.finish_vertices(surface, options, points, changed)
+    }
+
+    /// The points whose triangles changed must have had simple facets.
+    fn check_simple(&self, changed: &Changed, removed: Option<u32>) -> Result<(), Fallback> {
+        for &p in &changed.points {
+            if Some(p) == removed {
+                continue;
+            }
+            if self.complex.get(p as usize).map_or(true, |c| c.is_some()) {
+                return Err(Fallback);
+            }
+        }
+        Ok(())
+    }
+
+    /// Vertices and report feet of the live created triangles, with the checks of the
+    /// incremental path (exact, inside, counter-clockwise in the pattern, no weld, no
+    /// duplicate point), and the changed points' fans closed.
+    fn finish_vertices(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, points: &[[f64; 2]], changed: &Changed) -> Result<(), Fallback> {
+        let mut created: Vec<u32> =
+            changed.created.iter().copied().filter(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE).collect();
+        created.sort_unstable();
+        created.dedup();
+        for &t in &created {
+            let ids = self.tri.triangles[t as usize];
+            let [a, b, c] = ids.map(|v| points[v as usize]);
+            if orient(a, b, c) <= 0.0 {
+                return Err(Fallback);
+            }
+            let vertex = single_triangle_vertex(
+                surface,
+                &self.uv,
+                &self.tangents,
+                &self.planes,
+                &self.convex_side,
+                ids,
+                options.far_vertex_factor,
+            );
+            if !(vertex.exact && vertex.inside > 0.0) {
+                return Err(Fallback);
+            }
+            self.vertex[t as usize] = vertex;
+        }
+        let weld = options.weld_tolerance * self.diagonal;
+        for &t in &created {
+            for &u in &self.tri.neighbours[t as usize] {
+                if u == NO_TRIANGLE || self.vertex[t as usize].point.distance(self.vertex[u as usize].point) <= weld {
+                    return Err(Fallback);
+                }
+            }
+        }
+        let mut fan = Vec::new();
+        let mut seen: Vec<u32> = changed.points.clone();
+        seen.sort_unstable();
+        seen.dedup();
+        for &p in &seen {
+            let t = self.holder[p as usize];
+            if t == NO_TRIANGLE || self.tri.fan(p, t, &mut fan) != crate::triangulation::Fan::Closed {
+                return Err(Fallback);
+            }
+            // A duplicate of a moved or added point would be its neighbour.
+            for &t in &fan {
+                for &q in &self.tri.triangles[t as usize] {
+                    if q != p && (points[q as usize][0] - points[p as usize][0]).hypot(points[q as usize][1] - points[p as usize][1]) < DUPLICATE_UV_TOLERANCE
+            {
+                        return Err(Fallback);
+                    }
+                }
+            }
+        }
+        if options.quality_report {
+            for &t in &created {
+                let ids = self.tri.triangles[t as usize];
+                let first = ids.iter().copied().min().unwrap_or(0);
+                self.report_foot[t as usize] = Some(report_foot(surface, &self.vertex[t as usize], self.uv[first as usize]));
+            }
+        }
+        Ok(())
+    }
+
+    // ---- assembly ---------------------------------------------------------------------
+
+    /// The discretisation of the current state, as a full run would give it.
+    fn assemble(&self, surface: &dyn Surface, options: &DiscretiseOptions) -> Discretisation {
+        let n = self.uv.len();
+        // Canonical triangles (see DualTriangulation::canonicalise), slot -> index.
+        let mut live: Vec<u32> = (0..self.tri.len() as u32).filter(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE).collect();
+        let rotated = |t: u32| {
+            let tv = self.tri.triangles[t as usize];
+            let k = (0..3).min_by_key(|&k| tv[k]).unwrap_or(0);
+            [tv[k], tv[(k + 1) % 3], tv[(k + 2) % 3]]
+        };
+        live.sort_unstable_by_key(|&t| {
+            let r = rotated(t);
+            (u64::from(r[0]) << 32) | u64::from(r[1])
+        });
+        let mut index_of = vec![NO_TRIANGLE; self.tri.len()];
+        for (k, &t) in live.iter().enumerate() {
+            index_of[t as usize] = k as u32;
+        }
+        let triangles: Vec<[u32; 3]> = live.iter().map(|&t| rotated(t)).collect();
+        let neighbours: Vec<[u32; 3]> = live
+            .iter()
+            .map(|&t| {
+                let tv = self.tri.triangles[t as usize];
+                let k = (0..3).min_by_key(|&k| tv[k]).unwrap_or(0);
+                let nb = self.tri.neighbours[t as usize];
+                [nb[k], nb[(k + 1) % 3], nb[(k + 2) % 3]].map(|x| if x == NO_TRIANGLE { x } else { index_of[x as usize] })
+            })
+            .collect();
+        let canonical = DualTriangulation { triangles, neighbours };
+        // First triangle (canonical order) of each point: where its loop starts.
+        let incident = canonical.incident_triangles(n);
+
+        // Loops and numbering.
+        let mut vertices = Vec::with_capacity(canonical.len() + self.others.len());
+        let mut vertex_kinds = Vec::with_capacity(vertices.capacity());
+        let mut feet: Vec<FootHint> = Vec::with_capacity(vertices.capacity());
+        let mut id_of: HashMap<Key, u32> = HashMap::new();
+        let mut triangle_id = vec![u32::MAX; self.tri.len()];
+        let mut facet_offsets = Vec::with_capacity(n + 1);
+        let mut facet_loops = Vec::with_capacity(canonical.len() * 3);
+        facet_offsets.push(0u32);
+        let mut fan = Vec::new();
+        let mut keys: Vec<Key> = Vec::new();
+        for i in 0..n {
+            keys.clear();
+            match &self.complex[i] {
+                Some(list) => keys.extend_from_slice(list),
+                None => {
+                    canonical.fan(i as u32, incident[i], &mut fan);
+                    keys.extend(fan.iter().map(|&c| Key::Triangle(live[c as usize])));
+                }
+            }
+            let start = facet_loops.len();
+            for &key in &keys {
+                let id = match key {
+                    Key::Triangle(t) => {
+                        if triangle_id[t as usize] == u32::MAX {
+                            triangle_id[t as usize] = vertices.len() as u32;
+                            vertices.push(self.vertex[t as usize].point);
+                            vertex_kinds.push(VertexKind::Interior);
+                            feet.push(self.report_foot[t as usize].map_or(FootHint::FromSeed, FootHint::Known));
+                        }
+                        triangle_id[t as usize]
+                    }
+                    Key::Other(o) => *id_of.entry(key).or_insert_with(|| {
+                        let other = self.others[o as usize];
+                        vertices.push(other.point);
+                        vertex_kinds.push(other.kind);
+                        feet.push(other.foot.map_or(FootHint::FromSeed, FootHint::Known));
+                        (vertices.len() - 1) as u32
+                    }),
+                };
+                if facet_loops.len() == start || facet_loops[facet_loops.len() - 1] != id {
+                    facet_loops.push(id);
+                }
+            }
+            while facet_loops.len() > start + 1 && facet_loops[start] == facet_loops[facet_loops.len() - 1] {
+                facet_loops.pop();
+            }
+            facet_offsets.push(facet_loops.len() as u32);
+        }
+        let seeds: Vec<Seed> = self
+            .geometry
+            .iter()
+            .zip(&self.uv)
+            .map(|(g, &uv)| Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] })
+            .collect();
+        let stats = NeighbourStats { envelope_repairs: slope_repairs(&canonical, &self.slopes), ..self.stats };
+        let mut result = Discretisation {
+            vertices,
+            vertex_kinds,
+            facet_offsets,
+            facet_loops,
+            seeds,
+            dual_triangles: canonical.triangles,
+            quality: None,
+            facet_flags: Vec::new(),
+            diagnostics: self.diagnostics.clone(),
+            timings: Timings::default(),
+        };
+        if options.quality_report {
+            let mut diagnosed = vec![false; n];
+            for d in &result.diagnostics {
+                for p in d.points() {
+                    diagnosed[p as usize] = true;
+                }
+            }
+            let (quality, flags) = report(&ReportInput {
+                surface,
+                uv: &self.uv,
+                planes: &self.planes,
+                vertices: &result.vertices,
+                offsets: &result.facet_offsets,
+                loops: &result.facet_loops,
+                diagonal: self.diagonal,
+                diagnosed: &diagnosed,
+                neighbours: stats,
+                diagnostic_count: result.diagnostics.len(),
+                feet: &feet,
+            });
+            result.quality = Some(quality);
+            result.facet_flags = flags;
+        }
+        result
+    }
+}
+
+/// What an edit changed in the structure.
+#[derive(Default)]
+struct Changed {
+    /// Slots created (some may have been freed again by later flips).
+    created: Vec<u32>,
+    /// Points whose triangles changed.
+    points: Vec<u32>,
+}
+
+/// Whether x attains a coordinate of the box (it may bound it).
+fn on_box(x: DVec3, (lo, hi): (DVec3, DVec3)) -> bool {
+    (0..3).any(|k| x[k] <= lo[k] || x[k] >= hi[k])
+}
+
+/// Whether x lies strictly inside the box in every coordinate.
+fn strictly_inside_box(x: DVec3, bbox: (DVec3, DVec3)) -> bool {
+    !on_box(x, bbox)
+}
+
+/// Renumbers a diagnostic's points after point k was removed.
+fn renumber_diagnostic(d: &mut Diagnostic, k: u32) {
+    let shift = |p: &mut u32| {
+        if *p > k {
+            *p -= 1;
+        }
+    };
+    match d {
+        Diagnostic::IllConditionedVertex { points, .. } => points.iter_mut().for_each(shift),
+        Diagnostic::ParallelPlanes { points } | Diagnostic::BoundaryNotReached { points } => points.iter_mut().for_each(shift),
+        Diagnostic::OpenFacet { point, .. } | Diagnostic::CornerUnreachable { point, .. } | Diagnostic::FlatPoint { point, .. } => shift(point),
+        Diagnostic::CornerClaims { .. } => {}
+    }
+}
+
+/// The report's foot of a triangle vertex whose first facet is `seed` (see
+/// [`crate::quality::resolve_feet`]).
+fn report_foot(surface: &dyn Surface, vertex: &TriangleVertex, seed_uv: [f64; 2]) -> [f64; 2] {
+    let domain = surface.domain();
+    let x = vertex.point;
+    match vertex.hint() {
+        FootHint::Known(f) => f,
+        FootHint::Guess { linear, reach } => {
+            let newton = foot(surface, &domain, x, linear);
+            if accept_newton(&domain, newton, linear, reach) {
+                newton
+            } else {
+                foot(surface, &domain, x, seed_uv)
+            }
+        }
+        FootHint::FromSeed => foot(surface, &domain, x, seed_uv),
+    }
+}
+
