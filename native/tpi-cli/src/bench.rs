@@ -34,7 +34,8 @@ With --edits E it then times live editing (tpi_core::LiveSurface) on the same su
 drags of random pattern points inside [0.1, 0.9]^2, each by up to half a point spacing,
 and prints the median time of one edit (the local update of structure, facets and report
 data), the share that took the incremental path, and the median time to assemble the
-edited mesh (numbering, loops, the report's aggregates) afterwards.
+edited mesh (numbering, loops, the report's aggregates) after an edit (5 samples, timed
+apart from the edits).
 
 OPTIONS:
     --sizes LIST       pattern sizes (default 1000,10000,100000,1000000)
@@ -306,9 +307,9 @@ fn edit_timings(name: &str, pattern: &[[f64; 2]], count: usize, options: &Discre
     let n = pattern.len();
     let mut rng = SplitMix64::new(97 + n as u64);
     let mut edit_us = Vec::with_capacity(count);
-    let mut assembly_ms = Vec::with_capacity(count.min(64));
+    let mut assembly_ms = Vec::new();
     let step = 0.5 / (n as f64).sqrt();
-    for k in 0..count {
+    let mut drag = |live: &mut LiveSurface| -> Result<f64, CliError> {
         // A point inside [0.1, 0.9]^2, dragged by up to half a spacing.
         let i = loop {
             let i = rng.below(n);
@@ -321,19 +322,25 @@ fn edit_timings(name: &str, pattern: &[[f64; 2]], count: usize, options: &Discre
         let q = [p[0] + step * (rng.next_f64() - 0.5), p[1] + step * (rng.next_f64() - 0.5)];
         let start = Instant::now();
         let moved = live.move_point(i, q);
-        edit_us.push(start.elapsed().as_secs_f64() * 1e6);
+        let us = start.elapsed().as_secs_f64() * 1e6;
         moved.map_err(|e| CliError::core(name, &e))?;
-        // Assembling a large mesh after every edit would dominate the run: time a sample.
-        if k < 8 || (k % (count / 32).max(1) == 0 && assembly_ms.len() < 64) {
-            let start = Instant::now();
-            let facets = live.discretisation().facet_count();
-            assembly_ms.push(start.elapsed().as_secs_f64() * 1e3);
-            if facets != n {
-                return Err(CliError::input(name, "live editing lost a facet"));
-            }
-        }
+        Ok(us)
+    };
+    for _ in 0..count {
+        edit_us.push(drag(&mut live)?);
     }
     let stats = live.stats();
+    // Then a few edits each followed by assembling the mesh (kept apart: assembling a large
+    // mesh evicts the caches the edits live in).
+    for _ in 0..count.clamp(1, 5) {
+        drag(&mut live)?;
+        let start = Instant::now();
+        let facets = live.discretisation().facet_count();
+        assembly_ms.push(start.elapsed().as_secs_f64() * 1e3);
+        if facets != n {
+            return Err(CliError::input(name, "live editing lost a facet"));
+        }
+    }
     Ok(EditRow {
         count,
         median_edit_us: median(edit_us),

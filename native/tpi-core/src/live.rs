@@ -68,6 +68,8 @@ pub struct LiveSurface {
     points: Vec<[f64; 2]>,
     /// The assembled result, None when edits made it stale.
     mesh: Option<Discretisation>,
+    /// A stale result kept so that no edit pays for freeing it (the next assembly drops it).
+    stale: Option<Discretisation>,
     /// The incremental state, None where the incremental path does not apply.
     state: Option<State>,
     stats: LiveStats,
@@ -117,6 +119,7 @@ struct State {
     diagonal: f64,
     bbox: (DVec3, DVec3),
     grid: Grid,
+    scratch: Scratch,
 }
 
 /// Point location: a square grid over the pattern's unit square, one point per cell.
@@ -183,7 +186,7 @@ impl LiveSurface {
     /// Discretises `surface` with `pattern` (normalised, as [`crate::discretise`]) and keeps
     /// what the pipeline computed for later edits. Errors as [`crate::discretise`].
     pub fn new(surface: Box<dyn Surface>, pattern: Vec<[f64; 2]>, options: DiscretiseOptions) -> Result<Self, TpiError> {
-        let mut live = Self { surface, options, points: pattern, mesh: None, state: None, stats: LiveStats::default() };
+        let mut live = Self { surface, options, points: pattern, mesh: None, stale: None, stats: LiveStats::default(), state: None };
         live.recompute_all()?;
         Ok(live)
     }
@@ -211,6 +214,7 @@ impl LiveSurface {
     /// The discretisation of the current pattern (assembled now if edits made it stale).
     pub fn discretisation(&mut self) -> &Discretisation {
         if self.mesh.is_none() {
+            self.stale = None;
             let start = std::time::Instant::now();
             let mut mesh = match &self.state {
                 Some(state) => state.assemble(self.surface.as_ref(), &self.options),
@@ -294,7 +298,10 @@ impl LiveSurface {
     fn finish(&mut self, local: Option<Result<(), Fallback>>, undo: impl FnOnce(&mut Vec<[f64; 2]>)) -> Result<(), TpiError> {
         if let Some(Ok(())) = local {
             self.stats.incremental += 1;
-            self.mesh = None;
+            if let Some(mesh) = self.mesh.take() {
+                // Freeing a large mesh costs more than an edit: later.
+                self.stale = Some(mesh);
+            }
             return Ok(());
         }
         match self.recompute_all() {
@@ -374,6 +381,7 @@ impl State {
             diagonal: p.diagonal,
             bbox: p.bbox,
             grid: Grid::new(points),
+            scratch: Scratch::default(),
         })
     }
 
@@ -391,7 +399,7 @@ impl State {
         if on_box(self.planes[i].point, self.bbox) {
             return Err(Fallback);
         }
-        let mut changed = Changed::default();
+        let mut changed = self.changed();
         self.remove_from_structure(i as u32, &mut changed)?;
         let start = self.hole_triangle(&changed);
         self.uv[i] = uv;
@@ -403,6 +411,7 @@ impl State {
         let start = if near { start } else { self.grid.near(points[i], points).map(|q| self.holder[q as usize]).unwrap_or(start) };
         self.insert_into_structure(i as u32, start, &mut changed)?;
         self.finish_edit(surface, options, points, &changed)?;
+        self.recycle(changed);
         let old_cell = self.grid.index(old);
         if self.grid.cell[old_cell] == i as u32 {
             self.grid.cell[old_cell] = u32::MAX;
@@ -425,9 +434,10 @@ impl State {
         self.complex.push(None);
         let start = self.grid.near(points[i], points).map(|q| self.holder[q as usize]).unwrap_or(0);
         let start = self.live_slot(start);
-        let mut changed = Changed::default();
+        let mut changed = self.changed();
         self.insert_into_structure(i as u32, start, &mut changed)?;
         self.finish_edit(surface, options, points, &changed)?;
+        self.recycle(changed);
         let cell = self.grid.index(points[i]);
         self.grid.cell[cell] = i as u32;
         Ok(())
@@ -437,7 +447,7 @@ impl State {
         if points.len() < 3 || on_box(self.planes[k].point, self.bbox) {
             return Err(Fallback);
         }
-        let mut changed = Changed::default();
+        let mut changed = self.changed();
         self.remove_from_structure(k as u32, &mut changed)?;
         // The points around the hole must have had simple facets (old numbering).
         self.check_simple(&changed, Some(k as u32))?;
@@ -471,7 +481,9 @@ impl State {
                 *c -= 1;
             }
         }
-        self.finish_vertices(surface, options, points, &changed)
+        self.finish_vertices(surface, options, points, &changed)?;
+        self.recycle(changed);
+        Ok(())
     }
 
     /// Geometry of pattern point i at its (new) place, with the checks of the incremental
@@ -532,6 +544,21 @@ impl State {
         changed.created.iter().copied().find(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE).unwrap_or(0)
     }
 
+    /// An empty change record on the scratch buffers.
+    fn changed(&mut self) -> Changed {
+        let mut created = std::mem::take(&mut self.scratch.created);
+        let mut points = std::mem::take(&mut self.scratch.points);
+        created.clear();
+        points.clear();
+        Changed { created, points }
+    }
+
+    /// Gives the change record's buffers back.
+    fn recycle(&mut self, changed: Changed) {
+        self.scratch.created = changed.created;
+        self.scratch.points = changed.points;
+    }
+
     // ---- the structure ----------------------------------------------------------------
 
     fn new_slot(&mut self, vertices: [u32; 3], neighbours: [u32; 3]) -> u32 {
@@ -581,14 +608,16 @@ impl State {
         if start == NO_TRIANGLE || self.complex[v as usize].is_some() {
             return Err(Fallback);
         }
-        let mut fan = Vec::new();
+        let mut fan = std::mem::take(&mut self.scratch.fan);
         if self.tri.fan(v, start, &mut fan) != crate::triangulation::Fan::Closed {
             return Err(Fallback);
         }
         // The link: for each fan triangle (v, a, b) counter-clockwise, the edge (a, b) and the
         // triangle beyond it.
-        let mut link: Vec<u32> = Vec::with_capacity(fan.len());
-        let mut outer: Vec<u32> = Vec::with_capacity(fan.len());
+        let mut link = std::mem::take(&mut self.scratch.link);
+        let mut outer = std::mem::take(&mut self.scratch.outer);
+        link.clear();
+        outer.clear();
         for &t in &fan {
             let tv = self.tri.triangles[t as usize];
             let k = tv.iter().position(|&x| x == v).ok_or(Fallback)?;
@@ -598,6 +627,7 @@ impl State {
         for &t in &fan {
             self.free_slot(t);
         }
+        self.scratch.fan = fan;
         changed.points.extend_from_slice(&link);
         // Ears: (link[k-1], link[k], link[k+1]) convex in slope space, holding no other link
         // point, and whose vertex no other link point's tangent plane cuts off.
@@ -638,6 +668,8 @@ impl State {
             self.link(edge_out[k], poly[k], poly[(k + 1) % 3], t);
         }
         changed.created.push(t);
+        self.scratch.link = poly;
+        self.scratch.outer = edge_out;
         self.holder[v as usize] = NO_TRIANGLE;
         for &t in &changed.created {
             for &x in &self.tri.triangles[t as usize] {
@@ -645,8 +677,12 @@ impl State {
             }
         }
         // The ears are regular among the link points; make sure no edge needs a flip.
-        let created = changed.created.clone();
-        self.legalise(created.iter().flat_map(|&t| (0..3).map(move |k| (t, k))).collect(), changed)
+        let mut stack = std::mem::take(&mut self.scratch.stack);
+        stack.clear();
+        stack.extend(changed.created.iter().flat_map(|&t| (0..3).map(move |k| (t, k))));
+        self.legalise(&mut stack, changed)?;
+        self.scratch.stack = stack;
+        Ok(())
     }
 
     /// Whether x lies strictly inside triangle (a, b, c) in slope space.
@@ -693,7 +729,12 @@ impl State {
         for (x, t) in [(v, t1), (a, t2), (b, t3), (c, t1)] {
             self.holder[x as usize] = t;
         }
-        self.legalise(vec![(t1, 0), (t2, 0), (t3, 0)], changed)
+        let mut stack = std::mem::take(&mut self.scratch.stack);
+        stack.clear();
+        stack.extend_from_slice(&[(t1, 0), (t2, 0), (t3, 0)]);
+        self.legalise(&mut stack, changed)?;
+        self.scratch.stack = stack;
+        Ok(())
     }
 
     /// The live triangle whose slope-space interior holds point v's slopes, by a walk from
@@ -732,7 +773,7 @@ impl State {
     }
 
     /// Lawson's flips by the envelope test from the given (triangle, side) pairs.
-    fn legalise(&mut self, mut stack: Vec<(u32, usize)>, changed: &mut Changed) -> Result<(), Fallback> {
+    fn legalise(&mut self, stack: &mut Vec<(u32, usize)>, changed: &mut Changed) -> Result<(), Fallback> {
         let mut budget = 64 + 8 * stack.len();
         while let Some((t, k)) = stack.pop() {
             if self.tri.triangles[t as usize][0] == NO_TRIANGLE {
@@ -796,8 +837,9 @@ impl State {
     /// incremental path (exact, inside, counter-clockwise in the pattern, no weld, no
     /// duplicate point), and the changed points' fans closed.
     fn finish_vertices(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, points: &[[f64; 2]], changed: &Changed) -> Result<(), Fallback> {
-        let mut created: Vec<u32> =
-            changed.created.iter().copied().filter(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE).collect();
+        let mut created = std::mem::take(&mut self.scratch.list);
+        created.clear();
+        created.extend(changed.created.iter().copied().filter(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE));
         created.sort_unstable();
         created.dedup();
         for &t in &created {
@@ -828,8 +870,10 @@ impl State {
                 }
             }
         }
-        let mut fan = Vec::new();
-        let mut seen: Vec<u32> = changed.points.clone();
+        let mut fan = std::mem::take(&mut self.scratch.fan);
+        let mut seen = std::mem::take(&mut self.scratch.link);
+        seen.clear();
+        seen.extend_from_slice(&changed.points);
         seen.sort_unstable();
         seen.dedup();
         for &p in &seen {
@@ -854,6 +898,9 @@ impl State {
                 self.report_foot[t as usize] = Some(report_foot(surface, &self.vertex[t as usize], self.uv[first as usize]));
             }
         }
+        self.scratch.fan = fan;
+        self.scratch.link = seen;
+        self.scratch.list = created;
         Ok(())
     }
 
@@ -984,6 +1031,18 @@ impl State {
         }
         result
     }
+}
+
+/// Buffers reused from edit to edit (no heap allocation on the incremental path).
+#[derive(Default)]
+struct Scratch {
+    created: Vec<u32>,
+    points: Vec<u32>,
+    fan: Vec<u32>,
+    link: Vec<u32>,
+    outer: Vec<u32>,
+    stack: Vec<(u32, usize)>,
+    list: Vec<u32>,
 }
 
 /// What an edit changed in the structure.
