@@ -555,6 +555,11 @@ impl TriangleVertex {
 /// boundary clipping, so they may lie far away.
 fn triangle_vertex(ctx: &Context<'_>, mut ids: [u32; 3], far_factor: f64) -> TriangleVertex {
     ids.sort_unstable();
+    triangle_vertex_ordered(ctx, ids, far_factor)
+}
+
+/// [`triangle_vertex`] of the points `ids` taken in the given (canonical) order.
+fn triangle_vertex_ordered(ctx: &Context<'_>, ids: [u32; 3], far_factor: f64) -> TriangleVertex {
     let [a, b, c] = ids.map(|i| &ctx.planes[i as usize]);
     let meeting = intersect_three(a, b, c);
     let centroid = (a.point + b.point + c.point) / 3.0;
@@ -588,7 +593,8 @@ fn triangle_vertex(ctx: &Context<'_>, mut ids: [u32; 3], far_factor: f64) -> Tri
     TriangleVertex { point, foot, inside, reach, exact: false, measured: true, newton_foot }
 }
 
-/// The vertex of one triangle, as [`build_facets`] computes it (for live editing).
+/// The vertex of one triangle, as [`build_facets`] computes it (for live editing), with the
+/// points in `ids` already in the order of their pattern indices.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn single_triangle_vertex(
     surface: &dyn Surface,
@@ -600,7 +606,7 @@ pub(crate) fn single_triangle_vertex(
     far_factor: f64,
 ) -> TriangleVertex {
     let ctx = Context { surface, domain: surface.domain(), planes, uv, tangents, convex_side };
-    triangle_vertex(&ctx, ids, far_factor)
+    triangle_vertex_ordered(&ctx, ids, far_factor)
 }
 
 /// The diagnostic of a triangle whose vertex is a stand-in.

@@ -44,7 +44,7 @@ use crate::diffgeo::LocalGeometry;
 use crate::discretise::{curvature_class, run, Discretisation, DiscretiseOptions, PipelineState, Seed, Timings};
 use crate::error::TpiError;
 use crate::facets::{accept_newton, single_triangle_vertex, FootHint, TriangleVertex, VertexKind};
-use crate::neighbours::{envelope_quad_illegal, slope_repairs, NeighbourStats, SlopeFrame};
+use crate::neighbours::{envelope_quad_illegal_by, slope_repairs, NeighbourStats, SlopeFrame};
 use crate::planes::Plane;
 use crate::projection::foot;
 use crate::quality::{report, ReportInput};
@@ -93,6 +93,11 @@ enum Key {
 
 /// The incremental state (see the module doc).
 struct State {
+    /// Internal number -> pattern index, and back.
+    perm: Vec<u32>,
+    rank: Vec<u32>,
+    /// Pattern coordinates (internal numbering).
+    st: Vec<[f64; 2]>,
     uv: Vec<[f64; 2]>,
     geometry: Vec<LocalGeometry>,
     tangents: Vec<[DVec3; 2]>,
@@ -250,7 +255,7 @@ impl LiveSurface {
         }
         let old = self.points[index];
         self.points[index] = st;
-        let local = self.state.as_mut().map(|s| s.move_point(self.surface.as_ref(), &self.options, &self.points, index, old));
+        let local = self.state.as_mut().map(|s| s.move_point(self.surface.as_ref(), &self.options, index, st));
         self.finish(local, |points| points[index] = old)
     }
 
@@ -259,7 +264,7 @@ impl LiveSurface {
     pub fn add_point(&mut self, st: [f64; 2]) -> Result<usize, TpiError> {
         self.points.push(st);
         let index = self.points.len() - 1;
-        let local = self.state.as_mut().map(|s| s.add_point(self.surface.as_ref(), &self.options, &self.points));
+        let local = self.state.as_mut().map(|s| s.add_point(self.surface.as_ref(), &self.options, st));
         self.finish(local, |points| {
             points.pop();
         })?;
@@ -277,7 +282,7 @@ impl LiveSurface {
             });
         }
         let old = self.points.remove(index);
-        let local = self.state.as_mut().map(|s| s.remove_point(self.surface.as_ref(), &self.options, &self.points, index));
+        let local = self.state.as_mut().map(|s| s.remove_point(self.surface.as_ref(), &self.options, index));
         self.finish(local, |points| points.insert(index, old))
     }
 
@@ -327,49 +332,90 @@ impl LiveSurface {
 
 impl State {
     /// The incremental state of a full run, or None where the incremental path does not apply.
+    ///
+    /// Inside the state the points are numbered along a Hilbert curve over the pattern square
+    /// (and the triangles by their first point), so that the points and triangles an edit
+    /// touches lie close together in memory whatever the pattern's own order; `perm` and
+    /// `rank` translate. Every computation whose rounding depends on the order of its points
+    /// takes them in pattern order, as the full run does.
     fn from_pipeline(p: PipelineState, result: &Discretisation, points: &[[f64; 2]]) -> Option<Self> {
         let (frame, slopes) = p.slopes?;
         if p.welded || p.neighbours.envelope_unresolved > 0 || p.triangulation.is_empty() {
             return None;
         }
-        let tri = p.triangulation;
-        let t0 = tri.triangles[0].map(|v| slopes[v as usize]);
+        let n = points.len();
+        // perm: internal -> pattern index; rank: pattern index -> internal.
+        let mut perm: Vec<u32> = (0..n as u32).collect();
+        perm.sort_by_key(|&i| hilbert(points[i as usize]));
+        let mut rank = vec![0u32; n];
+        for (internal, &i) in perm.iter().enumerate() {
+            rank[i as usize] = internal as u32;
+        }
+        let by_rank = |v: &[u32; 3]| v.map(|x| rank[x as usize]);
+        // Triangles in the order of their smallest internal point.
+        let old = p.triangulation;
+        let mut order: Vec<u32> = (0..old.len() as u32).collect();
+        order.sort_by_key(|&t| by_rank(&old.triangles[t as usize]).into_iter().min().unwrap_or(0));
+        let mut slot_of = vec![0u32; old.len()];
+        for (slot, &t) in order.iter().enumerate() {
+            slot_of[t as usize] = slot as u32;
+        }
+        let tri = DualTriangulation {
+            triangles: order.iter().map(|&t| by_rank(&old.triangles[t as usize])).collect(),
+            neighbours: order
+                .iter()
+                .map(|&t| old.neighbours[t as usize].map(|x| if x == NO_TRIANGLE { x } else { slot_of[x as usize] }))
+                .collect(),
+        };
+        let t0 = tri.triangles[0].map(|v| slopes[perm[v as usize] as usize]);
         let slope_sign = orient(t0[0], t0[1], t0[2]).signum();
         if slope_sign == 0.0 {
             return None;
         }
+        let vertex: Vec<TriangleVertex> = order.iter().map(|&t| p.triangle_vertices[t as usize]).collect();
         let mut report_foot = vec![None; tri.len()];
         let mut others = Vec::new();
         let mut key_of = Vec::with_capacity(result.vertices.len());
         for (v, &source) in p.vertex_source.iter().enumerate() {
             let foot = p.feet.get(v).copied().flatten();
             if source != u32::MAX {
-                report_foot[source as usize] = foot;
-                key_of.push(Key::Triangle(source));
+                let slot = slot_of[source as usize];
+                report_foot[slot as usize] = foot;
+                key_of.push(Key::Triangle(slot));
             } else {
                 key_of.push(Key::Other(others.len() as u32));
                 others.push(Other { point: result.vertices[v], kind: result.vertex_kinds[v], foot });
             }
         }
-        let complex = (0..result.facet_count())
-            .map(|i| (!p.facet_simple[i]).then(|| result.facet(i).iter().map(|&v| key_of[v as usize]).collect()))
+        let complex = perm
+            .iter()
+            .map(|&i| {
+                let i = i as usize;
+                (!p.facet_simple[i]).then(|| result.facet(i).iter().map(|&v| key_of[v as usize]).collect())
+            })
             .collect();
-        let mut holder = vec![NO_TRIANGLE; points.len()];
+        let mut holder = vec![NO_TRIANGLE; n];
         for (t, tv) in tri.triangles.iter().enumerate() {
             for &v in tv {
                 holder[v as usize] = t as u32;
             }
         }
+        let pick = |i: &u32| *i as usize;
+        let st: Vec<[f64; 2]> = perm.iter().map(|i| points[pick(i)]).collect();
         Some(Self {
-            uv: p.uv,
-            geometry: p.geometry,
-            tangents: p.tangents,
-            planes: p.planes,
-            convex_side: p.convex_side,
-            slopes,
+            uv: perm.iter().map(|i| p.uv[pick(i)]).collect(),
+            geometry: perm.iter().map(|i| p.geometry[pick(i)]).collect(),
+            tangents: perm.iter().map(|i| p.tangents[pick(i)]).collect(),
+            planes: perm.iter().map(|i| p.planes[pick(i)]).collect(),
+            convex_side: perm.iter().map(|i| p.convex_side[pick(i)]).collect(),
+            slopes: perm.iter().map(|i| slopes[pick(i)]).collect(),
+            grid: Grid::new(&st),
+            st,
+            perm,
+            rank,
             frame,
             slope_sign,
-            vertex: p.triangle_vertices,
+            vertex,
             report_foot,
             tri,
             free: Vec::new(),
@@ -380,50 +426,48 @@ impl State {
             stats: p.neighbours,
             diagonal: p.diagonal,
             bbox: p.bbox,
-            grid: Grid::new(points),
             scratch: Scratch::default(),
         })
     }
 
-    // ---- edits -------------------------------------------------------------------------
+    // ---- edits (pattern indices in, internal numbers inside) ---------------------------
 
-    fn move_point(
-        &mut self,
-        surface: &dyn Surface,
-        options: &DiscretiseOptions,
-        points: &[[f64; 2]],
-        i: usize,
-        old: [f64; 2],
-    ) -> Result<(), Fallback> {
-        let (geometry, tangents, plane, slopes, uv) = self.sample(surface, options, points, i)?;
+    fn move_point(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, index: usize, to: [f64; 2]) -> Result<(), Fallback> {
+        let i = self.rank[index] as usize;
+        let (geometry, tangents, plane, slopes, uv) = self.sample(surface, options, to, i)?;
         if on_box(self.planes[i].point, self.bbox) {
             return Err(Fallback);
         }
+        let old = self.st[i];
         let mut changed = self.changed();
         self.remove_from_structure(i as u32, &mut changed)?;
         let start = self.hole_triangle(&changed);
+        self.st[i] = to;
         self.uv[i] = uv;
         self.geometry[i] = geometry;
         self.tangents[i] = tangents;
         self.planes[i] = plane;
         self.slopes[i] = slopes;
-        let near = (points[i][0] - old[0]).abs().max((points[i][1] - old[1]).abs()) * self.grid.size as f64 <= 2.0;
-        let start = if near { start } else { self.grid.near(points[i], points).map(|q| self.holder[q as usize]).unwrap_or(start) };
+        let near = (to[0] - old[0]).abs().max((to[1] - old[1]).abs()) * self.grid.size as f64 <= 2.0;
+        let start = if near { start } else { self.grid.near(to, &self.st).map(|q| self.holder[q as usize]).unwrap_or(start) };
         self.insert_into_structure(i as u32, start, &mut changed)?;
-        self.finish_edit(surface, options, points, &changed)?;
+        self.finish_edit(surface, options, &changed)?;
         self.recycle(changed);
         let old_cell = self.grid.index(old);
         if self.grid.cell[old_cell] == i as u32 {
             self.grid.cell[old_cell] = u32::MAX;
         }
-        let new_cell = self.grid.index(points[i]);
+        let new_cell = self.grid.index(to);
         self.grid.cell[new_cell] = i as u32;
         Ok(())
     }
 
-    fn add_point(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, points: &[[f64; 2]]) -> Result<(), Fallback> {
-        let i = points.len() - 1;
-        let (geometry, tangents, plane, slopes, uv) = self.sample(surface, options, points, i)?;
+    fn add_point(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, to: [f64; 2]) -> Result<(), Fallback> {
+        let i = self.st.len();
+        let (geometry, tangents, plane, slopes, uv) = self.sample(surface, options, to, usize::MAX)?;
+        self.perm.push(self.rank.len() as u32);
+        self.rank.push(i as u32);
+        self.st.push(to);
         self.uv.push(uv);
         self.geometry.push(geometry);
         self.tangents.push(tangents);
@@ -432,26 +476,28 @@ impl State {
         self.convex_side.push(self.convex_side[0]);
         self.holder.push(NO_TRIANGLE);
         self.complex.push(None);
-        let start = self.grid.near(points[i], points).map(|q| self.holder[q as usize]).unwrap_or(0);
+        let start = self.grid.near(to, &self.st).map(|q| self.holder[q as usize]).unwrap_or(0);
         let start = self.live_slot(start);
         let mut changed = self.changed();
         self.insert_into_structure(i as u32, start, &mut changed)?;
-        self.finish_edit(surface, options, points, &changed)?;
+        self.finish_edit(surface, options, &changed)?;
         self.recycle(changed);
-        let cell = self.grid.index(points[i]);
+        let cell = self.grid.index(to);
         self.grid.cell[cell] = i as u32;
         Ok(())
     }
 
-    fn remove_point(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, points: &[[f64; 2]], k: usize) -> Result<(), Fallback> {
-        if points.len() < 3 || on_box(self.planes[k].point, self.bbox) {
+    fn remove_point(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, index: usize) -> Result<(), Fallback> {
+        let k = self.rank[index] as usize;
+        if self.st.len() <= 3 || on_box(self.planes[k].point, self.bbox) {
             return Err(Fallback);
         }
         let mut changed = self.changed();
         self.remove_from_structure(k as u32, &mut changed)?;
         // The points around the hole must have had simple facets (old numbering).
         self.check_simple(&changed, Some(k as u32))?;
-        // Renumber: every point after k moves down by one (facets, diagnostics, the grid).
+        // Renumber: every internal number after k moves down by one, and every pattern index
+        // after `index` (facets, diagnostics, the grid, the translations).
         let kk = k as u32;
         let shift = |v: &mut u32| {
             if *v != NO_TRIANGLE && *v > kk {
@@ -463,6 +509,7 @@ impl State {
         }
         changed.points.retain(|&p| p != kk);
         changed.points.iter_mut().for_each(shift);
+        self.st.remove(k);
         self.uv.remove(k);
         self.geometry.remove(k);
         self.tangents.remove(k);
@@ -471,8 +518,17 @@ impl State {
         self.convex_side.remove(k);
         self.holder.remove(k);
         self.complex.remove(k);
+        let removed = index as u32;
+        self.perm.remove(k);
+        for i in self.perm.iter_mut() {
+            if *i > removed {
+                *i -= 1;
+            }
+        }
+        self.rank.remove(index);
+        self.rank.iter_mut().for_each(shift);
         for d in &mut self.diagnostics {
-            renumber_diagnostic(d, kk);
+            renumber_diagnostic(d, removed);
         }
         for c in self.grid.cell.iter_mut() {
             if *c == kk {
@@ -481,29 +537,28 @@ impl State {
                 *c -= 1;
             }
         }
-        self.finish_vertices(surface, options, points, &changed)?;
+        self.finish_vertices(surface, options, &changed)?;
         self.recycle(changed);
         Ok(())
     }
 
-    /// Geometry of pattern point i at its (new) place, with the checks of the incremental
-    /// path: finite, strictly convex on the surface's side, slopes defined, strictly inside
-    /// the bounding box, no duplicate.
+    /// Geometry of a point at `st` (to be internal point `exclude`, or a new one), with the
+    /// checks of the incremental path: finite, strictly convex on the surface's side, slopes
+    /// defined, strictly inside the bounding box, no duplicate in its grid cell.
     #[allow(clippy::type_complexity)]
     fn sample(
         &self,
         surface: &dyn Surface,
         options: &DiscretiseOptions,
-        points: &[[f64; 2]],
-        i: usize,
+        st: [f64; 2],
+        exclude: usize,
     ) -> Result<(LocalGeometry, [DVec3; 2], Plane, [f64; 2], [f64; 2]), Fallback> {
-        let st = points[i];
         if !(st[0].is_finite() && st[1].is_finite() && (0.0..=1.0).contains(&st[0]) && (0.0..=1.0).contains(&st[1])) {
             return Err(Fallback);
         }
         // Duplicates: any point closer than the tolerance sends the edit to the full
         // pipeline, which reports it exactly as a fresh run would.
-        if self.has_duplicate(points, i) {
+        if self.has_duplicate(st, exclude) {
             return Err(Fallback);
         }
         let uv = surface.domain().from_normalised(st);
@@ -524,13 +579,18 @@ impl State {
         Ok((geometry, [d.su, d.sv], plane, slopes, uv))
     }
 
-    /// Whether the grid's point in the cell of point i is a duplicate of it. A duplicate
-    /// elsewhere would be a neighbour of i in the updated structure, which
-    /// `finish_vertices` checks.
-    fn has_duplicate(&self, points: &[[f64; 2]], i: usize) -> bool {
-        let p = points[i];
+    /// Whether the grid's point in the cell of `p` (other than `exclude`) is a duplicate of
+    /// it. A duplicate elsewhere would be a neighbour of the point in the updated structure,
+    /// which `finish_vertices` checks.
+    fn has_duplicate(&self, p: [f64; 2], exclude: usize) -> bool {
         let q = self.grid.cell[self.grid.index(p)] as usize;
-        q != i && q < points.len() && (points[q][0] - p[0]).hypot(points[q][1] - p[1]) < DUPLICATE_UV_TOLERANCE
+        q != exclude && q < self.st.len() && (self.st[q][0] - p[0]).hypot(self.st[q][1] - p[1]) < DUPLICATE_UV_TOLERANCE
+    }
+
+    /// The internal points sorted by pattern index (the order of the full run's sums).
+    fn in_pattern_order(&self, mut ids: [u32; 3]) -> [u32; 3] {
+        ids.sort_unstable_by_key(|&v| self.perm[v as usize]);
+        ids
     }
 
     fn live_slot(&self, t: u32) -> u32 {
@@ -692,8 +752,7 @@ impl State {
 
     /// Whether no other polygon point's tangent plane cuts off the vertex of (a, b, c).
     fn regular_ear(&self, a: u32, b: u32, c: u32, poly: &[u32]) -> bool {
-        let mut ids = [a, b, c];
-        ids.sort_unstable();
+        let ids = self.in_pattern_order([a, b, c]);
         let planes = &self.planes;
         let p = ids.map(|i| &planes[i as usize]);
         let vertex = crate::planes::intersect_three(p[0], p[1], p[2]).point;
@@ -787,7 +846,8 @@ impl State {
             let [c, a, b] = [tv[k], tv[(k + 1) % 3], tv[(k + 2) % 3]];
             let k2 = self.tri.neighbours[other as usize].iter().position(|&x| x == t).ok_or(Fallback)?;
             let d = self.tri.triangles[other as usize][k2];
-            if !envelope_quad_illegal(&self.planes, &self.convex_side, [c, a, b, d]) {
+            let perm = &self.perm;
+            if !envelope_quad_illegal_by(&self.planes, &self.convex_side, [c, a, b, d], |v| perm[v as usize]) {
                 continue;
             }
             if self.orientation(c, a, d) <= 0.0 || self.orientation(d, b, c) <= 0.0 || budget == 0 {
@@ -815,9 +875,9 @@ impl State {
 
     /// After a move or an add: every changed point's facet was simple; the new triangles'
     /// vertices are computed and checked, and the changed points' facets are simple again.
-    fn finish_edit(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, points: &[[f64; 2]], changed: &Changed) -> Result<(), Fallback> {
+    fn finish_edit(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, changed: &Changed) -> Result<(), Fallback> {
         self.check_simple(changed, None)?;
-        self.finish_vertices(surface, options, points, changed)
+        self.finish_vertices(surface, options, changed)
     }
 
     /// The points whose triangles changed must have had simple facets.
@@ -836,7 +896,8 @@ impl State {
     /// Vertices and report feet of the live created triangles, with the checks of the
     /// incremental path (exact, inside, counter-clockwise in the pattern, no weld, no
     /// duplicate point), and the changed points' fans closed.
-    fn finish_vertices(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, points: &[[f64; 2]], changed: &Changed) -> Result<(), Fallback> {
+    fn finish_vertices(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, changed: &Changed) -> Result<(), Fallback> {
+        let points = &self.st;
         let mut created = std::mem::take(&mut self.scratch.list);
         created.clear();
         created.extend(changed.created.iter().copied().filter(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE));
@@ -848,6 +909,7 @@ impl State {
             if orient(a, b, c) <= 0.0 {
                 return Err(Fallback);
             }
+            let ids = self.in_pattern_order(ids);
             let vertex = single_triangle_vertex(
                 surface,
                 &self.uv,
@@ -893,8 +955,8 @@ impl State {
         }
         if options.quality_report {
             for &t in &created {
-                let ids = self.tri.triangles[t as usize];
-                let first = ids.iter().copied().min().unwrap_or(0);
+                // The first facet holding the vertex: its point of smallest pattern index.
+                let first = self.in_pattern_order(self.tri.triangles[t as usize])[0];
                 self.report_foot[t as usize] = Some(report_foot(surface, &self.vertex[t as usize], self.uv[first as usize]));
             }
         }
@@ -911,8 +973,10 @@ impl State {
         let n = self.uv.len();
         // Canonical triangles (see DualTriangulation::canonicalise), slot -> index.
         let mut live: Vec<u32> = (0..self.tri.len() as u32).filter(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE).collect();
+        // In pattern indices.
+        let external = |t: u32| self.tri.triangles[t as usize].map(|v| self.perm[v as usize]);
         let rotated = |t: u32| {
-            let tv = self.tri.triangles[t as usize];
+            let tv = external(t);
             let k = (0..3).min_by_key(|&k| tv[k]).unwrap_or(0);
             [tv[k], tv[(k + 1) % 3], tv[(k + 2) % 3]]
         };
@@ -928,7 +992,7 @@ impl State {
         let neighbours: Vec<[u32; 3]> = live
             .iter()
             .map(|&t| {
-                let tv = self.tri.triangles[t as usize];
+                let tv = external(t);
                 let k = (0..3).min_by_key(|&k| tv[k]).unwrap_or(0);
                 let nb = self.tri.neighbours[t as usize];
                 [nb[k], nb[(k + 1) % 3], nb[(k + 2) % 3]].map(|x| if x == NO_TRIANGLE { x } else { index_of[x as usize] })
@@ -951,7 +1015,7 @@ impl State {
         let mut keys: Vec<Key> = Vec::new();
         for i in 0..n {
             keys.clear();
-            match &self.complex[i] {
+            match &self.complex[self.rank[i] as usize] {
                 Some(list) => keys.extend_from_slice(list),
                 None => {
                     canonical.fan(i as u32, incident[i], &mut fan);
@@ -987,13 +1051,18 @@ impl State {
             }
             facet_offsets.push(facet_loops.len() as u32);
         }
-        let seeds: Vec<Seed> = self
-            .geometry
-            .iter()
-            .zip(&self.uv)
-            .map(|(g, &uv)| Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] })
+        // Per-point data in pattern order.
+        let internal = |i: usize| self.rank[i] as usize;
+        let seeds: Vec<Seed> = (0..n)
+            .map(|i| {
+                let (g, uv) = (&self.geometry[internal(i)], self.uv[internal(i)]);
+                Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] }
+            })
             .collect();
-        let stats = NeighbourStats { envelope_repairs: slope_repairs(&canonical, &self.slopes), ..self.stats };
+        let uv: Vec<[f64; 2]> = (0..n).map(|i| self.uv[internal(i)]).collect();
+        let planes: Vec<Plane> = (0..n).map(|i| self.planes[internal(i)]).collect();
+        let slopes: Vec<[f64; 2]> = (0..n).map(|i| self.slopes[internal(i)]).collect();
+        let stats = NeighbourStats { envelope_repairs: slope_repairs(&canonical, &slopes), ..self.stats };
         let mut result = Discretisation {
             vertices,
             vertex_kinds,
@@ -1015,8 +1084,8 @@ impl State {
             }
             let (quality, flags) = report(&ReportInput {
                 surface,
-                uv: &self.uv,
-                planes: &self.planes,
+                uv: &uv,
+                planes: &planes,
                 vertices: &result.vertices,
                 offsets: &result.facet_offsets,
                 loops: &result.facet_loops,
@@ -1052,6 +1121,29 @@ struct Changed {
     created: Vec<u32>,
     /// Points whose triangles changed.
     points: Vec<u32>,
+}
+
+/// Position of a pattern point along a Hilbert curve over the unit square (2^16 cells a side).
+fn hilbert(p: [f64; 2]) -> u64 {
+    const N: u32 = 1 << 16;
+    let cell = |t: f64| ((t.clamp(0.0, 1.0) * f64::from(N)) as u32).min(N - 1);
+    let (mut x, mut y) = (cell(p[0]), cell(p[1]));
+    let mut d = 0u64;
+    let mut s = N / 2;
+    while s > 0 {
+        let rx = u32::from(x & s > 0);
+        let ry = u32::from(y & s > 0);
+        d += u64::from(s) * u64::from(s) * u64::from((3 * rx) ^ ry);
+        if ry == 0 {
+            if rx == 1 {
+                x = N - 1 - x;
+                y = N - 1 - y;
+            }
+            std::mem::swap(&mut x, &mut y);
+        }
+        s /= 2;
+    }
+    d
 }
 
 /// Whether x attains a coordinate of the box (it may bound it).

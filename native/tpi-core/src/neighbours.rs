@@ -566,7 +566,18 @@ fn envelope_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: usiz
 
 /// The envelope test on the quad (c, a, b, d) around the edge (a, b): true where T_d cuts
 /// off the vertex T_a ∩ T_b ∩ T_c and T_c the vertex T_a ∩ T_b ∩ T_d (beyond the tolerance).
-pub(crate) fn envelope_quad_illegal(planes: &[Plane], convex_side: &[i8], [c, a, b, d]: [u32; 4]) -> bool {
+pub(crate) fn envelope_quad_illegal(planes: &[Plane], convex_side: &[i8], quad: [u32; 4]) -> bool {
+    envelope_quad_illegal_by(planes, convex_side, quad, |i| i)
+}
+
+/// [`envelope_quad_illegal`] with the three planes of each vertex taken in the order of
+/// `key` (the pattern indices, where the points are numbered otherwise).
+pub(crate) fn envelope_quad_illegal_by(
+    planes: &[Plane],
+    convex_side: &[i8],
+    [c, a, b, d]: [u32; 4],
+    key: impl Fn(u32) -> u32,
+) -> bool {
     let side = convex_side[c as usize];
     if side == 0 || [a, b, d].iter().any(|&i| convex_side[i as usize] != side) {
         return false;
@@ -577,8 +588,9 @@ pub(crate) fn envelope_quad_illegal(planes: &[Plane], convex_side: &[i8], [c, a,
         .fold(0.0, f64::max);
     let tolerance = ENVELOPE_FLIP_TOLERANCE * size;
     let s = f64::from(side);
-    let outside = |x: [u32; 3], other: u32| {
-        let vertex = three_plane_vertex(planes, x);
+    let outside = |mut x: [u32; 3], other: u32| {
+        x.sort_unstable_by_key(|&i| key(i));
+        let vertex = intersect_three(&planes[x[0] as usize], &planes[x[1] as usize], &planes[x[2] as usize]).point;
         let distance = s * planes[other as usize].signed_distance(vertex);
         vertex.is_finite() && distance < -tolerance
     };
