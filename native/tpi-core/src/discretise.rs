@@ -201,9 +201,89 @@ impl Serialize for ContractView<'_> {
 /// Checks normalised pattern points: finite, inside [0, 1]^2, no duplicates
 /// ([`crate::pattern::validate_uv`]), and at least three of them.
 pub fn validate_pattern(points: &[[f64; 2]]) -> Result<(), TpiError> {
-    validate_uv(points)?;
+    if points.len() < 4096 {
+        validate_uv(points)?;
+    } else {
+        validate_large(points)?;
+    }
     if points.len() < 3 {
         return Err(TpiError::TooFewPatternPoints { found: points.len(), needed: 3 });
+    }
+    Ok(())
+}
+
+/// [`validate_uv`] for large patterns, with the same errors: the range check, then for
+/// every point in parallel its nearest earlier point closer than the duplicate tolerance
+/// (ties: the smaller index; the same distance formula), found in a grid of about one point
+/// per cell (a duplicate lies in the point's cell or a neighbour, the cells being larger than
+/// the tolerance), and the first point that has one.
+fn validate_large(points: &[[f64; 2]]) -> Result<(), TpiError> {
+    use crate::tolerance::DUPLICATE_UV_TOLERANCE;
+    for (index, &[s, t]) in points.iter().enumerate() {
+        if !((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t)) {
+            return Err(TpiError::PatternPointOutOfRange { index, s, t });
+        }
+    }
+    let n = points.len();
+    let size = ((n as f64).sqrt() as usize).clamp(1, (1.0 / DUPLICATE_UV_TOLERANCE) as usize / 4);
+    let cell_of = |x: f64| ((x * size as f64) as usize).min(size - 1);
+    let index = |p: [f64; 2]| cell_of(p[1]) * size + cell_of(p[0]);
+    let mut start = vec![0u32; size * size + 1];
+    for &p in points {
+        start[index(p) + 1] += 1;
+    }
+    for c in 0..size * size {
+        start[c + 1] += start[c];
+    }
+    // The points sorted by cell, with their coordinates (scanned in memory order below).
+    let mut fill = start.clone();
+    let mut members = vec![([0.0f64; 2], 0u32); n];
+    for (i, &p) in points.iter().enumerate() {
+        let c = index(p);
+        members[fill[c] as usize] = (p, i as u32);
+        fill[c] += 1;
+    }
+    drop(fill);
+    // For the points of cell row y, the earlier points closer than the tolerance in the rows
+    // y - 1 ..= y + 1: the smallest later index that has one.
+    let first = (0..size)
+        .into_par_iter()
+        .filter_map(|y| {
+            let mut first: Option<usize> = None;
+            for x in 0..size {
+                let c = y * size + x;
+                for &(p, i) in &members[start[c] as usize..start[c + 1] as usize] {
+                    let i = i as usize;
+                    if first.is_some_and(|f| f <= i) {
+                        continue;
+                    }
+                    let lo_x = x.saturating_sub(1);
+                    let hi_x = (x + 1).min(size - 1);
+                    let has = (y.saturating_sub(1)..=(y + 1).min(size - 1)).any(|row| {
+                        let run = &members[start[row * size + lo_x] as usize..start[row * size + hi_x + 1] as usize];
+                        run.iter().any(|&(q, k)| (k as usize) < i && (p[0] - q[0]).hypot(p[1] - q[1]) < DUPLICATE_UV_TOLERANCE)
+                    });
+                    if has {
+                        first = Some(i);
+                    }
+                }
+            }
+            first
+        })
+        .min();
+    if let Some(i) = first {
+        // Its nearest earlier point (ties: the smaller index).
+        let p = points[i];
+        let mut best: Option<(usize, f64)> = None;
+        for (k, q) in points[..i].iter().enumerate() {
+            let d = (p[0] - q[0]).hypot(p[1] - q[1]);
+            if d < DUPLICATE_UV_TOLERANCE && best.map_or(true, |(bk, bd)| d < bd || (d == bd && k < bk)) {
+                best = Some((k, d));
+            }
+        }
+        if let Some((duplicate_of, distance)) = best {
+            return Err(TpiError::DuplicatePatternPoint { index: i, duplicate_of, distance });
+        }
     }
     Ok(())
 }
@@ -220,7 +300,7 @@ pub fn discretise(
 /// What the pipeline computed on the way, kept for live editing ([`crate::live`]).
 pub(crate) struct PipelineState {
     pub(crate) uv: Vec<[f64; 2]>,
-    pub(crate) geometry: Vec<LocalGeometry>,
+    pub(crate) seeds: Vec<Seed>,
     pub(crate) tangents: Vec<[DVec3; 2]>,
     pub(crate) planes: Vec<Plane>,
     pub(crate) convex_side: Vec<i8>,
@@ -268,14 +348,21 @@ pub(crate) fn run(
     let mut diagnostics = Vec::new();
     let convex_side = classify_curvature(&geometry, diagonal, options, &mut diagnostics)?;
     let plane_uv = scaled_parameters(pattern, &geometry, &domain);
+    let seeds: Vec<Seed> = geometry
+        .par_iter()
+        .zip(&uv)
+        .map(|(g, &uv)| Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] })
+        .collect();
+    let frame = if options.envelope_repair && convex_side.iter().all(|&s| s != 0) { slope_frame(surface) } else { None };
+    let slopes = gradient_embedding(&planes, &convex_side, frame);
+    // Only curvature compensation (the mixed path) reads the local geometry from here on.
+    let geometry = if slopes.is_some() { Vec::new() } else { geometry };
     timings.samples = ms(start);
 
     // Candidates and true neighbours.
     let stage = Instant::now();
     check_not_collinear(&plane_uv)?;
     let input = NeighbourInput { plane_uv: &plane_uv, geometry: &geometry, planes: &planes, convex_side: &convex_side };
-    let frame = if options.envelope_repair && convex_side.iter().all(|&s| s != 0) { slope_frame(surface) } else { None };
-    let slopes = gradient_embedding(&planes, &convex_side, frame);
     let (triangulation, neighbours) = match &slopes {
         // Convex everywhere: the envelope's own structure, computed in slope space.
         Some(slopes) => {
@@ -310,14 +397,18 @@ pub(crate) fn run(
     timings.facets = ms(stage) - mesh.assembly_ms;
     timings.mesh = mesh.assembly_ms;
 
-    let seeds: Vec<Seed> = geometry
-        .iter()
-        .zip(&uv)
-        .map(|(g, &uv)| Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] })
-        .collect();
-    let FacetMesh { vertices, vertex_kinds, offsets, loops, feet, triangle_vertices, vertex_source, facet_simple, welded, .. } = mesh;
+    let FacetMesh { vertices, vertex_kinds, offsets, loops, feet, mut triangle_vertices, mut vertex_source, mut facet_simple, welded, .. } = mesh;
+    // What only live editing reads is let go now (the report's peak is the pipeline's).
+    if !keep {
+        triangle_vertices = Vec::new();
+        vertex_source = Vec::new();
+        facet_simple = Vec::new();
+    }
     let kept_triangulation = keep.then(|| triangulation.clone());
     let dual_triangles = triangulation.triangles;
+    drop(triangulation.neighbours);
+    let (plane_uv, slopes) = if keep { (plane_uv, slopes) } else { (Vec::new(), None) };
+    let _ = plane_uv;
     let mut result = Discretisation {
         vertices,
         vertex_kinds,
@@ -363,11 +454,11 @@ pub(crate) fn run(
     }
     result.timings.total = ms(start);
     let state = keep.then(|| {
-        let (lo, hi) = bounding_box(geometry.iter().map(|g| g.point));
+        let (lo, hi) = bounding_box(planes.iter().map(|p| p.point));
         let side = convex_side.first().copied().unwrap_or(0);
         PipelineState {
             uv,
-            geometry,
+            seeds: result.seeds.clone(),
             tangents,
             planes,
             convex_side,

@@ -333,6 +333,7 @@ pub fn build_facets(
     mesh.vertex_kinds.reserve(vertex_estimate);
     mesh.feet.reserve(vertex_estimate);
     mesh.loops.reserve(chunks.iter().map(|c| c.items.len()).sum());
+    debug_assert!(tri.len() < ITEM_INDEX as usize);
     mesh.offsets.push(0);
     let mut triangle_id = vec![u32::MAX; tri.len()];
     let mut crossing_id = vec![u32::MAX; crossings.len()];
@@ -348,10 +349,10 @@ pub fn build_facets(
             while let Some((_, d)) = walk_diagnostics.next_if(|(f, _)| *f as usize == i) {
                 diagnostics.push(d);
             }
-            let items = &chunk.items[start_item..end_item as usize];
+            let items = (start_item..end_item as usize).map(|k| chunk.items.get(k));
             start_item = end_item as usize;
             let start = mesh.loops.len();
-            for &item in items {
+            for item in items {
                 let id = match item {
                     Item::Triangle(t) => {
                         let r = if representative.is_empty() { t as usize } else { find(&mut representative, t) as usize };
@@ -429,12 +430,59 @@ const FACET_CHUNK: usize = 512;
 /// The items of a run of consecutive facets: `ends[k]` closes facet k's items.
 #[derive(Default)]
 struct FacetChunk {
-    items: Vec<Item>,
+    /// Packed items (see [`PackedItems`]).
+    items: PackedItems,
     ends: Vec<u32>,
     /// Walk diagnostics with their facet, in facet order.
     diagnostics: Vec<(u32, Diagnostic)>,
     /// Per facet, whether its loop is its closed fan (`facet_items`' fast path).
     simple: Vec<bool>,
+}
+
+/// Facet loop items packed into 4 bytes each: the top two bits tell the kind (triangle,
+/// crossing, corner, edge point), the rest its index; edge points index a side table.
+#[derive(Default)]
+struct PackedItems {
+    codes: Vec<u32>,
+    edge_points: Vec<(u32, u32, u32)>,
+}
+
+const ITEM_INDEX: u32 = (1 << 30) - 1;
+const ITEM_CROSSING: u32 = 1 << 30;
+const ITEM_CORNER: u32 = 2 << 30;
+const ITEM_EDGE_POINT: u32 = 3 << 30;
+
+impl PackedItems {
+    fn len(&self) -> usize {
+        self.codes.len()
+    }
+
+    fn push(&mut self, item: Item) {
+        let code = match item {
+            Item::Triangle(t) => t,
+            Item::Crossing(c) => ITEM_CROSSING | c,
+            Item::Corner(c) => ITEM_CORNER | u32::from(c),
+            Item::EdgePoint { triangle, lo, hi } => {
+                self.edge_points.push((triangle, lo, hi));
+                ITEM_EDGE_POINT | (self.edge_points.len() - 1) as u32
+            }
+        };
+        self.codes.push(code);
+    }
+
+    fn get(&self, k: usize) -> Item {
+        let code = self.codes[k];
+        let index = code & ITEM_INDEX;
+        match code & !ITEM_INDEX {
+            0 => Item::Triangle(index),
+            ITEM_CROSSING => Item::Crossing(index),
+            ITEM_CORNER => Item::Corner(index as u8),
+            _ => {
+                let (triangle, lo, hi) = self.edge_points[index as usize];
+                Item::EdgePoint { triangle, lo, hi }
+            }
+        }
+    }
 }
 
 /// What `facet_items` reads.
@@ -921,7 +969,7 @@ fn corner_samples(surface: &dyn Surface, domain: &Domain) -> [(DVec3, DVec3); 4]
 /// The loop of facet i as items appended to `items`, with corners inserted along the
 /// boundary; walk diagnostics go to `diagnostics` with the facet's index.
 /// Returns whether the loop is just the closed fan (the fast path).
-fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut Vec<Item>, diagnostics: &mut Vec<(u32, Diagnostic)>) -> bool {
+fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut PackedItems, diagnostics: &mut Vec<(u32, Diagnostic)>) -> bool {
     let tri = cx.tri;
     let kind = tri.fan(i, cx.incident[i as usize], fan);
     if kind == Fan::Broken || fan.is_empty() {
@@ -934,7 +982,7 @@ fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut Vec
         let v = &cx.triangle_vertices[t as usize];
         v.exact && v.inside > 0.0
     }) {
-        items.extend(fan.iter().map(|&t| Item::Triangle(t)));
+        items.codes.extend_from_slice(fan);
         return true;
     }
     // Raw walk: crossings of each incoming edge, then the triangle's vertex if inside.
@@ -991,7 +1039,9 @@ fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut Vec
                 .map(|k| ((f64::from(k) - wall).rem_euclid(4.0), k))
                 .collect();
             owned.sort_by(|x, y| x.0.total_cmp(&y.0));
-            items.extend(owned.into_iter().map(|x| Item::Corner(x.1)));
+            for x in owned {
+                items.push(Item::Corner(x.1));
+            }
         }
     }
     false

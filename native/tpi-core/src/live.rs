@@ -99,7 +99,7 @@ struct State {
     /// Pattern coordinates (internal numbering).
     st: Vec<[f64; 2]>,
     uv: Vec<[f64; 2]>,
-    geometry: Vec<LocalGeometry>,
+    seeds: Vec<Seed>,
     tangents: Vec<[DVec3; 2]>,
     planes: Vec<Plane>,
     convex_side: Vec<i8>,
@@ -404,7 +404,7 @@ impl State {
         let st: Vec<[f64; 2]> = perm.iter().map(|i| points[pick(i)]).collect();
         Some(Self {
             uv: perm.iter().map(|i| p.uv[pick(i)]).collect(),
-            geometry: perm.iter().map(|i| p.geometry[pick(i)]).collect(),
+            seeds: perm.iter().map(|i| p.seeds[pick(i)]).collect(),
             tangents: perm.iter().map(|i| p.tangents[pick(i)]).collect(),
             planes: perm.iter().map(|i| p.planes[pick(i)]).collect(),
             convex_side: perm.iter().map(|i| p.convex_side[pick(i)]).collect(),
@@ -444,7 +444,7 @@ impl State {
         let start = self.hole_triangle(&changed);
         self.st[i] = to;
         self.uv[i] = uv;
-        self.geometry[i] = geometry;
+        self.seeds[i] = seed(&geometry, uv);
         self.tangents[i] = tangents;
         self.planes[i] = plane;
         self.slopes[i] = slopes;
@@ -469,7 +469,7 @@ impl State {
         self.rank.push(i as u32);
         self.st.push(to);
         self.uv.push(uv);
-        self.geometry.push(geometry);
+        self.seeds.push(seed(&geometry, uv));
         self.tangents.push(tangents);
         self.planes.push(plane);
         self.slopes.push(slopes);
@@ -511,7 +511,7 @@ impl State {
         changed.points.iter_mut().for_each(shift);
         self.st.remove(k);
         self.uv.remove(k);
-        self.geometry.remove(k);
+        self.seeds.remove(k);
         self.tangents.remove(k);
         self.planes.remove(k);
         self.slopes.remove(k);
@@ -1053,12 +1053,7 @@ impl State {
         }
         // Per-point data in pattern order.
         let internal = |i: usize| self.rank[i] as usize;
-        let seeds: Vec<Seed> = (0..n)
-            .map(|i| {
-                let (g, uv) = (&self.geometry[internal(i)], self.uv[internal(i)]);
-                Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] }
-            })
-            .collect();
+        let seeds: Vec<Seed> = (0..n).map(|i| self.seeds[internal(i)]).collect();
         let uv: Vec<[f64; 2]> = (0..n).map(|i| self.uv[internal(i)]).collect();
         let planes: Vec<Plane> = (0..n).map(|i| self.planes[internal(i)]).collect();
         let slopes: Vec<[f64; 2]> = (0..n).map(|i| self.slopes[internal(i)]).collect();
@@ -1121,6 +1116,11 @@ struct Changed {
     created: Vec<u32>,
     /// Points whose triangles changed.
     points: Vec<u32>,
+}
+
+/// A facet's seed from the point's local geometry, as the pipeline makes it.
+fn seed(g: &LocalGeometry, uv: [f64; 2]) -> Seed {
+    Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] }
 }
 
 /// Position of a pattern point along a Hilbert curve over the unit square (2^16 cells a side).

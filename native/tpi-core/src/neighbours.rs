@@ -393,24 +393,25 @@ fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, rings: &mu
 
 /// Lawson's flip loop with the given illegality test. Returns (flips, unresolved).
 ///
-/// Every interior edge is tested once in triangle order, then the four outer edges of each
-/// flipped quad are tested again (a stack). The first tests of the edges whose two triangles
-/// no flip has touched yet are done in parallel up front: they read nothing a flip changes,
-/// so the result is the same as testing them one by one.
+/// Every interior edge is tested once in triangle order; after each flip the four outer edges
+/// of the flipped quad are tested (last in, first out) before the next edge in order. The
+/// first tests of all edges are done in parallel up front: an edge whose two triangles no
+/// flip has touched yet reads nothing a flip changes, so its result stands. An edge whose
+/// triangles changed is found again by its two points (kept for the few changed triangles).
 fn flip_until_stable(
     tri: &mut DualTriangulation,
     embedding: &[[f64; 2]],
     illegal: impl Fn(&DualTriangulation, usize, usize) -> bool + Sync,
 ) -> (usize, usize) {
     use rayon::prelude::*;
-    // Initial stack entries: (a, b, triangle, k) for each interior edge, in triangle order.
-    let initial: Vec<(u32, u32, u32, u8)> = {
+    // Interior edges in triangle order, as (triangle << 2 | side).
+    let initial: Vec<u32> = {
         let mut v = Vec::with_capacity(tri.len() * 3 / 2 + 1);
-        for (t, tri_vertices) in tri.triangles.iter().enumerate() {
+        for t in 0..tri.len() {
             for k in 0..3 {
                 let other = tri.neighbours[t][k];
                 if other != NO_TRIANGLE && (other as usize) > t {
-                    v.push((tri_vertices[(k + 1) % 3], tri_vertices[(k + 2) % 3], t as u32, k as u8));
+                    v.push(((t as u32) << 2) | k as u32);
                 }
             }
         }
@@ -418,49 +419,69 @@ fn flip_until_stable(
     };
     let first_tests: Vec<bool> = {
         let tri_ref: &DualTriangulation = tri;
-        initial.par_iter().map(|&(_, _, t, k)| illegal(tri_ref, t as usize, k as usize)).collect()
+        initial.par_iter().map(|&e| illegal(tri_ref, (e >> 2) as usize, (e & 3) as usize)).collect()
     };
     let mut dirty = vec![false; tri.len()];
-    // Stack of (a, b, index of the precomputed first test or u32::MAX).
-    let mut stack: Vec<(u32, u32, u32)> = Vec::with_capacity(initial.len() + 64);
-    stack.extend(initial.iter().enumerate().rev().map(|(n, &(a, b, _, _))| (a, b, n as u32)));
+    // The vertices of changed triangles before their first change.
+    let mut original: std::collections::HashMap<u32, [u32; 3]> = std::collections::HashMap::new();
     let budget = 20 * tri.len() + 100;
     let mut flips = 0;
     let mut unresolved = 0;
-    let mut incident = tri.incident_triangles(embedding.len());
-    while let Some((a, b, first)) = stack.pop() {
-        let (t, k, verdict) = match initial.get(first as usize) {
-            Some(&(_, _, t0, k0)) if !dirty[t0 as usize] && !dirty[tri.neighbours[t0 as usize][k0 as usize] as usize] => {
-                (t0 as usize, k0 as usize, first_tests[first as usize])
-            }
-            _ => {
-                let Some((t, k)) = find_edge(tri, &incident, a, b) else { continue };
-                (t, k, illegal(tri, t, k))
+    let mut incident: Vec<u32> = Vec::new();
+    let mut stack: Vec<(u32, u32)> = Vec::new();
+    for (n, &e) in initial.iter().enumerate() {
+        let (t0, k0) = ((e >> 2) as usize, (e & 3) as usize);
+        let mut next: Option<(u32, u32, Option<bool>)> = {
+            let other = tri.neighbours[t0][k0];
+            if !dirty[t0] && other != NO_TRIANGLE && !dirty[other as usize] {
+                let tv = tri.triangles[t0];
+                Some((tv[(k0 + 1) % 3], tv[(k0 + 2) % 3], Some(first_tests[n])))
+            } else {
+                let tv = original.get(&(t0 as u32)).copied().unwrap_or(tri.triangles[t0]);
+                Some((tv[(k0 + 1) % 3], tv[(k0 + 2) % 3], None))
             }
         };
-        if !verdict {
-            continue;
+        loop {
+            let Some((a, b, known)) = next.take().or_else(|| stack.pop().map(|(a, b)| (a, b, None))) else { break };
+            let (t, k, verdict) = match known {
+                Some(verdict) => (t0, k0, verdict),
+                None => {
+                    if incident.is_empty() {
+                        incident = tri.incident_triangles(embedding.len());
+                    }
+                    let Some((t, k)) = find_edge(tri, &incident, a, b) else { continue };
+                    (t, k, illegal(tri, t, k))
+                }
+            };
+            if !verdict {
+                continue;
+            }
+            let t2 = tri.neighbours[t][k];
+            let [c, a, b] = rotated(tri.triangles[t], k);
+            let k2 = tri.neighbours[t2 as usize].iter().position(|&x| x as usize == t).unwrap_or(0);
+            let d = tri.triangles[t2 as usize][k2];
+            let e = embedding;
+            let convex = orient(e[c as usize], e[a as usize], e[d as usize]) > 0.0
+                && orient(e[d as usize], e[b as usize], e[c as usize]) > 0.0;
+            if !convex || flips >= budget {
+                unresolved += 1;
+                continue;
+            }
+            original.entry(t as u32).or_insert(tri.triangles[t]);
+            original.entry(t2).or_insert(tri.triangles[t2 as usize]);
+            if incident.is_empty() {
+                incident = tri.incident_triangles(embedding.len());
+            }
+            let (t1, t2) = tri.flip(t as u32, k);
+            dirty[t1 as usize] = true;
+            dirty[t2 as usize] = true;
+            flips += 1;
+            for v in [c, a, d] {
+                incident[v as usize] = t1;
+            }
+            incident[b as usize] = t2;
+            stack.extend_from_slice(&[(a, c), (c, b), (b, d), (d, a)]);
         }
-        let t2 = tri.neighbours[t][k];
-        let [c, a, b] = rotated(tri.triangles[t], k);
-        let k2 = tri.neighbours[t2 as usize].iter().position(|&x| x as usize == t).unwrap_or(0);
-        let d = tri.triangles[t2 as usize][k2];
-        let e = embedding;
-        let convex = orient(e[c as usize], e[a as usize], e[d as usize]) > 0.0
-            && orient(e[d as usize], e[b as usize], e[c as usize]) > 0.0;
-        if !convex || flips >= budget {
-            unresolved += 1;
-            continue;
-        }
-        let (t1, t2) = tri.flip(t as u32, k);
-        dirty[t1 as usize] = true;
-        dirty[t2 as usize] = true;
-        flips += 1;
-        for v in [c, a, d] {
-            incident[v as usize] = t1;
-        }
-        incident[b as usize] = t2;
-        stack.extend_from_slice(&[(a, c, u32::MAX), (c, b, u32::MAX), (b, d, u32::MAX), (d, a, u32::MAX)]);
     }
     (flips, unresolved)
 }

@@ -252,20 +252,16 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
     r.non_simple_facets = flags.iter().filter(|&&f| f & FLAG_NON_SIMPLE != 0).count();
     r.flagged_facets = flags.iter().filter(|&&f| f != 0).count();
 
-    // Deviation from the surface, per vertex (from its foot, see `resolve_feet`).
-    let feet = resolve_feet(input.surface, input.uv, input.vertices, input.offsets, input.loops, input.feet);
+    // Deviation from the surface, per vertex (from its foot, see `resolve_feet`), in vertex
+    // order (the order of the sum).
     let domain = input.surface.domain();
-    let deviations: Vec<f64> = {
-        use rayon::prelude::*;
-        feet.par_iter()
-            .zip(input.vertices.par_iter())
-            .filter_map(|(f, &x)| {
-                let [u, w] = (*f)?;
-                let (cu, cw) = domain.clamp(u, w);
-                Some(input.surface.point_at(cu, cw).distance(x))
-            })
-            .collect()
-    };
+    let deviations: Vec<f64> = map_feet(input.surface, input.uv, input.vertices, input.offsets, input.loops, input.feet, |v, [u, w]| {
+        let (cu, cw) = domain.clamp(u, w);
+        input.surface.point_at(cu, cw).distance(input.vertices[v])
+    })
+    .into_iter()
+    .flatten()
+    .collect();
     if !deviations.is_empty() {
         r.max_deviation = deviations.iter().copied().fold(0.0, f64::max);
         r.mean_deviation = deviations.iter().sum::<f64>() / deviations.len() as f64;
@@ -291,6 +287,20 @@ pub fn resolve_feet(
     loops: &[u32],
     hints: &[FootHint],
 ) -> Vec<Option<[f64; 2]>> {
+    map_feet(surface, uv, vertices, offsets, loops, hints, |_, f| f)
+}
+
+/// `f(vertex, foot)` for every vertex used by a facet (None for the others), in parallel,
+/// with the feet of [`resolve_feet`].
+fn map_feet<T: Send>(
+    surface: &dyn Surface,
+    uv: &[[f64; 2]],
+    vertices: &[DVec3],
+    offsets: &[u32],
+    loops: &[u32],
+    hints: &[FootHint],
+    f: impl Fn(usize, [f64; 2]) -> T + Sync,
+) -> Vec<Option<T>> {
     use rayon::prelude::*;
     let facet_count = offsets.len().saturating_sub(1);
     let mut seed_of = vec![u32::MAX; vertices.len()];
@@ -308,7 +318,7 @@ pub fn resolve_feet(
             let seed = *seed_of.get(v).filter(|&&s| s != u32::MAX)?;
             let x = vertices[v];
             let from_seed = || foot(surface, &domain, x, uv[seed as usize]);
-            Some(match hints.get(v) {
+            let resolved = match hints.get(v) {
                 Some(&FootHint::Known(f)) => f,
                 Some(&FootHint::Guess { linear, reach }) => {
                     let newton = foot(surface, &domain, x, linear);
@@ -319,7 +329,8 @@ pub fn resolve_feet(
                     }
                 }
                 _ => from_seed(),
-            })
+            };
+            Some(f(v, resolved))
         })
         .collect()
 }
