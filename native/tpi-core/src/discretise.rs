@@ -313,7 +313,8 @@ pub(crate) struct PipelineState {
     /// The report's foot of every vertex (None: unused, or the report is off).
     pub(crate) feet: Vec<Option<[f64; 2]>>,
     pub(crate) neighbours: NeighbourStats,
-    pub(crate) welded: bool,
+    /// Triangles whose vertices were welded (their facets are not simple for live editing).
+    pub(crate) welded: Vec<u32>,
     pub(crate) diagonal: f64,
     /// Bounding box of the surface points.
     pub(crate) bbox: (DVec3, DVec3),

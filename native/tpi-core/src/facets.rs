@@ -107,8 +107,8 @@ pub struct FacetMesh {
     /// Per facet, whether its loop is just the vertices of its closed fan of triangles
     /// (all exact and inside): no boundary, no stand-in.
     pub(crate) facet_simple: Vec<bool>,
-    /// Whether any two triangle vertices were welded.
-    pub(crate) welded: bool,
+    /// The triangles whose vertices were welded to another's.
+    pub(crate) welded: Vec<u32>,
 }
 
 /// What the facet stage knows about a mesh vertex's closest point on the surface.
@@ -316,7 +316,7 @@ pub fn build_facets(
         .collect();
     // Unions in the order of `DualTriangulation::edges` (by triangle, then side): the pairs
     // were collected in that order.
-    let welded = !weld_pairs.is_empty();
+    let welded: Vec<u32> = weld_pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
     let mut representative: Vec<u32> = if weld_pairs.is_empty() { Vec::new() } else { (0..tri.len() as u32).collect() };
     for &(a, b) in &weld_pairs {
         let (ra, rb) = (find(&mut representative, a), find(&mut representative, b));

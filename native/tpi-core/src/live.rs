@@ -23,7 +23,8 @@
 //!   and no flip meets a non-convex quad.
 //!
 //! Otherwise (and for a new surface, a mixed or saddle-shaped surface, the envelope repair
-//! off, welded vertices, points near the boundary) the edit runs the whole pipeline again.
+//! off, points near the boundary or next to welded vertices) the edit runs the whole pipeline
+//! again.
 //! [`LiveStats`] counts both kinds.
 //!
 //! # Cost
@@ -340,7 +341,7 @@ impl State {
     /// takes them in pattern order, as the full run does.
     fn from_pipeline(p: PipelineState, result: &Discretisation, points: &[[f64; 2]]) -> Option<Self> {
         let (frame, slopes) = p.slopes?;
-        if p.welded || p.neighbours.envelope_unresolved > 0 || p.triangulation.is_empty() {
+        if p.neighbours.envelope_unresolved > 0 || p.triangulation.is_empty() {
             return None;
         }
         let n = points.len();
@@ -387,11 +388,20 @@ impl State {
                 others.push(Other { point: result.vertices[v], kind: result.vertex_kinds[v], foot });
             }
         }
+        // Facets around welded vertices (four or more planes through one point) keep their
+        // loops as the full run made them, like facets at the boundary: edits there run the
+        // whole pipeline.
+        let mut simple = p.facet_simple;
+        for &t in &p.welded {
+            for &v in &old.triangles[t as usize] {
+                simple[v as usize] = false;
+            }
+        }
         let complex = perm
             .iter()
             .map(|&i| {
                 let i = i as usize;
-                (!p.facet_simple[i]).then(|| result.facet(i).iter().map(|&v| key_of[v as usize]).collect())
+                (!simple[i]).then(|| result.facet(i).iter().map(|&v| key_of[v as usize]).collect())
             })
             .collect();
         let mut holder = vec![NO_TRIANGLE; n];

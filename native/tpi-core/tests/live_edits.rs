@@ -147,3 +147,31 @@ fn failed_edits_change_nothing() {
     live.set_surface(Box::new(other)).unwrap();
     check(&mut live, &other, 1, "new surface");
 }
+
+#[test]
+fn welded_vertices_do_not_stop_edits_elsewhere() {
+    // Four points on a circle on the paraboloid of revolution: their four tangent planes meet
+    // in one point, so two triangle vertices are welded there. Edits elsewhere stay
+    // incremental; the result is a fresh run's, welds included.
+    let s = paraboloid();
+    let mut pattern = random_pattern(300);
+    let (c, h) = ([0.503, 0.497], 0.004);
+    pattern.retain(|p| (p[0] - c[0]).hypot(p[1] - c[1]) > 0.05);
+    pattern.extend([[c[0] - h, c[1] - h], [c[0] + h, c[1] - h], [c[0] + h, c[1] + h], [c[0] - h, c[1] + h]]);
+    let mut live = LiveSurface::new(Box::new(s), pattern, DiscretiseOptions::default()).unwrap();
+    let q = live.discretisation().quality.clone().unwrap();
+    assert!(q.trivalent_fraction < 1.0, "the test needs a weld: {q:?}");
+    let mut rng = SplitMix64::new(9);
+    for step in 1..=200 {
+        let n = live.points().len();
+        let i = rng.below(n - 4);
+        let p = live.points()[i];
+        let to = [(p[0] + 0.02 * (rng.next_f64() - 0.5)).clamp(0.0, 1.0), (p[1] + 0.02 * (rng.next_f64() - 0.5)).clamp(0.0, 1.0)];
+        if (to[0] - c[0]).hypot(to[1] - c[1]) < 0.05 {
+            continue;
+        }
+        live.move_point(i, to).unwrap();
+        check(&mut live, &s, step, "drag beside a weld");
+    }
+    assert!(live.stats().incremental > 60, "{:?}", live.stats());
+}
