@@ -261,7 +261,13 @@ fn validate_large(points: &[[f64; 2]]) -> Result<(), TpiError> {
                     let hi_x = (x + 1).min(size - 1);
                     let has = (y.saturating_sub(1)..=(y + 1).min(size - 1)).any(|row| {
                         let run = &members[start[row * size + lo_x] as usize..start[row * size + hi_x + 1] as usize];
-                        run.iter().any(|&(q, k)| (k as usize) < i && (p[0] - q[0]).hypot(p[1] - q[1]) < DUPLICATE_UV_TOLERANCE)
+                        run.iter().any(|&(q, k)| {
+                            let (dx, dy) = (p[0] - q[0], p[1] - q[1]);
+                            // A cheap bound first; the exact test is the one of Pattern::validate.
+                            (k as usize) < i
+                                && dx * dx + dy * dy < 4.0 * DUPLICATE_UV_TOLERANCE * DUPLICATE_UV_TOLERANCE
+                                && dx.hypot(dy) < DUPLICATE_UV_TOLERANCE
+                        })
                     });
                     if has {
                         first = Some(i);
