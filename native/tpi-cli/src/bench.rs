@@ -455,9 +455,13 @@ pub fn scaling_plot(report: &Report) -> String {
     if points.is_empty() {
         (x_lo, x_hi, y_lo, y_hi) = (1e3, 1e6, 1e-1, 1e3);
     }
-    let decade = |v: f64, up: bool| if up { 10f64.powf(v.log10().ceil()) } else { 10f64.powf(v.log10().floor()) };
-    let (x_lo, x_hi) = (decade(x_lo, false), decade(x_hi * 1.0001, true).max(decade(x_lo, false) * 10.0));
-    let (y_lo, y_hi) = (decade(y_lo, false), decade(y_hi * 1.0001, true).max(decade(y_lo, false) * 10.0));
+    // Whole decades around the data (a value on a decade stays on it).
+    let decade = |v: f64, up: bool| {
+        let l = v.log10();
+        10f64.powf(if up { (l - 1e-9).ceil() } else { (l + 1e-9).floor() })
+    };
+    let (x_lo, x_hi) = (decade(x_lo, false), decade(x_hi, true).max(decade(x_lo, false) * 10.0));
+    let (y_lo, y_hi) = (decade(y_lo, false), decade(y_hi, true).max(decade(y_lo, false) * 10.0));
     let plot_w = width - left - right;
     let plot_h = height - top - bottom;
     let sx = |x: f64| left + (x.log10() - x_lo.log10()) / (x_hi.log10() - x_lo.log10()) * plot_w;
