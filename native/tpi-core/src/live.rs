@@ -1023,12 +1023,12 @@ impl State {
         facet_offsets.push(0u32);
         let mut fan = Vec::new();
         let mut keys: Vec<Key> = Vec::new();
-        for i in 0..n {
+        for (i, &first) in incident.iter().enumerate() {
             keys.clear();
             match &self.complex[self.rank[i] as usize] {
                 Some(list) => keys.extend_from_slice(list),
                 None => {
-                    canonical.fan(i as u32, incident[i], &mut fan);
+                    canonical.fan(i as u32, first, &mut fan);
                     keys.extend(fan.iter().map(|&c| Key::Triangle(live[c as usize])));
                 }
             }

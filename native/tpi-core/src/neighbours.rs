@@ -441,8 +441,7 @@ fn flip_until_stable(
                 Some((tv[(k0 + 1) % 3], tv[(k0 + 2) % 3], None))
             }
         };
-        loop {
-            let Some((a, b, known)) = next.take().or_else(|| stack.pop().map(|(a, b)| (a, b, None))) else { break };
+        while let Some((a, b, known)) = next.take().or_else(|| stack.pop().map(|(a, b)| (a, b, None))) {
             let (t, k, verdict) = match known {
                 Some(verdict) => (t0, k0, verdict),
                 None => {
