@@ -19,6 +19,7 @@ use serde::{Serialize, Serializer};
 
 use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
+use crate::ghosts::augment;
 use crate::error::TpiError;
 use crate::facets::{build_facets, FacetMesh, FacetParams, FootHint, TriangleVertex, VertexKind, DEFAULT_FAR_VERTEX_FACTOR};
 use crate::neighbours::{decide, decide_convex, gradient_embedding, slope_frame, NeighbourInput, NeighbourStats, SlopeFrame};
@@ -382,10 +383,19 @@ pub(crate) fn run(
         }
         // Anything else: parameter-space candidates, curvature compensation, local repair.
         None => {
-            let mut triangulation = DualTriangulation::delaunay(&plane_uv)?;
+            // Ghost seeds beyond the boundary close every real facet for the flips.
+            let extent = plane_extent(&plane_uv, pattern);
+            let augmented = augment(surface, &uv, &plane_uv, extent, &geometry, &planes, &convex_side);
+            let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
-            let stats = decide(&mut triangulation, &input, options.envelope_repair);
+            let augmented_input = NeighbourInput {
+                plane_uv: &augmented.plane_uv,
+                geometry: &augmented.geometry,
+                planes: &augmented.planes,
+                convex_side: &augmented.convex_side,
+            };
+            let stats = decide(&mut triangulation, &augmented_input, options.envelope_repair, plane_uv.len());
             timings.neighbours = ms(stage);
             (triangulation, stats)
         }
@@ -573,6 +583,20 @@ pub(crate) fn curvature_class(g: &LocalGeometry, diagonal: f64, options: &Discre
     let is_flat = is_planar || gaussian.abs() <= options.flat_tolerance * largest * largest;
     let side = if !is_flat && gaussian > 0.0 { if g.k1 > 0.0 { 1 } else { -1 } } else { 0 };
     (side, is_planar, is_flat)
+}
+
+/// The size of the triangulation plane's rectangle: the scale factors that
+/// [`scaled_parameters`] applied to the normalised pattern coordinates.
+fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
+    let mut extent = [1.0, 1.0];
+    for axis in 0..2 {
+        if let Some(k) = (0..pattern.len()).max_by(|&a, &b| pattern[a][axis].total_cmp(&pattern[b][axis])) {
+            if pattern[k][axis] > 0.0 {
+                extent[axis] = plane_uv[k][axis] / pattern[k][axis];
+            }
+        }
+    }
+    extent
 }
 
 /// Normalised pattern coordinates scaled by the surface's mean extent in u and v, so that

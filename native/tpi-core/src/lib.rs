@@ -25,6 +25,7 @@ pub mod diffgeo;
 pub mod discretise;
 pub mod error;
 pub mod facets;
+mod ghosts;
 pub mod live;
 pub mod neighbours;
 pub mod nurbs;
@@ -35,6 +36,7 @@ pub mod quality;
 pub mod spec;
 pub mod surface;
 pub mod triangulation;
+pub mod validity_flips;
 pub mod tolerance;
 
 pub use diagnostics::Diagnostic;

@@ -36,6 +36,7 @@ use crate::diffgeo::LocalGeometry;
 use crate::planes::{intersect_three, Plane};
 
 use crate::triangulation::{orient, DualTriangulation, NO_TRIANGLE};
+use crate::validity_flips::validity_flips;
 
 /// Relative weight of the isotropic term that keeps the compensation metric definite.
 pub const METRIC_REGULARISATION: f64 = 1e-3;
@@ -62,6 +63,12 @@ pub struct NeighbourStats {
     /// Triangles on the convex hull of the pattern (in parameter space) that the envelope
     /// rejects, removed so that the hull follows the envelope's.
     pub hull_trims: usize,
+    /// Flips kept by the validity repair of interior facets ([`crate::validity_flips`]).
+    #[serde(default)]
+    pub validity_flips: usize,
+    /// Interior facets the validity repair could not make valid.
+    #[serde(default)]
+    pub validity_unresolved: usize,
 }
 
 /// Inputs of the neighbour decision for every pattern point.
@@ -77,8 +84,11 @@ pub struct NeighbourInput<'a> {
     pub convex_side: &'a [i8],
 }
 
-/// Runs both criteria to convergence. Deterministic (a stack in edge order).
-pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope: bool) -> NeighbourStats {
+/// Runs both criteria to convergence, then the validity flips of the facets of points
+/// `0..real_count` ([`crate::validity_flips`]); points from `real_count` on are ghosts
+/// ([`crate::ghosts`]), whose triangles are dropped at the end. Deterministic (a stack in
+/// edge order).
+pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope: bool, real_count: usize) -> NeighbourStats {
     let mut stats = NeighbourStats::default();
     let uv = input.plane_uv;
     stats.compensation_flips = flip_until_stable(tri, uv, |tri, t, k| compensation_illegal(tri, input, t, k)).0;
@@ -86,10 +96,14 @@ pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope:
         let (flips, unresolved) = flip_until_stable(tri, uv, |tri, t, k| envelope_illegal(tri, input, t, k));
         stats.envelope_repairs = flips;
         stats.envelope_unresolved = unresolved;
-        tri.canonicalise(uv.len());
+    }
+    let validity = validity_flips(tri, uv, input.planes, real_count);
+    stats.validity_flips = validity.flips;
+    stats.validity_unresolved = validity.unresolved;
+    tri.retain_points(real_count);
+    tri.canonicalise(real_count);
+    if envelope {
         stats.hull_trims = trim_hull(tri, input);
-    } else {
-        tri.canonicalise(uv.len());
     }
     stats
 }
@@ -180,7 +194,7 @@ pub fn decide_convex(tri: &mut DualTriangulation, slopes: &[[f64; 2]], input: &N
     // Rounding can leave slivers along a straight stretch of the hull.
     let hull_trims = trim_hull(tri, input);
     let envelope_repairs = slope_repairs(tri, slopes);
-    NeighbourStats { compensation_flips: 0, envelope_repairs, envelope_unresolved: unresolved, hull_trims }
+    NeighbourStats { compensation_flips: 0, envelope_repairs, envelope_unresolved: unresolved, hull_trims, ..NeighbourStats::default() }
 }
 
 /// Makes the triangles counter-clockwise in `uv` (the orientation the facet loops inherit),

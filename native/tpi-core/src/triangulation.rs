@@ -214,6 +214,24 @@ impl DualTriangulation {
         }
     }
 
+    /// Drops every triangle with a point index `>= count` (keeping the order of the rest);
+    /// the edges they shared with kept triangles become hull edges.
+    pub fn retain_points(&mut self, count: usize) {
+        let removed: Vec<bool> = self.triangles.iter().map(|t| t.iter().any(|&v| v as usize >= count)).collect();
+        if !removed.contains(&true) {
+            return;
+        }
+        for t in 0..self.triangles.len() {
+            for k in 0..3 {
+                let other = self.neighbours[t][k];
+                if other != NO_TRIANGLE && removed[other as usize] {
+                    self.neighbours[t][k] = NO_TRIANGLE;
+                }
+            }
+        }
+        self.remove_triangles(&removed);
+    }
+
     fn replace_neighbour(&mut self, t: u32, old: u32, new: u32) {
         if t == NO_TRIANGLE {
             return;

@@ -12,6 +12,8 @@ use glam::{DVec2, DVec3};
 use tpi_core::facets::VertexKind;
 use tpi_core::{Discretisation, NurbsSurface, Surface};
 
+pub mod validity;
+
 // ---------------------------------------------------------------------------------------
 // Random numbers and patterns
 // ---------------------------------------------------------------------------------------

@@ -1,0 +1,234 @@
+//! Acceptance of valid meshes on surfaces of any curvature (issue 10): saddles (K < 0
+//! everywhere), a torus band, a rotated and a skewed hyperbolic paraboloid, with hex patterns
+//! at several rotations, square grids and Poisson-disk patterns, give meshes that are valid by
+//! the independent checks of `common::validity` (own-plane simplicity, overlap along the mean
+//! normal measured by the `geo` polygon library, Euler characteristic and boundary loops from
+//! the loops), boundary facets included. Mixed surfaces always give a disc, and every facet
+//! the independent check finds invalid is flagged by the report.
+//!
+//! `TPI_TABLE=1 cargo test --release -p tpi-core --test discretise_any_curvature -- --nocapture`
+//! prints the whole table.
+#![allow(clippy::needless_range_loop)]
+
+mod common;
+
+
+use common::validity::{check, Validity};
+use common::*;
+use glam::DVec3;
+use tpi_core::quality::{FLAG_NON_SIMPLE, FLAG_OVERLAP};
+use tpi_core::{discretise, AnalyticKind, AnalyticSurface, DiscretiseOptions, Generator, NurbsSurface, Surface, SurfaceSpec};
+
+/// A hex (triangular-lattice) pattern of about `n` points in the unit square, rotated by
+/// `degrees` about the square's centre.
+fn rotated_hex(n: usize, degrees: f64) -> Vec<[f64; 2]> {
+    let h = (2.0 / (3f64.sqrt() * n as f64)).sqrt();
+    let (s, c) = degrees.to_radians().sin_cos();
+    let reach = (0.75f64).sqrt() + 2.0 * h;
+    let rows = (2.0 * reach / (h * 0.75f64.sqrt())).ceil() as i64;
+    let cols = (2.0 * reach / h).ceil() as i64;
+    let mut out = Vec::new();
+    for r in -rows..=rows {
+        for q in -cols..=cols {
+            let x = (q as f64 + 0.5 * (r.rem_euclid(2)) as f64) * h + 0.25 * h;
+            let y = r as f64 * h * 0.75f64.sqrt() + 0.2 * h;
+            let (u, v) = (0.5 + c * x - s * y, 0.5 + s * x + c * y);
+            if (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v) {
+                out.push([u, v]);
+            }
+        }
+    }
+    out
+}
+
+/// A square grid of about `n` cell centres.
+fn grid(n: usize) -> Vec<[f64; 2]> {
+    let k = (n as f64).sqrt().round() as usize;
+    (0..k).flat_map(|i| (0..k).map(move |j| [(i as f64 + 0.5) / k as f64, (j as f64 + 0.5) / k as f64])).collect()
+}
+
+fn poisson(n: usize, seed: u64) -> Vec<[f64; 2]> {
+    // Bridson's samples fill about 0.7 / r^2 points per unit area.
+    let r = (0.7 / n as f64).sqrt();
+    Generator::Poisson { radius: r, seed }.generate().uv
+}
+
+/// A rational biquadratic patch of the torus with major radius `big` and tube radius
+/// `small`: tube angle `phi` (0 = outer equator) and revolution angle `theta` (radians).
+fn torus_patch(big: f64, small: f64, phi: [f64; 2], theta: [f64; 2]) -> NurbsSurface {
+    // Control points of a rational quadratic arc on the unit circle, with weights.
+    let arc = |[a0, a1]: [f64; 2]| {
+        let half = 0.5 * (a1 - a0);
+        let mid = 0.5 * (a0 + a1);
+        let w = half.cos();
+        [
+            ((a0.cos(), a0.sin()), 1.0),
+            ((mid.cos() / w, mid.sin() / w), w),
+            ((a1.cos(), a1.sin()), 1.0),
+        ]
+    };
+    let (rev, tube) = (arc(theta), arc(phi));
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for &((cx, cy), wu) in &rev {
+        for &((px, pz), wv) in &tube {
+            // Profile point (distance from the axis, height): the tube circle's centre (big, 0)
+            // plus the arc's control point scaled by the tube radius.
+            let radial = big + small * px;
+            points.push(DVec3::new(radial * cx, radial * cy, small * pz));
+            weights.push(wu * wv);
+        }
+    }
+    NurbsSurface::new([2, 2], [3, 3], &[0.0, 0.0, 1.0, 1.0], &[0.0, 0.0, 1.0, 1.0], &points, Some(&weights))
+        .unwrap_or_else(|e| panic!("torus patch rejected: {e}"))
+}
+
+fn hypar() -> AnalyticSurface {
+    AnalyticSurface::new(AnalyticKind::HyperbolicParaboloid { a: 0.08, b: 0.08 }, [-5.0, 5.0], [-5.0, 5.0]).unwrap()
+}
+
+/// z = 0.08 x y: the hyperbolic paraboloid turned by 45 degrees (exact as a biquadratic net).
+fn rotated_hypar() -> NurbsSurface {
+    lifted_net([2, 2], &[0.0, 0.0, 0.5, 1.0, 1.0], &[0.0, 0.0, 0.5, 1.0, 1.0], |s, t| (-5.0 + 10.0 * s, -5.0 + 10.0 * t), |x, y, _, _| 0.08 * x * y, None)
+}
+
+/// A saddle whose curvature varies across the domain, skewed by a cubic term.
+fn skewed_saddle() -> NurbsSurface {
+    lifted_net(
+        [3, 3],
+        &[0.0, 0.0, 0.0, 0.3, 0.55, 1.0, 1.0, 1.0],
+        &[0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0],
+        |s, t| (-5.0 + 10.0 * s, -4.0 + 8.0 * t),
+        |x, y, _, _| 0.05 * x * x - 0.09 * y * y + 0.03 * x * y + 0.003 * x * x * x,
+        None,
+    )
+}
+
+fn torus_band() -> NurbsSurface {
+    torus_patch(10.0, 3.0, [120f64.to_radians(), 240f64.to_radians()], [-45f64.to_radians(), 45f64.to_radians()])
+}
+
+fn sample_surface(name: &str) -> tpi_core::SurfaceModel {
+    let path = format!("{}/../../samples/{name}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    SurfaceSpec::from_json(&text, name).unwrap().build().unwrap()
+}
+
+/// Largest Gaussian curvature over a 30 x 30 grid (negative: a saddle everywhere).
+fn max_gaussian(surface: &dyn Surface) -> f64 {
+    let dom = surface.domain();
+    let mut worst = f64::NEG_INFINITY;
+    for i in 0..=30 {
+        for j in 0..=30 {
+            let [u, v] = dom.from_normalised([i as f64 / 30.0, j as f64 / 30.0]);
+            worst = worst.max(gaussian_and_mean(surface, u, v).0);
+        }
+    }
+    worst
+}
+
+struct Case {
+    surface: String,
+    pattern: String,
+    points: usize,
+    validity: Validity,
+    flagged_missing: usize,
+    /// Invalid facets with a boundary or corner vertex.
+    invalid_at_boundary: usize,
+}
+
+fn run(surface_name: &str, surface: &dyn Surface, pattern_name: &str, pattern: &[[f64; 2]]) -> Case {
+    let d = discretise(surface, pattern, &DiscretiseOptions::default())
+        .unwrap_or_else(|e| panic!("{surface_name} / {pattern_name}: {e}"));
+    let validity = check(&d);
+    // Every facet the independent check finds invalid must be flagged by the report.
+    let flagged_missing = validity
+        .invalid_facets()
+        .into_iter()
+        .filter(|&i| d.facet_flags.get(i).map_or(true, |f| f & (FLAG_NON_SIMPLE | FLAG_OVERLAP) == 0))
+        .count();
+    if std::env::var_os("TPI_DEBUG").is_some() {
+        let q = d.quality.as_ref().unwrap();
+        eprintln!("{surface_name} {pattern_name}: {:?}", q.neighbours);
+    }
+    let invalid_at_boundary = validity.invalid_facets().into_iter().filter(|&i| touches_boundary(&d, i)).count();
+    Case { surface: surface_name.into(), pattern: pattern_name.into(), points: pattern.len(), validity, flagged_missing, invalid_at_boundary }
+}
+
+fn patterns(n: usize) -> Vec<(String, Vec<[f64; 2]>)> {
+    let mut out: Vec<(String, Vec<[f64; 2]>)> = [0.0, 15.0, 30.0, 45.0, 72.0]
+        .iter()
+        .map(|&deg| (format!("hex{n}@{deg}"), rotated_hex(n, deg)))
+        .collect();
+    out.push((format!("grid{n}"), grid(n)));
+    out.push((format!("poisson{n}"), poisson(n, 7 + n as u64)));
+    out
+}
+
+fn report(cases: &[Case]) {
+    if std::env::var_os("TPI_TABLE").is_none() {
+        return;
+    }
+    println!("{:<16} {:<14} {:>6} {:>8} {:>6} {:>8} {:>6} {:>6} {:>8}", "surface", "pattern", "points", "inv(bnd)", "open", "nonsimp", "pairs", "euler", "loops");
+    for c in cases {
+        let v = &c.validity;
+        println!(
+            "{:<16} {:<14} {:>6} {:>8} {:>6} {:>8} {:>6} {:>6} {:>8}{}",
+            c.surface,
+            c.pattern,
+            c.points,
+            format!("{}({})", v.invalid_facets().len(), c.invalid_at_boundary),
+            v.open.len(),
+            v.non_simple.len(),
+            v.overlapping_pairs.len(),
+            v.euler,
+            v.boundary_loops,
+            if c.flagged_missing > 0 { format!("  UNFLAGGED {}", c.flagged_missing) } else { String::new() }
+        );
+    }
+}
+
+#[test]
+fn saddles_give_valid_meshes_with_exact_planes() {
+    let surfaces: Vec<(&str, Box<dyn Surface>)> = vec![
+        ("hypar", Box::new(hypar())),
+        ("rotated-hypar", Box::new(rotated_hypar())),
+        ("skewed-saddle", Box::new(skewed_saddle())),
+        ("torus-band", Box::new(torus_band())),
+    ];
+    let mut cases = Vec::new();
+    for (name, surface) in &surfaces {
+        assert!(max_gaussian(surface.as_ref()) < 0.0, "{name} is not a saddle everywhere");
+        for n in [300, 2000] {
+            for (pattern_name, pattern) in patterns(n) {
+                cases.push(run(name, surface.as_ref(), &pattern_name, &pattern));
+            }
+        }
+    }
+    report(&cases);
+    for c in &cases {
+        assert!(c.validity.is_disc(), "{} / {}: not a disc: {:?}", c.surface, c.pattern, c.validity);
+        assert!(c.validity.invalid_facets().is_empty(), "{} / {}: invalid facets {:?}", c.surface, c.pattern, c.validity);
+    }
+}
+
+#[test]
+fn mixed_surfaces_stay_discs_and_flag_every_invalid_facet() {
+    let surfaces: Vec<(&str, Box<dyn Surface>)> = vec![
+        ("mixed-roof", Box::new(sample_surface("mixed-roof.json"))),
+        ("egg-crate", Box::new(AnalyticSurface::new(AnalyticKind::EggCrate { amplitude: 0.6 }, [-3.0, 3.0], [-3.0, 3.0]).unwrap())),
+    ];
+    let mut cases = Vec::new();
+    for (name, surface) in &surfaces {
+        for n in [300, 2000] {
+            for (pattern_name, pattern) in patterns(n) {
+                cases.push(run(name, surface.as_ref(), &pattern_name, &pattern));
+            }
+        }
+    }
+    report(&cases);
+    for c in &cases {
+        assert!(c.validity.is_disc(), "{} / {}: not a disc: {:?}", c.surface, c.pattern, c.validity);
+        assert_eq!(c.flagged_missing, 0, "{} / {}: invalid facets not flagged", c.surface, c.pattern);
+    }
+}
