@@ -21,7 +21,7 @@ use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
 use crate::ghosts::augment;
 use crate::error::TpiError;
-use crate::facets::{build_facets, FacetMesh, FacetParams, FootHint, TriangleVertex, VertexKind, DEFAULT_FAR_VERTEX_FACTOR};
+use crate::facets::{build_closed_facets, build_facets, FacetMesh, FacetParams, FootHint, TriangleVertex, VertexKind, DEFAULT_FAR_VERTEX_FACTOR};
 use crate::neighbours::{decide, decide_convex, gradient_embedding, slope_frame, NeighbourInput, NeighbourStats, SlopeFrame};
 use crate::planes::Plane;
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
@@ -371,7 +371,7 @@ pub(crate) fn run(
     let stage = Instant::now();
     check_not_collinear(&plane_uv)?;
     let input = NeighbourInput { plane_uv: &plane_uv, geometry: &geometry, planes: &planes, convex_side: &convex_side };
-    let (triangulation, neighbours) = match &slopes {
+    let (triangulation, augmented, neighbours) = match &slopes {
         // Convex everywhere: the envelope's own structure, computed in slope space.
         Some(slopes) => {
             let mut triangulation = DualTriangulation::delaunay(slopes)?;
@@ -379,7 +379,7 @@ pub(crate) fn run(
             let stage = Instant::now();
             let stats = decide_convex(&mut triangulation, slopes, &input);
             timings.neighbours = ms(stage);
-            (triangulation, stats)
+            (triangulation, None, stats)
         }
         // Anything else: parameter-space candidates, curvature compensation, local repair.
         None => {
@@ -397,14 +397,25 @@ pub(crate) fn run(
             };
             let stats = decide(&mut triangulation, &augmented_input, options.envelope_repair, plane_uv.len());
             timings.neighbours = ms(stage);
-            (triangulation, stats)
+            (triangulation, Some(augmented), stats)
         }
     };
 
     // Facets and mesh.
     let stage = Instant::now();
     let params = FacetParams { far_vertex_factor: options.far_vertex_factor, weld_distance: options.weld_tolerance * diagonal };
-    let mesh = build_facets(surface, &uv, &tangents, &planes, &convex_side, &triangulation, &params);
+    let (mesh, triangulation) = match &augmented {
+        None => (build_facets(surface, &uv, &tangents, &planes, &convex_side, &triangulation, &params), triangulation),
+        Some(augmented) => {
+            let mesh = build_closed_facets(&triangulation, &augmented.planes, uv.len(), &augmented.source, &params);
+            // The dual structure reported is the real seeds' part.
+            let mut real = triangulation;
+            real.retain_points(uv.len());
+            real.canonicalise(uv.len());
+            (mesh, real)
+        }
+    };
+    drop(augmented);
     diagnostics.extend(mesh.diagnostics.iter().cloned());
     if !mesh.vertices.is_empty() && mesh.diagnostics.iter().filter(|d| matches!(d, Diagnostic::IllConditionedVertex { .. })).count() == triangulation.len() {
         return Err(TpiError::DegenerateSurface {

@@ -297,6 +297,39 @@ pub fn build_facets(
         })
         .collect();
 
+    assemble(Assembly {
+        tri,
+        triangle_vertices,
+        chunks,
+        crossings: &crossings,
+        corners: Some(&corners),
+        planes,
+        params,
+        ghosts_from: None,
+        diagnostics,
+    })
+}
+
+/// What the assembly of facet loops into a mesh reads.
+struct Assembly<'a> {
+    tri: &'a DualTriangulation,
+    triangle_vertices: Vec<TriangleVertex>,
+    chunks: Vec<FacetChunk>,
+    crossings: &'a [Crossing],
+    /// Point and normal over each domain corner; None where no facet holds a corner.
+    corners: Option<&'a [(DVec3, DVec3); 4]>,
+    planes: &'a [Plane],
+    params: &'a FacetParams,
+    /// Points from this index on are ghosts ([`crate::ghosts`]): the vertices of their
+    /// triangles are boundary vertices.
+    ghosts_from: Option<u32>,
+    diagnostics: Vec<Diagnostic>,
+}
+
+/// Steps 4 and 5 of [`build_facets`]: welding, vertex numbering in facet order, loops.
+fn assemble(a: Assembly<'_>) -> FacetMesh {
+    let Assembly { tri, triangle_vertices, chunks, crossings, corners, planes, params, ghosts_from, mut diagnostics } = a;
+    let uv_len = chunks.iter().map(|c| c.ends.len()).sum::<usize>();
     // 4. Welding of coincident triangle vertices across interior edges.
     let assembly = std::time::Instant::now();
     let weld_pairs: Vec<(u32, u32)> = (0..tri.len())
@@ -327,7 +360,7 @@ pub fn build_facets(
     }
 
     // 5. Vertex numbering in facet order (deterministic), corners per facet.
-    let mut mesh = FacetMesh { offsets: Vec::with_capacity(uv.len() + 1), ..FacetMesh::default() };
+    let mut mesh = FacetMesh { offsets: Vec::with_capacity(uv_len + 1), ..FacetMesh::default() };
     let vertex_estimate = tri.len() + crossings.len() + 4;
     mesh.vertices.reserve(vertex_estimate);
     mesh.vertex_kinds.reserve(vertex_estimate);
@@ -358,7 +391,9 @@ pub fn build_facets(
                         let r = if representative.is_empty() { t as usize } else { find(&mut representative, t) as usize };
                         if triangle_id[r] == u32::MAX {
                             let v = &triangle_vertices[r];
-                            triangle_id[r] = push_vertex(&mut mesh, v.point, VertexKind::Interior, v.hint(), r as u32);
+                            let ghost = ghosts_from.is_some_and(|g| tri.triangles[r].iter().any(|&x| x >= g));
+                            let kind = if ghost { VertexKind::Boundary } else { VertexKind::Interior };
+                            triangle_id[r] = push_vertex(&mut mesh, v.point, kind, v.hint(), r as u32);
                         }
                         triangle_id[r]
                     }
@@ -386,6 +421,7 @@ pub fn build_facets(
                     }
                     Item::Corner(c) => {
                         corner_claims[c as usize] += 1;
+                        let Some(corners) = corners else { continue };
                         let (point, normal) = corners[c as usize];
                         let plane = &planes[i];
                         let denominator = plane.normal.dot(normal);
@@ -413,7 +449,7 @@ pub fn build_facets(
         }
     }
     for (corner, &claims) in corner_claims.iter().enumerate() {
-        if claims != 1 {
+        if corners.is_some() && claims != 1 {
             diagnostics.push(Diagnostic::CornerClaims { corner: corner as u8, claims });
         }
     }
@@ -1047,4 +1083,105 @@ fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut Pac
         }
     }
     false
+}
+
+/// The facets of the points `0..real_count` of a triangulation whose points from
+/// `real_count` on are ghosts ([`crate::ghosts`]), mirrored beyond the boundary so that every
+/// real fan closes: each facet's loop is the vertices T_i ∩ T_j ∩ T_k of its fan, exactly the
+/// polygon the validity flips judged ([`crate::validity_flips`]). Vertices of triangles with a
+/// ghost are boundary vertices: they lie on the mirror plane of the ghost's wall, the tangent
+/// plane of the wall at the boundary point nearest to the ghost's seed. `source` maps every
+/// point to its real seed (for diagnostics). Ill-conditioned vertices are replaced by their
+/// closest points on the facets' edge lines, as in [`build_facets`].
+pub(crate) fn build_closed_facets(
+    tri: &DualTriangulation,
+    planes: &[Plane],
+    real_count: usize,
+    source: &[u32],
+    params: &FacetParams,
+) -> FacetMesh {
+    let real = |t: &[u32; 3]| t.iter().any(|&v| (v as usize) < real_count);
+    let triangle_vertices: Vec<TriangleVertex> = tri
+        .triangles
+        .par_iter()
+        .map(|ids| {
+            let mut ids = *ids;
+            ids.sort_unstable();
+            let [a, b, c] = ids.map(|i| &planes[i as usize]);
+            let meeting = intersect_three(a, b, c);
+            let centroid = (a.point + b.point + c.point) / 3.0;
+            let longest = a.point.distance(b.point).max(b.point.distance(c.point)).max(c.point.distance(a.point));
+            let exact = !real(&ids)
+                || (meeting.point.is_finite() && meeting.point.distance(centroid) <= params.far_vertex_factor * longest);
+            let point = if exact { meeting.point } else { regularised_meeting_point([a, b, c], centroid, 1e-6) };
+            TriangleVertex { point, foot: [0.0; 2], inside: 1.0, reach: 0.0, exact, measured: true, newton_foot: false }
+        })
+        .collect();
+    let mut diagnostics: Vec<Diagnostic> = tri
+        .triangles
+        .iter()
+        .zip(&triangle_vertices)
+        .filter(|(ids, v)| !v.exact && real(ids))
+        .map(|(ids, _)| {
+            let mut sorted = *ids;
+            sorted.sort_unstable();
+            let [a, b, c] = sorted.map(|i| &planes[i as usize]);
+            let meeting = intersect_three(a, b, c);
+            let centroid = (a.point + b.point + c.point) / 3.0;
+            let distance = meeting.point.distance(centroid);
+            let mut points = sorted.map(|i| source[i as usize]);
+            points.sort_unstable();
+            Diagnostic::IllConditionedVertex {
+                points,
+                determinant: meeting.determinant,
+                distance: if distance.is_finite() { distance } else { f64::INFINITY },
+            }
+        })
+        .collect();
+    let incident = tri.incident_triangles(source.len());
+    let chunks: Vec<FacetChunk> = (0..real_count.div_ceil(FACET_CHUNK))
+        .into_par_iter()
+        .map(|c| {
+            let mut chunk = FacetChunk::default();
+            let mut fan = Vec::new();
+            for i in c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(real_count) {
+                let i = i as u32;
+                let kind = tri.fan(i, incident[i as usize], &mut fan);
+                if kind != Fan::Closed {
+                    let reason = "the fan of dual triangles around the point does not close".into();
+                    chunk.diagnostics.push((i, Diagnostic::OpenFacet { point: i, reason }));
+                }
+                if kind != Fan::Broken {
+                    for &t in &fan {
+                        if triangle_vertices[t as usize].exact {
+                            chunk.items.push(Item::Triangle(t));
+                        } else {
+                            let vertices = tri.triangles[t as usize];
+                            let p = vertices.iter().position(|&v| v == i).unwrap_or(0);
+                            for j in [vertices[(p + 1) % 3], vertices[(p + 2) % 3]] {
+                                chunk.items.push(Item::EdgePoint { triangle: t, lo: i.min(j), hi: i.max(j) });
+                            }
+                        }
+                    }
+                }
+                chunk.ends.push(chunk.items.len() as u32);
+                chunk.simple.push(false);
+            }
+            chunk
+        })
+        .collect();
+    let mut mesh = assemble(Assembly {
+        tri,
+        triangle_vertices,
+        chunks,
+        crossings: &[],
+        corners: None,
+        planes,
+        params,
+        ghosts_from: Some(real_count as u32),
+        diagnostics: std::mem::take(&mut diagnostics),
+    });
+    // Live editing never runs on this path: what only it reads is let go.
+    mesh.triangle_vertices = Vec::new();
+    mesh
 }

@@ -43,6 +43,8 @@ pub(crate) struct Augmented {
     pub(crate) planes: Vec<Plane>,
     /// Convex side per seed (a reflection keeps it).
     pub(crate) convex_side: Vec<i8>,
+    /// The real seed of every point (itself for real seeds).
+    pub(crate) source: Vec<u32>,
 }
 
 /// A reflection in the plane through `origin` with unit normal `normal`.
@@ -104,6 +106,7 @@ pub(crate) fn augment(
         geometry: geometry.to_vec(),
         planes: planes.to_vec(),
         convex_side: convex_side.to_vec(),
+        source: (0..n as u32).collect(),
     };
     for i in 0..n {
         let [x, y] = plane_uv[i];
@@ -116,6 +119,7 @@ pub(crate) fn augment(
             out.planes.push(Plane { point: g.point, normal: g.normal });
             out.geometry.push(g);
             out.convex_side.push(convex_side[i]);
+            out.source.push(i as u32);
         };
         for (k, &s) in near.iter().enumerate() {
             if let Some(m) = mirrors[k] {

@@ -86,8 +86,7 @@ pub struct NeighbourInput<'a> {
 
 /// Runs both criteria to convergence, then the validity flips of the facets of points
 /// `0..real_count` ([`crate::validity_flips`]); points from `real_count` on are ghosts
-/// ([`crate::ghosts`]), whose triangles are dropped at the end. Deterministic (a stack in
-/// edge order).
+/// ([`crate::ghosts`]), whose facets are not judged. Deterministic (a stack in edge order).
 pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope: bool, real_count: usize) -> NeighbourStats {
     let mut stats = NeighbourStats::default();
     let uv = input.plane_uv;
@@ -100,9 +99,9 @@ pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope:
     let validity = validity_flips(tri, uv, input.planes, real_count);
     stats.validity_flips = validity.flips;
     stats.validity_unresolved = validity.unresolved;
-    tri.retain_points(real_count);
-    tri.canonicalise(real_count);
-    if envelope {
+    tri.canonicalise(input.plane_uv.len());
+    // With ghosts the hull lies beyond the boundary: nothing to trim.
+    if envelope && real_count == input.plane_uv.len() {
         stats.hull_trims = trim_hull(tri, input);
     }
     stats
