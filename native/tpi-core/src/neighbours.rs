@@ -38,8 +38,10 @@ use crate::planes::{intersect_three, Plane};
 use crate::triangulation::{orient, DualTriangulation, NO_TRIANGLE};
 use crate::validity_flips::validity_flips;
 
-/// Relative weight of the isotropic term that keeps the compensation metric definite.
-pub const METRIC_REGULARISATION: f64 = 1e-3;
+/// Weight of the isotropic term that keeps the compensation metric definite: each point
+/// contributes |II| + METRIC_REGULARISATION max(|k1|, |k2|) I (largest |k| over the quad), so
+/// that the metric never degenerates where one principal curvature vanishes.
+pub const METRIC_REGULARISATION: f64 = 0.05;
 
 /// A vertex must lie this far (relative to the quad's size) outside a half-space before
 /// the envelope test flips: ties (four planes through one point, e.g. a square grid on a
@@ -548,7 +550,9 @@ fn compensation_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: 
     let e2 = normal.cross(e1);
     // Metric G = sum |k| (d.e)(d.e)^T over the four points, in the frame (e1, e2).
     let mut g = [0.0f64; 3];
+    let mut largest = 0.0f64;
     for point in &geo {
+        largest = largest.max(point.k1.abs()).max(point.k2.abs());
         for (kappa, dir) in [(point.k1.abs(), point.d1), (point.k2.abs(), point.d2)] {
             let (x, y) = (dir.dot(e1), dir.dot(e2));
             g[0] += kappa * x * x;
@@ -560,8 +564,9 @@ fn compensation_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: 
     if !(trace > 0.0) || !trace.is_finite() {
         g = [1.0, 0.0, 1.0];
     } else {
-        g[0] += METRIC_REGULARISATION * trace;
-        g[2] += METRIC_REGULARISATION * trace;
+        // The four points' sum of |k| d d^T plus, per point, the isotropic term.
+        g[0] += 4.0 * METRIC_REGULARISATION * largest;
+        g[2] += 4.0 * METRIC_REGULARISATION * largest;
     }
     // Cholesky G = L L^T, coordinates x' = L^T x.
     let l11 = g[0].sqrt();
@@ -578,8 +583,15 @@ fn compensation_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: 
     if orient(c, a, b) <= 0.0 || orient(d, b, a) <= 0.0 {
         return false;
     }
-    in_circle(c, a, b, d) > 0.0
+    // Ties (four points on one metric circle, e.g. a square grid where |II| is isotropic) are
+    // left alone: a flip there only follows rounding.
+    let scale = [a, b, d].iter().map(|p| (p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2)).fold(0.0, f64::max);
+    in_circle(c, a, b, d) > COMPENSATION_TIE_TOLERANCE * scale * scale
 }
+
+/// Relative size of the in-circle determinant (against the quad's squared size, squared)
+/// below which the compensation test counts four points as cocircular.
+pub const COMPENSATION_TIE_TOLERANCE: f64 = 1e-10;
 
 /// Positive when d lies strictly inside the circle through the counter-clockwise a, b, c.
 pub(crate) fn in_circle(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {

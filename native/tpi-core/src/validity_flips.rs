@@ -51,9 +51,14 @@ pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], plane
     let n = judged;
     let mut stats = ValidityFlipStats::default();
     let mut incident = tri.incident_triangles(embedding.len());
-    let mut judge = Judge { fan: Vec::new(), polygon: Vec::new(), other: Vec::new() };
+    let (lo, hi) = crate::discretise::bounding_box(planes[..n].iter().map(|p| p.point));
+    let weld = crate::discretise::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
+    let mut judge = Judge { fan: Vec::new(), polygon: Vec::new(), other: Vec::new(), weld };
     for _ in 0..MAX_VALIDITY_ROUNDS {
         let invalid: Vec<u32> = (0..n as u32).filter(|&i| judge.invalid(tri, &incident, planes, i)).collect();
+        if std::env::var_os("TPI_DEBUG_FLIPS").is_some() {
+            eprintln!("round: {} invalid: {:?}", invalid.len(), &invalid[..invalid.len().min(12)]);
+        }
         if invalid.is_empty() {
             break;
         }
@@ -175,11 +180,21 @@ fn find_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32) -> Optio
     None
 }
 
-/// Scratch buffers of the local validity test.
+/// Scratch buffers of the local validity test, and the weld distance of the mesh (vertices
+/// closer than this become one, as in the facet stage's welding).
 struct Judge {
     fan: Vec<u32>,
     polygon: Vec<DVec3>,
     other: Vec<DVec3>,
+    weld: f64,
+}
+
+/// Drops consecutive vertices (cyclically) closer than `weld` to the previous kept one.
+fn weld_loop(points: &mut Vec<DVec3>, weld: f64) {
+    points.dedup_by(|b, a| a.distance(*b) <= weld);
+    while points.len() > 1 && points[0].distance(points[points.len() - 1]) <= weld {
+        points.pop();
+    }
 }
 
 impl Judge {
@@ -198,6 +213,7 @@ impl Judge {
         let mut polygon = std::mem::take(&mut self.polygon);
         polygon.clear();
         polygon.extend(fan.iter().map(|&t| three_plane_vertex(planes, tri.triangles[t as usize])));
+        weld_loop(&mut polygon, self.weld);
         let plane = &planes[i as usize];
         let mut invalid = !polygon.iter().all(|x| x.is_finite()) || !simple_in_plane(&polygon, plane.normal);
         if !invalid {
@@ -218,6 +234,7 @@ impl Judge {
                 let mut other = std::mem::take(&mut self.other);
                 other.clear();
                 other.extend(other_fan.iter().map(|&t| three_plane_vertex(planes, tri.triangles[t as usize])));
+                weld_loop(&mut other, self.weld);
                 let normal = plane.normal + planes[j as usize].normal;
                 let overlapping = other.iter().all(|x| x.is_finite())
                     && simple_in_plane(&other, planes[j as usize].normal)
@@ -234,32 +251,43 @@ impl Judge {
     }
 }
 
-/// Coordinates in the plane perpendicular to `normal`, frame (e1, e2, normal) right-handed.
-fn flatten(points: &[DVec3], normal: DVec3) -> Vec<DVec2> {
+/// Coordinates in the plane perpendicular to `normal`, frame (e1, e2, normal) right-handed,
+/// relative to `origin` (so that rounding is relative to the polygons' own size).
+fn flatten(points: &[DVec3], normal: DVec3, origin: DVec3) -> Vec<DVec2> {
     let (e1, e2) = normal.normalize_or(DVec3::Z).any_orthonormal_pair();
-    points.iter().map(|x| DVec2::new(x.dot(e1), x.dot(e2))).collect()
+    points.iter().map(|&x| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2))).collect()
+}
+
+/// Relative tolerance of the local validity tests: orientations smaller than this times the
+/// squared size of the polygons count as collinear, distances smaller than this times the
+/// size as zero (rounding of the three-plane vertices is far below it).
+pub const VALIDITY_TOLERANCE: f64 = 1e-9;
+
+/// Longest edge of a closed polygon.
+fn size(p: &[DVec2]) -> f64 {
+    (0..p.len()).map(|k| (p[(k + 1) % p.len()] - p[k]).length()).fold(0.0, f64::max)
 }
 
 /// Simple and counter-clockwise seen from `normal`, at least three distinct vertices.
 pub(crate) fn simple_in_plane(points: &[DVec3], normal: DVec3) -> bool {
-    let p = flatten(points, normal);
+    let Some(&origin) = points.first() else { return false };
+    let p = flatten(points, normal, origin);
     let n = p.len();
     if n < 3 {
         return false;
     }
+    let scale = size(&p);
     let area: f64 = (0..n).map(|k| p[k].perp_dot(p[(k + 1) % n])).sum();
-    if !(area > 0.0) {
+    if !(area > VALIDITY_TOLERANCE * scale * scale) {
         return false;
     }
+    let eps = VALIDITY_TOLERANCE * scale * scale;
     for a in 0..n {
-        if p[a] == p[(a + 1) % n] {
-            return false;
-        }
         for b in a + 2..n {
             if a == 0 && b == n - 1 {
                 continue;
             }
-            if proper_crossing(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n]) {
+            if proper_crossing(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n], eps) {
                 return false;
             }
         }
@@ -268,22 +296,29 @@ pub(crate) fn simple_in_plane(points: &[DVec3], normal: DVec3) -> bool {
 }
 
 /// Whether two simple polygons that may share vertices overlap in area, seen along
-/// `normal`: a proper crossing of their edges, or a vertex of one strictly inside the other
-/// (shared vertices excluded by position).
+/// `normal`: a proper crossing of their edges, or a vertex of one strictly inside the other.
+/// Vertices of one closer than the tolerance to a vertex of the other count as shared.
 pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool {
-    let (pa, pb) = (flatten(a, normal), flatten(b, normal));
+    let Some(&origin) = a.first() else { return false };
+    let (pa, mut pb) = (flatten(a, normal, origin), flatten(b, normal, origin));
+    let scale = size(&pa).max(size(&pb));
+    let tolerance = VALIDITY_TOLERANCE * scale;
+    for q in pb.iter_mut() {
+        if let Some(p) = pa.iter().find(|p| (**p - *q).length() <= tolerance) {
+            *q = *p;
+        }
+    }
+    let eps = VALIDITY_TOLERANCE * scale * scale;
     let (na, nb) = (pa.len(), pb.len());
     for x in 0..na {
         for y in 0..nb {
-            if proper_crossing(pa[x], pa[(x + 1) % na], pb[y], pb[(y + 1) % nb]) {
+            if proper_crossing(pa[x], pa[(x + 1) % na], pb[y], pb[(y + 1) % nb], eps) {
                 return true;
             }
         }
     }
-    let scale = pa.iter().chain(&pb).fold(0.0f64, |m, p| m.max(p.abs().max_element()));
-    let tolerance = 1e-9 * scale.max(f64::MIN_POSITIVE);
     let strictly_inside = |p: DVec2, poly: &[DVec2]| {
-        !poly.iter().any(|q| (*q - p).abs().max_element() <= tolerance) && point_in_polygon(p, poly, tolerance)
+        !poly.iter().any(|q| (*q - p).length() <= tolerance) && point_in_polygon(p, poly, tolerance)
     };
     pb.iter().any(|&p| strictly_inside(p, &pa)) || pa.iter().any(|&p| strictly_inside(p, &pb))
 }
@@ -306,11 +341,13 @@ fn point_in_polygon(p: DVec2, poly: &[DVec2], tolerance: f64) -> bool {
     inside
 }
 
-/// The open segments ab and cd cross (strictly opposite sides both ways).
-fn proper_crossing(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
+/// The segments ab and cd cross properly: each strictly (beyond `eps`, an area) on both
+/// sides of the other.
+fn proper_crossing(a: DVec2, b: DVec2, c: DVec2, d: DVec2, eps: f64) -> bool {
     let d1 = (b - a).perp_dot(c - a);
     let d2 = (b - a).perp_dot(d - a);
     let d3 = (d - c).perp_dot(a - c);
     let d4 = (d - c).perp_dot(b - c);
-    d1 * d2 < 0.0 && d3 * d4 < 0.0
+    let opposite = |x: f64, y: f64| (x > eps && y < -eps) || (x < -eps && y > eps);
+    opposite(d1, d2) && opposite(d3, d4)
 }
