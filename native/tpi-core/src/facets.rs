@@ -460,6 +460,11 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
     mesh
 }
 
+/// On the ghost-closed path, a vertex farther than this many triangle sides from its
+/// triangle's centroid (or not finite) is unreachable: its facets get stand-ins on their edge
+/// lines instead (leaving a small hole); nearer far vertices stay exact and are diagnosed.
+pub const UNREACHABLE_VERTEX_FACTOR: f64 = 1e6;
+
 /// Facets per parallel work item of the loop stage.
 const FACET_CHUNK: usize = 512;
 
@@ -1111,8 +1116,10 @@ pub(crate) fn build_closed_facets(
             let meeting = intersect_three(a, b, c);
             let centroid = (a.point + b.point + c.point) / 3.0;
             let longest = a.point.distance(b.point).max(b.point.distance(c.point)).max(c.point.distance(a.point));
-            let exact = !real(&ids)
-                || (meeting.point.is_finite() && meeting.point.distance(centroid) <= params.far_vertex_factor * longest);
+            // Far vertices (nearly parallel planes, at parabolic lines) are kept exact: a
+            // stand-in per edge would leave a hole, and the mesh must stay a disc. They are
+            // named in a diagnostic below; only a vertex at infinity gets stand-ins.
+            let exact = !real(&ids) || meeting.point.distance(centroid) <= UNREACHABLE_VERTEX_FACTOR * longest;
             let point = if exact { meeting.point } else { regularised_meeting_point([a, b, c], centroid, 1e-6) };
             TriangleVertex { point, foot: [0.0; 2], inside: 1.0, reach: 0.0, exact, measured: true, newton_foot: false }
         })
@@ -1121,14 +1128,18 @@ pub(crate) fn build_closed_facets(
         .triangles
         .iter()
         .zip(&triangle_vertices)
-        .filter(|(ids, v)| !v.exact && real(ids))
-        .map(|(ids, _)| {
+        .filter_map(|(ids, v)| {
             let mut sorted = *ids;
             sorted.sort_unstable();
             let [a, b, c] = sorted.map(|i| &planes[i as usize]);
             let meeting = intersect_three(a, b, c);
             let centroid = (a.point + b.point + c.point) / 3.0;
             let distance = meeting.point.distance(centroid);
+            let longest = a.point.distance(b.point).max(b.point.distance(c.point)).max(c.point.distance(a.point));
+            let far = !v.exact || !(distance <= params.far_vertex_factor * longest);
+            (far && real(ids)).then_some((sorted, meeting, distance))
+        })
+        .map(|(sorted, meeting, distance)| {
             let mut points = sorted.map(|i| source[i as usize]);
             points.sort_unstable();
             Diagnostic::IllConditionedVertex {

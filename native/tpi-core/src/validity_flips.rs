@@ -18,8 +18,9 @@
 //!   vertex of one lies strictly inside the other.
 //!
 //! A round visits the invalid facets in index order. For each, the edges of its star (i, j)
-//! and of its link (j, k) are tried one by one: the edge is flipped where its quadrilateral is
-//! strictly convex in the triangulation's plane (so the structure stays a triangulation), the
+//! and of its link (j, k) are tried one by one: the edge is flipped (a topological move: the
+//! structure stays a triangulated disc whatever the quad's shape in the plane, since facet
+//! loops follow adjacency; only a flip whose new diagonal exists already is refused), the
 //! invalid facets among those the flip can change (the quad's four points and their
 //! neighbours) are counted before and after, and the flip is kept only if the count drops.
 //! Every kept flip lowers the number of invalid facets, so the loop ends; it is bounded by
@@ -30,7 +31,7 @@ use glam::{DVec2, DVec3};
 
 use crate::neighbours::three_plane_vertex;
 use crate::planes::Plane;
-use crate::triangulation::{orient, DualTriangulation, Fan, NO_TRIANGLE};
+use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
 /// Rounds of validity flips at most (each round visits every invalid facet once).
 pub const MAX_VALIDITY_ROUNDS: usize = 8;
@@ -45,8 +46,8 @@ pub struct ValidityFlipStats {
 }
 
 /// Repairs invalid interior facets of the points `0..judged` by flips (module doc).
-/// `embedding` is the plane the triangulation is a planar triangulation in; `planes` the
-/// tangent planes of all its points.
+/// `embedding` holds the triangulation's points (ghosts included); `planes` the tangent
+/// planes of all of them.
 pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], planes: &[Plane], judged: usize) -> ValidityFlipStats {
     let n = judged;
     let mut stats = ValidityFlipStats::default();
@@ -67,7 +68,7 @@ pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], plane
             if !judge.invalid(tri, &incident, planes, i) {
                 continue;
             }
-            if try_repair(tri, &mut incident, embedding, planes, &mut judge, i, n) {
+            if try_repair(tri, &mut incident, planes, &mut judge, i, n) {
                 kept += 1;
             }
         }
@@ -85,7 +86,6 @@ pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], plane
 fn try_repair(
     tri: &mut DualTriangulation,
     incident: &mut [u32],
-    embedding: &[[f64; 2]],
     planes: &[Plane],
     judge: &mut Judge,
     i: u32,
@@ -107,9 +107,11 @@ fn try_repair(
     for (a, b) in candidates {
         let Some((t, k)) = find_edge(tri, incident, a, b) else { continue };
         let quad = quad_points(tri, t, k);
-        let [c, qa, qb, d] = quad;
-        let e = |x: u32| embedding[x as usize];
-        if !(orient(e(c), e(qa), e(d)) > 0.0 && orient(e(d), e(qb), e(c)) > 0.0) {
+        let [c, _, _, d] = quad;
+        // A flip is a topological move: the structure stays a triangulated disc whatever the
+        // quad's shape in the plane (facet loops follow adjacency, not positions), unless
+        // the new diagonal exists already.
+        if c == d || has_edge(tri, incident, c, d) {
             continue;
         }
         let mut affected = affected_points(tri, incident, quad);
@@ -129,6 +131,13 @@ fn try_repair(
         set_incident(tri, incident, u1, u2);
     }
     false
+}
+
+/// Whether points a and b are joined by an edge (interior or hull).
+fn has_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32) -> bool {
+    let mut fan = Vec::new();
+    tri.fan(a, incident[a as usize], &mut fan);
+    fan.iter().any(|&t| tri.triangles[t as usize].contains(&b))
 }
 
 /// Points whose validity a flip of the quad's diagonal can change: the quad's four points
@@ -276,12 +285,12 @@ pub(crate) fn simple_in_plane(points: &[DVec3], normal: DVec3) -> bool {
     if n < 3 {
         return false;
     }
-    let scale = size(&p);
+    // Strict, as any independent check of the finished mesh is: a fold of any size fails.
     let area: f64 = (0..n).map(|k| p[k].perp_dot(p[(k + 1) % n])).sum();
-    if !(area > VALIDITY_TOLERANCE * scale * scale) {
+    if !(area > 0.0) {
         return false;
     }
-    let eps = VALIDITY_TOLERANCE * scale * scale;
+    let eps = 0.0;
     for a in 0..n {
         for b in a + 2..n {
             if a == 0 && b == n - 1 {
