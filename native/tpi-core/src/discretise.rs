@@ -370,7 +370,8 @@ pub(crate) fn run(
     // Candidates and true neighbours.
     let stage = Instant::now();
     check_not_collinear(&plane_uv)?;
-    let input = NeighbourInput { plane_uv: &plane_uv, geometry: &geometry, planes: &planes, convex_side: &convex_side };
+    let input =
+        NeighbourInput { plane_uv: &plane_uv, geometry: &geometry, planes: &planes, convex_side: &convex_side, any_curvature: false };
     let (triangulation, augmented, neighbours) = match &slopes {
         // Convex everywhere: the envelope's own structure, computed in slope space.
         Some(slopes) => {
@@ -382,8 +383,19 @@ pub(crate) fn run(
             (triangulation, None, stats)
         }
         // Anything else: parameter-space candidates, curvature compensation, local repair.
+        // Strictly convex everywhere but too steep for the slope embedding: the envelope tests
+        // on parameter-space candidates, with the boundary clipped on the wall.
+        None if convex_side.iter().all(|&s| s != 0 && s == convex_side[0]) => {
+            let mut triangulation = DualTriangulation::delaunay(&plane_uv)?;
+            timings.delaunay = ms(stage);
+            let stage = Instant::now();
+            let stats = decide(&mut triangulation, &input, options.envelope_repair, plane_uv.len());
+            timings.neighbours = ms(stage);
+            (triangulation, None, stats)
+        }
+        // Saddles and mixed curvature: ghost seeds beyond the boundary close every real facet
+        // for the validity flips.
         None => {
-            // Ghost seeds beyond the boundary close every real facet for the flips.
             let extent = plane_extent(&plane_uv, pattern);
             let augmented = augment(surface, &uv, &plane_uv, extent, &geometry, &planes, &convex_side);
             let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
@@ -394,6 +406,7 @@ pub(crate) fn run(
                 geometry: &augmented.geometry,
                 planes: &augmented.planes,
                 convex_side: &augmented.convex_side,
+                any_curvature: true,
             };
             let stats = decide(&mut triangulation, &augmented_input, options.envelope_repair, plane_uv.len());
             timings.neighbours = ms(stage);
@@ -475,6 +488,7 @@ pub(crate) fn run(
             neighbours,
             diagnostic_count: result.diagnostics.len(),
             feet: &feet,
+            convex_side: &convex_side,
         });
         result.quality = Some(quality);
         result.facet_flags = flags;

@@ -1099,6 +1099,7 @@ impl State {
                 neighbours: stats,
                 diagnostic_count: result.diagnostics.len(),
                 feet: &feet,
+                convex_side: &self.convex_side,
             });
             result.quality = Some(quality);
             result.facet_flags = flags;

@@ -43,6 +43,10 @@ use crate::validity_flips::validity_flips;
 /// that the metric never degenerates where one principal curvature vanishes.
 pub const METRIC_REGULARISATION: f64 = 0.05;
 
+/// On strictly convex surfaces off the slope-space path, the isotropic term is this fraction
+/// of the summed metric's trace (the envelope test decides after it anyway).
+pub const CONVEX_METRIC_REGULARISATION: f64 = 1e-3;
+
 /// A vertex must lie this far (relative to the quad's size) outside a half-space before
 /// the envelope test flips: ties (four planes through one point, e.g. a square grid on a
 /// paraboloid of revolution) are left alone.
@@ -84,6 +88,10 @@ pub struct NeighbourInput<'a> {
     /// +1 or -1 where the point is strictly convex (K > 0): the side of the centres of
     /// curvature relative to the normal; 0 elsewhere.
     pub convex_side: &'a [i8],
+    /// The any-curvature path (saddles, mixed surfaces): the compensation metric gets the
+    /// isotropic term [`METRIC_REGULARISATION`] and the tie tolerance, and the validity flips
+    /// run. False on strictly convex surfaces, where the envelope test decides anyway.
+    pub any_curvature: bool,
 }
 
 /// Runs both criteria to convergence, then the validity flips of the facets of points
@@ -98,9 +106,11 @@ pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope:
         stats.envelope_repairs = flips;
         stats.envelope_unresolved = unresolved;
     }
-    let validity = validity_flips(tri, uv, input.planes, real_count);
-    stats.validity_flips = validity.flips;
-    stats.validity_unresolved = validity.unresolved;
+    if input.any_curvature {
+        let validity = validity_flips(tri, uv, input.planes, real_count);
+        stats.validity_flips = validity.flips;
+        stats.validity_unresolved = validity.unresolved;
+    }
     tri.canonicalise(input.plane_uv.len());
     // With ghosts the hull lies beyond the boundary: nothing to trim.
     if envelope && real_count == input.plane_uv.len() {
@@ -563,10 +573,13 @@ fn compensation_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: 
     let trace = g[0] + g[2];
     if !(trace > 0.0) || !trace.is_finite() {
         g = [1.0, 0.0, 1.0];
-    } else {
+    } else if input.any_curvature {
         // The four points' sum of |k| d d^T plus, per point, the isotropic term.
         g[0] += 4.0 * METRIC_REGULARISATION * largest;
         g[2] += 4.0 * METRIC_REGULARISATION * largest;
+    } else {
+        g[0] += CONVEX_METRIC_REGULARISATION * trace;
+        g[2] += CONVEX_METRIC_REGULARISATION * trace;
     }
     // Cholesky G = L L^T, coordinates x' = L^T x.
     let l11 = g[0].sqrt();
@@ -586,7 +599,8 @@ fn compensation_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: 
     // Ties (four points on one metric circle, e.g. a square grid where |II| is isotropic) are
     // left alone: a flip there only follows rounding.
     let scale = [a, b, d].iter().map(|p| (p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2)).fold(0.0, f64::max);
-    in_circle(c, a, b, d) > COMPENSATION_TIE_TOLERANCE * scale * scale
+    let tie = if input.any_curvature { COMPENSATION_TIE_TOLERANCE * scale * scale } else { 0.0 };
+    in_circle(c, a, b, d) > tie
 }
 
 /// Relative size of the in-circle determinant (against the quad's squared size, squared)

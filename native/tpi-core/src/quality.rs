@@ -5,10 +5,17 @@
 //!   vertex is built in its facets' planes);
 //! - deviation: distance of each mesh vertex from its closest surface point (max and mean);
 //! - convexity and simplicity of each facet, in 2D coordinates of its tangent plane; a facet
-//!   whose loop runs clockwise seen from its normal counts as not simple;
-//! - overlap: two facets sharing an edge overlap when, projected into the first one's plane,
-//!   their centroids lie on the same side of the shared edge (the second folds back over
-//!   the first);
+//!   whose loop runs clockwise seen from its normal counts as not simple; a facet with fewer
+//!   than three distinct vertices is open;
+//! - overlap: two simple facets that share a vertex overlap when, projected along the mean of
+//!   their two normals, an edge of one crosses an edge of the other properly or a vertex of
+//!   one lies strictly inside the other (DESIGN.md, item 8). A pair sharing an edge (a, b)
+//!   is first tried by the separating line through a and b: all other vertices of one on one
+//!   side and of the other on the other side means no overlap;
+//! - validity: open, non-simple and overlapping facets are invalid (`invalid_facets`) and
+//!   flagged. Non-convex facets are counted but flagged only where the seed is strictly
+//!   convex (K > 0), where the envelope makes every facet convex; on K < 0 non-convex is the
+//!   expected shape (paper, figure 6), not a defect;
 //! - topology: Euler characteristic V - E + F, boundary loops, valence of interior vertices
 //!   (a vertex is interior when no boundary edge, i.e. an edge of only one facet, touches it).
 
@@ -21,6 +28,7 @@ use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
 use crate::facets::{accept_newton, FootHint};
 use crate::projection::foot;
+use crate::validity_flips::polygons_overlap;
 use crate::surface::Surface;
 
 /// Per-facet flag: not convex.
@@ -31,6 +39,10 @@ pub const FLAG_NON_SIMPLE: u8 = 2;
 pub const FLAG_OVERLAP: u8 = 4;
 /// Per-facet flag: a diagnostic names this facet's pattern point.
 pub const FLAG_DIAGNOSTIC: u8 = 8;
+/// Per-facet flag: fewer than three distinct vertices.
+pub const FLAG_OPEN: u8 = 16;
+/// The flags that make a facet invalid (DESIGN.md, item 8).
+pub const INVALID_FLAGS: u8 = FLAG_NON_SIMPLE | FLAG_OVERLAP | FLAG_OPEN;
 
 /// Summary of a discretisation's quality (serialised into the output contract).
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
@@ -59,8 +71,15 @@ pub struct QualityReport {
     pub non_simple_facets: usize,
     /// Pairs of neighbouring facets that overlap.
     pub overlapping_pairs: usize,
-    /// Facets with any flag (non-convex, non-simple, overlapping, or named by a diagnostic).
+    /// Facets with any flag (non-convex where K > 0, non-simple, overlapping, open, or named
+    /// by a diagnostic).
     pub flagged_facets: usize,
+    /// Facets with fewer than three distinct vertices.
+    #[serde(default)]
+    pub open_facets: usize,
+    /// Open, non-simple or overlapping facets (each once): 0 for a valid mesh.
+    #[serde(default)]
+    pub invalid_facets: usize,
     /// V - E + F (1 for a disc).
     pub euler_characteristic: i64,
     /// Number of boundary loops (1 for a disc).
@@ -110,6 +129,9 @@ pub struct ReportInput<'a> {
     /// Per vertex, what the facet stage knows about its foot (empty: project every vertex
     /// from its first facet's seed).
     pub feet: &'a [FootHint],
+    /// Per seed, +1/-1 where strictly convex (K > 0), 0 elsewhere: where a non-convex facet is
+    /// a defect (empty: nowhere).
+    pub convex_side: &'a [i8],
 }
 
 /// Facet `i`'s loop.
@@ -156,6 +178,7 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
             })
             .collect()
     };
+    let mut shared_edges: Vec<(u32, u32, u32, u32)> = Vec::new();
     let mut on_boundary = vec![false; input.vertices.len()];
     let mut boundary_parent: Vec<u32> = (0..input.vertices.len() as u32).collect();
     let mut boundary_vertices = 0usize;
@@ -183,17 +206,30 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
                     boundary_parent[ra.max(rb) as usize] = ra.min(rb);
                 }
             }
-            2 => {
-                let (f, g) = (edges[k].2 as usize, edges[k + 1].2 as usize);
-                if overlaps(input, f, g, a, b, shapes[f].0, shapes[g].0) {
-                    r.overlapping_pairs += 1;
-                    flags[f] |= FLAG_OVERLAP;
-                    flags[g] |= FLAG_OVERLAP;
-                }
-            }
+            2 => shared_edges.push((edges[k].2, edges[k + 1].2, a, b)),
             _ => r.non_manifold_edges += 1,
         }
         k = m;
+    }
+    // Overlaps: pairs sharing an edge, then pairs sharing only a vertex (where four or more
+    // facets meet), both facets simple.
+    let simple: Vec<bool> = shapes.iter().map(|s| s.1.simple).collect();
+    let overlapping: Vec<(u32, u32)> = {
+        use rayon::prelude::*;
+        let mut pairs: Vec<(u32, u32)> = shared_edges
+            .par_iter()
+            .filter(|&&(f, g, a, b)| simple[f as usize] && simple[g as usize] && edge_pair_overlaps(input, f, g, a, b))
+            .map(|&(f, g, _, _)| (f.min(g), f.max(g)))
+            .collect();
+        pairs.extend(vertex_pairs_overlapping(input, facet_count, &simple, &shared_edges));
+        pairs.sort_unstable();
+        pairs.dedup();
+        pairs
+    };
+    r.overlapping_pairs = overlapping.len();
+    for &(f, g) in &overlapping {
+        flags[f as usize] |= FLAG_OVERLAP;
+        flags[g as usize] |= FLAG_OVERLAP;
     }
     let used: Vec<bool> = {
         let mut used = vec![false; input.vertices.len()];
@@ -238,18 +274,30 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
         r.max_planarity_error = r.max_planarity_error.max(planarity);
         r.min_facet_area = r.min_facet_area.min(shape.area);
         r.max_facet_area = r.max_facet_area.max(shape.area);
-        if !shape.simple {
+        let distinct = {
+            let mut v = l.to_vec();
+            v.sort_unstable();
+            v.dedup();
+            v.len()
+        };
+        if distinct < 3 {
+            flags[i] |= FLAG_OPEN;
+            r.open_facets += 1;
+        } else if !shape.simple {
             flags[i] |= FLAG_NON_SIMPLE;
         }
         if !shape.convex {
-            flags[i] |= FLAG_NON_CONVEX;
+            r.non_convex_facets += 1;
+            if input.convex_side.get(i).is_some_and(|&s| s != 0) {
+                flags[i] |= FLAG_NON_CONVEX;
+            }
         }
         if input.diagnosed.get(i).copied().unwrap_or(false) {
             flags[i] |= FLAG_DIAGNOSTIC;
         }
     }
-    r.non_convex_facets = flags.iter().filter(|&&f| f & FLAG_NON_CONVEX != 0).count();
     r.non_simple_facets = flags.iter().filter(|&&f| f & FLAG_NON_SIMPLE != 0).count();
+    r.invalid_facets = flags.iter().filter(|&&f| f & INVALID_FLAGS != 0).count();
     r.flagged_facets = flags.iter().filter(|&&f| f != 0).count();
 
     // Deviation from the surface, per vertex (from its foot, see `resolve_feet`), in vertex
@@ -411,19 +459,81 @@ fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
     ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
 }
 
-/// Whether facets f and g (with centroids `cf`, `cg`), sharing edge (a, b), fold onto the
-/// same side of it.
-fn overlaps(input: &ReportInput<'_>, f: usize, _g: usize, a: u32, b: u32, cf: DVec3, cg: DVec3) -> bool {
-    let plane = &input.planes[f];
-    let (e1, e2) = plane_frame(plane);
-    let to2 = |x: DVec3| {
-        let d = x - plane.point;
-        DVec2::new(d.dot(e1), d.dot(e2))
+/// The points of facet f's loop.
+fn loop_points(input: &ReportInput<'_>, f: u32) -> Vec<DVec3> {
+    facet(input, f as usize).iter().map(|&v| input.vertices[v as usize]).collect()
+}
+
+/// Whether simple facets f and g, sharing the edge (a, b), overlap seen along their mean
+/// normal (module doc): the line through a and b separates them, or the full test decides.
+fn edge_pair_overlaps(input: &ReportInput<'_>, f: u32, g: u32, a: u32, b: u32) -> bool {
+    let normal = input.planes[f as usize].normal + input.planes[g as usize].normal;
+    let Some(normal) = normal.try_normalize() else { return false };
+    let (e1, e2) = normal.any_orthonormal_pair();
+    let origin = input.vertices[a as usize];
+    let to2 = |x: DVec3| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2));
+    let direction = to2(input.vertices[b as usize]);
+    let length = direction.length();
+    if !(length > 0.0) {
+        return polygons_overlap(&loop_points(input, f), &loop_points(input, g), normal);
+    }
+    // Signed distances of the other vertices from the line, beyond a rounding margin.
+    let side = |h: u32| {
+        let (mut positive, mut negative) = (false, false);
+        for &v in facet(input, h as usize) {
+            if v == a || v == b {
+                continue;
+            }
+            let d = direction.perp_dot(to2(input.vertices[v as usize])) / length;
+            positive |= d > SEPARATION_MARGIN * length;
+            negative |= d < -SEPARATION_MARGIN * length;
+        }
+        (positive, negative)
     };
-    let (pa, pb) = (to2(input.vertices[a as usize]), to2(input.vertices[b as usize]));
-    let side_f = (pb - pa).perp_dot(to2(cf) - pa);
-    let side_g = (pb - pa).perp_dot(to2(cg) - pa);
-    side_f * side_g > 0.0
+    let (fp, fn_) = side(f);
+    let (gp, gn) = side(g);
+    let separated = (fp && !fn_ && gn && !gp) || (fn_ && !fp && gp && !gn);
+    !separated && polygons_overlap(&loop_points(input, f), &loop_points(input, g), normal)
+}
+
+/// A vertex within this fraction of an edge's length of the edge's line counts as on it in
+/// the separating-line test of [`edge_pair_overlaps`] (the full test then decides).
+pub const SEPARATION_MARGIN: f64 = 1e-9;
+
+/// Overlapping pairs of simple facets that share a vertex but no edge (only where four or
+/// more facets meet at a vertex).
+fn vertex_pairs_overlapping(
+    input: &ReportInput<'_>,
+    facet_count: usize,
+    simple: &[bool],
+    shared_edges: &[(u32, u32, u32, u32)],
+) -> Vec<(u32, u32)> {
+    let mut facets_of: Vec<Vec<u32>> = vec![Vec::new(); input.vertices.len()];
+    for f in 0..facet_count {
+        for &v in facet(input, f) {
+            facets_of[v as usize].push(f as u32);
+        }
+    }
+    let adjacent: std::collections::HashSet<(u32, u32)> =
+        shared_edges.iter().map(|&(f, g, _, _)| (f.min(g), f.max(g))).collect();
+    let mut out = Vec::new();
+    for list in facets_of.iter().filter(|l| l.len() > 3) {
+        for (k, &f) in list.iter().enumerate() {
+            for &g in &list[k + 1..] {
+                let pair = (f.min(g), f.max(g));
+                if f == g || adjacent.contains(&pair) || !simple[f as usize] || !simple[g as usize] {
+                    continue;
+                }
+                let normal = input.planes[f as usize].normal + input.planes[g as usize].normal;
+                if let Some(normal) = normal.try_normalize() {
+                    if polygons_overlap(&loop_points(input, f), &loop_points(input, g), normal) {
+                        out.push(pair);
+                    }
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Every loop edge as (lo, hi, facet), sorted: counting sort on lo, then each run of equal

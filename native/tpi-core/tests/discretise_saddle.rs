@@ -2,71 +2,52 @@
 //! without panic or NaN, stay planar, and the report's validity counts and per-facet flags
 //! match an independent check (issue 3, item 7 and "Mixed curvature").
 //!
-//! The independent check follows the report's documented definitions (quality.rs module doc),
-//! written out again here:
+//! The independent check follows the definitions of DESIGN.md, item 8, written out again here
+//! (validity module of the test helpers):
 //! - a facet's 2D coordinates are taken in its tangent plane (own right-handed frame about
 //!   the seed normal Su x Sv);
+//! - open: fewer than 3 distinct vertices;
 //! - simple: at least 3 vertices, positive (counter-clockwise) area, and no two non-adjacent
 //!   edges crossing properly;
 //! - convex: simple, and no right turn (a turn counts as right when its cross product is
-//!   below -1e-12 times the squared longest edge);
-//! - overlap: for every edge shared by exactly two facets f < g, projected into f's tangent
-//!   plane, the vertex centroids of f and g lie strictly on the same side of the edge's line
-//!   (one count per shared edge, both facets flagged);
+//!   below -1e-12 times the squared longest edge); non-convex is a flag only where K > 0 at
+//!   the seed (K from the surface's derivatives, own formula);
+//! - overlap: two simple facets sharing a vertex whose projections along their mean normal
+//!   intersect in more than a 1e-6 fraction of the smaller one's area (the `geo` crate);
 //! - the diagnostic flag marks every facet whose pattern point a diagnostic names.
 // NaN-safe negated comparisons are intended; index loops read better in geometry checks.
 #![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop, clippy::unnecessary_map_or)]
 
 mod common;
 
-use std::collections::BTreeMap;
 
 use common::*;
-use glam::{DVec2, DVec3};
-use tpi_core::quality::{FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OVERLAP};
+
+use tpi_core::quality::{FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP};
 use tpi_core::{discretise, AnalyticSurface, Discretisation, DiscretiseOptions, Surface};
 
 const TOL: f64 = 1e-9;
 
 /// Own flags per facet and own overlap count.
-fn independent_flags(d: &Discretisation) -> (Vec<u8>, usize) {
+fn independent_flags(surface: &dyn Surface, d: &Discretisation) -> (Vec<u8>, usize) {
     let n = d.facet_count();
     let mut flags = vec![0u8; n];
-    let project = |plane: usize, xs: &[DVec3]| -> Vec<DVec2> { to_2d(d.seeds[plane].point, d.seeds[plane].normal, xs) };
+    let validity = common::validity::check(d);
+    for &i in &validity.open {
+        flags[i] |= FLAG_OPEN;
+    }
+    for &i in &validity.non_simple {
+        flags[i] |= FLAG_NON_SIMPLE;
+    }
+    for &(f, g) in &validity.overlapping_pairs {
+        flags[f] |= FLAG_OVERLAP;
+        flags[g] |= FLAG_OVERLAP;
+    }
     for i in 0..n {
-        let p = project(i, &facet_points(d, i));
-        if !is_simple(&p) {
-            flags[i] |= FLAG_NON_SIMPLE;
-        }
-        if !is_convex(&p) {
+        let p = to_2d(d.seeds[i].point, d.seeds[i].normal, &facet_points(d, i));
+        let [u, v] = d.seeds[i].uv;
+        if !is_convex(&p) && gaussian_and_mean(surface, u, v).0 > 0.0 {
             flags[i] |= FLAG_NON_CONVEX;
-        }
-    }
-    let mut edges: BTreeMap<(u32, u32), Vec<usize>> = BTreeMap::new();
-    for i in 0..n {
-        let l = d.facet(i);
-        for k in 0..l.len() {
-            let (a, b) = (l[k], l[(k + 1) % l.len()]);
-            edges.entry((a.min(b), a.max(b))).or_default().push(i);
-        }
-    }
-    let centroid = |i: usize| {
-        let pts = facet_points(d, i);
-        pts.iter().fold(DVec3::ZERO, |acc, &x| acc + x) / pts.len() as f64
-    };
-    let mut overlaps = 0;
-    for (&(a, b), fs) in &edges {
-        if fs.len() != 2 {
-            continue;
-        }
-        let (f, g) = (fs[0].min(fs[1]), fs[0].max(fs[1]));
-        let q = project(f, &[d.vertices[a as usize], d.vertices[b as usize], centroid(f), centroid(g)]);
-        let side_f = cross2(q[1] - q[0], q[2] - q[0]);
-        let side_g = cross2(q[1] - q[0], q[3] - q[0]);
-        if side_f * side_g > 0.0 {
-            overlaps += 1;
-            flags[f] |= FLAG_OVERLAP;
-            flags[g] |= FLAG_OVERLAP;
         }
     }
     for diagnostic in &d.diagnostics {
@@ -74,7 +55,7 @@ fn independent_flags(d: &Discretisation) -> (Vec<u8>, usize) {
             flags[p as usize] |= FLAG_DIAGNOSTIC;
         }
     }
-    (flags, overlaps)
+    (flags, validity.overlapping_pairs.len())
 }
 
 /// Which part of the acceptance a run checks.
@@ -125,12 +106,12 @@ fn check(name: &str, surface: &dyn Surface, pattern: &[[f64; 2]], part: Part) ->
     if !q.all_finite {
         fail.push(format!("{name}: report says not all finite"));
     }
-    let (flags, overlaps) = independent_flags(&d);
+    let (flags, overlaps) = independent_flags(surface, &d);
     let count = |bit: u8| flags.iter().filter(|&&f| f & bit != 0).count();
-    let mine = (count(FLAG_NON_SIMPLE), count(FLAG_NON_CONVEX), overlaps, flags.iter().filter(|&&f| f != 0).count());
-    let theirs = (q.non_simple_facets, q.non_convex_facets, q.overlapping_pairs, q.flagged_facets);
+    let mine = (count(FLAG_NON_SIMPLE), count(FLAG_OPEN), overlaps, flags.iter().filter(|&&f| f != 0).count());
+    let theirs = (q.non_simple_facets, q.open_facets, q.overlapping_pairs, q.flagged_facets);
     println!(
-        "{name}: {} facets, non-simple {}, non-convex {}, overlapping pairs {}, flagged {} (report {theirs:?}), {} diagnostics, planarity {planarity:.2e}",
+        "{name}: {} facets, non-simple {}, open {}, overlapping pairs {}, flagged {} (report {theirs:?}), {} diagnostics, planarity {planarity:.2e}",
         n,
         mine.0,
         mine.1,
@@ -139,7 +120,7 @@ fn check(name: &str, surface: &dyn Surface, pattern: &[[f64; 2]], part: Part) ->
         d.diagnostics.len()
     );
     if mine != theirs {
-        fail.push(format!("{name}: (non-simple, non-convex, overlapping pairs, flagged) independent {mine:?}, report {theirs:?}"));
+        fail.push(format!("{name}: (non-simple, open, overlapping pairs, flagged) independent {mine:?}, report {theirs:?}"));
     }
     if d.facet_flags.len() != n {
         fail.push(format!("{name}: {} facet flags", d.facet_flags.len()));
