@@ -35,12 +35,16 @@ OPTIONS:
     --size WxH          PNG size in pixels (default 1200x900)
     --threads N         run the core on N threads (default: one per core)
     --no-report         skip the quality report (faster; no facet flags)
+    --strict            exit with code 3 when the mesh has invalid facets (open,
+                        non-simple or overlapping; the outputs are still written)
     -h, --help          this help
 
 All outputs are computed in memory first and then written through temporary files, so a
 failing run leaves no output file (and no half-written one). A summary of the quality
 report goes to stderr; a progress line too when stderr is a terminal and the run takes
-more than a second. Exit code 0 on success, 1 for bad input or output, 2 for usage.
+more than a second. When the report finds invalid facets, a line `warning: N invalid
+facets (...)` goes to stderr. Exit code 0 on success, 1 for bad input or output, 2 for
+usage, 3 for invalid facets with --strict.
 
 EXAMPLES:
     tpi discretise --surface samples/nurbs-dome.json --pattern samples/random-1000.json \\
@@ -79,11 +83,13 @@ struct Options {
     size: (u32, u32),
     threads: Option<usize>,
     report: bool,
+    strict: bool,
 }
 
 fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
     let mut a = Args::new("discretise", rest);
     let (mut surface, mut pattern, mut outs, mut size, mut threads, mut report) = (None, None, Vec::new(), None, None, true);
+    let mut strict = false;
     while let Some(arg) = a.next() {
         match arg {
             Arg::Option(name, inline) => match name.as_str() {
@@ -118,6 +124,10 @@ fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
                     a.flag(&name, inline)?;
                     report = false;
                 }
+                "strict" => {
+                    a.flag(&name, inline)?;
+                    strict = true;
+                }
                 _ => return Err(a.unknown(&name)),
             },
             Arg::Positional(p) => return Err(a.usage(format!("unexpected argument `{p}`"))),
@@ -128,7 +138,10 @@ fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
     if size.is_some() && !outs.iter().any(|(_, f)| *f == Format::Png) {
         return Err(a.usage("--size applies to a .png output, and none is given"));
     }
-    Ok(Some(Options { surface, pattern, outs, size: size.unwrap_or(DEFAULT_SIZE), threads, report }))
+    if strict && !report {
+        return Err(a.usage("--strict needs the quality report; drop --no-report"));
+    }
+    Ok(Some(Options { surface, pattern, outs, size: size.unwrap_or(DEFAULT_SIZE), threads, report, strict }))
 }
 
 fn parse_size(s: &str) -> Option<(u32, u32)> {
@@ -191,6 +204,12 @@ pub fn run(rest: Vec<String>) -> Result<(), CliError> {
         eprintln!("  wrote {}", names.join(", "));
     }
     eprintln!("  done in {:.0} ms", started.elapsed().as_secs_f64() * 1e3);
+    if let Some(q) = result.quality.as_ref().filter(|q| q.invalid_facets > 0) {
+        eprintln!("{}", summary::invalid_warning(q));
+        if opts.strict {
+            return Err(CliError::InvalidFacets { count: q.invalid_facets });
+        }
+    }
     Ok(())
 }
 

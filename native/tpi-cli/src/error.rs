@@ -1,5 +1,5 @@
-//! The CLI's error: a usage mistake (exit code 2) or a problem with an input or output file
-//! (exit code 1). Both print as one line on stderr, `tpi: error: ...`.
+//! The CLI's error: a usage mistake (exit code 2), a problem with an input or output file
+//! (exit code 1), or invalid facets under `--strict` (exit code 3). Both print as one line on stderr, `tpi: error: ...`.
 
 use std::fmt;
 use std::io;
@@ -23,6 +23,11 @@ pub enum CliError {
         subject: String,
         /// What is wrong with it.
         problem: String,
+    },
+    /// `--strict` and the mesh has invalid facets (the outputs were written). Exit code 3.
+    InvalidFacets {
+        /// How many facets are open, non-simple or overlapping.
+        count: usize,
     },
 }
 
@@ -58,6 +63,7 @@ impl CliError {
         match self {
             CliError::Usage { .. } => 2,
             CliError::Input { .. } => 1,
+            CliError::InvalidFacets { .. } => 3,
         }
     }
 }
@@ -70,6 +76,9 @@ impl fmt::Display for CliError {
             }
             CliError::Usage { message, command: None } => write!(f, "tpi: error: {message} (see `tpi --help`)"),
             CliError::Input { subject, problem } => write!(f, "tpi: error: {subject}: {problem}"),
+            CliError::InvalidFacets { count } => {
+                write!(f, "tpi: error: {count} invalid facet{} (--strict)", if *count == 1 { "" } else { "s" })
+            }
         }
     }
 }

@@ -7,6 +7,14 @@ use tpi_core::Discretisation;
 /// At most this many diagnostics are listed by name.
 const LISTED_DIAGNOSTICS: usize = 3;
 
+/// The warning printed on stderr when the mesh has invalid facets.
+pub fn invalid_warning(q: &tpi_core::QualityReport) -> String {
+    format!(
+        "warning: {} invalid facets (open {}, non-simple {}, overlapping pairs {}); they are flagged in the outputs",
+        q.invalid_facets, q.open_facets, q.non_simple_facets, q.overlapping_pairs
+    )
+}
+
 /// The summary text (several lines, each ending in a newline).
 pub fn summary(result: &Discretisation, surface: &str, pattern: &str, threads: usize) -> String {
     let mut s = String::new();
@@ -40,10 +48,12 @@ pub fn summary(result: &Discretisation, surface: &str, pattern: &str, threads: u
             let flags = if q.flagged_facets == 0 { "none".to_string() } else { format!("{} facets", q.flagged_facets) };
             let _ = writeln!(
                 s,
-                "  flags: {flags} (non-convex {}, non-simple {}, overlapping pairs {}){}",
-                q.non_convex_facets,
+                "  validity: {} invalid facets (open {}, non-simple {}, overlapping pairs {}); non-convex {}; flagged {flags}{}",
+                q.invalid_facets,
+                q.open_facets,
                 q.non_simple_facets,
                 q.overlapping_pairs,
+                q.non_convex_facets,
                 if q.all_finite { "" } else { "   NON-FINITE VERTICES" }
             );
             let _ = writeln!(
@@ -53,8 +63,8 @@ pub fn summary(result: &Discretisation, surface: &str, pattern: &str, threads: u
             );
             let _ = writeln!(
                 s,
-                "  neighbours: {} compensation flips, {} envelope repairs, {} unresolved",
-                q.neighbours.compensation_flips, q.neighbours.envelope_repairs, q.neighbours.envelope_unresolved
+                "  neighbours: {} compensation flips, {} envelope repairs, {} unresolved, {} validity flips",
+                q.neighbours.compensation_flips, q.neighbours.envelope_repairs, q.neighbours.envelope_unresolved, q.neighbours.validity_flips
             );
         }
     }

@@ -49,27 +49,34 @@ pub struct ValidityFlipStats {
 /// `embedding` holds the triangulation's points (ghosts included); `planes` the tangent
 /// planes of all of them.
 pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], planes: &[Plane], judged: usize) -> ValidityFlipStats {
+    use rayon::prelude::*;
     let n = judged;
-    let mut stats = ValidityFlipStats::default();
-    let mut incident = tri.incident_triangles(embedding.len());
     let (lo, hi) = crate::discretise::bounding_box(planes[..n].iter().map(|p| p.point));
     let weld = crate::discretise::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
-    let mut judge = Judge { fan: Vec::new(), polygon: Vec::new(), other: Vec::new(), weld };
+    let vertex: Vec<DVec3> = tri.triangles.par_iter().map(|&t| three_plane_vertex(planes, t)).collect();
+    let incident = tri.incident_triangles(embedding.len());
+    let mut state = State { tri, incident, planes, vertex, invalid: Vec::new(), weld, judged: n };
+    state.invalid = state.initial_verdicts(n);
+    let mut stats = ValidityFlipStats::default();
+    // A facet whose repair failed is tried again only after a kept flip changed its
+    // neighbourhood.
+    let mut changed = vec![true; n];
     for _ in 0..MAX_VALIDITY_ROUNDS {
-        let invalid: Vec<u32> = (0..n as u32).filter(|&i| judge.invalid(tri, &incident, planes, i)).collect();
-        if std::env::var_os("TPI_DEBUG_FLIPS").is_some() {
-            eprintln!("round: {} invalid: {:?}", invalid.len(), &invalid[..invalid.len().min(12)]);
-        }
-        if invalid.is_empty() {
+        let queue: Vec<u32> = (0..n as u32).filter(|&i| state.invalid[i as usize] && changed[i as usize]).collect();
+        if queue.is_empty() {
             break;
         }
+        changed.iter_mut().for_each(|c| *c = false);
         let mut kept = 0;
-        for &i in &invalid {
-            if !judge.invalid(tri, &incident, planes, i) {
+        for i in queue {
+            if !state.invalid[i as usize] {
                 continue;
             }
-            if try_repair(tri, &mut incident, planes, &mut judge, i, n) {
+            if let Some(affected) = state.try_repair(i, n) {
                 kept += 1;
+                for x in affected {
+                    changed[x as usize] = true;
+                }
             }
         }
         stats.flips += kept;
@@ -77,60 +84,172 @@ pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], plane
             break;
         }
     }
-    stats.unresolved = (0..n as u32).filter(|&i| judge.invalid(tri, &incident, planes, i)).count();
+    stats.unresolved = state.invalid.iter().filter(|&&x| x).count();
     stats
 }
 
-/// Tries the star and link edges of facet i; keeps the first flip that lowers the number of
-/// invalid facets around it.
-fn try_repair(
-    tri: &mut DualTriangulation,
-    incident: &mut [u32],
-    planes: &[Plane],
-    judge: &mut Judge,
-    i: u32,
+/// The triangulation being repaired with what the tests read: an incident triangle per point,
+/// the vertex T_i ∩ T_j ∩ T_k of every triangle, and the verdict of every judged facet.
+struct State<'a> {
+    tri: &'a mut DualTriangulation,
+    incident: Vec<u32>,
+    planes: &'a [Plane],
+    vertex: Vec<DVec3>,
+    invalid: Vec<bool>,
+    /// Vertices closer than this become one, as in the facet stage's welding.
+    weld: f64,
+    /// Points from this index on are ghosts: not judged, and not part of the mesh.
     judged: usize,
-) -> bool {
-    let mut fan = Vec::new();
-    if tri.fan(i, incident[i as usize], &mut fan) != Fan::Closed {
-        return false;
-    }
-    // Candidate edges as (a, b) point pairs: star edges, then link edges.
-    let mut candidates: Vec<(u32, u32)> = Vec::new();
-    for &t in &fan {
-        let v = tri.triangles[t as usize];
-        let k = v.iter().position(|&x| x == i).unwrap_or(0);
-        let (j, m) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-        candidates.push((i, j));
-        candidates.push((j, m));
-    }
-    for (a, b) in candidates {
-        let Some((t, k)) = find_edge(tri, incident, a, b) else { continue };
-        let quad = quad_points(tri, t, k);
-        let [c, _, _, d] = quad;
-        // A flip is a topological move: the structure stays a triangulated disc whatever the
-        // quad's shape in the plane (facet loops follow adjacency, not positions), unless
-        // the new diagonal exists already.
-        if c == d || has_edge(tri, incident, c, d) {
-            continue;
+}
+
+impl State<'_> {
+    /// Flips triangle t's edge opposite k and brings the caches up to date; returns the two
+    /// triangles holding the new diagonal (the first at position 1 of the second).
+    fn flip(&mut self, t: u32, k: usize) -> (u32, u32) {
+        let (t1, t2) = self.tri.flip(t, k);
+        for t in [t1, t2] {
+            self.vertex[t as usize] = three_plane_vertex(self.planes, self.tri.triangles[t as usize]);
+            for &v in &self.tri.triangles[t as usize] {
+                self.incident[v as usize] = t;
+            }
         }
-        let mut affected = affected_points(tri, incident, quad);
-        affected.retain(|&x| (x as usize) < judged);
-        let before = affected.iter().filter(|&&x| judge.invalid(tri, incident, planes, x)).count();
-        if before == 0 {
-            continue;
+        (t1, t2)
+    }
+
+    /// Facet i's polygon (welded), None where its fan does not close.
+    fn polygon(&self, i: u32, fan: &mut Vec<u32>) -> Option<Vec<DVec3>> {
+        if self.tri.fan(i, self.incident[i as usize], fan) != Fan::Closed {
+            return None;
         }
-        let (t1, t2) = tri.flip(t as u32, k);
-        set_incident(tri, incident, t1, t2);
-        let after = affected.iter().filter(|&&x| judge.invalid(tri, incident, planes, x)).count();
-        if after < before {
+        let mut polygon: Vec<DVec3> = fan.iter().map(|&t| self.vertex[t as usize]).collect();
+        weld_loop(&mut polygon, self.weld);
+        Some(polygon)
+    }
+
+    /// The verdicts of facets 0..n: every polygon built and tested for simplicity once, then
+    /// every edge (i, j) of two simple closed facets tested for overlap once.
+    fn initial_verdicts(&self, n: usize) -> Vec<bool> {
+        use rayon::prelude::*;
+        let polygons: Vec<Option<Vec<DVec3>>> =
+            (0..n as u32).into_par_iter().map_init(Vec::new, |fan, i| self.polygon(i, fan)).collect();
+        let simple: Vec<bool> = polygons
+            .par_iter()
+            .enumerate()
+            .map(|(i, p)| {
+                p.as_ref().map_or(true, |p| p.iter().all(|x| x.is_finite()) && simple_in_plane(p, self.planes[i].normal))
+            })
+            .collect();
+        let (polygons_ref, simple_ref) = (&polygons, &simple);
+        let overlapping: Vec<(u32, u32)> = (0..self.tri.len())
+            .into_par_iter()
+            .flat_map_iter(|t| {
+                let (polygons, simple) = (polygons_ref, simple_ref);
+                let v = self.tri.triangles[t];
+                (0..3).filter_map(move |k| {
+                    let (i, j) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+                    // Each undirected edge once: from its triangle with i < j.
+                    if i > j || j as usize >= n {
+                        return None;
+                    }
+                    let (pi, pj) = (polygons[i as usize].as_ref()?, polygons[j as usize].as_ref()?);
+                    if !simple[i as usize] || !simple[j as usize] {
+                        return None;
+                    }
+                    let normal = self.planes[i as usize].normal + self.planes[j as usize].normal;
+                    polygons_overlap(pi, pj, normal).then_some((i, j))
+                })
+            })
+            .collect();
+        let mut invalid: Vec<bool> = simple.iter().map(|&s| !s).collect();
+        for (i, j) in overlapping {
+            invalid[i as usize] = true;
+            invalid[j as usize] = true;
+        }
+        invalid
+    }
+
+    /// Whether interior facet i is invalid (module doc); hull facets are never judged.
+    fn facet_invalid(&self, i: u32) -> bool {
+        let mut fan = Vec::new();
+        let Some(polygon) = self.polygon(i, &mut fan) else { return false };
+        let plane = &self.planes[i as usize];
+        if !polygon.iter().all(|x| x.is_finite()) || !simple_in_plane(&polygon, plane.normal) {
             return true;
         }
-        // Undo: the new diagonal (c, d) is the edge opposite position 1 of t1 = [c, a, d].
-        let (u1, u2) = tri.flip(t1, 1);
-        set_incident(tri, incident, u1, u2);
+        // Overlap with each real edge neighbour whose facet closes and is simple.
+        let neighbours: Vec<u32> = fan
+            .iter()
+            .map(|&t| {
+                let v = self.tri.triangles[t as usize];
+                v[(v.iter().position(|&x| x == i).unwrap_or(0) + 1) % 3]
+            })
+            .collect();
+        let mut other_fan = Vec::new();
+        neighbours.into_iter().filter(|&j| (j as usize) < self.judged).any(|j| {
+            let Some(other) = self.polygon(j, &mut other_fan) else { return false };
+            let normal = plane.normal + self.planes[j as usize].normal;
+            other.iter().all(|x| x.is_finite())
+                && simple_in_plane(&other, self.planes[j as usize].normal)
+                && polygons_overlap(&polygon, &other, normal)
+        })
     }
-    false
+
+    /// Tries the star and link edges of facet i; keeps the first flip that lowers the number
+    /// of invalid facets around it and returns the points whose verdicts it renewed.
+    fn try_repair(&mut self, i: u32, judged: usize) -> Option<Vec<u32>> {
+        let mut fan = Vec::new();
+        if self.tri.fan(i, self.incident[i as usize], &mut fan) != Fan::Closed {
+            return None;
+        }
+        // Candidate edges as (a, b) point pairs: star edges, then link edges.
+        let mut candidates: Vec<(u32, u32)> = Vec::new();
+        for &t in &fan {
+            let v = self.tri.triangles[t as usize];
+            let k = v.iter().position(|&x| x == i).unwrap_or(0);
+            let (j, m) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+            candidates.push((i, j));
+            candidates.push((j, m));
+        }
+        for (a, b) in candidates {
+            let Some((t, k)) = find_edge(self.tri, &self.incident, a, b) else { continue };
+            let quad = quad_points(self.tri, t, k);
+            let [c, _, _, d] = quad;
+            // A flip is a topological move: the structure stays a triangulated disc whatever
+            // the quad's shape in the plane (facet loops follow adjacency, not positions),
+            // unless the new diagonal exists already.
+            if c == d || has_edge(self.tri, &self.incident, c, d) {
+                continue;
+            }
+            let mut affected = affected_points(self.tri, &self.incident, quad);
+            affected.retain(|&x| (x as usize) < judged);
+            let before = affected.iter().filter(|&&x| self.invalid[x as usize]).count();
+            if before == 0 {
+                continue;
+            }
+            let (t1, _) = self.flip(t as u32, k);
+            // The quad's points first (their polygons changed); stop once no gain is possible.
+            affected.sort_by_key(|x| !quad.contains(x));
+            let mut verdicts = Vec::with_capacity(affected.len());
+            let mut count = 0;
+            for &x in &affected {
+                let v = self.facet_invalid(x);
+                count += usize::from(v);
+                verdicts.push(v);
+                if count >= before {
+                    break;
+                }
+            }
+            if count < before {
+                for (&x, v) in affected.iter().zip(verdicts) {
+                    self.invalid[x as usize] = v;
+                }
+                return Some(affected);
+            }
+            // Undo: the new diagonal (c, d) is the edge opposite position 1 of t1 = [c, a, d].
+            self.flip(t1, 1);
+        }
+        None
+    }
 }
 
 /// Whether points a and b are joined by an edge (interior or hull).
@@ -154,14 +273,6 @@ fn affected_points(tri: &DualTriangulation, incident: &[u32], quad: [u32; 4]) ->
     out.sort_unstable();
     out.dedup();
     out
-}
-
-fn set_incident(tri: &DualTriangulation, incident: &mut [u32], t1: u32, t2: u32) {
-    for t in [t1, t2] {
-        for &v in &tri.triangles[t as usize] {
-            incident[v as usize] = t;
-        }
-    }
 }
 
 /// The four points (c, a, b, d) of the quad around the edge opposite vertex k of triangle t.
@@ -189,74 +300,11 @@ fn find_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32) -> Optio
     None
 }
 
-/// Scratch buffers of the local validity test, and the weld distance of the mesh (vertices
-/// closer than this become one, as in the facet stage's welding).
-struct Judge {
-    fan: Vec<u32>,
-    polygon: Vec<DVec3>,
-    other: Vec<DVec3>,
-    weld: f64,
-}
-
 /// Drops consecutive vertices (cyclically) closer than `weld` to the previous kept one.
 fn weld_loop(points: &mut Vec<DVec3>, weld: f64) {
     points.dedup_by(|b, a| a.distance(*b) <= weld);
     while points.len() > 1 && points[0].distance(points[points.len() - 1]) <= weld {
         points.pop();
-    }
-}
-
-impl Judge {
-    /// Whether interior facet i is invalid (module doc); hull facets are never judged.
-    fn invalid(&mut self, tri: &DualTriangulation, incident: &[u32], planes: &[Plane], i: u32) -> bool {
-        let mut fan = std::mem::take(&mut self.fan);
-        let verdict = self.invalid_with(tri, incident, planes, i, &mut fan);
-        self.fan = fan;
-        verdict
-    }
-
-    fn invalid_with(&mut self, tri: &DualTriangulation, incident: &[u32], planes: &[Plane], i: u32, fan: &mut Vec<u32>) -> bool {
-        if tri.fan(i, incident[i as usize], fan) != Fan::Closed {
-            return false;
-        }
-        let mut polygon = std::mem::take(&mut self.polygon);
-        polygon.clear();
-        polygon.extend(fan.iter().map(|&t| three_plane_vertex(planes, tri.triangles[t as usize])));
-        weld_loop(&mut polygon, self.weld);
-        let plane = &planes[i as usize];
-        let mut invalid = !polygon.iter().all(|x| x.is_finite()) || !simple_in_plane(&polygon, plane.normal);
-        if !invalid {
-            // Overlap with each edge neighbour whose fan closes.
-            let neighbours: Vec<u32> = fan
-                .iter()
-                .map(|&t| {
-                    let v = tri.triangles[t as usize];
-                    let k = v.iter().position(|&x| x == i).unwrap_or(0);
-                    v[(k + 1) % 3]
-                })
-                .collect();
-            let mut other_fan = Vec::new();
-            for j in neighbours {
-                if tri.fan(j, incident[j as usize], &mut other_fan) != Fan::Closed {
-                    continue;
-                }
-                let mut other = std::mem::take(&mut self.other);
-                other.clear();
-                other.extend(other_fan.iter().map(|&t| three_plane_vertex(planes, tri.triangles[t as usize])));
-                weld_loop(&mut other, self.weld);
-                let normal = plane.normal + planes[j as usize].normal;
-                let overlapping = other.iter().all(|x| x.is_finite())
-                    && simple_in_plane(&other, planes[j as usize].normal)
-                    && polygons_overlap(&polygon, &other, normal);
-                self.other = other;
-                if overlapping {
-                    invalid = true;
-                    break;
-                }
-            }
-        }
-        self.polygon = polygon;
-        invalid
     }
 }
 
