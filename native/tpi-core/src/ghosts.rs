@@ -1,29 +1,27 @@
 //! Mirror seeds beyond the domain boundary, so that the neighbour decision on surfaces that
 //! are not convex everywhere sees every real facet as a closed polygon.
 //!
-//! A facet at the boundary is closed by the boundary itself: the mesh ends where its edges
-//! meet the wall W, the ruled surface of the surface normals along the boundary curve
-//! (DESIGN.md, item 6). Near a boundary point b with normal n_b and boundary tangent t_b, W is
-//! the plane through b with unit normal w = (t_b x n_b) / |t_b x n_b|. Reflecting a seed's
-//! tangent plane T_i = {x : n_i . (x - p_i) = 0} in that plane,
+//! A facet at the boundary is closed by the boundary itself: the mesh ends near the wall,
+//! the ruled surface of the surface normals along the boundary curve (DESIGN.md, item 6). A
+//! seed within [`GHOST_BAND`] spacings of a side gets a ghost across it: its position mirrored
+//! in the triangulation's plane, and the tangent plane of the surface *continued* beyond the
+//! side at the mirrored parameters, by the second-order Taylor expansion about the boundary
+//! point b = S(u_b, v) (or the corner, for a ghost across two sides):
 //!
 //! ```text
-//! p_i' = p_i - 2 ((p_i - b) . w) w,    n_i' = n_i - 2 (n_i . w) w,
+//! S(u_b + du, v + dv) ~ S + S_u du + S_v dv + (S_uu du^2 + 2 S_uv du dv + S_vv dv^2) / 2,
+//! du = u_b - u_i (the seed's offset from the side, mirrored).
 //! ```
 //!
-//! gives a plane T_i' whose intersection with T_i lies in W (the two are mirror images), so a
-//! ghost seed i' makes the facet of i end on the wall, up to the wall's curvature. Ghosts of
-//! the seeds within [`GHOST_BAND`] spacings of a side are added across that side (and across
-//! both sides near a corner), with their points mirrored in the triangulation's plane as well.
-//! They take part in every flip and let the validity flips judge boundary facets as closed
-//! polygons; then every triangle with a ghost is dropped, and the real triangles that remain
-//! are the dual triangulation, whose open hull the facet stage closes on the true wall.
-
-use glam::DVec3;
+//! On the continued surface the ghosts are ordinary seeds, so a boundary facet meets them as
+//! an interior facet meets its neighbours; in the quadric approximation the top view of the
+//! edge between a seed and its own ghost is their bisector, the side itself. The ghosts take
+//! part in every flip and let the validity flips judge boundary facets as closed polygons;
+//! the vertices of triangles with a ghost are the mesh's boundary vertices.
 
 use crate::diffgeo::LocalGeometry;
 use crate::planes::Plane;
-use crate::surface::Surface;
+use crate::surface::{Surface, SurfaceDerivatives};
 
 /// Width of the band of seeds mirrored across each side, in mean pattern spacings
 /// sqrt(area / n) of the triangulation's plane.
@@ -47,42 +45,17 @@ pub(crate) struct Augmented {
     pub(crate) source: Vec<u32>,
 }
 
-/// A reflection in the plane through `origin` with unit normal `normal`.
-#[derive(Clone, Copy)]
-struct Mirror {
-    origin: DVec3,
-    normal: DVec3,
-}
-
-impl Mirror {
-    fn point(&self, x: DVec3) -> DVec3 {
-        x - self.normal * (2.0 * (x - self.origin).dot(self.normal))
-    }
-
-    fn vector(&self, v: DVec3) -> DVec3 {
-        v - self.normal * (2.0 * v.dot(self.normal))
-    }
-
-    fn geometry(&self, g: &LocalGeometry) -> LocalGeometry {
-        LocalGeometry { point: self.point(g.point), normal: self.vector(g.normal), d1: self.vector(g.d1), d2: self.vector(g.d2), ..*g }
-    }
-}
-
-/// The wall plane at the boundary point of `side` (0: u min, 1: u max, 2: v min, 3: v max)
-/// nearest to the seed at domain parameters `uv`.
-fn wall(surface: &dyn Surface, side: usize, uv: [f64; 2]) -> Option<Mirror> {
-    let domain = surface.domain();
-    let at = match side {
-        0 => [domain.u.min, uv[1]],
-        1 => [domain.u.max, uv[1]],
-        2 => [uv[0], domain.v.min],
-        _ => [uv[0], domain.v.max],
-    };
+/// The local geometry at domain parameters `at + offset` of the surface continued beyond its
+/// boundary by its second-order Taylor expansion about `at` (a point of the boundary):
+/// S(at) + J offset + offset^T H offset / 2, with the derivatives of that quadric.
+fn continued(surface: &dyn Surface, at: [f64; 2], offset: [f64; 2]) -> Option<LocalGeometry> {
     let d = surface.evaluate(at[0], at[1]);
-    let normal = d.su.cross(d.sv).try_normalize()?;
-    let tangent = if side < 2 { d.sv } else { d.su };
-    let w = tangent.cross(normal).try_normalize()?;
-    d.point.is_finite().then_some(Mirror { origin: d.point, normal: w })
+    let [du, dv] = offset;
+    let point = d.point + d.su * du + d.sv * dv + (d.suu * (du * du) + d.suv * (2.0 * du * dv) + d.svv * (dv * dv)) * 0.5;
+    let su = d.su + d.suu * du + d.suv * dv;
+    let sv = d.sv + d.suv * du + d.svv * dv;
+    let g = LocalGeometry::from_derivatives(&SurfaceDerivatives { point, su, sv, ..d });
+    (g.regular && g.point.is_finite() && g.normal.is_finite()).then_some(g)
 }
 
 /// The seeds with their ghosts appended (module doc). `extent` is the size of the
@@ -108,31 +81,36 @@ pub(crate) fn augment(
         convex_side: convex_side.to_vec(),
         source: (0..n as u32).collect(),
     };
+    let domain = surface.domain();
+    let (u0, u1, v0, v1) = (domain.u.min, domain.u.max, domain.v.min, domain.v.max);
     for i in 0..n {
         let [x, y] = plane_uv[i];
-        // Distance to each side and the mirrored coordinate across it.
-        let sides = [(x, [-x, y]), (extent[0] - x, [2.0 * extent[0] - x, y]), (y, [x, -y]), (extent[1] - y, [x, 2.0 * extent[1] - y])];
+        let [u, v] = uv[i];
+        // Per side: distance, mirrored position, the boundary parameter and its offset.
+        let sides = [
+            (x, [-x, y], u0, u0 - u),
+            (extent[0] - x, [2.0 * extent[0] - x, y], u1, u1 - u),
+            (y, [x, -y], v0, v0 - v),
+            (extent[1] - y, [x, 2.0 * extent[1] - y], v1, v1 - v),
+        ];
         let near: Vec<usize> = (0..4).filter(|&s| sides[s].0 < band && sides[s].0 > min_offset).collect();
-        let mirrors: Vec<Option<Mirror>> = near.iter().map(|&s| wall(surface, s, uv[i])).collect();
-        let mut push = |position: [f64; 2], g: LocalGeometry| {
+        let mut push = |position: [f64; 2], g: Option<LocalGeometry>| {
+            let Some(g) = g else { return };
             out.plane_uv.push(position);
             out.planes.push(Plane { point: g.point, normal: g.normal });
             out.geometry.push(g);
             out.convex_side.push(convex_side[i]);
             out.source.push(i as u32);
         };
-        for (k, &s) in near.iter().enumerate() {
-            if let Some(m) = mirrors[k] {
-                push(sides[s].1, m.geometry(&geometry[i]));
-            }
+        for &s in &near {
+            let (at, offset) = if s < 2 { ([sides[s].2, v], [sides[s].3, 0.0]) } else { ([u, sides[s].2], [0.0, sides[s].3]) };
+            push(sides[s].1, continued(surface, at, offset));
         }
-        // Corners: across a u side and a v side in turn.
-        for (a, &su) in near.iter().enumerate().filter(|(_, &s)| s < 2) {
-            for (b, &sv) in near.iter().enumerate().filter(|(_, &s)| s >= 2) {
-                if let (Some(mu), Some(mv)) = (mirrors[a], mirrors[b]) {
-                    let position = [sides[su].1[0], sides[sv].1[1]];
-                    push(position, mv.geometry(&mu.geometry(&geometry[i])));
-                }
+        // Corners: across a u side and a v side at once, continued from the corner.
+        for &su in near.iter().filter(|&&s| s < 2) {
+            for &sv in near.iter().filter(|&&s| s >= 2) {
+                let position = [sides[su].1[0], sides[sv].1[1]];
+                push(position, continued(surface, [sides[su].2, sides[sv].2], [sides[su].3, sides[sv].3]));
             }
         }
     }
