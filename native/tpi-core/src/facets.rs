@@ -465,6 +465,14 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
 /// lines instead (leaving a small hole); nearer far vertices stay exact and are diagnosed.
 pub const UNREACHABLE_VERTEX_FACTOR: f64 = 1e6;
 
+/// Whether the meeting point `x` of three planes lies within [`UNREACHABLE_VERTEX_FACTOR`]
+/// triangle sides of their points' centroid (false for a point that is not finite).
+pub(crate) fn reachable(x: DVec3, [a, b, c]: [&Plane; 3]) -> bool {
+    let centroid = (a.point + b.point + c.point) / 3.0;
+    let longest = a.point.distance(b.point).max(b.point.distance(c.point)).max(c.point.distance(a.point));
+    x.distance(centroid) <= UNREACHABLE_VERTEX_FACTOR * longest
+}
+
 /// Facets per parallel work item of the loop stage.
 const FACET_CHUNK: usize = 512;
 
@@ -1115,11 +1123,10 @@ pub(crate) fn build_closed_facets(
             let [a, b, c] = ids.map(|i| &planes[i as usize]);
             let meeting = intersect_three(a, b, c);
             let centroid = (a.point + b.point + c.point) / 3.0;
-            let longest = a.point.distance(b.point).max(b.point.distance(c.point)).max(c.point.distance(a.point));
             // Far vertices (nearly parallel planes, at parabolic lines) are kept exact: a
             // stand-in per edge would leave a hole, and the mesh must stay a disc. They are
             // named in a diagnostic below; only a vertex at infinity gets stand-ins.
-            let exact = !real(&ids) || meeting.point.distance(centroid) <= UNREACHABLE_VERTEX_FACTOR * longest;
+            let exact = !real(&ids) || reachable(meeting.point, [a, b, c]);
             let point = if exact { meeting.point } else { regularised_meeting_point([a, b, c], centroid, 1e-6) };
             TriangleVertex { point, foot: [0.0; 2], inside: 1.0, reach: 0.0, exact, measured: true, newton_foot: false }
         })

@@ -29,6 +29,7 @@
 
 use glam::{DVec2, DVec3};
 
+use crate::facets::reachable;
 use crate::neighbours::three_plane_vertex;
 use crate::planes::Plane;
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
@@ -53,7 +54,7 @@ pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], plane
     let n = judged;
     let (lo, hi) = crate::discretise::bounding_box(planes[..n].iter().map(|p| p.point));
     let weld = crate::discretise::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
-    let vertex: Vec<DVec3> = tri.triangles.par_iter().map(|&t| three_plane_vertex(planes, t)).collect();
+    let vertex: Vec<DVec3> = tri.triangles.par_iter().map(|&t| triangle_vertex(planes, t)).collect();
     let incident = tri.incident_triangles(embedding.len());
     let mut state = State { tri, incident, planes, vertex, invalid: Vec::new(), weld, judged: n };
     state.invalid = state.initial_verdicts(n);
@@ -108,7 +109,7 @@ impl State<'_> {
     fn flip(&mut self, t: u32, k: usize) -> (u32, u32) {
         let (t1, t2) = self.tri.flip(t, k);
         for t in [t1, t2] {
-            self.vertex[t as usize] = three_plane_vertex(self.planes, self.tri.triangles[t as usize]);
+            self.vertex[t as usize] = triangle_vertex(self.planes, self.tri.triangles[t as usize]);
             for &v in &self.tri.triangles[t as usize] {
                 self.incident[v as usize] = t;
             }
@@ -249,6 +250,17 @@ impl State<'_> {
             self.flip(t1, 1);
         }
         None
+    }
+}
+
+/// The vertex T_i ∩ T_j ∩ T_k of a triangle, NaN where it is unreachable (the facet stage
+/// cannot use it: [`crate::facets::reachable`]), which makes every facet around it invalid.
+fn triangle_vertex(planes: &[Plane], t: [u32; 3]) -> DVec3 {
+    let x = three_plane_vertex(planes, t);
+    if reachable(x, t.map(|i| &planes[i as usize])) {
+        x
+    } else {
+        DVec3::NAN
     }
 }
 
