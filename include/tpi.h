@@ -110,18 +110,20 @@
 #define TPI_OPTIONS_SIZE_V1 40
 
 /**
- * Per-facet flag: the facet is not convex (expected on saddle-shaped regions).
+ * Per-facet flag: the facet is not convex where its seed is strictly convex (K > 0); on
+ * saddle-shaped regions non-convex facets are expected and not flagged.
  */
 #define TPI_FACET_NON_CONVEX 1
 
 /**
  * Per-facet flag: the facet is not a simple polygon (self-intersecting, clockwise seen from
- * its normal, or degenerate).
+ * its normal, or degenerate). Invalid.
  */
 #define TPI_FACET_NON_SIMPLE 2
 
 /**
- * Per-facet flag: the facet overlaps a neighbour.
+ * Per-facet flag: the facet overlaps a facet it shares a vertex with, seen along their mean
+ * normal. Invalid.
  */
 #define TPI_FACET_OVERLAP 4
 
@@ -129,6 +131,11 @@
  * Per-facet flag: a diagnostic names this facet's pattern point.
  */
 #define TPI_FACET_DIAGNOSTIC 8
+
+/**
+ * Per-facet flag: fewer than three distinct vertices. Invalid.
+ */
+#define TPI_FACET_OPEN 16
 
 /**
  * The `point` of a diagnostic entry that concerns no single pattern point (a domain corner
@@ -141,6 +148,12 @@
  * accepted.
  */
 #define TPI_QUALITY_REPORT_SIZE_V1 200
+
+/**
+ * Size in bytes of the second version of `TpiQualityReport` (V1 plus `invalid_facets`,
+ * `open_facets`, `validity_flips` and `validity_unresolved`).
+ */
+#define TPI_QUALITY_REPORT_SIZE_V2 232
 
 /**
  * The result of every fallible call. The numbers are part of the ABI: they are never changed
@@ -545,6 +558,22 @@ typedef struct TpiQualityReport {
      * Number of diagnostics.
      */
     uint64_t diagnostic_count;
+    /**
+     * Open, non-simple or overlapping facets (each once): 0 for a valid mesh. Since V2.
+     */
+    uint64_t invalid_facets;
+    /**
+     * Facets with fewer than three distinct vertices. Since V2.
+     */
+    uint64_t open_facets;
+    /**
+     * Flips kept by the validity repair (saddles, mixed curvature). Since V2.
+     */
+    uint64_t validity_flips;
+    /**
+     * Facets the validity repair could not make valid. Since V2.
+     */
+    uint64_t validity_unresolved;
 } TpiQualityReport;
 
 /**

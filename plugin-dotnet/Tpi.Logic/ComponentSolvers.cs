@@ -93,6 +93,8 @@ namespace Tpi.Logic
         public SortedDictionary<int, int> SideHistogram { get; internal set; }
         /// <summary>The report as JSON ("" without a report).</summary>
         public string Json { get; internal set; }
+        /// <summary>Open, non-simple or overlapping facets: 0 for a valid mesh (-1 without a report).</summary>
+        public long InvalidFacets { get; internal set; }
     }
 
     /// <summary>The components' solve functions.</summary>
@@ -188,6 +190,7 @@ namespace Tpi.Logic
                 Diagnostics = perFacet.Select(l => l == null ? string.Empty : string.Join(", ", l)).ToArray(),
                 Areas = MeshConversion.FacetAreas(mesh),
                 MaxDeviation = q.HasValue ? q.Value.MaxDeviation : double.NaN,
+                InvalidFacets = q.HasValue ? (long)q.Value.InvalidFacets : -1,
                 MeanDeviation = q.HasValue ? q.Value.MeanDeviation : double.NaN,
                 MaxPlanarityError = q.HasValue ? q.Value.MaxPlanarityError : double.NaN,
                 SideHistogram = histogram,

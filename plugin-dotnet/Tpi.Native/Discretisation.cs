@@ -225,7 +225,7 @@ namespace Tpi.Native
         {
             get
             {
-                var report = new QualityReport { StructSize = QualityReport.SizeV1 };
+                var report = new QualityReport { StructSize = QualityReport.SizeV2 };
                 TpiLibrary.Check(UnsafeNativeMethods.tpi_discretisation_quality(Handle, ref report), "tpi_discretisation_quality");
                 return report;
             }
@@ -234,7 +234,7 @@ namespace Tpi.Native
         /// <summary>The quality report, or false when it was switched off.</summary>
         public bool TryGetQuality(out QualityReport report)
         {
-            report = new QualityReport { StructSize = QualityReport.SizeV1 };
+            report = new QualityReport { StructSize = QualityReport.SizeV2 };
             var status = UnsafeNativeMethods.tpi_discretisation_quality(Handle, ref report);
             if (status == Status.Unavailable) return false;
             TpiLibrary.Check(status, "tpi_discretisation_quality");

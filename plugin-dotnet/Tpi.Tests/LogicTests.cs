@@ -488,14 +488,18 @@ namespace Tpi.Tests
             Assert.Less(q.Planarity.Max(), 1e-12);
             Assert.Greater(q.MaxDeviation, 0);
             Assert.GreaterOrEqual(q.MaxDeviation, q.MeanDeviation);
-            Assert.IsTrue(q.Flags.Any(f => (f & (int)FacetFlags.NonConvex) != 0), "saddle facets are not convex");
-            Assert.IsTrue(q.FlagNames.Any(n => n.Contains("NonConvex")));
+            // On a saddle non-convex facets are the expected shape: not flagged.
+            Assert.IsFalse(q.Flags.Any(f => (f & (int)FacetFlags.NonConvex) != 0), "saddle facets flagged non-convex");
+            const int invalid = (int)(FacetFlags.NonSimple | FacetFlags.Overlap | FacetFlags.Open);
+            Assert.AreEqual(q.Flags.Count(f => (f & invalid) != 0), q.InvalidFacets);
+            Assert.AreEqual(0, q.InvalidFacets, "a hex pattern on a saddle gives a valid mesh");
             StringAssert.Contains("side_histogram", q.Json);
             var noReport = DiscretisationOptions.Default();
             noReport.QualityReport = false;
             var bare = ComponentSolvers.Discretise(new DiscretiseInput { Surface = saddle, Points = LogicData.Hex(6, 6), Options = noReport });
             var bareQuality = ComponentSolvers.Quality(bare.Mesh);
             Assert.IsNaN(bareQuality.MaxDeviation);
+            Assert.AreEqual(-1, bareQuality.InvalidFacets);
             Assert.AreEqual("", bareQuality.Json);
         }
     }

@@ -94,8 +94,10 @@ namespace Tpi.Tests
                 for (int f = 0; f < mesh.FacetCount; f++)
                     foreach (var v in mesh.GetFacet(f))
                         Assert.AreEqual(0.0, mesh.Planes[f].SignedDistance(mesh.Vertices[v]), 1e-9 * q.BoundingBoxDiagonal);
-                Assert.AreEqual(QualityReport.SizeV1, (int)q.StructSize);
+                Assert.AreEqual(QualityReport.SizeV2, (int)q.StructSize);
                 Assert.AreEqual(1u, q.AllFinite);
+                Assert.AreEqual(0ul, q.InvalidFacets);
+                Assert.AreEqual(0ul, q.OpenFacets);
                 Assert.AreEqual(36ul, q.FacetCount);
                 Assert.AreEqual(1L, q.EulerCharacteristic);
                 Assert.AreEqual(1ul, q.BoundaryLoops);

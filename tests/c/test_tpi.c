@@ -8,6 +8,7 @@
  * Built and run (also under valgrind) by tests/run_c_tests.sh.
  */
 #include <pthread.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
@@ -131,7 +132,9 @@ static void test_version_and_status_names(void) {
     CHECK(TPI_STATUS_OUT_OF_DOMAIN == 10 && TPI_STATUS_UNAVAILABLE == 11);
     /* Struct sizes as the library sees them. */
     CHECK(sizeof(TpiOptions) == TPI_OPTIONS_SIZE_V1);
-    CHECK(sizeof(TpiQualityReport) == TPI_QUALITY_REPORT_SIZE_V1);
+    CHECK(sizeof(TpiQualityReport) == TPI_QUALITY_REPORT_SIZE_V2);
+    CHECK(offsetof(TpiQualityReport, invalid_facets) == TPI_QUALITY_REPORT_SIZE_V1);
+    CHECK(TPI_FACET_OPEN == 16);
     CHECK(sizeof(TpiSample) == 120 && sizeof(TpiSeed) == 80 && sizeof(TpiPlane) == 48);
     CHECK(sizeof(TpiDiagnosticEntry) == 12 && sizeof(TpiDomain) == 32);
 }

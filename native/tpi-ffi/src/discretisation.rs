@@ -13,15 +13,19 @@ use crate::options::{read_options, TpiOptions};
 use crate::pattern::TpiPattern;
 use crate::surface::TpiSurface;
 
-/// Per-facet flag: the facet is not convex (expected on saddle-shaped regions).
+/// Per-facet flag: the facet is not convex where its seed is strictly convex (K > 0); on
+/// saddle-shaped regions non-convex facets are expected and not flagged.
 pub const TPI_FACET_NON_CONVEX: u8 = 1;
 /// Per-facet flag: the facet is not a simple polygon (self-intersecting, clockwise seen from
-/// its normal, or degenerate).
+/// its normal, or degenerate). Invalid.
 pub const TPI_FACET_NON_SIMPLE: u8 = 2;
-/// Per-facet flag: the facet overlaps a neighbour.
+/// Per-facet flag: the facet overlaps a facet it shares a vertex with, seen along their mean
+/// normal. Invalid.
 pub const TPI_FACET_OVERLAP: u8 = 4;
 /// Per-facet flag: a diagnostic names this facet's pattern point.
 pub const TPI_FACET_DIAGNOSTIC: u8 = 8;
+/// Per-facet flag: fewer than three distinct vertices. Invalid.
+pub const TPI_FACET_OPEN: u8 = 16;
 
 /// The `point` of a diagnostic entry that concerns no single pattern point (a domain corner
 /// claimed by no facet or by several).
@@ -30,6 +34,10 @@ pub const TPI_NO_POINT: u32 = 0xFFFF_FFFF;
 /// Size in bytes of the first version of `TpiQualityReport`: the smallest `struct_size`
 /// accepted.
 pub const TPI_QUALITY_REPORT_SIZE_V1: u32 = 200;
+
+/// Size in bytes of the second version of `TpiQualityReport` (V1 plus `invalid_facets`,
+/// `open_facets`, `validity_flips` and `validity_unresolved`).
+pub const TPI_QUALITY_REPORT_SIZE_V2: u32 = 232;
 
 /// The result of a discretisation: an indexed polygon mesh with one planar facet per pattern
 /// point (facet i belongs to pattern point i), the dual triangulation, the quality report and
@@ -238,6 +246,14 @@ pub struct TpiQualityReport {
     pub envelope_unresolved: u64,
     /// Number of diagnostics.
     pub diagnostic_count: u64,
+    /// Open, non-simple or overlapping facets (each once): 0 for a valid mesh. Since V2.
+    pub invalid_facets: u64,
+    /// Facets with fewer than three distinct vertices. Since V2.
+    pub open_facets: u64,
+    /// Flips kept by the validity repair (saddles, mixed curvature). Since V2.
+    pub validity_flips: u64,
+    /// Facets the validity repair could not make valid. Since V2.
+    pub validity_unresolved: u64,
 }
 
 impl TpiQualityReport {
@@ -270,6 +286,10 @@ impl TpiQualityReport {
             envelope_repairs: n(q.neighbours.envelope_repairs),
             envelope_unresolved: n(q.neighbours.envelope_unresolved),
             diagnostic_count: n(q.diagnostic_count),
+            invalid_facets: n(q.invalid_facets),
+            open_facets: n(q.open_facets),
+            validity_flips: n(q.neighbours.validity_flips),
+            validity_unresolved: n(q.neighbours.validity_unresolved),
         }
     }
 }

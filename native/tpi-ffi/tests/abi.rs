@@ -46,7 +46,8 @@ fn status_numbers_are_fixed() {
 
 #[test]
 fn flag_and_kind_numbers_match_the_core() {
-    use tpi_core::quality::{FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OVERLAP};
+    use tpi_core::quality::{FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP};
+    assert_eq!(TPI_FACET_OPEN, FLAG_OPEN);
     assert_eq!(TPI_FACET_NON_CONVEX, FLAG_NON_CONVEX);
     assert_eq!(TPI_FACET_NON_SIMPLE, FLAG_NON_SIMPLE);
     assert_eq!(TPI_FACET_OVERLAP, FLAG_OVERLAP);
@@ -63,7 +64,8 @@ fn flag_and_kind_numbers_match_the_core() {
 #[test]
 fn struct_layouts_are_fixed() {
     assert_eq!(size_of::<TpiOptions>(), TPI_OPTIONS_SIZE_V1 as usize);
-    assert_eq!(size_of::<TpiQualityReport>(), TPI_QUALITY_REPORT_SIZE_V1 as usize);
+    assert_eq!(size_of::<TpiQualityReport>(), TPI_QUALITY_REPORT_SIZE_V2 as usize);
+    assert_eq!(offset_of!(TpiQualityReport, invalid_facets), TPI_QUALITY_REPORT_SIZE_V1 as usize);
     assert_eq!(align_of::<TpiOptions>(), 8);
     assert_eq!(offset_of!(TpiOptions, far_vertex_factor), 16);
     assert_eq!(offset_of!(TpiQualityReport, facet_count), 8);
@@ -262,6 +264,9 @@ fn the_quality_struct_carries_the_json_numbers() {
     assert_eq!(json["neighbours"]["envelope_repairs"].as_u64(), Some(q.envelope_repairs));
     assert_eq!(json["diagnostic_count"].as_u64(), Some(q.diagnostic_count));
     assert_eq!(json["all_finite"].as_bool(), Some(q.all_finite == 1));
+    assert_eq!(json["invalid_facets"].as_u64(), Some(q.invalid_facets));
+    assert_eq!(json["open_facets"].as_u64(), Some(q.open_facets));
+    assert_eq!(json["neighbours"]["validity_flips"].as_u64(), Some(q.validity_flips));
     assert_eq!(q.facet_count, 36);
     assert_eq!(q.struct_size, size_of::<TpiQualityReport>() as u32);
 
@@ -398,9 +403,39 @@ fn a_bigger_quality_struct_gets_this_librarys_fields_and_their_size() {
     };
     // SAFETY: `newer` holds struct_size bytes.
     ok(unsafe { tpi_discretisation_quality(d, &mut newer.report) });
-    assert_eq!(newer.report.struct_size, TPI_QUALITY_REPORT_SIZE_V1);
+    assert_eq!(newer.report.struct_size, TPI_QUALITY_REPORT_SIZE_V2);
     assert_eq!(newer.report.facet_count, 49);
     assert_eq!(newer.future, [7, 7]);
+    // SAFETY: our handles.
+    unsafe {
+        tpi_discretisation_free(d);
+        tpi_pattern_free(p);
+        tpi_surface_free(surface);
+    }
+}
+
+#[test]
+fn a_first_version_quality_struct_gets_only_its_bytes() {
+    let surface = dome(3.0);
+    let p = pattern(&jittered_grid(6));
+    let mut d = std::ptr::null_mut();
+    // SAFETY: live handles, valid out pointer.
+    ok(unsafe { tpi_discretise(surface, p, std::ptr::null(), &mut d) });
+    // A caller compiled against the first header: the V2 fields must stay untouched.
+    let sentinel = u64::MAX - 1;
+    let mut q = TpiQualityReport {
+        struct_size: TPI_QUALITY_REPORT_SIZE_V1,
+        invalid_facets: sentinel,
+        open_facets: sentinel,
+        validity_flips: sentinel,
+        validity_unresolved: sentinel,
+        ..Default::default()
+    };
+    // SAFETY: live handle; the struct holds more than struct_size bytes.
+    ok(unsafe { tpi_discretisation_quality(d, &mut q) });
+    assert_eq!(q.struct_size, TPI_QUALITY_REPORT_SIZE_V1);
+    assert_eq!(q.facet_count, 36);
+    assert_eq!([q.invalid_facets, q.open_facets, q.validity_flips, q.validity_unresolved], [sentinel; 4]);
     // SAFETY: our handles.
     unsafe {
         tpi_discretisation_free(d);

@@ -61,14 +61,16 @@ namespace Tpi.Native
     {
         /// <summary>No flag.</summary>
         None = 0,
-        /// <summary>TPI_FACET_NON_CONVEX: not convex (expected on saddle-shaped regions).</summary>
+        /// <summary>TPI_FACET_NON_CONVEX: not convex where the seed is strictly convex (K &gt; 0).</summary>
         NonConvex = 1,
-        /// <summary>TPI_FACET_NON_SIMPLE: not a simple polygon.</summary>
+        /// <summary>TPI_FACET_NON_SIMPLE: not a simple polygon (invalid).</summary>
         NonSimple = 2,
-        /// <summary>TPI_FACET_OVERLAP: overlaps a neighbour.</summary>
+        /// <summary>TPI_FACET_OVERLAP: overlaps a facet it shares a vertex with (invalid).</summary>
         Overlap = 4,
         /// <summary>TPI_FACET_DIAGNOSTIC: a diagnostic names this facet's pattern point.</summary>
         Diagnostic = 8,
+        /// <summary>TPI_FACET_OPEN: fewer than three distinct vertices (invalid).</summary>
+        Open = 16,
     }
 
     /// <summary>Three doubles x, y, z: the layout of a C <c>double[3]</c>.</summary>
@@ -236,12 +238,14 @@ namespace Tpi.Native
         public uint Diagnostic;
     }
 
-    /// <summary>TpiQualityReport (first version, 200 bytes). See include/tpi.h for each field.</summary>
+    /// <summary>TpiQualityReport (second version, 232 bytes). See include/tpi.h for each field.</summary>
     [StructLayout(LayoutKind.Sequential)]
     public struct QualityReport
     {
         /// <summary>TPI_QUALITY_REPORT_SIZE_V1.</summary>
         public const int SizeV1 = 200;
+        /// <summary>TPI_QUALITY_REPORT_SIZE_V2.</summary>
+        public const int SizeV2 = 232;
         /// <summary>On return: how many bytes the library filled in.</summary>
         public uint StructSize;
         /// <summary>1 if every vertex coordinate is finite.</summary>
@@ -294,6 +298,14 @@ namespace Tpi.Native
         public ulong EnvelopeUnresolved;
         /// <summary>Number of diagnostics.</summary>
         public ulong DiagnosticCount;
+        /// <summary>Open, non-simple or overlapping facets: 0 for a valid mesh (V2).</summary>
+        public ulong InvalidFacets;
+        /// <summary>Facets with fewer than three distinct vertices (V2).</summary>
+        public ulong OpenFacets;
+        /// <summary>Flips kept by the validity repair (V2).</summary>
+        public ulong ValidityFlips;
+        /// <summary>Facets the validity repair could not make valid (V2).</summary>
+        public ulong ValidityUnresolved;
     }
 
     /// <summary>TpiOptions as it crosses the boundary (first version, 40 bytes).</summary>
