@@ -32,7 +32,7 @@ use glam::{DVec2, DVec3};
 use crate::facets::reachable;
 use crate::neighbours::three_plane_vertex;
 use crate::planes::Plane;
-use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
+use crate::triangulation::{orient, DualTriangulation, Fan, NO_TRIANGLE};
 
 /// Rounds of validity flips at most (each round visits every invalid facet once).
 pub const MAX_VALIDITY_ROUNDS: usize = 8;
@@ -56,7 +56,7 @@ pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], plane
     let weld = crate::discretise::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
     let vertex: Vec<DVec3> = tri.triangles.par_iter().map(|&t| triangle_vertex(planes, t)).collect();
     let incident = tri.incident_triangles(embedding.len());
-    let mut state = State { tri, incident, planes, vertex, invalid: Vec::new(), weld, judged: n };
+    let mut state = State { tri, incident, planes, vertex, invalid: Vec::new(), weld, judged: n, embedding };
     state.invalid = state.initial_verdicts(n);
     let mut stats = ValidityFlipStats::default();
     // A facet whose repair failed is tried again only after a kept flip changed its
@@ -101,9 +101,18 @@ struct State<'a> {
     weld: f64,
     /// Points from this index on are ghosts: not judged, and not part of the mesh.
     judged: usize,
+    /// The points' positions in the triangulation's plane.
+    embedding: &'a [[f64; 2]],
 }
 
 impl State<'_> {
+    /// Whether the quad (c, a, b, d) around the diagonal (a, b) is strictly convex in the
+    /// plane, so that the flip to (c, d) keeps the triangulation embedded there.
+    fn convex_in_embedding(&self, [c, a, b, d]: [u32; 4]) -> bool {
+        let e = |x: u32| self.embedding[x as usize];
+        orient(e(c), e(a), e(d)) > 0.0 && orient(e(d), e(b), e(c)) > 0.0
+    }
+
     /// Flips triangle t's edge opposite k and brings the caches up to date; returns the two
     /// triangles holding the new diagonal (the first at position 1 of the second).
     fn flip(&mut self, t: u32, k: usize) -> (u32, u32) {
@@ -219,6 +228,11 @@ impl State<'_> {
             // the quad's shape in the plane (facet loops follow adjacency, not positions),
             // unless the new diagonal exists already.
             if c == d || has_edge(self.tri, &self.incident, c, d) {
+                continue;
+            }
+            // Around a ghost only flips that keep the plane embedding: a ghost drawn inside
+            // the real region would open a hole in the mesh.
+            if quad.iter().any(|&x| x as usize >= judged) && !self.convex_in_embedding(quad) {
                 continue;
             }
             let mut affected = affected_points(self.tri, &self.incident, quad);
