@@ -122,6 +122,47 @@ def main():
         },
     )
 
+    # Free-form saddle, 8 x 6 bicubic: K < 0 everywhere, curvature varying across the
+    # domain (a cubic lean along x and a twist).
+    def saddle(x, y):
+        return 0.05 * x * x - 0.09 * y * y + 0.03 * x * y + 0.003 * x ** 3
+
+    write(
+        "saddle.json",
+        graph_nurbs([0, 0, 0, 1.5, 3, 5, 7, 8.5, 10, 10, 10], [0, 0, 0, 2, 4, 6, 8, 8, 8], 3, [-6, 6], [-4.5, 4.5], saddle),
+    )
+
+    # Torus band: the inner part of a torus (major radius 10, tube radius 3) facing its
+    # hole, tube angle 120..240 deg and revolution angle -45..45 deg, K < 0 everywhere. An
+    # exact rational biquadratic patch: a tube arc revolved about the z axis.
+    big, small = 10.0, 3.0
+    p0, p1 = math.radians(120), math.radians(240)
+    t0, t1 = math.radians(-45), math.radians(45)
+
+    def arc(a0, a1):
+        half, mid = 0.5 * (a1 - a0), 0.5 * (a0 + a1)
+        w = math.cos(half)
+        return [(math.cos(a0), math.sin(a0), 1.0), (math.cos(mid) / w, math.sin(mid) / w, w), (math.cos(a1), math.sin(a1), 1.0)]
+
+    points, weights = [], []
+    for cx, cy, wu in arc(t0, t1):
+        for px, pz, wv in arc(p0, p1):
+            radial = big + small * px
+            points.append([radial * cx, radial * cy, small * pz])
+            weights.append(wu * wv)
+    write(
+        "torus-band.json",
+        {
+            "type": "nurbs",
+            "degree": [2, 2],
+            "count": [3, 3],
+            "knots_u": [0, 0, 1, 1],
+            "knots_v": [0, 0, 1, 1],
+            "points": points,
+            "weights": weights,
+        },
+    )
+
 
 if __name__ == "__main__":
     main()

@@ -113,6 +113,43 @@ impl State<'_> {
         orient(e(c), e(a), e(d)) > 0.0 && orient(e(d), e(b), e(c)) > 0.0
     }
 
+    /// Whether point x keeps the mesh a disc around it: a real point has a real neighbour
+    /// and its ghost neighbours in one run around it; a ghost's real neighbours are in one run.
+    fn one_ghost_arc(&self, x: u32) -> bool {
+        let mut fan = Vec::new();
+        let kind = self.tri.fan(x, self.incident[x as usize], &mut fan);
+        if kind == Fan::Broken {
+            return false;
+        }
+        // Neighbours in order: the second point of each triangle, then the last one's third.
+        let real: Vec<bool> = {
+            let mut out: Vec<bool> = fan
+                .iter()
+                .map(|&t| {
+                    let v = self.tri.triangles[t as usize];
+                    (v[(v.iter().position(|&y| y == x).unwrap_or(0) + 1) % 3] as usize) < self.judged
+                })
+                .collect();
+            if kind == Fan::Open {
+                if let Some(&last) = fan.last() {
+                    let v = self.tri.triangles[last as usize];
+                    out.push((v[(v.iter().position(|&y| y == x).unwrap_or(0) + 2) % 3] as usize) < self.judged);
+                }
+            }
+            out
+        };
+        let n = real.len();
+        let closed = kind == Fan::Closed;
+        // Runs of real neighbours (cyclic where the fan closes).
+        let starts = (0..n).filter(|&k| real[k] && (if k == 0 { closed && real[n - 1] } else { real[k - 1] }) == false).count();
+        let runs = if closed && real.iter().all(|&r| r) { 1 } else { starts };
+        if (x as usize) < self.judged {
+            runs == 1
+        } else {
+            runs <= 1
+        }
+    }
+
     /// Flips triangle t's edge opposite k and brings the caches up to date; returns the two
     /// triangles holding the new diagonal (the first at position 1 of the second).
     fn flip(&mut self, t: u32, k: usize) -> (u32, u32) {
@@ -232,7 +269,8 @@ impl State<'_> {
             }
             // Around a ghost only flips that keep the plane embedding: a ghost drawn inside
             // the real region would open a hole in the mesh.
-            if quad.iter().any(|&x| x as usize >= judged) && !self.convex_in_embedding(quad) {
+            let touches_ghost = quad.iter().any(|&x| x as usize >= judged);
+            if touches_ghost && !self.convex_in_embedding(quad) {
                 continue;
             }
             let mut affected = affected_points(self.tri, &self.incident, quad);
@@ -242,6 +280,10 @@ impl State<'_> {
                 continue;
             }
             let (t1, _) = self.flip(t as u32, k);
+            if touches_ghost && !quad.iter().all(|&x| self.one_ghost_arc(x)) {
+                self.flip(t1, 1);
+                continue;
+            }
             // The quad's points first (their polygons changed); stop once no gain is possible.
             affected.sort_by_key(|x| !quad.contains(x));
             let mut verdicts = Vec::with_capacity(affected.len());

@@ -334,3 +334,22 @@ fn egg_crate_flags_every_invalid_facet_and_names_every_hole() {
         }
     }
 }
+
+/// Uniform random points (close pairs included) cannot always give valid facets with exact
+/// planes, but the mesh is always a disc and every invalid facet is flagged.
+#[test]
+fn random_patterns_give_discs_on_any_curvature() {
+    let mut surfaces = saddles();
+    surfaces.push(("rotated-hypar", Box::new(rotated_hypar())));
+    surfaces.push(("mixed-roof", Box::new(sample_surface("mixed-roof.json"))));
+    surfaces.push(("crest-roof", Box::new(crest_roof())));
+    let mut rng = Rng::new(2026);
+    for (name, surface) in &surfaces {
+        for n in [200, 1000] {
+            let pattern = uniform_pattern(&mut rng, n);
+            let c = run(name, surface.as_ref(), &format!("random{n}"), &pattern);
+            assert!(c.validity.is_disc(), "{name} / random{n}: not a disc: {:?}", c.validity);
+            assert_eq!(c.flagged_missing, 0, "{name} / random{n}: invalid facets not flagged");
+        }
+    }
+}
