@@ -7,7 +7,7 @@
 //! - `tpi bench`: stage timings, facets per second and peak memory on benchmark surfaces
 //!
 //! Exit codes: 0 success, 1 bad input or output (one line on stderr, `tpi: error: FILE:
-//! PROBLEM`), 2 usage. See docs/cli.md.
+//! PROBLEM`), 2 usage, 3 invalid facets under `tpi discretise --strict`. See docs/cli.md.
 
 mod args;
 mod bench;
@@ -55,7 +55,8 @@ EXAMPLES:
     tpi pattern poisson:0.03:seed=7 --out poisson.json --preview poisson.svg
     tpi info samples/mixed-roof.json
 
-Exit codes: 0 success, 1 bad input or output, 2 usage. Formats: docs/formats.md.
+Exit codes: 0 success, 1 bad input or output, 2 usage, 3 invalid facets (--strict).
+Formats: docs/formats.md.
 ";
 
 fn main() {

@@ -96,6 +96,7 @@ struct Quality {
     trivalent_fraction: f64,
     max_planarity_error: f64,
     flagged_facets: usize,
+    invalid_facets: usize,
     euler_characteristic: i64,
     boundary_loops: usize,
     all_finite: bool,
@@ -198,14 +199,19 @@ fn png_size(path: &Path) -> (u32, u32) {
 
 // ---- the samples ----
 
-const SURFACES: [(&str, bool); 6] = [
+const SURFACES: [(&str, bool); 8] = [
     ("paraboloid.json", true),
     ("anisotropic-dome.json", true),
     ("nurbs-dome.json", true),
     ("rational-dome.json", true),
     ("hypar.json", false),
+    ("saddle.json", false),
+    ("torus-band.json", false),
     ("mixed-roof.json", false),
 ];
+
+/// The samples with K < 0 everywhere.
+const SADDLES: [&str; 3] = ["hypar.json", "saddle.json", "torus-band.json"];
 
 const PATTERNS: [&str; 3] = ["hex-24x20.json", "random-1000.json", "poisson-0.03.json"];
 
@@ -230,7 +236,16 @@ fn every_sample_discretises_with_every_sample_pattern() {
                 assert_eq!((q.euler_characteristic, q.boundary_loops), (1, 1), "{surface} with {pattern}");
                 assert!(c.diagnostics.is_empty(), "{surface} with {pattern}: {:?}", c.diagnostics);
             }
+            // Any curvature: always a disc; every invalid facet flagged and warned about.
+            assert_eq!((q.euler_characteristic, q.boundary_loops), (1, 1), "{surface} with {pattern}");
+            let invalid_flags = c.facets.iter().filter(|f| f.flags & (2 | 4 | 16) != 0).count();
+            assert_eq!(invalid_flags, q.invalid_facets, "{surface} with {pattern}");
             let summary = text(&run.stderr);
+            assert_eq!(summary.contains("warning: "), q.invalid_facets > 0, "{summary}");
+            if SADDLES.contains(&surface) && pattern != "random-1000.json" {
+                // Saddles with hex and Poisson-disk patterns: valid with exact planes.
+                assert_eq!(q.invalid_facets, 0, "{surface} with {pattern}: {summary}");
+            }
             assert!(summary.contains("facets") && summary.contains("timings"), "{summary}");
         }
     }
@@ -248,7 +263,7 @@ fn every_output_format_is_written_and_reads_back() {
         "--size", "640x480",
     ]);
     let summary = text(&run.stderr);
-    for needle in ["sides", "trivalent", "planarity", "deviation", "flags", "Euler", "boundary loops", "diagnostics", "timings", "wrote"] {
+    for needle in ["sides", "trivalent", "planarity", "deviation", "validity", "invalid facets", "Euler", "boundary loops", "diagnostics", "timings", "wrote"] {
         assert!(summary.contains(needle), "summary lacks {needle}: {summary}");
     }
 
@@ -290,8 +305,31 @@ fn png_has_the_default_size_and_flagged_facets_are_marked_in_the_svg() {
     assert_eq!(png_size(&png), (1200, 900));
     let svg = fs::read_to_string(&svg).unwrap();
     assert_eq!(check_svg(&svg), 120);
-    // Saddle facets are non-convex: flagged, outlined red, listed in the legend.
+    // Saddle facets are non-convex, the expected shape: nothing flagged.
+    assert!(!svg.contains("data-flags="), "a valid saddle mesh has flagged facets");
+    // A mixed roof has invalid facets at its parabolic lines: flagged, outlined red, listed.
+    let mixed = dir.join("m.svg");
+    ok(&["discretise", "--surface", &sample("mixed-roof.json"), "--pattern", "hex:24x20", "--out", mixed.to_str().unwrap()]);
+    let svg = fs::read_to_string(&mixed).unwrap();
     assert!(svg.contains("data-flags=") && svg.contains("#e00000") && svg.contains("flagged"));
+}
+
+#[test]
+fn strict_exits_3_on_invalid_facets_and_still_writes_the_outputs() {
+    let dir = scratch("strict");
+    let out = dir.join("m.json");
+    let args = ["discretise", "--surface", &sample("mixed-roof.json"), "--pattern", "hex:24x20", "--strict", "--out", out.to_str().unwrap()];
+    let run = tpi(&args);
+    assert_eq!(run.status.code(), Some(3), "{}", text(&run.stderr));
+    let err = text(&run.stderr);
+    let q = read_contract(&out).quality.expect("quality report");
+    assert!(q.invalid_facets > 0);
+    assert!(err.contains(&format!("warning: {} invalid facets", q.invalid_facets)), "{err}");
+    assert!(err.trim_end().ends_with(&format!("tpi: error: {} invalid facets (--strict)", q.invalid_facets)), "{err}");
+    // A valid mesh passes --strict with exit 0 and no warning.
+    let valid = ok(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:24x20", "--strict", "--out", dir.join("s.json").to_str().unwrap()]);
+    assert!(!text(&valid.stderr).contains("warning"));
+    fails(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:6x6", "--strict", "--no-report"], 2, &["--strict"]);
 }
 
 #[test]
