@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use serde::Serialize;
-use tpi_core::benchmark::{nurbs_dome, paraboloid, random_pattern};
+use tpi_core::benchmark::{nurbs_dome, paraboloid, random_pattern, saddle};
 use tpi_core::pattern::SplitMix64;
 use tpi_core::{discretise, DiscretiseOptions, LiveSurface, Surface, Timings};
 
@@ -39,7 +39,8 @@ apart from the edits).
 
 OPTIONS:
     --sizes LIST       pattern sizes (default 1000,10000,100000,1000000)
-    --surfaces LIST    paraboloid, nurbs or both (default both)
+    --surfaces LIST    paraboloid, nurbs, saddle, comma-separated (default all three;
+                       saddle: K < 0 everywhere, the any-curvature path)
     --threads T        rayon threads (default: all cores)
     --repeat R         runs per size, the median is reported (default 3; odd is best)
     --no-report        switch the quality report off (DiscretiseOptions::quality_report)
@@ -56,7 +57,7 @@ EXAMPLES:
 ";
 
 /// The benchmark's surfaces by name.
-const SURFACES: [&str; 2] = ["paraboloid", "nurbs"];
+const SURFACES: [&str; 3] = ["paraboloid", "nurbs", "saddle"];
 
 struct Config {
     sizes: Vec<usize>,
@@ -188,7 +189,7 @@ fn parse(rest: Vec<String>) -> Result<Option<Config>, CliError> {
                                 .iter()
                                 .find(|&&known| known == s.trim())
                                 .copied()
-                                .ok_or_else(|| a.usage(format!("--surfaces {v}: the surfaces are paraboloid and nurbs")))
+                                .ok_or_else(|| a.usage(format!("--surfaces {v}: the surfaces are paraboloid, nurbs and saddle")))
                         })
                         .collect::<Result<_, _>>()?;
                 }
@@ -242,6 +243,7 @@ fn measure(config: &Config) -> Result<Report, CliError> {
     for &name in &config.surfaces {
         let surface: Box<dyn Surface> = match name {
             "paraboloid" => Box::new(paraboloid()),
+            "saddle" => Box::new(saddle()),
             _ => Box::new(nurbs_dome()),
         };
         for &n in &config.sizes {
@@ -300,6 +302,7 @@ fn run_once(
 fn edit_timings(name: &str, pattern: &[[f64; 2]], count: usize, options: &DiscretiseOptions) -> Result<EditRow, CliError> {
     let surface: Box<dyn Surface> = match name {
         "paraboloid" => Box::new(paraboloid()),
+        "saddle" => Box::new(saddle()),
         _ => Box::new(nurbs_dome()),
     };
     let mut live = LiveSurface::new(surface, pattern.to_vec(), *options).map_err(|e| CliError::core(name, &e))?;

@@ -598,14 +598,14 @@ fn bench_prints_the_table_and_json_and_plot() {
     let out = ok(&["bench", "--sizes", "1000", "--repeat", "3"]);
     let table = text(&out.stdout);
     let lines: Vec<&str> = table.lines().collect();
-    assert_eq!(lines.len(), 4, "{table}");
+    assert_eq!(lines.len(), 5, "{table}");
     assert!(lines[0].starts_with("tpi bench: median of 3 runs"), "{table}");
     let header: Vec<&str> = lines[1].split_whitespace().collect();
     assert_eq!(
         header,
         ["surface", "points", "samples", "delaunay", "neighbours", "facets", "mesh", "report", "total", "facets/s", "peak", "MB"]
     );
-    for (line, surface) in lines[2..].iter().zip(["paraboloid", "nurbs"]) {
+    for (line, surface) in lines[2..].iter().zip(["paraboloid", "nurbs", "saddle"]) {
         let cells: Vec<&str> = line.split_whitespace().collect();
         assert_eq!(cells.len(), 11, "{line}");
         assert_eq!(cells[0], surface);

@@ -1,10 +1,12 @@
 //! The benchmark inputs shared by `cargo bench -p tpi-core` and `tpi bench`
-//! (docs/performance.md): two convex surfaces and uniform random patterns.
+//! (docs/performance.md): two convex surfaces, a saddle and uniform random patterns.
 //!
 //! - [`paraboloid`]: the paraboloid of revolution z = -0.08 (x^2 + y^2) over [-5, 5]^2, the
 //!   analytic case (as samples/paraboloid.json).
 //! - [`nurbs_dome`]: a bicubic NURBS dome with 12 x 12 control points and non-uniform clamped
 //!   knots in both directions, the free-form case the paper benchmarks.
+//! - [`saddle`]: a bicubic NURBS saddle, K < 0 everywhere with varying curvature (as
+//!   samples/saddle.json): the any-curvature path (ghosts, |II| flips, validity flips).
 //! - [`random_pattern`]: n uniform random points in the unit square (SplitMix64, fixed seed per
 //!   n), the same generator as `tpi pattern random:N:seed=S`.
 
@@ -47,6 +49,34 @@ pub fn nurbs_dome() -> NurbsSurface {
         }
     }
     NurbsSurface::new([p, p], [n, n], &DOME_KNOTS_U, &DOME_KNOTS_V, &points, None)
+        .unwrap_or_else(|e| unreachable_surface(&e.to_string()))
+}
+
+/// Knots (Rhino convention) of the saddle in u: clamped, non-uniform.
+pub const SADDLE_KNOTS_U: [f64; 11] = [0.0, 0.0, 0.0, 1.5, 3.0, 5.0, 7.0, 8.5, 10.0, 10.0, 10.0];
+
+/// Knots of the saddle in v.
+pub const SADDLE_KNOTS_V: [f64; 9] = [0.0, 0.0, 0.0, 2.0, 4.0, 6.0, 8.0, 8.0, 8.0];
+
+/// The benchmark's saddle: bicubic 9 x 7 control points over the Greville abscissae of
+/// [`SADDLE_KNOTS_U`] x [`SADDLE_KNOTS_V`], mapped to [-6, 6] x [-4.5, 4.5] and lifted by
+/// z = 0.05 x^2 - 0.09 y^2 + 0.03 x y + 0.003 x^3 (samples/saddle.json).
+pub fn saddle() -> NurbsSurface {
+    let p = 3usize;
+    let greville = |knots: &[f64]| -> Vec<f64> {
+        let n = knots.len() + 1 - p;
+        let (lo, hi) = (knots[p - 1], knots[n - 1]);
+        (0..n).map(|i| (knots[i..i + p].iter().sum::<f64>() / p as f64 - lo) / (hi - lo)).collect()
+    };
+    let (gu, gv) = (greville(&SADDLE_KNOTS_U), greville(&SADDLE_KNOTS_V));
+    let mut points = Vec::with_capacity(gu.len() * gv.len());
+    for &s in &gu {
+        for &t in &gv {
+            let (x, y) = (12.0 * s - 6.0, 9.0 * t - 4.5);
+            points.push(DVec3::new(x, y, 0.05 * x * x - 0.09 * y * y + 0.03 * x * y + 0.003 * x * x * x));
+        }
+    }
+    NurbsSurface::new([p, p], [gu.len(), gv.len()], &SADDLE_KNOTS_U, &SADDLE_KNOTS_V, &points, None)
         .unwrap_or_else(|e| unreachable_surface(&e.to_string()))
 }
 

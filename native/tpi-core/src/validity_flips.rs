@@ -56,7 +56,19 @@ pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], plane
     let weld = crate::discretise::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
     let vertex: Vec<DVec3> = tri.triangles.par_iter().map(|&t| triangle_vertex(planes, t)).collect();
     let incident = tri.incident_triangles(embedding.len());
-    let mut state = State { tri, incident, planes, vertex, invalid: Vec::new(), weld, judged: n, embedding };
+    let points = embedding.len();
+    let mut state = State {
+        tri,
+        incident,
+        planes,
+        vertex,
+        invalid: Vec::new(),
+        weld,
+        judged: n,
+        embedding,
+        facets: (0..points).map(|_| None).collect(),
+        overlaps: vec![Vec::new(); points],
+    };
     state.invalid = state.initial_verdicts(n);
     let mut stats = ValidityFlipStats::default();
     // A facet whose repair failed is tried again only after a kept flip changed its
@@ -103,6 +115,20 @@ struct State<'a> {
     judged: usize,
     /// The points' positions in the triangulation's plane.
     embedding: &'a [[f64; 2]],
+    /// Per point, its facet as last built (None: to build), renewed when a flip changes it.
+    facets: Vec<Option<Facet>>,
+    /// Per point, the overlap verdicts with neighbours computed so far.
+    overlaps: Vec<Vec<(u32, bool)>>,
+}
+
+/// A facet as the local test sees it.
+struct Facet {
+    /// Welded polygon, None where the fan does not close.
+    polygon: Option<Vec<DVec3>>,
+    /// Finite, simple and counter-clockwise in the seed's plane.
+    simple: bool,
+    /// Real edge neighbours with the ends of the polygon edge shared with each.
+    neighbours: Vec<(u32, [DVec3; 2])>,
 }
 
 impl State<'_> {
@@ -156,11 +182,45 @@ impl State<'_> {
         let (t1, t2) = self.tri.flip(t, k);
         for t in [t1, t2] {
             self.vertex[t as usize] = triangle_vertex(self.planes, self.tri.triangles[t as usize]);
-            for &v in &self.tri.triangles[t as usize] {
+            for v in self.tri.triangles[t as usize] {
                 self.incident[v as usize] = t;
+                self.forget(v);
             }
         }
         (t1, t2)
+    }
+
+    /// Drops the cached facet of point v and every overlap verdict involving it.
+    fn forget(&mut self, v: u32) {
+        self.facets[v as usize] = None;
+        for (other, _) in std::mem::take(&mut self.overlaps[v as usize]) {
+            self.overlaps[other as usize].retain(|&(x, _)| x != v);
+        }
+    }
+
+    /// Builds (or reuses) the facet of point i.
+    fn facet(&mut self, i: u32) -> &Facet {
+        if self.facets[i as usize].is_none() {
+            let mut fan = Vec::new();
+            let polygon = self.polygon(i, &mut fan);
+            let simple = polygon
+                .as_ref()
+                .is_some_and(|p| p.iter().all(|x| x.is_finite()) && simple_in_plane(p, self.planes[i as usize].normal));
+            let neighbours = if polygon.is_some() {
+                (0..fan.len())
+                    .filter_map(|k| {
+                        let v = self.tri.triangles[fan[k] as usize];
+                        let j = v[(v.iter().position(|&x| x == i).unwrap_or(0) + 1) % 3];
+                        let ends = [self.vertex[fan[(k + fan.len() - 1) % fan.len()] as usize], self.vertex[fan[k] as usize]];
+                        ((j as usize) < self.judged).then_some((j, ends))
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            };
+            self.facets[i as usize] = Some(Facet { polygon, simple, neighbours });
+        }
+        self.facets[i as usize].as_ref().expect("built above")
     }
 
     /// Facet i's polygon (welded), None where its fan does not close.
@@ -203,7 +263,9 @@ impl State<'_> {
                         return None;
                     }
                     let normal = self.planes[i as usize].normal + self.planes[j as usize].normal;
-                    polygons_overlap(pi, pj, normal).then_some((i, j))
+                    let other = self.tri.neighbours[t][k];
+                    let ends = [self.vertex[t], if other == NO_TRIANGLE { self.vertex[t] } else { self.vertex[other as usize] }];
+                    (!separated(pi, pj, ends, normal) && polygons_overlap(pi, pj, normal)).then_some((i, j))
                 })
             })
             .collect();
@@ -216,29 +278,42 @@ impl State<'_> {
     }
 
     /// Whether interior facet i is invalid (module doc); hull facets are never judged.
-    fn facet_invalid(&self, i: u32) -> bool {
-        let mut fan = Vec::new();
-        let Some(polygon) = self.polygon(i, &mut fan) else { return false };
-        let plane = &self.planes[i as usize];
-        if !polygon.iter().all(|x| x.is_finite()) || !simple_in_plane(&polygon, plane.normal) {
+    fn facet_invalid(&mut self, i: u32) -> bool {
+        let facet = self.facet(i);
+        if facet.polygon.is_none() {
+            return false;
+        }
+        if !facet.simple {
             return true;
         }
-        // Overlap with each real edge neighbour whose facet closes and is simple.
-        let neighbours: Vec<u32> = fan
-            .iter()
-            .map(|&t| {
-                let v = self.tri.triangles[t as usize];
-                v[(v.iter().position(|&x| x == i).unwrap_or(0) + 1) % 3]
-            })
-            .collect();
-        let mut other_fan = Vec::new();
-        neighbours.into_iter().filter(|&j| (j as usize) < self.judged).any(|j| {
-            let Some(other) = self.polygon(j, &mut other_fan) else { return false };
-            let normal = plane.normal + self.planes[j as usize].normal;
-            other.iter().all(|x| x.is_finite())
-                && simple_in_plane(&other, self.planes[j as usize].normal)
-                && polygons_overlap(&polygon, &other, normal)
-        })
+        let neighbours = facet.neighbours.clone();
+        for (j, ends) in neighbours {
+            if let Some(&(_, verdict)) = self.overlaps[i as usize].iter().find(|&&(x, _)| x == j) {
+                if verdict {
+                    return true;
+                }
+                continue;
+            }
+            let other_simple = {
+                let other = self.facet(j);
+                other.polygon.is_some() && other.simple
+            };
+            let verdict = other_simple && {
+                let normal = self.planes[i as usize].normal + self.planes[j as usize].normal;
+                let (a, b) = (self.facets[i as usize].as_ref(), self.facets[j as usize].as_ref());
+                let (a, b) = (a.and_then(|f| f.polygon.as_ref()), b.and_then(|f| f.polygon.as_ref()));
+                match (a, b) {
+                    (Some(a), Some(b)) => !separated(a, b, ends, normal) && polygons_overlap(a, b, normal),
+                    _ => false,
+                }
+            };
+            self.overlaps[i as usize].push((j, verdict));
+            self.overlaps[j as usize].push((i, verdict));
+            if verdict {
+                return true;
+            }
+        }
+        false
     }
 
     /// Tries the star and link edges of facet i; keeps the first flip that lowers the number
@@ -284,8 +359,9 @@ impl State<'_> {
                 self.flip(t1, 1);
                 continue;
             }
-            // The quad's points first (their polygons changed); stop once no gain is possible.
-            affected.sort_by_key(|x| !quad.contains(x));
+            // Those invalid before first (most stay so: a futile flip is known soonest), the
+            // quad's points (their polygons changed) next; stop once no gain is possible.
+            affected.sort_by_key(|&x| (!self.invalid[x as usize], !quad.contains(&x)));
             let mut verdicts = Vec::with_capacity(affected.len());
             let mut count = 0;
             for &x in &affected {
@@ -425,14 +501,29 @@ pub(crate) fn simple_in_plane(points: &[DVec3], normal: DVec3) -> bool {
 /// Vertices of one closer than the tolerance to a vertex of the other count as shared.
 pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool {
     let Some(&origin) = a.first() else { return false };
-    let (pa, mut pb) = (flatten(a, normal, origin), flatten(b, normal, origin));
-    let scale = size(&pa).max(size(&pb));
+    let (e1, e2) = normal.normalize_or(DVec3::Z).any_orthonormal_pair();
+    let to2 = |x: &DVec3| DVec2::new((*x - origin).dot(e1), (*x - origin).dot(e2));
+    // Small polygons stay on the stack.
+    let mut buffer_a = [DVec2::ZERO; 16];
+    let mut buffer_b = [DVec2::ZERO; 16];
+    let (mut heap_a, mut heap_b) = (Vec::new(), Vec::new());
+    let pa: &mut [DVec2] = if a.len() <= 16 { &mut buffer_a[..a.len()] } else { heap_a.resize(a.len(), DVec2::ZERO); &mut heap_a };
+    let pb: &mut [DVec2] = if b.len() <= 16 { &mut buffer_b[..b.len()] } else { heap_b.resize(b.len(), DVec2::ZERO); &mut heap_b };
+    for (p, x) in pa.iter_mut().zip(a) {
+        *p = to2(x);
+    }
+    for (p, x) in pb.iter_mut().zip(b) {
+        *p = to2(x);
+    }
+    let (pa, pb) = (&*pa, pb);
+    let scale = size(pa).max(size(pb));
     let tolerance = VALIDITY_TOLERANCE * scale;
     for q in pb.iter_mut() {
-        if let Some(p) = pa.iter().find(|p| (**p - *q).length() <= tolerance) {
+        if let Some(p) = pa.iter().find(|p| (**p - *q).length_squared() <= tolerance * tolerance) {
             *q = *p;
         }
     }
+    let pb = &*pb;
     let eps = VALIDITY_TOLERANCE * scale * scale;
     let (na, nb) = (pa.len(), pb.len());
     for x in 0..na {
@@ -442,28 +533,58 @@ pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool 
             }
         }
     }
-    let strictly_inside = |p: DVec2, poly: &[DVec2]| {
-        !poly.iter().any(|q| (*q - p).length() <= tolerance) && point_in_polygon(p, poly, tolerance)
+    // No proper crossing: overlap means a vertex of one strictly inside the other.
+    let inside = |points: &[DVec2], poly: &[DVec2]| {
+        points.iter().any(|&p| {
+            !poly.iter().any(|q| (*q - p).length_squared() <= tolerance * tolerance)
+                && point_in_polygon(p, poly, tolerance) == Some(true)
+        })
     };
-    pb.iter().any(|&p| strictly_inside(p, &pa)) || pa.iter().any(|&p| strictly_inside(p, &pb))
+    inside(pb, pa) || inside(pa, pb)
 }
 
-/// Strictly inside (farther than `tolerance` from every edge) by the crossing number.
-fn point_in_polygon(p: DVec2, poly: &[DVec2], tolerance: f64) -> bool {
+/// Whether the line through the shared edge `ends` separates polygons a and b seen along
+/// `normal`: every other vertex of one strictly on one side and of the other strictly on
+/// the other (then they cannot overlap; otherwise [`polygons_overlap`] decides).
+fn separated(a: &[DVec3], b: &[DVec3], ends: [DVec3; 2], normal: DVec3) -> bool {
+    let (e1, e2) = normal.normalize_or(DVec3::Z).any_orthonormal_pair();
+    let to2 = |x: DVec3| DVec2::new((x - ends[0]).dot(e1), (x - ends[0]).dot(e2));
+    let direction = to2(ends[1]);
+    let length = direction.length();
+    if !(length > 0.0) {
+        return false;
+    }
+    let margin = VALIDITY_TOLERANCE * length;
+    let side = |poly: &[DVec3]| {
+        let (mut positive, mut negative) = (false, false);
+        for &x in poly {
+            let d = direction.perp_dot(to2(x)) / length;
+            positive |= d > margin;
+            negative |= d < -margin;
+        }
+        (positive, negative)
+    };
+    let ((ap, an), (bp, bn)) = (side(a), side(b));
+    (ap && !an && bn && !bp) || (an && !ap && bp && !bn)
+}
+
+/// Some(inside) by the crossing number for a point farther than `tolerance` from every edge
+/// of the polygon; None for a point on its boundary.
+fn point_in_polygon(p: DVec2, poly: &[DVec2], tolerance: f64) -> Option<bool> {
     let n = poly.len();
     let mut inside = false;
     for k in 0..n {
         let (a, b) = (poly[k], poly[(k + 1) % n]);
         let ab = b - a;
         let t = ((p - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
-        if (a + ab * t - p).length() <= tolerance {
-            return false;
+        if (a + ab * t - p).length_squared() <= tolerance * tolerance {
+            return None;
         }
         if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * ab.x {
             inside = !inside;
         }
     }
-    inside
+    Some(inside)
 }
 
 /// The segments ab and cd cross properly: each strictly (beyond `eps`, an area) on both
