@@ -27,9 +27,23 @@ use crate::surface::{Surface, SurfaceDerivatives};
 /// sqrt(area / n) of the triangulation's plane.
 pub const GHOST_BAND: f64 = 3.0;
 
-/// Seeds closer to a side than this fraction of the mean spacing get no ghost across it (it
-/// would nearly coincide with them).
-pub const GHOST_MIN_OFFSET: f64 = 1e-6;
+/// A ghost lies at least this many mean spacings beyond its side, so that a seed on the side
+/// (or very near it) still gets a ghost apart from itself; see [`ghost_depth`].
+pub const GHOST_MIN_DEPTH: f64 = 0.25;
+
+/// The depth beyond the side of the ghost of a seed at distance d >= 0 inside it, for mean
+/// spacing h: the mirror distance d from h / 2 on, and d + m (1 - 2 d / h) with
+/// m = [`GHOST_MIN_DEPTH`] h below it. Strictly increasing in d (ghosts of distinct seeds on
+/// one normal line stay distinct) and at least m: a seed on the side gets its ghost at depth
+/// m, and its facet ends about m / 2 beyond the side.
+fn ghost_depth(d: f64, h: f64) -> f64 {
+    let m = GHOST_MIN_DEPTH * h;
+    if d >= 0.5 * h {
+        d
+    } else {
+        d + m * (1.0 - 2.0 * d / h)
+    }
+}
 
 /// The real seeds followed by their mirror images.
 pub(crate) struct Augmented {
@@ -73,7 +87,6 @@ pub(crate) fn augment(
     let n = plane_uv.len();
     let spacing = (extent[0] * extent[1] / n as f64).sqrt();
     let band = GHOST_BAND * spacing;
-    let min_offset = GHOST_MIN_OFFSET * spacing;
     let mut out = Augmented {
         plane_uv: plane_uv.to_vec(),
         geometry: geometry.to_vec(),
@@ -86,14 +99,22 @@ pub(crate) fn augment(
     for i in 0..n {
         let [x, y] = plane_uv[i];
         let [u, v] = uv[i];
-        // Per side: distance, mirrored position, the boundary parameter and its offset.
+        // Per side: distance d, the ghost's position at depth ghost_depth(d) beyond the side,
+        // the boundary parameter and the ghost's parameter offset from it.
+        let scale_u = (u1 - u0) / extent[0];
+        let scale_v = (v1 - v0) / extent[1];
+        let depth = |d: f64| ghost_depth(d, spacing);
+        let dx0 = depth(x);
+        let dx1 = depth(extent[0] - x);
+        let dy0 = depth(y);
+        let dy1 = depth(extent[1] - y);
         let sides = [
-            (x, [-x, y], u0, u0 - u),
-            (extent[0] - x, [2.0 * extent[0] - x, y], u1, u1 - u),
-            (y, [x, -y], v0, v0 - v),
-            (extent[1] - y, [x, 2.0 * extent[1] - y], v1, v1 - v),
+            (x, [-dx0, y], u0, -dx0 * scale_u),
+            (extent[0] - x, [extent[0] + dx1, y], u1, dx1 * scale_u),
+            (y, [x, -dy0], v0, -dy0 * scale_v),
+            (extent[1] - y, [x, extent[1] + dy1], v1, dy1 * scale_v),
         ];
-        let near: Vec<usize> = (0..4).filter(|&s| sides[s].0 < band && sides[s].0 > min_offset).collect();
+        let near: Vec<usize> = (0..4).filter(|&s| sides[s].0 < band).collect();
         let mut push = |position: [f64; 2], g: Option<LocalGeometry>| {
             let Some(g) = g else { return };
             out.plane_uv.push(position);

@@ -336,7 +336,8 @@ fn egg_crate_flags_every_invalid_facet_and_names_every_hole() {
 }
 
 /// Uniform random points (close pairs included) cannot always give valid facets with exact
-/// planes, but the mesh is always a disc and every invalid facet is flagged.
+/// planes, but the mesh is always a disc and every invalid facet is flagged; so with points
+/// on the domain's sides and corners.
 #[test]
 fn random_patterns_give_discs_on_any_curvature() {
     let mut surfaces = saddles();
@@ -344,6 +345,8 @@ fn random_patterns_give_discs_on_any_curvature() {
     surfaces.push(("mixed-roof", Box::new(sample_surface("mixed-roof.json"))));
     surfaces.push(("crest-roof", Box::new(crest_roof())));
     let mut rng = Rng::new(2026);
+    // Points on the sides and corners too: a 12 x 12 grid of the closed unit square.
+    let closed_grid: Vec<[f64; 2]> = (0..12).flat_map(|i| (0..12).map(move |j| [i as f64 / 11.0, j as f64 / 11.0])).collect();
     for (name, surface) in &surfaces {
         for n in [200, 1000] {
             let pattern = uniform_pattern(&mut rng, n);
@@ -351,5 +354,8 @@ fn random_patterns_give_discs_on_any_curvature() {
             assert!(c.validity.is_disc(), "{name} / random{n}: not a disc: {:?}", c.validity);
             assert_eq!(c.flagged_missing, 0, "{name} / random{n}: invalid facets not flagged");
         }
+        let c = run(name, surface.as_ref(), "closed-grid", &closed_grid);
+        assert!(c.validity.is_disc(), "{name} / closed grid: not a disc: {:?}", c.validity);
+        assert_eq!(c.flagged_missing, 0, "{name} / closed grid: invalid facets not flagged");
     }
 }
