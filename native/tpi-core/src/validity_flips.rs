@@ -32,7 +32,7 @@ use glam::{DVec2, DVec3};
 use crate::facets::reachable;
 use crate::neighbours::three_plane_vertex;
 use crate::planes::Plane;
-use crate::triangulation::{orient, DualTriangulation, Fan, NO_TRIANGLE};
+use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
 /// Rounds of validity flips at most (each round visits every invalid facet once).
 pub const MAX_VALIDITY_ROUNDS: usize = 8;
@@ -65,7 +65,6 @@ pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], plane
         invalid: Vec::new(),
         weld,
         judged: n,
-        embedding,
         facets: (0..points).map(|_| None).collect(),
         overlaps: vec![Vec::new(); points],
     };
@@ -113,8 +112,6 @@ struct State<'a> {
     weld: f64,
     /// Points from this index on are ghosts: not judged, and not part of the mesh.
     judged: usize,
-    /// The points' positions in the triangulation's plane.
-    embedding: &'a [[f64; 2]],
     /// Per point, its facet as last built (None: to build), renewed when a flip changes it.
     facets: Vec<Option<Facet>>,
     /// Per point, the overlap verdicts with neighbours computed so far.
@@ -132,13 +129,6 @@ struct Facet {
 }
 
 impl State<'_> {
-    /// Whether the quad (c, a, b, d) around the diagonal (a, b) is strictly convex in the
-    /// plane, so that the flip to (c, d) keeps the triangulation embedded there.
-    fn convex_in_embedding(&self, [c, a, b, d]: [u32; 4]) -> bool {
-        let e = |x: u32| self.embedding[x as usize];
-        orient(e(c), e(a), e(d)) > 0.0 && orient(e(d), e(b), e(c)) > 0.0
-    }
-
     /// Whether point x keeps the mesh a disc around it: a real point has a real neighbour
     /// and its ghost neighbours in one run around it; a ghost's real neighbours are in one run.
     fn one_ghost_arc(&self, x: u32) -> bool {
@@ -342,12 +332,7 @@ impl State<'_> {
             if c == d || has_edge(self.tri, &self.incident, c, d) {
                 continue;
             }
-            // Around a ghost only flips that keep the plane embedding: a ghost drawn inside
-            // the real region would open a hole in the mesh.
             let touches_ghost = quad.iter().any(|&x| x as usize >= judged);
-            if touches_ghost && !self.convex_in_embedding(quad) {
-                continue;
-            }
             let mut affected = affected_points(self.tri, &self.incident, quad);
             affected.retain(|&x| (x as usize) < judged);
             let before = affected.iter().filter(|&&x| self.invalid[x as usize]).count();
@@ -355,6 +340,8 @@ impl State<'_> {
                 continue;
             }
             let (t1, _) = self.flip(t as u32, k);
+            // Around a ghost the flip must leave every point's ghost neighbours in one run: a
+            // ghost drawn into the real region would open a hole in the mesh.
             if touches_ghost && !quad.iter().all(|&x| self.one_ghost_arc(x)) {
                 self.flip(t1, 1);
                 continue;
