@@ -27,6 +27,9 @@
 //! [`MAX_VALIDITY_ROUNDS`] rounds in any case. Facets on the hull (open fans) are built with
 //! the boundary later ([`crate::facets`]); they are not judged here.
 
+// NaN-safe negated comparisons are intended: a NaN area or length must fail the test.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 use glam::{DVec2, DVec3};
 
 use crate::facets::reachable;
@@ -157,7 +160,8 @@ impl State<'_> {
         let n = real.len();
         let closed = kind == Fan::Closed;
         // Runs of real neighbours (cyclic where the fan closes).
-        let starts = (0..n).filter(|&k| real[k] && (if k == 0 { closed && real[n - 1] } else { real[k - 1] }) == false).count();
+        let previous_real = |k: usize| if k == 0 { closed && real[n - 1] } else { real[k - 1] };
+        let starts = (0..n).filter(|&k| real[k] && !previous_real(k)).count();
         let runs = if closed && real.iter().all(|&r| r) { 1 } else { starts };
         if (x as usize) < self.judged {
             runs == 1
