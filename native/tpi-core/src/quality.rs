@@ -218,7 +218,22 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
         use rayon::prelude::*;
         let mut pairs: Vec<(u32, u32)> = shared_edges
             .par_iter()
-            .filter(|&&(f, g, a, b)| simple[f as usize] && simple[g as usize] && edge_pair_overlaps(input, f, g, a, b))
+            .filter(|&&(f, g, a, b)| {
+                let (sf, sg) = (&shapes[f as usize], &shapes[g as usize]);
+                if !(sf.1.simple && sg.1.simple) {
+                    return false;
+                }
+                if sf.1.convex && sg.1.convex {
+                    // Two convex polygons sharing the edge (a, b) (convex also seen along the
+                    // mean normal, an affine image) overlap exactly when they lie on the same
+                    // side of its line: their centroids do.
+                    let (pa, pb) = (input.vertices[a as usize], input.vertices[b as usize]);
+                    let normal = input.planes[f as usize].normal + input.planes[g as usize].normal;
+                    let side = |c: DVec3| (pb - pa).cross(c - pa).dot(normal);
+                    return side(sf.0) * side(sg.0) > 0.0;
+                }
+                edge_pair_overlaps(input, f, g, a, b)
+            })
             .map(|&(f, g, _, _)| (f.min(g), f.max(g)))
             .collect();
         pairs.extend(vertex_pairs_overlapping(input, facet_count, &simple, &shared_edges));
