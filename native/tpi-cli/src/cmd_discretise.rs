@@ -35,6 +35,8 @@ OPTIONS:
     --size WxH          PNG size in pixels (default 1200x900)
     --threads N         run the core on N threads (default: one per core)
     --no-report         skip the quality report (faster; no facet flags)
+    --planes exact      facet planes: the exact tangent planes (the default and, for now,
+                        the only mode; `adjusted` is not implemented yet)
     --strict            exit with code 3 when the mesh has invalid facets (open,
                         non-simple or overlapping; the outputs are still written)
     -h, --help          this help
@@ -127,6 +129,18 @@ fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
                 "strict" => {
                     a.flag(&name, inline)?;
                     strict = true;
+                }
+                "planes" => {
+                    let v = a.value(&name, inline)?;
+                    match v.as_str() {
+                        "exact" => {}
+                        "adjusted" => {
+                            return Err(a.usage(
+                                "--planes adjusted: adjusted (tilted) planes are not implemented yet; only `exact` is available",
+                            ))
+                        }
+                        _ => return Err(a.usage(format!("--planes {v}: expected `exact`"))),
+                    }
                 }
                 _ => return Err(a.unknown(&name)),
             },

@@ -330,6 +330,10 @@ fn strict_exits_3_on_invalid_facets_and_still_writes_the_outputs() {
     let valid = ok(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:24x20", "--strict", "--out", dir.join("s.json").to_str().unwrap()]);
     assert!(!text(&valid.stderr).contains("warning"));
     fails(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:6x6", "--strict", "--no-report"], 2, &["--strict"]);
+    // Exact planes are the default and may be named; adjusted planes are refused clearly.
+    ok(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:6x6", "--planes", "exact"]);
+    fails(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:6x6", "--planes", "adjusted"], 2, &["--planes adjusted", "not implemented"]);
+    fails(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:6x6", "--planes", "tilted"], 2, &["--planes tilted"]);
 }
 
 #[test]
