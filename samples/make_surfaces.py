@@ -71,6 +71,19 @@ def graph_nurbs(knots_u, knots_v, degree, x_range, y_range, height):
     }
 
 
+def biquadratic_patch(points, weights):
+    """A single rational biquadratic Bezier patch (3 x 3 control points, u-major)."""
+    return {
+        "type": "nurbs",
+        "degree": [2, 2],
+        "count": [3, 3],
+        "knots_u": [0, 0, 1, 1],
+        "knots_v": [0, 0, 1, 1],
+        "points": points,
+        "weights": weights,
+    }
+
+
 def main():
     # Paraboloid of revolution z = -0.08 (x^2 + y^2): a shallow dome, top view of its
     # mesh = Voronoi diagram of the projected points.
@@ -109,18 +122,7 @@ def main():
         for cy, cz, wj in arc:
             points.append([x, rad * cy, rad * cz])
             weights.append(wi * wj)
-    write(
-        "rational-dome.json",
-        {
-            "type": "nurbs",
-            "degree": [2, 2],
-            "count": [3, 3],
-            "knots_u": [0, 0, 1, 1],
-            "knots_v": [0, 0, 1, 1],
-            "points": points,
-            "weights": weights,
-        },
-    )
+    write("rational-dome.json", biquadratic_patch(points, weights))
 
     # Free-form saddle, 8 x 6 bicubic: K < 0 everywhere, curvature varying across the
     # domain (a cubic lean along x and a twist).
@@ -150,18 +152,7 @@ def main():
             radial = big + small * px
             points.append([radial * cx, radial * cy, small * pz])
             weights.append(wu * wv)
-    write(
-        "torus-band.json",
-        {
-            "type": "nurbs",
-            "degree": [2, 2],
-            "count": [3, 3],
-            "knots_u": [0, 0, 1, 1],
-            "knots_v": [0, 0, 1, 1],
-            "points": points,
-            "weights": weights,
-        },
-    )
+    write("torus-band.json", biquadratic_patch(points, weights))
 
 
 if __name__ == "__main__":
