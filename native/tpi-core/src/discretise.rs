@@ -382,7 +382,6 @@ pub(crate) fn run(
             timings.neighbours = ms(stage);
             (triangulation, None, stats)
         }
-        // Anything else: parameter-space candidates, curvature compensation, local repair.
         // Strictly convex everywhere but too steep for the slope embedding: the envelope tests
         // on parameter-space candidates, with the boundary clipped on the wall.
         None if convex_side.iter().all(|&s| s != 0 && s == convex_side[0]) => {
