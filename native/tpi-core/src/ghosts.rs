@@ -1,4 +1,4 @@
-//! Mirror seeds beyond the domain boundary, so that the neighbour decision on surfaces that
+//! Ghost seeds beyond the domain boundary, so that the neighbour decision on surfaces that
 //! are not convex everywhere sees every real facet as a closed polygon.
 //!
 //! A facet at the boundary is closed by the boundary itself: the mesh ends near the wall,
@@ -10,7 +10,8 @@
 //!
 //! ```text
 //! S(u_b + du, v + dv) ~ S + S_u du + S_v dv + (S_uu du^2 + 2 S_uv du dv + S_vv dv^2) / 2,
-//! du = u_b - u_i (the seed's offset from the side, mirrored).
+//! du = -(depth beyond the side), the seed's distance from the side mirrored (see
+//! [`ghost_depth`]), in parameters.
 //! ```
 //!
 //! On the continued surface the ghosts are ordinary seeds, so a boundary facet meets them as
@@ -45,15 +46,15 @@ fn ghost_depth(d: f64, h: f64) -> f64 {
     }
 }
 
-/// The real seeds followed by their mirror images.
+/// The real seeds followed by their ghosts.
 pub(crate) struct Augmented {
     /// Triangulation-plane coordinates.
     pub(crate) plane_uv: Vec<[f64; 2]>,
-    /// Local geometry (ghosts: reflected point, normal and principal directions).
+    /// Local geometry (ghosts: that of the continued surface at the ghost's parameters).
     pub(crate) geometry: Vec<LocalGeometry>,
     /// Tangent planes.
     pub(crate) planes: Vec<Plane>,
-    /// Convex side per seed (a reflection keeps it).
+    /// Convex side per seed (a ghost takes its seed's).
     pub(crate) convex_side: Vec<i8>,
     /// The real seed of every point (itself for real seeds).
     pub(crate) source: Vec<u32>,
@@ -74,7 +75,8 @@ fn continued(surface: &dyn Surface, at: [f64; 2], offset: [f64; 2]) -> Option<Lo
 
 /// The seeds with their ghosts appended (module doc). `extent` is the size of the
 /// triangulation's plane rectangle [0, extent[0]] x [0, extent[1]]; `uv` the seeds' domain
-/// parameters. Ghosts whose wall cannot be built (a degenerate boundary) are left out.
+/// parameters. Ghosts where the continued surface is not regular (a degenerate boundary,
+/// such as a pole) are left out.
 pub(crate) fn augment(
     surface: &dyn Surface,
     uv: &[[f64; 2]],
