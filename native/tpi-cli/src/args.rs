@@ -25,7 +25,11 @@ pub struct Args {
 impl Args {
     /// Scans `rest` (the arguments after the subcommand name).
     pub fn new(command: &'static str, rest: Vec<String>) -> Self {
-        Self { rest: rest.into(), command, positional_only: false }
+        Self {
+            rest: rest.into(),
+            command,
+            positional_only: false,
+        }
     }
 
     /// The next argument, or `None` at the end.
@@ -48,7 +52,10 @@ impl Args {
                 None => Arg::Option(body.to_string(), None),
             });
         }
-        if arg.len() > 1 && arg.starts_with('-') && !arg[1..].starts_with(|c: char| c.is_ascii_digit() || c == '.') {
+        if arg.len() > 1
+            && arg.starts_with('-')
+            && !arg[1..].starts_with(|c: char| c.is_ascii_digit() || c == '.')
+        {
             return Some(Arg::Option(arg.trim_start_matches('-').to_string(), None));
         }
         Some(Arg::Positional(arg))
@@ -96,7 +103,15 @@ mod tests {
     #[test]
     fn scans_options_and_positionals() {
         assert_eq!(
-            scan(&["--out", "a.json", "--size=10x20", "-h", "hex:3x3", "--", "--x"]),
+            scan(&[
+                "--out",
+                "a.json",
+                "--size=10x20",
+                "-h",
+                "hex:3x3",
+                "--",
+                "--x"
+            ]),
             vec![
                 Arg::Option("out".into(), None),
                 Arg::Positional("a.json".into()),

@@ -121,7 +121,9 @@ pub struct Report {
 
 /// Runs `tpi bench`.
 pub fn run(rest: Vec<String>) -> Result<(), CliError> {
-    let Some(config) = parse(rest)? else { return Ok(()) };
+    let Some(config) = parse(rest)? else {
+        return Ok(());
+    };
     if let Some(plot) = &config.plot {
         check_output_path(plot)?;
     }
@@ -140,7 +142,8 @@ pub fn run(rest: Vec<String>) -> Result<(), CliError> {
         None => body(),
     }?;
     if config.json {
-        let text = serde_json::to_string_pretty(&report).map_err(|e| CliError::input("JSON", e.to_string()))?;
+        let text = serde_json::to_string_pretty(&report)
+            .map_err(|e| CliError::input("JSON", e.to_string()))?;
         println!("{text}");
     } else {
         print!("{}", table(&report));
@@ -197,14 +200,22 @@ fn parse(rest: Vec<String>) -> Result<Option<Config>, CliError> {
                     let v = a.value(&name, inline)?;
                     config.threads = match v.parse::<usize>() {
                         Ok(n) if (1..=1024).contains(&n) => Some(n),
-                        _ => return Err(a.usage(format!("--threads {v}: expected a whole number from 1 to 1024"))),
+                        _ => {
+                            return Err(a.usage(format!(
+                                "--threads {v}: expected a whole number from 1 to 1024"
+                            )))
+                        }
                     };
                 }
                 "repeat" => {
                     let v = a.value(&name, inline)?;
                     config.repeat = match v.parse::<usize>() {
                         Ok(n) if (1..=100_000).contains(&n) => n,
-                        _ => return Err(a.usage(format!("--repeat {v}: expected a whole number from 1 to 100000"))),
+                        _ => {
+                            return Err(a.usage(format!(
+                                "--repeat {v}: expected a whole number from 1 to 100000"
+                            )))
+                        }
                     };
                 }
                 "no-report" => {
@@ -219,13 +230,19 @@ fn parse(rest: Vec<String>) -> Result<Option<Config>, CliError> {
                     let v = a.value(&name, inline)?;
                     config.edits = match v.parse::<usize>() {
                         Ok(n) if n <= 1_000_000 => n,
-                        _ => return Err(a.usage(format!("--edits {v}: expected a whole number up to 1000000"))),
+                        _ => {
+                            return Err(a.usage(format!(
+                                "--edits {v}: expected a whole number up to 1000000"
+                            )))
+                        }
                     };
                 }
                 "plot" => {
                     let v = PathBuf::from(a.value(&name, inline)?);
                     if v.extension().and_then(|e| e.to_str()) != Some("svg") {
-                        return Err(a.usage(format!("--plot {}: the plot is an .svg file", v.display())));
+                        return Err(
+                            a.usage(format!("--plot {}: the plot is an .svg file", v.display()))
+                        );
                     }
                     config.plot = Some(v);
                 }
@@ -238,7 +255,10 @@ fn parse(rest: Vec<String>) -> Result<Option<Config>, CliError> {
 }
 
 fn measure(config: &Config) -> Result<Report, CliError> {
-    let options = DiscretiseOptions { quality_report: config.report, ..DiscretiseOptions::default() };
+    let options = DiscretiseOptions {
+        quality_report: config.report,
+        ..DiscretiseOptions::default()
+    };
     let mut results = Vec::new();
     for &name in &config.surfaces {
         let surface: Box<dyn Surface> = match name {
@@ -261,12 +281,20 @@ fn measure(config: &Config) -> Result<Report, CliError> {
                 runs.push(timings);
             }
             let median_ms = median_timings(&runs);
-            let edits = if config.edits > 0 { Some(edit_timings(name, &pattern, config.edits, &options)?) } else { None };
+            let edits = if config.edits > 0 {
+                Some(edit_timings(name, &pattern, config.edits, &options)?)
+            } else {
+                None
+            };
             results.push(Row {
                 surface: name,
                 points: n,
                 facets,
-                facets_per_second: if median_ms.total > 0.0 { facets as f64 / (median_ms.total * 1e-3) } else { 0.0 },
+                facets_per_second: if median_ms.total > 0.0 {
+                    facets as f64 / (median_ms.total * 1e-3)
+                } else {
+                    0.0
+                },
                 median_ms,
                 peak_memory_mb: peak_memory_bytes() as f64 / 1e6,
                 edits,
@@ -299,13 +327,19 @@ fn run_once(
 }
 
 /// Times `count` live drags (see the help) on a live surface of `pattern`.
-fn edit_timings(name: &str, pattern: &[[f64; 2]], count: usize, options: &DiscretiseOptions) -> Result<EditRow, CliError> {
+fn edit_timings(
+    name: &str,
+    pattern: &[[f64; 2]],
+    count: usize,
+    options: &DiscretiseOptions,
+) -> Result<EditRow, CliError> {
     let surface: Box<dyn Surface> = match name {
         "paraboloid" => Box::new(paraboloid()),
         "saddle" => Box::new(saddle()),
         _ => Box::new(nurbs_dome()),
     };
-    let mut live = LiveSurface::new(surface, pattern.to_vec(), *options).map_err(|e| CliError::core(name, &e))?;
+    let mut live = LiveSurface::new(surface, pattern.to_vec(), *options)
+        .map_err(|e| CliError::core(name, &e))?;
     let before = live.stats();
     let n = pattern.len();
     let mut rng = SplitMix64::new(97 + n as u64);
@@ -322,7 +356,10 @@ fn edit_timings(name: &str, pattern: &[[f64; 2]], count: usize, options: &Discre
             }
         };
         let p = live.points()[i];
-        let q = [p[0] + step * (rng.next_f64() - 0.5), p[1] + step * (rng.next_f64() - 0.5)];
+        let q = [
+            p[0] + step * (rng.next_f64() - 0.5),
+            p[1] + step * (rng.next_f64() - 0.5),
+        ];
         let start = Instant::now();
         let moved = live.move_point(i, q);
         let us = start.elapsed().as_secs_f64() * 1e6;
@@ -395,7 +432,11 @@ fn peak_memory_bytes() -> u64 {
         .and_then(|s| {
             s.lines().find_map(|l| {
                 let rest = l.strip_prefix("VmHWM:")?;
-                rest.trim().trim_end_matches("kB").trim().parse::<u64>().ok()
+                rest.trim()
+                    .trim_end_matches("kB")
+                    .trim()
+                    .parse::<u64>()
+                    .ok()
             })
         })
         .map_or(0, |kb| kb * 1024)
@@ -416,7 +457,17 @@ pub fn table(report: &Report) -> String {
     let _ = writeln!(
         s,
         "{:<10} {:>8} {:>9} {:>9} {:>10} {:>9} {:>9} {:>9} {:>10} {:>12} {:>8}",
-        "surface", "points", "samples", "delaunay", "neighbours", "facets", "mesh", "report", "total", "facets/s", "peak MB"
+        "surface",
+        "points",
+        "samples",
+        "delaunay",
+        "neighbours",
+        "facets",
+        "mesh",
+        "report",
+        "total",
+        "facets/s",
+        "peak MB"
     );
     for r in &report.results {
         let t = &r.median_ms;
@@ -428,13 +479,22 @@ pub fn table(report: &Report) -> String {
     }
     if report.results.iter().any(|r| r.edits.is_some()) {
         let _ = writeln!(s, "live edits (drags inside [0.1, 0.9]^2):");
-        let _ = writeln!(s, "{:<10} {:>8} {:>8} {:>14} {:>12} {:>14}", "surface", "points", "edits", "median edit us", "incremental", "assembly ms");
+        let _ = writeln!(
+            s,
+            "{:<10} {:>8} {:>8} {:>14} {:>12} {:>14}",
+            "surface", "points", "edits", "median edit us", "incremental", "assembly ms"
+        );
         for r in &report.results {
             if let Some(e) = &r.edits {
                 let _ = writeln!(
                     s,
                     "{:<10} {:>8} {:>8} {:>14.1} {:>11.1}% {:>14.3}",
-                    r.surface, r.points, e.count, e.median_edit_us, 100.0 * e.incremental_share, e.median_assembly_ms
+                    r.surface,
+                    r.points,
+                    e.count,
+                    e.median_edit_us,
+                    100.0 * e.incremental_share,
+                    e.median_assembly_ms
                 );
             }
         }
@@ -447,8 +507,17 @@ pub fn table(report: &Report) -> String {
 pub fn scaling_plot(report: &Report) -> String {
     let (width, height) = (640.0, 440.0);
     let (left, right, top, bottom) = (70.0, 170.0, 40.0, 50.0);
-    let points: Vec<(f64, f64)> = report.results.iter().map(|r| (r.points as f64, r.median_ms.total.max(1e-6))).collect();
-    let (mut x_lo, mut x_hi, mut y_lo, mut y_hi) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
+    let points: Vec<(f64, f64)> = report
+        .results
+        .iter()
+        .map(|r| (r.points as f64, r.median_ms.total.max(1e-6)))
+        .collect();
+    let (mut x_lo, mut x_hi, mut y_lo, mut y_hi) = (
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+    );
     for &(x, y) in &points {
         x_lo = x_lo.min(x);
         x_hi = x_hi.max(x);
@@ -461,14 +530,25 @@ pub fn scaling_plot(report: &Report) -> String {
     // Whole decades around the data (a value on a decade stays on it).
     let decade = |v: f64, up: bool| {
         let l = v.log10();
-        10f64.powf(if up { (l - 1e-9).ceil() } else { (l + 1e-9).floor() })
+        10f64.powf(if up {
+            (l - 1e-9).ceil()
+        } else {
+            (l + 1e-9).floor()
+        })
     };
-    let (x_lo, x_hi) = (decade(x_lo, false), decade(x_hi, true).max(decade(x_lo, false) * 10.0));
-    let (y_lo, y_hi) = (decade(y_lo, false), decade(y_hi, true).max(decade(y_lo, false) * 10.0));
+    let (x_lo, x_hi) = (
+        decade(x_lo, false),
+        decade(x_hi, true).max(decade(x_lo, false) * 10.0),
+    );
+    let (y_lo, y_hi) = (
+        decade(y_lo, false),
+        decade(y_hi, true).max(decade(y_lo, false) * 10.0),
+    );
     let plot_w = width - left - right;
     let plot_h = height - top - bottom;
     let sx = |x: f64| left + (x.log10() - x_lo.log10()) / (x_hi.log10() - x_lo.log10()) * plot_w;
-    let sy = |y: f64| top + plot_h - (y.log10() - y_lo.log10()) / (y_hi.log10() - y_lo.log10()) * plot_h;
+    let sy =
+        |y: f64| top + plot_h - (y.log10() - y_lo.log10()) / (y_hi.log10() - y_lo.log10()) * plot_h;
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -487,15 +567,34 @@ pub fn scaling_plot(report: &Report) -> String {
     let mut x = x_lo;
     while x <= x_hi * 1.0001 {
         let px = sx(x);
-        let _ = writeln!(s, r##"<line x1="{px:.1}" y1="{top}" x2="{px:.1}" y2="{:.1}" stroke="#ddd"/>"##, top + plot_h);
-        let _ = writeln!(s, r#"<text x="{px:.1}" y="{:.1}" text-anchor="middle">{}</text>"#, top + plot_h + 16.0, si(x));
+        let _ = writeln!(
+            s,
+            r##"<line x1="{px:.1}" y1="{top}" x2="{px:.1}" y2="{:.1}" stroke="#ddd"/>"##,
+            top + plot_h
+        );
+        let _ = writeln!(
+            s,
+            r#"<text x="{px:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+            top + plot_h + 16.0,
+            si(x)
+        );
         x *= 10.0;
     }
     let mut y = y_lo;
     while y <= y_hi * 1.0001 {
         let py = sy(y);
-        let _ = writeln!(s, r##"<line x1="{left}" y1="{py:.1}" x2="{:.1}" y2="{py:.1}" stroke="#ddd"/>"##, left + plot_w);
-        let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"#, left - 6.0, py + 4.0, ms_label(y));
+        let _ = writeln!(
+            s,
+            r##"<line x1="{left}" y1="{py:.1}" x2="{:.1}" y2="{py:.1}" stroke="#ddd"/>"##,
+            left + plot_w
+        );
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}" text-anchor="end">{}</text>"#,
+            left - 6.0,
+            py + 4.0,
+            ms_label(y)
+        );
         y *= 10.0;
     }
     let _ = writeln!(
@@ -523,12 +622,28 @@ pub fn scaling_plot(report: &Report) -> String {
     }
     for (k, name) in names.iter().enumerate() {
         let colour = colours[k % colours.len()];
-        let line: Vec<(f64, f64)> =
-            report.results.iter().filter(|r| r.surface == *name).map(|r| (r.points as f64, r.median_ms.total.max(1e-6))).collect();
-        let path: Vec<String> = line.iter().map(|&(x, y)| format!("{:.1},{:.1}", sx(x), sy(y))).collect();
-        let _ = writeln!(s, r#"<polyline points="{}" fill="none" stroke="{colour}" stroke-width="2"/>"#, path.join(" "));
+        let line: Vec<(f64, f64)> = report
+            .results
+            .iter()
+            .filter(|r| r.surface == *name)
+            .map(|r| (r.points as f64, r.median_ms.total.max(1e-6)))
+            .collect();
+        let path: Vec<String> = line
+            .iter()
+            .map(|&(x, y)| format!("{:.1},{:.1}", sx(x), sy(y)))
+            .collect();
+        let _ = writeln!(
+            s,
+            r#"<polyline points="{}" fill="none" stroke="{colour}" stroke-width="2"/>"#,
+            path.join(" ")
+        );
         for &(x, y) in &line {
-            let _ = writeln!(s, r#"<circle cx="{:.1}" cy="{:.1}" r="3.5" fill="{colour}"/>"#, sx(x), sy(y));
+            let _ = writeln!(
+                s,
+                r#"<circle cx="{:.1}" cy="{:.1}" r="3.5" fill="{colour}"/>"#,
+                sx(x),
+                sy(y)
+            );
         }
         // n log n reference through the first point.
         if let (Some(&(x0, y0)), Some(&(x1, _))) = (line.first(), line.last()) {
@@ -550,7 +665,12 @@ pub fn scaling_plot(report: &Report) -> String {
             left + plot_w + 12.0,
             left + plot_w + 36.0
         );
-        let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}">{name}</text>"#, left + plot_w + 42.0, legend_y + 4.0);
+        let _ = writeln!(
+            s,
+            r#"<text x="{:.1}" y="{:.1}">{name}</text>"#,
+            left + plot_w + 42.0,
+            legend_y + 4.0
+        );
         legend_y += 18.0;
     }
     let _ = writeln!(
@@ -559,7 +679,12 @@ pub fn scaling_plot(report: &Report) -> String {
         left + plot_w + 12.0,
         left + plot_w + 36.0
     );
-    let _ = writeln!(s, r#"<text x="{:.1}" y="{:.1}">n log n</text>"#, left + plot_w + 42.0, legend_y + 4.0);
+    let _ = writeln!(
+        s,
+        r#"<text x="{:.1}" y="{:.1}">n log n</text>"#,
+        left + plot_w + 42.0,
+        legend_y + 4.0
+    );
     let _ = writeln!(s, "</svg>");
     s
 }

@@ -90,7 +90,8 @@ struct Options {
 
 fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
     let mut a = Args::new("discretise", rest);
-    let (mut surface, mut pattern, mut outs, mut size, mut threads, mut report) = (None, None, Vec::new(), None, None, true);
+    let (mut surface, mut pattern, mut outs, mut size, mut threads, mut report) =
+        (None, None, Vec::new(), None, None, true);
     let mut strict = false;
     while let Some(arg) = a.next() {
         match arg {
@@ -119,7 +120,11 @@ fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
                     let v = a.value(&name, inline)?;
                     match v.parse::<usize>() {
                         Ok(n) if (1..=1024).contains(&n) => threads = Some(n),
-                        _ => return Err(a.usage(format!("--threads {v}: expected a whole number from 1 to 1024"))),
+                        _ => {
+                            return Err(a.usage(format!(
+                                "--threads {v}: expected a whole number from 1 to 1024"
+                            )))
+                        }
                     }
                 }
                 "no-report" => {
@@ -155,7 +160,15 @@ fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
     if strict && !report {
         return Err(a.usage("--strict needs the quality report; drop --no-report"));
     }
-    Ok(Some(Options { surface, pattern, outs, size: size.unwrap_or(DEFAULT_SIZE), threads, report, strict }))
+    Ok(Some(Options {
+        surface,
+        pattern,
+        outs,
+        size: size.unwrap_or(DEFAULT_SIZE),
+        threads,
+        report,
+        strict,
+    }))
 }
 
 fn parse_size(s: &str) -> Option<(u32, u32)> {
@@ -184,7 +197,10 @@ pub fn run(rest: Vec<String>) -> Result<(), CliError> {
     let pattern = load_pattern(&opts.pattern)?;
 
     progress.step(format!("discretising {} points", pattern.pattern.len()));
-    let options = DiscretiseOptions { quality_report: opts.report, ..DiscretiseOptions::default() };
+    let options = DiscretiseOptions {
+        quality_report: opts.report,
+        ..DiscretiseOptions::default()
+    };
     let run_core = || discretise(&surface, &pattern.pattern.uv, &options);
     let (result, threads) = match opts.threads {
         Some(n) => {
@@ -192,7 +208,9 @@ pub fn run(rest: Vec<String>) -> Result<(), CliError> {
                 .num_threads(n)
                 .thread_name(|i| format!("tpi-core-{i}"))
                 .build()
-                .map_err(|e| CliError::input("--threads", format!("cannot start {n} threads: {e}")))?;
+                .map_err(|e| {
+                    CliError::input("--threads", format!("cannot start {n} threads: {e}"))
+                })?;
             (pool.install(run_core), n)
         }
         None => (run_core(), rayon::current_num_threads()),
@@ -203,8 +221,9 @@ pub fn run(rest: Vec<String>) -> Result<(), CliError> {
     let title = format!("{} with {}", opts.surface, pattern.label);
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::with_capacity(opts.outs.len());
     for (path, format) in &opts.outs {
-        let bytes = render_output(&result, *format, &title, opts.size)
-            .map_err(|problem| CliError::input(path.display(), format!("cannot encode: {problem}")))?;
+        let bytes = render_output(&result, *format, &title, opts.size).map_err(|problem| {
+            CliError::input(path.display(), format!("cannot encode: {problem}"))
+        })?;
         files.push((path.clone(), bytes));
     }
 
@@ -212,22 +231,35 @@ pub fn run(rest: Vec<String>) -> Result<(), CliError> {
     write_all(&files)?;
     progress.finish();
 
-    eprint!("{}", summary::summary(&result, &opts.surface, &pattern.label, threads));
+    eprint!(
+        "{}",
+        summary::summary(&result, &opts.surface, &pattern.label, threads)
+    );
     if !files.is_empty() {
-        let names: Vec<String> = files.iter().map(|(p, b)| format!("{} ({})", p.display(), human_size(b.len()))).collect();
+        let names: Vec<String> = files
+            .iter()
+            .map(|(p, b)| format!("{} ({})", p.display(), human_size(b.len())))
+            .collect();
         eprintln!("  wrote {}", names.join(", "));
     }
     eprintln!("  done in {:.0} ms", started.elapsed().as_secs_f64() * 1e3);
     if let Some(q) = result.quality.as_ref().filter(|q| q.invalid_facets > 0) {
         eprintln!("{}", summary::invalid_warning(q));
         if opts.strict {
-            return Err(CliError::InvalidFacets { count: q.invalid_facets });
+            return Err(CliError::InvalidFacets {
+                count: q.invalid_facets,
+            });
         }
     }
     Ok(())
 }
 
-fn render_output(result: &Discretisation, format: Format, title: &str, size: (u32, u32)) -> Result<Vec<u8>, String> {
+fn render_output(
+    result: &Discretisation,
+    format: Format,
+    title: &str,
+    size: (u32, u32),
+) -> Result<Vec<u8>, String> {
     Ok(match format {
         Format::Json => result.to_json(true).into_bytes(),
         Format::Obj => obj::to_obj(result, title).into_bytes(),

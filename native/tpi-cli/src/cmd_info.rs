@@ -53,7 +53,11 @@ pub fn run(rest: Vec<String>) -> Result<(), CliError> {
                     let v = a.value(&name, inline)?;
                     grid = match v.parse::<usize>() {
                         Ok(n) if (2..=1001).contains(&n) => n,
-                        _ => return Err(a.usage(format!("--grid {v}: expected a whole number from 2 to 1001"))),
+                        _ => {
+                            return Err(a.usage(format!(
+                                "--grid {v}: expected a whole number from 2 to 1001"
+                            )))
+                        }
                     };
                 }
                 _ => return Err(a.unknown(&name)),
@@ -76,15 +80,29 @@ pub fn describe(file: &Path, spec: &SurfaceSpec, model: &SurfaceModel, grid: usi
         (SurfaceSpec::Nurbs(_), SurfaceModel::Nurbs(n)) => {
             let [du, dv] = n.degree();
             let [nu, nv] = n.count();
-            let _ = writeln!(s, "  degree {du} x {dv}, {nu} x {nv} control points, {}", match n.weights() {
-                None => "non-rational".to_string(),
-                Some(w) => {
-                    let (lo, hi) = w.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| (l.min(x), h.max(x)));
-                    format!("rational (weights {} .. {})", g(lo), g(hi))
+            let _ = writeln!(
+                s,
+                "  degree {du} x {dv}, {nu} x {nv} control points, {}",
+                match n.weights() {
+                    None => "non-rational".to_string(),
+                    Some(w) => {
+                        let (lo, hi) = w
+                            .iter()
+                            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &x| {
+                                (l.min(x), h.max(x))
+                            });
+                        format!("rational (weights {} .. {})", g(lo), g(hi))
+                    }
                 }
-            });
+            );
             for (name, knots, degree) in [("u", n.knots_u(), du), ("v", n.knots_v(), dv)] {
-                let _ = writeln!(s, "  knots {name} ({} knots, Rhino convention, {}): {}", knots.len(), knot_kind(knots, degree), list(knots));
+                let _ = writeln!(
+                    s,
+                    "  knots {name} ({} knots, Rhino convention, {}): {}",
+                    knots.len(),
+                    knot_kind(knots, degree),
+                    list(knots)
+                );
             }
         }
         _ => {
@@ -92,18 +110,36 @@ pub fn describe(file: &Path, spec: &SurfaceSpec, model: &SurfaceModel, grid: usi
             let fields: Vec<String> = params
                 .as_ref()
                 .and_then(|v| v.as_object())
-                .map(|o| o.iter().filter(|(k, _)| *k != "type").map(|(k, v)| format!("{k} = {v}")).collect())
+                .map(|o| {
+                    o.iter()
+                        .filter(|(k, _)| *k != "type")
+                        .map(|(k, v)| format!("{k} = {v}"))
+                        .collect()
+                })
                 .unwrap_or_default();
             let _ = writeln!(s, "  {}", fields.join(", "));
         }
     }
     let d = model.domain();
-    let _ = writeln!(s, "  domain: u [{}, {}], v [{}, {}]", g(d.u.min), g(d.u.max), g(d.v.min), g(d.v.max));
+    let _ = writeln!(
+        s,
+        "  domain: u [{}, {}], v [{}, {}]",
+        g(d.u.min),
+        g(d.u.max),
+        g(d.v.min),
+        g(d.v.max)
+    );
     let [lo, hi] = sampled_bounding_box(model, grid);
     let _ = writeln!(
         s,
         "  bounding box (sampled): x [{}, {}], y [{}, {}], z [{}, {}], diagonal {}",
-        g(lo.x), g(hi.x), g(lo.y), g(hi.y), g(lo.z), g(hi.z), g((hi - lo).length())
+        g(lo.x),
+        g(hi.x),
+        g(lo.y),
+        g(hi.y),
+        g(lo.z),
+        g(hi.z),
+        g((hi - lo).length())
     );
 
     // Curvature over the grid.
@@ -115,14 +151,21 @@ pub fn describe(file: &Path, spec: &SurfaceSpec, model: &SurfaceModel, grid: usi
             LocalGeometry::from_derivatives(&model.evaluate(u, v))
         })
         .collect();
-    let regular: Vec<&LocalGeometry> = samples.iter().filter(|g| g.regular && g.k1.is_finite() && g.k2.is_finite()).collect();
+    let regular: Vec<&LocalGeometry> = samples
+        .iter()
+        .filter(|g| g.regular && g.k1.is_finite() && g.k2.is_finite())
+        .collect();
     let _ = writeln!(s, "curvature over a {n} x {n} grid of parameters (k1 <= k2, signs relative to the normal Su x Sv):");
     if regular.is_empty() {
         let _ = writeln!(s, "  no regular sample (the surface is degenerate)");
         return s;
     }
     let range = |f: &dyn Fn(&LocalGeometry) -> f64| {
-        regular.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), g| (l.min(f(g)), h.max(f(g))))
+        regular
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), g| {
+                (l.min(f(g)), h.max(f(g)))
+            })
     };
     let (k1lo, k1hi) = range(&|g| g.k1);
     let (k2lo, k2hi) = range(&|g| g.k2);
@@ -130,7 +173,10 @@ pub fn describe(file: &Path, spec: &SurfaceSpec, model: &SurfaceModel, grid: usi
     let _ = writeln!(s, "  k1 in [{}, {}]", g(k1lo), g(k1hi));
     let _ = writeln!(s, "  k2 in [{}, {}]", g(k2lo), g(k2hi));
     let _ = writeln!(s, "  K  in [{}, {}]", g(klo), g(khi));
-    let kmax = regular.iter().map(|g| g.k1.abs().max(g.k2.abs())).fold(0.0, f64::max);
+    let kmax = regular
+        .iter()
+        .map(|g| g.k1.abs().max(g.k2.abs()))
+        .fold(0.0, f64::max);
     let diag = (hi - lo).length();
     let near = NEAR_ZERO_FRACTION * kmax * kmax;
     let class = |g: &LocalGeometry| -> char {
@@ -146,7 +192,9 @@ pub fn describe(file: &Path, spec: &SurfaceSpec, model: &SurfaceModel, grid: usi
     };
     let total = samples.len() as f64;
     let mut report = |c: char, what: &str| {
-        let hits: Vec<usize> = (0..samples.len()).filter(|&k| class(&samples[k]) == c).collect();
+        let hits: Vec<usize> = (0..samples.len())
+            .filter(|&k| class(&samples[k]) == c)
+            .collect();
         let pct = 100.0 * hits.len() as f64 / total;
         let mut line = format!("  {what}: {pct:.1}% of the samples");
         if !hits.is_empty() && hits.len() < samples.len() {
@@ -154,9 +202,18 @@ pub fn describe(file: &Path, spec: &SurfaceSpec, model: &SurfaceModel, grid: usi
             let shown: Vec<String> = regions
                 .iter()
                 .take(3)
-                .map(|r| format!("s [{:.2}, {:.2}] x t [{:.2}, {:.2}]", r[0], r[1], r[2], r[3]))
+                .map(|r| {
+                    format!(
+                        "s [{:.2}, {:.2}] x t [{:.2}, {:.2}]",
+                        r[0], r[1], r[2], r[3]
+                    )
+                })
                 .collect();
-            let more = if regions.len() > 3 { format!(" and {} smaller", regions.len() - 3) } else { String::new() };
+            let more = if regions.len() > 3 {
+                format!(" and {} smaller", regions.len() - 3)
+            } else {
+                String::new()
+            };
             let _ = write!(
                 line,
                 " in {} region{}: {}{more}",
@@ -170,7 +227,13 @@ pub fn describe(file: &Path, spec: &SurfaceSpec, model: &SurfaceModel, grid: usi
     };
     let positive = report('+', "K > 0 (convex facets)");
     let negative = report('-', "K < 0 (saddle: non-convex facets)");
-    let zero = report('0', &format!("K ~ 0 (|K| <= {NEAR_ZERO_FRACTION:e} kmax^2, kmax = {})", g(kmax)));
+    let zero = report(
+        '0',
+        &format!(
+            "K ~ 0 (|K| <= {NEAR_ZERO_FRACTION:e} kmax^2, kmax = {})",
+            g(kmax)
+        ),
+    );
     let irregular = report('!', "irregular (Su x Sv = 0)");
     let strict = regular
         .iter()
@@ -223,7 +286,12 @@ fn components(n: usize, hits: &[usize]) -> Vec<[f64; 4]> {
     }
     let mut seen = vec![false; n * n];
     let mut regions: Vec<(usize, [f64; 4])> = Vec::new();
-    let at = |k: usize| ((k % n) as f64 / (n - 1) as f64, (k / n) as f64 / (n - 1) as f64);
+    let at = |k: usize| {
+        (
+            (k % n) as f64 / (n - 1) as f64,
+            (k / n) as f64 / (n - 1) as f64,
+        )
+    };
     for &start in hits {
         if seen[start] {
             continue;
@@ -287,13 +355,21 @@ fn list(knots: &[f64]) -> String {
 fn knot_kind(knots: &[f64], degree: usize) -> String {
     let clamped = knots.len() >= 2 * degree
         && knots[..degree].iter().all(|&k| k == knots[0])
-        && knots[knots.len() - degree..].iter().all(|&k| k == knots[knots.len() - 1]);
+        && knots[knots.len() - degree..]
+            .iter()
+            .all(|&k| k == knots[knots.len() - 1]);
     let interior: Vec<f64> = {
         let mut v: Vec<f64> = knots.to_vec();
         v.dedup();
         v
     };
     let steps: Vec<f64> = interior.windows(2).map(|w| w[1] - w[0]).collect();
-    let uniform = steps.iter().all(|&st| (st - steps[0]).abs() <= 1e-12 * steps[0].abs().max(1.0));
-    format!("{}, {}", if clamped { "clamped" } else { "unclamped" }, if uniform { "uniform" } else { "non-uniform" })
+    let uniform = steps
+        .iter()
+        .all(|&st| (st - steps[0]).abs() <= 1e-12 * steps[0].abs().max(1.0));
+    format!(
+        "{}, {}",
+        if clamped { "clamped" } else { "unclamped" },
+        if uniform { "uniform" } else { "non-uniform" }
+    )
 }

@@ -39,7 +39,8 @@ EXAMPLES:
 /// Runs `tpi pattern`.
 pub fn run(rest: Vec<String>) -> Result<(), CliError> {
     let mut a = Args::new("pattern", rest);
-    let (mut spec, mut out, mut preview): (Option<String>, Option<PathBuf>, Option<PathBuf>) = (None, None, None);
+    let (mut spec, mut out, mut preview): (Option<String>, Option<PathBuf>, Option<PathBuf>) =
+        (None, None, None);
     while let Some(arg) = a.next() {
         match arg {
             Arg::Option(name, inline) => match name.as_str() {
@@ -61,18 +62,26 @@ pub fn run(rest: Vec<String>) -> Result<(), CliError> {
     }
     for (path, ext) in [(&out, "json"), (&preview, "svg")] {
         if let Some(p) = path {
-            if p.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase()) != Some(ext.to_string()) {
+            if p.extension()
+                .and_then(|e| e.to_str())
+                .map(|e| e.to_ascii_lowercase())
+                != Some(ext.to_string())
+            {
                 return Err(a.usage(format!("{} must end in .{ext}", p.display())));
             }
             check_output_path(p)?;
         }
     }
     let generator = Generator::parse(&spec).map_err(|e| match e {
-        tpi_core::TpiError::InvalidGenerator { reason, .. } => CliError::input(&spec, format!("invalid pattern generator: {reason}")),
+        tpi_core::TpiError::InvalidGenerator { reason, .. } => {
+            CliError::input(&spec, format!("invalid pattern generator: {reason}"))
+        }
         other => CliError::input(&spec, other.to_string()),
     })?;
     let pattern = generator.generate();
-    pattern.validate().map_err(|e| CliError::input(&spec, e.to_string()))?;
+    pattern
+        .validate()
+        .map_err(|e| CliError::input(&spec, e.to_string()))?;
 
     let mut files = Vec::new();
     if let Some(p) = &out {
@@ -80,11 +89,19 @@ pub fn run(rest: Vec<String>) -> Result<(), CliError> {
     }
     if let Some(p) = &preview {
         let cells = voronoi::cells(&pattern.uv);
-        files.push((p.clone(), svg::pattern_preview(&pattern.uv, &cells, &format!("tpi pattern {generator}")).into_bytes()));
+        files.push((
+            p.clone(),
+            svg::pattern_preview(&pattern.uv, &cells, &format!("tpi pattern {generator}"))
+                .into_bytes(),
+        ));
     }
     write_all(&files)?;
     let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
-    eprintln!("tpi: {generator}: {} points -> {}", pattern.len(), names.join(", "));
+    eprintln!(
+        "tpi: {generator}: {} points -> {}",
+        pattern.len(),
+        names.join(", ")
+    );
     Ok(())
 }
 

@@ -34,21 +34,30 @@ pub enum CliError {
 impl CliError {
     /// A usage error of `command`.
     pub fn usage(command: Option<&'static str>, message: impl Into<String>) -> Self {
-        CliError::Usage { message: message.into(), command }
+        CliError::Usage {
+            message: message.into(),
+            command,
+        }
     }
 
     /// A problem with `subject` (a file name, a generator spec, an option).
     pub fn input(subject: impl fmt::Display, problem: impl Into<String>) -> Self {
-        CliError::Input { subject: subject.to_string(), problem: problem.into() }
+        CliError::Input {
+            subject: subject.to_string(),
+            problem: problem.into(),
+        }
     }
 
     /// A core error about `subject`. Parse errors carry their own source name (the context
     /// passed to the core), which is the same file name: it is not repeated.
     pub fn core(subject: impl fmt::Display, error: &TpiError) -> Self {
         match error {
-            TpiError::Parse { line, column, message, .. } => {
-                CliError::input(subject, format!("line {line}, column {column}: {message}"))
-            }
+            TpiError::Parse {
+                line,
+                column,
+                message,
+                ..
+            } => CliError::input(subject, format!("line {line}, column {column}: {message}")),
             other => CliError::input(subject, other.to_string()),
         }
     }
@@ -71,13 +80,23 @@ impl CliError {
 impl fmt::Display for CliError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
-            CliError::Usage { message, command: Some(command) } => {
+            CliError::Usage {
+                message,
+                command: Some(command),
+            } => {
                 write!(f, "tpi: error: {message} (see `tpi {command} --help`)")
             }
-            CliError::Usage { message, command: None } => write!(f, "tpi: error: {message} (see `tpi --help`)"),
+            CliError::Usage {
+                message,
+                command: None,
+            } => write!(f, "tpi: error: {message} (see `tpi --help`)"),
             CliError::Input { subject, problem } => write!(f, "tpi: error: {subject}: {problem}"),
             CliError::InvalidFacets { count } => {
-                write!(f, "tpi: error: {count} invalid facet{} (--strict)", if *count == 1 { "" } else { "s" })
+                write!(
+                    f,
+                    "tpi: error: {count} invalid facet{} (--strict)",
+                    if *count == 1 { "" } else { "s" }
+                )
             }
         }
     }

@@ -37,10 +37,16 @@ pub fn load_pattern(arg: &str) -> Result<PatternSource, CliError> {
     if path.exists() {
         let text = read_text(path)?;
         let pattern = Pattern::from_json(&text, arg).map_err(|e| CliError::core(arg, &e))?;
-        return Ok(PatternSource { pattern, label: arg.to_string() });
+        return Ok(PatternSource {
+            pattern,
+            label: arg.to_string(),
+        });
     }
     match Generator::parse(arg) {
-        Ok(generator) => Ok(PatternSource { pattern: generator.generate(), label: generator.to_string() }),
+        Ok(generator) => Ok(PatternSource {
+            pattern: generator.generate(),
+            label: generator.to_string(),
+        }),
         Err(e) => {
             let reason = match &e {
                 TpiError::InvalidGenerator { reason, .. } => reason.clone(),
@@ -51,7 +57,9 @@ pub fn load_pattern(arg: &str) -> Result<PatternSource, CliError> {
             } else {
                 CliError::input(
                     arg,
-                    format!("no such pattern file, and not a pattern generator spec either ({reason})"),
+                    format!(
+                        "no such pattern file, and not a pattern generator spec either ({reason})"
+                    ),
                 )
             })
         }

@@ -105,7 +105,9 @@ fn main() {
         Some("bench") => bench::run(rest),
         Some(other) => Err(CliError::usage(
             None,
-            format!("unknown command `{other}`; the commands are discretise, pattern, info and bench"),
+            format!(
+                "unknown command `{other}`; the commands are discretise, pattern, info and bench"
+            ),
         )),
     };
     if let Err(e) = result {

@@ -8,9 +8,18 @@ use tpi_core::Discretisation;
 /// The mesh as OBJ text. `source` goes into the header comment.
 pub fn to_obj(result: &Discretisation, source: &str) -> String {
     let mut out = String::with_capacity(result.vertices.len() * 48 + result.facet_loops.len() * 8);
-    let _ = writeln!(out, "# tpi {}: tangent plane intersection mesh", env!("CARGO_PKG_VERSION"));
+    let _ = writeln!(
+        out,
+        "# tpi {}: tangent plane intersection mesh",
+        env!("CARGO_PKG_VERSION")
+    );
     let _ = writeln!(out, "# {source}");
-    let _ = writeln!(out, "# {} vertices, {} facets (facet i belongs to pattern point i)", result.vertices.len(), result.facet_count());
+    let _ = writeln!(
+        out,
+        "# {} vertices, {} facets (facet i belongs to pattern point i)",
+        result.vertices.len(),
+        result.facet_count()
+    );
     let _ = writeln!(out, "o tpi_mesh");
     for v in &result.vertices {
         let _ = writeln!(out, "v {} {} {}", num(v.x), num(v.y), num(v.z));

@@ -16,7 +16,10 @@ use crate::error::CliError;
 /// Reads a text input file, naming it in the error.
 pub fn read_text(path: &Path) -> Result<String, CliError> {
     if path.is_dir() {
-        return Err(CliError::input(path.display(), "cannot read: is a directory"));
+        return Err(CliError::input(
+            path.display(),
+            "cannot read: is a directory",
+        ));
     }
     fs::read_to_string(path).map_err(|e| CliError::io(path, "cannot read", &e))
 }
@@ -34,7 +37,10 @@ fn parent_dir(path: &Path) -> PathBuf {
 pub fn check_output_path(path: &Path) -> Result<(), CliError> {
     let dir = parent_dir(path);
     if path.file_name().is_none() {
-        return Err(CliError::input(path.display(), "cannot write: not a file name"));
+        return Err(CliError::input(
+            path.display(),
+            "cannot write: not a file name",
+        ));
     }
     if !dir.exists() {
         return Err(CliError::input(
@@ -43,10 +49,16 @@ pub fn check_output_path(path: &Path) -> Result<(), CliError> {
         ));
     }
     if !dir.is_dir() {
-        return Err(CliError::input(path.display(), format!("cannot write: {} is not a directory", dir.display())));
+        return Err(CliError::input(
+            path.display(),
+            format!("cannot write: {} is not a directory", dir.display()),
+        ));
     }
     if path.is_dir() {
-        return Err(CliError::input(path.display(), "cannot write: is a directory"));
+        return Err(CliError::input(
+            path.display(),
+            "cannot write: is a directory",
+        ));
     }
     Ok(())
 }
@@ -55,7 +67,10 @@ static TEMP_COUNTER: AtomicUsize = AtomicUsize::new(0);
 
 /// A fresh temporary path beside `path`: `.NAME.tpi-tmp-PID-N`.
 fn temp_path(path: &Path) -> PathBuf {
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let n = TEMP_COUNTER.fetch_add(1, Ordering::Relaxed);
     parent_dir(path).join(format!(".{name}.tpi-tmp-{}-{n}", std::process::id()))
 }
@@ -63,7 +78,10 @@ fn temp_path(path: &Path) -> PathBuf {
 fn write_temp(path: &Path, bytes: &[u8]) -> Result<PathBuf, CliError> {
     let temp = temp_path(path);
     let result = (|| {
-        let mut file: File = OpenOptions::new().write(true).create_new(true).open(&temp)?;
+        let mut file: File = OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&temp)?;
         file.write_all(bytes)?;
         file.sync_all()
     })();
@@ -117,7 +135,11 @@ mod tests {
         let err = write_all(&[(good.clone(), b"a".to_vec()), (bad, b"b".to_vec())]).unwrap_err();
         assert!(err.to_string().contains("b.txt"), "{err}");
         assert!(!good.exists());
-        assert_eq!(fs::read_dir(&dir).unwrap().count(), 0, "temporary files left");
+        assert_eq!(
+            fs::read_dir(&dir).unwrap().count(),
+            0,
+            "temporary files left"
+        );
         write_all(&[(good.clone(), b"a".to_vec())]).unwrap();
         assert_eq!(fs::read(&good).unwrap(), b"a");
         fs::remove_dir_all(&dir).unwrap();

@@ -60,7 +60,10 @@ pub fn framing_points(result: &tpi_core::Discretisation) -> Vec<glam::DVec3> {
     }
     let pad = DVec3::splat(0.25 * (hi - lo).length());
     let (lo, hi) = (lo - pad, hi + pad);
-    let kept: Vec<DVec3> = finite.clone().filter(|v| v.cmpge(lo).all() && v.cmple(hi).all()).collect();
+    let kept: Vec<DVec3> = finite
+        .clone()
+        .filter(|v| v.cmpge(lo).all() && v.cmple(hi).all())
+        .collect();
     if kept.is_empty() {
         finite.collect()
     } else {

@@ -45,7 +45,10 @@ impl Progress {
     /// Starts a progress line of `total` steps; inert unless stderr is a terminal.
     pub fn start(total: usize) -> Self {
         if !std::io::stderr().is_terminal() {
-            return Self { shared: None, thread: None };
+            return Self {
+                shared: None,
+                thread: None,
+            };
         }
         let shared = Arc::new(Shared {
             start: Instant::now(),
@@ -56,8 +59,14 @@ impl Progress {
             done: AtomicBool::new(false),
         });
         let worker = Arc::clone(&shared);
-        let thread = std::thread::Builder::new().name("tpi-progress".into()).spawn(move || draw_loop(&worker)).ok();
-        Self { shared: Some(shared), thread }
+        let thread = std::thread::Builder::new()
+            .name("tpi-progress".into())
+            .spawn(move || draw_loop(&worker))
+            .ok();
+        Self {
+            shared: Some(shared),
+            thread,
+        }
     }
 
     /// Enters the next step, described by `label`.
@@ -110,8 +119,22 @@ fn draw_loop(s: &Shared) {
         let step = s.step.load(Ordering::Relaxed).clamp(1, s.total);
         let label = s.label.lock().map(|l| l.clone()).unwrap_or_default();
         let filled = (step - 1) * WIDTH / s.total;
-        let bar: String = (0..WIDTH).map(|i| if i < filled { '#' } else if i == filled { SPINNER[tick % 4] } else { '.' }).collect();
-        let line = format!("tpi [{bar}] {step}/{} {label} {:.1} s", s.total, elapsed.as_secs_f64());
+        let bar: String = (0..WIDTH)
+            .map(|i| {
+                if i < filled {
+                    '#'
+                } else if i == filled {
+                    SPINNER[tick % 4]
+                } else {
+                    '.'
+                }
+            })
+            .collect();
+        let line = format!(
+            "tpi [{bar}] {step}/{} {label} {:.1} s",
+            s.total,
+            elapsed.as_secs_f64()
+        );
         let mut err = std::io::stderr().lock();
         let _ = write!(err, "\r\x1b[2K{line}");
         let _ = err.flush();

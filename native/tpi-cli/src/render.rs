@@ -24,13 +24,21 @@ pub const MAX_SIDE: u32 = 16_384;
 
 /// Renders the mesh into an RGB image of `width` x `height` (row-major, 3 bytes a pixel).
 pub fn render(result: &Discretisation, width: u32, height: u32) -> Vec<u8> {
-    let ss: usize = if (width as usize) * (height as usize) <= 16_000_000 { 2 } else { 1 };
+    let ss: usize = if (width as usize) * (height as usize) <= 16_000_000 {
+        2
+    } else {
+        1
+    };
     let (w, h) = (width as usize * ss, height as usize * ss);
     let mut canvas = Canvas::new(w, h);
     // Background: a soft vertical gradient.
     for y in 0..h {
         let t = y as f32 / h.max(1) as f32;
-        let c = [lerp(238.0, 212.0, t), lerp(242.0, 220.0, t), lerp(246.0, 228.0, t)];
+        let c = [
+            lerp(238.0, 212.0, t),
+            lerp(242.0, 220.0, t),
+            lerp(246.0, 228.0, t),
+        ];
         for x in 0..w {
             canvas.colour[y * w + x] = c;
         }
@@ -42,7 +50,14 @@ pub fn render(result: &Discretisation, width: u32, height: u32) -> Vec<u8> {
         draw_mesh(&mut canvas, result, &camera, ss);
     }
     let mut rgb = canvas.downsample(ss, width as usize, height as usize);
-    legend(&mut Image { rgb: &mut rgb, w: width as usize, h: height as usize }, result);
+    legend(
+        &mut Image {
+            rgb: &mut rgb,
+            w: width as usize,
+            h: height as usize,
+        },
+        result,
+    );
     rgb
 }
 
@@ -75,7 +90,13 @@ struct Canvas {
 
 impl Canvas {
     fn new(w: usize, h: usize) -> Self {
-        Self { w, h, colour: vec![[0.0; 3]; w * h], depth: vec![f32::INFINITY; w * h], edge: vec![0; w * h] }
+        Self {
+            w,
+            h,
+            colour: vec![[0.0; 3]; w * h],
+            depth: vec![f32::INFINITY; w * h],
+            edge: vec![0; w * h],
+        }
     }
 
     fn downsample(&self, ss: usize, width: usize, height: usize) -> Vec<u8> {
@@ -107,7 +128,11 @@ impl Canvas {
 }
 
 fn mix(a: [f32; 3], b: [u8; 3], t: f32) -> [f32; 3] {
-    [lerp(a[0], b[0] as f32, t), lerp(a[1], b[1] as f32, t), lerp(a[2], b[2] as f32, t)]
+    [
+        lerp(a[0], b[0] as f32, t),
+        lerp(a[1], b[1] as f32, t),
+        lerp(a[2], b[2] as f32, t),
+    ]
 }
 
 /// A projected point: pixel x (right), pixel y (down), depth (larger is farther).
@@ -147,18 +172,37 @@ impl Camera {
         }
         let span = (smax - smin).max(DVec2::splat(1e-300));
         let margin = 0.06;
-        let avail = DVec2::new(w * (1.0 - 2.0 * margin), h * (1.0 - 2.0 * margin) - legend_space);
+        let avail = DVec2::new(
+            w * (1.0 - 2.0 * margin),
+            h * (1.0 - 2.0 * margin) - legend_space,
+        );
         let scale = (avail.x / span.x).min(avail.y / span.y);
         let mid = (smin + smax) / 2.0;
-        let offset = DVec2::new(w / 2.0 - mid.x * scale, (h - legend_space) / 2.0 + mid.y * scale);
+        let offset = DVec2::new(
+            w / 2.0 - mid.x * scale,
+            (h - legend_space) / 2.0 + mid.y * scale,
+        );
         let light = (-0.45 * right + 0.6 * up - 0.65 * forward).normalize();
-        Self { centre, right, up, forward, scale, offset, light, extent: (hi - lo).length().max(1e-300) }
+        Self {
+            centre,
+            right,
+            up,
+            forward,
+            scale,
+            offset,
+            light,
+            extent: (hi - lo).length().max(1e-300),
+        }
     }
 
     /// Pixel x (right), pixel y (down), depth (larger is farther).
     fn project(&self, p: DVec3) -> Screen {
         let d = p - self.centre;
-        (self.offset.x + d.dot(self.right) * self.scale, self.offset.y - d.dot(self.up) * self.scale, d.dot(self.forward))
+        (
+            self.offset.x + d.dot(self.right) * self.scale,
+            self.offset.y - d.dot(self.up) * self.scale,
+            d.dot(self.forward),
+        )
     }
 }
 
@@ -168,7 +212,11 @@ fn draw_mesh(canvas: &mut Canvas, result: &Discretisation, cam: &Camera, ss: usi
     let mut lengths: Vec<f64> = Vec::new();
     for i in 0..result.facet_count() {
         let facet = result.facet(i);
-        if facet.len() < 3 || facet.iter().any(|&k| !result.vertices[k as usize].is_finite()) {
+        if facet.len() < 3
+            || facet
+                .iter()
+                .any(|&k| !result.vertices[k as usize].is_finite())
+        {
             continue;
         }
         let points: Vec<DVec3> = facet.iter().map(|&k| result.vertices[k as usize]).collect();
@@ -182,9 +230,19 @@ fn draw_mesh(canvas: &mut Canvas, result: &Discretisation, cam: &Camera, ss: usi
         let lambert = normal.dot(cam.light).max(0.0) as f32;
         let intensity = 0.32 + 0.68 * lambert;
         let base = side_colour(side_class(facet.len()));
-        let colour = [base[0] as f32 * intensity, base[1] as f32 * intensity, base[2] as f32 * intensity];
+        let colour = [
+            base[0] as f32 * intensity,
+            base[1] as f32 * intensity,
+            base[2] as f32 * intensity,
+        ];
         for [a, b, c] in triangulate(&points, normal) {
-            fill_triangle(canvas, projected[facet[a] as usize], projected[facet[b] as usize], projected[facet[c] as usize], colour);
+            fill_triangle(
+                canvas,
+                projected[facet[a] as usize],
+                projected[facet[b] as usize],
+                projected[facet[c] as usize],
+                colour,
+            );
         }
         let flagged = result.facet_flags.get(i).copied().unwrap_or(0) != 0;
         for k in 0..facet.len() {
@@ -205,7 +263,14 @@ fn draw_mesh(canvas: &mut Canvas, result: &Discretisation, cam: &Camera, ss: usi
     ordered.sort_by_key(|(k, f)| (**f, **k));
     for (&(a, b), &flagged) in ordered {
         let r = if flagged { radius * 1.25 } else { radius };
-        draw_line(canvas, projected[a as usize], projected[b as usize], r, bias, if flagged { 2 } else { 1 });
+        draw_line(
+            canvas,
+            projected[a as usize],
+            projected[b as usize],
+            r,
+            bias,
+            if flagged { 2 } else { 1 },
+        );
     }
 }
 
@@ -214,7 +279,11 @@ fn newell_normal(points: &[DVec3]) -> DVec3 {
     let mut n = DVec3::ZERO;
     for k in 0..points.len() {
         let (a, b) = (points[k], points[(k + 1) % points.len()]);
-        n += DVec3::new((a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y));
+        n += DVec3::new(
+            (a.y - b.y) * (a.z + b.z),
+            (a.z - b.z) * (a.x + b.x),
+            (a.x - b.x) * (a.y + b.y),
+        );
     }
     n.try_normalize().unwrap_or(DVec3::ZERO)
 }
@@ -228,7 +297,10 @@ fn triangulate(points: &[DVec3], normal: DVec3) -> Vec<[usize; 3]> {
     }
     let a = normal.any_orthonormal_vector();
     let b = normal.cross(a);
-    let p: Vec<DVec2> = points.iter().map(|&x| DVec2::new(x.dot(a), x.dot(b))).collect();
+    let p: Vec<DVec2> = points
+        .iter()
+        .map(|&x| DVec2::new(x.dot(a), x.dot(b)))
+        .collect();
     let area: f64 = (0..n).map(|k| p[k].perp_dot(p[(k + 1) % n])).sum();
     let mut idx: Vec<usize> = (0..n).collect();
     if area < 0.0 {
@@ -246,7 +318,12 @@ fn triangulate(points: &[DVec3], normal: DVec3) -> Vec<[usize; 3]> {
                 continue;
             }
             let inside = idx.iter().any(|&j| {
-                j != i0 && j != i1 && j != i2 && cross(a0, a1, p[j]) >= 0.0 && cross(a1, a2, p[j]) >= 0.0 && cross(a2, a0, p[j]) >= 0.0
+                j != i0
+                    && j != i1
+                    && j != i2
+                    && cross(a0, a1, p[j]) >= 0.0
+                    && cross(a1, a2, p[j]) >= 0.0
+                    && cross(a2, a0, p[j]) >= 0.0
             });
             if inside {
                 continue;
@@ -300,7 +377,12 @@ fn fill_triangle(canvas: &mut Canvas, a: Screen, b: Screen, c: Screen, colour: [
 fn clip_segment(a: Screen, b: Screen, lo: (f64, f64), hi: (f64, f64)) -> Option<(Screen, Screen)> {
     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
     let (mut t0, mut t1) = (0.0f64, 1.0f64);
-    for (p, q) in [(-dx, a.0 - lo.0), (dx, hi.0 - a.0), (-dy, a.1 - lo.1), (dy, hi.1 - a.1)] {
+    for (p, q) in [
+        (-dx, a.0 - lo.0),
+        (dx, hi.0 - a.0),
+        (-dy, a.1 - lo.1),
+        (dy, hi.1 - a.1),
+    ] {
         if p == 0.0 {
             if q < 0.0 {
                 return None;
@@ -323,7 +405,12 @@ fn clip_segment(a: Screen, b: Screen, lo: (f64, f64), hi: (f64, f64)) -> Option<
 
 fn draw_line(canvas: &mut Canvas, a: Screen, b: Screen, radius: f64, bias: f32, kind: u8) {
     let pad = radius + 2.0;
-    let Some((a, b)) = clip_segment(a, b, (-pad, -pad), (canvas.w as f64 + pad, canvas.h as f64 + pad)) else {
+    let Some((a, b)) = clip_segment(
+        a,
+        b,
+        (-pad, -pad),
+        (canvas.w as f64 + pad, canvas.h as f64 + pad),
+    ) else {
         return;
     };
     let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
@@ -335,7 +422,11 @@ fn draw_line(canvas: &mut Canvas, a: Screen, b: Screen, radius: f64, bias: f32, 
     let r2 = radius * radius;
     for s in 0..=steps {
         let t = s as f64 / steps as f64;
-        let (x, y, z) = (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1), (a.2 + t * (b.2 - a.2)) as f32);
+        let (x, y, z) = (
+            a.0 + t * (b.0 - a.0),
+            a.1 + t * (b.1 - a.1),
+            (a.2 + t * (b.2 - a.2)) as f32,
+        );
         let (cx, cy) = (x.floor() as isize, y.floor() as isize);
         for dy in -r..=r {
             for dx in -r..=r {
@@ -358,7 +449,9 @@ fn draw_line(canvas: &mut Canvas, a: Screen, b: Screen, radius: f64, bias: f32, 
 
 /// Swatches with side counts in the lower left corner (final resolution).
 fn legend(img: &mut Image<'_>, result: &Discretisation) {
-    let mut classes: Vec<usize> = (0..result.facet_count()).map(|i| side_class(result.facet(i).len())).collect();
+    let mut classes: Vec<usize> = (0..result.facet_count())
+        .map(|i| side_class(result.facet(i).len()))
+        .collect();
     classes.sort_unstable();
     classes.dedup();
     let scale = if img.h >= 600 { 2 } else { 1 };
@@ -381,10 +474,17 @@ mod tests {
     #[test]
     fn ear_clipping_of_a_non_convex_polygon() {
         // An L shape: fan from vertex 0 would leave the polygon.
-        let pts: Vec<DVec3> = [[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0], [1.0, 2.0], [0.0, 2.0]]
-            .iter()
-            .map(|p| DVec3::new(p[0], p[1], 0.0))
-            .collect();
+        let pts: Vec<DVec3> = [
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+        ]
+        .iter()
+        .map(|p| DVec3::new(p[0], p[1], 0.0))
+        .collect();
         let tris = triangulate(&pts, DVec3::Z);
         assert_eq!(tris.len(), 4);
         let area: f64 = tris

@@ -18,13 +18,22 @@ pub fn invalid_warning(q: &tpi_core::QualityReport) -> String {
 /// The summary text (several lines, each ending in a newline).
 pub fn summary(result: &Discretisation, surface: &str, pattern: &str, threads: usize) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "tpi: {surface} with {pattern}: {} facets, {} vertices", result.facet_count(), result.vertices.len());
+    let _ = writeln!(
+        s,
+        "tpi: {surface} with {pattern}: {} facets, {} vertices",
+        result.facet_count(),
+        result.vertices.len()
+    );
     match &result.quality {
         None => {
             let _ = writeln!(s, "  quality report: off (--no-report)");
         }
         Some(q) => {
-            let sides: Vec<String> = q.side_histogram.iter().map(|(k, n)| format!("{k}:{n}")).collect();
+            let sides: Vec<String> = q
+                .side_histogram
+                .iter()
+                .map(|(k, n)| format!("{k}:{n}"))
+                .collect();
             let _ = writeln!(s, "  edges {}   sides {}", q.edge_count, sides.join("  "));
             let _ = writeln!(
                 s,
@@ -45,7 +54,11 @@ pub fn summary(result: &Discretisation, surface: &str, pattern: &str, threads: u
                 "  facet area {:.4} .. {:.4}   edge length {:.4} .. {:.4}",
                 q.min_facet_area, q.max_facet_area, q.min_edge_length, q.max_edge_length
             );
-            let flags = if q.flagged_facets == 0 { "none".to_string() } else { format!("{} facets", q.flagged_facets) };
+            let flags = if q.flagged_facets == 0 {
+                "none".to_string()
+            } else {
+                format!("{} facets", q.flagged_facets)
+            };
             let _ = writeln!(
                 s,
                 "  validity: {} invalid facets (open {}, non-simple {}, overlapping pairs {}); non-convex {}; flagged {flags}{}",
@@ -78,7 +91,11 @@ pub fn summary(result: &Discretisation, surface: &str, pattern: &str, threads: u
             let _ = writeln!(s, "    {}", truncate(&text, 110));
         }
         if d.len() > LISTED_DIAGNOSTICS {
-            let _ = writeln!(s, "    ... {} more in the JSON output", d.len() - LISTED_DIAGNOSTICS);
+            let _ = writeln!(
+                s,
+                "    ... {} more in the JSON output",
+                d.len() - LISTED_DIAGNOSTICS
+            );
         }
     }
     let t = &result.timings;

@@ -14,7 +14,10 @@ const LEGEND_WIDTH: f64 = 150.0;
 
 /// Escapes text for XML content and attributes.
 pub fn escape(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
 }
 
 /// Top view of the mesh: one `<polygon>` per facet (in facet order, `data-facet` = index),
@@ -36,7 +39,10 @@ pub fn mesh_top_view(result: &Discretisation, title: &str) -> String {
     let height = (h + 2.0 * MARGIN).max(300.0);
     let map = |x: f64, y: f64| {
         let far = 1e6;
-        ((MARGIN + (x - lo[0]) * scale).clamp(-far, far), (MARGIN + (hi[1] - y) * scale).clamp(-far, far))
+        (
+            (MARGIN + (x - lo[0]) * scale).clamp(-far, far),
+            (MARGIN + (hi[1] - y) * scale).clamp(-far, far),
+        )
     };
 
     let mut out = String::new();
@@ -46,15 +52,27 @@ pub fn mesh_top_view(result: &Discretisation, title: &str) -> String {
     let mut counts: BTreeMap<usize, usize> = BTreeMap::new();
     let flagged = |i: usize| result.facet_flags.get(i).copied().unwrap_or(0) != 0;
     // Flagged facets last, so that their red outlines lie on top.
-    let order = (0..result.facet_count()).filter(|&i| !flagged(i)).chain((0..result.facet_count()).filter(|&i| flagged(i)));
+    let order = (0..result.facet_count())
+        .filter(|&i| !flagged(i))
+        .chain((0..result.facet_count()).filter(|&i| flagged(i)));
     let mut any_flagged = false;
     for i in order {
         let facet = result.facet(i);
         *counts.entry(side_class(facet.len())).or_default() += 1;
-        let _ = write!(out, "<polygon data-facet=\"{i}\" data-sides=\"{}\" fill=\"{}\"", facet.len(), hex(side_colour(facet.len())));
+        let _ = write!(
+            out,
+            "<polygon data-facet=\"{i}\" data-sides=\"{}\" fill=\"{}\"",
+            facet.len(),
+            hex(side_colour(facet.len()))
+        );
         if flagged(i) {
             any_flagged = true;
-            let _ = write!(out, " data-flags=\"{}\" stroke=\"{}\" stroke-width=\"1.6\"", result.facet_flags[i], hex(FLAG_COLOUR));
+            let _ = write!(
+                out,
+                " data-flags=\"{}\" stroke=\"{}\" stroke-width=\"1.6\"",
+                result.facet_flags[i],
+                hex(FLAG_COLOUR)
+            );
         }
         out.push_str(" points=\"");
         for (k, &vi) in facet.iter().enumerate() {
@@ -71,8 +89,15 @@ pub fn mesh_top_view(result: &Discretisation, title: &str) -> String {
 
     // Legend.
     let lx = w + 2.0 * MARGIN;
-    let _ = writeln!(out, "<g id=\"legend\" font-family=\"sans-serif\" font-size=\"13\" fill=\"#222\">");
-    let _ = writeln!(out, "<text x=\"{lx:.1}\" y=\"{:.1}\" font-weight=\"bold\">sides</text>", MARGIN + 12.0);
+    let _ = writeln!(
+        out,
+        "<g id=\"legend\" font-family=\"sans-serif\" font-size=\"13\" fill=\"#222\">"
+    );
+    let _ = writeln!(
+        out,
+        "<text x=\"{lx:.1}\" y=\"{:.1}\" font-weight=\"bold\">sides</text>",
+        MARGIN + 12.0
+    );
     let mut y = MARGIN + 24.0;
     for (&class, &n) in &counts {
         let _ = writeln!(
@@ -109,7 +134,10 @@ fn header(out: &mut String, width: f64, height: f64, title: &str) {
         "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width:.0}\" height=\"{height:.0}\" viewBox=\"0 0 {width:.1} {height:.1}\">"
     );
     let _ = writeln!(out, "<title>{}</title>", escape(title));
-    let _ = writeln!(out, "<rect x=\"0\" y=\"0\" width=\"{width:.1}\" height=\"{height:.1}\" fill=\"#ffffff\"/>");
+    let _ = writeln!(
+        out,
+        "<rect x=\"0\" y=\"0\" width=\"{width:.1}\" height=\"{height:.1}\" fill=\"#ffffff\"/>"
+    );
 }
 
 /// The pattern in the unit square (s right, t up): its Voronoi cells clipped to the square

@@ -23,8 +23,14 @@ impl HasPosition for Site {
 pub fn cells(points: &[[f64; 2]]) -> Vec<Vec<[f64; 2]>> {
     let square = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
     let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); points.len()];
-    let sites: Vec<Site> =
-        points.iter().enumerate().map(|(index, p)| Site { position: Point2::new(p[0], p[1]), index }).collect();
+    let sites: Vec<Site> = points
+        .iter()
+        .enumerate()
+        .map(|(index, p)| Site {
+            position: Point2::new(p[0], p[1]),
+            index,
+        })
+        .collect();
     match DelaunayTriangulation::<Site>::bulk_load(sites) {
         Ok(t) => {
             for edge in t.undirected_edges() {
@@ -87,19 +93,24 @@ mod tests {
     use super::*;
 
     fn area(p: &[[f64; 2]]) -> f64 {
-        (0..p.len()).map(|k| {
-            let (a, b) = (p[k], p[(k + 1) % p.len()]);
-            a[0] * b[1] - a[1] * b[0]
-        }).sum::<f64>() / 2.0
+        (0..p.len())
+            .map(|k| {
+                let (a, b) = (p[k], p[(k + 1) % p.len()]);
+                a[0] * b[1] - a[1] * b[0]
+            })
+            .sum::<f64>()
+            / 2.0
     }
 
     #[test]
     fn cells_tile_the_square() {
-        let points: Vec<[f64; 2]> = (0..50).map(|i| {
-            let x = ((i * 37) % 50) as f64 / 50.0 + 0.01;
-            let y = ((i * 11) % 50) as f64 / 50.0 + 0.005;
-            [x, y]
-        }).collect();
+        let points: Vec<[f64; 2]> = (0..50)
+            .map(|i| {
+                let x = ((i * 37) % 50) as f64 / 50.0 + 0.01;
+                let y = ((i * 11) % 50) as f64 / 50.0 + 0.005;
+                [x, y]
+            })
+            .collect();
         let cells = cells(&points);
         let total: f64 = cells.iter().map(|c| area(c)).sum();
         assert!((total - 1.0).abs() < 1e-9, "{total}");

@@ -22,8 +22,11 @@ fn sample(name: &str) -> String {
 /// A fresh empty scratch directory for one test.
 fn scratch(name: &str) -> PathBuf {
     static N: AtomicUsize = AtomicUsize::new(0);
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("tpi-e2e-{}-{}-{name}", std::process::id(), N.fetch_add(1, Ordering::Relaxed)));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
+        "tpi-e2e-{}-{}-{name}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::Relaxed)
+    ));
     let _ = fs::remove_dir_all(&dir);
     fs::create_dir_all(&dir).unwrap();
     dir
@@ -39,7 +42,11 @@ fn text(bytes: &[u8]) -> String {
 
 fn ok(args: &[&str]) -> Output {
     let out = tpi(args);
-    assert!(out.status.success(), "tpi {args:?} failed: {}", text(&out.stderr));
+    assert!(
+        out.status.success(),
+        "tpi {args:?} failed: {}",
+        text(&out.stderr)
+    );
     out
 }
 
@@ -47,10 +54,18 @@ fn ok(args: &[&str]) -> Output {
 /// `tpi: error: ...` containing every one of `needles`. Returns that line.
 fn fails(args: &[&str], code: i32, needles: &[&str]) -> String {
     let out = tpi(args);
-    assert_eq!(out.status.code(), Some(code), "tpi {args:?}: stderr {}", text(&out.stderr));
+    assert_eq!(
+        out.status.code(),
+        Some(code),
+        "tpi {args:?}: stderr {}",
+        text(&out.stderr)
+    );
     let err = text(&out.stderr);
     let line = err.trim_end();
-    assert!(!line.contains('\n'), "more than one line on stderr: {err:?}");
+    assert!(
+        !line.contains('\n'),
+        "more than one line on stderr: {err:?}"
+    );
     assert!(line.starts_with("tpi: error: "), "{line}");
     for n in needles {
         assert!(line.contains(n), "`{n}` missing from: {line}");
@@ -60,7 +75,10 @@ fn fails(args: &[&str], code: i32, needles: &[&str]) -> String {
 
 /// No file at all in `dir` (no output, no temporary file).
 fn assert_empty(dir: &Path) {
-    let left: Vec<_> = fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let left: Vec<_> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert!(left.is_empty(), "files left behind: {left:?}");
 }
 
@@ -108,16 +126,26 @@ struct Timings {
 }
 
 fn read_contract(path: &Path) -> Contract {
-    serde_json::from_str(&fs::read_to_string(path).unwrap()).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+    serde_json::from_str(&fs::read_to_string(path).unwrap())
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()))
 }
 
 fn check_contract(c: &Contract, points: usize) {
     assert_eq!(c.facets.len(), points);
     for (i, f) in c.facets.iter().enumerate() {
         assert_eq!(f.seed, i);
-        assert!(f.vertices.len() >= 3, "facet {i} has {} vertices", f.vertices.len());
+        assert!(
+            f.vertices.len() >= 3,
+            "facet {i} has {} vertices",
+            f.vertices.len()
+        );
         assert!(f.vertices.iter().all(|&k| (k as usize) < c.vertices.len()));
-        assert!(f.uv.iter().chain(&f.point).chain(&f.normal).all(|x| x.is_finite()));
+        assert!(f
+            .uv
+            .iter()
+            .chain(&f.point)
+            .chain(&f.normal)
+            .all(|x| x.is_finite()));
     }
     assert!(c.vertices.iter().flatten().all(|x| x.is_finite()));
     assert!(!c.dual_triangles.is_empty());
@@ -140,18 +168,28 @@ struct Obj {
 }
 
 fn parse_obj(text: &str) -> Obj {
-    let mut obj = Obj { vertices: Vec::new(), faces: Vec::new() };
+    let mut obj = Obj {
+        vertices: Vec::new(),
+        faces: Vec::new(),
+    };
     for (n, line) in text.lines().enumerate() {
         let mut words = line.split_whitespace();
         match words.next() {
             Some("v") => {
-                let c: Vec<f64> = words.map(|w| w.parse().unwrap_or_else(|_| panic!("line {}: {line}", n + 1))).collect();
+                let c: Vec<f64> = words
+                    .map(|w| {
+                        w.parse()
+                            .unwrap_or_else(|_| panic!("line {}: {line}", n + 1))
+                    })
+                    .collect();
                 assert_eq!(c.len(), 3, "line {}: {line}", n + 1);
                 obj.vertices.push([c[0], c[1], c[2]]);
             }
             Some("f") => {
                 // "f 1 2 3" or "f 1/1 2/2 ..." (only the position index is read).
-                let f: Vec<usize> = words.map(|w| w.split('/').next().unwrap().parse().unwrap()).collect();
+                let f: Vec<usize> = words
+                    .map(|w| w.split('/').next().unwrap().parse().unwrap())
+                    .collect();
                 obj.faces.push(f);
             }
             Some("#") | Some("o") | Some("g") | None => {}
@@ -174,7 +212,11 @@ fn check_svg(svg: &str) -> usize {
             continue;
         }
         if let Some(name) = tag.strip_prefix('/') {
-            assert_eq!(stack.pop().as_deref(), Some(name.trim()), "mismatched </{name}>");
+            assert_eq!(
+                stack.pop().as_deref(),
+                Some(name.trim()),
+                "mismatched </{name}>"
+            );
         } else if !tag.ends_with('/') {
             stack.push(tag.split_whitespace().next().unwrap().to_string());
         }
@@ -221,32 +263,72 @@ fn every_sample_discretises_with_every_sample_pattern() {
     for (surface, convex) in SURFACES {
         for pattern in PATTERNS {
             let out = dir.join(format!("{surface}-{pattern}"));
-            let run = ok(&["discretise", "--surface", &sample(surface), "--pattern", &sample(pattern), "--out", out.to_str().unwrap()]);
+            let run = ok(&[
+                "discretise",
+                "--surface",
+                &sample(surface),
+                "--pattern",
+                &sample(pattern),
+                "--out",
+                out.to_str().unwrap(),
+            ]);
             let c = read_contract(&out);
             check_contract(&c, pattern_len(&sample(pattern)));
             let q = c.quality.as_ref().expect("quality report");
             assert!(q.all_finite);
             if c.diagnostics.is_empty() {
                 // Exactly planar facets (a diagnosed stand-in vertex is the one exception).
-                assert!(q.max_planarity_error < 1e-9, "{surface} {pattern}: planarity {}", q.max_planarity_error);
+                assert!(
+                    q.max_planarity_error < 1e-9,
+                    "{surface} {pattern}: planarity {}",
+                    q.max_planarity_error
+                );
             }
             if convex {
                 // K > 0: convex facets, nothing flagged, one disc.
-                assert_eq!(q.flagged_facets, 0, "{surface} with {pattern}: {}", text(&run.stderr));
-                assert_eq!((q.euler_characteristic, q.boundary_loops), (1, 1), "{surface} with {pattern}");
-                assert!(c.diagnostics.is_empty(), "{surface} with {pattern}: {:?}", c.diagnostics);
+                assert_eq!(
+                    q.flagged_facets,
+                    0,
+                    "{surface} with {pattern}: {}",
+                    text(&run.stderr)
+                );
+                assert_eq!(
+                    (q.euler_characteristic, q.boundary_loops),
+                    (1, 1),
+                    "{surface} with {pattern}"
+                );
+                assert!(
+                    c.diagnostics.is_empty(),
+                    "{surface} with {pattern}: {:?}",
+                    c.diagnostics
+                );
             }
             // Any curvature: always a disc; every invalid facet flagged and warned about.
-            assert_eq!((q.euler_characteristic, q.boundary_loops), (1, 1), "{surface} with {pattern}");
-            let invalid_flags = c.facets.iter().filter(|f| f.flags & (2 | 4 | 16) != 0).count();
+            assert_eq!(
+                (q.euler_characteristic, q.boundary_loops),
+                (1, 1),
+                "{surface} with {pattern}"
+            );
+            let invalid_flags = c
+                .facets
+                .iter()
+                .filter(|f| f.flags & (2 | 4 | 16) != 0)
+                .count();
             assert_eq!(invalid_flags, q.invalid_facets, "{surface} with {pattern}");
             let summary = text(&run.stderr);
-            assert_eq!(summary.contains("warning: "), q.invalid_facets > 0, "{summary}");
+            assert_eq!(
+                summary.contains("warning: "),
+                q.invalid_facets > 0,
+                "{summary}"
+            );
             if SADDLES.contains(&surface) && pattern != "random-1000.json" {
                 // Saddles with hex and Poisson-disk patterns: valid with exact planes.
                 assert_eq!(q.invalid_facets, 0, "{surface} with {pattern}: {summary}");
             }
-            assert!(summary.contains("facets") && summary.contains("timings"), "{summary}");
+            assert!(
+                summary.contains("facets") && summary.contains("timings"),
+                "{summary}"
+            );
         }
     }
 }
@@ -257,14 +339,39 @@ fn every_output_format_is_written_and_reads_back() {
     let p = |n: &str| dir.join(n).to_string_lossy().into_owned();
     let run = ok(&[
         "discretise",
-        "--surface", &sample("nurbs-dome.json"),
-        "--pattern", &sample("random-1000.json"),
-        "--out", &p("r.json"), "--out", &p("r.obj"), "--out", &p("r.svg"), "--out", &p("r.png"),
-        "--size", "640x480",
+        "--surface",
+        &sample("nurbs-dome.json"),
+        "--pattern",
+        &sample("random-1000.json"),
+        "--out",
+        &p("r.json"),
+        "--out",
+        &p("r.obj"),
+        "--out",
+        &p("r.svg"),
+        "--out",
+        &p("r.png"),
+        "--size",
+        "640x480",
     ]);
     let summary = text(&run.stderr);
-    for needle in ["sides", "trivalent", "planarity", "deviation", "validity", "invalid facets", "Euler", "boundary loops", "diagnostics", "timings", "wrote"] {
-        assert!(summary.contains(needle), "summary lacks {needle}: {summary}");
+    for needle in [
+        "sides",
+        "trivalent",
+        "planarity",
+        "deviation",
+        "validity",
+        "invalid facets",
+        "Euler",
+        "boundary loops",
+        "diagnostics",
+        "timings",
+        "wrote",
+    ] {
+        assert!(
+            summary.contains(needle),
+            "summary lacks {needle}: {summary}"
+        );
     }
 
     let c = read_contract(&dir.join("r.json"));
@@ -280,14 +387,20 @@ fn every_output_format_is_written_and_reads_back() {
     assert_eq!(obj.vertices.len(), c.vertices.len());
     assert_eq!(obj.faces.len(), c.facets.len());
     for (face, facet) in obj.faces.iter().zip(&c.facets) {
-        assert!(face.iter().all(|&k| k >= 1 && k <= obj.vertices.len()), "index out of range");
+        assert!(
+            face.iter().all(|&k| k >= 1 && k <= obj.vertices.len()),
+            "index out of range"
+        );
         let zero_based: Vec<u32> = face.iter().map(|&k| (k - 1) as u32).collect();
         assert_eq!(zero_based, facet.vertices);
     }
     // serde_json's default float parser may be one ulp off; the OBJ's text is exact.
     for (k, (a, b)) in obj.vertices.iter().zip(&c.vertices).enumerate() {
         for i in 0..3 {
-            assert!((a[i] - b[i]).abs() <= 1e-14 * b[i].abs().max(1.0), "vertex {k}: OBJ {a:?} vs JSON {b:?}");
+            assert!(
+                (a[i] - b[i]).abs() <= 1e-14 * b[i].abs().max(1.0),
+                "vertex {k}: OBJ {a:?} vs JSON {b:?}"
+            );
         }
     }
 
@@ -301,15 +414,36 @@ fn png_has_the_default_size_and_flagged_facets_are_marked_in_the_svg() {
     let dir = scratch("png");
     let png = dir.join("h.png");
     let svg = dir.join("h.svg");
-    ok(&["discretise", "--surface", &sample("hypar.json"), "--pattern", "hex:12x10", "--out", png.to_str().unwrap(), "--out", svg.to_str().unwrap()]);
+    ok(&[
+        "discretise",
+        "--surface",
+        &sample("hypar.json"),
+        "--pattern",
+        "hex:12x10",
+        "--out",
+        png.to_str().unwrap(),
+        "--out",
+        svg.to_str().unwrap(),
+    ]);
     assert_eq!(png_size(&png), (1200, 900));
     let svg = fs::read_to_string(&svg).unwrap();
     assert_eq!(check_svg(&svg), 120);
     // Saddle facets are non-convex, the expected shape: nothing flagged.
-    assert!(!svg.contains("data-flags="), "a valid saddle mesh has flagged facets");
+    assert!(
+        !svg.contains("data-flags="),
+        "a valid saddle mesh has flagged facets"
+    );
     // A mixed roof has invalid facets at its parabolic lines: flagged, outlined red, listed.
     let mixed = dir.join("m.svg");
-    ok(&["discretise", "--surface", &sample("mixed-roof.json"), "--pattern", "hex:24x20", "--out", mixed.to_str().unwrap()]);
+    ok(&[
+        "discretise",
+        "--surface",
+        &sample("mixed-roof.json"),
+        "--pattern",
+        "hex:24x20",
+        "--out",
+        mixed.to_str().unwrap(),
+    ]);
     let svg = fs::read_to_string(&mixed).unwrap();
     assert!(svg.contains("data-flags=") && svg.contains("#e00000") && svg.contains("flagged"));
 }
@@ -318,22 +452,93 @@ fn png_has_the_default_size_and_flagged_facets_are_marked_in_the_svg() {
 fn strict_exits_3_on_invalid_facets_and_still_writes_the_outputs() {
     let dir = scratch("strict");
     let out = dir.join("m.json");
-    let args = ["discretise", "--surface", &sample("mixed-roof.json"), "--pattern", "hex:24x20", "--strict", "--out", out.to_str().unwrap()];
+    let args = [
+        "discretise",
+        "--surface",
+        &sample("mixed-roof.json"),
+        "--pattern",
+        "hex:24x20",
+        "--strict",
+        "--out",
+        out.to_str().unwrap(),
+    ];
     let run = tpi(&args);
     assert_eq!(run.status.code(), Some(3), "{}", text(&run.stderr));
     let err = text(&run.stderr);
     let q = read_contract(&out).quality.expect("quality report");
     assert!(q.invalid_facets > 0);
-    assert!(err.contains(&format!("warning: {} invalid facets", q.invalid_facets)), "{err}");
-    assert!(err.trim_end().ends_with(&format!("tpi: error: {} invalid facets (--strict)", q.invalid_facets)), "{err}");
+    assert!(
+        err.contains(&format!("warning: {} invalid facets", q.invalid_facets)),
+        "{err}"
+    );
+    assert!(
+        err.trim_end().ends_with(&format!(
+            "tpi: error: {} invalid facets (--strict)",
+            q.invalid_facets
+        )),
+        "{err}"
+    );
     // A valid mesh passes --strict with exit 0 and no warning.
-    let valid = ok(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:24x20", "--strict", "--out", dir.join("s.json").to_str().unwrap()]);
+    let valid = ok(&[
+        "discretise",
+        "--surface",
+        &sample("saddle.json"),
+        "--pattern",
+        "hex:24x20",
+        "--strict",
+        "--out",
+        dir.join("s.json").to_str().unwrap(),
+    ]);
     assert!(!text(&valid.stderr).contains("warning"));
-    fails(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:6x6", "--strict", "--no-report"], 2, &["--strict"]);
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            &sample("saddle.json"),
+            "--pattern",
+            "hex:6x6",
+            "--strict",
+            "--no-report",
+        ],
+        2,
+        &["--strict"],
+    );
     // Exact planes are the default and may be named; adjusted planes are refused clearly.
-    ok(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:6x6", "--planes", "exact"]);
-    fails(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:6x6", "--planes", "adjusted"], 2, &["--planes adjusted", "not implemented"]);
-    fails(&["discretise", "--surface", &sample("saddle.json"), "--pattern", "hex:6x6", "--planes", "tilted"], 2, &["--planes tilted"]);
+    ok(&[
+        "discretise",
+        "--surface",
+        &sample("saddle.json"),
+        "--pattern",
+        "hex:6x6",
+        "--planes",
+        "exact",
+    ]);
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            &sample("saddle.json"),
+            "--pattern",
+            "hex:6x6",
+            "--planes",
+            "adjusted",
+        ],
+        2,
+        &["--planes adjusted", "not implemented"],
+    );
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            &sample("saddle.json"),
+            "--pattern",
+            "hex:6x6",
+            "--planes",
+            "tilted",
+        ],
+        2,
+        &["--planes tilted"],
+    );
 }
 
 #[test]
@@ -341,13 +546,47 @@ fn threads_and_no_report() {
     let dir = scratch("threads");
     let (a, b, c) = (dir.join("a.json"), dir.join("b.json"), dir.join("c.json"));
     let s = sample("paraboloid.json");
-    let one = ok(&["discretise", "--surface", &s, "--pattern", "poisson:0.05:seed=3", "--threads", "1", "--out", a.to_str().unwrap()]);
+    let one = ok(&[
+        "discretise",
+        "--surface",
+        &s,
+        "--pattern",
+        "poisson:0.05:seed=3",
+        "--threads",
+        "1",
+        "--out",
+        a.to_str().unwrap(),
+    ]);
     assert!(text(&one.stderr).contains("(1 thread)"));
-    ok(&["discretise", "--surface", &s, "--pattern", "poisson:0.05:seed=3", "--threads=2", "--out", b.to_str().unwrap()]);
+    ok(&[
+        "discretise",
+        "--surface",
+        &s,
+        "--pattern",
+        "poisson:0.05:seed=3",
+        "--threads=2",
+        "--out",
+        b.to_str().unwrap(),
+    ]);
     let (ra, rb) = (read_contract(&a), read_contract(&b));
-    assert_eq!(ra.vertices, rb.vertices, "results differ between 1 and 2 threads");
-    assert_eq!(ra.facets.iter().map(|f| &f.vertices).collect::<Vec<_>>(), rb.facets.iter().map(|f| &f.vertices).collect::<Vec<_>>());
-    let run = ok(&["discretise", "--surface", &s, "--pattern", "hex:6x5", "--no-report", "--out", c.to_str().unwrap()]);
+    assert_eq!(
+        ra.vertices, rb.vertices,
+        "results differ between 1 and 2 threads"
+    );
+    assert_eq!(
+        ra.facets.iter().map(|f| &f.vertices).collect::<Vec<_>>(),
+        rb.facets.iter().map(|f| &f.vertices).collect::<Vec<_>>()
+    );
+    let run = ok(&[
+        "discretise",
+        "--surface",
+        &s,
+        "--pattern",
+        "hex:6x5",
+        "--no-report",
+        "--out",
+        c.to_str().unwrap(),
+    ]);
     assert!(read_contract(&c).quality.is_none());
     assert!(text(&run.stderr).contains("quality report: off"));
 }
@@ -358,9 +597,22 @@ fn no_progress_line_when_stderr_is_not_a_terminal() {
     // so not a byte of progress may appear.
     let dir = scratch("progress");
     let out = dir.join("big.png");
-    for (pattern, delay) in [("random:100000:seed=1", None), ("random:20000:seed=1", Some("0"))] {
+    for (pattern, delay) in [
+        ("random:100000:seed=1", None),
+        ("random:20000:seed=1", Some("0")),
+    ] {
         let mut command = Command::new(TPI);
-        command.args(["discretise", "--surface", &sample("nurbs-dome.json"), "--pattern", pattern, "--out", out.to_str().unwrap(), "--threads", "1"]);
+        command.args([
+            "discretise",
+            "--surface",
+            &sample("nurbs-dome.json"),
+            "--pattern",
+            pattern,
+            "--out",
+            out.to_str().unwrap(),
+            "--threads",
+            "1",
+        ]);
         if let Some(d) = delay {
             command.env("TPI_PROGRESS_DELAY_MS", d);
         }
@@ -368,9 +620,18 @@ fn no_progress_line_when_stderr_is_not_a_terminal() {
         let run = command.output().unwrap();
         assert!(run.status.success(), "{}", text(&run.stderr));
         let err = text(&run.stderr);
-        assert!(!err.contains('\r'), "carriage return on a non-terminal stderr");
-        assert!(!err.contains('\x1b'), "escape sequence on a non-terminal stderr");
-        assert!(!err.contains("tpi ["), "progress bar on a non-terminal stderr");
+        assert!(
+            !err.contains('\r'),
+            "carriage return on a non-terminal stderr"
+        );
+        assert!(
+            !err.contains('\x1b'),
+            "escape sequence on a non-terminal stderr"
+        );
+        assert!(
+            !err.contains("tpi ["),
+            "progress bar on a non-terminal stderr"
+        );
         eprintln!("({pattern}: {:.1} s)", started.elapsed().as_secs_f64());
     }
 }
@@ -390,10 +651,17 @@ fn progress_line_on_a_terminal() {
         sample("nurbs-dome.json"),
         out.display()
     );
-    let run = Command::new("script").args(["-qfec", &command, "/dev/null"]).env("TPI_PROGRESS_DELAY_MS", "0").output().unwrap();
+    let run = Command::new("script")
+        .args(["-qfec", &command, "/dev/null"])
+        .env("TPI_PROGRESS_DELAY_MS", "0")
+        .output()
+        .unwrap();
     assert!(run.status.success(), "{}", text(&run.stderr));
     let all = text(&run.stdout);
-    assert!(all.contains("\r\x1b[2Ktpi ["), "no progress line on a terminal: {all}");
+    assert!(
+        all.contains("\r\x1b[2Ktpi ["),
+        "no progress line on a terminal: {all}"
+    );
     // The line is cleared before the summary.
     assert!(all.contains("\r\x1b[2Ktpi: "), "{all:?}");
 }
@@ -404,7 +672,14 @@ fn progress_line_on_a_terminal() {
 fn pattern_writes_points_and_a_voronoi_preview() {
     let dir = scratch("pattern");
     let (json, svg) = (dir.join("hex.json"), dir.join("hex.svg"));
-    ok(&["pattern", "hex:24x20", "--out", json.to_str().unwrap(), "--preview", svg.to_str().unwrap()]);
+    ok(&[
+        "pattern",
+        "hex:24x20",
+        "--out",
+        json.to_str().unwrap(),
+        "--preview",
+        svg.to_str().unwrap(),
+    ]);
     assert_eq!(pattern_len(json.to_str().unwrap()), 480);
     let svg = fs::read_to_string(&svg).unwrap();
     assert_eq!(check_svg(&svg), 480, "one Voronoi cell per point");
@@ -414,41 +689,79 @@ fn pattern_writes_points_and_a_voronoi_preview() {
 #[test]
 fn sample_patterns_are_what_tpi_pattern_writes() {
     let dir = scratch("regen");
-    for (spec, file) in [("hex:24x20", "hex-24x20.json"), ("random:1000:seed=7", "random-1000.json"), ("poisson:0.03:seed=7", "poisson-0.03.json")] {
+    for (spec, file) in [
+        ("hex:24x20", "hex-24x20.json"),
+        ("random:1000:seed=7", "random-1000.json"),
+        ("poisson:0.03:seed=7", "poisson-0.03.json"),
+    ] {
         let out = dir.join(file);
         ok(&["pattern", spec, "--out", out.to_str().unwrap()]);
-        assert_eq!(fs::read(&out).unwrap(), fs::read(samples().join(file)).unwrap(), "{file} differs from `tpi pattern {spec}`");
+        assert_eq!(
+            fs::read(&out).unwrap(),
+            fs::read(samples().join(file)).unwrap(),
+            "{file} differs from `tpi pattern {spec}`"
+        );
     }
 }
 
 #[test]
 fn info_reports_curvature_regions() {
     let para = text(&ok(&["info", &sample("paraboloid.json")]).stdout);
-    assert!(para.contains("elliptic_paraboloid") && para.contains("domain: u [-5, 5], v [-5, 5]"), "{para}");
-    assert!(para.contains("K > 0 (convex facets): 100.0%") && para.contains("K > 0 everywhere"), "{para}");
+    assert!(
+        para.contains("elliptic_paraboloid") && para.contains("domain: u [-5, 5], v [-5, 5]"),
+        "{para}"
+    );
+    assert!(
+        para.contains("K > 0 (convex facets): 100.0%") && para.contains("K > 0 everywhere"),
+        "{para}"
+    );
 
     let hypar = text(&ok(&["info", &sample("hypar.json")]).stdout);
-    assert!(hypar.contains("K < 0 (saddle: non-convex facets): 100.0%"), "{hypar}");
+    assert!(
+        hypar.contains("K < 0 (saddle: non-convex facets): 100.0%"),
+        "{hypar}"
+    );
 
     let dome = text(&ok(&["info", &sample("nurbs-dome.json")]).stdout);
-    assert!(dome.contains("degree 3 x 3, 7 x 6 control points, non-rational"), "{dome}");
-    assert!(dome.contains("non-uniform") && dome.contains("K > 0 everywhere"), "{dome}");
+    assert!(
+        dome.contains("degree 3 x 3, 7 x 6 control points, non-rational"),
+        "{dome}"
+    );
+    assert!(
+        dome.contains("non-uniform") && dome.contains("K > 0 everywhere"),
+        "{dome}"
+    );
 
     let rational = text(&ok(&["info", &sample("rational-dome.json")]).stdout);
     assert!(rational.contains("rational (weights"), "{rational}");
 
     let roof = text(&ok(&["info", &sample("mixed-roof.json"), "--grid", "31"]).stdout);
-    assert!(roof.contains("31 x 31 grid") && roof.contains("mixed curvature"), "{roof}");
+    assert!(
+        roof.contains("31 x 31 grid") && roof.contains("mixed curvature"),
+        "{roof}"
+    );
     let map: String = roof.lines().skip_while(|l| !l.starts_with("map")).collect();
     assert!(map.contains('+') && map.contains('-'), "{roof}");
 }
 
 #[test]
 fn help_for_every_command() {
-    for args in [&["--help"][..], &["help"], &["discretise", "--help"], &["pattern", "--help"], &["info", "-h"], &["help", "pattern"], &["bench", "--help"], &["help", "bench"]] {
+    for args in [
+        &["--help"][..],
+        &["help"],
+        &["discretise", "--help"],
+        &["pattern", "--help"],
+        &["info", "-h"],
+        &["help", "pattern"],
+        &["bench", "--help"],
+        &["help", "bench"],
+    ] {
         let out = ok(args);
         let help = text(&out.stdout);
-        assert!(help.contains("USAGE") && help.contains("EXAMPLES"), "{args:?}: {help}");
+        assert!(
+            help.contains("USAGE") && help.contains("EXAMPLES"),
+            "{args:?}: {help}"
+        );
     }
     let out = ok(&["--version"]);
     assert!(text(&out.stdout).starts_with("tpi "));
@@ -461,18 +774,45 @@ fn help_for_every_command() {
 fn bad_input_dir(name: &str) -> (PathBuf, String) {
     let dir = scratch(name);
     let surface = dir.join("ok-surface.json");
-    fs::write(&surface, r#"{"type": "elliptic_paraboloid", "a": 0.1, "b": 0.1, "x": [-1, 1], "y": [-1, 1]}"#).unwrap();
+    fs::write(
+        &surface,
+        r#"{"type": "elliptic_paraboloid", "a": 0.1, "b": 0.1, "x": [-1, 1], "y": [-1, 1]}"#,
+    )
+    .unwrap();
     (dir, surface.to_string_lossy().into_owned())
 }
 
 /// Runs a failing discretise that would write `out.json` and `out.obj` in a directory that
 /// holds only `inputs`; asserts the error and that nothing else is left there.
 fn discretise_fails(dir: &Path, surface: &str, pattern: &str, code: i32, needles: &[&str]) {
-    let before: Vec<_> = fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let before: Vec<_> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     let (json, obj) = (dir.join("out.json"), dir.join("out.obj"));
-    fails(&["discretise", "--surface", surface, "--pattern", pattern, "--out", json.to_str().unwrap(), "--out", obj.to_str().unwrap()], code, needles);
-    assert!(!json.exists() && !obj.exists(), "an output file was written");
-    let mut after: Vec<_> = fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            surface,
+            "--pattern",
+            pattern,
+            "--out",
+            json.to_str().unwrap(),
+            "--out",
+            obj.to_str().unwrap(),
+        ],
+        code,
+        needles,
+    );
+    assert!(
+        !json.exists() && !obj.exists(),
+        "an output file was written"
+    );
+    let mut after: Vec<_> = fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     after.retain(|f| !before.contains(f));
     assert!(after.is_empty(), "files left behind: {after:?}");
 }
@@ -481,11 +821,27 @@ fn discretise_fails(dir: &Path, surface: &str, pattern: &str, code: i32, needles
 fn unreadable_surface_file() {
     let (dir, _) = bad_input_dir("unreadable");
     let missing = dir.join("missing.json");
-    discretise_fails(&dir, missing.to_str().unwrap(), "hex:5x5", 1, &["missing.json", "cannot read", "no such file"]);
+    discretise_fails(
+        &dir,
+        missing.to_str().unwrap(),
+        "hex:5x5",
+        1,
+        &["missing.json", "cannot read", "no such file"],
+    );
     let folder = dir.join("folder.json");
     fs::create_dir(&folder).unwrap();
-    discretise_fails(&dir, folder.to_str().unwrap(), "hex:5x5", 1, &["folder.json", "cannot read", "is a directory"]);
-    fails(&["info", missing.to_str().unwrap()], 1, &["missing.json", "no such file"]);
+    discretise_fails(
+        &dir,
+        folder.to_str().unwrap(),
+        "hex:5x5",
+        1,
+        &["folder.json", "cannot read", "is a directory"],
+    );
+    fails(
+        &["info", missing.to_str().unwrap()],
+        1,
+        &["missing.json", "no such file"],
+    );
 }
 
 #[test]
@@ -493,9 +849,23 @@ fn malformed_surface_json_names_line_and_column() {
     let (dir, _) = bad_input_dir("malformed");
     let bad = dir.join("bad.json");
     // A trailing comma: the parser stops at the `}` on line 3, column 5.
-    fs::write(&bad, "{\n  \"type\": \"sphere_cap\", \"radius\": 2, \"x\": [-1, 1], \"y\": [-1, 1],\n    }\n").unwrap();
-    discretise_fails(&dir, bad.to_str().unwrap(), "hex:5x5", 1, &["bad.json", "line 3, column 5"]);
-    fails(&["info", bad.to_str().unwrap()], 1, &["bad.json", "line 3, column 5"]);
+    fs::write(
+        &bad,
+        "{\n  \"type\": \"sphere_cap\", \"radius\": 2, \"x\": [-1, 1], \"y\": [-1, 1],\n    }\n",
+    )
+    .unwrap();
+    discretise_fails(
+        &dir,
+        bad.to_str().unwrap(),
+        "hex:5x5",
+        1,
+        &["bad.json", "line 3, column 5"],
+    );
+    fails(
+        &["info", bad.to_str().unwrap()],
+        1,
+        &["bad.json", "line 3, column 5"],
+    );
 }
 
 #[test]
@@ -503,31 +873,100 @@ fn unknown_surface_type_or_field() {
     let (dir, _) = bad_input_dir("unknown");
     let torus = dir.join("torus.json");
     fs::write(&torus, r#"{"type": "torus", "x": [-1, 1], "y": [-1, 1]}"#).unwrap();
-    discretise_fails(&dir, torus.to_str().unwrap(), "hex:5x5", 1, &["torus.json", "unknown surface type `torus`", "line 1, column 10"]);
+    discretise_fails(
+        &dir,
+        torus.to_str().unwrap(),
+        "hex:5x5",
+        1,
+        &[
+            "torus.json",
+            "unknown surface type `torus`",
+            "line 1, column 10",
+        ],
+    );
     let field = dir.join("field.json");
     fs::write(&field, "{\"type\": \"elliptic_paraboloid\",\n \"a\": 1, \"b\": 1, \"c\": 2, \"x\": [-1, 1], \"y\": [-1, 1]}").unwrap();
-    discretise_fails(&dir, field.to_str().unwrap(), "hex:5x5", 1, &["field.json", "unknown field `c`", "line 2"]);
+    discretise_fails(
+        &dir,
+        field.to_str().unwrap(),
+        "hex:5x5",
+        1,
+        &["field.json", "unknown field `c`", "line 2"],
+    );
     let value = dir.join("value.json");
-    fs::write(&value, r#"{"type": "sphere_cap", "radius": -2, "x": [-1, 1], "y": [-1, 1]}"#).unwrap();
-    discretise_fails(&dir, value.to_str().unwrap(), "hex:5x5", 1, &["value.json", "radius", "must be > 0"]);
+    fs::write(
+        &value,
+        r#"{"type": "sphere_cap", "radius": -2, "x": [-1, 1], "y": [-1, 1]}"#,
+    )
+    .unwrap();
+    discretise_fails(
+        &dir,
+        value.to_str().unwrap(),
+        "hex:5x5",
+        1,
+        &["value.json", "radius", "must be > 0"],
+    );
 }
 
 #[test]
 fn invalid_pattern_spec_or_file() {
     let (dir, surface) = bad_input_dir("pattern");
-    discretise_fails(&dir, &surface, "hex:0x3", 1, &["hex:0x3", "invalid pattern generator", "at least 1"]);
-    discretise_fails(&dir, &surface, "poisson:fast", 1, &["poisson:fast", "invalid pattern generator", "radius"]);
+    discretise_fails(
+        &dir,
+        &surface,
+        "hex:0x3",
+        1,
+        &["hex:0x3", "invalid pattern generator", "at least 1"],
+    );
+    discretise_fails(
+        &dir,
+        &surface,
+        "poisson:fast",
+        1,
+        &["poisson:fast", "invalid pattern generator", "radius"],
+    );
     // Neither a file nor a spec: both possibilities are named.
     let missing = dir.join("nope.json");
-    discretise_fails(&dir, &surface, missing.to_str().unwrap(), 1, &["nope.json", "no such pattern file", "not a pattern generator"]);
+    discretise_fails(
+        &dir,
+        &surface,
+        missing.to_str().unwrap(),
+        1,
+        &[
+            "nope.json",
+            "no such pattern file",
+            "not a pattern generator",
+        ],
+    );
     let bad = dir.join("bad-pattern.json");
     fs::write(&bad, "{\"uv\": [[0.1, 0.2],\n [0.3 0.4]]}").unwrap();
-    discretise_fails(&dir, &surface, bad.to_str().unwrap(), 1, &["bad-pattern.json", "line 2, column 7"]);
+    discretise_fails(
+        &dir,
+        &surface,
+        bad.to_str().unwrap(),
+        1,
+        &["bad-pattern.json", "line 2, column 7"],
+    );
     let outside = dir.join("outside.json");
     fs::write(&outside, r#"{"uv": [[0.1, 0.2], [1.5, 0.2], [0.5, 0.9]]}"#).unwrap();
-    discretise_fails(&dir, &surface, outside.to_str().unwrap(), 1, &["outside.json", "pattern point 1"]);
+    discretise_fails(
+        &dir,
+        &surface,
+        outside.to_str().unwrap(),
+        1,
+        &["outside.json", "pattern point 1"],
+    );
     discretise_fails(&dir, &surface, "random:2", 1, &["random:2", "at least 3"]);
-    fails(&["pattern", "jitter:4x4:amount=3", "--out", dir.join("j.json").to_str().unwrap()], 1, &["jitter:4x4:amount=3", "amount"]);
+    fails(
+        &[
+            "pattern",
+            "jitter:4x4:amount=3",
+            "--out",
+            dir.join("j.json").to_str().unwrap(),
+        ],
+        1,
+        &["jitter:4x4:amount=3", "amount"],
+    );
     assert!(!dir.join("j.json").exists());
 }
 
@@ -537,20 +976,72 @@ fn unwritable_output_leaves_nothing() {
     let good = dir.join("good.json");
     let in_missing_dir = dir.join("no-such-dir").join("r.obj");
     fails(
-        &["discretise", "--surface", &surface, "--pattern", "hex:5x5", "--out", good.to_str().unwrap(), "--out", in_missing_dir.to_str().unwrap()],
+        &[
+            "discretise",
+            "--surface",
+            &surface,
+            "--pattern",
+            "hex:5x5",
+            "--out",
+            good.to_str().unwrap(),
+            "--out",
+            in_missing_dir.to_str().unwrap(),
+        ],
         1,
         &["r.obj", "cannot write", "does not exist"],
     );
-    assert!(!good.exists(), "the good output was written although the run failed");
+    assert!(
+        !good.exists(),
+        "the good output was written although the run failed"
+    );
     // The parent is a regular file.
     let under_file = Path::new(&surface).join("r.svg");
-    fails(&["discretise", "--surface", &surface, "--pattern", "hex:5x5", "--out", under_file.to_str().unwrap()], 1, &["r.svg", "cannot write"]);
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            &surface,
+            "--pattern",
+            "hex:5x5",
+            "--out",
+            under_file.to_str().unwrap(),
+        ],
+        1,
+        &["r.svg", "cannot write"],
+    );
     // The output is a directory.
     fs::create_dir(dir.join("d.png")).unwrap();
-    fails(&["discretise", "--surface", &surface, "--pattern", "hex:5x5", "--out", dir.join("d.png").to_str().unwrap()], 1, &["d.png", "is a directory"]);
-    fails(&["pattern", "hex:3x3", "--out", in_missing_dir.with_extension("json").to_str().unwrap()], 1, &["r.json", "cannot write"]);
-    let left: Vec<_> = fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
-    assert!(left.iter().all(|f| f == "ok-surface.json" || f == "d.png"), "{left:?}");
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            &surface,
+            "--pattern",
+            "hex:5x5",
+            "--out",
+            dir.join("d.png").to_str().unwrap(),
+        ],
+        1,
+        &["d.png", "is a directory"],
+    );
+    fails(
+        &[
+            "pattern",
+            "hex:3x3",
+            "--out",
+            in_missing_dir.with_extension("json").to_str().unwrap(),
+        ],
+        1,
+        &["r.json", "cannot write"],
+    );
+    let left: Vec<_> = fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        left.iter().all(|f| f == "ok-surface.json" || f == "d.png"),
+        "{left:?}"
+    );
 }
 
 #[test]
@@ -558,7 +1049,19 @@ fn a_failing_run_keeps_an_existing_output_untouched() {
     let (dir, _) = bad_input_dir("keep");
     let out = dir.join("r.json");
     fs::write(&out, "previous result").unwrap();
-    fails(&["discretise", "--surface", dir.join("missing.json").to_str().unwrap(), "--pattern", "hex:5x5", "--out", out.to_str().unwrap()], 1, &["missing.json"]);
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            dir.join("missing.json").to_str().unwrap(),
+            "--pattern",
+            "hex:5x5",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        1,
+        &["missing.json"],
+    );
     assert_eq!(fs::read_to_string(&out).unwrap(), "previous result");
 }
 
@@ -566,16 +1069,76 @@ fn a_failing_run_keeps_an_existing_output_untouched() {
 fn usage_errors_exit_with_2() {
     let (dir, surface) = bad_input_dir("usage");
     let o = |n: &str| dir.join(n).to_string_lossy().into_owned();
-    fails(&["discretise", "--surface", &surface, "--pattern", "hex:5x5", "--out", &o("r.txt")], 2, &["r.txt", ".json, .obj, .svg or .png"]);
-    fails(&["discretise", "--pattern", "hex:5x5", "--out", &o("r.json")], 2, &["--surface is required"]);
-    fails(&["discretise", "--surface", &surface, "--pattern", "hex:5x5", "--bogus"], 2, &["--bogus"]);
-    fails(&["discretise", "--surface", &surface, "--pattern", "hex:5x5", "--threads", "0"], 2, &["--threads"]);
-    fails(&["discretise", "--surface", &surface, "--pattern", "hex:5x5", "--out", &o("r.png"), "--size", "big"], 2, &["--size"]);
-    fails(&["discretise", "--surface", &surface, "--pattern"], 2, &["--pattern needs a value"]);
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            &surface,
+            "--pattern",
+            "hex:5x5",
+            "--out",
+            &o("r.txt"),
+        ],
+        2,
+        &["r.txt", ".json, .obj, .svg or .png"],
+    );
+    fails(
+        &["discretise", "--pattern", "hex:5x5", "--out", &o("r.json")],
+        2,
+        &["--surface is required"],
+    );
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            &surface,
+            "--pattern",
+            "hex:5x5",
+            "--bogus",
+        ],
+        2,
+        &["--bogus"],
+    );
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            &surface,
+            "--pattern",
+            "hex:5x5",
+            "--threads",
+            "0",
+        ],
+        2,
+        &["--threads"],
+    );
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            &surface,
+            "--pattern",
+            "hex:5x5",
+            "--out",
+            &o("r.png"),
+            "--size",
+            "big",
+        ],
+        2,
+        &["--size"],
+    );
+    fails(
+        &["discretise", "--surface", &surface, "--pattern"],
+        2,
+        &["--pattern needs a value"],
+    );
     fails(&["pattern", "--out", &o("p.json")], 2, &["GENERATOR"]);
     fails(&["info"], 2, &["surface file"]);
     fails(&["frobnicate"], 2, &["unknown command"]);
-    let left: Vec<_> = fs::read_dir(&dir).unwrap().map(|e| e.unwrap().file_name()).collect();
+    let left: Vec<_> = fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
     assert_eq!(left.len(), 1, "{left:?}");
 }
 
@@ -585,11 +1148,24 @@ fn output_without_report_or_with_empty_dir_is_fine() {
     let dir = scratch("cwd");
     let run = Command::new(TPI)
         .current_dir(&dir)
-        .args(["discretise", "--surface", &sample("paraboloid.json"), "--pattern", "grid:4x4", "--out", "m.obj"])
+        .args([
+            "discretise",
+            "--surface",
+            &sample("paraboloid.json"),
+            "--pattern",
+            "grid:4x4",
+            "--out",
+            "m.obj",
+        ])
         .output()
         .unwrap();
     assert!(run.status.success(), "{}", text(&run.stderr));
-    assert_eq!(parse_obj(&fs::read_to_string(dir.join("m.obj")).unwrap()).faces.len(), 16);
+    assert_eq!(
+        parse_obj(&fs::read_to_string(dir.join("m.obj")).unwrap())
+            .faces
+            .len(),
+        16
+    );
     fs::remove_file(dir.join("m.obj")).unwrap();
     assert_empty(&dir);
 }
@@ -603,11 +1179,27 @@ fn bench_prints_the_table_and_json_and_plot() {
     let table = text(&out.stdout);
     let lines: Vec<&str> = table.lines().collect();
     assert_eq!(lines.len(), 5, "{table}");
-    assert!(lines[0].starts_with("tpi bench: median of 3 runs"), "{table}");
+    assert!(
+        lines[0].starts_with("tpi bench: median of 3 runs"),
+        "{table}"
+    );
     let header: Vec<&str> = lines[1].split_whitespace().collect();
     assert_eq!(
         header,
-        ["surface", "points", "samples", "delaunay", "neighbours", "facets", "mesh", "report", "total", "facets/s", "peak", "MB"]
+        [
+            "surface",
+            "points",
+            "samples",
+            "delaunay",
+            "neighbours",
+            "facets",
+            "mesh",
+            "report",
+            "total",
+            "facets/s",
+            "peak",
+            "MB"
+        ]
     );
     for (line, surface) in lines[2..].iter().zip(["paraboloid", "nurbs", "saddle"]) {
         let cells: Vec<&str> = line.split_whitespace().collect();
@@ -615,14 +1207,30 @@ fn bench_prints_the_table_and_json_and_plot() {
         assert_eq!(cells[0], surface);
         assert_eq!(cells[1], "1000");
         for cell in &cells[2..] {
-            let x: f64 = cell.parse().unwrap_or_else(|_| panic!("`{cell}` in {line}"));
+            let x: f64 = cell
+                .parse()
+                .unwrap_or_else(|_| panic!("`{cell}` in {line}"));
             assert!(x.is_finite() && x >= 0.0, "{line}");
         }
     }
 
     let dir = scratch("bench");
     let plot = dir.join("scaling.svg").to_string_lossy().into_owned();
-    let out = ok(&["bench", "--sizes", "300,1000", "--surfaces", "nurbs", "--threads", "1", "--repeat", "1", "--json", "--no-report", "--plot", &plot]);
+    let out = ok(&[
+        "bench",
+        "--sizes",
+        "300,1000",
+        "--surfaces",
+        "nurbs",
+        "--threads",
+        "1",
+        "--repeat",
+        "1",
+        "--json",
+        "--no-report",
+        "--plot",
+        &plot,
+    ]);
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
     assert_eq!(json["threads"], 1);
     assert_eq!(json["repeat"], 1);
@@ -633,18 +1241,36 @@ fn bench_prints_the_table_and_json_and_plot() {
         assert_eq!(r["surface"], "nurbs");
         assert_eq!(r["points"], n);
         assert_eq!(r["facets"], n);
-        for stage in ["samples", "delaunay", "neighbours", "facets", "mesh", "report", "total"] {
-            assert!(r["median_ms"][stage].as_f64().is_some_and(|t| t >= 0.0), "{stage}: {r}");
+        for stage in [
+            "samples",
+            "delaunay",
+            "neighbours",
+            "facets",
+            "mesh",
+            "report",
+            "total",
+        ] {
+            assert!(
+                r["median_ms"][stage].as_f64().is_some_and(|t| t >= 0.0),
+                "{stage}: {r}"
+            );
         }
         assert_eq!(r["median_ms"]["report"], 0.0, "the report is off");
         assert!(r["facets_per_second"].as_f64().is_some_and(|f| f > 0.0));
         assert!(r["peak_memory_mb"].as_f64().is_some_and(|m| m >= 0.0));
     }
     let svg = fs::read_to_string(&plot).expect("plot written");
-    assert!(svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>") && svg.contains("polyline"), "{svg}");
+    assert!(
+        svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>") && svg.contains("polyline"),
+        "{svg}"
+    );
 
     fails(&["bench", "--sizes", "2"], 2, &["--sizes"]);
     fails(&["bench", "--surfaces", "torus"], 2, &["--surfaces"]);
     fails(&["bench", "--repeat", "0"], 2, &["--repeat"]);
-    fails(&["bench", "--plot", &dir.join("x.png").to_string_lossy()], 2, &["--plot"]);
+    fails(
+        &["bench", "--plot", &dir.join("x.png").to_string_lossy()],
+        2,
+        &["--plot"],
+    );
 }

@@ -5,7 +5,9 @@
 //! `tpi bench` prints the same stages from one process with medians, facets/s and peak
 //! memory (docs/performance.md).
 
-use criterion::{black_box, criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput};
+use criterion::{
+    black_box, criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput,
+};
 use tpi_core::benchmark::{nurbs_dome, paraboloid, random_pattern};
 use tpi_core::triangulation::DualTriangulation;
 use tpi_core::{discretise, DiscretiseOptions, LocalGeometry, Surface};
@@ -19,7 +21,10 @@ fn sizes() -> Vec<usize> {
 }
 
 fn surfaces() -> Vec<(&'static str, Box<dyn Surface>)> {
-    vec![("paraboloid", Box::new(paraboloid())), ("nurbs", Box::new(nurbs_dome()))]
+    vec![
+        ("paraboloid", Box::new(paraboloid())),
+        ("nurbs", Box::new(nurbs_dome())),
+    ]
 }
 
 /// Evaluation to second order and curvature at every pattern point.
@@ -27,7 +32,10 @@ fn samples(c: &mut Criterion) {
     let mut group = c.benchmark_group("samples");
     for (name, surface) in surfaces() {
         for n in sizes() {
-            let uv: Vec<[f64; 2]> = random_pattern(n).iter().map(|&st| surface.domain().from_normalised(st)).collect();
+            let uv: Vec<[f64; 2]> = random_pattern(n)
+                .iter()
+                .map(|&st| surface.domain().from_normalised(st))
+                .collect();
             group.throughput(Throughput::Elements(n as u64));
             group.bench_with_input(BenchmarkId::new(name, n), &uv, |b, uv| {
                 b.iter(|| {
@@ -48,7 +56,10 @@ fn samples(c: &mut Criterion) {
 fn evaluate(c: &mut Criterion) {
     let mut group = c.benchmark_group("evaluate");
     for (name, surface) in surfaces() {
-        let uv: Vec<[f64; 2]> = random_pattern(1000).iter().map(|&st| surface.domain().from_normalised(st)).collect();
+        let uv: Vec<[f64; 2]> = random_pattern(1000)
+            .iter()
+            .map(|&st| surface.domain().from_normalised(st))
+            .collect();
         group.throughput(Throughput::Elements(uv.len() as u64));
         group.bench_function(name, |b| {
             b.iter(|| {
@@ -82,7 +93,10 @@ fn full(c: &mut Criterion) {
     for (label, report) in [("discretise", true), ("discretise_no_report", false)] {
         let mut group = c.benchmark_group(label);
         group.sampling_mode(SamplingMode::Flat);
-        let options = DiscretiseOptions { quality_report: report, ..DiscretiseOptions::default() };
+        let options = DiscretiseOptions {
+            quality_report: report,
+            ..DiscretiseOptions::default()
+        };
         for (name, surface) in surfaces() {
             for n in sizes() {
                 if n >= 100_000 {
@@ -91,7 +105,11 @@ fn full(c: &mut Criterion) {
                 let pattern = random_pattern(n);
                 group.throughput(Throughput::Elements(n as u64));
                 group.bench_with_input(BenchmarkId::new(name, n), &pattern, |b, p| {
-                    b.iter(|| black_box(discretise(surface.as_ref(), p, &options).map(|d| d.facet_count())))
+                    b.iter(|| {
+                        black_box(
+                            discretise(surface.as_ref(), p, &options).map(|d| d.facet_count()),
+                        )
+                    })
                 });
             }
         }

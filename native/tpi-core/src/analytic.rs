@@ -143,7 +143,11 @@ pub struct AnalyticSurface {
 }
 
 fn invalid(field: &str, value: f64, reason: impl Into<String>) -> TpiError {
-    TpiError::InvalidParameter { field: field.to_string(), value, reason: reason.into() }
+    TpiError::InvalidParameter {
+        field: field.to_string(),
+        value,
+        reason: reason.into(),
+    }
 }
 
 /// Largest magnitude accepted for any analytic parameter or rectangle coordinate. Far beyond
@@ -159,7 +163,11 @@ pub const MIN_ANALYTIC_LENGTH: f64 = 1e-50;
 fn finite(field: &str, value: f64) -> Result<f64, TpiError> {
     check_finite(|| field.to_string(), value)?;
     if value.abs() > MAX_ANALYTIC_MAGNITUDE {
-        return Err(invalid(field, value, format!("magnitude must not exceed {MAX_ANALYTIC_MAGNITUDE:e}")));
+        return Err(invalid(
+            field,
+            value,
+            format!("magnitude must not exceed {MAX_ANALYTIC_MAGNITUDE:e}"),
+        ));
     }
     Ok(value)
 }
@@ -171,7 +179,11 @@ fn positive(field: &str, value: f64) -> Result<f64, TpiError> {
         return Err(invalid(field, value, "must be > 0"));
     }
     if value < MIN_ANALYTIC_LENGTH {
-        return Err(invalid(field, value, format!("must be at least {MIN_ANALYTIC_LENGTH:e}")));
+        return Err(invalid(
+            field,
+            value,
+            format!("must be at least {MIN_ANALYTIC_LENGTH:e}"),
+        ));
     }
     Ok(value)
 }
@@ -181,7 +193,11 @@ fn interval(name: &str, direction: Direction, ends: [f64; 2]) -> Result<Interval
     finite(&format!("{name}[0]"), ends[0])?;
     finite(&format!("{name}[1]"), ends[1])?;
     if ends[0] >= ends[1] {
-        return Err(TpiError::EmptyDomain { direction, min: ends[0], max: ends[1] });
+        return Err(TpiError::EmptyDomain {
+            direction,
+            min: ends[0],
+            max: ends[1],
+        });
     }
     Ok(Interval::new(ends[0], ends[1]))
 }
@@ -202,7 +218,11 @@ fn same_sign_pair(a: f64, b: f64, what: &str) -> Result<(), TpiError> {
         return Err(invalid("b", b, format!("must be non-zero for a {what}")));
     }
     if (a > 0.0) != (b > 0.0) {
-        return Err(invalid("b", b, format!("must have the same sign as a = {a} for a {what}")));
+        return Err(invalid(
+            "b",
+            b,
+            format!("must have the same sign as a = {a} for a {what}"),
+        ));
     }
     Ok(())
 }
@@ -219,8 +239,12 @@ impl AnalyticSurface {
     pub fn new(kind: AnalyticKind, x: [f64; 2], y: [f64; 2]) -> Result<Self, TpiError> {
         // Parameters first, then the rectangle, then their compatibility.
         match kind {
-            AnalyticKind::EllipticParaboloid { a, b } => same_sign_pair(a, b, "elliptic paraboloid")?,
-            AnalyticKind::HyperbolicParaboloid { a, b } => same_sign_pair(a, b, "hyperbolic paraboloid")?,
+            AnalyticKind::EllipticParaboloid { a, b } => {
+                same_sign_pair(a, b, "elliptic paraboloid")?
+            }
+            AnalyticKind::HyperbolicParaboloid { a, b } => {
+                same_sign_pair(a, b, "hyperbolic paraboloid")?
+            }
             AnalyticKind::SphereCap { radius } | AnalyticKind::Cylinder { radius } => {
                 positive("radius", radius)?;
             }
@@ -277,11 +301,18 @@ impl AnalyticSurface {
                 }
             }
             AnalyticKind::Cylinder { radius } if !(radius * radius - fx * fx > 0.0) => {
-                return Err(invalid("x", fx, format!("|x| must stay strictly below the radius {radius}")));
+                return Err(invalid(
+                    "x",
+                    fx,
+                    format!("|x| must stay strictly below the radius {radius}"),
+                ));
             }
             _ => {}
         }
-        Ok(Self { kind, domain: Domain::new(xi, yi) })
+        Ok(Self {
+            kind,
+            domain: Domain::new(xi, yi),
+        })
     }
 
     /// z = a x^2 + b y^2 over `x` x `y`; see [`AnalyticSurface::new`] for the errors.
@@ -304,12 +335,23 @@ impl AnalyticSurface {
     }
 
     /// z = c sqrt(1 - x^2/a^2 - y^2/b^2) over `x` x `y`, strictly inside the ellipse.
-    pub fn ellipsoid_cap(a: f64, b: f64, c: f64, x: [f64; 2], y: [f64; 2]) -> Result<Self, TpiError> {
+    pub fn ellipsoid_cap(
+        a: f64,
+        b: f64,
+        c: f64,
+        x: [f64; 2],
+        y: [f64; 2],
+    ) -> Result<Self, TpiError> {
         Self::new(AnalyticKind::EllipsoidCap { a, b, c }, x, y)
     }
 
     /// z = a x^2 - b y^2 over `x` x `y`.
-    pub fn hyperbolic_paraboloid(a: f64, b: f64, x: [f64; 2], y: [f64; 2]) -> Result<Self, TpiError> {
+    pub fn hyperbolic_paraboloid(
+        a: f64,
+        b: f64,
+        x: [f64; 2],
+        y: [f64; 2],
+    ) -> Result<Self, TpiError> {
         Self::new(AnalyticKind::HyperbolicParaboloid { a, b }, x, y)
     }
 
@@ -407,11 +449,23 @@ impl AnalyticSurface {
                 let r2 = radius * radius;
                 let w2 = r2 - x * x;
                 let w = w2.sqrt();
-                Height { f: w, fx: -x / w, fy: 0.0, fxx: -r2 / (w2 * w), fxy: 0.0, fyy: 0.0 }
+                Height {
+                    f: w,
+                    fx: -x / w,
+                    fy: 0.0,
+                    fxx: -r2 / (w2 * w),
+                    fxy: 0.0,
+                    fyy: 0.0,
+                }
             }
-            AnalyticKind::Plane { p, q, c0 } => {
-                Height { f: p * x + q * y + c0, fx: p, fy: q, fxx: 0.0, fxy: 0.0, fyy: 0.0 }
-            }
+            AnalyticKind::Plane { p, q, c0 } => Height {
+                f: p * x + q * y + c0,
+                fx: p,
+                fy: q,
+                fxx: 0.0,
+                fxy: 0.0,
+                fyy: 0.0,
+            },
         }
     }
 }

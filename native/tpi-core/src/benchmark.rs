@@ -24,10 +24,14 @@ pub fn paraboloid() -> AnalyticSurface {
 }
 
 /// Knots (Rhino convention, 12 + 3 - 1 = 14) of the dome in u: clamped, non-uniform.
-pub const DOME_KNOTS_U: [f64; 14] = [0.0, 0.0, 0.0, 0.7, 1.6, 2.2, 3.5, 4.1, 5.6, 6.3, 7.9, 10.0, 10.0, 10.0];
+pub const DOME_KNOTS_U: [f64; 14] = [
+    0.0, 0.0, 0.0, 0.7, 1.6, 2.2, 3.5, 4.1, 5.6, 6.3, 7.9, 10.0, 10.0, 10.0,
+];
 
 /// Knots of the dome in v: clamped, non-uniform, another spacing.
-pub const DOME_KNOTS_V: [f64; 14] = [0.0, 0.0, 0.0, 1.2, 1.5, 2.9, 3.3, 4.8, 6.0, 6.4, 7.7, 8.0, 8.0, 8.0];
+pub const DOME_KNOTS_V: [f64; 14] = [
+    0.0, 0.0, 0.0, 1.2, 1.5, 2.9, 3.3, 4.8, 6.0, 6.4, 7.7, 8.0, 8.0, 8.0,
+];
 
 /// The benchmark's free-form surface: a bicubic, non-rational NURBS dome of 12 x 12 control
 /// points over the Greville abscissae of [`DOME_KNOTS_U`] x [`DOME_KNOTS_V`], mapped to a
@@ -37,7 +41,9 @@ pub fn nurbs_dome() -> NurbsSurface {
     let (p, n) = (3usize, 12usize);
     let greville = |knots: &[f64]| -> Vec<f64> {
         let (lo, hi) = (knots[p - 1], knots[n - 1]);
-        (0..n).map(|i| (knots[i..i + p].iter().sum::<f64>() / p as f64 - lo) / (hi - lo)).collect()
+        (0..n)
+            .map(|i| (knots[i..i + p].iter().sum::<f64>() / p as f64 - lo) / (hi - lo))
+            .collect()
     };
     let (gu, gv) = (greville(&DOME_KNOTS_U), greville(&DOME_KNOTS_V));
     let mut points = Vec::with_capacity(n * n);
@@ -45,7 +51,11 @@ pub fn nurbs_dome() -> NurbsSurface {
         for (j, &t) in gv.iter().enumerate() {
             let (x, y) = (12.0 * s - 6.0, 10.0 * t - 5.0);
             let wobble = 0.02 * (((i * 7 + j * 5) % 11) as f64 / 10.0 - 0.5);
-            points.push(DVec3::new(x, y, 4.0 - 0.09 * x * x - 0.12 * y * y + 0.01 * x * y + wobble));
+            points.push(DVec3::new(
+                x,
+                y,
+                4.0 - 0.09 * x * x - 0.12 * y * y + 0.01 * x * y + wobble,
+            ));
         }
     }
     NurbsSurface::new([p, p], [n, n], &DOME_KNOTS_U, &DOME_KNOTS_V, &points, None)
@@ -66,24 +76,42 @@ pub fn saddle() -> NurbsSurface {
     let greville = |knots: &[f64]| -> Vec<f64> {
         let n = knots.len() + 1 - p;
         let (lo, hi) = (knots[p - 1], knots[n - 1]);
-        (0..n).map(|i| (knots[i..i + p].iter().sum::<f64>() / p as f64 - lo) / (hi - lo)).collect()
+        (0..n)
+            .map(|i| (knots[i..i + p].iter().sum::<f64>() / p as f64 - lo) / (hi - lo))
+            .collect()
     };
     let (gu, gv) = (greville(&SADDLE_KNOTS_U), greville(&SADDLE_KNOTS_V));
     let mut points = Vec::with_capacity(gu.len() * gv.len());
     for &s in &gu {
         for &t in &gv {
             let (x, y) = (12.0 * s - 6.0, 9.0 * t - 4.5);
-            points.push(DVec3::new(x, y, 0.05 * x * x - 0.09 * y * y + 0.03 * x * y + 0.003 * x * x * x));
+            points.push(DVec3::new(
+                x,
+                y,
+                0.05 * x * x - 0.09 * y * y + 0.03 * x * y + 0.003 * x * x * x,
+            ));
         }
     }
-    NurbsSurface::new([p, p], [gu.len(), gv.len()], &SADDLE_KNOTS_U, &SADDLE_KNOTS_V, &points, None)
-        .unwrap_or_else(|e| unreachable_surface(&e.to_string()))
+    NurbsSurface::new(
+        [p, p],
+        [gu.len(), gv.len()],
+        &SADDLE_KNOTS_U,
+        &SADDLE_KNOTS_V,
+        &points,
+        None,
+    )
+    .unwrap_or_else(|e| unreachable_surface(&e.to_string()))
 }
 
 /// `n` uniform random points in [0, 1]^2 (no duplicates), deterministic for a given `n`:
 /// the pattern of `tpi pattern random:N:seed=S` with S = 7 + n.
 pub fn random_pattern(n: usize) -> Vec<[f64; 2]> {
-    Generator::Random { count: n.max(1), seed: 7 + n as u64 }.generate().uv
+    Generator::Random {
+        count: n.max(1),
+        seed: 7 + n as u64,
+    }
+    .generate()
+    .uv
 }
 
 #[cold]

@@ -64,7 +64,9 @@ impl Diagnostic {
     pub fn points(&self) -> Vec<u32> {
         match self {
             Diagnostic::IllConditionedVertex { points, .. } => points.to_vec(),
-            Diagnostic::ParallelPlanes { points } | Diagnostic::BoundaryNotReached { points } => points.to_vec(),
+            Diagnostic::ParallelPlanes { points } | Diagnostic::BoundaryNotReached { points } => {
+                points.to_vec()
+            }
             Diagnostic::OpenFacet { point, .. }
             | Diagnostic::CornerUnreachable { point, .. }
             | Diagnostic::FlatPoint { point, .. } => vec![*point],

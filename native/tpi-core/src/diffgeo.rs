@@ -153,7 +153,12 @@ impl LocalGeometry {
 
 /// A normal where Su x Sv vanishes: from the second derivatives if they help, else +z.
 fn fallback_normal(d: &SurfaceDerivatives) -> DVec3 {
-    let candidates = [d.su.cross(d.suv), d.suv.cross(d.sv), d.su.cross(d.svv), d.suu.cross(d.sv)];
+    let candidates = [
+        d.su.cross(d.suv),
+        d.suv.cross(d.sv),
+        d.su.cross(d.svv),
+        d.suu.cross(d.sv),
+    ];
     for c in candidates {
         if let Some(n) = c.try_normalize() {
             return n;
@@ -165,6 +170,8 @@ fn fallback_normal(d: &SurfaceDerivatives) -> DVec3 {
 /// An orthonormal tangent pair (a, b) with a x b = normal, a as close to `hint` as possible.
 fn tangent_basis(normal: DVec3, hint: DVec3) -> (DVec3, DVec3) {
     let projected = hint - normal * hint.dot(normal);
-    let a = projected.try_normalize().unwrap_or_else(|| normal.any_orthonormal_vector());
+    let a = projected
+        .try_normalize()
+        .unwrap_or_else(|| normal.any_orthonormal_vector());
     (a, normal.cross(a))
 }

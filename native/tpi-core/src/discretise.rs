@@ -19,14 +19,20 @@ use serde::{Serialize, Serializer};
 
 use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
-use crate::ghosts::augment;
 use crate::error::TpiError;
-use crate::facets::{build_closed_facets, build_facets, FacetMesh, FacetParams, FootHint, TriangleVertex, VertexKind, DEFAULT_FAR_VERTEX_FACTOR};
-use crate::neighbours::{decide, decide_convex, gradient_embedding, slope_frame, NeighbourInput, NeighbourStats, SlopeFrame};
+use crate::facets::{
+    build_closed_facets, build_facets, FacetMesh, FacetParams, FootHint, TriangleVertex,
+    VertexKind, DEFAULT_FAR_VERTEX_FACTOR,
+};
+use crate::ghosts::augment;
+use crate::neighbours::{
+    decide, decide_convex, gradient_embedding, slope_frame, NeighbourInput, NeighbourStats,
+    SlopeFrame,
+};
+use crate::pattern::validate_uv;
 use crate::planes::Plane;
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
 use crate::surface::Surface;
-use crate::pattern::validate_uv;
 use crate::triangulation::{orient, DualTriangulation};
 
 /// Default weld distance of coincident vertices, relative to the bounding-box diagonal.
@@ -152,7 +158,10 @@ impl Discretisation {
     /// The result in the output contract as JSON text; `timings` false leaves out
     /// `timings_ms` (the only part that differs between runs).
     pub fn to_json(&self, timings: bool) -> String {
-        let view = ContractView { result: self, timings };
+        let view = ContractView {
+            result: self,
+            timings,
+        };
         serde_json::to_string(&view).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
     }
 }
@@ -176,7 +185,15 @@ impl Serialize for FacetView<'_> {
         s.serialize_field("point", &seed.point.to_array())?;
         s.serialize_field("normal", &seed.normal.to_array())?;
         s.serialize_field("vertices", self.result.facet(self.index))?;
-        s.serialize_field("flags", &self.result.facet_flags.get(self.index).copied().unwrap_or(0))?;
+        s.serialize_field(
+            "flags",
+            &self
+                .result
+                .facet_flags
+                .get(self.index)
+                .copied()
+                .unwrap_or(0),
+        )?;
         s.end()
     }
 }
@@ -187,7 +204,9 @@ impl Serialize for ContractView<'_> {
         let mut map = serializer.serialize_map(None)?;
         let vertices: Vec<[f64; 3]> = r.vertices.iter().map(|v| v.to_array()).collect();
         map.serialize_entry("vertices", &vertices)?;
-        let facets: Vec<FacetView<'_>> = (0..r.facet_count()).map(|index| FacetView { result: r, index }).collect();
+        let facets: Vec<FacetView<'_>> = (0..r.facet_count())
+            .map(|index| FacetView { result: r, index })
+            .collect();
         map.serialize_entry("facets", &facets)?;
         map.serialize_entry("dual_triangles", &r.dual_triangles)?;
         map.serialize_entry("quality", &r.quality)?;
@@ -208,7 +227,10 @@ pub fn validate_pattern(points: &[[f64; 2]]) -> Result<(), TpiError> {
         validate_large(points)?;
     }
     if points.len() < 3 {
-        return Err(TpiError::TooFewPatternPoints { found: points.len(), needed: 3 });
+        return Err(TpiError::TooFewPatternPoints {
+            found: points.len(),
+            needed: 3,
+        });
     }
     Ok(())
 }
@@ -261,12 +283,14 @@ fn validate_large(points: &[[f64; 2]]) -> Result<(), TpiError> {
                     let lo_x = x.saturating_sub(1);
                     let hi_x = (x + 1).min(size - 1);
                     let has = (y.saturating_sub(1)..=(y + 1).min(size - 1)).any(|row| {
-                        let run = &members[start[row * size + lo_x] as usize..start[row * size + hi_x + 1] as usize];
+                        let run = &members[start[row * size + lo_x] as usize
+                            ..start[row * size + hi_x + 1] as usize];
                         run.iter().any(|&(q, k)| {
                             let (dx, dy) = (p[0] - q[0], p[1] - q[1]);
                             // A cheap bound first; the exact test is the one of Pattern::validate.
                             (k as usize) < i
-                                && dx * dx + dy * dy < 4.0 * DUPLICATE_UV_TOLERANCE * DUPLICATE_UV_TOLERANCE
+                                && dx * dx + dy * dy
+                                    < 4.0 * DUPLICATE_UV_TOLERANCE * DUPLICATE_UV_TOLERANCE
                                 && dx.hypot(dy) < DUPLICATE_UV_TOLERANCE
                         })
                     });
@@ -284,12 +308,18 @@ fn validate_large(points: &[[f64; 2]]) -> Result<(), TpiError> {
         let mut best: Option<(usize, f64)> = None;
         for (k, q) in points[..i].iter().enumerate() {
             let d = (p[0] - q[0]).hypot(p[1] - q[1]);
-            if d < DUPLICATE_UV_TOLERANCE && best.map_or(true, |(bk, bd)| d < bd || (d == bd && k < bk)) {
+            if d < DUPLICATE_UV_TOLERANCE
+                && best.map_or(true, |(bk, bd)| d < bd || (d == bd && k < bk))
+            {
                 best = Some((k, d));
             }
         }
         if let Some((duplicate_of, distance)) = best {
-            return Err(TpiError::DuplicatePatternPoint { index: i, duplicate_of, distance });
+            return Err(TpiError::DuplicatePatternPoint {
+                index: i,
+                duplicate_of,
+                distance,
+            });
         }
     }
     Ok(())
@@ -340,7 +370,10 @@ pub(crate) fn run(
     let mut timings = Timings::default();
 
     // Samples.
-    let uv: Vec<[f64; 2]> = pattern.iter().map(|&st| domain.from_normalised(st)).collect();
+    let uv: Vec<[f64; 2]> = pattern
+        .iter()
+        .map(|&st| domain.from_normalised(st))
+        .collect();
     let (geometry, tangents): (Vec<LocalGeometry>, Vec<[DVec3; 2]>) = uv
         .par_iter()
         .map(|&[u, v]| {
@@ -348,10 +381,22 @@ pub(crate) fn run(
             (LocalGeometry::from_derivatives(&d), [d.su, d.sv])
         })
         .unzip();
-    if let Some(bad) = geometry.iter().position(|g| !(g.point.is_finite() && g.normal.is_finite())) {
-        return Err(TpiError::NonFinite { field: format!("surface point at pattern point {bad}"), value: f64::NAN });
+    if let Some(bad) = geometry
+        .iter()
+        .position(|g| !(g.point.is_finite() && g.normal.is_finite()))
+    {
+        return Err(TpiError::NonFinite {
+            field: format!("surface point at pattern point {bad}"),
+            value: f64::NAN,
+        });
     }
-    let planes: Vec<Plane> = geometry.iter().map(|g| Plane { point: g.point, normal: g.normal }).collect();
+    let planes: Vec<Plane> = geometry
+        .iter()
+        .map(|g| Plane {
+            point: g.point,
+            normal: g.normal,
+        })
+        .collect();
     let diagonal = bounding_diagonal(geometry.iter().map(|g| g.point)).max(f64::MIN_POSITIVE);
     let mut diagnostics = Vec::new();
     let convex_side = classify_curvature(&geometry, diagonal, options, &mut diagnostics)?;
@@ -359,19 +404,37 @@ pub(crate) fn run(
     let seeds: Vec<Seed> = geometry
         .par_iter()
         .zip(&uv)
-        .map(|(g, &uv)| Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] })
+        .map(|(g, &uv)| Seed {
+            uv,
+            point: g.point,
+            normal: g.normal,
+            curvatures: [g.k1, g.k2],
+        })
         .collect();
-    let frame = if options.envelope_repair && convex_side.iter().all(|&s| s != 0) { slope_frame(surface) } else { None };
+    let frame = if options.envelope_repair && convex_side.iter().all(|&s| s != 0) {
+        slope_frame(surface)
+    } else {
+        None
+    };
     let slopes = gradient_embedding(&planes, &convex_side, frame);
     // Only curvature compensation (the mixed path) reads the local geometry from here on.
-    let geometry = if slopes.is_some() { Vec::new() } else { geometry };
+    let geometry = if slopes.is_some() {
+        Vec::new()
+    } else {
+        geometry
+    };
     timings.samples = ms(start);
 
     // Candidates and true neighbours.
     let stage = Instant::now();
     check_not_collinear(&plane_uv)?;
-    let input =
-        NeighbourInput { plane_uv: &plane_uv, geometry: &geometry, planes: &planes, convex_side: &convex_side, any_curvature: false };
+    let input = NeighbourInput {
+        plane_uv: &plane_uv,
+        geometry: &geometry,
+        planes: &planes,
+        convex_side: &convex_side,
+        any_curvature: false,
+    };
     let (triangulation, augmented, neighbours) = match &slopes {
         // Convex everywhere: the envelope's own structure, computed in slope space.
         Some(slopes) => {
@@ -388,7 +451,12 @@ pub(crate) fn run(
             let mut triangulation = DualTriangulation::delaunay(&plane_uv)?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
-            let stats = decide(&mut triangulation, &input, options.envelope_repair, plane_uv.len());
+            let stats = decide(
+                &mut triangulation,
+                &input,
+                options.envelope_repair,
+                plane_uv.len(),
+            );
             timings.neighbours = ms(stage);
             (triangulation, None, stats)
         }
@@ -396,7 +464,15 @@ pub(crate) fn run(
         // for the validity flips.
         None => {
             let extent = plane_extent(&plane_uv, pattern);
-            let augmented = augment(surface, &uv, &plane_uv, extent, &geometry, &planes, &convex_side);
+            let augmented = augment(
+                surface,
+                &uv,
+                &plane_uv,
+                extent,
+                &geometry,
+                &planes,
+                &convex_side,
+            );
             let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
@@ -407,7 +483,12 @@ pub(crate) fn run(
                 convex_side: &augmented.convex_side,
                 any_curvature: true,
             };
-            let stats = decide(&mut triangulation, &augmented_input, options.envelope_repair, plane_uv.len());
+            let stats = decide(
+                &mut triangulation,
+                &augmented_input,
+                options.envelope_repair,
+                plane_uv.len(),
+            );
             timings.neighbours = ms(stage);
             (triangulation, Some(augmented), stats)
         }
@@ -415,11 +496,31 @@ pub(crate) fn run(
 
     // Facets and mesh.
     let stage = Instant::now();
-    let params = FacetParams { far_vertex_factor: options.far_vertex_factor, weld_distance: options.weld_tolerance * diagonal };
+    let params = FacetParams {
+        far_vertex_factor: options.far_vertex_factor,
+        weld_distance: options.weld_tolerance * diagonal,
+    };
     let (mesh, triangulation) = match &augmented {
-        None => (build_facets(surface, &uv, &tangents, &planes, &convex_side, &triangulation, &params), triangulation),
+        None => (
+            build_facets(
+                surface,
+                &uv,
+                &tangents,
+                &planes,
+                &convex_side,
+                &triangulation,
+                &params,
+            ),
+            triangulation,
+        ),
         Some(augmented) => {
-            let mesh = build_closed_facets(&triangulation, &augmented.planes, uv.len(), &augmented.source, &params);
+            let mesh = build_closed_facets(
+                &triangulation,
+                &augmented.planes,
+                uv.len(),
+                &augmented.source,
+                &params,
+            );
             // The dual structure reported is the real seeds' part.
             let mut real = triangulation;
             real.retain_points(uv.len());
@@ -429,7 +530,14 @@ pub(crate) fn run(
     };
     drop(augmented);
     diagnostics.extend(mesh.diagnostics.iter().cloned());
-    if !mesh.vertices.is_empty() && mesh.diagnostics.iter().filter(|d| matches!(d, Diagnostic::IllConditionedVertex { .. })).count() == triangulation.len() {
+    if !mesh.vertices.is_empty()
+        && mesh
+            .diagnostics
+            .iter()
+            .filter(|d| matches!(d, Diagnostic::IllConditionedVertex { .. }))
+            .count()
+            == triangulation.len()
+    {
         return Err(TpiError::DegenerateSurface {
             reason: "every triple of neighbouring tangent planes is (nearly) parallel: the surface is developable".into(),
         });
@@ -437,7 +545,18 @@ pub(crate) fn run(
     timings.facets = ms(stage) - mesh.assembly_ms;
     timings.mesh = mesh.assembly_ms;
 
-    let FacetMesh { vertices, vertex_kinds, offsets, loops, feet, mut triangle_vertices, mut vertex_source, mut facet_simple, welded, .. } = mesh;
+    let FacetMesh {
+        vertices,
+        vertex_kinds,
+        offsets,
+        loops,
+        feet,
+        mut triangle_vertices,
+        mut vertex_source,
+        mut facet_simple,
+        welded,
+        ..
+    } = mesh;
     // What only live editing reads is let go now (the report's peak is the pipeline's).
     if !keep {
         triangle_vertices = Vec::new();
@@ -447,7 +566,11 @@ pub(crate) fn run(
     let kept_triangulation = keep.then(|| triangulation.clone());
     let dual_triangles = triangulation.triangles;
     drop(triangulation.neighbours);
-    let (plane_uv, slopes) = if keep { (plane_uv, slopes) } else { (Vec::new(), None) };
+    let (plane_uv, slopes) = if keep {
+        (plane_uv, slopes)
+    } else {
+        (Vec::new(), None)
+    };
     let _ = plane_uv;
     let mut result = Discretisation {
         vertices,
@@ -472,8 +595,18 @@ pub(crate) fn run(
             }
         }
         if keep {
-            resolved = resolve_feet(surface, &uv, &result.vertices, &result.facet_offsets, &result.facet_loops, &feet);
-            feet = resolved.iter().map(|f| f.map_or(FootHint::FromSeed, FootHint::Known)).collect();
+            resolved = resolve_feet(
+                surface,
+                &uv,
+                &result.vertices,
+                &result.facet_offsets,
+                &result.facet_loops,
+                &feet,
+            );
+            feet = resolved
+                .iter()
+                .map(|f| f.map_or(FootHint::FromSeed, FootHint::Known))
+                .collect();
         }
         let (quality, flags) = report(&ReportInput {
             surface,
@@ -503,7 +636,9 @@ pub(crate) fn run(
             tangents,
             planes,
             convex_side,
-            slopes: frame.zip(slopes).map(|(n, s)| (SlopeFrame::new(n, side), s)),
+            slopes: frame
+                .zip(slopes)
+                .map(|(n, s)| (SlopeFrame::new(n, side), s)),
             triangulation: kept_triangulation.unwrap_or_default(),
             triangle_vertices,
             vertex_source,
@@ -523,12 +658,21 @@ pub(crate) fn run(
 fn check_not_collinear(points: &[[f64; 2]]) -> Result<(), TpiError> {
     let first = points[0];
     let distance2 = |p: [f64; 2]| (p[0] - first[0]).powi(2) + (p[1] - first[1]).powi(2);
-    let far = points.iter().copied().max_by(|a, b| distance2(*a).total_cmp(&distance2(*b))).unwrap_or(first);
+    let far = points
+        .iter()
+        .copied()
+        .max_by(|a, b| distance2(*a).total_cmp(&distance2(*b)))
+        .unwrap_or(first);
     let scale = distance2(far);
-    if points.iter().any(|&p| orient(first, far, p).abs() > COLLINEAR_TOLERANCE * scale) {
+    if points
+        .iter()
+        .any(|&p| orient(first, far, p).abs() > COLLINEAR_TOLERANCE * scale)
+    {
         Ok(())
     } else {
-        Err(TpiError::CollinearPattern { count: points.len() })
+        Err(TpiError::CollinearPattern {
+            count: points.len(),
+        })
     }
 }
 
@@ -582,13 +726,17 @@ fn classify_curvature(
         planar += usize::from(is_planar);
         flat += usize::from(is_flat);
         if is_flat {
-            diagnostics.push(Diagnostic::FlatPoint { point: i as u32, gaussian_curvature: g.k1 * g.k2 });
+            diagnostics.push(Diagnostic::FlatPoint {
+                point: i as u32,
+                gaussian_curvature: g.k1 * g.k2,
+            });
         }
         sides.push(side);
     }
     if planar == geometry.len() {
         return Err(TpiError::DegenerateSurface {
-            reason: "the surface is flat at every pattern point: all tangent planes coincide".into(),
+            reason: "the surface is flat at every pattern point: all tangent planes coincide"
+                .into(),
         });
     }
     if flat == geometry.len() {
@@ -600,12 +748,24 @@ fn classify_curvature(
 }
 
 /// One point's class: (convex side or 0, planar, flat), see [`classify_curvature`].
-pub(crate) fn curvature_class(g: &LocalGeometry, diagonal: f64, options: &DiscretiseOptions) -> (i8, bool, bool) {
+pub(crate) fn curvature_class(
+    g: &LocalGeometry,
+    diagonal: f64,
+    options: &DiscretiseOptions,
+) -> (i8, bool, bool) {
     let largest = g.k1.abs().max(g.k2.abs());
     let gaussian = g.k1 * g.k2;
     let is_planar = largest * diagonal <= DEFAULT_PLANE_CURVATURE;
     let is_flat = is_planar || gaussian.abs() <= options.flat_tolerance * largest * largest;
-    let side = if !is_flat && gaussian > 0.0 { if g.k1 > 0.0 { 1 } else { -1 } } else { 0 };
+    let side = if !is_flat && gaussian > 0.0 {
+        if g.k1 > 0.0 {
+            1
+        } else {
+            -1
+        }
+    } else {
+        0
+    };
     (side, is_planar, is_flat)
 }
 
@@ -614,7 +774,9 @@ pub(crate) fn curvature_class(g: &LocalGeometry, diagonal: f64, options: &Discre
 fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
     let mut extent = [1.0, 1.0];
     for axis in 0..2 {
-        if let Some(k) = (0..pattern.len()).max_by(|&a, &b| pattern[a][axis].total_cmp(&pattern[b][axis])) {
+        if let Some(k) =
+            (0..pattern.len()).max_by(|&a, &b| pattern[a][axis].total_cmp(&pattern[b][axis]))
+        {
             if pattern[k][axis] > 0.0 {
                 extent[axis] = plane_uv[k][axis] / pattern[k][axis];
             }
@@ -625,7 +787,11 @@ fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
 
 /// Normalised pattern coordinates scaled by the surface's mean extent in u and v, so that
 /// the candidate triangulation sees roughly isotropic distances.
-fn scaled_parameters(pattern: &[[f64; 2]], geometry: &[LocalGeometry], domain: &crate::surface::Domain) -> Vec<[f64; 2]> {
+fn scaled_parameters(
+    pattern: &[[f64; 2]],
+    geometry: &[LocalGeometry],
+    domain: &crate::surface::Domain,
+) -> Vec<[f64; 2]> {
     let n = geometry.len() as f64;
     let mean_su = geometry.iter().map(|g| g.first_form[0].sqrt()).sum::<f64>() / n;
     let mean_sv = geometry.iter().map(|g| g.first_form[2].sqrt()).sum::<f64>() / n;

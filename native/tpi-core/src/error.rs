@@ -87,7 +87,9 @@ pub enum TpiError {
         value: f64,
     },
     /// An interior knot repeats more often than the degree allows (the surface would be discontinuous).
-    #[error("knots_{direction}[{index}] = {value} has multiplicity {multiplicity} > degree {degree}")]
+    #[error(
+        "knots_{direction}[{index}] = {value} has multiplicity {multiplicity} > degree {degree}"
+    )]
     KnotMultiplicity {
         /// Which direction.
         direction: Direction,
@@ -212,6 +214,9 @@ pub fn check_finite(field: impl FnOnce() -> String, value: f64) -> Result<f64, T
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(TpiError::NonFinite { field: field(), value })
+        Err(TpiError::NonFinite {
+            field: field(),
+            value,
+        })
     }
 }

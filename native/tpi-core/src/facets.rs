@@ -152,7 +152,11 @@ enum Item {
     Triangle(u32),
     /// An ill-conditioned triangle's stand-in, moved onto the line of one of its edges
     /// (shared by the two facets of that edge).
-    EdgePoint { triangle: u32, lo: u32, hi: u32 },
+    EdgePoint {
+        triangle: u32,
+        lo: u32,
+        hi: u32,
+    },
     Crossing(u32),
     Corner(u8),
 }
@@ -190,7 +194,10 @@ impl Context<'_> {
     /// distance of the points from it.
     fn linear_estimate(&self, ids: [u32; 3], x: DVec3) -> ([f64; 2], f64) {
         let feet = ids.map(|i| self.linear_foot(i, x));
-        let linear = [(feet[0][0] + feet[1][0] + feet[2][0]) / 3.0, (feet[0][1] + feet[1][1] + feet[2][1]) / 3.0];
+        let linear = [
+            (feet[0][0] + feet[1][0] + feet[2][0]) / 3.0,
+            (feet[0][1] + feet[1][1] + feet[2][1]) / 3.0,
+        ];
         let reach = ids
             .iter()
             .map(|&i| normalised_distance(&self.domain, self.uv[i as usize], linear))
@@ -238,7 +245,14 @@ pub fn build_facets(
     params: &FacetParams,
 ) -> FacetMesh {
     let domain = surface.domain();
-    let ctx = Context { surface, domain, planes, uv, tangents, convex_side };
+    let ctx = Context {
+        surface,
+        domain,
+        planes,
+        uv,
+        tangents,
+        convex_side,
+    };
     let mut diagnostics = Vec::new();
 
     // 1. Triangle vertices, their conditioning and whether they lie inside.
@@ -258,8 +272,10 @@ pub fn build_facets(
     // 2. Boundary crossings, only on the edges where they can be: a hull edge, or an edge
     // with an outside vertex at either end (in the order of `DualTriangulation::edges`).
     let edges: Vec<Edge> = crossing_edges(tri, &triangle_vertices);
-    let per_edge: Vec<(Vec<Crossing>, Option<Diagnostic>)> =
-        edges.par_iter().map(|edge| edge_crossings(&ctx, tri, edge, &triangle_vertices)).collect();
+    let per_edge: Vec<(Vec<Crossing>, Option<Diagnostic>)> = edges
+        .par_iter()
+        .map(|edge| edge_crossings(&ctx, tri, edge, &triangle_vertices))
+        .collect();
     let mut crossing_ranges: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(edges.len());
     let mut crossings = Vec::new();
     for (edge, (list, diagnostic)) in edges.iter().zip(per_edge) {
@@ -289,7 +305,13 @@ pub fn build_facets(
             let mut chunk = FacetChunk::default();
             let mut fan = Vec::new();
             for i in c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(uv.len()) {
-                let simple = facet_items(i as u32, &lookup, &mut fan, &mut chunk.items, &mut chunk.diagnostics);
+                let simple = facet_items(
+                    i as u32,
+                    &lookup,
+                    &mut fan,
+                    &mut chunk.items,
+                    &mut chunk.diagnostics,
+                );
                 chunk.ends.push(chunk.items.len() as u32);
                 chunk.simple.push(simple);
             }
@@ -328,7 +350,17 @@ struct Assembly<'a> {
 
 /// Steps 4 and 5 of [`build_facets`]: welding, vertex numbering in facet order, loops.
 fn assemble(a: Assembly<'_>) -> FacetMesh {
-    let Assembly { tri, triangle_vertices, chunks, crossings, corners, planes, params, ghosts_from, mut diagnostics } = a;
+    let Assembly {
+        tri,
+        triangle_vertices,
+        chunks,
+        crossings,
+        corners,
+        planes,
+        params,
+        ghosts_from,
+        mut diagnostics,
+    } = a;
     let uv_len = chunks.iter().map(|c| c.ends.len()).sum::<usize>();
     // 4. Welding of coincident triangle vertices across interior edges.
     let assembly = std::time::Instant::now();
@@ -343,14 +375,19 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
                     return None;
                 }
                 let (a, b) = (t, other as usize);
-                (tv[a].exact && tv[b].exact && tv[a].point.distance(tv[b].point) <= weld).then_some((a as u32, b as u32))
+                (tv[a].exact && tv[b].exact && tv[a].point.distance(tv[b].point) <= weld)
+                    .then_some((a as u32, b as u32))
             })
         })
         .collect();
     // Unions in the order of `DualTriangulation::edges` (by triangle, then side): the pairs
     // were collected in that order.
     let welded: Vec<u32> = weld_pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
-    let mut representative: Vec<u32> = if weld_pairs.is_empty() { Vec::new() } else { (0..tri.len() as u32).collect() };
+    let mut representative: Vec<u32> = if weld_pairs.is_empty() {
+        Vec::new()
+    } else {
+        (0..tri.len() as u32).collect()
+    };
     for &(a, b) in &weld_pairs {
         let (ra, rb) = (find(&mut representative, a), find(&mut representative, b));
         if ra != rb {
@@ -360,12 +397,16 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
     }
 
     // 5. Vertex numbering in facet order (deterministic), corners per facet.
-    let mut mesh = FacetMesh { offsets: Vec::with_capacity(uv_len + 1), ..FacetMesh::default() };
+    let mut mesh = FacetMesh {
+        offsets: Vec::with_capacity(uv_len + 1),
+        ..FacetMesh::default()
+    };
     let vertex_estimate = tri.len() + crossings.len() + 4;
     mesh.vertices.reserve(vertex_estimate);
     mesh.vertex_kinds.reserve(vertex_estimate);
     mesh.feet.reserve(vertex_estimate);
-    mesh.loops.reserve(chunks.iter().map(|c| c.items.len()).sum());
+    mesh.loops
+        .reserve(chunks.iter().map(|c| c.items.len()).sum());
     debug_assert!(tri.len() < ITEM_INDEX as usize);
     mesh.offsets.push(0);
     let mut triangle_id = vec![u32::MAX; tri.len()];
@@ -388,26 +429,56 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
             for item in items {
                 let id = match item {
                     Item::Triangle(t) => {
-                        let r = if representative.is_empty() { t as usize } else { find(&mut representative, t) as usize };
+                        let r = if representative.is_empty() {
+                            t as usize
+                        } else {
+                            find(&mut representative, t) as usize
+                        };
                         if triangle_id[r] == u32::MAX {
                             let v = &triangle_vertices[r];
-                            let ghost = ghosts_from.is_some_and(|g| tri.triangles[r].iter().any(|&x| x >= g));
-                            let kind = if ghost { VertexKind::Boundary } else { VertexKind::Interior };
-                            triangle_id[r] = push_vertex(&mut mesh, v.point, kind, v.hint(), r as u32);
+                            let ghost = ghosts_from
+                                .is_some_and(|g| tri.triangles[r].iter().any(|&x| x >= g));
+                            let kind = if ghost {
+                                VertexKind::Boundary
+                            } else {
+                                VertexKind::Interior
+                            };
+                            triangle_id[r] =
+                                push_vertex(&mut mesh, v.point, kind, v.hint(), r as u32);
                         }
                         triangle_id[r]
                     }
                     Item::EdgePoint { triangle, lo, hi } => {
                         let stand_in = triangle_vertices[triangle as usize].point;
-                        match edge_point(&planes[lo as usize], &planes[hi as usize], stand_in, params.far_vertex_factor) {
-                            Some(position) => *edge_point_id.entry((triangle, lo, hi)).or_insert_with(|| {
-                                push_vertex(&mut mesh, position, VertexKind::Interior, FootHint::FromSeed, u32::MAX)
-                            }),
+                        match edge_point(
+                            &planes[lo as usize],
+                            &planes[hi as usize],
+                            stand_in,
+                            params.far_vertex_factor,
+                        ) {
+                            Some(position) => {
+                                *edge_point_id.entry((triangle, lo, hi)).or_insert_with(|| {
+                                    push_vertex(
+                                        &mut mesh,
+                                        position,
+                                        VertexKind::Interior,
+                                        FootHint::FromSeed,
+                                        u32::MAX,
+                                    )
+                                })
+                            }
                             None => {
                                 // No usable line: a vertex of this facet alone, in its own plane.
                                 let plane = &planes[i];
-                                let position = stand_in - plane.normal * plane.signed_distance(stand_in);
-                                push_vertex(&mut mesh, position, VertexKind::Interior, FootHint::FromSeed, u32::MAX)
+                                let position =
+                                    stand_in - plane.normal * plane.signed_distance(stand_in);
+                                push_vertex(
+                                    &mut mesh,
+                                    position,
+                                    VertexKind::Interior,
+                                    FootHint::FromSeed,
+                                    u32::MAX,
+                                )
                             }
                         }
                     }
@@ -415,7 +486,13 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
                         if crossing_id[c as usize] == u32::MAX {
                             let crossing = &crossings[c as usize];
                             let hint = crossing.foot.map_or(FootHint::FromSeed, FootHint::Known);
-                            crossing_id[c as usize] = push_vertex(&mut mesh, crossing.point, VertexKind::Boundary, hint, u32::MAX);
+                            crossing_id[c as usize] = push_vertex(
+                                &mut mesh,
+                                crossing.point,
+                                VertexKind::Boundary,
+                                hint,
+                                u32::MAX,
+                            );
                         }
                         crossing_id[c as usize]
                     }
@@ -428,21 +505,35 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
                         let mu = plane.normal.dot(plane.point - point) / denominator;
                         let position = point + normal * mu;
                         if !position.is_finite() || denominator.abs() < 1e-9 {
-                            diagnostics.push(Diagnostic::CornerUnreachable { point: i as u32, corner: c });
+                            diagnostics.push(Diagnostic::CornerUnreachable {
+                                point: i as u32,
+                                corner: c,
+                            });
                             continue;
                         }
-                        push_vertex(&mut mesh, position, VertexKind::Corner, FootHint::FromSeed, u32::MAX)
+                        push_vertex(
+                            &mut mesh,
+                            position,
+                            VertexKind::Corner,
+                            FootHint::FromSeed,
+                            u32::MAX,
+                        )
                     }
                 };
                 if mesh.loops.len() == start || mesh.loops[mesh.loops.len() - 1] != id {
                     mesh.loops.push(id);
                 }
             }
-            while mesh.loops.len() > start + 1 && mesh.loops[start] == mesh.loops[mesh.loops.len() - 1] {
+            while mesh.loops.len() > start + 1
+                && mesh.loops[start] == mesh.loops[mesh.loops.len() - 1]
+            {
                 mesh.loops.pop();
             }
             if mesh.loops.len() - start < 3 {
-                diagnostics.push(Diagnostic::OpenFacet { point: i as u32, reason: "fewer than three vertices".into() });
+                diagnostics.push(Diagnostic::OpenFacet {
+                    point: i as u32,
+                    reason: "fewer than three vertices".into(),
+                });
             }
             mesh.offsets.push(mesh.loops.len() as u32);
             i += 1;
@@ -450,7 +541,10 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
     }
     for (corner, &claims) in corner_claims.iter().enumerate() {
         if corners.is_some() && claims != 1 {
-            diagnostics.push(Diagnostic::CornerClaims { corner: corner as u8, claims });
+            diagnostics.push(Diagnostic::CornerClaims {
+                corner: corner as u8,
+                claims,
+            });
         }
     }
     mesh.diagnostics = diagnostics;
@@ -469,7 +563,11 @@ pub const UNREACHABLE_VERTEX_FACTOR: f64 = 1e6;
 /// triangle sides of their points' centroid (false for a point that is not finite).
 pub(crate) fn reachable(x: DVec3, [a, b, c]: [&Plane; 3]) -> bool {
     let centroid = (a.point + b.point + c.point) / 3.0;
-    let longest = a.point.distance(b.point).max(b.point.distance(c.point)).max(c.point.distance(a.point));
+    let longest = a
+        .point
+        .distance(b.point)
+        .max(b.point.distance(c.point))
+        .max(c.point.distance(a.point));
     x.distance(centroid) <= UNREACHABLE_VERTEX_FACTOR * longest
 }
 
@@ -560,14 +658,29 @@ fn crossing_edges(tri: &DualTriangulation, tv: &[TriangleVertex]) -> Vec<Edge> {
             }
             let vertices = tri.triangles[t];
             let (from, to) = (vertices[(k + 1) % 3], vertices[(k + 2) % 3]);
-            let (lo, hi, left, right) = if from < to { (from, to, t as u32, other) } else { (to, from, other, t as u32) };
-            edges.push(Edge { lo, hi, left, right });
+            let (lo, hi, left, right) = if from < to {
+                (from, to, t as u32, other)
+            } else {
+                (to, from, other, t as u32)
+            };
+            edges.push(Edge {
+                lo,
+                hi,
+                left,
+                right,
+            });
         }
     }
     edges
 }
 
-fn push_vertex(mesh: &mut FacetMesh, position: DVec3, kind: VertexKind, foot: FootHint, source: u32) -> u32 {
+fn push_vertex(
+    mesh: &mut FacetMesh,
+    position: DVec3,
+    kind: VertexKind,
+    foot: FootHint,
+    source: u32,
+) -> u32 {
     mesh.vertex_source.push(source);
     mesh.vertices.push(position);
     mesh.vertex_kinds.push(kind);
@@ -588,8 +701,11 @@ fn find(representative: &mut [u32], mut x: u32) -> u32 {
 /// domain boundary.
 fn near_boundary(ctx: &Context<'_>, ids: [u32; 3]) -> bool {
     let uv = ids.map(|i| ctx.uv[i as usize]);
-    let size = (0..3).map(|k| normalised_distance(&ctx.domain, uv[k], uv[(k + 1) % 3])).fold(0.0, f64::max);
-    uv.iter().any(|&p| inside_measure(&ctx.domain, p) <= 2.0 * size)
+    let size = (0..3)
+        .map(|k| normalised_distance(&ctx.domain, uv[k], uv[(k + 1) % 3]))
+        .fold(0.0, f64::max);
+    uv.iter()
+        .any(|&p| inside_measure(&ctx.domain, p) <= 2.0 * size)
 }
 
 /// Distance of two parameter pairs in normalised coordinates.
@@ -629,7 +745,10 @@ impl TriangleVertex {
         } else if self.measured {
             FootHint::FromSeed
         } else {
-            FootHint::Guess { linear: self.foot, reach: self.reach }
+            FootHint::Guess {
+                linear: self.foot,
+                reach: self.reach,
+            }
         }
     }
 }
@@ -662,7 +781,11 @@ fn triangle_vertex_ordered(ctx: &Context<'_>, ids: [u32; 3], far_factor: f64) ->
     let [a, b, c] = ids.map(|i| &ctx.planes[i as usize]);
     let meeting = intersect_three(a, b, c);
     let centroid = (a.point + b.point + c.point) / 3.0;
-    let longest = a.point.distance(b.point).max(b.point.distance(c.point)).max(c.point.distance(a.point));
+    let longest = a
+        .point
+        .distance(b.point)
+        .max(b.point.distance(c.point))
+        .max(c.point.distance(a.point));
     let distance = meeting.point.distance(centroid);
     if meeting.point.is_finite() {
         let (linear, reach) = ctx.linear_estimate(ids, meeting.point);
@@ -683,13 +806,29 @@ fn triangle_vertex_ordered(ctx: &Context<'_>, ids: [u32; 3], far_factor: f64) ->
         // A far vertex is only believable as an outside vertex of a triangle at the boundary
         // (a sliver along the hull); deep inside it means nearly parallel planes.
         if near || (inside <= 0.0 && near_boundary(ctx, ids)) {
-            return TriangleVertex { point: meeting.point, foot, inside, reach, exact: true, measured: true, newton_foot };
+            return TriangleVertex {
+                point: meeting.point,
+                foot,
+                inside,
+                reach,
+                exact: true,
+                measured: true,
+                newton_foot,
+            };
         }
     }
     let point = regularised_meeting_point([a, b, c], centroid, 1e-6);
     let (linear, reach) = ctx.linear_estimate(ids, point);
     let (foot, inside, newton_foot) = ctx.measure_from(point, linear, reach);
-    TriangleVertex { point, foot, inside, reach, exact: false, measured: true, newton_foot }
+    TriangleVertex {
+        point,
+        foot,
+        inside,
+        reach,
+        exact: false,
+        measured: true,
+        newton_foot,
+    }
 }
 
 /// The vertex of one triangle, as [`build_facets`] computes it (for live editing), with the
@@ -704,7 +843,14 @@ pub(crate) fn single_triangle_vertex(
     ids: [u32; 3],
     far_factor: f64,
 ) -> TriangleVertex {
-    let ctx = Context { surface, domain: surface.domain(), planes, uv, tangents, convex_side };
+    let ctx = Context {
+        surface,
+        domain: surface.domain(),
+        planes,
+        uv,
+        tangents,
+        convex_side,
+    };
     triangle_vertex_ordered(&ctx, ids, far_factor)
 }
 
@@ -715,8 +861,16 @@ fn ill_conditioned(ctx: &Context<'_>, mut ids: [u32; 3], _vertex: &TriangleVerte
     let meeting = intersect_three(a, b, c);
     let centroid = (a.point + b.point + c.point) / 3.0;
     let distance = meeting.point.distance(centroid);
-    let distance = if distance.is_finite() { distance } else { f64::INFINITY };
-    Diagnostic::IllConditionedVertex { points: ids, determinant: meeting.determinant, distance }
+    let distance = if distance.is_finite() {
+        distance
+    } else {
+        f64::INFINITY
+    };
+    Diagnostic::IllConditionedVertex {
+        points: ids,
+        determinant: meeting.determinant,
+        distance,
+    }
 }
 
 /// The point of the line T_a ∩ T_b closest to `x`: x - A^T (A A^T)^-1 (A x - b) with
@@ -731,7 +885,8 @@ fn edge_point(a: &Plane, b: &Plane, x: DVec3, far_factor: f64) -> Option<DVec3> 
     if det <= 1e-12 {
         // (Nearly) parallel: usable only if the planes coincide at x.
         let projected = x - a.normal * ra;
-        return (b.signed_distance(projected).abs() <= 1e-12 * reach.max(f64::MIN_POSITIVE)).then_some(projected);
+        return (b.signed_distance(projected).abs() <= 1e-12 * reach.max(f64::MIN_POSITIVE))
+            .then_some(projected);
     }
     // (A A^T)^-1 (r_a, r_b) with A A^T = [[1, c], [c, 1]].
     let la = (ra - c * rb) / det;
@@ -765,9 +920,17 @@ fn edge_crossings(
     // line (the same point the facets use), or nothing usable.
     let end_of = |t: u32| {
         let v = &triangle_vertices[t as usize];
-        let point = if v.exact { Some(v.point) } else { edge_point(lo, hi, v.point, DEFAULT_FAR_VERTEX_FACTOR) };
+        let point = if v.exact {
+            Some(v.point)
+        } else {
+            edge_point(lo, hi, v.point, DEFAULT_FAR_VERTEX_FACTOR)
+        };
         let (guess, inside) = v.measured_foot(ctx);
-        SegmentEnd { point: point.unwrap_or(DVec3::NAN), guess, inside }
+        SegmentEnd {
+            point: point.unwrap_or(DVec3::NAN),
+            guess,
+            inside,
+        }
     };
     // (start, end) in canonical order right -> left; None marks a hull side (a ray).
     let start = (edge.right != NO_TRIANGLE).then(|| end_of(edge.right));
@@ -777,15 +940,26 @@ fn edge_crossings(
         return (Vec::new(), None);
     }
     let Some(line) = lo.normal.cross(hi.normal).try_normalize() else {
-        return (Vec::new(), Some(Diagnostic::ParallelPlanes { points: [edge.lo, edge.hi] }));
+        return (
+            Vec::new(),
+            Some(Diagnostic::ParallelPlanes {
+                points: [edge.lo, edge.hi],
+            }),
+        );
     };
     let spacing = lo.point.distance(hi.point).max(f64::MIN_POSITIVE);
     let outward = |t: u32| {
         // Direction along the line away from triangle t's third point k. Where all three are
         // convex on one side, the envelope decides: the ray stays in H_k, sigma n_k . d > 0.
-        let third = tri.triangles[t as usize].into_iter().find(|&v| v != edge.lo && v != edge.hi).unwrap_or(edge.lo);
+        let third = tri.triangles[t as usize]
+            .into_iter()
+            .find(|&v| v != edge.lo && v != edge.hi)
+            .unwrap_or(edge.lo);
         let side = ctx.convex_side[third as usize];
-        if side != 0 && ctx.convex_side[edge.lo as usize] == side && ctx.convex_side[edge.hi as usize] == side {
+        if side != 0
+            && ctx.convex_side[edge.lo as usize] == side
+            && ctx.convex_side[edge.hi as usize] == side
+        {
             let along = f64::from(side) * ctx.planes[third as usize].normal.dot(line);
             if along != 0.0 {
                 return if along > 0.0 { line } else { -line };
@@ -794,25 +968,46 @@ fn edge_crossings(
         let chord = hi.point - lo.point;
         let mut away = (lo.point + hi.point) * 0.5 - ctx.planes[third as usize].point;
         away -= chord * (away.dot(chord) / chord.length_squared().max(f64::MIN_POSITIVE));
-        if line.dot(away) < 0.0 { -line } else { line }
+        if line.dot(away) < 0.0 {
+            -line
+        } else {
+            line
+        }
     };
     match (inside(&start), inside(&end)) {
         (true, true) => (Vec::new(), None),
         (true, false) | (false, true) => {
             let forward = inside(&start);
             let (from, to) = if forward { (start, end) } else { (end, start) };
-            let Some(from) = from else { return (Vec::new(), None) };
+            let Some(from) = from else {
+                return (Vec::new(), None);
+            };
             if !from.point.is_finite() {
-                return (Vec::new(), Some(Diagnostic::BoundaryNotReached { points: [edge.lo, edge.hi] }));
+                return (
+                    Vec::new(),
+                    Some(Diagnostic::BoundaryNotReached {
+                        points: [edge.lo, edge.hi],
+                    }),
+                );
             }
             let (direction, target) = match to {
-                Some(to) if to.point.is_finite() && to.point.distance(from.point) <= RAY_FAR_FACTOR * spacing => {
+                Some(to)
+                    if to.point.is_finite()
+                        && to.point.distance(from.point) <= RAY_FAR_FACTOR * spacing =>
+                {
                     let chord = to.point - from.point;
-                    (if line.dot(chord) < 0.0 { -line } else { line }, Some(chord.length()))
+                    (
+                        if line.dot(chord) < 0.0 { -line } else { line },
+                        Some(chord.length()),
+                    )
                 }
                 Some(to) => {
                     let t = if forward { edge.left } else { edge.right };
-                    let towards = if to.point.is_finite() { to.point - from.point } else { outward(t) };
+                    let towards = if to.point.is_finite() {
+                        to.point - from.point
+                    } else {
+                        outward(t)
+                    };
                     let _ = t;
                     (if line.dot(towards) < 0.0 { -line } else { line }, None)
                 }
@@ -828,17 +1023,36 @@ fn edge_crossings(
                     if inside > 0.0 {
                         march_out(ctx, &from, direction, spacing)
                     } else {
-                        Some((length, SegmentEnd { point, guess: foot_uv, inside }))
+                        Some((
+                            length,
+                            SegmentEnd {
+                                point,
+                                guess: foot_uv,
+                                inside,
+                            },
+                        ))
                     }
                 }
                 None => march_out(ctx, &from, direction, spacing),
             };
             let Some((length, outside)) = outside else {
-                return (Vec::new(), Some(Diagnostic::BoundaryNotReached { points: [edge.lo, edge.hi] }));
+                return (
+                    Vec::new(),
+                    Some(Diagnostic::BoundaryNotReached {
+                        points: [edge.lo, edge.hi],
+                    }),
+                );
             };
-            let crossing = refine_crossing(ctx, (0.0, from), (length, outside), from.point, direction);
+            let crossing =
+                refine_crossing(ctx, (0.0, from), (length, outside), from.point, direction);
             // `refine_crossing` walks from inside to outside: an exit in that direction.
-            (vec![Crossing { exit: forward, ..crossing }], None)
+            (
+                vec![Crossing {
+                    exit: forward,
+                    ..crossing
+                }],
+                None,
+            )
         }
         (false, false) => {
             // A facet edge can dip into the domain between two outside ends (a corner cut,
@@ -847,16 +1061,31 @@ fn edge_crossings(
             let (a, b) = match (start, end) {
                 (Some(s), Some(e)) => (s, e),
                 (Some(v), None) | (None, Some(v)) => {
-                    let t = if edge.left == NO_TRIANGLE { edge.right } else { edge.left };
-                    let reach = 2.0 * (v.point.distance(lo.point) + v.point.distance(hi.point)) + spacing;
+                    let t = if edge.left == NO_TRIANGLE {
+                        edge.right
+                    } else {
+                        edge.left
+                    };
+                    let reach =
+                        2.0 * (v.point.distance(lo.point) + v.point.distance(hi.point)) + spacing;
                     let point = v.point + outward(t) * reach;
-                    (v, SegmentEnd { point, guess: v.guess, inside: -1.0 })
+                    (
+                        v,
+                        SegmentEnd {
+                            point,
+                            guess: v.guess,
+                            inside: -1.0,
+                        },
+                    )
                 }
                 (None, None) => return (Vec::new(), None),
             };
             let reversed = end.is_none();
             let (first, last) = if reversed { (b, a) } else { (a, b) };
-            (outside_segment_crossings(ctx, first, last, lo.point, hi.point), None)
+            (
+                outside_segment_crossings(ctx, first, last, lo.point, hi.point),
+                None,
+            )
         }
     }
 }
@@ -866,14 +1095,24 @@ fn edge_crossings(
 /// their facets are), and a stretch counts as inside only where it runs close to the surface
 /// (within [`NEAR_SURFACE_RATIO`] of its distance to the points): far from them a segment
 /// may pass high over the surface, where a foot inside the domain means nothing.
-fn outside_segment_crossings(ctx: &Context<'_>, start: SegmentEnd, end: SegmentEnd, p: DVec3, q: DVec3) -> Vec<Crossing> {
+fn outside_segment_crossings(
+    ctx: &Context<'_>,
+    start: SegmentEnd,
+    end: SegmentEnd,
+    p: DVec3,
+    q: DVec3,
+) -> Vec<Crossing> {
     if !(start.point.is_finite() && end.point.is_finite()) {
         return Vec::new();
     }
     let chord = end.point - start.point;
     let length = chord.length();
-    let Some(direction) = chord.try_normalize() else { return Vec::new() };
-    let mut lambdas: Vec<f64> = (1..=OUTSIDE_SEGMENT_SAMPLES).map(|k| length * k as f64 / (OUTSIDE_SEGMENT_SAMPLES + 1) as f64).collect();
+    let Some(direction) = chord.try_normalize() else {
+        return Vec::new();
+    };
+    let mut lambdas: Vec<f64> = (1..=OUTSIDE_SEGMENT_SAMPLES)
+        .map(|k| length * k as f64 / (OUTSIDE_SEGMENT_SAMPLES + 1) as f64)
+        .collect();
     for x in [p, q] {
         let t = (x - start.point).dot(direction);
         if t > 0.0 && t < length {
@@ -893,7 +1132,14 @@ fn outside_segment_crossings(ctx: &Context<'_>, start: SegmentEnd, end: SegmentE
                 return Vec::new();
             }
         }
-        samples.push((lambda, SegmentEnd { point, guess: foot_uv, inside }));
+        samples.push((
+            lambda,
+            SegmentEnd {
+                point,
+                guess: foot_uv,
+                inside,
+            },
+        ));
     }
     samples.push((length, end));
     let mut found = Vec::new();
@@ -914,14 +1160,26 @@ fn outside_segment_crossings(ctx: &Context<'_>, start: SegmentEnd, end: SegmentE
 }
 
 /// Steps along `direction` from an inside point, doubling, until outside the domain.
-fn march_out(ctx: &Context<'_>, from: &SegmentEnd, direction: DVec3, spacing: f64) -> Option<(f64, SegmentEnd)> {
+fn march_out(
+    ctx: &Context<'_>,
+    from: &SegmentEnd,
+    direction: DVec3,
+    spacing: f64,
+) -> Option<(f64, SegmentEnd)> {
     let mut step = spacing;
     let mut guess = from.guess;
     for _ in 0..RAY_DOUBLINGS {
         let point = from.point + direction * step;
         let (foot_uv, inside) = ctx.measure(point, guess);
         if inside <= 0.0 {
-            return Some((step, SegmentEnd { point, guess: foot_uv, inside }));
+            return Some((
+                step,
+                SegmentEnd {
+                    point,
+                    guess: foot_uv,
+                    inside,
+                },
+            ));
         }
         guess = foot_uv;
         step *= 2.0;
@@ -954,14 +1212,27 @@ fn refine_crossing(
             lambda = 0.5 * (a.0 + b.0);
         }
         let point = origin + direction * lambda;
-        let guess = if (lambda - a.0).abs() < (lambda - b.0).abs() { a.1.guess } else { b.1.guess };
+        let guess = if (lambda - a.0).abs() < (lambda - b.0).abs() {
+            a.1.guess
+        } else {
+            b.1.guess
+        };
         let (foot_uv, inside) = ctx.measure(point, guess);
-        let current = (lambda, SegmentEnd { point, guess: foot_uv, inside });
+        let current = (
+            lambda,
+            SegmentEnd {
+                point,
+                guess: foot_uv,
+                inside,
+            },
+        );
         if inside.abs() < best.1.inside.abs() {
             best = current;
             projected = true;
         }
-        if inside.abs() < CROSSING_TOLERANCE || (b.0 - a.0).abs() <= 1e-15 * b.0.abs().max(a.0.abs()) {
+        if inside.abs() < CROSSING_TOLERANCE
+            || (b.0 - a.0).abs() <= 1e-15 * b.0.abs().max(a.0.abs())
+        {
             break;
         }
         if (inside > 0.0) == (fa > 0.0) {
@@ -1020,26 +1291,42 @@ fn corner_samples(surface: &dyn Surface, domain: &Domain) -> [(DVec3, DVec3); 4]
 /// The loop of facet i as items appended to `items`, with corners inserted along the
 /// boundary; walk diagnostics go to `diagnostics` with the facet's index.
 /// Returns whether the loop is just the closed fan (the fast path).
-fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut PackedItems, diagnostics: &mut Vec<(u32, Diagnostic)>) -> bool {
+fn facet_items(
+    i: u32,
+    cx: &ItemContext<'_>,
+    fan: &mut Vec<u32>,
+    items: &mut PackedItems,
+    diagnostics: &mut Vec<(u32, Diagnostic)>,
+) -> bool {
     let tri = cx.tri;
     let kind = tri.fan(i, cx.incident[i as usize], fan);
     if kind == Fan::Broken || fan.is_empty() {
-        diagnostics.push((i, Diagnostic::OpenFacet { point: i, reason: "no triangles around the point".into() }));
+        diagnostics.push((
+            i,
+            Diagnostic::OpenFacet {
+                point: i,
+                reason: "no triangles around the point".into(),
+            },
+        ));
         return false;
     }
     // Fast path: an interior point whose fan vertices are all exact and inside has no
     // boundary crossing on any of its edges (crossings need an outside end): its loop is its fan.
-    if kind == Fan::Closed && fan.iter().all(|&t| {
-        let v = &cx.triangle_vertices[t as usize];
-        v.exact && v.inside > 0.0
-    }) {
+    if kind == Fan::Closed
+        && fan.iter().all(|&t| {
+            let v = &cx.triangle_vertices[t as usize];
+            v.exact && v.inside > 0.0
+        })
+    {
         items.codes.extend_from_slice(fan);
         return true;
     }
     // Raw walk: crossings of each incoming edge, then the triangle's vertex if inside.
     let mut raw: Vec<(Item, Option<(bool, f64)>)> = Vec::with_capacity(fan.len() * 2 + 4);
     let push_edge = |j: u32, raw: &mut Vec<(Item, Option<(bool, f64)>)>| {
-        let Some(&(first, last)) = cx.crossing_ranges.get(&(i.min(j), i.max(j))) else { return };
+        let Some(&(first, last)) = cx.crossing_ranges.get(&(i.min(j), i.max(j))) else {
+            return;
+        };
         let forward = i < j;
         let mut push = |c: u32| {
             let crossing = cx.crossings[c as usize];
@@ -1064,7 +1351,14 @@ fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut Pac
             } else {
                 let outgoing = vertices[(p + 2) % 3];
                 for j in [incoming, outgoing] {
-                    raw.push((Item::EdgePoint { triangle: t, lo: i.min(j), hi: i.max(j) }, None));
+                    raw.push((
+                        Item::EdgePoint {
+                            triangle: t,
+                            lo: i.min(j),
+                            hi: i.max(j),
+                        },
+                        None,
+                    ));
                 }
             }
         }
@@ -1075,11 +1369,17 @@ fn facet_items(i: u32, cx: &ItemContext<'_>, fan: &mut Vec<u32>, items: &mut Pac
         push_edge(last[(p + 2) % 3], &mut raw);
     }
     // Corners follow the exit crossing that owns them; leaving and entering must alternate.
-    let boundary: Vec<bool> = raw.iter().filter_map(|r| r.1.map(|(exit, _)| exit)).collect();
+    let boundary: Vec<bool> = raw
+        .iter()
+        .filter_map(|r| r.1.map(|(exit, _)| exit))
+        .collect();
     if (0..boundary.len()).any(|k| boundary[k] == boundary[(k + 1) % boundary.len()]) {
         diagnostics.push((
             i,
-            Diagnostic::OpenFacet { point: i, reason: "boundary crossings do not alternate between leaving and entering".into() },
+            Diagnostic::OpenFacet {
+                point: i,
+                reason: "boundary crossings do not alternate between leaving and entering".into(),
+            },
         ));
     }
     for (item, crossing) in raw {
@@ -1127,8 +1427,20 @@ pub(crate) fn build_closed_facets(
             // stand-in per edge would leave a hole, and the mesh must stay a disc. They are
             // named in a diagnostic below; only a vertex at infinity gets stand-ins.
             let exact = !real(&ids) || reachable(meeting.point, [a, b, c]);
-            let point = if exact { meeting.point } else { regularised_meeting_point([a, b, c], centroid, 1e-6) };
-            TriangleVertex { point, foot: [0.0; 2], inside: 1.0, reach: 0.0, exact, measured: true, newton_foot: false }
+            let point = if exact {
+                meeting.point
+            } else {
+                regularised_meeting_point([a, b, c], centroid, 1e-6)
+            };
+            TriangleVertex {
+                point,
+                foot: [0.0; 2],
+                inside: 1.0,
+                reach: 0.0,
+                exact,
+                measured: true,
+                newton_foot: false,
+            }
         })
         .collect();
     let mut diagnostics: Vec<Diagnostic> = tri
@@ -1142,7 +1454,11 @@ pub(crate) fn build_closed_facets(
             let meeting = intersect_three(a, b, c);
             let centroid = (a.point + b.point + c.point) / 3.0;
             let distance = meeting.point.distance(centroid);
-            let longest = a.point.distance(b.point).max(b.point.distance(c.point)).max(c.point.distance(a.point));
+            let longest = a
+                .point
+                .distance(b.point)
+                .max(b.point.distance(c.point))
+                .max(c.point.distance(a.point));
             let far = !v.exact || !(distance <= params.far_vertex_factor * longest);
             (far && real(ids)).then_some((sorted, meeting, distance))
         })
@@ -1152,7 +1468,11 @@ pub(crate) fn build_closed_facets(
             Diagnostic::IllConditionedVertex {
                 points,
                 determinant: meeting.determinant,
-                distance: if distance.is_finite() { distance } else { f64::INFINITY },
+                distance: if distance.is_finite() {
+                    distance
+                } else {
+                    f64::INFINITY
+                },
             }
         })
         .collect();
@@ -1167,7 +1487,9 @@ pub(crate) fn build_closed_facets(
                 let kind = tri.fan(i, incident[i as usize], &mut fan);
                 if kind != Fan::Closed {
                     let reason = "the fan of dual triangles around the point does not close".into();
-                    chunk.diagnostics.push((i, Diagnostic::OpenFacet { point: i, reason }));
+                    chunk
+                        .diagnostics
+                        .push((i, Diagnostic::OpenFacet { point: i, reason }));
                 }
                 if kind != Fan::Broken {
                     for &t in &fan {
@@ -1177,7 +1499,11 @@ pub(crate) fn build_closed_facets(
                             let vertices = tri.triangles[t as usize];
                             let p = vertices.iter().position(|&v| v == i).unwrap_or(0);
                             for j in [vertices[(p + 1) % 3], vertices[(p + 2) % 3]] {
-                                chunk.items.push(Item::EdgePoint { triangle: t, lo: i.min(j), hi: i.max(j) });
+                                chunk.items.push(Item::EdgePoint {
+                                    triangle: t,
+                                    lo: i.min(j),
+                                    hi: i.max(j),
+                                });
                             }
                         }
                     }

@@ -66,7 +66,10 @@ pub(crate) struct Augmented {
 fn continued(surface: &dyn Surface, at: [f64; 2], offset: [f64; 2]) -> Option<LocalGeometry> {
     let d = surface.evaluate(at[0], at[1]);
     let [du, dv] = offset;
-    let point = d.point + d.su * du + d.sv * dv + (d.suu * (du * du) + d.suv * (2.0 * du * dv) + d.svv * (dv * dv)) * 0.5;
+    let point = d.point
+        + d.su * du
+        + d.sv * dv
+        + (d.suu * (du * du) + d.suv * (2.0 * du * dv) + d.svv * (dv * dv)) * 0.5;
     let su = d.su + d.suu * du + d.suv * dv;
     let sv = d.sv + d.suv * du + d.svv * dv;
     let g = LocalGeometry::from_derivatives(&SurfaceDerivatives { point, su, sv, ..d });
@@ -120,20 +123,34 @@ pub(crate) fn augment(
         let mut push = |position: [f64; 2], g: Option<LocalGeometry>| {
             let Some(g) = g else { return };
             out.plane_uv.push(position);
-            out.planes.push(Plane { point: g.point, normal: g.normal });
+            out.planes.push(Plane {
+                point: g.point,
+                normal: g.normal,
+            });
             out.geometry.push(g);
             out.convex_side.push(convex_side[i]);
             out.source.push(i as u32);
         };
         for &s in &near {
-            let (at, offset) = if s < 2 { ([sides[s].2, v], [sides[s].3, 0.0]) } else { ([u, sides[s].2], [0.0, sides[s].3]) };
+            let (at, offset) = if s < 2 {
+                ([sides[s].2, v], [sides[s].3, 0.0])
+            } else {
+                ([u, sides[s].2], [0.0, sides[s].3])
+            };
             push(sides[s].1, continued(surface, at, offset));
         }
         // Corners: across a u side and a v side at once, continued from the corner.
         for &su in near.iter().filter(|&&s| s < 2) {
             for &sv in near.iter().filter(|&&s| s >= 2) {
                 let position = [sides[su].1[0], sides[sv].1[1]];
-                push(position, continued(surface, [sides[su].2, sides[sv].2], [sides[su].3, sides[sv].3]));
+                push(
+                    position,
+                    continued(
+                        surface,
+                        [sides[su].2, sides[sv].2],
+                        [sides[su].3, sides[sv].3],
+                    ),
+                );
             }
         }
     }

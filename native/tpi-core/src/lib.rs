@@ -35,18 +35,20 @@ pub mod projection;
 pub mod quality;
 pub mod spec;
 pub mod surface;
+pub mod tolerance;
 pub mod triangulation;
 pub mod validity_flips;
-pub mod tolerance;
 
+pub use analytic::{AnalyticKind, AnalyticSurface};
 pub use diagnostics::Diagnostic;
 pub use diffgeo::LocalGeometry;
-pub use live::{LiveStats, LiveSurface};
-pub use discretise::{discretise, validate_pattern, Discretisation, DiscretiseOptions, Seed, Timings};
-pub use quality::QualityReport;
+pub use discretise::{
+    discretise, validate_pattern, Discretisation, DiscretiseOptions, Seed, Timings,
+};
 pub use error::{Direction, TpiError};
+pub use live::{LiveStats, LiveSurface};
 pub use nurbs::{NurbsSpec, NurbsSurface};
-pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};
-pub use analytic::{AnalyticKind, AnalyticSurface};
 pub use pattern::{Generator, GridSize, Pattern};
+pub use quality::QualityReport;
 pub use spec::{SurfaceModel, SurfaceSpec};
+pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};

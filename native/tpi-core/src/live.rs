@@ -42,7 +42,9 @@ use glam::DVec3;
 
 use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
-use crate::discretise::{curvature_class, run, Discretisation, DiscretiseOptions, PipelineState, Seed, Timings};
+use crate::discretise::{
+    curvature_class, run, Discretisation, DiscretiseOptions, PipelineState, Seed, Timings,
+};
 use crate::error::TpiError;
 use crate::facets::{accept_newton, single_triangle_vertex, FootHint, TriangleVertex, VertexKind};
 use crate::neighbours::{envelope_quad_illegal_by, slope_repairs, NeighbourStats, SlopeFrame};
@@ -137,7 +139,10 @@ struct Grid {
 impl Grid {
     fn new(points: &[[f64; 2]]) -> Self {
         let size = ((points.len() as f64 / 4.0).sqrt().ceil() as usize).clamp(1, 4096);
-        let mut grid = Self { size, cell: vec![u32::MAX; size * size] };
+        let mut grid = Self {
+            size,
+            cell: vec![u32::MAX; size * size],
+        };
         for (i, &p) in points.iter().enumerate() {
             let c = grid.index(p);
             grid.cell[c] = i as u32;
@@ -191,8 +196,20 @@ struct Fallback;
 impl LiveSurface {
     /// Discretises `surface` with `pattern` (normalised, as [`crate::discretise`]) and keeps
     /// what the pipeline computed for later edits. Errors as [`crate::discretise`].
-    pub fn new(surface: Box<dyn Surface>, pattern: Vec<[f64; 2]>, options: DiscretiseOptions) -> Result<Self, TpiError> {
-        let mut live = Self { surface, options, points: pattern, mesh: None, stale: None, stats: LiveStats::default(), state: None };
+    pub fn new(
+        surface: Box<dyn Surface>,
+        pattern: Vec<[f64; 2]>,
+        options: DiscretiseOptions,
+    ) -> Result<Self, TpiError> {
+        let mut live = Self {
+            surface,
+            options,
+            points: pattern,
+            mesh: None,
+            stale: None,
+            stats: LiveStats::default(),
+            state: None,
+        };
         live.recompute_all()?;
         Ok(live)
     }
@@ -256,7 +273,10 @@ impl LiveSurface {
         }
         let old = self.points[index];
         self.points[index] = st;
-        let local = self.state.as_mut().map(|s| s.move_point(self.surface.as_ref(), &self.options, index, st));
+        let local = self
+            .state
+            .as_mut()
+            .map(|s| s.move_point(self.surface.as_ref(), &self.options, index, st));
         self.finish(local, |points| points[index] = old)
     }
 
@@ -265,7 +285,10 @@ impl LiveSurface {
     pub fn add_point(&mut self, st: [f64; 2]) -> Result<usize, TpiError> {
         self.points.push(st);
         let index = self.points.len() - 1;
-        let local = self.state.as_mut().map(|s| s.add_point(self.surface.as_ref(), &self.options, st));
+        let local = self
+            .state
+            .as_mut()
+            .map(|s| s.add_point(self.surface.as_ref(), &self.options, st));
         self.finish(local, |points| {
             points.pop();
         })?;
@@ -283,7 +306,10 @@ impl LiveSurface {
             });
         }
         let old = self.points.remove(index);
-        let local = self.state.as_mut().map(|s| s.remove_point(self.surface.as_ref(), &self.options, index));
+        let local = self
+            .state
+            .as_mut()
+            .map(|s| s.remove_point(self.surface.as_ref(), &self.options, index));
         self.finish(local, |points| points.insert(index, old))
     }
 
@@ -301,7 +327,11 @@ impl LiveSurface {
 
     /// After an edit of `points`: keep the local update, or run the whole pipeline; on an
     /// error undo the edit of the points (`undo`) and restore the previous state.
-    fn finish(&mut self, local: Option<Result<(), Fallback>>, undo: impl FnOnce(&mut Vec<[f64; 2]>)) -> Result<(), TpiError> {
+    fn finish(
+        &mut self,
+        local: Option<Result<(), Fallback>>,
+        undo: impl FnOnce(&mut Vec<[f64; 2]>),
+    ) -> Result<(), TpiError> {
         if let Some(Ok(())) = local {
             self.stats.incremental += 1;
             if let Some(mesh) = self.mesh.take() {
@@ -339,7 +369,11 @@ impl State {
     /// touches lie close together in memory whatever the pattern's own order; `perm` and
     /// `rank` translate. Every computation whose rounding depends on the order of its points
     /// takes them in pattern order, as the full run does.
-    fn from_pipeline(p: PipelineState, result: &Discretisation, points: &[[f64; 2]]) -> Option<Self> {
+    fn from_pipeline(
+        p: PipelineState,
+        result: &Discretisation,
+        points: &[[f64; 2]],
+    ) -> Option<Self> {
         let (frame, slopes) = p.slopes?;
         if p.neighbours.envelope_unresolved > 0 || p.triangulation.is_empty() {
             return None;
@@ -356,16 +390,32 @@ impl State {
         // Triangles in the order of their smallest internal point.
         let old = p.triangulation;
         let mut order: Vec<u32> = (0..old.len() as u32).collect();
-        order.sort_by_key(|&t| by_rank(&old.triangles[t as usize]).into_iter().min().unwrap_or(0));
+        order.sort_by_key(|&t| {
+            by_rank(&old.triangles[t as usize])
+                .into_iter()
+                .min()
+                .unwrap_or(0)
+        });
         let mut slot_of = vec![0u32; old.len()];
         for (slot, &t) in order.iter().enumerate() {
             slot_of[t as usize] = slot as u32;
         }
         let tri = DualTriangulation {
-            triangles: order.iter().map(|&t| by_rank(&old.triangles[t as usize])).collect(),
+            triangles: order
+                .iter()
+                .map(|&t| by_rank(&old.triangles[t as usize]))
+                .collect(),
             neighbours: order
                 .iter()
-                .map(|&t| old.neighbours[t as usize].map(|x| if x == NO_TRIANGLE { x } else { slot_of[x as usize] }))
+                .map(|&t| {
+                    old.neighbours[t as usize].map(|x| {
+                        if x == NO_TRIANGLE {
+                            x
+                        } else {
+                            slot_of[x as usize]
+                        }
+                    })
+                })
                 .collect(),
         };
         let t0 = tri.triangles[0].map(|v| slopes[perm[v as usize] as usize]);
@@ -373,7 +423,10 @@ impl State {
         if slope_sign == 0.0 {
             return None;
         }
-        let vertex: Vec<TriangleVertex> = order.iter().map(|&t| p.triangle_vertices[t as usize]).collect();
+        let vertex: Vec<TriangleVertex> = order
+            .iter()
+            .map(|&t| p.triangle_vertices[t as usize])
+            .collect();
         let mut report_foot = vec![None; tri.len()];
         let mut others = Vec::new();
         let mut key_of = Vec::with_capacity(result.vertices.len());
@@ -385,7 +438,11 @@ impl State {
                 key_of.push(Key::Triangle(slot));
             } else {
                 key_of.push(Key::Other(others.len() as u32));
-                others.push(Other { point: result.vertices[v], kind: result.vertex_kinds[v], foot });
+                others.push(Other {
+                    point: result.vertices[v],
+                    kind: result.vertex_kinds[v],
+                    foot,
+                });
             }
         }
         // Facets around welded vertices (four or more planes through one point) keep their
@@ -401,7 +458,13 @@ impl State {
             .iter()
             .map(|&i| {
                 let i = i as usize;
-                (!simple[i]).then(|| result.facet(i).iter().map(|&v| key_of[v as usize]).collect())
+                (!simple[i]).then(|| {
+                    result
+                        .facet(i)
+                        .iter()
+                        .map(|&v| key_of[v as usize])
+                        .collect()
+                })
             })
             .collect();
         let mut holder = vec![NO_TRIANGLE; n];
@@ -442,7 +505,13 @@ impl State {
 
     // ---- edits (pattern indices in, internal numbers inside) ---------------------------
 
-    fn move_point(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, index: usize, to: [f64; 2]) -> Result<(), Fallback> {
+    fn move_point(
+        &mut self,
+        surface: &dyn Surface,
+        options: &DiscretiseOptions,
+        index: usize,
+        to: [f64; 2],
+    ) -> Result<(), Fallback> {
         let i = self.rank[index] as usize;
         let (geometry, tangents, plane, slopes, uv) = self.sample(surface, options, to, i)?;
         if on_box(self.planes[i].point, self.bbox) {
@@ -458,8 +527,16 @@ impl State {
         self.tangents[i] = tangents;
         self.planes[i] = plane;
         self.slopes[i] = slopes;
-        let near = (to[0] - old[0]).abs().max((to[1] - old[1]).abs()) * self.grid.size as f64 <= 2.0;
-        let start = if near { start } else { self.grid.near(to, &self.st).map(|q| self.holder[q as usize]).unwrap_or(start) };
+        let near =
+            (to[0] - old[0]).abs().max((to[1] - old[1]).abs()) * self.grid.size as f64 <= 2.0;
+        let start = if near {
+            start
+        } else {
+            self.grid
+                .near(to, &self.st)
+                .map(|q| self.holder[q as usize])
+                .unwrap_or(start)
+        };
         self.insert_into_structure(i as u32, start, &mut changed)?;
         self.finish_edit(surface, options, &changed)?;
         self.recycle(changed);
@@ -472,9 +549,15 @@ impl State {
         Ok(())
     }
 
-    fn add_point(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, to: [f64; 2]) -> Result<(), Fallback> {
+    fn add_point(
+        &mut self,
+        surface: &dyn Surface,
+        options: &DiscretiseOptions,
+        to: [f64; 2],
+    ) -> Result<(), Fallback> {
         let i = self.st.len();
-        let (geometry, tangents, plane, slopes, uv) = self.sample(surface, options, to, usize::MAX)?;
+        let (geometry, tangents, plane, slopes, uv) =
+            self.sample(surface, options, to, usize::MAX)?;
         self.perm.push(self.rank.len() as u32);
         self.rank.push(i as u32);
         self.st.push(to);
@@ -486,7 +569,11 @@ impl State {
         self.convex_side.push(self.convex_side[0]);
         self.holder.push(NO_TRIANGLE);
         self.complex.push(None);
-        let start = self.grid.near(to, &self.st).map(|q| self.holder[q as usize]).unwrap_or(0);
+        let start = self
+            .grid
+            .near(to, &self.st)
+            .map(|q| self.holder[q as usize])
+            .unwrap_or(0);
         let start = self.live_slot(start);
         let mut changed = self.changed();
         self.insert_into_structure(i as u32, start, &mut changed)?;
@@ -497,7 +584,12 @@ impl State {
         Ok(())
     }
 
-    fn remove_point(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, index: usize) -> Result<(), Fallback> {
+    fn remove_point(
+        &mut self,
+        surface: &dyn Surface,
+        options: &DiscretiseOptions,
+        index: usize,
+    ) -> Result<(), Fallback> {
         let k = self.rank[index] as usize;
         if self.st.len() <= 3 || on_box(self.planes[k].point, self.bbox) {
             return Err(Fallback);
@@ -563,7 +655,11 @@ impl State {
         st: [f64; 2],
         exclude: usize,
     ) -> Result<(LocalGeometry, [DVec3; 2], Plane, [f64; 2], [f64; 2]), Fallback> {
-        if !(st[0].is_finite() && st[1].is_finite() && (0.0..=1.0).contains(&st[0]) && (0.0..=1.0).contains(&st[1])) {
+        if !(st[0].is_finite()
+            && st[1].is_finite()
+            && (0.0..=1.0).contains(&st[0])
+            && (0.0..=1.0).contains(&st[1]))
+        {
             return Err(Fallback);
         }
         // Duplicates: any point closer than the tolerance sends the edit to the full
@@ -581,7 +677,10 @@ impl State {
         if side != self.convex_side[0] {
             return Err(Fallback);
         }
-        let plane = Plane { point: geometry.point, normal: geometry.normal };
+        let plane = Plane {
+            point: geometry.point,
+            normal: geometry.normal,
+        };
         let slopes = self.frame.slopes(&plane).ok_or(Fallback)?;
         if !strictly_inside_box(plane.point, self.bbox) {
             return Err(Fallback);
@@ -594,7 +693,9 @@ impl State {
     /// which `finish_vertices` checks.
     fn has_duplicate(&self, p: [f64; 2], exclude: usize) -> bool {
         let q = self.grid.cell[self.grid.index(p)] as usize;
-        q != exclude && q < self.st.len() && (self.st[q][0] - p[0]).hypot(self.st[q][1] - p[1]) < DUPLICATE_UV_TOLERANCE
+        q != exclude
+            && q < self.st.len()
+            && (self.st[q][0] - p[0]).hypot(self.st[q][1] - p[1]) < DUPLICATE_UV_TOLERANCE
     }
 
     /// The internal points sorted by pattern index (the order of the full run's sums).
@@ -607,11 +708,20 @@ impl State {
         if (t as usize) < self.tri.len() && self.tri.triangles[t as usize][0] != NO_TRIANGLE {
             return t;
         }
-        self.tri.triangles.iter().position(|t| t[0] != NO_TRIANGLE).map_or(0, |t| t as u32)
+        self.tri
+            .triangles
+            .iter()
+            .position(|t| t[0] != NO_TRIANGLE)
+            .map_or(0, |t| t as u32)
     }
 
     fn hole_triangle(&self, changed: &Changed) -> u32 {
-        changed.created.iter().copied().find(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE).unwrap_or(0)
+        changed
+            .created
+            .iter()
+            .copied()
+            .find(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE)
+            .unwrap_or(0)
     }
 
     /// An empty change record on the scratch buffers.
@@ -709,7 +819,9 @@ impl State {
             let ear = (0..m).find(|&k| {
                 let (a, b, c) = (poly[(k + m - 1) % m], poly[k], poly[(k + 1) % m]);
                 self.orientation(a, b, c) > 0.0
-                    && poly.iter().all(|&x| x == a || x == b || x == c || !self.in_triangle(x, a, b, c))
+                    && poly
+                        .iter()
+                        .all(|&x| x == a || x == b || x == c || !self.in_triangle(x, a, b, c))
                     && self.regular_ear(a, b, c, &poly)
             });
             let k = ear.ok_or(Fallback)?;
@@ -749,7 +861,12 @@ impl State {
         // The ears are regular among the link points; make sure no edge needs a flip.
         let mut stack = std::mem::take(&mut self.scratch.stack);
         stack.clear();
-        stack.extend(changed.created.iter().flat_map(|&t| (0..3).map(move |k| (t, k))));
+        stack.extend(
+            changed
+                .created
+                .iter()
+                .flat_map(|&t| (0..3).map(move |k| (t, k))),
+        );
         self.legalise(&mut stack, changed)?;
         self.scratch.stack = stack;
         Ok(())
@@ -757,7 +874,9 @@ impl State {
 
     /// Whether x lies strictly inside triangle (a, b, c) in slope space.
     fn in_triangle(&self, x: u32, a: u32, b: u32, c: u32) -> bool {
-        self.orientation(a, b, x) > 0.0 && self.orientation(b, c, x) > 0.0 && self.orientation(c, a, x) > 0.0
+        self.orientation(a, b, x) > 0.0
+            && self.orientation(b, c, x) > 0.0
+            && self.orientation(c, a, x) > 0.0
     }
 
     /// Whether no other polygon point's tangent plane cuts off the vertex of (a, b, c).
@@ -769,14 +888,27 @@ impl State {
         if !vertex.is_finite() {
             return false;
         }
-        let size = [b, c].iter().map(|&i| planes[i as usize].point.distance(planes[a as usize].point)).fold(0.0, f64::max);
+        let size = [b, c]
+            .iter()
+            .map(|&i| planes[i as usize].point.distance(planes[a as usize].point))
+            .fold(0.0, f64::max);
         let tolerance = crate::neighbours::ENVELOPE_FLIP_TOLERANCE * size;
         let s = self.frame.side;
-        poly.iter().all(|&x| x == a || x == b || x == c || s * planes[x as usize].signed_distance(vertex) >= -tolerance)
+        poly.iter().all(|&x| {
+            x == a
+                || x == b
+                || x == c
+                || s * planes[x as usize].signed_distance(vertex) >= -tolerance
+        })
     }
 
     /// Inserts point v (not in the structure) at its slopes, starting the search at `start`.
-    fn insert_into_structure(&mut self, v: u32, start: u32, changed: &mut Changed) -> Result<(), Fallback> {
+    fn insert_into_structure(
+        &mut self,
+        v: u32,
+        start: u32,
+        changed: &mut Changed,
+    ) -> Result<(), Fallback> {
         let t = self.locate(v, start)?;
         let [a, b, c] = self.tri.triangles[t as usize];
         let [n_a, n_b, n_c] = self.tri.neighbours[t as usize];
@@ -842,7 +974,11 @@ impl State {
     }
 
     /// Lawson's flips by the envelope test from the given (triangle, side) pairs.
-    fn legalise(&mut self, stack: &mut Vec<(u32, usize)>, changed: &mut Changed) -> Result<(), Fallback> {
+    fn legalise(
+        &mut self,
+        stack: &mut Vec<(u32, usize)>,
+        changed: &mut Changed,
+    ) -> Result<(), Fallback> {
         let mut budget = 64 + 8 * stack.len();
         while let Some((t, k)) = stack.pop() {
             if self.tri.triangles[t as usize][0] == NO_TRIANGLE {
@@ -854,10 +990,15 @@ impl State {
             }
             let tv = self.tri.triangles[t as usize];
             let [c, a, b] = [tv[k], tv[(k + 1) % 3], tv[(k + 2) % 3]];
-            let k2 = self.tri.neighbours[other as usize].iter().position(|&x| x == t).ok_or(Fallback)?;
+            let k2 = self.tri.neighbours[other as usize]
+                .iter()
+                .position(|&x| x == t)
+                .ok_or(Fallback)?;
             let d = self.tri.triangles[other as usize][k2];
             let perm = &self.perm;
-            if !envelope_quad_illegal_by(&self.planes, &self.convex_side, [c, a, b, d], |v| perm[v as usize]) {
+            if !envelope_quad_illegal_by(&self.planes, &self.convex_side, [c, a, b, d], |v| {
+                perm[v as usize]
+            }) {
                 continue;
             }
             if self.orientation(c, a, d) <= 0.0 || self.orientation(d, b, c) <= 0.0 || budget == 0 {
@@ -885,7 +1026,12 @@ impl State {
 
     /// After a move or an add: every changed point's facet was simple; the new triangles'
     /// vertices are computed and checked, and the changed points' facets are simple again.
-    fn finish_edit(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, changed: &Changed) -> Result<(), Fallback> {
+    fn finish_edit(
+        &mut self,
+        surface: &dyn Surface,
+        options: &DiscretiseOptions,
+        changed: &Changed,
+    ) -> Result<(), Fallback> {
         self.check_simple(changed, None)?;
         self.finish_vertices(surface, options, changed)
     }
@@ -906,11 +1052,22 @@ impl State {
     /// Vertices and report feet of the live created triangles, with the checks of the
     /// incremental path (exact, inside, counter-clockwise in the pattern, no weld, no
     /// duplicate point), and the changed points' fans closed.
-    fn finish_vertices(&mut self, surface: &dyn Surface, options: &DiscretiseOptions, changed: &Changed) -> Result<(), Fallback> {
+    fn finish_vertices(
+        &mut self,
+        surface: &dyn Surface,
+        options: &DiscretiseOptions,
+        changed: &Changed,
+    ) -> Result<(), Fallback> {
         let points = &self.st;
         let mut created = std::mem::take(&mut self.scratch.list);
         created.clear();
-        created.extend(changed.created.iter().copied().filter(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE));
+        created.extend(
+            changed
+                .created
+                .iter()
+                .copied()
+                .filter(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE),
+        );
         created.sort_unstable();
         created.dedup();
         for &t in &created {
@@ -937,7 +1094,12 @@ impl State {
         let weld = options.weld_tolerance * self.diagonal;
         for &t in &created {
             for &u in &self.tri.neighbours[t as usize] {
-                if u == NO_TRIANGLE || self.vertex[t as usize].point.distance(self.vertex[u as usize].point) <= weld {
+                if u == NO_TRIANGLE
+                    || self.vertex[t as usize]
+                        .point
+                        .distance(self.vertex[u as usize].point)
+                        <= weld
+                {
                     return Err(Fallback);
                 }
             }
@@ -950,14 +1112,18 @@ impl State {
         seen.dedup();
         for &p in &seen {
             let t = self.holder[p as usize];
-            if t == NO_TRIANGLE || self.tri.fan(p, t, &mut fan) != crate::triangulation::Fan::Closed {
+            if t == NO_TRIANGLE || self.tri.fan(p, t, &mut fan) != crate::triangulation::Fan::Closed
+            {
                 return Err(Fallback);
             }
             // A duplicate of a moved or added point would be its neighbour.
             for &t in &fan {
                 for &q in &self.tri.triangles[t as usize] {
-                    if q != p && (points[q as usize][0] - points[p as usize][0]).hypot(points[q as usize][1] - points[p as usize][1]) < DUPLICATE_UV_TOLERANCE
-            {
+                    if q != p
+                        && (points[q as usize][0] - points[p as usize][0])
+                            .hypot(points[q as usize][1] - points[p as usize][1])
+                            < DUPLICATE_UV_TOLERANCE
+                    {
                         return Err(Fallback);
                     }
                 }
@@ -967,7 +1133,11 @@ impl State {
             for &t in &created {
                 // The first facet holding the vertex: its point of smallest pattern index.
                 let first = self.in_pattern_order(self.tri.triangles[t as usize])[0];
-                self.report_foot[t as usize] = Some(report_foot(surface, &self.vertex[t as usize], self.uv[first as usize]));
+                self.report_foot[t as usize] = Some(report_foot(
+                    surface,
+                    &self.vertex[t as usize],
+                    self.uv[first as usize],
+                ));
             }
         }
         self.scratch.fan = fan;
@@ -982,7 +1152,9 @@ impl State {
     fn assemble(&self, surface: &dyn Surface, options: &DiscretiseOptions) -> Discretisation {
         let n = self.uv.len();
         // Canonical triangles (see DualTriangulation::canonicalise), slot -> index.
-        let mut live: Vec<u32> = (0..self.tri.len() as u32).filter(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE).collect();
+        let mut live: Vec<u32> = (0..self.tri.len() as u32)
+            .filter(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE)
+            .collect();
         // In pattern indices.
         let external = |t: u32| self.tri.triangles[t as usize].map(|v| self.perm[v as usize]);
         let rotated = |t: u32| {
@@ -1005,10 +1177,19 @@ impl State {
                 let tv = external(t);
                 let k = (0..3).min_by_key(|&k| tv[k]).unwrap_or(0);
                 let nb = self.tri.neighbours[t as usize];
-                [nb[k], nb[(k + 1) % 3], nb[(k + 2) % 3]].map(|x| if x == NO_TRIANGLE { x } else { index_of[x as usize] })
+                [nb[k], nb[(k + 1) % 3], nb[(k + 2) % 3]].map(|x| {
+                    if x == NO_TRIANGLE {
+                        x
+                    } else {
+                        index_of[x as usize]
+                    }
+                })
             })
             .collect();
-        let canonical = DualTriangulation { triangles, neighbours };
+        let canonical = DualTriangulation {
+            triangles,
+            neighbours,
+        };
         // First triangle (canonical order) of each point: where its loop starts.
         let incident = canonical.incident_triangles(n);
 
@@ -1040,7 +1221,10 @@ impl State {
                             triangle_id[t as usize] = vertices.len() as u32;
                             vertices.push(self.vertex[t as usize].point);
                             vertex_kinds.push(VertexKind::Interior);
-                            feet.push(self.report_foot[t as usize].map_or(FootHint::FromSeed, FootHint::Known));
+                            feet.push(
+                                self.report_foot[t as usize]
+                                    .map_or(FootHint::FromSeed, FootHint::Known),
+                            );
                         }
                         triangle_id[t as usize]
                     }
@@ -1056,7 +1240,9 @@ impl State {
                     facet_loops.push(id);
                 }
             }
-            while facet_loops.len() > start + 1 && facet_loops[start] == facet_loops[facet_loops.len() - 1] {
+            while facet_loops.len() > start + 1
+                && facet_loops[start] == facet_loops[facet_loops.len() - 1]
+            {
                 facet_loops.pop();
             }
             facet_offsets.push(facet_loops.len() as u32);
@@ -1067,7 +1253,10 @@ impl State {
         let uv: Vec<[f64; 2]> = (0..n).map(|i| self.uv[internal(i)]).collect();
         let planes: Vec<Plane> = (0..n).map(|i| self.planes[internal(i)]).collect();
         let slopes: Vec<[f64; 2]> = (0..n).map(|i| self.slopes[internal(i)]).collect();
-        let stats = NeighbourStats { envelope_repairs: slope_repairs(&canonical, &slopes), ..self.stats };
+        let stats = NeighbourStats {
+            envelope_repairs: slope_repairs(&canonical, &slopes),
+            ..self.stats
+        };
         let mut result = Discretisation {
             vertices,
             vertex_kinds,
@@ -1131,7 +1320,12 @@ struct Changed {
 
 /// A facet's seed from the point's local geometry, as the pipeline makes it.
 fn seed(g: &LocalGeometry, uv: [f64; 2]) -> Seed {
-    Seed { uv, point: g.point, normal: g.normal, curvatures: [g.k1, g.k2] }
+    Seed {
+        uv,
+        point: g.point,
+        normal: g.normal,
+        curvatures: [g.k1, g.k2],
+    }
 }
 
 /// Position of a pattern point along a Hilbert curve over the unit square (2^16 cells a side).
@@ -1176,8 +1370,12 @@ fn renumber_diagnostic(d: &mut Diagnostic, k: u32) {
     };
     match d {
         Diagnostic::IllConditionedVertex { points, .. } => points.iter_mut().for_each(shift),
-        Diagnostic::ParallelPlanes { points } | Diagnostic::BoundaryNotReached { points } => points.iter_mut().for_each(shift),
-        Diagnostic::OpenFacet { point, .. } | Diagnostic::CornerUnreachable { point, .. } | Diagnostic::FlatPoint { point, .. } => shift(point),
+        Diagnostic::ParallelPlanes { points } | Diagnostic::BoundaryNotReached { points } => {
+            points.iter_mut().for_each(shift)
+        }
+        Diagnostic::OpenFacet { point, .. }
+        | Diagnostic::CornerUnreachable { point, .. }
+        | Diagnostic::FlatPoint { point, .. } => shift(point),
         Diagnostic::CornerClaims { .. } => {}
     }
 }
@@ -1200,4 +1398,3 @@ fn report_foot(surface: &dyn Surface, vertex: &TriangleVertex, seed_uv: [f64; 2]
         FootHint::FromSeed => foot(surface, &domain, x, seed_uv),
     }
 }
-

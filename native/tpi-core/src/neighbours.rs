@@ -97,12 +97,19 @@ pub struct NeighbourInput<'a> {
 /// Runs both criteria to convergence, then the validity flips of the facets of points
 /// `0..real_count` ([`crate::validity_flips`]); points from `real_count` on are ghosts
 /// ([`crate::ghosts`]), whose facets are not judged. Deterministic (a stack in edge order).
-pub fn decide(tri: &mut DualTriangulation, input: &NeighbourInput<'_>, envelope: bool, real_count: usize) -> NeighbourStats {
+pub fn decide(
+    tri: &mut DualTriangulation,
+    input: &NeighbourInput<'_>,
+    envelope: bool,
+    real_count: usize,
+) -> NeighbourStats {
     let mut stats = NeighbourStats::default();
     let uv = input.plane_uv;
-    stats.compensation_flips = flip_until_stable(tri, uv, |tri, t, k| compensation_illegal(tri, input, t, k)).0;
+    stats.compensation_flips =
+        flip_until_stable(tri, uv, |tri, t, k| compensation_illegal(tri, input, t, k)).0;
     if envelope {
-        let (flips, unresolved) = flip_until_stable(tri, uv, |tri, t, k| envelope_illegal(tri, input, t, k));
+        let (flips, unresolved) =
+            flip_until_stable(tri, uv, |tri, t, k| envelope_illegal(tri, input, t, k));
         stats.envelope_repairs = flips;
         stats.envelope_unresolved = unresolved;
     }
@@ -138,7 +145,11 @@ pub const GRADIENT_MIN_COS: f64 = 0.2;
 ///
 /// N depends on the surface alone, not on the pattern, so each point's slopes are its own
 /// (which is what lets a live surface update them one point at a time).
-pub fn gradient_embedding(planes: &[Plane], convex_side: &[i8], frame: Option<DVec3>) -> Option<Vec<[f64; 2]>> {
+pub fn gradient_embedding(
+    planes: &[Plane],
+    convex_side: &[i8],
+    frame: Option<DVec3>,
+) -> Option<Vec<[f64; 2]>> {
     let side = *convex_side.first()?;
     if side == 0 || convex_side.iter().any(|&s| s != side) {
         return None;
@@ -161,14 +172,23 @@ pub struct SlopeFrame {
 impl SlopeFrame {
     /// The frame of unit normal `normal` for convex side `side`.
     pub fn new(normal: DVec3, side: i8) -> Self {
-        Self { normal, axes: normal.any_orthonormal_pair(), side: f64::from(side) }
+        Self {
+            normal,
+            axes: normal.any_orthonormal_pair(),
+            side: f64::from(side),
+        }
     }
 
     /// The slopes of one tangent plane, or None where its normal is too far from N.
     pub fn slopes(&self, p: &Plane) -> Option<[f64; 2]> {
         let nz = p.normal.dot(self.normal);
         let (e1, e2) = self.axes;
-        (nz >= GRADIENT_MIN_COS).then(|| [-self.side * p.normal.dot(e1) / nz, -self.side * p.normal.dot(e2) / nz])
+        (nz >= GRADIENT_MIN_COS).then(|| {
+            [
+                -self.side * p.normal.dot(e1) / nz,
+                -self.side * p.normal.dot(e2) / nz,
+            ]
+        })
     }
 }
 
@@ -198,14 +218,25 @@ pub fn slope_frame(surface: &dyn crate::surface::Surface) -> Option<DVec3> {
 /// `envelope_repairs` counts the interior edges of the result that are not locally Delaunay
 /// in slope space ([`slope_repairs`]): where the envelope departs from the plain Delaunay
 /// candidates. It depends on the result alone, not on the order of the flips.
-pub fn decide_convex(tri: &mut DualTriangulation, slopes: &[[f64; 2]], input: &NeighbourInput<'_>) -> NeighbourStats {
-    let (_flips, unresolved) = flip_until_stable(tri, slopes, |tri, t, k| envelope_illegal(tri, input, t, k));
+pub fn decide_convex(
+    tri: &mut DualTriangulation,
+    slopes: &[[f64; 2]],
+    input: &NeighbourInput<'_>,
+) -> NeighbourStats {
+    let (_flips, unresolved) =
+        flip_until_stable(tri, slopes, |tri, t, k| envelope_illegal(tri, input, t, k));
     orient_like(tri, input.plane_uv);
     tri.canonicalise(input.plane_uv.len());
     // Rounding can leave slivers along a straight stretch of the hull.
     let hull_trims = trim_hull(tri, input);
     let envelope_repairs = slope_repairs(tri, slopes);
-    NeighbourStats { compensation_flips: 0, envelope_repairs, envelope_unresolved: unresolved, hull_trims, ..NeighbourStats::default() }
+    NeighbourStats {
+        compensation_flips: 0,
+        envelope_repairs,
+        envelope_unresolved: unresolved,
+        hull_trims,
+        ..NeighbourStats::default()
+    }
 }
 
 /// Makes the triangles counter-clockwise in `uv` (the orientation the facet loops inherit),
@@ -227,16 +258,27 @@ pub fn slope_repairs(tri: &DualTriangulation, slopes: &[[f64; 2]]) -> usize {
     use rayon::prelude::*;
     (0..tri.len())
         .into_par_iter()
-        .map(|t| (0..3).filter(|&k| {
-            let other = tri.neighbours[t][k];
-            other != NO_TRIANGLE && (other as usize) > t && slope_edge_repaired(tri, slopes, t, k)
-        }).count())
+        .map(|t| {
+            (0..3)
+                .filter(|&k| {
+                    let other = tri.neighbours[t][k];
+                    other != NO_TRIANGLE
+                        && (other as usize) > t
+                        && slope_edge_repaired(tri, slopes, t, k)
+                })
+                .count()
+        })
         .sum()
 }
 
 /// Whether the interior edge opposite vertex k of triangle t is not locally Delaunay in slope
 /// space (see [`slope_repairs`]).
-pub fn slope_edge_repaired(tri: &DualTriangulation, slopes: &[[f64; 2]], t: usize, k: usize) -> bool {
+pub fn slope_edge_repaired(
+    tri: &DualTriangulation,
+    slopes: &[[f64; 2]],
+    t: usize,
+    k: usize,
+) -> bool {
     let [c, a, b, d] = quad(tri, t, k).map(|i| slopes[i as usize]);
     // (c, a, b) in either orientation: the in-circle sign flips with it.
     let o = orient(c, a, b);
@@ -261,12 +303,15 @@ fn trim_hull(tri: &mut DualTriangulation, input: &NeighbourInput<'_>) -> usize {
     let mut removed: Vec<bool> = Vec::new();
     let mut triangle_count: Vec<u32> = Vec::new();
     let mut rings = Rings::default();
-    let mut queue: Vec<u32> =
-        (0..tri.len() as u32).filter(|&t| tri.neighbours[t as usize].contains(&NO_TRIANGLE)).collect();
+    let mut queue: Vec<u32> = (0..tri.len() as u32)
+        .filter(|&t| tri.neighbours[t as usize].contains(&NO_TRIANGLE))
+        .collect();
     queue.reverse();
     let mut trims = 0;
     while let Some(t) = queue.pop() {
-        if removed.get(t as usize).copied().unwrap_or(false) || !hull_rejected(tri, input, &mut rings, t as usize) {
+        if removed.get(t as usize).copied().unwrap_or(false)
+            || !hull_rejected(tri, input, &mut rings, t as usize)
+        {
             continue;
         }
         if triangle_count.is_empty() {
@@ -329,7 +374,10 @@ impl Rings {
     }
 
     fn neighbours_of(&self, tri: &DualTriangulation, t: u32) -> [u32; 3] {
-        self.original.get(&t).copied().unwrap_or(tri.neighbours[t as usize])
+        self.original
+            .get(&t)
+            .copied()
+            .unwrap_or(tri.neighbours[t as usize])
     }
 
     /// The sorted neighbours of point v, which triangle `start` holds.
@@ -340,7 +388,9 @@ impl Rings {
                 let mut t = start;
                 for _ in 0..=tri.len() {
                     let vertices = tri.triangles[t as usize];
-                    let Some(k) = vertices.iter().position(|&x| x == v) else { break };
+                    let Some(k) = vertices.iter().position(|&x| x == v) else {
+                        break;
+                    };
                     for &other in &[vertices[(k + 1) % 3], vertices[(k + 2) % 3]] {
                         list.push(other);
                         self.holder.entry(other).or_insert(t);
@@ -376,28 +426,48 @@ impl Rings {
 }
 
 /// Whether the envelope rejects hull triangle t (see [`trim_hull`]).
-fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, rings: &mut Rings, t: usize) -> bool {
+fn hull_rejected(
+    tri: &DualTriangulation,
+    input: &NeighbourInput<'_>,
+    rings: &mut Rings,
+    t: usize,
+) -> bool {
     let vertices = tri.triangles[t];
     let side = input.convex_side[vertices[0] as usize];
-    if side == 0 || vertices.iter().any(|&v| input.convex_side[v as usize] != side) {
+    if side == 0
+        || vertices
+            .iter()
+            .any(|&v| input.convex_side[v as usize] != side)
+    {
         return false;
     }
     let s = f64::from(side);
     let planes = input.planes;
     let vertex = three_plane_vertex(planes, vertices);
     let size = (0..3)
-        .map(|k| planes[vertices[k] as usize].point.distance(planes[vertices[(k + 1) % 3] as usize].point))
+        .map(|k| {
+            planes[vertices[k] as usize]
+                .point
+                .distance(planes[vertices[(k + 1) % 3] as usize].point)
+        })
         .fold(0.0, f64::max);
     let tolerance = ENVELOPE_FLIP_TOLERANCE * size;
     // Three (numerically) collinear planes along a straight stretch of the hull meet at
     // infinity: such a sliver holds no vertex of the envelope.
-    let centroid = vertices.iter().fold(DVec3::ZERO, |acc, &v| acc + planes[v as usize].point) / 3.0;
+    let centroid = vertices
+        .iter()
+        .fold(DVec3::ZERO, |acc, &v| acc + planes[v as usize].point)
+        / 3.0;
     if !vertex.is_finite() || vertex.distance(centroid) > DEGENERATE_SLIVER_FACTOR * size {
         return true;
     }
-    let cut_off = rings.second_ring(tri, t as u32, vertices).into_iter().any(|x| {
-        input.convex_side[x as usize] == side && s * planes[x as usize].signed_distance(vertex) < -tolerance
-    });
+    let cut_off = rings
+        .second_ring(tri, t as u32, vertices)
+        .into_iter()
+        .any(|x| {
+            input.convex_side[x as usize] == side
+                && s * planes[x as usize].signed_distance(vertex) < -tolerance
+        });
     if cut_off {
         return true;
     }
@@ -406,8 +476,14 @@ fn hull_rejected(tri: &DualTriangulation, input: &NeighbourInput<'_>, rings: &mu
             return false;
         }
         let [c, a, b] = rotated(vertices, k);
-        let (pa, pb, pc) = (&input.planes[a as usize], &input.planes[b as usize], &input.planes[c as usize]);
-        let Some(line) = pa.normal.cross(pb.normal).try_normalize() else { return false };
+        let (pa, pb, pc) = (
+            &input.planes[a as usize],
+            &input.planes[b as usize],
+            &input.planes[c as usize],
+        );
+        let Some(line) = pa.normal.cross(pb.normal).try_normalize() else {
+            return false;
+        };
         let chord = pb.point - pa.point;
         let mut away = (pa.point + pb.point) * 0.5 - pc.point;
         away -= chord * (away.dot(chord) / chord.length_squared().max(f64::MIN_POSITIVE));
@@ -444,7 +520,10 @@ fn flip_until_stable(
     };
     let first_tests: Vec<bool> = {
         let tri_ref: &DualTriangulation = tri;
-        initial.par_iter().map(|&e| illegal(tri_ref, (e >> 2) as usize, (e & 3) as usize)).collect()
+        initial
+            .par_iter()
+            .map(|&e| illegal(tri_ref, (e >> 2) as usize, (e & 3) as usize))
+            .collect()
     };
     let mut dirty = vec![false; tri.len()];
     // The vertices of changed triangles before their first change.
@@ -462,18 +541,26 @@ fn flip_until_stable(
                 let tv = tri.triangles[t0];
                 Some((tv[(k0 + 1) % 3], tv[(k0 + 2) % 3], Some(first_tests[n])))
             } else {
-                let tv = original.get(&(t0 as u32)).copied().unwrap_or(tri.triangles[t0]);
+                let tv = original
+                    .get(&(t0 as u32))
+                    .copied()
+                    .unwrap_or(tri.triangles[t0]);
                 Some((tv[(k0 + 1) % 3], tv[(k0 + 2) % 3], None))
             }
         };
-        while let Some((a, b, known)) = next.take().or_else(|| stack.pop().map(|(a, b)| (a, b, None))) {
+        while let Some((a, b, known)) = next
+            .take()
+            .or_else(|| stack.pop().map(|(a, b)| (a, b, None)))
+        {
             let (t, k, verdict) = match known {
                 Some(verdict) => (t0, k0, verdict),
                 None => {
                     if incident.is_empty() {
                         incident = tri.incident_triangles(embedding.len());
                     }
-                    let Some((t, k)) = find_edge(tri, &incident, a, b) else { continue };
+                    let Some((t, k)) = find_edge(tri, &incident, a, b) else {
+                        continue;
+                    };
                     (t, k, illegal(tri, t, k))
                 }
             };
@@ -482,7 +569,10 @@ fn flip_until_stable(
             }
             let t2 = tri.neighbours[t][k];
             let [c, a, b] = rotated(tri.triangles[t], k);
-            let k2 = tri.neighbours[t2 as usize].iter().position(|&x| x as usize == t).unwrap_or(0);
+            let k2 = tri.neighbours[t2 as usize]
+                .iter()
+                .position(|&x| x as usize == t)
+                .unwrap_or(0);
             let d = tri.triangles[t2 as usize][k2];
             let e = embedding;
             let convex = orient(e[c as usize], e[a as usize], e[d as usize]) > 0.0
@@ -546,17 +636,29 @@ fn rotated(x: [u32; 3], k: usize) -> [u32; 3] {
 fn quad(tri: &DualTriangulation, t: usize, k: usize) -> [u32; 4] {
     let [c, a, b] = rotated(tri.triangles[t], k);
     let t2 = tri.neighbours[t][k] as usize;
-    let k2 = tri.neighbours[t2].iter().position(|&x| x as usize == t).unwrap_or(0);
+    let k2 = tri.neighbours[t2]
+        .iter()
+        .position(|&x| x as usize == t)
+        .unwrap_or(0);
     [c, a, b, tri.triangles[t2][k2]]
 }
 
 /// In-circle test in the averaged curvature-compensation metric.
-fn compensation_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: usize, k: usize) -> bool {
+fn compensation_illegal(
+    tri: &DualTriangulation,
+    input: &NeighbourInput<'_>,
+    t: usize,
+    k: usize,
+) -> bool {
     let ids = quad(tri, t, k);
     let geo = ids.map(|i| &input.geometry[i as usize]);
     let mean_normal = geo.iter().fold(DVec3::ZERO, |acc, g| acc + g.normal);
-    let Some(normal) = mean_normal.try_normalize() else { return false };
-    let e1 = (geo[0].d1 - normal * geo[0].d1.dot(normal)).try_normalize().unwrap_or_else(|| normal.any_orthonormal_vector());
+    let Some(normal) = mean_normal.try_normalize() else {
+        return false;
+    };
+    let e1 = (geo[0].d1 - normal * geo[0].d1.dot(normal))
+        .try_normalize()
+        .unwrap_or_else(|| normal.any_orthonormal_vector());
     let e2 = normal.cross(e1);
     // Metric G = sum |k| (d.e)(d.e)^T over the four points, in the frame (e1, e2).
     let mut g = [0.0f64; 3];
@@ -598,8 +700,15 @@ fn compensation_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: 
     }
     // Ties (four points on one metric circle, e.g. a square grid where |II| is isotropic) are
     // left alone: a flip there only follows rounding.
-    let scale = [a, b, d].iter().map(|p| (p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2)).fold(0.0, f64::max);
-    let tie = if input.any_curvature { COMPENSATION_TIE_TOLERANCE * scale * scale } else { 0.0 };
+    let scale = [a, b, d]
+        .iter()
+        .map(|p| (p[0] - c[0]).powi(2) + (p[1] - c[1]).powi(2))
+        .fold(0.0, f64::max);
+    let tie = if input.any_curvature {
+        COMPENSATION_TIE_TOLERANCE * scale * scale
+    } else {
+        0.0
+    };
     in_circle(c, a, b, d) > tie
 }
 
@@ -619,7 +728,12 @@ pub(crate) fn in_circle(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f
 }
 
 /// The envelope test on a strictly convex quad.
-fn envelope_illegal(tri: &DualTriangulation, input: &NeighbourInput<'_>, t: usize, k: usize) -> bool {
+fn envelope_illegal(
+    tri: &DualTriangulation,
+    input: &NeighbourInput<'_>,
+    t: usize,
+    k: usize,
+) -> bool {
     envelope_quad_illegal(input.planes, input.convex_side, quad(tri, t, k))
 }
 
@@ -649,7 +763,12 @@ pub(crate) fn envelope_quad_illegal_by(
     let s = f64::from(side);
     let outside = |mut x: [u32; 3], other: u32| {
         x.sort_unstable_by_key(|&i| key(i));
-        let vertex = intersect_three(&planes[x[0] as usize], &planes[x[1] as usize], &planes[x[2] as usize]).point;
+        let vertex = intersect_three(
+            &planes[x[0] as usize],
+            &planes[x[1] as usize],
+            &planes[x[2] as usize],
+        )
+        .point;
         let distance = s * planes[other as usize].signed_distance(vertex);
         vertex.is_finite() && distance < -tolerance
     };
@@ -659,5 +778,10 @@ pub(crate) fn envelope_quad_illegal_by(
 /// The meeting point of the tangent planes of three points, in canonical (ascending) order.
 pub fn three_plane_vertex(planes: &[Plane], mut ids: [u32; 3]) -> DVec3 {
     ids.sort_unstable();
-    intersect_three(&planes[ids[0] as usize], &planes[ids[1] as usize], &planes[ids[2] as usize]).point
+    intersect_three(
+        &planes[ids[0] as usize],
+        &planes[ids[1] as usize],
+        &planes[ids[2] as usize],
+    )
+    .point
 }

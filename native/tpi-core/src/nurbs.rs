@@ -119,7 +119,11 @@ impl NurbsSpec {
             self.count,
             &self.knots_u,
             &self.knots_v,
-            &self.points.iter().map(|p| DVec3::from_array(*p)).collect::<Vec<_>>(),
+            &self
+                .points
+                .iter()
+                .map(|p| DVec3::from_array(*p))
+                .collect::<Vec<_>>(),
             self.weights.as_deref(),
         )
     }
@@ -148,7 +152,12 @@ const SMALL_BASIS_LEN: usize = 4;
 
 impl KnotVector {
     /// Validates the knots given in either convention; degree and count are already valid.
-    fn new(direction: Direction, degree: usize, count: usize, given: &[f64]) -> Result<Self, TpiError> {
+    fn new(
+        direction: Direction,
+        degree: usize,
+        count: usize,
+        given: &[f64],
+    ) -> Result<Self, TpiError> {
         let field = match direction {
             Direction::U => "knots_u",
             Direction::V => "knots_v",
@@ -187,12 +196,19 @@ impl KnotVector {
         }
         // Finite knots can still span an infinite range, which would overflow every formula.
         let (first, last) = (given[0], given[given.len() - 1]);
-        check_finite(|| format!("{field}[{}] - {field}[0]", given.len() - 1), last - first)?;
+        check_finite(
+            || format!("{field}[{}] - {field}[0]", given.len() - 1),
+            last - first,
+        )?;
 
         let rhino = &given[rhino_offset..rhino_offset + rhino_len];
         let (min, max) = (rhino[degree - 1], rhino[count - 1]);
         if min >= max {
-            return Err(TpiError::EmptyDomain { direction, min, max });
+            return Err(TpiError::EmptyDomain {
+                direction,
+                min,
+                max,
+            });
         }
 
         let mut run_start = 0;
@@ -263,7 +279,11 @@ impl KnotVector {
     /// Book A2.2), with the rows of degree p-1 (N_(s-p+1),p-1 ..) and p-2 (N_(s-p+2),p-2 ..)
     /// of the same triangle.
     #[inline]
-    fn basis_triangle<const N: usize>(&self, span: usize, t: f64) -> ([f64; N], [f64; N], [f64; N]) {
+    fn basis_triangle<const N: usize>(
+        &self,
+        span: usize,
+        t: f64,
+    ) -> ([f64; N], [f64; N], [f64; N]) {
         let p = self.degree;
         debug_assert!(p < N);
         let knots = &self.knots;
@@ -408,13 +428,21 @@ impl NurbsSurface {
         points: &[DVec3],
         weights: Option<&[f64]>,
     ) -> Result<Self, TpiError> {
-        for (direction, degree, count) in [(Direction::U, degree[0], count[0]), (Direction::V, degree[1], count[1])] {
+        for (direction, degree, count) in [
+            (Direction::U, degree[0], count[0]),
+            (Direction::V, degree[1], count[1]),
+        ] {
             let reason = if degree == 0 {
                 Some("the degree must be at least 1".to_string())
             } else if degree > MAX_NURBS_DEGREE {
-                Some(format!("degrees above {MAX_NURBS_DEGREE} are not supported"))
+                Some(format!(
+                    "degrees above {MAX_NURBS_DEGREE} are not supported"
+                ))
             } else if degree >= count {
-                Some("a NURBS surface needs at least degree + 1 control points in each direction".to_string())
+                Some(
+                    "a NURBS surface needs at least degree + 1 control points in each direction"
+                        .to_string(),
+                )
             } else {
                 None
             };
@@ -462,7 +490,11 @@ impl NurbsSurface {
         }
 
         let homogeneous: Vec<DVec4> = match weights {
-            Some(weights) => points.iter().zip(weights).map(|(p, &w)| (*p * w).extend(w)).collect(),
+            Some(weights) => points
+                .iter()
+                .zip(weights)
+                .map(|(p, &w)| (*p * w).extend(w))
+                .collect(),
             None => points.iter().map(|p| p.extend(1.0)).collect(),
         };
         // Finite points and weights can still overflow to infinity in x * w.
@@ -474,7 +506,10 @@ impl NurbsSurface {
                 (lo.min(*p), hi.max(*p))
             });
         let net_diagonal = robust_length(net_max - net_min);
-        check_finite(|| "bounding-box diagonal of points".to_string(), net_diagonal)?;
+        check_finite(
+            || "bounding-box diagonal of points".to_string(),
+            net_diagonal,
+        )?;
 
         let domain = Domain::new(basis_u.interval(), basis_v.interval());
         let bezier = BezierPatches::extract(&basis_u, &basis_v, &homogeneous);
@@ -553,19 +588,39 @@ impl NurbsSurface {
 
 /// S and its derivatives from the homogeneous A = (x w, y w, z w, w) and its derivatives.
 #[inline(always)]
-fn quotient_rule(a: DVec4, a_u: DVec4, a_v: DVec4, a_uu: DVec4, a_uv: DVec4, a_vv: DVec4) -> SurfaceDerivatives {
+fn quotient_rule(
+    a: DVec4,
+    a_u: DVec4,
+    a_v: DVec4,
+    a_uu: DVec4,
+    a_uv: DVec4,
+    a_vv: DVec4,
+) -> SurfaceDerivatives {
     let w = a.w;
     let (w_u, w_v, w_uu, w_uv, w_vv) = (a_u.w, a_v.w, a_uu.w, a_uv.w, a_vv.w);
     // Multiplying by 1 / w is faster than dividing; subnormal weights make 1 / w overflow.
     let inverse_w = 1.0 / w;
-    let divide_by_w = |x: DVec3| if inverse_w.is_finite() { x * inverse_w } else { x / w };
+    let divide_by_w = |x: DVec3| {
+        if inverse_w.is_finite() {
+            x * inverse_w
+        } else {
+            x / w
+        }
+    };
     let point = divide_by_w(a.truncate());
     let su = divide_by_w(a_u.truncate() - w_u * point);
     let sv = divide_by_w(a_v.truncate() - w_v * point);
     let suu = divide_by_w(a_uu.truncate() - 2.0 * w_u * su - w_uu * point);
     let suv = divide_by_w(a_uv.truncate() - w_u * sv - w_v * su - w_uv * point);
     let svv = divide_by_w(a_vv.truncate() - 2.0 * w_v * sv - w_vv * point);
-    SurfaceDerivatives { point, su, sv, suu, suv, svv }
+    SurfaceDerivatives {
+        point,
+        su,
+        sv,
+        suu,
+        suv,
+        svv,
+    }
 }
 
 /// Largest degree evaluated through Bezier patches.
@@ -601,14 +656,21 @@ impl BezierPatches {
         let (nu, nv) = (basis_u.count, basis_v.count);
         let spans = (nu - p) * (nv - q);
         let size = (p + 1) * (q + 1);
-        if p > BEZIER_MAX_DEGREE || q > BEZIER_MAX_DEGREE || spans.saturating_mul(size) > BEZIER_MAX_POINTS {
+        if p > BEZIER_MAX_DEGREE
+            || q > BEZIER_MAX_DEGREE
+            || spans.saturating_mul(size) > BEZIER_MAX_POINTS
+        {
             return Self::default();
         }
         let widths = |b: &KnotVector| -> Vec<f64> {
             (0..b.knots.len() - 1)
                 .map(|s| {
                     let w = b.knots[s + 1] - b.knots[s];
-                    if w > 0.0 { 1.0 / w } else { 0.0 }
+                    if w > 0.0 {
+                        1.0 / w
+                    } else {
+                        0.0
+                    }
                 })
                 .collect()
         };
@@ -636,7 +698,9 @@ impl BezierPatches {
                 continue;
             }
             for k in 0..=p {
-                row.copy_from_slice(&in_u[((s - p) * (p + 1) + k) * nv..((s - p) * (p + 1) + k + 1) * nv]);
+                row.copy_from_slice(
+                    &in_u[((s - p) * (p + 1) + k) * nv..((s - p) * (p + 1) + k + 1) * nv],
+                );
                 for r in q..nv {
                     if basis_v.knots[r] >= basis_v.knots[r + 1] {
                         continue;
@@ -653,12 +717,23 @@ impl BezierPatches {
         } else {
             Vec::new()
         };
-        Self { patches, euclidean, inverse_width_u: widths(basis_u), inverse_width_v: widths(basis_v) }
+        Self {
+            patches,
+            euclidean,
+            inverse_width_u: widths(basis_u),
+            inverse_width_v: widths(basis_v),
+        }
     }
 
     /// The Euclidean patch of span pair (s, r) (non-rational surfaces only).
     #[inline]
-    fn euclidean_patch(&self, basis_u: &KnotVector, basis_v: &KnotVector, s: usize, r: usize) -> &[DVec3] {
+    fn euclidean_patch(
+        &self,
+        basis_u: &KnotVector,
+        basis_v: &KnotVector,
+        s: usize,
+        r: usize,
+    ) -> &[DVec3] {
         let (p, q) = (basis_u.degree, basis_v.degree);
         let size = (p + 1) * (q + 1);
         let base = ((s - p) * (basis_v.count - q) + (r - q)) * size;
@@ -667,11 +742,21 @@ impl BezierPatches {
 
     /// The patch of span pair (s, r) and the inverse span widths.
     #[inline]
-    fn patch(&self, basis_u: &KnotVector, basis_v: &KnotVector, s: usize, r: usize) -> (&[DVec4], f64, f64) {
+    fn patch(
+        &self,
+        basis_u: &KnotVector,
+        basis_v: &KnotVector,
+        s: usize,
+        r: usize,
+    ) -> (&[DVec4], f64, f64) {
         let (p, q) = (basis_u.degree, basis_v.degree);
         let size = (p + 1) * (q + 1);
         let base = ((s - p) * (basis_v.count - q) + (r - q)) * size;
-        (&self.patches[base..base + size], self.inverse_width_u[s], self.inverse_width_v[r])
+        (
+            &self.patches[base..base + size],
+            self.inverse_width_u[s],
+            self.inverse_width_v[r],
+        )
     }
 }
 
@@ -716,15 +801,28 @@ fn bernstein_derivatives(p: usize, t: f64, scale: f64) -> [[f64; BEZIER_MAX_DEGR
             let (d, dd) = (3.0 * scale, 6.0 * scale * scale);
             [
                 [s * s * s, 3.0 * t * s * s, 3.0 * t * t * s, t * t * t],
-                [-d * (s * s), d * (s * s - 2.0 * t * s), d * (2.0 * t * s - t * t), d * (t * t)],
+                [
+                    -d * (s * s),
+                    d * (s * s - 2.0 * t * s),
+                    d * (2.0 * t * s - t * t),
+                    d * (t * t),
+                ],
                 [dd * s, dd * (t - 2.0 * s), dd * (s - 2.0 * t), dd * t],
             ]
         }
         2 => {
             let (d, dd) = (2.0 * scale, 2.0 * scale * scale);
-            [[s * s, 2.0 * t * s, t * t, 0.0], [-d * s, d * (s - t), d * t, 0.0], [dd, -2.0 * dd, dd, 0.0]]
+            [
+                [s * s, 2.0 * t * s, t * t, 0.0],
+                [-d * s, d * (s - t), d * t, 0.0],
+                [dd, -2.0 * dd, dd, 0.0],
+            ]
         }
-        _ => [[s, t, 0.0, 0.0], [-scale, scale, 0.0, 0.0], [0.0; BEZIER_MAX_DEGREE + 1]],
+        _ => [
+            [s, t, 0.0, 0.0],
+            [-scale, scale, 0.0, 0.0],
+            [0.0; BEZIER_MAX_DEGREE + 1],
+        ],
     }
 }
 
@@ -787,12 +885,16 @@ impl NurbsSurface {
         let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
         let (span_u, u) = self.basis_u.span(u);
         let (span_v, v) = self.basis_v.span(v);
-        let (patch, su, sv) = self.bezier.patch(&self.basis_u, &self.basis_v, span_u, span_v);
+        let (patch, su, sv) = self
+            .bezier
+            .patch(&self.basis_u, &self.basis_v, span_u, span_v);
         let nu = bernstein_derivatives(pu, (u - self.basis_u.knots[span_u]) * su, su);
         let nv = bernstein_derivatives(pv, (v - self.basis_v.knots[span_v]) * sv, sv);
         if !self.bezier.euclidean.is_empty() {
             // Non-rational: S itself is the polynomial, w = 1.
-            let patch = self.bezier.euclidean_patch(&self.basis_u, &self.basis_v, span_u, span_v);
+            let patch = self
+                .bezier
+                .euclidean_patch(&self.basis_u, &self.basis_v, span_u, span_v);
             let (mut point, mut su, mut sv) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
             let (mut suu, mut suv, mut svv) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
             for k in 0..=pu {
@@ -811,7 +913,14 @@ impl NurbsSurface {
                 suv += n1 * t1;
                 svv += n0 * t2;
             }
-            return SurfaceDerivatives { point, su, sv, suu, suv, svv };
+            return SurfaceDerivatives {
+                point,
+                su,
+                sv,
+                suu,
+                suv,
+                svv,
+            };
         }
         let (mut a, mut a_u, mut a_v) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
         let (mut a_uu, mut a_uv, mut a_vv) = (DVec4::ZERO, DVec4::ZERO, DVec4::ZERO);
@@ -840,11 +949,15 @@ impl NurbsSurface {
         let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
         let (span_u, u) = self.basis_u.span(u);
         let (span_v, v) = self.basis_v.span(v);
-        let (patch, su, sv) = self.bezier.patch(&self.basis_u, &self.basis_v, span_u, span_v);
+        let (patch, su, sv) = self
+            .bezier
+            .patch(&self.basis_u, &self.basis_v, span_u, span_v);
         let nu = bernstein(pu, (u - self.basis_u.knots[span_u]) * su);
         let nv = bernstein(pv, (v - self.basis_v.knots[span_v]) * sv);
         if !self.bezier.euclidean.is_empty() {
-            let patch = self.bezier.euclidean_patch(&self.basis_u, &self.basis_v, span_u, span_v);
+            let patch = self
+                .bezier
+                .euclidean_patch(&self.basis_u, &self.basis_v, span_u, span_v);
             let mut point = DVec3::ZERO;
             for k in 0..=pu {
                 let row = &patch[k * (pv + 1)..(k + 1) * (pv + 1)];

@@ -100,7 +100,10 @@ impl Pattern {
 
     /// The points mapped linearly onto `domain`: (s, t) -> (u0 + s (u1 - u0), v0 + t (v1 - v0)).
     pub fn to_domain(&self, domain: &Domain) -> Vec<[f64; 2]> {
-        self.uv.iter().map(|&st| domain.from_normalised(st)).collect()
+        self.uv
+            .iter()
+            .map(|&st| domain.from_normalised(st))
+            .collect()
     }
 }
 
@@ -114,7 +117,11 @@ pub fn validate_uv(uv: &[[f64; 2]]) -> Result<(), TpiError> {
     let mut hash = UvHash::new(DUPLICATE_UV_TOLERANCE, uv.len());
     for (index, &p) in uv.iter().enumerate() {
         if let Some((duplicate_of, distance)) = hash.nearest_within(uv, p) {
-            return Err(TpiError::DuplicatePatternPoint { index, duplicate_of, distance });
+            return Err(TpiError::DuplicatePatternPoint {
+                index,
+                duplicate_of,
+                distance,
+            });
         }
         hash.insert(p, index);
     }
@@ -173,7 +180,10 @@ impl UvHash {
 
     fn key(&self, p: [f64; 2]) -> (i64, i64) {
         // Points are finite and inside [0, 1]^2 here, so the keys fit easily.
-        ((p[0] / self.cell).floor() as i64, (p[1] / self.cell).floor() as i64)
+        (
+            (p[0] / self.cell).floor() as i64,
+            (p[1] / self.cell).floor() as i64,
+        )
     }
 
     /// The nearest stored point strictly closer than the cell size (ties: smaller index).
@@ -182,7 +192,11 @@ impl UvHash {
         let mut best: Option<(usize, f64)> = None;
         for di in -1..=1 {
             for dj in -1..=1 {
-                let mut k = self.head.get(&(ci + di, cj + dj)).copied().unwrap_or(NO_POINT);
+                let mut k = self
+                    .head
+                    .get(&(ci + di, cj + dj))
+                    .copied()
+                    .unwrap_or(NO_POINT);
                 while let Some(q) = points.get(k) {
                     let d = (p[0] - q[0]).hypot(p[1] - q[1]);
                     if d < self.cell {
@@ -314,7 +328,9 @@ impl GridSize {
         let (nu, nv) = counts;
         match nu.checked_mul(nv) {
             Some(n) if n <= MAX_GENERATED_POINTS => Ok(()),
-            _ => Err(format!("{nu}x{nv} points exceed the maximum of {MAX_GENERATED_POINTS}")),
+            _ => Err(format!(
+                "{nu}x{nv} points exceed the maximum of {MAX_GENERATED_POINTS}"
+            )),
         }
     }
 }
@@ -356,21 +372,30 @@ jitter:NUxNV[:amount=A][:seed=S], random:N[:seed=S] or poisson:R[:seed=S]";
 
 fn parse_grid_size(token: &str) -> Result<GridSize, String> {
     if let Some(value) = token.strip_prefix("spacing=") {
-        let d: f64 = value.parse().map_err(|_| format!("spacing `{value}` is not a number"))?;
+        let d: f64 = value
+            .parse()
+            .map_err(|_| format!("spacing `{value}` is not a number"))?;
         return Ok(GridSize::Spacing(d));
     }
     let Some((a, b)) = token.split_once('x') else {
-        return Err(format!("grid size `{token}` is neither NUxNV (e.g. 20x15) nor spacing=D"));
+        return Err(format!(
+            "grid size `{token}` is neither NUxNV (e.g. 20x15) nor spacing=D"
+        ));
     };
-    let nu: usize =
-        a.parse().map_err(|_| format!("count `{a}` in `{token}` is not a non-negative integer"))?;
-    let nv: usize =
-        b.parse().map_err(|_| format!("count `{b}` in `{token}` is not a non-negative integer"))?;
+    let nu: usize = a
+        .parse()
+        .map_err(|_| format!("count `{a}` in `{token}` is not a non-negative integer"))?;
+    let nv: usize = b
+        .parse()
+        .map_err(|_| format!("count `{b}` in `{token}` is not a non-negative integer"))?;
     Ok(GridSize::Counts { nu, nv })
 }
 
 /// Parses `key=value` options, allowing only `allowed` keys, each at most once.
-fn parse_options<'a>(tokens: &[&'a str], allowed: &[&str]) -> Result<Vec<(&'a str, &'a str)>, String> {
+fn parse_options<'a>(
+    tokens: &[&'a str],
+    allowed: &[&str],
+) -> Result<Vec<(&'a str, &'a str)>, String> {
     let mut out: Vec<(&str, &str)> = Vec::new();
     for token in tokens {
         let Some((key, value)) = token.split_once('=') else {
@@ -380,7 +405,10 @@ fn parse_options<'a>(tokens: &[&'a str], allowed: &[&str]) -> Result<Vec<(&'a st
             ));
         };
         if !allowed.contains(&key) {
-            return Err(format!("unknown option `{key}` (accepted: {})", allowed.join(", ")));
+            return Err(format!(
+                "unknown option `{key}` (accepted: {})",
+                allowed.join(", ")
+            ));
         }
         if out.iter().any(|(k, _)| *k == key) {
             return Err(format!("option `{key}` is given twice"));
@@ -397,7 +425,9 @@ fn option<'a>(options: &[(&str, &'a str)], key: &str) -> Option<&'a str> {
 fn parse_seed(options: &[(&str, &str)]) -> Result<u64, String> {
     match option(options, "seed") {
         None => Ok(0),
-        Some(v) => v.parse().map_err(|_| format!("seed `{v}` is not an unsigned 64-bit integer")),
+        Some(v) => v
+            .parse()
+            .map_err(|_| format!("seed `{v}` is not an unsigned 64-bit integer")),
     }
 }
 
@@ -408,14 +438,19 @@ impl Generator {
     ///
     /// Errors: [`TpiError::InvalidGenerator`] with the spec and what is wrong.
     pub fn parse(spec: &str) -> Result<Generator, TpiError> {
-        let fail = |reason: String| TpiError::InvalidGenerator { spec: spec.to_string(), reason };
+        let fail = |reason: String| TpiError::InvalidGenerator {
+            spec: spec.to_string(),
+            reason,
+        };
         let tokens: Vec<&str> = spec.trim().split(':').collect();
         let kind = tokens.first().copied().unwrap_or("");
         let rest = tokens.get(1..).unwrap_or(&[]);
         let generator = match kind {
             "grid" | "hex" => {
                 let [size] = rest else {
-                    return Err(fail(format!("{kind} takes exactly one argument, NUxNV or spacing=D")));
+                    return Err(fail(format!(
+                        "{kind} takes exactly one argument, NUxNV or spacing=D"
+                    )));
                 };
                 let size = parse_grid_size(size).map_err(fail)?;
                 if kind == "grid" {
@@ -432,27 +467,41 @@ impl Generator {
                 let opts = parse_options(opts, &["amount", "seed"]).map_err(fail)?;
                 let amount = match option(&opts, "amount") {
                     None => DEFAULT_JITTER_AMOUNT,
-                    Some(v) => v.parse().map_err(|_| fail(format!("amount `{v}` is not a number")))?,
+                    Some(v) => v
+                        .parse()
+                        .map_err(|_| fail(format!("amount `{v}` is not a number")))?,
                 };
-                Generator::Jitter { size, amount, seed: parse_seed(&opts).map_err(fail)? }
+                Generator::Jitter {
+                    size,
+                    amount,
+                    seed: parse_seed(&opts).map_err(fail)?,
+                }
             }
             "random" => {
                 let Some((n, opts)) = rest.split_first() else {
                     return Err(fail("random needs a point count, e.g. random:1000".into()));
                 };
-                let count: usize = n
-                    .parse()
-                    .map_err(|_| fail(format!("point count `{n}` is not a non-negative integer")))?;
+                let count: usize = n.parse().map_err(|_| {
+                    fail(format!("point count `{n}` is not a non-negative integer"))
+                })?;
                 let opts = parse_options(opts, &["seed"]).map_err(fail)?;
-                Generator::Random { count, seed: parse_seed(&opts).map_err(fail)? }
+                Generator::Random {
+                    count,
+                    seed: parse_seed(&opts).map_err(fail)?,
+                }
             }
             "poisson" => {
                 let Some((r, opts)) = rest.split_first() else {
                     return Err(fail("poisson needs a radius, e.g. poisson:0.03".into()));
                 };
-                let radius: f64 = r.parse().map_err(|_| fail(format!("radius `{r}` is not a number")))?;
+                let radius: f64 = r
+                    .parse()
+                    .map_err(|_| fail(format!("radius `{r}` is not a number")))?;
                 let opts = parse_options(opts, &["seed"]).map_err(fail)?;
-                Generator::Poisson { radius, seed: parse_seed(&opts).map_err(fail)? }
+                Generator::Poisson {
+                    radius,
+                    seed: parse_seed(&opts).map_err(fail)?,
+                }
             }
             "" => return Err(fail(format!("empty generator; {SYNTAX}"))),
             other => return Err(fail(format!("unknown generator kind `{other}`; {SYNTAX}"))),
@@ -466,7 +515,10 @@ impl Generator {
     ///
     /// Errors: [`TpiError::InvalidGenerator`] with the canonical spec and what is wrong.
     pub fn validate(&self) -> Result<(), TpiError> {
-        self.check().map_err(|reason| TpiError::InvalidGenerator { spec: self.to_string(), reason })
+        self.check().map_err(|reason| TpiError::InvalidGenerator {
+            spec: self.to_string(),
+            reason,
+        })
     }
 
     fn check(&self) -> Result<(), String> {
@@ -484,14 +536,18 @@ impl Generator {
                 if count == 0 {
                     Err("the point count must be at least 1".into())
                 } else if count > MAX_GENERATED_POINTS {
-                    Err(format!("{count} points exceed the maximum of {MAX_GENERATED_POINTS}"))
+                    Err(format!(
+                        "{count} points exceed the maximum of {MAX_GENERATED_POINTS}"
+                    ))
                 } else {
                     Ok(())
                 }
             }
             Generator::Poisson { radius, .. } => {
                 if !(radius.is_finite() && radius >= MIN_POISSON_RADIUS) {
-                    Err(format!("radius {radius} must be a number >= {MIN_POISSON_RADIUS}"))
+                    Err(format!(
+                        "radius {radius} must be a number >= {MIN_POISSON_RADIUS}"
+                    ))
                 } else {
                     Ok(())
                 }
@@ -559,7 +615,10 @@ fn lattice(nu: usize, nv: usize, offset: impl Fn(usize) -> f64) -> Vec<[f64; 2]>
     let mut uv = Vec::with_capacity(nu * nv);
     for i in 0..nu {
         for j in 0..nv {
-            uv.push([(i as f64 + offset(j)) / nu as f64, (j as f64 + 0.5) / nv as f64]);
+            uv.push([
+                (i as f64 + offset(j)) / nu as f64,
+                (j as f64 + 0.5) / nv as f64,
+            ]);
         }
     }
     uv

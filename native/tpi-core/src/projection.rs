@@ -34,7 +34,11 @@ pub fn foot(surface: &dyn Surface, domain: &Domain, x: DVec3, guess: [f64; 2]) -
         let g = [d.su.dot(r), d.sv.dot(r)];
         let mut h = [d.su.dot(d.su), d.su.dot(d.sv), d.sv.dot(d.sv)];
         if inside {
-            let full = [h[0] - r.dot(d.suu), h[1] - r.dot(d.suv), h[2] - r.dot(d.svv)];
+            let full = [
+                h[0] - r.dot(d.suu),
+                h[1] - r.dot(d.suv),
+                h[2] - r.dot(d.svv),
+            ];
             if full[0] > 0.0 && full[0] * full[2] - full[1] * full[1] > 0.0 {
                 h = full;
             }

@@ -24,12 +24,12 @@ use std::collections::BTreeMap;
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
+use crate::facets::{accept_newton, FootHint};
 use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
-use crate::facets::{accept_newton, FootHint};
 use crate::projection::foot;
-use crate::validity_flips::polygons_overlap;
 use crate::surface::Surface;
+use crate::validity_flips::polygons_overlap;
 
 /// Per-facet flag: not convex.
 pub const FLAG_NON_CONVEX: u8 = 1;
@@ -172,8 +172,13 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
                     planarity = planarity.max(plane.signed_distance(x).abs() / input.diagonal);
                     centroid += x;
                 }
-                let centroid = if l.is_empty() { DVec3::NAN } else { centroid / l.len() as f64 };
-                let shape = facet_shape_into(plane, l.iter().map(|&v| input.vertices[v as usize]), buffer);
+                let centroid = if l.is_empty() {
+                    DVec3::NAN
+                } else {
+                    centroid / l.len() as f64
+                };
+                let shape =
+                    facet_shape_into(plane, l.iter().map(|&v| input.vertices[v as usize]), buffer);
                 (centroid, shape, planarity)
             })
             .collect()
@@ -236,7 +241,12 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
             })
             .map(|&(f, g, _, _)| (f.min(g), f.max(g)))
             .collect();
-        pairs.extend(vertex_pairs_overlapping(input, facet_count, &simple, &shared_edges));
+        pairs.extend(vertex_pairs_overlapping(
+            input,
+            facet_count,
+            &simple,
+            &shared_edges,
+        ));
         pairs.sort_unstable();
         pairs.dedup();
         pairs
@@ -318,10 +328,18 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
     // Deviation from the surface, per vertex (from its foot, see `resolve_feet`), in vertex
     // order (the order of the sum).
     let domain = input.surface.domain();
-    let deviations: Vec<f64> = map_feet(input.surface, input.uv, input.vertices, input.offsets, input.loops, input.feet, |v, [u, w]| {
-        let (cu, cw) = domain.clamp(u, w);
-        input.surface.point_at(cu, cw).distance(input.vertices[v])
-    })
+    let deviations: Vec<f64> = map_feet(
+        input.surface,
+        input.uv,
+        input.vertices,
+        input.offsets,
+        input.loops,
+        input.feet,
+        |v, [u, w]| {
+            let (cu, cw) = domain.clamp(u, w);
+            input.surface.point_at(cu, cw).distance(input.vertices[v])
+        },
+    )
     .into_iter()
     .flatten()
     .collect();
@@ -429,7 +447,11 @@ pub fn facet_shape(plane: &Plane, points: impl Iterator<Item = DVec3>) -> FacetS
 }
 
 /// [`facet_shape`] with a caller's buffer for the 2D points (no allocation per facet).
-fn facet_shape_into(plane: &Plane, points: impl Iterator<Item = DVec3>, p: &mut Vec<DVec2>) -> FacetShape {
+fn facet_shape_into(
+    plane: &Plane,
+    points: impl Iterator<Item = DVec3>,
+    p: &mut Vec<DVec2>,
+) -> FacetShape {
     let (e1, e2) = plane_frame(plane);
     p.clear();
     p.extend(points.map(|x| {
@@ -438,7 +460,11 @@ fn facet_shape_into(plane: &Plane, points: impl Iterator<Item = DVec3>, p: &mut 
     }));
     let n = p.len();
     if n < 3 {
-        return FacetShape { area: 0.0, simple: false, convex: false };
+        return FacetShape {
+            area: 0.0,
+            simple: false,
+            convex: false,
+        };
     }
     let mut area = 0.0;
     let mut scale = 0.0f64;
@@ -461,8 +487,14 @@ fn facet_shape_into(plane: &Plane, points: impl Iterator<Item = DVec3>, p: &mut 
     }
     let tolerance = 1e-12 * scale * scale;
     let convex = simple
-        && (0..n).all(|k| (p[(k + 1) % n] - p[k]).perp_dot(p[(k + 2) % n] - p[(k + 1) % n]) >= -tolerance);
-    FacetShape { area, simple, convex }
+        && (0..n).all(|k| {
+            (p[(k + 1) % n] - p[k]).perp_dot(p[(k + 2) % n] - p[(k + 1) % n]) >= -tolerance
+        });
+    FacetShape {
+        area,
+        simple,
+        convex,
+    }
 }
 
 /// Whether the closed segments ab and cd intersect (touching included).
@@ -471,19 +503,25 @@ fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
     let d2 = (b - a).perp_dot(d - a);
     let d3 = (d - c).perp_dot(a - c);
     let d4 = (d - c).perp_dot(b - c);
-    ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0)) && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
 }
 
 /// The points of facet f's loop.
 fn loop_points(input: &ReportInput<'_>, f: u32) -> Vec<DVec3> {
-    facet(input, f as usize).iter().map(|&v| input.vertices[v as usize]).collect()
+    facet(input, f as usize)
+        .iter()
+        .map(|&v| input.vertices[v as usize])
+        .collect()
 }
 
 /// Whether simple facets f and g, sharing the edge (a, b), overlap seen along their mean
 /// normal (module doc): the line through a and b separates them, or the full test decides.
 fn edge_pair_overlaps(input: &ReportInput<'_>, f: u32, g: u32, a: u32, b: u32) -> bool {
     let normal = input.planes[f as usize].normal + input.planes[g as usize].normal;
-    let Some(normal) = normal.try_normalize() else { return false };
+    let Some(normal) = normal.try_normalize() else {
+        return false;
+    };
     let (e1, e2) = normal.any_orthonormal_pair();
     let origin = input.vertices[a as usize];
     let to2 = |x: DVec3| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2));
@@ -529,14 +567,17 @@ fn vertex_pairs_overlapping(
             facets_of[v as usize].push(f as u32);
         }
     }
-    let adjacent: std::collections::HashSet<(u32, u32)> =
-        shared_edges.iter().map(|&(f, g, _, _)| (f.min(g), f.max(g))).collect();
+    let adjacent: std::collections::HashSet<(u32, u32)> = shared_edges
+        .iter()
+        .map(|&(f, g, _, _)| (f.min(g), f.max(g)))
+        .collect();
     let mut out = Vec::new();
     for list in facets_of.iter().filter(|l| l.len() > 3) {
         for (k, &f) in list.iter().enumerate() {
             for &g in &list[k + 1..] {
                 let pair = (f.min(g), f.max(g));
-                if f == g || adjacent.contains(&pair) || !simple[f as usize] || !simple[g as usize] {
+                if f == g || adjacent.contains(&pair) || !simple[f as usize] || !simple[g as usize]
+                {
                     continue;
                 }
                 let normal = input.planes[f as usize].normal + input.planes[g as usize].normal;

@@ -135,27 +135,44 @@ impl SurfaceSpec {
     pub fn from_json(text: &str, context: &str) -> Result<SurfaceSpec, TpiError> {
         let at = |offset: usize, message: String| {
             let (line, column) = line_column(text, offset);
-            TpiError::Parse { context: context.to_string(), line, column, message }
+            TpiError::Parse {
+                context: context.to_string(),
+                line,
+                column,
+                message,
+            }
         };
         // Syntax first, with serde_json's own positions.
-        let value: serde_json::Value = serde_json::from_str(text).map_err(|e| parse_error(e, context))?;
+        let value: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| parse_error(e, context))?;
         let start = text.len() - text.trim_start().len();
         if !value.is_object() {
             return Err(at(
                 start,
-                format!("expected a JSON object with a \"type\" field, found {}", json_kind(&value)),
+                format!(
+                    "expected a JSON object with a \"type\" field, found {}",
+                    json_kind(&value)
+                ),
             ));
         }
         let tags = find_members(text, "type");
         let tag = match tags.as_slice() {
-            [] => return Err(at(start, format!("missing field `type` (one of {})", type_list()))),
+            [] => {
+                return Err(at(
+                    start,
+                    format!("missing field `type` (one of {})", type_list()),
+                ))
+            }
             [tag] => tag,
             [_, second, ..] => return Err(at(second.key, "duplicate field `type`".to_string())),
         };
         let name = match serde_json::from_str::<String>(&text[tag.value.clone()]) {
             Ok(name) => name,
             Err(_) => {
-                return Err(at(tag.value.start, format!("`type` must be a string, one of {}", type_list())))
+                return Err(at(
+                    tag.value.start,
+                    format!("`type` must be a string, one of {}", type_list()),
+                ))
             }
         };
         // The tag is blanked out (same length, so every position stays), then the record is
@@ -174,36 +191,73 @@ impl SurfaceSpec {
             "nurbs" => SurfaceSpec::Nurbs(serde_json::from_str(&body).map_err(err)?),
             "elliptic_paraboloid" => {
                 let r: TwoCoefficients = serde_json::from_str(&body).map_err(err)?;
-                SurfaceSpec::EllipticParaboloid { a: r.a, b: r.b, x: r.x, y: r.y }
+                SurfaceSpec::EllipticParaboloid {
+                    a: r.a,
+                    b: r.b,
+                    x: r.x,
+                    y: r.y,
+                }
             }
             "hyperbolic_paraboloid" => {
                 let r: TwoCoefficients = serde_json::from_str(&body).map_err(err)?;
-                SurfaceSpec::HyperbolicParaboloid { a: r.a, b: r.b, x: r.x, y: r.y }
+                SurfaceSpec::HyperbolicParaboloid {
+                    a: r.a,
+                    b: r.b,
+                    x: r.x,
+                    y: r.y,
+                }
             }
             "sphere_cap" => {
                 let r: Radius = serde_json::from_str(&body).map_err(err)?;
-                SurfaceSpec::SphereCap { radius: r.radius, x: r.x, y: r.y }
+                SurfaceSpec::SphereCap {
+                    radius: r.radius,
+                    x: r.x,
+                    y: r.y,
+                }
             }
             "cylinder" => {
                 let r: Radius = serde_json::from_str(&body).map_err(err)?;
-                SurfaceSpec::Cylinder { radius: r.radius, x: r.x, y: r.y }
+                SurfaceSpec::Cylinder {
+                    radius: r.radius,
+                    x: r.x,
+                    y: r.y,
+                }
             }
             "ellipsoid_cap" => {
                 let r: SemiAxes = serde_json::from_str(&body).map_err(err)?;
-                SurfaceSpec::EllipsoidCap { a: r.a, b: r.b, c: r.c, x: r.x, y: r.y }
+                SurfaceSpec::EllipsoidCap {
+                    a: r.a,
+                    b: r.b,
+                    c: r.c,
+                    x: r.x,
+                    y: r.y,
+                }
             }
             "egg_crate" => {
                 let r: Amplitude = serde_json::from_str(&body).map_err(err)?;
-                SurfaceSpec::EggCrate { amplitude: r.amplitude, x: r.x, y: r.y }
+                SurfaceSpec::EggCrate {
+                    amplitude: r.amplitude,
+                    x: r.x,
+                    y: r.y,
+                }
             }
             "plane" => {
                 let r: PlaneRecord = serde_json::from_str(&body).map_err(err)?;
-                SurfaceSpec::Plane { p: r.p, q: r.q, c0: r.c0, x: r.x, y: r.y }
+                SurfaceSpec::Plane {
+                    p: r.p,
+                    q: r.q,
+                    c0: r.c0,
+                    x: r.x,
+                    y: r.y,
+                }
             }
             other => {
                 return Err(at(
                     tag.value.start,
-                    format!("unknown surface type `{other}`, expected one of {}", type_list()),
+                    format!(
+                        "unknown surface type `{other}`, expected one of {}",
+                        type_list()
+                    ),
                 ))
             }
         })
@@ -237,11 +291,15 @@ impl SurfaceSpec {
                 (AnalyticKind::EllipticParaboloid { a, b }, x, y)
             }
             SurfaceSpec::SphereCap { radius, x, y } => (AnalyticKind::SphereCap { radius }, x, y),
-            SurfaceSpec::EllipsoidCap { a, b, c, x, y } => (AnalyticKind::EllipsoidCap { a, b, c }, x, y),
+            SurfaceSpec::EllipsoidCap { a, b, c, x, y } => {
+                (AnalyticKind::EllipsoidCap { a, b, c }, x, y)
+            }
             SurfaceSpec::HyperbolicParaboloid { a, b, x, y } => {
                 (AnalyticKind::HyperbolicParaboloid { a, b }, x, y)
             }
-            SurfaceSpec::EggCrate { amplitude, x, y } => (AnalyticKind::EggCrate { amplitude }, x, y),
+            SurfaceSpec::EggCrate { amplitude, x, y } => {
+                (AnalyticKind::EggCrate { amplitude }, x, y)
+            }
             SurfaceSpec::Cylinder { radius, x, y } => (AnalyticKind::Cylinder { radius }, x, y),
             SurfaceSpec::Plane { p, q, c0, x, y } => (AnalyticKind::Plane { p, q, c0 }, x, y),
         };
@@ -255,7 +313,9 @@ impl SurfaceSpec {
     pub fn build(&self) -> Result<SurfaceModel, TpiError> {
         match self.parts() {
             Parts::Nurbs(n) => Ok(SurfaceModel::Nurbs(n.build()?)),
-            Parts::Analytic(kind, x, y) => Ok(SurfaceModel::Analytic(AnalyticSurface::new(kind, x, y)?)),
+            Parts::Analytic(kind, x, y) => {
+                Ok(SurfaceModel::Analytic(AnalyticSurface::new(kind, x, y)?))
+            }
         }
     }
 
@@ -263,10 +323,14 @@ impl SurfaceSpec {
     pub fn from_analytic(surface: &AnalyticSurface) -> SurfaceSpec {
         let (x, y) = (surface.x_range(), surface.y_range());
         match surface.kind() {
-            AnalyticKind::EllipticParaboloid { a, b } => SurfaceSpec::EllipticParaboloid { a, b, x, y },
+            AnalyticKind::EllipticParaboloid { a, b } => {
+                SurfaceSpec::EllipticParaboloid { a, b, x, y }
+            }
             AnalyticKind::SphereCap { radius } => SurfaceSpec::SphereCap { radius, x, y },
             AnalyticKind::EllipsoidCap { a, b, c } => SurfaceSpec::EllipsoidCap { a, b, c, x, y },
-            AnalyticKind::HyperbolicParaboloid { a, b } => SurfaceSpec::HyperbolicParaboloid { a, b, x, y },
+            AnalyticKind::HyperbolicParaboloid { a, b } => {
+                SurfaceSpec::HyperbolicParaboloid { a, b, x, y }
+            }
             AnalyticKind::EggCrate { amplitude } => SurfaceSpec::EggCrate { amplitude, x, y },
             AnalyticKind::Cylinder { radius } => SurfaceSpec::Cylinder { radius, x, y },
             AnalyticKind::Plane { p, q, c0 } => SurfaceSpec::Plane { p, q, c0, x, y },
@@ -329,7 +393,11 @@ struct PlaneRecord {
 }
 
 fn type_list() -> String {
-    SurfaceSpec::TYPE_NAMES.iter().map(|t| format!("`{t}`")).collect::<Vec<_>>().join(", ")
+    SurfaceSpec::TYPE_NAMES
+        .iter()
+        .map(|t| format!("`{t}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 fn json_kind(v: &serde_json::Value) -> &'static str {
@@ -359,14 +427,22 @@ pub(crate) fn parse_error(e: serde_json::Error, context: &str) -> TpiError {
     } else {
         message
     };
-    TpiError::Parse { context: context.to_string(), line: e.line(), column: e.column(), message }
+    TpiError::Parse {
+        context: context.to_string(),
+        line: e.line(),
+        column: e.column(),
+        message,
+    }
 }
 
 /// 1-based line and column (in bytes, as serde_json counts) of a byte offset.
 fn line_column(text: &str, offset: usize) -> (usize, usize) {
     let before = &text.as_bytes()[..offset.min(text.len())];
     let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
-    let line_start = before.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    let line_start = before
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
     (line, before.len() - line_start + 1)
 }
 
@@ -398,13 +474,17 @@ fn find_members(text: &str, name: &str) -> Vec<Member> {
             return found;
         }
         let key = i;
-        let Some(key_end) = skip_string(b, i) else { return found };
+        let Some(key_end) = skip_string(b, i) else {
+            return found;
+        };
         i = skip_ws(b, key_end);
         if b.get(i) != Some(&b':') {
             return found;
         }
         let value_start = skip_ws(b, i + 1);
-        let Some(value_end) = skip_value(b, value_start) else { return found };
+        let Some(value_end) = skip_value(b, value_start) else {
+            return found;
+        };
         i = skip_ws(b, value_end);
         let comma = b.get(i) == Some(&b',');
         if serde_json::from_str::<String>(&text[key..key_end]).is_ok_and(|k| k == name) {
@@ -415,7 +495,11 @@ fn find_members(text: &str, name: &str) -> Vec<Member> {
             } else {
                 key..value_end
             };
-            found.push(Member { key, value: value_start..value_end, member });
+            found.push(Member {
+                key,
+                value: value_start..value_end,
+                member,
+            });
         }
         if !comma {
             return found;
@@ -471,7 +555,10 @@ fn skip_value(b: &[u8], i: usize) -> Option<usize> {
         }
         _ => {
             let mut j = i;
-            while !matches!(b.get(j), None | Some(b',' | b'}' | b']' | b' ' | b'\t' | b'\n' | b'\r')) {
+            while !matches!(
+                b.get(j),
+                None | Some(b',' | b'}' | b']' | b' ' | b'\t' | b'\n' | b'\r')
+            ) {
                 j += 1;
             }
             Some(j)
@@ -548,7 +635,10 @@ impl From<NurbsSurface> for SurfaceModel {
 ///
 /// This is an approximation from inside (the true box can be slightly larger between
 /// samples); use it for scale (its diagonal), not for containment.
-pub fn sampled_bounding_box<S: Surface + ?Sized>(surface: &S, samples_per_side: usize) -> [DVec3; 2] {
+pub fn sampled_bounding_box<S: Surface + ?Sized>(
+    surface: &S,
+    samples_per_side: usize,
+) -> [DVec3; 2] {
     let n = samples_per_side.max(2);
     let domain = surface.domain();
     let mut lo = DVec3::splat(f64::INFINITY);

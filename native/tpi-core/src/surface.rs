@@ -88,7 +88,11 @@ impl Domain {
     /// `Ok(())` when (u, v) is finite and inside the domain, otherwise the typed error.
     pub fn check(&self, u: f64, v: f64) -> Result<(), TpiError> {
         if !u.is_finite() || !v.is_finite() || !self.u.contains(u) || !self.v.contains(v) {
-            return Err(TpiError::OutOfDomain { u, v, domain: *self });
+            return Err(TpiError::OutOfDomain {
+                u,
+                v,
+                domain: *self,
+            });
         }
         Ok(())
     }

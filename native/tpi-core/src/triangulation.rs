@@ -59,18 +59,28 @@ impl DualTriangulation {
     /// Delaunay triangulation of `points` (any 2D coordinates, validated finite and distinct).
     pub fn delaunay(points: &[[f64; 2]]) -> Result<Self, TpiError> {
         if points.len() < 3 {
-            return Err(TpiError::TooFewPatternPoints { found: points.len(), needed: 3 });
+            return Err(TpiError::TooFewPatternPoints {
+                found: points.len(),
+                needed: 3,
+            });
         }
         let sites: Vec<Site> = points
             .iter()
             .enumerate()
-            .map(|(index, p)| Site { position: Point2::new(p[0], p[1]), index: index as u32 })
+            .map(|(index, p)| Site {
+                position: Point2::new(p[0], p[1]),
+                index: index as u32,
+            })
             .collect();
         let delaunay = DelaunayTriangulation::<Site>::bulk_load(sites).map_err(|error| {
-            TpiError::DegenerateSurface { reason: format!("Delaunay triangulation failed: {error:?}") }
+            TpiError::DegenerateSurface {
+                reason: format!("Delaunay triangulation failed: {error:?}"),
+            }
         })?;
         if delaunay.num_inner_faces() == 0 {
-            return Err(TpiError::CollinearPattern { count: points.len() });
+            return Err(TpiError::CollinearPattern {
+                count: points.len(),
+            });
         }
         let mut triangles = Vec::with_capacity(delaunay.num_inner_faces());
         let mut neighbours = Vec::with_capacity(delaunay.num_inner_faces());
@@ -88,7 +98,10 @@ impl DualTriangulation {
             }
             neighbours.push(across);
         }
-        Ok(Self { triangles, neighbours })
+        Ok(Self {
+            triangles,
+            neighbours,
+        })
     }
 
     /// Puts the triangles in their canonical order, which depends only on the structure (not
@@ -132,7 +145,15 @@ impl DualTriangulation {
         let triangles: Vec<[u32; 3]> = order.iter().map(|&t| self.triangles[t as usize]).collect();
         let neighbours: Vec<[u32; 3]> = order
             .iter()
-            .map(|&t| self.neighbours[t as usize].map(|x| if x == NO_TRIANGLE { x } else { new_index[x as usize] }))
+            .map(|&t| {
+                self.neighbours[t as usize].map(|x| {
+                    if x == NO_TRIANGLE {
+                        x
+                    } else {
+                        new_index[x as usize]
+                    }
+                })
+            })
             .collect();
         self.triangles = triangles;
         self.neighbours = neighbours;
@@ -171,7 +192,10 @@ impl DualTriangulation {
             let n = rotate(self.neighbours[t1], k);
             [n[1], n[2]]
         };
-        let k2 = self.neighbours[t2].iter().position(|&x| x as usize == t1).unwrap_or(0);
+        let k2 = self.neighbours[t2]
+            .iter()
+            .position(|&x| x as usize == t1)
+            .unwrap_or(0);
         let [d, _b, _a] = rotate(self.triangles[t2], k2);
         let [n_ad, n_db] = {
             let n = rotate(self.neighbours[t2], k2);
@@ -217,7 +241,11 @@ impl DualTriangulation {
     /// Drops every triangle with a point index `>= count` (keeping the order of the rest);
     /// the edges they shared with kept triangles become hull edges.
     pub fn retain_points(&mut self, count: usize) {
-        let removed: Vec<bool> = self.triangles.iter().map(|t| t.iter().any(|&v| v as usize >= count)).collect();
+        let removed: Vec<bool> = self
+            .triangles
+            .iter()
+            .map(|t| t.iter().any(|&v| v as usize >= count))
+            .collect();
         if !removed.contains(&true) {
             return;
         }
@@ -257,12 +285,23 @@ impl DualTriangulation {
                 let tri = self.triangles[t];
                 let (from, to) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
                 let id = edges.len() as u32;
-                let (lo, hi, left, right) =
-                    if from < to { (from, to, t as u32, other) } else { (to, from, other, t as u32) };
-                edges.push(Edge { lo, hi, left, right });
+                let (lo, hi, left, right) = if from < to {
+                    (from, to, t as u32, other)
+                } else {
+                    (to, from, other, t as u32)
+                };
+                edges.push(Edge {
+                    lo,
+                    hi,
+                    left,
+                    right,
+                });
                 edge_of[t][k] = id;
                 if other != NO_TRIANGLE {
-                    if let Some(j) = self.neighbours[other as usize].iter().position(|&x| x as usize == t) {
+                    if let Some(j) = self.neighbours[other as usize]
+                        .iter()
+                        .position(|&x| x as usize == t)
+                    {
                         edge_of[other as usize][j] = id;
                     }
                 }
@@ -297,7 +336,9 @@ impl DualTriangulation {
         let mut current = start;
         while out.len() <= self.triangles.len() {
             out.push(current);
-            let Some(k) = self.position_of(current, v) else { return Fan::Broken };
+            let Some(k) = self.position_of(current, v) else {
+                return Fan::Broken;
+            };
             // Counter-clockwise neighbour: across edge (v, v(k+2)), opposite v(k+1).
             let next = self.neighbours[current as usize][(k + 1) % 3];
             if next == NO_TRIANGLE {
@@ -315,7 +356,9 @@ impl DualTriangulation {
         // Open: rotate clockwise from `start` to the hull, then walk counter-clockwise.
         let mut first = start;
         for _ in 0..=self.triangles.len() {
-            let Some(k) = self.position_of(first, v) else { return Fan::Broken };
+            let Some(k) = self.position_of(first, v) else {
+                return Fan::Broken;
+            };
             // Clockwise neighbour around v: across edge (v, v(k+1)), opposite v(k+2).
             let previous = self.neighbours[first as usize][(k + 2) % 3];
             if previous == NO_TRIANGLE || previous == start {
@@ -331,7 +374,9 @@ impl DualTriangulation {
         let mut current = first;
         while current != start && prefix.len() <= self.triangles.len() {
             prefix.push(current);
-            let Some(k) = self.position_of(current, v) else { return Fan::Broken };
+            let Some(k) = self.position_of(current, v) else {
+                return Fan::Broken;
+            };
             let next = self.neighbours[current as usize][(k + 1) % 3];
             if next == NO_TRIANGLE {
                 return Fan::Broken;

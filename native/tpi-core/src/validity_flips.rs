@@ -52,12 +52,21 @@ pub struct ValidityFlipStats {
 /// Repairs invalid interior facets of the points `0..judged` by flips (module doc).
 /// `embedding` holds the triangulation's points (ghosts included); `planes` the tangent
 /// planes of all of them.
-pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], planes: &[Plane], judged: usize) -> ValidityFlipStats {
+pub fn validity_flips(
+    tri: &mut DualTriangulation,
+    embedding: &[[f64; 2]],
+    planes: &[Plane],
+    judged: usize,
+) -> ValidityFlipStats {
     use rayon::prelude::*;
     let n = judged;
     let (lo, hi) = crate::discretise::bounding_box(planes[..n].iter().map(|p| p.point));
     let weld = crate::discretise::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
-    let vertex: Vec<DVec3> = tri.triangles.par_iter().map(|&t| triangle_vertex(planes, t)).collect();
+    let vertex: Vec<DVec3> = tri
+        .triangles
+        .par_iter()
+        .map(|&t| triangle_vertex(planes, t))
+        .collect();
     let incident = tri.incident_triangles(embedding.len());
     let points = embedding.len();
     let mut state = State {
@@ -77,7 +86,9 @@ pub fn validity_flips(tri: &mut DualTriangulation, embedding: &[[f64; 2]], plane
     // neighbourhood.
     let mut changed = vec![true; n];
     for _ in 0..MAX_VALIDITY_ROUNDS {
-        let queue: Vec<u32> = (0..n as u32).filter(|&i| state.invalid[i as usize] && changed[i as usize]).collect();
+        let queue: Vec<u32> = (0..n as u32)
+            .filter(|&i| state.invalid[i as usize] && changed[i as usize])
+            .collect();
         if queue.is_empty() {
             break;
         }
@@ -146,13 +157,17 @@ impl State<'_> {
                 .iter()
                 .map(|&t| {
                     let v = self.tri.triangles[t as usize];
-                    (v[(v.iter().position(|&y| y == x).unwrap_or(0) + 1) % 3] as usize) < self.judged
+                    (v[(v.iter().position(|&y| y == x).unwrap_or(0) + 1) % 3] as usize)
+                        < self.judged
                 })
                 .collect();
             if kind == Fan::Open {
                 if let Some(&last) = fan.last() {
                     let v = self.tri.triangles[last as usize];
-                    out.push((v[(v.iter().position(|&y| y == x).unwrap_or(0) + 2) % 3] as usize) < self.judged);
+                    out.push(
+                        (v[(v.iter().position(|&y| y == x).unwrap_or(0) + 2) % 3] as usize)
+                            < self.judged,
+                    );
                 }
             }
             out
@@ -160,9 +175,19 @@ impl State<'_> {
         let n = real.len();
         let closed = kind == Fan::Closed;
         // Runs of real neighbours (cyclic where the fan closes).
-        let previous_real = |k: usize| if k == 0 { closed && real[n - 1] } else { real[k - 1] };
+        let previous_real = |k: usize| {
+            if k == 0 {
+                closed && real[n - 1]
+            } else {
+                real[k - 1]
+            }
+        };
         let starts = (0..n).filter(|&k| real[k] && !previous_real(k)).count();
-        let runs = if closed && real.iter().all(|&r| r) { 1 } else { starts };
+        let runs = if closed && real.iter().all(|&r| r) {
+            1
+        } else {
+            starts
+        };
         if (x as usize) < self.judged {
             runs == 1
         } else {
@@ -197,22 +222,30 @@ impl State<'_> {
         if self.facets[i as usize].is_none() {
             let mut fan = Vec::new();
             let polygon = self.polygon(i, &mut fan);
-            let simple = polygon
-                .as_ref()
-                .is_some_and(|p| p.iter().all(|x| x.is_finite()) && simple_in_plane(p, self.planes[i as usize].normal));
+            let simple = polygon.as_ref().is_some_and(|p| {
+                p.iter().all(|x| x.is_finite())
+                    && simple_in_plane(p, self.planes[i as usize].normal)
+            });
             let neighbours = if polygon.is_some() {
                 (0..fan.len())
                     .filter_map(|k| {
                         let v = self.tri.triangles[fan[k] as usize];
                         let j = v[(v.iter().position(|&x| x == i).unwrap_or(0) + 1) % 3];
-                        let ends = [self.vertex[fan[(k + fan.len() - 1) % fan.len()] as usize], self.vertex[fan[k] as usize]];
+                        let ends = [
+                            self.vertex[fan[(k + fan.len() - 1) % fan.len()] as usize],
+                            self.vertex[fan[k] as usize],
+                        ];
                         ((j as usize) < self.judged).then_some((j, ends))
                     })
                     .collect()
             } else {
                 Vec::new()
             };
-            self.facets[i as usize] = Some(Facet { polygon, simple, neighbours });
+            self.facets[i as usize] = Some(Facet {
+                polygon,
+                simple,
+                neighbours,
+            });
         }
         self.facets[i as usize].as_ref().expect("built above")
     }
@@ -231,13 +264,17 @@ impl State<'_> {
     /// every edge (i, j) of two simple closed facets tested for overlap once.
     fn initial_verdicts(&self, n: usize) -> Vec<bool> {
         use rayon::prelude::*;
-        let polygons: Vec<Option<Vec<DVec3>>> =
-            (0..n as u32).into_par_iter().map_init(Vec::new, |fan, i| self.polygon(i, fan)).collect();
+        let polygons: Vec<Option<Vec<DVec3>>> = (0..n as u32)
+            .into_par_iter()
+            .map_init(Vec::new, |fan, i| self.polygon(i, fan))
+            .collect();
         let simple: Vec<bool> = polygons
             .par_iter()
             .enumerate()
             .map(|(i, p)| {
-                p.as_ref().map_or(true, |p| p.iter().all(|x| x.is_finite()) && simple_in_plane(p, self.planes[i].normal))
+                p.as_ref().map_or(true, |p| {
+                    p.iter().all(|x| x.is_finite()) && simple_in_plane(p, self.planes[i].normal)
+                })
             })
             .collect();
         let (polygons_ref, simple_ref) = (&polygons, &simple);
@@ -252,14 +289,25 @@ impl State<'_> {
                     if i > j || j as usize >= n {
                         return None;
                     }
-                    let (pi, pj) = (polygons[i as usize].as_ref()?, polygons[j as usize].as_ref()?);
+                    let (pi, pj) = (
+                        polygons[i as usize].as_ref()?,
+                        polygons[j as usize].as_ref()?,
+                    );
                     if !simple[i as usize] || !simple[j as usize] {
                         return None;
                     }
                     let normal = self.planes[i as usize].normal + self.planes[j as usize].normal;
                     let other = self.tri.neighbours[t][k];
-                    let ends = [self.vertex[t], if other == NO_TRIANGLE { self.vertex[t] } else { self.vertex[other as usize] }];
-                    (!separated(pi, pj, ends, normal) && polygons_overlap(pi, pj, normal)).then_some((i, j))
+                    let ends = [
+                        self.vertex[t],
+                        if other == NO_TRIANGLE {
+                            self.vertex[t]
+                        } else {
+                            self.vertex[other as usize]
+                        },
+                    ];
+                    (!separated(pi, pj, ends, normal) && polygons_overlap(pi, pj, normal))
+                        .then_some((i, j))
                 })
             })
             .collect();
@@ -294,10 +342,18 @@ impl State<'_> {
             };
             let verdict = other_simple && {
                 let normal = self.planes[i as usize].normal + self.planes[j as usize].normal;
-                let (a, b) = (self.facets[i as usize].as_ref(), self.facets[j as usize].as_ref());
-                let (a, b) = (a.and_then(|f| f.polygon.as_ref()), b.and_then(|f| f.polygon.as_ref()));
+                let (a, b) = (
+                    self.facets[i as usize].as_ref(),
+                    self.facets[j as usize].as_ref(),
+                );
+                let (a, b) = (
+                    a.and_then(|f| f.polygon.as_ref()),
+                    b.and_then(|f| f.polygon.as_ref()),
+                );
                 match (a, b) {
-                    (Some(a), Some(b)) => !separated(a, b, ends, normal) && polygons_overlap(a, b, normal),
+                    (Some(a), Some(b)) => {
+                        !separated(a, b, ends, normal) && polygons_overlap(a, b, normal)
+                    }
                     _ => false,
                 }
             };
@@ -327,7 +383,9 @@ impl State<'_> {
             candidates.push((j, m));
         }
         for (a, b) in candidates {
-            let Some((t, k)) = find_edge(self.tri, &self.incident, a, b) else { continue };
+            let Some((t, k)) = find_edge(self.tri, &self.incident, a, b) else {
+                continue;
+            };
             let quad = quad_points(self.tri, t, k);
             let [c, _, _, d] = quad;
             // A flip is a topological move: the structure stays a triangulated disc whatever
@@ -339,7 +397,10 @@ impl State<'_> {
             let touches_ghost = quad.iter().any(|&x| x as usize >= judged);
             let mut affected = affected_points(self.tri, &self.incident, quad);
             affected.retain(|&x| (x as usize) < judged);
-            let before = affected.iter().filter(|&&x| self.invalid[x as usize]).count();
+            let before = affected
+                .iter()
+                .filter(|&&x| self.invalid[x as usize])
+                .count();
             if before == 0 {
                 continue;
             }
@@ -415,7 +476,10 @@ fn quad_points(tri: &DualTriangulation, t: usize, k: usize) -> [u32; 4] {
     let v = tri.triangles[t];
     let (c, a, b) = (v[k], v[(k + 1) % 3], v[(k + 2) % 3]);
     let t2 = tri.neighbours[t][k] as usize;
-    let k2 = tri.neighbours[t2].iter().position(|&x| x as usize == t).unwrap_or(0);
+    let k2 = tri.neighbours[t2]
+        .iter()
+        .position(|&x| x as usize == t)
+        .unwrap_or(0);
     [c, a, b, tri.triangles[t2][k2]]
 }
 
@@ -447,7 +511,10 @@ fn weld_loop(points: &mut Vec<DVec3>, weld: f64) {
 /// relative to `origin` (so that rounding is relative to the polygons' own size).
 fn flatten(points: &[DVec3], normal: DVec3, origin: DVec3) -> Vec<DVec2> {
     let (e1, e2) = normal.normalize_or(DVec3::Z).any_orthonormal_pair();
-    points.iter().map(|&x| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2))).collect()
+    points
+        .iter()
+        .map(|&x| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2)))
+        .collect()
 }
 
 /// Relative tolerance of the local validity tests: orientations smaller than this times the
@@ -457,12 +524,16 @@ pub const VALIDITY_TOLERANCE: f64 = 1e-9;
 
 /// Longest edge of a closed polygon.
 fn size(p: &[DVec2]) -> f64 {
-    (0..p.len()).map(|k| (p[(k + 1) % p.len()] - p[k]).length()).fold(0.0, f64::max)
+    (0..p.len())
+        .map(|k| (p[(k + 1) % p.len()] - p[k]).length())
+        .fold(0.0, f64::max)
 }
 
 /// Simple and counter-clockwise seen from `normal`, at least three distinct vertices.
 pub(crate) fn simple_in_plane(points: &[DVec3], normal: DVec3) -> bool {
-    let Some(&origin) = points.first() else { return false };
+    let Some(&origin) = points.first() else {
+        return false;
+    };
     let p = flatten(points, normal, origin);
     let n = p.len();
     if n < 3 {
@@ -491,15 +562,27 @@ pub(crate) fn simple_in_plane(points: &[DVec3], normal: DVec3) -> bool {
 /// `normal`: a proper crossing of their edges, or a vertex of one strictly inside the other.
 /// Vertices of one closer than the tolerance to a vertex of the other count as shared.
 pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool {
-    let Some(&origin) = a.first() else { return false };
+    let Some(&origin) = a.first() else {
+        return false;
+    };
     let (e1, e2) = normal.normalize_or(DVec3::Z).any_orthonormal_pair();
     let to2 = |x: &DVec3| DVec2::new((*x - origin).dot(e1), (*x - origin).dot(e2));
     // Small polygons stay on the stack.
     let mut buffer_a = [DVec2::ZERO; 16];
     let mut buffer_b = [DVec2::ZERO; 16];
     let (mut heap_a, mut heap_b) = (Vec::new(), Vec::new());
-    let pa: &mut [DVec2] = if a.len() <= 16 { &mut buffer_a[..a.len()] } else { heap_a.resize(a.len(), DVec2::ZERO); &mut heap_a };
-    let pb: &mut [DVec2] = if b.len() <= 16 { &mut buffer_b[..b.len()] } else { heap_b.resize(b.len(), DVec2::ZERO); &mut heap_b };
+    let pa: &mut [DVec2] = if a.len() <= 16 {
+        &mut buffer_a[..a.len()]
+    } else {
+        heap_a.resize(a.len(), DVec2::ZERO);
+        &mut heap_a
+    };
+    let pb: &mut [DVec2] = if b.len() <= 16 {
+        &mut buffer_b[..b.len()]
+    } else {
+        heap_b.resize(b.len(), DVec2::ZERO);
+        &mut heap_b
+    };
     for (p, x) in pa.iter_mut().zip(a) {
         *p = to2(x);
     }
@@ -510,7 +593,10 @@ pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool 
     let scale = size(pa).max(size(pb));
     let tolerance = VALIDITY_TOLERANCE * scale;
     for q in pb.iter_mut() {
-        if let Some(p) = pa.iter().find(|p| (**p - *q).length_squared() <= tolerance * tolerance) {
+        if let Some(p) = pa
+            .iter()
+            .find(|p| (**p - *q).length_squared() <= tolerance * tolerance)
+        {
             *q = *p;
         }
     }
@@ -527,7 +613,9 @@ pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool 
     // No proper crossing: overlap means a vertex of one strictly inside the other.
     let inside = |points: &[DVec2], poly: &[DVec2]| {
         points.iter().any(|&p| {
-            !poly.iter().any(|q| (*q - p).length_squared() <= tolerance * tolerance)
+            !poly
+                .iter()
+                .any(|q| (*q - p).length_squared() <= tolerance * tolerance)
                 && point_in_polygon(p, poly, tolerance) == Some(true)
         })
     };

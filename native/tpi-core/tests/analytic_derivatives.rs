@@ -26,7 +26,14 @@ fn cases() -> Vec<(&'static str, AnalyticSurface, Closed)> {
                 let r2: f64 = 4.0;
                 let z = (r2 - x * x - y * y).sqrt();
                 let z3 = z * z * z;
-                [z, -x / z, -y / z, -1.0 / z - x * x / z3, -x * y / z3, -1.0 / z - y * y / z3]
+                [
+                    z,
+                    -x / z,
+                    -y / z,
+                    -1.0 / z - x * x / z3,
+                    -x * y / z3,
+                    -1.0 / z - y * y / z3,
+                ]
             }),
         ),
         (
@@ -123,9 +130,16 @@ fn derivatives_match_closed_forms_exactly() {
                 ("suv", d.suv, expected.suv),
                 ("svv", d.svv, expected.svv),
             ] {
-                assert!(close_vec(a, b, 1e-12), "{name} {label} at ({x}, {y}): {a:?} vs {b:?}");
+                assert!(
+                    close_vec(a, b, 1e-12),
+                    "{name} {label} at ({x}, {y}): {a:?} vs {b:?}"
+                );
             }
-            assert_eq!(s.point_at(x, y), d.point, "{name}: point_at agrees with evaluate");
+            assert_eq!(
+                s.point_at(x, y),
+                d.point,
+                "{name}: point_at agrees with evaluate"
+            );
         }
     }
 }
@@ -145,10 +159,19 @@ fn derivatives_match_central_differences() {
             let rich = |f: &dyn Fn(f64) -> DVec3, h: f64| (4.0 * f(0.5 * h) - f(h)) / 3.0;
             let su = rich(&|h| (p(x + h, y) - p(x - h, y)) / (2.0 * h), h1);
             let sv = rich(&|h| (p(x, y + h) - p(x, y - h)) / (2.0 * h), h1);
-            let suu = rich(&|h| (p(x + h, y) - 2.0 * p(x, y) + p(x - h, y)) / (h * h), h2);
-            let svv = rich(&|h| (p(x, y + h) - 2.0 * p(x, y) + p(x, y - h)) / (h * h), h2);
+            let suu = rich(
+                &|h| (p(x + h, y) - 2.0 * p(x, y) + p(x - h, y)) / (h * h),
+                h2,
+            );
+            let svv = rich(
+                &|h| (p(x, y + h) - 2.0 * p(x, y) + p(x, y - h)) / (h * h),
+                h2,
+            );
             let suv = rich(
-                &|h| (p(x + h, y + h) - p(x + h, y - h) - p(x - h, y + h) + p(x - h, y - h)) / (4.0 * h * h),
+                &|h| {
+                    (p(x + h, y + h) - p(x + h, y - h) - p(x - h, y + h) + p(x - h, y - h))
+                        / (4.0 * h * h)
+                },
                 h2,
             );
             for (label, found, fd) in [
@@ -186,7 +209,11 @@ fn normals_point_up_and_evaluation_clamps() {
         ];
         for (u, v) in far {
             let (cu, cv) = dom.clamp(u, v);
-            assert_eq!(s.evaluate(u, v), s.evaluate(cu, cv), "{name}: clamped at ({u}, {v})");
+            assert_eq!(
+                s.evaluate(u, v),
+                s.evaluate(cu, cv),
+                "{name}: clamped at ({u}, {v})"
+            );
             assert!(s.evaluate(u, v).point.is_finite());
         }
     }
@@ -201,12 +228,19 @@ fn corners_of_tight_caps_stay_finite() {
     let c = AnalyticSurface::cylinder(1.0, [-0.999999, 0.999999], [0.0, 1.0]).unwrap();
     for surface in [s, e, c] {
         let dom = surface.domain();
-        for (u, v) in
-            [(dom.u.min, dom.v.min), (dom.u.min, dom.v.max), (dom.u.max, dom.v.min), (dom.u.max, dom.v.max)]
-        {
+        for (u, v) in [
+            (dom.u.min, dom.v.min),
+            (dom.u.min, dom.v.max),
+            (dom.u.max, dom.v.min),
+            (dom.u.max, dom.v.max),
+        ] {
             let d = surface.evaluate(u, v);
             for w in [d.point, d.su, d.sv, d.suu, d.suv, d.svv] {
-                assert!(w.is_finite(), "{:?} at a corner ({u}, {v}): {d:?}", surface.kind());
+                assert!(
+                    w.is_finite(),
+                    "{:?} at a corner ({u}, {v}): {d:?}",
+                    surface.kind()
+                );
             }
         }
     }

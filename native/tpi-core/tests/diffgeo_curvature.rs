@@ -25,11 +25,25 @@ fn sphere_jet(r: f64, x: f64, y: f64) -> Jet {
 }
 
 fn paraboloid_jet(a: f64, b: f64, x: f64, y: f64) -> Jet {
-    [a * x * x + b * y * y, 2.0 * a * x, 2.0 * b * y, 2.0 * a, 0.0, 2.0 * b]
+    [
+        a * x * x + b * y * y,
+        2.0 * a * x,
+        2.0 * b * y,
+        2.0 * a,
+        0.0,
+        2.0 * b,
+    ]
 }
 
 fn hypar_jet(a: f64, b: f64, x: f64, y: f64) -> Jet {
-    [a * x * x - b * y * y, 2.0 * a * x, -2.0 * b * y, 2.0 * a, 0.0, -2.0 * b]
+    [
+        a * x * x - b * y * y,
+        2.0 * a * x,
+        -2.0 * b * y,
+        2.0 * a,
+        0.0,
+        -2.0 * b,
+    ]
 }
 
 fn ellipsoid_jet(a: f64, b: f64, c: f64, x: f64, y: f64) -> Jet {
@@ -45,7 +59,14 @@ fn ellipsoid_jet(a: f64, b: f64, c: f64, x: f64, y: f64) -> Jet {
 
 fn egg_jet(amp: f64, x: f64, y: f64) -> Jet {
     let f = amp * x.sin() * y.sin();
-    [f, amp * x.cos() * y.sin(), amp * x.sin() * y.cos(), -f, amp * x.cos() * y.cos(), -f]
+    [
+        f,
+        amp * x.cos() * y.sin(),
+        amp * x.sin() * y.cos(),
+        -f,
+        amp * x.cos() * y.cos(),
+        -f,
+    ]
 }
 
 fn cylinder_jet(r: f64, x: f64) -> Jet {
@@ -58,7 +79,8 @@ fn monge_curvatures(j: &Jet) -> (f64, f64, f64, f64) {
     let [_, fx, fy, fxx, fxy, fyy] = *j;
     let w2 = 1.0 + fx * fx + fy * fy;
     let k = (fxx * fyy - fxy * fxy) / (w2 * w2);
-    let h = ((1.0 + fy * fy) * fxx - 2.0 * fx * fy * fxy + (1.0 + fx * fx) * fyy) / (2.0 * w2.powf(1.5));
+    let h = ((1.0 + fy * fy) * fxx - 2.0 * fx * fy * fxy + (1.0 + fx * fx) * fyy)
+        / (2.0 * w2.powf(1.5));
     let disc = (h * h - k).max(0.0).sqrt();
     (h - disc, h + disc, k, h)
 }
@@ -89,12 +111,27 @@ fn check_point(s: &AnalyticSurface, x: f64, y: f64, jet: Jet, label: &str) -> Lo
     // under test): there the pair is checked through K and H, which determine it.
     let separated = h * h - k > 1e-12 * h * h;
     if separated {
-        assert!(close(g.k1, k1, tol), "{label} at ({x}, {y}): k1 {} vs {k1}", g.k1);
-        assert!(close(g.k2, k2, tol), "{label} at ({x}, {y}): k2 {} vs {k2}", g.k2);
+        assert!(
+            close(g.k1, k1, tol),
+            "{label} at ({x}, {y}): k1 {} vs {k1}",
+            g.k1
+        );
+        assert!(
+            close(g.k2, k2, tol),
+            "{label} at ({x}, {y}): k2 {} vs {k2}",
+            g.k2
+        );
     } else {
-        assert!(close(g.k1, h, 1e-6) && close(g.k2, h, 1e-6), "{label}: umbilic k = H");
+        assert!(
+            close(g.k1, h, 1e-6) && close(g.k2, h, 1e-6),
+            "{label}: umbilic k = H"
+        );
     }
-    assert!(close(g.gaussian(), k, tol), "{label}: K {} vs {k}", g.gaussian());
+    assert!(
+        close(g.gaussian(), k, tol),
+        "{label}: K {} vs {k}",
+        g.gaussian()
+    );
     assert!(close(g.mean(), h, tol), "{label}: H {} vs {h}", g.mean());
     assert!(g.k1 <= g.k2, "{label}: k1 <= k2");
     let n_expected = DVec3::new(-jet[1], -jet[2], 1.0).normalize();
@@ -128,8 +165,14 @@ fn check_frame(g: &LocalGeometry, label: &str) {
     assert!(g.d1.dot(g.d2).abs() < 1e-12, "{label}: d1 . d2 = 0");
     assert!(g.d1.dot(g.normal).abs() < 1e-12, "{label}: d1 tangent");
     assert!(g.d2.dot(g.normal).abs() < 1e-12, "{label}: d2 tangent");
-    assert!((g.d1.cross(g.d2) - g.normal).length() < 1e-12, "{label}: (d1, d2, n) right-handed");
-    assert!(g.k1.is_finite() && g.k2.is_finite(), "{label}: finite curvatures");
+    assert!(
+        (g.d1.cross(g.d2) - g.normal).length() < 1e-12,
+        "{label}: (d1, d2, n) right-handed"
+    );
+    assert!(
+        g.k1.is_finite() && g.k2.is_finite(),
+        "{label}: finite curvatures"
+    );
 }
 
 fn grid(x: [f64; 2], y: [f64; 2], n: usize) -> Vec<(f64, f64)> {
@@ -153,7 +196,10 @@ fn sphere_has_k_minus_one_over_r_everywhere_and_a_valid_frame() {
         for (x, y) in grid([-h, h], [-h, h], 8) {
             let g = check_point(&s, x, y, sphere_jet(r, x, y), "sphere");
             // The outward (+z) normal: the sphere bends away from it.
-            assert!(close(g.k1, -1.0 / r, 1e-9) && close(g.k2, -1.0 / r, 1e-9), "sphere k = -1/r");
+            assert!(
+                close(g.k1, -1.0 / r, 1e-9) && close(g.k2, -1.0 / r, 1e-9),
+                "sphere k = -1/r"
+            );
             assert!(close(g.gaussian(), 1.0 / (r * r), 1e-9));
         }
     }
@@ -169,7 +215,11 @@ fn umbilic_frames_are_su_aligned() {
         let d = s.evaluate(x, y);
         let g = LocalGeometry::from_derivatives(&d);
         let su = d.su.normalize();
-        assert!((g.d1 - su).length() < 1e-9, "sphere at ({x}, {y}): d1 {:?} vs Su {su:?}", g.d1);
+        assert!(
+            (g.d1 - su).length() < 1e-9,
+            "sphere at ({x}, {y}): d1 {:?} vs Su {su:?}",
+            g.d1
+        );
     }
     let p = AnalyticSurface::elliptic_paraboloid(0.7, 0.7, [-1.0, 1.0], [-1.0, 1.0]).unwrap();
     let g = LocalGeometry::from_derivatives(&p.evaluate(0.0, 0.0));
@@ -180,14 +230,42 @@ fn umbilic_frames_are_su_aligned() {
 
 #[test]
 fn paraboloid_apex_curvatures_and_directions() {
-    for (a, b) in [(1.0, 0.1), (0.1, 1.0), (0.5, 2.0), (-1.0, -0.25), (3.0, 3.0), (1e-3, 4.0)] {
+    for (a, b) in [
+        (1.0, 0.1),
+        (0.1, 1.0),
+        (0.5, 2.0),
+        (-1.0, -0.25),
+        (3.0, 3.0),
+        (1e-3, 4.0),
+    ] {
         let s = AnalyticSurface::elliptic_paraboloid(a, b, [-1.0, 1.0], [-1.0, 1.0]).unwrap();
-        let g = check_point(&s, 0.0, 0.0, paraboloid_jet(a, b, 0.0, 0.0), "paraboloid apex");
-        let (lo, hi) = if 2.0 * a <= 2.0 * b { (2.0 * a, 2.0 * b) } else { (2.0 * b, 2.0 * a) };
-        assert!(close(g.k1, lo, 1e-12) && close(g.k2, hi, 1e-12), "apex k = 2a, 2b for a={a} b={b}");
+        let g = check_point(
+            &s,
+            0.0,
+            0.0,
+            paraboloid_jet(a, b, 0.0, 0.0),
+            "paraboloid apex",
+        );
+        let (lo, hi) = if 2.0 * a <= 2.0 * b {
+            (2.0 * a, 2.0 * b)
+        } else {
+            (2.0 * b, 2.0 * a)
+        };
+        assert!(
+            close(g.k1, lo, 1e-12) && close(g.k2, hi, 1e-12),
+            "apex k = 2a, 2b for a={a} b={b}"
+        );
         if a != b {
-            let (e1, e2) = if a < b { (DVec3::X, DVec3::Y) } else { (DVec3::Y, DVec3::X) };
-            assert!((g.d1.dot(e1).abs() - 1.0).abs() < 1e-12, "d1 along {e1:?} for a={a} b={b}: {:?}", g.d1);
+            let (e1, e2) = if a < b {
+                (DVec3::X, DVec3::Y)
+            } else {
+                (DVec3::Y, DVec3::X)
+            };
+            assert!(
+                (g.d1.dot(e1).abs() - 1.0).abs() < 1e-12,
+                "d1 along {e1:?} for a={a} b={b}: {:?}",
+                g.d1
+            );
             assert!((g.d2.dot(e2).abs() - 1.0).abs() < 1e-12, "d2 along {e2:?}");
         }
     }
@@ -214,8 +292,15 @@ fn ellipsoid_matches_closed_forms() {
         let z = jet[0];
         let q = x * x / a.powi(4) + y * y / b.powi(4) + z * z / c.powi(4);
         let k = 1.0 / (a * a * b * b * c * c * q * q);
-        assert!(close(g.gaussian(), k, 1e-9), "ellipsoid K {} vs {k}", g.gaussian());
-        assert!(g.k1 < 0.0 && g.k2 < 0.0, "the cap bends away from the +z normal");
+        assert!(
+            close(g.gaussian(), k, 1e-9),
+            "ellipsoid K {} vs {k}",
+            g.gaussian()
+        );
+        assert!(
+            g.k1 < 0.0 && g.k2 < 0.0,
+            "the cap bends away from the +z normal"
+        );
     }
     // At the top: k = -c/a^2 and -c/b^2 along x and y.
     let g = LocalGeometry::from_derivatives(&s.evaluate(0.0, 0.0));
@@ -232,8 +317,15 @@ fn hyperbolic_paraboloid_matches_closed_forms() {
             assert!(g.gaussian() < 0.0, "K < 0");
         }
         let g = LocalGeometry::from_derivatives(&s.evaluate(0.0, 0.0));
-        let (lo, hi) = if a > 0.0 { (-2.0 * b, 2.0 * a) } else { (2.0 * a, -2.0 * b) };
-        assert!(close(g.k1, lo, 1e-12) && close(g.k2, hi, 1e-12), "saddle point k = 2a, -2b");
+        let (lo, hi) = if a > 0.0 {
+            (-2.0 * b, 2.0 * a)
+        } else {
+            (2.0 * a, -2.0 * b)
+        };
+        assert!(
+            close(g.k1, lo, 1e-12) && close(g.k2, hi, 1e-12),
+            "saddle point k = 2a, -2b"
+        );
     }
 }
 
@@ -252,9 +344,15 @@ fn egg_crate_cylinder_and_plane() {
     let c = AnalyticSurface::cylinder(r, [-1.2, 1.4], [-5.0, 5.0]).unwrap();
     for (x, y) in grid([-1.2, 1.4], [-5.0, 5.0], 6) {
         let g = check_point(&c, x, y, cylinder_jet(r, x), "cylinder");
-        assert!(close(g.k1, -1.0 / r, 1e-9) && g.k2.abs() < 1e-12, "cylinder k = -1/r, 0");
+        assert!(
+            close(g.k1, -1.0 / r, 1e-9) && g.k2.abs() < 1e-12,
+            "cylinder k = -1/r, 0"
+        );
         assert!(g.gaussian().abs() < 1e-12, "developable");
-        assert!((g.d2.dot(DVec3::Y).abs() - 1.0).abs() < 1e-12, "zero curvature along the axis");
+        assert!(
+            (g.d2.dot(DVec3::Y).abs() - 1.0).abs() < 1e-12,
+            "zero curvature along the axis"
+        );
     }
 
     let p = AnalyticSurface::plane(0.3, -0.2, 1.0, [0.0, 1.0], [0.0, 1.0]).unwrap();

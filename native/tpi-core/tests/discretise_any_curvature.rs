@@ -13,12 +13,14 @@
 
 mod common;
 
-
 use common::validity::{check, Validity};
 use common::*;
 use glam::DVec3;
 use tpi_core::quality::{FLAG_NON_SIMPLE, FLAG_OVERLAP};
-use tpi_core::{discretise, AnalyticKind, AnalyticSurface, DiscretiseOptions, Generator, NurbsSurface, Surface, SurfaceSpec};
+use tpi_core::{
+    discretise, AnalyticKind, AnalyticSurface, DiscretiseOptions, Generator, NurbsSurface, Surface,
+    SurfaceSpec,
+};
 
 /// A hex (triangular-lattice) pattern of about `n` points in the unit square, rotated by
 /// `degrees` about the square's centre.
@@ -45,7 +47,11 @@ fn rotated_hex(n: usize, degrees: f64) -> Vec<[f64; 2]> {
 /// A square grid of about `n` cell centres.
 fn grid(n: usize) -> Vec<[f64; 2]> {
     let k = (n as f64).sqrt().round() as usize;
-    (0..k).flat_map(|i| (0..k).map(move |j| [(i as f64 + 0.5) / k as f64, (j as f64 + 0.5) / k as f64])).collect()
+    (0..k)
+        .flat_map(|i| {
+            (0..k).map(move |j| [(i as f64 + 0.5) / k as f64, (j as f64 + 0.5) / k as f64])
+        })
+        .collect()
 }
 
 fn poisson(n: usize, seed: u64) -> Vec<[f64; 2]> {
@@ -80,17 +86,36 @@ fn torus_patch(big: f64, small: f64, phi: [f64; 2], theta: [f64; 2]) -> NurbsSur
             weights.push(wu * wv);
         }
     }
-    NurbsSurface::new([2, 2], [3, 3], &[0.0, 0.0, 1.0, 1.0], &[0.0, 0.0, 1.0, 1.0], &points, Some(&weights))
-        .unwrap_or_else(|e| panic!("torus patch rejected: {e}"))
+    NurbsSurface::new(
+        [2, 2],
+        [3, 3],
+        &[0.0, 0.0, 1.0, 1.0],
+        &[0.0, 0.0, 1.0, 1.0],
+        &points,
+        Some(&weights),
+    )
+    .unwrap_or_else(|e| panic!("torus patch rejected: {e}"))
 }
 
 fn hypar() -> AnalyticSurface {
-    AnalyticSurface::new(AnalyticKind::HyperbolicParaboloid { a: 0.08, b: 0.08 }, [-5.0, 5.0], [-5.0, 5.0]).unwrap()
+    AnalyticSurface::new(
+        AnalyticKind::HyperbolicParaboloid { a: 0.08, b: 0.08 },
+        [-5.0, 5.0],
+        [-5.0, 5.0],
+    )
+    .unwrap()
 }
 
 /// z = 0.08 x y: the hyperbolic paraboloid turned by 45 degrees (exact as a biquadratic net).
 fn rotated_hypar() -> NurbsSurface {
-    lifted_net([2, 2], &[0.0, 0.0, 0.5, 1.0, 1.0], &[0.0, 0.0, 0.5, 1.0, 1.0], |s, t| (-5.0 + 10.0 * s, -5.0 + 10.0 * t), |x, y, _, _| 0.08 * x * y, None)
+    lifted_net(
+        [2, 2],
+        &[0.0, 0.0, 0.5, 1.0, 1.0],
+        &[0.0, 0.0, 0.5, 1.0, 1.0],
+        |s, t| (-5.0 + 10.0 * s, -5.0 + 10.0 * t),
+        |x, y, _, _| 0.08 * x * y,
+        None,
+    )
 }
 
 /// A saddle whose curvature varies across the domain, skewed by a cubic term.
@@ -106,13 +131,21 @@ fn skewed_saddle() -> NurbsSurface {
 }
 
 fn torus_band() -> NurbsSurface {
-    torus_patch(10.0, 3.0, [120f64.to_radians(), 240f64.to_radians()], [-45f64.to_radians(), 45f64.to_radians()])
+    torus_patch(
+        10.0,
+        3.0,
+        [120f64.to_radians(), 240f64.to_radians()],
+        [-45f64.to_radians(), 45f64.to_radians()],
+    )
 }
 
 fn sample_surface(name: &str) -> tpi_core::SurfaceModel {
     let path = format!("{}/../../samples/{name}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap();
-    SurfaceSpec::from_json(&text, name).unwrap().build().unwrap()
+    SurfaceSpec::from_json(&text, name)
+        .unwrap()
+        .build()
+        .unwrap()
 }
 
 /// Largest Gaussian curvature over a 30 x 30 grid (negative: a saddle everywhere).
@@ -159,28 +192,49 @@ struct Case {
     invalid_far_from_parabolic: usize,
 }
 
-fn run(surface_name: &str, surface: &dyn Surface, pattern_name: &str, pattern: &[[f64; 2]]) -> Case {
+fn run(
+    surface_name: &str,
+    surface: &dyn Surface,
+    pattern_name: &str,
+    pattern: &[[f64; 2]],
+) -> Case {
     let d = discretise(surface, pattern, &DiscretiseOptions::default())
         .unwrap_or_else(|e| panic!("{surface_name} / {pattern_name}: {e}"));
     let validity = check(&d);
     if std::env::var_os("TPI_DEBUG").is_some() && !validity.is_disc() {
         eprintln!("{surface_name} {pattern_name}: {:?}", d.diagnostics);
         let t = topology(&d);
-        let boundary: Vec<_> = t.edge_facets.iter().filter(|(_, f)| f.len() == 1).map(|(e, f)| (*e, f[0], d.vertex_kinds[e.0 as usize])).collect();
-        let interior: Vec<_> = boundary.iter().filter(|b| b.2 == tpi_core::facets::VertexKind::Interior).collect();
+        let boundary: Vec<_> = t
+            .edge_facets
+            .iter()
+            .filter(|(_, f)| f.len() == 1)
+            .map(|(e, f)| (*e, f[0], d.vertex_kinds[e.0 as usize]))
+            .collect();
+        let interior: Vec<_> = boundary
+            .iter()
+            .filter(|b| b.2 == tpi_core::facets::VertexKind::Interior)
+            .collect();
         eprintln!("interior-kind boundary edges: {interior:?}");
     }
     // Every facet the independent check finds invalid must be flagged by the report.
     let flagged_missing = validity
         .invalid_facets()
         .into_iter()
-        .filter(|&i| d.facet_flags.get(i).map_or(true, |f| f & (FLAG_NON_SIMPLE | FLAG_OVERLAP) == 0))
+        .filter(|&i| {
+            d.facet_flags
+                .get(i)
+                .map_or(true, |f| f & (FLAG_NON_SIMPLE | FLAG_OVERLAP) == 0)
+        })
         .count();
     if std::env::var_os("TPI_DEBUG").is_some() {
         let q = d.quality.as_ref().unwrap();
         eprintln!("{surface_name} {pattern_name}: {:?}", q.neighbours);
     }
-    let invalid_at_boundary = validity.invalid_facets().into_iter().filter(|&i| touches_boundary(&d, i)).count();
+    let invalid_at_boundary = validity
+        .invalid_facets()
+        .into_iter()
+        .filter(|&i| touches_boundary(&d, i))
+        .count();
     let spacing = 1.0 / (pattern.len() as f64).sqrt();
     let invalid_far_from_parabolic = validity
         .invalid_facets()
@@ -212,7 +266,10 @@ fn report(cases: &[Case]) {
     if std::env::var_os("TPI_TABLE").is_none() {
         return;
     }
-    println!("{:<16} {:<14} {:>6} {:>8} {:>6} {:>8} {:>6} {:>6} {:>8}", "surface", "pattern", "points", "inv(bnd)", "open", "nonsimp", "pairs", "euler", "loops");
+    println!(
+        "{:<16} {:<14} {:>6} {:>8} {:>6} {:>8} {:>6} {:>6} {:>8}",
+        "surface", "pattern", "points", "inv(bnd)", "open", "nonsimp", "pairs", "euler", "loops"
+    );
     for c in cases {
         let v = &c.validity;
         println!(
@@ -226,8 +283,15 @@ fn report(cases: &[Case]) {
             v.overlapping_pairs.len(),
             v.euler,
             v.boundary_loops,
-            if c.flagged_missing > 0 { format!("  UNFLAGGED {}", c.flagged_missing) } else { String::new() }
-                + &if c.invalid_far_from_parabolic > 0 { format!("  FAR {}", c.invalid_far_from_parabolic) } else { String::new() }
+            if c.flagged_missing > 0 {
+                format!("  UNFLAGGED {}", c.flagged_missing)
+            } else {
+                String::new()
+            } + &if c.invalid_far_from_parabolic > 0 {
+                format!("  FAR {}", c.invalid_far_from_parabolic)
+            } else {
+                String::new()
+            }
         );
     }
 }
@@ -246,7 +310,11 @@ fn crest_roof() -> NurbsSurface {
 }
 
 fn saddles() -> Vec<(&'static str, Box<dyn Surface>)> {
-    vec![("hypar", Box::new(hypar())), ("skewed-saddle", Box::new(skewed_saddle())), ("torus-band", Box::new(torus_band()))]
+    vec![
+        ("hypar", Box::new(hypar())),
+        ("skewed-saddle", Box::new(skewed_saddle())),
+        ("torus-band", Box::new(torus_band())),
+    ]
 }
 
 fn table(surfaces: &[(&'static str, Box<dyn Surface>)]) -> Vec<Case> {
@@ -266,18 +334,39 @@ fn table(surfaces: &[(&'static str, Box<dyn Surface>)]) -> Vec<Case> {
 fn saddles_give_valid_meshes_with_exact_planes() {
     let surfaces = saddles();
     for (name, surface) in &surfaces {
-        assert!(max_gaussian(surface.as_ref()) < 0.0, "{name} is not a saddle everywhere");
+        assert!(
+            max_gaussian(surface.as_ref()) < 0.0,
+            "{name} is not a saddle everywhere"
+        );
     }
     for c in &table(&surfaces) {
         let v = &c.validity;
-        assert!(v.is_disc(), "{} / {}: not a disc: {v:?}", c.surface, c.pattern);
-        assert_eq!(c.flagged_missing, 0, "{} / {}: invalid facets not flagged", c.surface, c.pattern);
+        assert!(
+            v.is_disc(),
+            "{} / {}: not a disc: {v:?}",
+            c.surface,
+            c.pattern
+        );
+        assert_eq!(
+            c.flagged_missing, 0,
+            "{} / {}: invalid facets not flagged",
+            c.surface, c.pattern
+        );
         let invalid = v.invalid_facets().len();
         if c.pattern.starts_with("poisson") {
             // Known gap: a Poisson pattern can leave a facet or two at the boundary invalid.
-            assert!(invalid <= 2 && invalid == c.invalid_at_boundary, "{} / {}: invalid facets {v:?}", c.surface, c.pattern);
+            assert!(
+                invalid <= 2 && invalid == c.invalid_at_boundary,
+                "{} / {}: invalid facets {v:?}",
+                c.surface,
+                c.pattern
+            );
         } else {
-            assert_eq!(invalid, 0, "{} / {}: invalid facets {v:?}", c.surface, c.pattern);
+            assert_eq!(
+                invalid, 0,
+                "{} / {}: invalid facets {v:?}",
+                c.surface, c.pattern
+            );
         }
     }
 }
@@ -288,30 +377,62 @@ fn saddles_give_valid_meshes_with_exact_planes() {
 /// a disc and every invalid facet is flagged.
 #[test]
 fn ruled_boundaries_give_discs_with_every_invalid_facet_flagged() {
-    let surfaces: Vec<(&'static str, Box<dyn Surface>)> = vec![("rotated-hypar", Box::new(rotated_hypar()))];
+    let surfaces: Vec<(&'static str, Box<dyn Surface>)> =
+        vec![("rotated-hypar", Box::new(rotated_hypar()))];
     for c in &table(&surfaces) {
         let v = &c.validity;
-        assert!(v.is_disc(), "{} / {}: not a disc: {v:?}", c.surface, c.pattern);
+        assert!(
+            v.is_disc(),
+            "{} / {}: not a disc: {v:?}",
+            c.surface,
+            c.pattern
+        );
         let invalid = v.invalid_facets().len();
         if c.pattern.starts_with("hex") {
-            assert_eq!(invalid, 0, "{} / {}: invalid facets {v:?}", c.surface, c.pattern);
+            assert_eq!(
+                invalid, 0,
+                "{} / {}: invalid facets {v:?}",
+                c.surface, c.pattern
+            );
         }
-        assert!(invalid * 33 <= c.points, "{} / {}: {invalid} invalid facets", c.surface, c.pattern);
+        assert!(
+            invalid * 33 <= c.points,
+            "{} / {}: {invalid} invalid facets",
+            c.surface,
+            c.pattern
+        );
     }
 }
 
 #[test]
 fn mixed_surfaces_stay_discs_and_flag_every_invalid_facet() {
-    let surfaces: Vec<(&'static str, Box<dyn Surface>)> =
-        vec![("mixed-roof", Box::new(sample_surface("mixed-roof.json"))), ("crest-roof", Box::new(crest_roof()))];
+    let surfaces: Vec<(&'static str, Box<dyn Surface>)> = vec![
+        ("mixed-roof", Box::new(sample_surface("mixed-roof.json"))),
+        ("crest-roof", Box::new(crest_roof())),
+    ];
     for c in &table(&surfaces) {
         let v = &c.validity;
-        assert!(v.is_disc(), "{} / {}: not a disc: {v:?}", c.surface, c.pattern);
-        assert_eq!(c.flagged_missing, 0, "{} / {}: invalid facets not flagged", c.surface, c.pattern);
+        assert!(
+            v.is_disc(),
+            "{} / {}: not a disc: {v:?}",
+            c.surface,
+            c.pattern
+        );
+        assert_eq!(
+            c.flagged_missing, 0,
+            "{} / {}: invalid facets not flagged",
+            c.surface, c.pattern
+        );
         // Invalid facets sit mostly at parabolic lines (within 4 spacings). Known gap: where a
         // pattern row runs close to an asymptotic direction of a saddle region (the crest
         // with hex@45), a cluster of up to 1.5 % of the facets stays invalid.
-        assert!(c.invalid_far_from_parabolic * 66 <= c.points, "{} / {}: {} invalid facets far from parabolic lines", c.surface, c.pattern, c.invalid_far_from_parabolic);
+        assert!(
+            c.invalid_far_from_parabolic * 66 <= c.points,
+            "{} / {}: {} invalid facets far from parabolic lines",
+            c.surface,
+            c.pattern,
+            c.invalid_far_from_parabolic
+        );
     }
 }
 
@@ -321,16 +442,31 @@ fn mixed_surfaces_stay_discs_and_flag_every_invalid_facet() {
 /// named by an ill-conditioned-vertex diagnostic.
 #[test]
 fn egg_crate_flags_every_invalid_facet_and_names_every_hole() {
-    let crate_surface = AnalyticSurface::new(AnalyticKind::EggCrate { amplitude: 0.6 }, [-3.0, 3.0], [-3.0, 3.0]).unwrap();
+    let crate_surface = AnalyticSurface::new(
+        AnalyticKind::EggCrate { amplitude: 0.6 },
+        [-3.0, 3.0],
+        [-3.0, 3.0],
+    )
+    .unwrap();
     for n in [300, 2000] {
         for (pattern_name, pattern) in patterns(n) {
             let d = discretise(&crate_surface, &pattern, &DiscretiseOptions::default()).unwrap();
             let v = check(&d);
-            let unflagged = v.invalid_facets().into_iter().filter(|&i| d.facet_flags[i] & (FLAG_NON_SIMPLE | FLAG_OVERLAP) == 0).count();
-            assert_eq!(unflagged, 0, "egg crate / {pattern_name}: invalid facets not flagged");
+            let unflagged = v
+                .invalid_facets()
+                .into_iter()
+                .filter(|&i| d.facet_flags[i] & (FLAG_NON_SIMPLE | FLAG_OVERLAP) == 0)
+                .count();
+            assert_eq!(
+                unflagged, 0,
+                "egg crate / {pattern_name}: invalid facets not flagged"
+            );
             if !v.is_disc() {
                 let named = d.diagnostics.iter().any(|g| matches!(g, tpi_core::Diagnostic::IllConditionedVertex { distance, .. } if distance.is_nan() || distance.abs() >= 1e5));
-                assert!(named, "egg crate / {pattern_name}: a hole without a diagnostic: {v:?}");
+                assert!(
+                    named,
+                    "egg crate / {pattern_name}: a hole without a diagnostic: {v:?}"
+                );
             }
         }
     }
@@ -347,16 +483,32 @@ fn random_patterns_give_discs_on_any_curvature() {
     surfaces.push(("crest-roof", Box::new(crest_roof())));
     let mut rng = Rng::new(2026);
     // Points on the sides and corners too: a 12 x 12 grid of the closed unit square.
-    let closed_grid: Vec<[f64; 2]> = (0..12).flat_map(|i| (0..12).map(move |j| [i as f64 / 11.0, j as f64 / 11.0])).collect();
+    let closed_grid: Vec<[f64; 2]> = (0..12)
+        .flat_map(|i| (0..12).map(move |j| [i as f64 / 11.0, j as f64 / 11.0]))
+        .collect();
     for (name, surface) in &surfaces {
         for n in [200, 1000] {
             let pattern = uniform_pattern(&mut rng, n);
             let c = run(name, surface.as_ref(), &format!("random{n}"), &pattern);
-            assert!(c.validity.is_disc(), "{name} / random{n}: not a disc: {:?}", c.validity);
-            assert_eq!(c.flagged_missing, 0, "{name} / random{n}: invalid facets not flagged");
+            assert!(
+                c.validity.is_disc(),
+                "{name} / random{n}: not a disc: {:?}",
+                c.validity
+            );
+            assert_eq!(
+                c.flagged_missing, 0,
+                "{name} / random{n}: invalid facets not flagged"
+            );
         }
         let c = run(name, surface.as_ref(), "closed-grid", &closed_grid);
-        assert!(c.validity.is_disc(), "{name} / closed grid: not a disc: {:?}", c.validity);
-        assert_eq!(c.flagged_missing, 0, "{name} / closed grid: invalid facets not flagged");
+        assert!(
+            c.validity.is_disc(),
+            "{name} / closed grid: not a disc: {:?}",
+            c.validity
+        );
+        assert_eq!(
+            c.flagged_missing, 0,
+            "{name} / closed grid: invalid facets not flagged"
+        );
     }
 }

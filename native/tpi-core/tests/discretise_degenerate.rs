@@ -2,14 +2,20 @@
 //! or diagnostic (issue 3, item 6 and "Flat or developable regions and every degenerate
 //! pattern").
 // NaN-safe negated comparisons are intended; index loops read better in geometry checks.
-#![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop, clippy::unnecessary_map_or)]
+#![allow(
+    clippy::neg_cmp_op_on_partial_ord,
+    clippy::needless_range_loop,
+    clippy::unnecessary_map_or
+)]
 
 mod common;
 
 use std::collections::BTreeSet;
 
 use common::*;
-use tpi_core::{discretise, AnalyticSurface, Diagnostic, DiscretiseOptions, NurbsSurface, Surface, TpiError};
+use tpi_core::{
+    discretise, AnalyticSurface, Diagnostic, DiscretiseOptions, NurbsSurface, Surface, TpiError,
+};
 
 fn sphere() -> AnalyticSurface {
     AnalyticSurface::sphere_cap_square(1.0, 0.6).unwrap()
@@ -22,7 +28,9 @@ fn run(pattern: &[[f64; 2]]) -> Result<tpi_core::Discretisation, TpiError> {
 #[test]
 fn fewer_than_three_points() {
     for n in 0..3 {
-        let pattern: Vec<[f64; 2]> = (0..n).map(|k| [0.2 + 0.3 * k as f64, 0.7 - 0.2 * k as f64]).collect();
+        let pattern: Vec<[f64; 2]> = (0..n)
+            .map(|k| [0.2 + 0.3 * k as f64, 0.7 - 0.2 * k as f64])
+            .collect();
         match run(&pattern) {
             Err(TpiError::TooFewPatternPoints { found, needed }) => {
                 assert_eq!((found, needed), (n, 3));
@@ -35,7 +43,9 @@ fn fewer_than_three_points() {
 #[test]
 fn collinear_patterns() {
     let lines: [Vec<[f64; 2]>; 3] = [
-        (0..7).map(|k| [0.1 + 0.12 * k as f64, 0.1 + 0.12 * k as f64]).collect(),
+        (0..7)
+            .map(|k| [0.1 + 0.12 * k as f64, 0.1 + 0.12 * k as f64])
+            .collect(),
         (0..5).map(|k| [0.05 + 0.2 * k as f64, 0.5]).collect(),
         (0..4).map(|k| [0.3, 0.9 - 0.25 * k as f64]).collect(),
     ];
@@ -48,7 +58,14 @@ fn collinear_patterns() {
 }
 
 fn base() -> Vec<[f64; 2]> {
-    vec![[0.1, 0.2], [0.5, 0.5], [0.9, 0.3], [0.3, 0.8], [0.75, 0.85], [0.6, 0.1]]
+    vec![
+        [0.1, 0.2],
+        [0.5, 0.5],
+        [0.9, 0.3],
+        [0.3, 0.8],
+        [0.75, 0.85],
+        [0.6, 0.1],
+    ]
 }
 
 #[test]
@@ -56,7 +73,11 @@ fn exact_duplicates() {
     let mut pattern = base();
     pattern.push([0.5, 0.5]);
     match run(&pattern) {
-        Err(TpiError::DuplicatePatternPoint { index, duplicate_of, distance }) => {
+        Err(TpiError::DuplicatePatternPoint {
+            index,
+            duplicate_of,
+            distance,
+        }) => {
             assert_eq!((index, duplicate_of), (6, 1));
             assert_eq!(distance, 0.0);
         }
@@ -66,21 +87,37 @@ fn exact_duplicates() {
     let mut pattern = base();
     pattern.insert(0, [0.75, 0.85]);
     match run(&pattern) {
-        Err(TpiError::DuplicatePatternPoint { index, duplicate_of, .. }) => assert_eq!((index, duplicate_of), (5, 0)),
+        Err(TpiError::DuplicatePatternPoint {
+            index,
+            duplicate_of,
+            ..
+        }) => assert_eq!((index, duplicate_of), (5, 0)),
         other => panic!("expected DuplicatePatternPoint, got {other:?}"),
     }
 }
 
 #[test]
 fn near_duplicates_1e_12_apart() {
-    for (offset, label) in [([1e-12, 0.0], "along s"), ([0.0, -1e-12], "along t"), ([7e-13, 7e-13], "diagonal"), ([-1e-12, 0.0], "smaller s first")] {
+    for (offset, label) in [
+        ([1e-12, 0.0], "along s"),
+        ([0.0, -1e-12], "along t"),
+        ([7e-13, 7e-13], "diagonal"),
+        ([-1e-12, 0.0], "smaller s first"),
+    ] {
         let mut pattern = base();
         pattern.push([0.9 + offset[0], 0.3 + offset[1]]);
         match run(&pattern) {
-            Err(TpiError::DuplicatePatternPoint { index, duplicate_of, distance }) => {
+            Err(TpiError::DuplicatePatternPoint {
+                index,
+                duplicate_of,
+                distance,
+            }) => {
                 assert_eq!((index, duplicate_of), (6, 2), "{label}");
                 let expected = (offset[0] * offset[0] + offset[1] * offset[1]).sqrt();
-                assert!((distance - expected).abs() < 1e-15, "{label}: distance {distance:e}, expected {expected:e}");
+                assert!(
+                    (distance - expected).abs() < 1e-15,
+                    "{label}: distance {distance:e}, expected {expected:e}"
+                );
             }
             other => panic!("{label}: expected DuplicatePatternPoint, got {other:?}"),
         }
@@ -136,7 +173,10 @@ fn plane_is_a_degenerate_surface() {
     ] {
         match discretise(&s, &pattern, &DiscretiseOptions::default()) {
             Err(TpiError::DegenerateSurface { reason }) => assert!(!reason.is_empty()),
-            other => panic!("plane: expected DegenerateSurface, got {:?}", other.map(|d| d.diagnostics.len())),
+            other => panic!(
+                "plane: expected DegenerateSurface, got {:?}",
+                other.map(|d| d.diagnostics.len())
+            ),
         }
     }
 }
@@ -149,7 +189,10 @@ fn cylinder_is_a_degenerate_surface() {
         let s = AnalyticSurface::cylinder(1.0, [-0.8, 0.8], [0.0, 3.0]).unwrap();
         match discretise(&s, &pattern, &DiscretiseOptions::default()) {
             Err(TpiError::DegenerateSurface { reason }) => assert!(!reason.is_empty()),
-            other => panic!("cylinder n={n}: expected DegenerateSurface, got {:?}", other.map(|d| d.diagnostics.len())),
+            other => panic!(
+                "cylinder n={n}: expected DegenerateSurface, got {:?}",
+                other.map(|d| d.diagnostics.len())
+            ),
         }
     }
 }
@@ -169,7 +212,14 @@ fn flat_bottomed_bowl() -> (NurbsSurface, Vec<(usize, usize)>) {
         let rho = ((i as f64 - centre).powi(2) + (j as f64 - centre).powi(2)).sqrt();
         0.08 * (rho - 4.6).max(0.0).powi(2)
     };
-    let s = lifted_net([3, 3], &knots, &knots, |s, t| (4.0 * s, 4.0 * t), |_, _, i, j| height(i, j), None);
+    let s = lifted_net(
+        [3, 3],
+        &knots,
+        &knots,
+        |s, t| (4.0 * s, 4.0 * t),
+        |_, _, i, j| height(i, j),
+        None,
+    );
     // Span (a, b) covers u in [a, a + 1], v in [b, b + 1]; control points a..a+3, b..b+3.
     let flat: Vec<(usize, usize)> = (0..11)
         .flat_map(|a| (0..11).map(move |b| (a, b)))
@@ -185,12 +235,18 @@ fn partly_flat_case() -> (NurbsSurface, Vec<(usize, usize)>, Vec<[f64; 2]>) {
 }
 
 /// Pattern points strictly inside a flat span.
-fn flat_points(s: &NurbsSurface, flat_spans: &[(usize, usize)], pattern: &[[f64; 2]]) -> Vec<usize> {
+fn flat_points(
+    s: &NurbsSurface,
+    flat_spans: &[(usize, usize)],
+    pattern: &[[f64; 2]],
+) -> Vec<usize> {
     let dom = s.domain();
     (0..pattern.len())
         .filter(|&i| {
             let [u, v] = dom.from_normalised(pattern[i]);
-            flat_spans.iter().any(|&(a, b)| u > a as f64 && u < a as f64 + 1.0 && v > b as f64 && v < b as f64 + 1.0)
+            flat_spans.iter().any(|&(a, b)| {
+                u > a as f64 && u < a as f64 + 1.0 && v > b as f64 && v < b as f64 + 1.0
+            })
         })
         .collect()
 }
@@ -206,21 +262,47 @@ fn partly_flat_surface_names_its_flat_points() {
     let dom = s.domain();
     // Sanity of the construction: exactly flat inside the flat spans.
     let flat_points = flat_points(&s, &flat_spans, &pattern);
-    assert!(flat_points.len() > 60, "only {} points in the flat region ({} spans)", flat_points.len(), flat_spans.len());
+    assert!(
+        flat_points.len() > 60,
+        "only {} points in the flat region ({} spans)",
+        flat_points.len(),
+        flat_spans.len()
+    );
     for &i in &flat_points {
         let [u, v] = dom.from_normalised(pattern[i]);
         let d = s.evaluate(u, v);
-        assert!(d.point.z == 0.0 && d.suu.z == 0.0 && d.suv.z == 0.0 && d.svv.z == 0.0, "not flat at {u} {v}");
+        assert!(
+            d.point.z == 0.0 && d.suu.z == 0.0 && d.suv.z == 0.0 && d.svv.z == 0.0,
+            "not flat at {u} {v}"
+        );
     }
 
-    let d = discretise(&s, &pattern, &DiscretiseOptions::default()).expect("a partly flat surface is not an error");
+    let d = discretise(&s, &pattern, &DiscretiseOptions::default())
+        .expect("a partly flat surface is not an error");
     let diag = seed_diagonal(&d);
     assert_eq!(d.facet_count(), pattern.len());
 
     // FlatPoint names every point of the flat region, and no clearly curved point.
-    let named_flat: BTreeSet<u32> = d.diagnostics.iter().filter_map(|g| if let Diagnostic::FlatPoint { point, .. } = g { Some(*point) } else { None }).collect();
-    let missing: Vec<usize> = flat_points.iter().copied().filter(|&i| !named_flat.contains(&(i as u32))).collect();
-    assert!(missing.is_empty(), "flat points without FlatPoint diagnostic: {missing:?}");
+    let named_flat: BTreeSet<u32> = d
+        .diagnostics
+        .iter()
+        .filter_map(|g| {
+            if let Diagnostic::FlatPoint { point, .. } = g {
+                Some(*point)
+            } else {
+                None
+            }
+        })
+        .collect();
+    let missing: Vec<usize> = flat_points
+        .iter()
+        .copied()
+        .filter(|&i| !named_flat.contains(&(i as u32)))
+        .collect();
+    assert!(
+        missing.is_empty(),
+        "flat points without FlatPoint diagnostic: {missing:?}"
+    );
     let mut curved_named = Vec::new();
     let mut curved = 0;
     for i in 0..pattern.len() {
@@ -234,7 +316,10 @@ fn partly_flat_surface_names_its_flat_points() {
         }
     }
     assert!(curved > 200, "only {curved} clearly curved points");
-    assert!(curved_named.is_empty(), "curved points named flat: {curved_named:?}");
+    assert!(
+        curved_named.is_empty(),
+        "curved points named flat: {curved_named:?}"
+    );
 
     // Every dual triangle of three flat points has three coincident planes: its vertex is
     // ill-conditioned and must be named by an IllConditionedVertex diagnostic.
@@ -242,7 +327,15 @@ fn partly_flat_surface_names_its_flat_points() {
     let ill: BTreeSet<[u32; 3]> = d
         .diagnostics
         .iter()
-        .filter_map(|g| if let Diagnostic::IllConditionedVertex { points, .. } = g { let mut p = *points; p.sort_unstable(); Some(p) } else { None })
+        .filter_map(|g| {
+            if let Diagnostic::IllConditionedVertex { points, .. } = g {
+                let mut p = *points;
+                p.sort_unstable();
+                Some(p)
+            } else {
+                None
+            }
+        })
         .collect();
     let flat_triangles: Vec<[u32; 3]> = d
         .dual_triangles
@@ -254,9 +347,22 @@ fn partly_flat_surface_names_its_flat_points() {
         })
         .filter(|t| t.iter().all(|p| flat_set.contains(p)))
         .collect();
-    assert!(flat_triangles.len() > 50, "only {} flat triangles", flat_triangles.len());
-    let unnamed: Vec<&[u32; 3]> = flat_triangles.iter().filter(|t| !ill.contains(*t)).collect();
-    assert!(unnamed.is_empty(), "{} of {} triangles of flat points without IllConditionedVertex: {:?}", unnamed.len(), flat_triangles.len(), &unnamed[..unnamed.len().min(5)]);
+    assert!(
+        flat_triangles.len() > 50,
+        "only {} flat triangles",
+        flat_triangles.len()
+    );
+    let unnamed: Vec<&[u32; 3]> = flat_triangles
+        .iter()
+        .filter(|t| !ill.contains(*t))
+        .collect();
+    assert!(
+        unnamed.is_empty(),
+        "{} of {} triangles of flat points without IllConditionedVertex: {:?}",
+        unnamed.len(),
+        flat_triangles.len(),
+        &unnamed[..unnamed.len().min(5)]
+    );
     // Every ill-conditioned vertex concerns at least one point of small curvature.
     for p in &ill {
         let small = p.iter().any(|&i| {
@@ -264,8 +370,10 @@ fn partly_flat_surface_names_its_flat_points() {
             let (k, h) = gaussian_and_mean(&s, u, v);
             k <= 1e-2 * kmax(k, h).powi(2) || kmax(k, h) * diag < 1e-6
         });
-        assert!(small, "IllConditionedVertex {p:?} names only clearly curved points");
+        assert!(
+            small,
+            "IllConditionedVertex {p:?} names only clearly curved points"
+        );
     }
     println!("partly flat: {} flat spans, {} flat points, {} FlatPoint, {} IllConditionedVertex, {} flat triangles", flat_spans.len(), flat_points.len(), named_flat.len(), ill.len(), flat_triangles.len());
 }
-

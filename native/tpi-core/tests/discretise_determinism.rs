@@ -2,7 +2,11 @@
 //! without timings) with rayon pools of 1 and 2 threads (and 3, oversubscribed), in the
 //! global pool, and run to run (issue 3, item 9 and "Determinism").
 // NaN-safe negated comparisons are intended; index loops read better in geometry checks.
-#![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop, clippy::unnecessary_map_or)]
+#![allow(
+    clippy::neg_cmp_op_on_partial_ord,
+    clippy::needless_range_loop,
+    clippy::unnecessary_map_or
+)]
 
 mod common;
 
@@ -10,7 +14,10 @@ use common::*;
 use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, Surface};
 
 fn pool(threads: usize) -> rayon::ThreadPool {
-    rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("thread pool")
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("thread pool")
 }
 
 fn json(surface: &dyn Surface, pattern: &[[f64; 2]]) -> String {
@@ -25,15 +32,25 @@ fn assert_deterministic(name: &str, surface: &dyn Surface, pattern: &[[f64; 2]])
     let reference = pools[0].install(|| json(surface, pattern));
     assert!(reference.starts_with('{'), "{name}: {reference}");
     let runs = [
-        ("1 thread, second run", pools[0].install(|| json(surface, pattern))),
+        (
+            "1 thread, second run",
+            pools[0].install(|| json(surface, pattern)),
+        ),
         ("2 threads", pools[1].install(|| json(surface, pattern))),
-        ("2 threads, second run", pools[1].install(|| json(surface, pattern))),
+        (
+            "2 threads, second run",
+            pools[1].install(|| json(surface, pattern)),
+        ),
         ("3 threads", pools[2].install(|| json(surface, pattern))),
         ("global pool", json(surface, pattern)),
     ];
     for (label, text) in runs {
         if text != reference {
-            let at = text.bytes().zip(reference.bytes()).position(|(a, b)| a != b).unwrap_or(text.len().min(reference.len()));
+            let at = text
+                .bytes()
+                .zip(reference.bytes())
+                .position(|(a, b)| a != b)
+                .unwrap_or(text.len().min(reference.len()));
             let lo = at.saturating_sub(80);
             panic!(
                 "{name}: {label} differs from 1 thread at byte {at} (lengths {} / {}):\n  1 thread: ...{}...\n  {label}: ...{}...",
@@ -46,13 +63,19 @@ fn assert_deterministic(name: &str, surface: &dyn Surface, pattern: &[[f64; 2]])
     }
     // The contract's shape, and no timings.
     let value: serde_json::Value = serde_json::from_str(&reference).expect("valid JSON");
-    assert!(value.get("timings_ms").is_none(), "{name}: timings in to_json(false)");
+    assert!(
+        value.get("timings_ms").is_none(),
+        "{name}: timings in to_json(false)"
+    );
     let facets = value["facets"].as_array().expect("facets");
     assert_eq!(facets.len(), pattern.len(), "{name}");
     for key in ["seed", "uv", "point", "normal", "vertices"] {
         assert!(facets[0].get(key).is_some(), "{name}: facet without {key}");
     }
-    assert!(value["vertices"].is_array() && value.get("quality").is_some(), "{name}");
+    assert!(
+        value["vertices"].is_array() && value.get("quality").is_some(),
+        "{name}"
+    );
     println!("{name}: {} bytes identical over 6 runs", reference.len());
 }
 
@@ -83,12 +106,20 @@ fn rational_nurbs_is_deterministic() {
         Some(&w),
     );
     let mut rng = Rng::new(63);
-    assert_deterministic("rational NURBS n=1200", &s, &jittered_pattern(&mut rng, 1200));
+    assert_deterministic(
+        "rational NURBS n=1200",
+        &s,
+        &jittered_pattern(&mut rng, 1200),
+    );
 }
 
 #[test]
 fn hyperbolic_paraboloid_is_deterministic() {
     let s = AnalyticSurface::hyperbolic_paraboloid(0.8, 0.5, [-1.0, 1.0], [-1.2, 0.9]).unwrap();
     let mut rng = Rng::new(64);
-    assert_deterministic("hyperbolic paraboloid n=700", &s, &uniform_pattern(&mut rng, 700));
+    assert_deterministic(
+        "hyperbolic paraboloid n=700",
+        &s,
+        &uniform_pattern(&mut rng, 700),
+    );
 }

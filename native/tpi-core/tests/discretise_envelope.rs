@@ -19,7 +19,11 @@
 //! ambiguous neighbour, which the mesh may or may not list; with random patterns this is rare
 //! and the count is printed.
 // NaN-safe negated comparisons are intended; index loops read better in geometry checks.
-#![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop, clippy::unnecessary_map_or)]
+#![allow(
+    clippy::neg_cmp_op_on_partial_ord,
+    clippy::needless_range_loop,
+    clippy::unnecessary_map_or
+)]
 
 mod common;
 
@@ -50,7 +54,13 @@ struct Stats {
     max_off_wall: f64,
 }
 
-fn check_pattern(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, pattern: &[[f64; 2]], stats: &mut Stats) -> Vec<String> {
+fn check_pattern(
+    name: &str,
+    surface: &dyn Surface,
+    closed: Option<ClosedForm>,
+    pattern: &[[f64; 2]],
+    stats: &mut Stats,
+) -> Vec<String> {
     let mut fail = Vec::new();
     let n = pattern.len();
     let d = match discretise(surface, pattern, &DiscretiseOptions::default()) {
@@ -69,11 +79,17 @@ fn check_pattern(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, 
     }
     for i in 0..n {
         if d.facet(i).len() < 3 {
-            fail.push(format!("{name} n={n}: facet {i} has {} vertices", d.facet(i).len()));
+            fail.push(format!(
+                "{name} n={n}: facet {i} has {} vertices",
+                d.facet(i).len()
+            ));
         }
     }
     if let Some(v) = d.vertices.iter().position(|v| !v.is_finite()) {
-        fail.push(format!("{name} n={n}: vertex {v} = {} not finite", d.vertices[v]));
+        fail.push(format!(
+            "{name} n={n}: vertex {v} = {} not finite",
+            d.vertices[v]
+        ));
     }
 
     // Seeds: the output contract (uv in the surface's domain, point, unit normal Su x Sv).
@@ -82,12 +98,25 @@ fn check_pattern(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, 
         let (point, normal) = match closed {
             Some(f) => {
                 let (z, fx, fy) = f(uv[0], uv[1]);
-                (DVec3::new(uv[0], uv[1], z), DVec3::new(-fx, -fy, 1.0).normalize())
+                (
+                    DVec3::new(uv[0], uv[1], z),
+                    DVec3::new(-fx, -fy, 1.0).normalize(),
+                )
             }
-            None => (surface.point_at(uv[0], uv[1]), unit_normal(surface, uv[0], uv[1])),
+            None => (
+                surface.point_at(uv[0], uv[1]),
+                unit_normal(surface, uv[0], uv[1]),
+            ),
         };
-        if (s.uv[0] - uv[0]).abs() > 1e-14 || (s.uv[1] - uv[1]).abs() > 1e-14 || s.point.distance(point) > 1e-12 * diag || s.normal.distance(normal) > 1e-12 {
-            fail.push(format!("{name} n={n}: seed {i} is {:?} {} {}, expected {uv:?} {point} {normal}", s.uv, s.point, s.normal));
+        if (s.uv[0] - uv[0]).abs() > 1e-14
+            || (s.uv[1] - uv[1]).abs() > 1e-14
+            || s.point.distance(point) > 1e-12 * diag
+            || s.normal.distance(normal) > 1e-12
+        {
+            fail.push(format!(
+                "{name} n={n}: seed {i} is {:?} {} {}, expected {uv:?} {point} {normal}",
+                s.uv, s.point, s.normal
+            ));
             break;
         }
     }
@@ -96,7 +125,9 @@ fn check_pattern(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, 
     let (planarity, worst) = max_planarity(&d, diag);
     stats.max_planarity = stats.max_planarity.max(planarity);
     if !(planarity <= TOL) {
-        fail.push(format!("{name} n={n}: planarity error {planarity:e} at facet {worst}"));
+        fail.push(format!(
+            "{name} n={n}: planarity error {planarity:e} at facet {worst}"
+        ));
     }
 
     // Topology from the loops: connected 2-manifold disc with one boundary loop.
@@ -112,7 +143,10 @@ fn check_pattern(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, 
     }
     if let Some(q) = &d.quality {
         if q.euler_characteristic != topo.euler || q.boundary_loops != topo.boundary_loops {
-            fail.push(format!("{name} n={n}: report says Euler {} loops {}, mesh has {} {}", q.euler_characteristic, q.boundary_loops, topo.euler, topo.boundary_loops));
+            fail.push(format!(
+                "{name} n={n}: report says Euler {} loops {}, mesh has {} {}",
+                q.euler_characteristic, q.boundary_loops, topo.euler, topo.boundary_loops
+            ));
         }
     }
 
@@ -125,12 +159,18 @@ fn check_pattern(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, 
         if !(area > 0.0) || !is_convex(&p2) {
             bad_shape += 1;
             if bad_shape <= 3 {
-                fail.push(format!("{name} n={n}: facet {i} area {area:e}, convex {}, loop {:?}", is_convex(&p2), d.facet(i)));
+                fail.push(format!(
+                    "{name} n={n}: facet {i} area {area:e}, convex {}, loop {:?}",
+                    is_convex(&p2),
+                    d.facet(i)
+                ));
             }
         }
     }
     if bad_shape > 3 {
-        fail.push(format!("{name} n={n}: {bad_shape} facets clockwise or not convex"));
+        fail.push(format!(
+            "{name} n={n}: {bad_shape} facets clockwise or not convex"
+        ));
     }
 
     // Boundary and corner vertices.
@@ -154,7 +194,9 @@ fn check_pattern(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, 
                 let off_wall = (r - normal * normal.dot(r)).length() / diag;
                 stats.max_boundary_foot = stats.max_boundary_foot.max(measure);
                 stats.max_off_wall = stats.max_off_wall.max(off_wall);
-                let on_planes = owners[v].iter().all(|&f| d.seeds[f].normal.dot(x - d.seeds[f].point).abs() <= TOL * diag);
+                let on_planes = owners[v]
+                    .iter()
+                    .all(|&f| d.seeds[f].normal.dot(x - d.seeds[f].point).abs() <= TOL * diag);
                 if owners[v].len() != 2 || !on_planes || measure > 1e-8 || !(off_wall <= TOL) {
                     bad_boundary += 1;
                     if bad_boundary <= 3 {
@@ -168,10 +210,19 @@ fn check_pattern(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, 
             }
             VertexKind::Corner => {
                 stats.corner_vertices += 1;
-                let corners = [[dom.u.min, dom.v.min], [dom.u.max, dom.v.min], [dom.u.max, dom.v.max], [dom.u.min, dom.v.max]];
+                let corners = [
+                    [dom.u.min, dom.v.min],
+                    [dom.u.max, dom.v.min],
+                    [dom.u.max, dom.v.max],
+                    [dom.u.min, dom.v.max],
+                ];
                 let off_line = corners
                     .iter()
-                    .map(|&[u, w]| (x - surface.point_at(u, w)).cross(unit_normal(surface, u, w)).length())
+                    .map(|&[u, w]| {
+                        (x - surface.point_at(u, w))
+                            .cross(unit_normal(surface, u, w))
+                            .length()
+                    })
                     .fold(f64::INFINITY, f64::min);
                 if owners[v].len() != 1 || off_line > TOL * diag {
                     bad_boundary += 1;
@@ -181,7 +232,9 @@ fn check_pattern(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, 
         }
     }
     if bad_boundary > 3 {
-        fail.push(format!("{name} n={n}: {bad_boundary} bad boundary/corner vertices"));
+        fail.push(format!(
+            "{name} n={n}: {bad_boundary} bad boundary/corner vertices"
+        ));
     }
 
     // The envelope.
@@ -198,8 +251,13 @@ fn check_pattern(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, 
         stats.ambiguous += face.ambiguous.len();
         let mesh_neighbours = &topo.neighbours[i];
         let expected = face.neighbours();
-        let allowed: BTreeSet<usize> = expected.union(&face.ambiguous.iter().copied().collect()).copied().collect();
-        let neighbours_ok = face.bounded && expected.is_subset(mesh_neighbours) && mesh_neighbours.is_subset(&allowed);
+        let allowed: BTreeSet<usize> = expected
+            .union(&face.ambiguous.iter().copied().collect())
+            .copied()
+            .collect();
+        let neighbours_ok = face.bounded
+            && expected.is_subset(mesh_neighbours)
+            && mesh_neighbours.is_subset(&allowed);
         let mesh_loop = merge_loop(&facet_points(&d, i), TOL * diag);
         let error = cyclic_match(&mesh_loop, &face.vertices, TOL * diag);
         if let Some(e) = error {
@@ -221,7 +279,9 @@ fn check_pattern(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, 
         }
     }
     if bad_envelope > 5 {
-        fail.push(format!("{name} n={n}: {bad_envelope} facets differ from the envelope"));
+        fail.push(format!(
+            "{name} n={n}: {bad_envelope} facets differ from the envelope"
+        ));
     }
     fail
 }
@@ -233,12 +293,24 @@ fn run(name: &str, surface: &dyn Surface, closed: Option<ClosedForm>, sizes: &[u
     let mut failures = Vec::new();
     for (k, &size) in sizes.iter().enumerate() {
         // Alternate plain uniform points (close pairs included) and jittered grids.
-        let pattern = if k % 2 == 0 { uniform_pattern(&mut rng, size) } else { jittered_pattern(&mut rng, size) };
+        let pattern = if k % 2 == 0 {
+            uniform_pattern(&mut rng, size)
+        } else {
+            jittered_pattern(&mut rng, size)
+        };
         failures.extend(check_pattern(name, surface, closed, &pattern, &mut stats));
     }
     println!("{name}: min K/H^2 {min_ratio:.3e}, {stats:?}");
-    assert!(stats.checked * 2 > stats.facets, "{name}: too few interior facets checked: {stats:?}");
-    assert!(failures.is_empty(), "{name}: {} problems:\n{}\n{stats:?}", failures.len(), failures.join("\n"));
+    assert!(
+        stats.checked * 2 > stats.facets,
+        "{name}: too few interior facets checked: {stats:?}"
+    );
+    assert!(
+        failures.is_empty(),
+        "{name}: {} problems:\n{}\n{stats:?}",
+        failures.len(),
+        failures.join("\n")
+    );
 }
 
 fn sphere(x: f64, y: f64) -> (f64, f64, f64) {
@@ -266,34 +338,64 @@ fn envelope_sphere_cap() {
 #[test]
 fn envelope_ellipsoid_cap() {
     let s = AnalyticSurface::ellipsoid_cap(2.0, 1.2, 0.8, [-1.3, 1.1], [-0.7, 0.75]).unwrap();
-    run("ellipsoid cap", &s, Some(ellipsoid), &[2000, 310, 900, 1500], 12);
+    run(
+        "ellipsoid cap",
+        &s,
+        Some(ellipsoid),
+        &[2000, 310, 900, 1500],
+        12,
+    );
 }
 
 #[test]
 fn envelope_paraboloid_ratio_10() {
     // Principal curvatures 20 and 2 at the apex.
     let s = AnalyticSurface::elliptic_paraboloid(10.0, 1.0, [-0.4, 0.4], [-1.0, 1.0]).unwrap();
-    run("paraboloid a = 10 b", &s, Some(paraboloid), &[1700, 200, 1100, 500], 13);
+    run(
+        "paraboloid a = 10 b",
+        &s,
+        Some(paraboloid),
+        &[1700, 200, 1100, 500],
+        13,
+    );
 }
 
 #[test]
 fn envelope_nurbs_dome_bicubic_a() {
     let s = dome_a();
     assert!(!s.is_rational());
-    run("NURBS dome A (bicubic 6x6)", &s, None, &[1250, 450, 2000, 260], 14);
+    run(
+        "NURBS dome A (bicubic 6x6)",
+        &s,
+        None,
+        &[1250, 450, 2000, 260],
+        14,
+    );
 }
 
 #[test]
 fn envelope_nurbs_dome_bicubic_b() {
     let s = dome_b();
-    run("NURBS dome B (bicubic 7x5)", &s, None, &[800, 1900, 220, 1000], 15);
+    run(
+        "NURBS dome B (bicubic 7x5)",
+        &s,
+        None,
+        &[800, 1900, 220, 1000],
+        15,
+    );
 }
 
 #[test]
 fn envelope_nurbs_dome_rational() {
     let s = dome_c();
     assert!(s.is_rational());
-    run("NURBS dome C (rational 2x3)", &s, None, &[600, 1400, 350, 1800], 16);
+    run(
+        "NURBS dome C (rational 2x3)",
+        &s,
+        None,
+        &[600, 1400, 350, 1800],
+        16,
+    );
 }
 
 /// The oracle is not vacuous: with the envelope repair switched off, the paper's curvature
@@ -304,7 +406,10 @@ fn envelope_oracle_detects_unrepaired_neighbours() {
     let s = AnalyticSurface::elliptic_paraboloid(10.0, 1.0, [-0.4, 0.4], [-1.0, 1.0]).unwrap();
     let mut rng = Rng::new(17);
     let pattern = uniform_pattern(&mut rng, 1500);
-    let options = DiscretiseOptions { envelope_repair: false, ..DiscretiseOptions::default() };
+    let options = DiscretiseOptions {
+        envelope_repair: false,
+        ..DiscretiseOptions::default()
+    };
     let d = discretise(&s, &pattern, &options).unwrap();
     let diag = seed_diagonal(&d);
     let topo = topology(&d);
@@ -318,11 +423,25 @@ fn envelope_oracle_detects_unrepaired_neighbours() {
         }
         checked += 1;
         let face = envelope_face(i, &points, &normals, &sides, 10.0 * diag, TOL * diag);
-        let same = face.neighbours() == topo.neighbours[i] && cyclic_match(&merge_loop(&facet_points(&d, i), TOL * diag), &face.vertices, TOL * diag).is_some();
+        let same = face.neighbours() == topo.neighbours[i]
+            && cyclic_match(
+                &merge_loop(&facet_points(&d, i), TOL * diag),
+                &face.vertices,
+                TOL * diag,
+            )
+            .is_some();
         differing += usize::from(!same);
     }
     let repaired = discretise(&s, &pattern, &DiscretiseOptions::default()).unwrap();
-    let repairs = repaired.quality.as_ref().unwrap().neighbours.envelope_repairs;
+    let repairs = repaired
+        .quality
+        .as_ref()
+        .unwrap()
+        .neighbours
+        .envelope_repairs;
     println!("without envelope repair: {differing} of {checked} interior facets differ from the envelope; the default run made {repairs} envelope repairs");
-    assert!(repairs > 0 && differing > 0, "{differing} differing facets, {repairs} repairs");
+    assert!(
+        repairs > 0 && differing > 0,
+        "{differing} differing facets, {repairs} repairs"
+    );
 }

@@ -16,14 +16,19 @@
 //!   intersect in more than a 1e-6 fraction of the smaller one's area (the `geo` crate);
 //! - the diagnostic flag marks every facet whose pattern point a diagnostic names.
 // NaN-safe negated comparisons are intended; index loops read better in geometry checks.
-#![allow(clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop, clippy::unnecessary_map_or)]
+#![allow(
+    clippy::neg_cmp_op_on_partial_ord,
+    clippy::needless_range_loop,
+    clippy::unnecessary_map_or
+)]
 
 mod common;
 
-
 use common::*;
 
-use tpi_core::quality::{FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP};
+use tpi_core::quality::{
+    FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
+};
 use tpi_core::{discretise, AnalyticSurface, Discretisation, DiscretiseOptions, Surface};
 
 const TOL: f64 = 1e-9;
@@ -80,17 +85,38 @@ fn check(name: &str, surface: &dyn Surface, pattern: &[[f64; 2]], part: Part) ->
         return fail;
     }
     if let Some(v) = d.vertices.iter().position(|v| !v.is_finite()) {
-        fail.push(format!("{name}: vertex {v} = {} is not finite", d.vertices[v]));
+        fail.push(format!(
+            "{name}: vertex {v} = {} is not finite",
+            d.vertices[v]
+        ));
     }
     let (planarity, worst) = max_planarity(&d, diag);
     if part == Part::Planarity {
         if !(planarity <= TOL) {
-            let named: Vec<String> = d.diagnostics.iter().filter(|g| g.points().contains(&(worst as u32))).map(|g| format!("{g:?}")).collect();
-            let diagnosed: std::collections::BTreeSet<u32> = d.diagnostics.iter().flat_map(|g| g.points()).collect();
-            let off_plane: Vec<usize> = (0..n)
-                .filter(|&i| d.facet(i).iter().any(|&v| d.seeds[i].normal.dot(d.vertices[v as usize] - d.seeds[i].point).abs() > TOL * diag))
+            let named: Vec<String> = d
+                .diagnostics
+                .iter()
+                .filter(|g| g.points().contains(&(worst as u32)))
+                .map(|g| format!("{g:?}"))
                 .collect();
-            let undiagnosed: Vec<usize> = off_plane.iter().copied().filter(|&i| !diagnosed.contains(&(i as u32))).collect();
+            let diagnosed: std::collections::BTreeSet<u32> =
+                d.diagnostics.iter().flat_map(|g| g.points()).collect();
+            let off_plane: Vec<usize> = (0..n)
+                .filter(|&i| {
+                    d.facet(i).iter().any(|&v| {
+                        d.seeds[i]
+                            .normal
+                            .dot(d.vertices[v as usize] - d.seeds[i].point)
+                            .abs()
+                            > TOL * diag
+                    })
+                })
+                .collect();
+            let undiagnosed: Vec<usize> = off_plane
+                .iter()
+                .copied()
+                .filter(|&i| !diagnosed.contains(&(i as u32)))
+                .collect();
             fail.push(format!(
                 "{name}: planarity error {planarity:e} (relative) at facet {worst}, diagnostics naming it: {named:?}; {} facets above 1e-9, of which {} not named by any diagnostic",
                 off_plane.len(),
@@ -108,8 +134,18 @@ fn check(name: &str, surface: &dyn Surface, pattern: &[[f64; 2]], part: Part) ->
     }
     let (flags, overlaps) = independent_flags(surface, &d);
     let count = |bit: u8| flags.iter().filter(|&&f| f & bit != 0).count();
-    let mine = (count(FLAG_NON_SIMPLE), count(FLAG_OPEN), overlaps, flags.iter().filter(|&&f| f != 0).count());
-    let theirs = (q.non_simple_facets, q.open_facets, q.overlapping_pairs, q.flagged_facets);
+    let mine = (
+        count(FLAG_NON_SIMPLE),
+        count(FLAG_OPEN),
+        overlaps,
+        flags.iter().filter(|&&f| f != 0).count(),
+    );
+    let theirs = (
+        q.non_simple_facets,
+        q.open_facets,
+        q.overlapping_pairs,
+        q.flagged_facets,
+    );
     println!(
         "{name}: {} facets, non-simple {}, open {}, overlapping pairs {}, flagged {} (report {theirs:?}), {} diagnostics, planarity {planarity:.2e}",
         n,
@@ -125,9 +161,16 @@ fn check(name: &str, surface: &dyn Surface, pattern: &[[f64; 2]], part: Part) ->
     if d.facet_flags.len() != n {
         fail.push(format!("{name}: {} facet flags", d.facet_flags.len()));
     } else {
-        let differing: Vec<(usize, u8, u8)> = (0..n).filter(|&i| flags[i] != d.facet_flags[i]).map(|i| (i, flags[i], d.facet_flags[i])).collect();
+        let differing: Vec<(usize, u8, u8)> = (0..n)
+            .filter(|&i| flags[i] != d.facet_flags[i])
+            .map(|i| (i, flags[i], d.facet_flags[i]))
+            .collect();
         if !differing.is_empty() {
-            fail.push(format!("{name}: {} facets with different flags (facet, independent, report): {:?}", differing.len(), &differing[..differing.len().min(8)]));
+            fail.push(format!(
+                "{name}: {} facets with different flags (facet, independent, report): {:?}",
+                differing.len(),
+                &differing[..differing.len().min(8)]
+            ));
         }
     }
     fail
@@ -138,20 +181,36 @@ fn egg_crate_cases() -> Vec<(String, AnalyticSurface, Vec<[f64; 2]>)> {
     // (multiples of pi), parabolic lines between.
     let s = AnalyticSurface::egg_crate(0.6, [0.3, 6.0], [-0.4, 5.5]).unwrap();
     let mut rng = Rng::new(41);
-    let mut cases: Vec<(String, AnalyticSurface, Vec<[f64; 2]>)> =
-        [150usize, 480, 1000].into_iter().map(|n| (format!("egg-crate n={n}"), s, uniform_pattern(&mut rng, n))).collect();
+    let mut cases: Vec<(String, AnalyticSurface, Vec<[f64; 2]>)> = [150usize, 480, 1000]
+        .into_iter()
+        .map(|n| (format!("egg-crate n={n}"), s, uniform_pattern(&mut rng, n)))
+        .collect();
     let s = AnalyticSurface::egg_crate(1.0, [-1.0, 4.0], [-1.0, 4.0]).unwrap();
     let mut rng = Rng::new(42);
-    cases.push(("egg-crate jittered n=600".into(), s, jittered_pattern(&mut rng, 600)));
+    cases.push((
+        "egg-crate jittered n=600".into(),
+        s,
+        jittered_pattern(&mut rng, 600),
+    ));
     cases
 }
 
 fn hyperbolic_cases() -> Vec<(String, AnalyticSurface, Vec<[f64; 2]>)> {
     let s = AnalyticSurface::hyperbolic_paraboloid(0.8, 0.5, [-1.0, 1.0], [-1.2, 0.9]).unwrap();
     let mut rng = Rng::new(43);
-    let mut cases: Vec<(String, AnalyticSurface, Vec<[f64; 2]>)> =
-        [400usize, 900].into_iter().map(|n| (format!("hyperbolic paraboloid n={n}"), s, uniform_pattern(&mut rng, n))).collect();
-    let grid: Vec<[f64; 2]> = (0..15).flat_map(|j| (0..15).map(move |i| [(i as f64 + 0.5) / 15.0, (j as f64 + 0.5) / 15.0])).collect();
+    let mut cases: Vec<(String, AnalyticSurface, Vec<[f64; 2]>)> = [400usize, 900]
+        .into_iter()
+        .map(|n| {
+            (
+                format!("hyperbolic paraboloid n={n}"),
+                s,
+                uniform_pattern(&mut rng, n),
+            )
+        })
+        .collect();
+    let grid: Vec<[f64; 2]> = (0..15)
+        .flat_map(|j| (0..15).map(move |i| [(i as f64 + 0.5) / 15.0, (j as f64 + 0.5) / 15.0]))
+        .collect();
     cases.push(("hyperbolic paraboloid grid 15x15".into(), s, grid));
     cases
 }

@@ -11,10 +11,16 @@ use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, LiveSurface, Surf
 /// Compares the live mesh with a fresh run, byte for byte.
 fn check(live: &mut LiveSurface, surface: &dyn Surface, step: usize, what: &str) {
     let options = *live.options();
-    let scratch = discretise(surface, live.points(), &options).expect("the edited pattern discretises").to_json(false);
+    let scratch = discretise(surface, live.points(), &options)
+        .expect("the edited pattern discretises")
+        .to_json(false);
     let edited = live.discretisation().to_json(false);
     if edited != scratch {
-        let at = edited.bytes().zip(scratch.bytes()).position(|(a, b)| a != b).unwrap_or(edited.len().min(scratch.len()));
+        let at = edited
+            .bytes()
+            .zip(scratch.bytes())
+            .position(|(a, b)| a != b)
+            .unwrap_or(edited.len().min(scratch.len()));
         let lo = at.saturating_sub(120);
         panic!(
             "edit {step} ({what}): the live mesh differs from a fresh run at byte {at} (lengths {} / {}):\n  live:    ...{}...\n  scratch: ...{}...",
@@ -51,7 +57,10 @@ fn random_edits(
             let i = rng.below(n);
             let p = live.points()[i];
             let r = 0.5 / (n as f64).sqrt();
-            let q = [(p[0] + r * (rng.next_f64() - 0.5)).clamp(0.0, 1.0), (p[1] + r * (rng.next_f64() - 0.5)).clamp(0.0, 1.0)];
+            let q = [
+                (p[0] + r * (rng.next_f64() - 0.5)).clamp(0.0, 1.0),
+                (p[1] + r * (rng.next_f64() - 0.5)).clamp(0.0, 1.0),
+            ];
             live.move_point(i, q).expect("move");
             format!("drag {i} to {q:?}")
         } else if roll < 0.75 {
@@ -71,24 +80,61 @@ fn random_edits(
         check(&mut live, surface, step, &what);
     }
     let stats = live.stats();
-    println!("{name}: {edits} edits, {} incremental, {} full runs", stats.incremental, stats.full);
-    assert!(stats.incremental as f64 >= min_share * edits as f64, "{name}: only {} of {edits} edits were incremental", stats.incremental);
+    println!(
+        "{name}: {edits} edits, {} incremental, {} full runs",
+        stats.incremental, stats.full
+    );
+    assert!(
+        stats.incremental as f64 >= min_share * edits as f64,
+        "{name}: only {} of {edits} edits were incremental",
+        stats.incremental
+    );
 }
 
 #[test]
 fn nurbs_dome_edits_equal_fresh_runs() {
-    random_edits("NURBS dome", &nurbs_dome(), Box::new(nurbs_dome()), 300, 1200, 71, DiscretiseOptions::default(), 0.4);
+    random_edits(
+        "NURBS dome",
+        &nurbs_dome(),
+        Box::new(nurbs_dome()),
+        300,
+        1200,
+        71,
+        DiscretiseOptions::default(),
+        0.4,
+    );
 }
 
 #[test]
 fn paraboloid_edits_equal_fresh_runs() {
-    random_edits("paraboloid", &paraboloid(), Box::new(paraboloid()), 250, 800, 72, DiscretiseOptions::default(), 0.4);
+    random_edits(
+        "paraboloid",
+        &paraboloid(),
+        Box::new(paraboloid()),
+        250,
+        800,
+        72,
+        DiscretiseOptions::default(),
+        0.4,
+    );
 }
 
 #[test]
 fn edits_without_report_equal_fresh_runs() {
-    let options = DiscretiseOptions { quality_report: false, ..DiscretiseOptions::default() };
-    random_edits("NURBS dome, no report", &nurbs_dome(), Box::new(nurbs_dome()), 200, 400, 73, options, 0.3);
+    let options = DiscretiseOptions {
+        quality_report: false,
+        ..DiscretiseOptions::default()
+    };
+    random_edits(
+        "NURBS dome, no report",
+        &nurbs_dome(),
+        Box::new(nurbs_dome()),
+        200,
+        400,
+        73,
+        options,
+        0.3,
+    );
 }
 
 #[test]
@@ -96,33 +142,61 @@ fn anisotropic_and_saddle_surfaces_fall_back_and_still_agree() {
     // Convex, but its normals turn too far for the slope embedding (the mixed path): every
     // edit runs the pipeline, with the same result.
     let s = AnalyticSurface::elliptic_paraboloid(10.0, 1.0, [-0.4, 0.4], [-1.0, 1.0]).unwrap();
-    let mut live = LiveSurface::new(Box::new(s), random_pattern(200), DiscretiseOptions::default()).unwrap();
+    let mut live = LiveSurface::new(
+        Box::new(s),
+        random_pattern(200),
+        DiscretiseOptions::default(),
+    )
+    .unwrap();
     let mut rng = SplitMix64::new(5);
     for step in 1..=30 {
         let i = rng.below(live.points().len());
-        live.move_point(i, [rng.next_f64(), rng.next_f64()]).unwrap();
+        live.move_point(i, [rng.next_f64(), rng.next_f64()])
+            .unwrap();
         check(&mut live, &s, step, "move");
     }
     assert_eq!(live.stats().incremental, 0);
     // Strong but milder anisotropy on the slope path: the envelope overrules the Delaunay
     // candidates on many edges (envelope repairs > 0), edits stay incremental.
     let s = AnalyticSurface::elliptic_paraboloid(1.0, 0.1, [-0.5, 0.5], [-1.0, 1.0]).unwrap();
-    let mut live = LiveSurface::new(Box::new(s), random_pattern(300), DiscretiseOptions::default()).unwrap();
-    assert!(live.discretisation().quality.as_ref().unwrap().neighbours.envelope_repairs > 0);
+    let mut live = LiveSurface::new(
+        Box::new(s),
+        random_pattern(300),
+        DiscretiseOptions::default(),
+    )
+    .unwrap();
+    assert!(
+        live.discretisation()
+            .quality
+            .as_ref()
+            .unwrap()
+            .neighbours
+            .envelope_repairs
+            > 0
+    );
     for step in 1..=150 {
         let i = rng.below(live.points().len());
         let p = live.points()[i];
-        let q = [(p[0] + 0.02 * (rng.next_f64() - 0.5)).clamp(0.0, 1.0), (p[1] + 0.02 * (rng.next_f64() - 0.5)).clamp(0.0, 1.0)];
+        let q = [
+            (p[0] + 0.02 * (rng.next_f64() - 0.5)).clamp(0.0, 1.0),
+            (p[1] + 0.02 * (rng.next_f64() - 0.5)).clamp(0.0, 1.0),
+        ];
         live.move_point(i, q).unwrap();
         check(&mut live, &s, step, "drag");
     }
     assert!(live.stats().incremental > 40, "{:?}", live.stats());
     // A saddle: no incremental path, every edit runs the pipeline, same result.
     let h = AnalyticSurface::hyperbolic_paraboloid(0.5, 0.5, [-1.0, 1.0], [-1.0, 1.0]).unwrap();
-    let mut live = LiveSurface::new(Box::new(h), random_pattern(150), DiscretiseOptions::default()).unwrap();
+    let mut live = LiveSurface::new(
+        Box::new(h),
+        random_pattern(150),
+        DiscretiseOptions::default(),
+    )
+    .unwrap();
     for step in 1..=20 {
         let i = rng.below(live.points().len());
-        live.move_point(i, [rng.next_f64(), rng.next_f64()]).unwrap();
+        live.move_point(i, [rng.next_f64(), rng.next_f64()])
+            .unwrap();
         check(&mut live, &h, step, "move on a saddle");
     }
     assert_eq!(live.stats().incremental, 0);
@@ -131,7 +205,12 @@ fn anisotropic_and_saddle_surfaces_fall_back_and_still_agree() {
 #[test]
 fn failed_edits_change_nothing() {
     let s = nurbs_dome();
-    let mut live = LiveSurface::new(Box::new(s.clone()), random_pattern(100), DiscretiseOptions::default()).unwrap();
+    let mut live = LiveSurface::new(
+        Box::new(s.clone()),
+        random_pattern(100),
+        DiscretiseOptions::default(),
+    )
+    .unwrap();
     let before = live.discretisation().to_json(false);
     let p = live.points()[3];
     assert!(live.move_point(7, p).is_err(), "a duplicate is an error");
@@ -157,7 +236,12 @@ fn welded_vertices_do_not_stop_edits_elsewhere() {
     let mut pattern = random_pattern(300);
     let (c, h) = ([0.503, 0.497], 0.004);
     pattern.retain(|p| (p[0] - c[0]).hypot(p[1] - c[1]) > 0.05);
-    pattern.extend([[c[0] - h, c[1] - h], [c[0] + h, c[1] - h], [c[0] + h, c[1] + h], [c[0] - h, c[1] + h]]);
+    pattern.extend([
+        [c[0] - h, c[1] - h],
+        [c[0] + h, c[1] - h],
+        [c[0] + h, c[1] + h],
+        [c[0] - h, c[1] + h],
+    ]);
     let mut live = LiveSurface::new(Box::new(s), pattern, DiscretiseOptions::default()).unwrap();
     let q = live.discretisation().quality.clone().unwrap();
     assert!(q.trivalent_fraction < 1.0, "the test needs a weld: {q:?}");
@@ -166,7 +250,10 @@ fn welded_vertices_do_not_stop_edits_elsewhere() {
         let n = live.points().len();
         let i = rng.below(n - 4);
         let p = live.points()[i];
-        let to = [(p[0] + 0.02 * (rng.next_f64() - 0.5)).clamp(0.0, 1.0), (p[1] + 0.02 * (rng.next_f64() - 0.5)).clamp(0.0, 1.0)];
+        let to = [
+            (p[0] + 0.02 * (rng.next_f64() - 0.5)).clamp(0.0, 1.0),
+            (p[1] + 0.02 * (rng.next_f64() - 0.5)).clamp(0.0, 1.0),
+        ];
         if (to[0] - c[0]).hypot(to[1] - c[1]) < 0.05 {
             continue;
         }

@@ -61,14 +61,20 @@ fn random_knots(rng: &mut Rng, degree: usize, count: usize, clamped: bool) -> Ve
         multiplicities.push(multiplicity);
         remaining -= multiplicity;
     }
-    let gaps: Vec<f64> = (0..=multiplicities.len()).map(|_| rng.range(0.2, 1.0)).collect();
+    let gaps: Vec<f64> = (0..=multiplicities.len())
+        .map(|_| rng.range(0.2, 1.0))
+        .collect();
     let scale = length / gaps.iter().sum::<f64>();
     let mut knots = Vec::new();
     let mut before = Vec::new();
     let step = length / gaps.len() as f64;
     let mut position = start;
     for _ in 1..degree {
-        position -= if clamped { 0.0 } else { step * rng.range(0.3, 1.0) };
+        position -= if clamped {
+            0.0
+        } else {
+            step * rng.range(0.3, 1.0)
+        };
         before.push(position);
     }
     knots.extend(before.iter().rev());
@@ -82,7 +88,11 @@ fn random_knots(rng: &mut Rng, degree: usize, count: usize, clamped: bool) -> Ve
     knots.push(end);
     let mut position = end;
     for _ in 1..degree {
-        position += if clamped { 0.0 } else { step * rng.range(0.3, 1.0) };
+        position += if clamped {
+            0.0
+        } else {
+            step * rng.range(0.3, 1.0)
+        };
         knots.push(position);
     }
     assert_eq!(knots.len(), count + degree - 1);
@@ -102,7 +112,11 @@ fn random_surface(rng: &mut Rng, index: usize) -> RandomSurface {
         random_knots(rng, degree[1], count[1], clamped),
     ];
     let size = 10f64.powf(rng.range(-1.0, 2.0));
-    let offset = DVec3::new(rng.range(-10.0, 10.0), rng.range(-10.0, 10.0), rng.range(-10.0, 10.0));
+    let offset = DVec3::new(
+        rng.range(-10.0, 10.0),
+        rng.range(-10.0, 10.0),
+        rng.range(-10.0, 10.0),
+    );
     let mut x = 0.0;
     let mut points = Vec::new();
     for _ in 0..count[0] {
@@ -118,9 +132,17 @@ fn random_surface(rng: &mut Rng, index: usize) -> RandomSurface {
             points.push(offset + size * local);
         }
     }
-    let weights: Option<Vec<f64>> = rational.then(|| points.iter().map(|_| rng.range(0.3, 3.0)).collect());
-    let surface = NurbsSurface::new(degree, count, &knots[0], &knots[1], &points, weights.as_deref())
-        .unwrap_or_else(|e| panic!("random surface {index} rejected: {e}"));
+    let weights: Option<Vec<f64>> =
+        rational.then(|| points.iter().map(|_| rng.range(0.3, 3.0)).collect());
+    let surface = NurbsSurface::new(
+        degree,
+        count,
+        &knots[0],
+        &knots[1],
+        &points,
+        weights.as_deref(),
+    )
+    .unwrap_or_else(|e| panic!("random surface {index} rejected: {e}"));
     let label = format!(
         "random surface {index} (degree {}x{}, {}, {})",
         degree[0],
@@ -220,8 +242,24 @@ fn derivatives_match_central_differences_on_random_surfaces() {
 
             let label = &random.label;
             let uv = (u, v);
-            assert_close(label, "Su", uv, exact.su, su, exact.su.length(), &mut worst[0]);
-            assert_close(label, "Sv", uv, exact.sv, sv, exact.sv.length(), &mut worst[1]);
+            assert_close(
+                label,
+                "Su",
+                uv,
+                exact.su,
+                su,
+                exact.su.length(),
+                &mut worst[0],
+            );
+            assert_close(
+                label,
+                "Sv",
+                uv,
+                exact.sv,
+                sv,
+                exact.sv.length(),
+                &mut worst[1],
+            );
             let floor_uu = exact.su.length() / (b - a);
             let floor_vv = exact.sv.length() / (d - c);
             let floor_uv = (exact.su.length() / (d - c)).max(exact.sv.length() / (b - a));
@@ -311,7 +349,9 @@ fn first_derivatives_match_one_sided_differences_at_the_boundary() {
             let exact = surface.evaluate(u, v);
             // f'(0) ~ (-3 f(0) + 4 f(s h) - f(2 s h)) / (2 s h), error O(h^2); extrapolated O(h^3).
             let one_sided = |f: &dyn Fn(f64) -> DVec3, h: f64, sign: f64| {
-                let difference = |h: f64| (-3.0 * f(0.0) + 4.0 * f(sign * h) - f(2.0 * sign * h)) / (2.0 * sign * h);
+                let difference = |h: f64| {
+                    (-3.0 * f(0.0) + 4.0 * f(sign * h) - f(2.0 * sign * h)) / (2.0 * sign * h)
+                };
                 (4.0 * difference(0.5 * h) - difference(h)) / 3.0
             };
             let hu = 0.1 * STEP_FRACTION * local_scale(su_width, exact.su, exact.suu);

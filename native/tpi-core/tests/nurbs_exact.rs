@@ -69,7 +69,10 @@ fn bilinear_patch_matches_its_closed_form() {
         for (u, v) in parameter_grid((u0, u1), (v0, v1), 8) {
             let (s, t) = ((u - u0) / lu, (v - v0) / lv);
             let expected = SurfaceDerivatives {
-                point: (1.0 - s) * (1.0 - t) * p00 + s * (1.0 - t) * p10 + (1.0 - s) * t * p01 + s * t * p11,
+                point: (1.0 - s) * (1.0 - t) * p00
+                    + s * (1.0 - t) * p10
+                    + (1.0 - s) * t * p01
+                    + s * t * p11,
                 su: ((1.0 - t) * (p10 - p00) + t * (p11 - p01)) / lu,
                 sv: ((1.0 - s) * (p01 - p00) + s * (p11 - p10)) / lv,
                 suu: DVec3::ZERO,
@@ -103,8 +106,15 @@ fn planar_patch_stays_in_its_plane() {
     }
     let knots_u = [10.0, 10.0, 10.0, 10.5, 13.0, 13.0, 13.0];
     let knots_v = [-4.0, -4.0, -3.2, -1.0, -1.0];
-    let surface =
-        NurbsSurface::new([3, 2], [nu, nv], &knots_u, &knots_v, &points, Some(&weights)).expect("a valid planar patch");
+    let surface = NurbsSurface::new(
+        [3, 2],
+        [nu, nv],
+        &knots_u,
+        &knots_v,
+        &points,
+        Some(&weights),
+    )
+    .expect("a valid planar patch");
     for (u, v) in parameter_grid((10.0, 13.0), (-4.0, -1.0), 12) {
         let d = surface.evaluate(u, v);
         assert!(
@@ -151,8 +161,12 @@ fn bezier_paraboloid_matches_its_closed_form() {
     }
     let rhino = ([u0, u0, u1, u1], [v0, v0, v1, v1]);
     let textbook = ([u0, u0, u0, u1, u1, u1], [v0, v0, v0, v1, v1, v1]);
-    for (knots_u, knots_v) in [(&rhino.0[..], &rhino.1[..]), (&textbook.0[..], &textbook.1[..])] {
-        let surface = NurbsSurface::new([2, 2], [3, 3], knots_u, knots_v, &points, None).expect("a valid Bezier patch");
+    for (knots_u, knots_v) in [
+        (&rhino.0[..], &rhino.1[..]),
+        (&textbook.0[..], &textbook.1[..]),
+    ] {
+        let surface = NurbsSurface::new([2, 2], [3, 3], knots_u, knots_v, &points, None)
+            .expect("a valid Bezier patch");
         for (u, v) in parameter_grid((u0, u1), (v0, v1), 10) {
             let x = x0 + (x1 - x0) * (u - u0) / lu;
             let y = y0 + (y1 - y0) * (v - v0) / lv;
@@ -165,7 +179,13 @@ fn bezier_paraboloid_matches_its_closed_form() {
                 suv: DVec3::ZERO,
                 svv: DVec3::new(0.0, 0.0, 2.0 * dy * dy),
             };
-            assert_derivatives("Bezier paraboloid", (u, v), &surface.evaluate(u, v), &expected, 1.0);
+            assert_derivatives(
+                "Bezier paraboloid",
+                (u, v),
+                &surface.evaluate(u, v),
+                &expected,
+                1.0,
+            );
         }
     }
 }
@@ -174,7 +194,11 @@ fn bezier_paraboloid_matches_its_closed_form() {
 /// textbook knot vector U (Marsden's identity): for basis function i, with U_(i+1) .. U_(i+p),
 /// t = sum_i xi_i N_i (Greville abscissa xi_i = mean of those knots) and
 /// t^2 = sum_i c_i N_i (c_i = their pairwise products' mean).
-fn polynomial_coefficients(full_knots: &[f64], degree: usize, count: usize) -> (Vec<f64>, Vec<f64>) {
+fn polynomial_coefficients(
+    full_knots: &[f64],
+    degree: usize,
+    count: usize,
+) -> (Vec<f64>, Vec<f64>) {
     let mut linear = Vec::with_capacity(count);
     let mut quadratic = Vec::with_capacity(count);
     for i in 0..count {
@@ -187,7 +211,11 @@ fn polynomial_coefficients(full_knots: &[f64], degree: usize, count: usize) -> (
             }
         }
         let pairs = (degree * (degree - 1) / 2) as f64;
-        quadratic.push(if degree >= 2 { products / pairs } else { f64::NAN });
+        quadratic.push(if degree >= 2 {
+            products / pairs
+        } else {
+            f64::NAN
+        });
     }
     (linear, quadratic)
 }
@@ -208,10 +236,17 @@ fn polynomial_precision_holds_for_every_degree() {
                     let (p, n) = (degrees[direction], counts[direction]);
                     // Domain [-1.25, 1.75] in u and [0.5, 2.0] in v, uneven interior knots, one of
                     // them repeated when the degree allows it.
-                    let (start, end) = if direction == 0 { (-1.25, 1.75) } else { (0.5, 2.0) };
+                    let (start, end) = if direction == 0 {
+                        (-1.25, 1.75)
+                    } else {
+                        (0.5, 2.0)
+                    };
                     let interior_count = n - p - 1;
                     let mut interior: Vec<f64> = (1..=interior_count)
-                        .map(|k| start + (end - start) * (k as f64 / (interior_count + 1) as f64).powf(1.3))
+                        .map(|k| {
+                            start
+                                + (end - start) * (k as f64 / (interior_count + 1) as f64).powf(1.3)
+                        })
                         .collect();
                     if p >= 2 && interior_count >= 2 {
                         interior[1] = interior[0];
@@ -230,7 +265,11 @@ fn polynomial_precision_holds_for_every_degree() {
             let mut points = Vec::new();
             for i in 0..counts[0] {
                 for j in 0..counts[1] {
-                    let height = if bilinear { xu[i] * xv[j] } else { cu[i] + cv[j] };
+                    let height = if bilinear {
+                        xu[i] * xv[j]
+                    } else {
+                        cu[i] + cv[j]
+                    };
                     points.push(DVec3::new(xu[i], xv[j], height));
                 }
             }
@@ -246,7 +285,11 @@ fn polynomial_precision_holds_for_every_degree() {
             .unwrap_or_else(|e| panic!("degree {degrees:?}: {e}"));
             let domain = surface.domain();
             let label = format!("degree {degrees:?}, clamped {clamped}, rational {rational}");
-            let mut parameters = parameter_grid((domain.u.min, domain.u.max), (domain.v.min, domain.v.max), 9);
+            let mut parameters = parameter_grid(
+                (domain.u.min, domain.u.max),
+                (domain.v.min, domain.v.max),
+                9,
+            );
             // Exactly on the interior knots too.
             for &ku in &full_knots[0][degrees[0] + 1..counts[0]] {
                 parameters.push((ku, domain.v.lerp(0.3)));
@@ -316,7 +359,11 @@ fn rational_quarter_cylinder_is_exact() {
     let (z0, z1) = (-0.5, 1.5);
     let (u0, u1, v0, v1) = (1.5, 4.0, -2.0, 3.0);
     let (lu, lv) = (u1 - u0, v1 - v0);
-    let arc = [DVec3::new(r, 0.0, 0.0), DVec3::new(r, r, 0.0), DVec3::new(0.0, r, 0.0)];
+    let arc = [
+        DVec3::new(r, 0.0, 0.0),
+        DVec3::new(r, r, 0.0),
+        DVec3::new(0.0, r, 0.0),
+    ];
     let mut points = Vec::new();
     let mut weights = Vec::new();
     for (i, p) in arc.iter().enumerate() {
@@ -325,8 +372,15 @@ fn rational_quarter_cylinder_is_exact() {
             weights.push(if i == 1 { c } else { 1.0 });
         }
     }
-    let surface = NurbsSurface::new([2, 1], [3, 2], &[u0, u0, u1, u1], &[v0, v1], &points, Some(&weights))
-        .expect("a valid quarter cylinder");
+    let surface = NurbsSurface::new(
+        [2, 1],
+        [3, 2],
+        &[u0, u0, u1, u1],
+        &[v0, v1],
+        &points,
+        Some(&weights),
+    )
+    .expect("a valid quarter cylinder");
     for (u, v) in parameter_grid((u0, u1), (v0, v1), 16) {
         let d = surface.evaluate(u, v);
         let t = (u - u0) / lu;
@@ -346,7 +400,11 @@ fn rational_quarter_cylinder_is_exact() {
         // differentiated twice: S.Suu + |Su|^2 = 0 (in the xy plane).
         let planar = |a: DVec3| DVec3::new(a.x, a.y, 0.0);
         let (p, pu, puu) = (planar(d.point), planar(d.su), planar(d.suu));
-        assert!((p.length() - r).abs() <= EXACT * r, "radius {} at u = {u}", p.length());
+        assert!(
+            (p.length() - r).abs() <= EXACT * r,
+            "radius {} at u = {u}",
+            p.length()
+        );
         assert!(
             p.dot(pu).abs() <= EXACT * r * pu.length(),
             "tangent not perpendicular at u = {u}"
@@ -392,8 +450,15 @@ fn full_rational_cylinder_with_double_knots_is_exact() {
     }
     // Rhino convention: count + degree - 1 = 10 knots.
     let knots_u = [5.0, 5.0, 6.0, 6.0, 7.0, 7.0, 8.0, 8.0, 9.0, 9.0];
-    let surface =
-        NurbsSurface::new([2, 1], [9, 2], &knots_u, &[0.25, 0.75], &points, Some(&weights)).expect("a valid cylinder");
+    let surface = NurbsSurface::new(
+        [2, 1],
+        [9, 2],
+        &knots_u,
+        &[0.25, 0.75],
+        &points,
+        Some(&weights),
+    )
+    .expect("a valid cylinder");
     let mut parameters = parameter_grid((5.0, 9.0), (0.25, 0.75), 40);
     parameters.extend([6.0, 7.0, 8.0].iter().map(|&k| (k, 0.5)));
     for (u, v) in parameters {
@@ -403,7 +468,10 @@ fn full_rational_cylinder_with_double_knots_is_exact() {
         // The normal points outwards, radially (Su along the circle, Sv up).
         let normal = d.su.cross(d.sv).normalize();
         let radial = DVec3::new(d.point.x, d.point.y, 0.0) / radius;
-        assert!((normal - radial).length() <= 1e-12, "normal {normal} at ({u}, {v})");
+        assert!(
+            (normal - radial).length() <= 1e-12,
+            "normal {normal} at ({u}, {v})"
+        );
         assert!((d.point.z - 4.0 * (v - 0.25)).abs() <= EXACT);
     }
     // Quarter arcs: u = 6, 7, 8 are the points at 90, 180, 270 degrees.
@@ -412,6 +480,9 @@ fn full_rational_cylinder_with_double_knots_is_exact() {
         (7.0, DVec3::new(-r, 0.0, 0.0)),
         (8.0, DVec3::new(0.0, -r, 0.0)),
     ] {
-        assert!((surface.point_at(k, 0.25) - expected).length() <= EXACT, "u = {k}");
+        assert!(
+            (surface.point_at(k, 0.25) - expected).length() <= EXACT,
+            "u = {k}"
+        );
     }
 }

@@ -87,7 +87,8 @@ fn run_generator(out: &Path) -> Result<CaseFile, String> {
             String::from_utf8_lossy(&output.stderr)
         ));
     }
-    let text = std::fs::read_to_string(out).map_err(|e| format!("cannot read {}: {e}", out.display()))?;
+    let text =
+        std::fs::read_to_string(out).map_err(|e| format!("cannot read {}: {e}", out.display()))?;
     serde_json::from_str(&text).map_err(|e| format!("malformed conformance cases: {e}"))
 }
 
@@ -107,7 +108,11 @@ fn conformance_cases_cover_the_required_range() {
         "generator {}",
         file.generator
     );
-    assert!(file.cases.len() >= 200, "only {} surfaces", file.cases.len());
+    assert!(
+        file.cases.len() >= 200,
+        "only {} surfaces",
+        file.cases.len()
+    );
     let mut degrees_seen = [[false; 6]; 2];
     let (mut rational, mut non_rational) = (0, 0);
     for case in &file.cases {
@@ -121,7 +126,11 @@ fn conformance_cases_cover_the_required_range() {
         for direction in 0..2 {
             degrees_seen[direction][spec.degree[direction]] = true;
             let rhino_len = spec.count[direction] + spec.degree[direction] - 1;
-            let knots = if direction == 0 { &spec.knots_u } else { &spec.knots_v };
+            let knots = if direction == 0 {
+                &spec.knots_u
+            } else {
+                &spec.knots_v
+            };
             assert_eq!(
                 knots.len(),
                 rhino_len,
@@ -244,7 +253,11 @@ fn textbook_knots_give_identical_results() {
     for (index, case) in cases().cases.iter().enumerate() {
         let rhino = build(case);
         // Alternate between clamped-looking (repeated) and arbitrary superfluous end knots.
-        let extension = if index % 2 == 0 { 0.0 } else { 0.37 * (index as f64) };
+        let extension = if index % 2 == 0 {
+            0.0
+        } else {
+            0.37 * (index as f64)
+        };
         let spec = NurbsSpec {
             knots_u: textbook(&case.surface.knots_u, extension),
             knots_v: textbook(&case.surface.knots_v, extension),
@@ -254,8 +267,18 @@ fn textbook_knots_give_identical_results() {
             .build()
             .unwrap_or_else(|e| panic!("{}: textbook knots rejected: {e}", case.name));
         assert_eq!(full.domain(), rhino.domain(), "{}", case.name);
-        assert_eq!(full.knots_u(), case.surface.knots_u.as_slice(), "{}", case.name);
-        assert_eq!(full.knots_v(), case.surface.knots_v.as_slice(), "{}", case.name);
+        assert_eq!(
+            full.knots_u(),
+            case.surface.knots_u.as_slice(),
+            "{}",
+            case.name
+        );
+        assert_eq!(
+            full.knots_v(),
+            case.surface.knots_v.as_slice(),
+            "{}",
+            case.name
+        );
         for sample in &case.samples {
             assert_eq!(
                 full.evaluate(sample.u, sample.v),

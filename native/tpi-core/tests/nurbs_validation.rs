@@ -496,19 +496,34 @@ fn weight_count_must_match_the_points() {
         weights: Some(vec![]),
         ..valid_spec()
     };
-    assert_eq!(build_error(&spec), TpiError::WeightCount { expected: 20, found: 0 });
+    assert_eq!(
+        build_error(&spec),
+        TpiError::WeightCount {
+            expected: 20,
+            found: 0
+        }
+    );
 }
 
 #[test]
 fn non_positive_weights_are_rejected() {
     let mut spec = valid_spec();
     spec.weights.as_mut().expect("rational")[5] = 0.0;
-    assert_eq!(build_error(&spec), TpiError::NonPositiveWeight { index: 5, value: 0.0 });
+    assert_eq!(
+        build_error(&spec),
+        TpiError::NonPositiveWeight {
+            index: 5,
+            value: 0.0
+        }
+    );
     let mut spec = valid_spec();
     spec.weights.as_mut().expect("rational")[17] = -0.5;
     assert_eq!(
         build_error(&spec),
-        TpiError::NonPositiveWeight { index: 17, value: -0.5 }
+        TpiError::NonPositiveWeight {
+            index: 17,
+            value: -0.5
+        }
     );
 }
 
@@ -683,7 +698,14 @@ fn random_inputs_never_panic() {
                 .map(|_| rng.number(nasty).abs() + if nasty { 0.0 } else { 0.1 })
                 .collect()
         });
-        if let Ok(surface) = NurbsSurface::new(degree, count, &knots_u, &knots_v, &points, weights.as_deref()) {
+        if let Ok(surface) = NurbsSurface::new(
+            degree,
+            count,
+            &knots_u,
+            &knots_v,
+            &points,
+            weights.as_deref(),
+        ) {
             accepted += 1;
             let domain = surface.domain();
             for (s, t) in [(0.0, 0.0), (1.0, 1.0), (0.5, 0.25), (0.999, 0.001)] {

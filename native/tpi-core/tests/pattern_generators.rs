@@ -8,7 +8,10 @@ fn generate(spec: &str) -> Pattern {
     let p = g.generate();
     assert_eq!(p.validate(), Ok(()), "{spec}: generated patterns validate");
     for &[s, t] in &p.uv {
-        assert!((0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t), "{spec}: ({s}, {t}) inside");
+        assert!(
+            (0.0..=1.0).contains(&s) && (0.0..=1.0).contains(&t),
+            "{spec}: ({s}, {t}) inside"
+        );
     }
     if let Some(n) = g.expected_count() {
         assert_eq!(p.len(), n, "{spec}: expected_count");
@@ -40,7 +43,10 @@ fn generated_points_are_pinned() {
     let mut r = SplitMix64::new(0);
     let expected: Vec<[f64; 2]> = (0..2).map(|_| [r.next_f64(), r.next_f64()]).collect();
     assert_eq!(p.uv, expected);
-    assert_eq!(p.uv[0][0], (0xE220_A839_7B1D_CDAFu64 >> 11) as f64 / (1u64 << 53) as f64);
+    assert_eq!(
+        p.uv[0][0],
+        (0xE220_A839_7B1D_CDAFu64 >> 11) as f64 / (1u64 << 53) as f64
+    );
 }
 
 #[test]
@@ -51,11 +57,19 @@ fn square_grid_counts_and_cell_centres() {
     assert_eq!(p.uv[0], [0.025, 1.0 / 30.0]);
     assert_eq!(p.uv[15 + 2], [1.5 / 20.0, 2.5 / 15.0]);
     assert_eq!(p.uv[299], [19.5 / 20.0, 14.5 / 15.0]);
-    assert!(p.uv.iter().all(|&[s, t]| s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0), "no point on the border");
+    assert!(
+        p.uv.iter()
+            .all(|&[s, t]| s > 0.0 && s < 1.0 && t > 0.0 && t < 1.0),
+        "no point on the border"
+    );
 
     assert_eq!(generate("grid:1x1").uv, vec![[0.5, 0.5]]);
     assert_eq!(generate("grid:spacing=0.05").len(), 400);
-    assert_eq!(generate("grid:spacing=0.3").len(), 9, "round(1/0.3) = 3 per side");
+    assert_eq!(
+        generate("grid:spacing=0.3").len(),
+        9,
+        "round(1/0.3) = 3 per side"
+    );
     assert_eq!(generate("grid:spacing=1").len(), 1);
     assert_eq!(generate("grid:spacing=0.8").len(), 1, "max(1, round(1.25))");
     assert_eq!(generate("grid:spacing=0.05").uv, generate("grid:20x20").uv);
@@ -69,11 +83,22 @@ fn hex_grid_counts_and_offsets() {
     assert_eq!(p.uv[0], [0.25 / 24.0, 0.5 / 20.0]);
     assert_eq!(p.uv[1], [0.75 / 24.0, 1.5 / 20.0]);
     assert_eq!(p.uv[20], [1.25 / 24.0, 0.5 / 20.0]);
-    let row0: Vec<f64> = p.uv.iter().filter(|q| q[1] == 0.5 / 20.0).map(|q| q[0]).collect();
-    let row1: Vec<f64> = p.uv.iter().filter(|q| q[1] == 1.5 / 20.0).map(|q| q[0]).collect();
+    let row0: Vec<f64> =
+        p.uv.iter()
+            .filter(|q| q[1] == 0.5 / 20.0)
+            .map(|q| q[0])
+            .collect();
+    let row1: Vec<f64> =
+        p.uv.iter()
+            .filter(|q| q[1] == 1.5 / 20.0)
+            .map(|q| q[0])
+            .collect();
     assert_eq!((row0.len(), row1.len()), (24, 24));
     for (a, b) in row0.iter().zip(&row1) {
-        assert!((b - a - 0.5 / 24.0).abs() < 1e-15, "odd rows shifted by half a step");
+        assert!(
+            (b - a - 0.5 / 24.0).abs() < 1e-15,
+            "odd rows shifted by half a step"
+        );
     }
     // Spacing D: NU = round(1/D), NV = round(2/(sqrt(3) D)) rows, sqrt(3)/2 of a step apart.
     let d = 0.05;
@@ -84,13 +109,23 @@ fn hex_grid_counts_and_offsets() {
     assert_eq!(p.len(), 460);
     let column_step = 1.0 / 20.0;
     let row_step = 1.0 / 23.0;
-    assert!((row_step / column_step - 3f64.sqrt() / 2.0).abs() < 0.02, "rows about sqrt(3)/2 steps apart");
+    assert!(
+        (row_step / column_step - 3f64.sqrt() / 2.0).abs() < 0.02,
+        "rows about sqrt(3)/2 steps apart"
+    );
     // Nearest neighbours of an interior point are (nearly) equidistant: a triangular lattice.
     let c = p.uv[10 * 23 + 11];
     let mut d2: Vec<f64> =
-        p.uv.iter().map(|q| (q[0] - c[0]).hypot(q[1] - c[1])).filter(|&x| x > 0.0).collect();
+        p.uv.iter()
+            .map(|q| (q[0] - c[0]).hypot(q[1] - c[1]))
+            .filter(|&x| x > 0.0)
+            .collect();
     d2.sort_by(f64::total_cmp);
-    assert!(d2[5] / d2[0] < 1.02, "six nearly equal nearest neighbours: {:?}", &d2[..7]);
+    assert!(
+        d2[5] / d2[0] < 1.02,
+        "six nearly equal nearest neighbours: {:?}",
+        &d2[..7]
+    );
     assert_eq!(generate("hex:1x1").uv, vec![[0.25, 0.5]]);
     assert_eq!(generate("hex:3x2").len(), 6);
 }
@@ -101,11 +136,21 @@ fn jittered_grid_stays_in_its_cells() {
     let p = generate("jitter:20x10:amount=0.3:seed=7");
     assert_eq!(p.len(), 200);
     for (q, c) in p.uv.iter().zip(&grid.uv) {
-        assert!((q[0] - c[0]).abs() <= 0.15 / 20.0 + 1e-15, "s offset within amount/2 of the cell");
-        assert!((q[1] - c[1]).abs() <= 0.15 / 10.0 + 1e-15, "t offset within amount/2 of the cell");
+        assert!(
+            (q[0] - c[0]).abs() <= 0.15 / 20.0 + 1e-15,
+            "s offset within amount/2 of the cell"
+        );
+        assert!(
+            (q[1] - c[1]).abs() <= 0.15 / 10.0 + 1e-15,
+            "t offset within amount/2 of the cell"
+        );
     }
     assert_ne!(p.uv, grid.uv);
-    assert_eq!(generate("jitter:20x10:amount=0:seed=7").uv, grid.uv, "amount 0 is the grid");
+    assert_eq!(
+        generate("jitter:20x10:amount=0:seed=7").uv,
+        grid.uv,
+        "amount 0 is the grid"
+    );
     // Amount 1 spreads points over whole cells, still one per cell.
     let p = generate("jitter:8x8:amount=1:seed=3");
     for (k, q) in p.uv.iter().enumerate() {
@@ -116,7 +161,11 @@ fn jittered_grid_stays_in_its_cells() {
     assert_eq!(generate("jitter:spacing=0.1:seed=1").len(), 100);
     assert_eq!(
         Generator::parse("jitter:4x4").unwrap(),
-        Generator::Jitter { size: GridSize::Counts { nu: 4, nv: 4 }, amount: 0.5, seed: 0 },
+        Generator::Jitter {
+            size: GridSize::Counts { nu: 4, nv: 4 },
+            amount: 0.5,
+            seed: 0
+        },
         "default amount 0.5, seed 0"
     );
 }
@@ -134,7 +183,10 @@ fn random_points_count_and_spread() {
 #[test]
 fn same_seed_same_points_different_seed_different_points() {
     for (a, b) in [
-        ("jitter:12x9:amount=0.4:seed=1", "jitter:12x9:amount=0.4:seed=2"),
+        (
+            "jitter:12x9:amount=0.4:seed=1",
+            "jitter:12x9:amount=0.4:seed=2",
+        ),
         ("random:500:seed=1", "random:500:seed=2"),
         ("poisson:0.05:seed=1", "poisson:0.05:seed=2"),
     ] {
@@ -144,14 +196,27 @@ fn same_seed_same_points_different_seed_different_points() {
         let other = generate(b);
         assert_ne!(first.uv, other.uv, "{a} vs {b}");
         // Not merely reordered.
-        assert!(!other.uv.iter().any(|q| first.uv.contains(q)), "{a} vs {b} share points");
+        assert!(
+            !other.uv.iter().any(|q| first.uv.contains(q)),
+            "{a} vs {b} share points"
+        );
     }
-    assert_eq!(generate("random:10").uv, generate("random:10:seed=0").uv, "seed defaults to 0");
+    assert_eq!(
+        generate("random:10").uv,
+        generate("random:10:seed=0").uv,
+        "seed defaults to 0"
+    );
 }
 
 #[test]
 fn poisson_disk_respects_the_minimum_distance() {
-    for (r, seed) in [(0.1, 0u64), (0.05, 7), (0.03, 7), (0.02, 123_456_789), (0.011, u64::MAX)] {
+    for (r, seed) in [
+        (0.1, 0u64),
+        (0.05, 7),
+        (0.03, 7),
+        (0.02, 123_456_789),
+        (0.011, u64::MAX),
+    ] {
         let p = generate(&format!("poisson:{r}:seed={seed}"));
         let r2 = r * r;
         let mut nearest = f64::INFINITY;
@@ -159,20 +224,33 @@ fn poisson_disk_respects_the_minimum_distance() {
             for j in 0..i {
                 let (dx, dy) = (p.uv[i][0] - p.uv[j][0], p.uv[i][1] - p.uv[j][1]);
                 let d2 = dx * dx + dy * dy;
-                assert!(d2 >= r2, "r = {r}, seed {seed}: points {j} and {i} at distance {}", d2.sqrt());
+                assert!(
+                    d2 >= r2,
+                    "r = {r}, seed {seed}: points {j} and {i} at distance {}",
+                    d2.sqrt()
+                );
                 nearest = nearest.min(d2);
             }
         }
         // Bridson fills the square: about 0.7 / r^2 points, and gaps are rare.
         let density = p.len() as f64 * r2;
-        assert!((0.45..0.85).contains(&density), "r = {r}: {} points, density {density}", p.len());
+        assert!(
+            (0.45..0.85).contains(&density),
+            "r = {r}: {} points, density {density}",
+            p.len()
+        );
         assert!(nearest.sqrt() < 1.2 * r, "dense packing reaches close to r");
         // Every point of the square lies within 2r of a sample (Bridson's coverage).
         let probe = 40;
         for a in 0..probe {
             for b in 0..probe {
-                let q = [(a as f64 + 0.5) / probe as f64, (b as f64 + 0.5) / probe as f64];
-                let covered = p.uv.iter().any(|s| (s[0] - q[0]).hypot(s[1] - q[1]) < 2.0 * r);
+                let q = [
+                    (a as f64 + 0.5) / probe as f64,
+                    (b as f64 + 0.5) / probe as f64,
+                ];
+                let covered =
+                    p.uv.iter()
+                        .any(|s| (s[0] - q[0]).hypot(s[1] - q[1]) < 2.0 * r);
                 assert!(covered, "r = {r}: gap at {q:?}");
             }
         }
@@ -189,24 +267,43 @@ fn display_prints_the_canonical_spec() {
         ("grid:spacing=0.05", "grid:spacing=0.05"),
         ("hex:24x20", "hex:24x20"),
         ("hex:spacing=0.05", "hex:spacing=0.05"),
-        ("jitter:20x20:amount=0.3:seed=7", "jitter:20x20:amount=0.3:seed=7"),
-        ("jitter:20x20:seed=7:amount=0.3", "jitter:20x20:amount=0.3:seed=7"),
+        (
+            "jitter:20x20:amount=0.3:seed=7",
+            "jitter:20x20:amount=0.3:seed=7",
+        ),
+        (
+            "jitter:20x20:seed=7:amount=0.3",
+            "jitter:20x20:amount=0.3:seed=7",
+        ),
         ("jitter:spacing=0.1", "jitter:spacing=0.1:amount=0.5:seed=0"),
         ("random:1000:seed=7", "random:1000:seed=7"),
         ("random:1000", "random:1000:seed=0"),
         ("poisson:0.03:seed=7", "poisson:0.03:seed=7"),
         ("  poisson:0.03  ", "poisson:0.03:seed=0"),
-        ("random:5:seed=18446744073709551615", "random:5:seed=18446744073709551615"),
+        (
+            "random:5:seed=18446744073709551615",
+            "random:5:seed=18446744073709551615",
+        ),
     ] {
         let g = Generator::parse(spec).unwrap();
         assert_eq!(g.to_string(), canonical);
-        assert_eq!(Generator::parse(canonical).unwrap(), g, "{canonical} reads back");
+        assert_eq!(
+            Generator::parse(canonical).unwrap(),
+            g,
+            "{canonical} reads back"
+        );
         assert_eq!(canonical.parse::<Generator>().unwrap(), g, "FromStr");
     }
-    assert_eq!(Generator::parse("grid:20x15").unwrap(), Generator::Grid(GridSize::Counts { nu: 20, nv: 15 }));
+    assert_eq!(
+        Generator::parse("grid:20x15").unwrap(),
+        Generator::Grid(GridSize::Counts { nu: 20, nv: 15 })
+    );
     assert_eq!(
         Generator::parse("poisson:0.03:seed=7").unwrap(),
-        Generator::Poisson { radius: 0.03, seed: 7 }
+        Generator::Poisson {
+            radius: 0.03,
+            seed: 7
+        }
     );
 }
 
@@ -237,7 +334,10 @@ fn invalid_generator_specs_name_the_problem() {
         ("jitter:10x10:amount=1.5", "amount 1.5 must be in [0, 1]"),
         ("jitter:10x10:amount=-0.1", "amount -0.1 must be"),
         ("jitter:10x10:amount=x", "amount `x` is not a number"),
-        ("jitter:10x10:amont=0.3", "unknown option `amont` (accepted: amount, seed)"),
+        (
+            "jitter:10x10:amont=0.3",
+            "unknown option `amont` (accepted: amount, seed)",
+        ),
         ("jitter:10x10:seed=1:seed=2", "option `seed` is given twice"),
         ("jitter:10x10:7", "option `7` is not of the form key=value"),
         ("random", "needs a point count"),
@@ -245,9 +345,15 @@ fn invalid_generator_specs_name_the_problem() {
         ("random:-3", "point count `-3`"),
         ("random:1.5", "point count `1.5`"),
         ("random:20000000", "exceed the maximum"),
-        ("random:10:seed=-1", "seed `-1` is not an unsigned 64-bit integer"),
+        (
+            "random:10:seed=-1",
+            "seed `-1` is not an unsigned 64-bit integer",
+        ),
         ("random:10:seed=abc", "seed `abc`"),
-        ("random:10:amount=0.5", "unknown option `amount` (accepted: seed)"),
+        (
+            "random:10:amount=0.5",
+            "unknown option `amount` (accepted: seed)",
+        ),
         ("poisson", "needs a radius"),
         ("poisson:0", "radius 0 must be a number >= 0.001"),
         ("poisson:0.0001", "radius 0.0001 must be"),
@@ -260,7 +366,10 @@ fn invalid_generator_specs_name_the_problem() {
         match Generator::parse(spec) {
             Err(TpiError::InvalidGenerator { spec: s, reason }) => {
                 assert_eq!(s, spec);
-                assert!(reason.contains(reason_part), "{spec}: reason `{reason}` lacks `{reason_part}`");
+                assert!(
+                    reason.contains(reason_part),
+                    "{spec}: reason `{reason}` lacks `{reason_part}`"
+                );
             }
             other => panic!("{spec}: expected InvalidGenerator, got {other:?}"),
         }
@@ -274,13 +383,29 @@ fn hand_built_invalid_generators_are_caught() {
     let bad = [
         Generator::Grid(GridSize::Counts { nu: 0, nv: 3 }),
         Generator::Hex(GridSize::Spacing(f64::NAN)),
-        Generator::Jitter { size: GridSize::Counts { nu: 2, nv: 2 }, amount: 2.0, seed: 0 },
-        Generator::Random { count: MAX_GENERATED_POINTS + 1, seed: 0 },
-        Generator::Poisson { radius: 0.0, seed: 0 },
+        Generator::Jitter {
+            size: GridSize::Counts { nu: 2, nv: 2 },
+            amount: 2.0,
+            seed: 0,
+        },
+        Generator::Random {
+            count: MAX_GENERATED_POINTS + 1,
+            seed: 0,
+        },
+        Generator::Poisson {
+            radius: 0.0,
+            seed: 0,
+        },
     ];
     for g in bad {
-        assert!(matches!(g.validate(), Err(TpiError::InvalidGenerator { .. })), "{g:?}");
-        assert!(g.generate().is_empty(), "{g:?} generates nothing rather than failing");
+        assert!(
+            matches!(g.validate(), Err(TpiError::InvalidGenerator { .. })),
+            "{g:?}"
+        );
+        assert!(
+            g.generate().is_empty(),
+            "{g:?} generates nothing rather than failing"
+        );
         assert_eq!(g.expected_count(), None);
     }
     assert_eq!(Generator::Random { count: 3, seed: 1 }.validate(), Ok(()));

@@ -10,7 +10,9 @@ use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, Surface, TpiError
 
 fn random_points(n: usize, mut seed: u64) -> Vec<[f64; 2]> {
     let mut next = || {
-        seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (seed >> 11) as f64 / (1u64 << 53) as f64
     };
     (0..n).map(|_| [next(), next()]).collect()
@@ -28,7 +30,10 @@ fn topology(loops: &[Vec<u32>]) -> (i64, usize) {
         }
     }
     let boundary = edges.values().filter(|&&c| c == 1).count();
-    (vertices.len() as i64 - edges.len() as i64 + loops.len() as i64, boundary)
+    (
+        vertices.len() as i64 - edges.len() as i64 + loops.len() as i64,
+        boundary,
+    )
 }
 
 fn check_valid_disc(surface: &dyn Surface, n: usize, seed: u64) {
@@ -51,13 +56,20 @@ fn check_valid_disc(surface: &dyn Surface, n: usize, seed: u64) {
         assert!(l.len() >= 3, "facet {i} has {} vertices", l.len());
         let seed = &result.seeds[i];
         for &v in l {
-            let distance = seed.normal.dot(result.vertices[v as usize] - seed.point).abs();
-            assert!(distance <= 1e-9 * diagonal, "facet {i} not planar: {distance}");
+            let distance = seed
+                .normal
+                .dot(result.vertices[v as usize] - seed.point)
+                .abs();
+            assert!(
+                distance <= 1e-9 * diagonal,
+                "facet {i} not planar: {distance}"
+            );
         }
         // Counter-clockwise seen from the normal: positive signed area.
         let mut area = DVec3::ZERO;
         for k in 0..l.len() {
-            area += result.vertices[l[k] as usize].cross(result.vertices[l[(k + 1) % l.len()] as usize]);
+            area += result.vertices[l[k] as usize]
+                .cross(result.vertices[l[(k + 1) % l.len()] as usize]);
         }
         assert!(area.dot(seed.normal) > 0.0, "facet {i} runs clockwise");
     }
@@ -70,7 +82,11 @@ fn paraboloid_of_revolution_gives_the_voronoi_diagram() {
     for seed in [1u64, 2, 3] {
         let pattern = random_points(300, seed);
         let result = discretise(&surface, &pattern, &DiscretiseOptions::default()).unwrap();
-        let sites: Vec<[f64; 2]> = result.seeds.iter().map(|s| [s.point.x, s.point.y]).collect();
+        let sites: Vec<[f64; 2]> = result
+            .seeds
+            .iter()
+            .map(|s| [s.point.x, s.point.y])
+            .collect();
         let mut facets_of: HashMap<u32, Vec<usize>> = HashMap::new();
         for i in 0..result.facet_count() {
             for &v in result.facet(i) {
@@ -89,7 +105,10 @@ fn paraboloid_of_revolution_gives_the_voronoi_diagram() {
                 assert!((d(f) - radius).abs() <= 1e-9, "vertex {v} not equidistant");
             }
             let nearest = (0..sites.len()).map(d).fold(f64::INFINITY, f64::min);
-            assert!(nearest >= radius - 1e-9, "vertex {v}: a site is closer than its facets' seeds");
+            assert!(
+                nearest >= radius - 1e-9,
+                "vertex {v}: a site is closer than its facets' seeds"
+            );
             checked += 1;
         }
         assert!(checked > 400, "checked {checked} Voronoi vertices");
@@ -98,31 +117,49 @@ fn paraboloid_of_revolution_gives_the_voronoi_diagram() {
 
 #[test]
 fn sphere_cap_gives_a_planar_disc() {
-    check_valid_disc(&AnalyticSurface::sphere_cap_square(2.0, 1.0).unwrap(), 500, 11);
+    check_valid_disc(
+        &AnalyticSurface::sphere_cap_square(2.0, 1.0).unwrap(),
+        500,
+        11,
+    );
 }
 
 #[test]
 fn anisotropic_paraboloid_gives_a_planar_disc() {
-    check_valid_disc(&AnalyticSurface::elliptic_paraboloid(1.0, 10.0, [-1.0, 1.0], [-1.0, 1.0]).unwrap(), 800, 12);
+    check_valid_disc(
+        &AnalyticSurface::elliptic_paraboloid(1.0, 10.0, [-1.0, 1.0], [-1.0, 1.0]).unwrap(),
+        800,
+        12,
+    );
 }
 
 #[test]
 fn degenerate_input_gets_specific_errors() {
-    let paraboloid = AnalyticSurface::elliptic_paraboloid(1.0, 1.0, [-1.0, 1.0], [-1.0, 1.0]).unwrap();
+    let paraboloid =
+        AnalyticSurface::elliptic_paraboloid(1.0, 1.0, [-1.0, 1.0], [-1.0, 1.0]).unwrap();
     let options = DiscretiseOptions::default();
     assert_eq!(
         discretise(&paraboloid, &[[0.1, 0.1], [0.5, 0.5]], &options).unwrap_err(),
-        TpiError::TooFewPatternPoints { found: 2, needed: 3 }
+        TpiError::TooFewPatternPoints {
+            found: 2,
+            needed: 3
+        }
     );
     let collinear: Vec<[f64; 2]> = (0..10).map(|k| [0.05 + 0.09 * k as f64, 0.5]).collect();
-    assert_eq!(discretise(&paraboloid, &collinear, &options).unwrap_err(), TpiError::CollinearPattern { count: 10 });
+    assert_eq!(
+        discretise(&paraboloid, &collinear, &options).unwrap_err(),
+        TpiError::CollinearPattern { count: 10 }
+    );
     let cylinder = AnalyticSurface::cylinder(2.0, [-1.0, 1.0], [-1.0, 1.0]).unwrap();
     assert!(matches!(
         discretise(&cylinder, &random_points(100, 5), &options).unwrap_err(),
         TpiError::DegenerateSurface { .. }
     ));
     let plane = AnalyticSurface::plane(0.1, 0.2, 0.0, [-1.0, 1.0], [-1.0, 1.0]).unwrap();
-    assert!(matches!(discretise(&plane, &random_points(100, 5), &options).unwrap_err(), TpiError::DegenerateSurface { .. }));
+    assert!(matches!(
+        discretise(&plane, &random_points(100, 5), &options).unwrap_err(),
+        TpiError::DegenerateSurface { .. }
+    ));
 }
 
 #[test]
@@ -130,8 +167,15 @@ fn one_and_two_threads_give_identical_json() {
     let surface = AnalyticSurface::sphere_cap_square(2.0, 1.0).unwrap();
     let pattern = random_points(700, 31);
     let run = |threads: usize| {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| discretise(&surface, &pattern, &DiscretiseOptions::default()).unwrap().to_json(false))
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            discretise(&surface, &pattern, &DiscretiseOptions::default())
+                .unwrap()
+                .to_json(false)
+        })
     };
     let one = run(1);
     assert_eq!(one, run(2));

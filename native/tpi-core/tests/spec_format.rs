@@ -5,7 +5,12 @@ use tpi_core::{AnalyticSurface, Direction, Surface, SurfaceModel, SurfaceSpec, T
 
 fn parse_err(text: &str) -> (usize, usize, String) {
     match SurfaceSpec::from_json(text, "test.json") {
-        Err(TpiError::Parse { context, line, column, message }) => {
+        Err(TpiError::Parse {
+            context,
+            line,
+            column,
+            message,
+        }) => {
             assert_eq!(context, "test.json");
             (line, column, message)
         }
@@ -57,8 +62,13 @@ fn model_dispatches_to_the_analytic_surface() {
     assert_eq!(m.point_at(0.3, -0.7), a.point_at(0.3, -0.7));
     // Checked evaluation rejects what plain evaluation clamps.
     assert!(m.evaluate_checked(0.3, -0.7).is_ok());
-    assert!(matches!(m.evaluate_checked(1.5, 0.0), Err(TpiError::OutOfDomain { u, .. }) if u == 1.5));
-    assert!(matches!(m.evaluate_checked(f64::NAN, 0.0), Err(TpiError::OutOfDomain { .. })));
+    assert!(
+        matches!(m.evaluate_checked(1.5, 0.0), Err(TpiError::OutOfDomain { u, .. }) if u == 1.5)
+    );
+    assert!(matches!(
+        m.evaluate_checked(f64::NAN, 0.0),
+        Err(TpiError::OutOfDomain { .. })
+    ));
     assert_eq!(m.evaluate(1.5, 0.0), m.evaluate(1.0, 0.0));
 }
 
@@ -69,7 +79,9 @@ fn nurbs_records_are_read_with_their_fields() {
         "points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1]],
         "weights": [1, 1, 1, 2]}"#;
     let spec = SurfaceSpec::from_json(text, "surface").unwrap();
-    let SurfaceSpec::Nurbs(n) = &spec else { panic!("expected nurbs, got {spec:?}") };
+    let SurfaceSpec::Nurbs(n) = &spec else {
+        panic!("expected nurbs, got {spec:?}")
+    };
     assert_eq!(n.degree, [1, 1]);
     assert_eq!(n.count, [2, 2]);
     assert_eq!(n.points[3], [1.0, 1.0, 1.0]);
@@ -80,7 +92,9 @@ fn nurbs_records_are_read_with_their_fields() {
     // Weights are optional.
     let text = r#"{"type": "nurbs", "degree": [1, 1], "count": [2, 2], "knots_u": [0, 1],
         "knots_v": [0, 1], "points": [[0, 0, 0], [0, 1, 0], [1, 0, 0], [1, 1, 1]]}"#;
-    let SurfaceSpec::Nurbs(n) = SurfaceSpec::from_json(text, "surface").unwrap() else { panic!() };
+    let SurfaceSpec::Nurbs(n) = SurfaceSpec::from_json(text, "surface").unwrap() else {
+        panic!()
+    };
     assert_eq!(n.weights, None);
 }
 
@@ -90,7 +104,10 @@ fn unknown_fields_are_rejected_by_name_in_every_variant() {
         "{\"type\": \"sphere_cap\",\n \"radius\": 2.0,\n \"radus\": 2.0, \"x\": [-1, 1], \"y\": [-1, 1]}",
     );
     assert!(message.contains("unknown field `radus`"), "{message}");
-    assert!(message.contains("`radius`, `x`, `y`"), "lists the accepted fields: {message}");
+    assert!(
+        message.contains("`radius`, `x`, `y`"),
+        "lists the accepted fields: {message}"
+    );
     assert_eq!((line, column), (3, 8), "points at the offending name");
 
     for (kind, fields) in [
@@ -107,7 +124,11 @@ fn unknown_fields_are_rejected_by_name_in_every_variant() {
         // The same record without the extra field is fine, and both readers agree on it.
         let good = text.replace(r#", "z": 1"#, "");
         let spec = SurfaceSpec::from_json(&good, "surface").unwrap();
-        assert_eq!(serde_json::from_str::<SurfaceSpec>(&good).unwrap(), spec, "{kind}");
+        assert_eq!(
+            serde_json::from_str::<SurfaceSpec>(&good).unwrap(),
+            spec,
+            "{kind}"
+        );
         assert!(spec.build().is_ok(), "{kind}");
         // serde's own internally tagged reader rejects the unknown field as well.
         let e = serde_json::from_str::<SurfaceSpec>(&text).unwrap_err();
@@ -129,9 +150,17 @@ fn the_type_may_stand_anywhere_in_the_record() {
     let middle = r#"{"radius": 2, "type":"cylinder" , "x": [-1, 1], "y": [0, 1]}"#;
     let last = "{\"radius\": 2, \"x\": [-1, 1], \"y\": [0, 1],\n  \"type\" : \"cylinder\"\n}";
     let escaped = r#"{"radius": 2, "x": [-1, 1], "y": [0, 1], "t\u0079pe": "cyl\u0069nder"}"#;
-    let expected = SurfaceSpec::Cylinder { radius: 2.0, x: [-1.0, 1.0], y: [0.0, 1.0] };
+    let expected = SurfaceSpec::Cylinder {
+        radius: 2.0,
+        x: [-1.0, 1.0],
+        y: [0.0, 1.0],
+    };
     for text in [first, middle, last, escaped] {
-        assert_eq!(SurfaceSpec::from_json(text, "s").unwrap(), expected, "{text}");
+        assert_eq!(
+            SurfaceSpec::from_json(text, "s").unwrap(),
+            expected,
+            "{text}"
+        );
     }
     // A record holding only its type reports the first missing field.
     let (_, _, message) = parse_err(r#"{"type": "cylinder"}"#);
@@ -142,9 +171,15 @@ fn the_type_may_stand_anywhere_in_the_record() {
 fn unknown_missing_repeated_and_malformed_types_are_named() {
     let (line, column, message) =
         parse_err("{\n  \"type\": \"spere_cap\", \"radius\": 2.0, \"x\": [-1, 1], \"y\": [-1, 1]}");
-    assert!(message.contains("unknown surface type `spere_cap`"), "{message}");
+    assert!(
+        message.contains("unknown surface type `spere_cap`"),
+        "{message}"
+    );
     for name in SurfaceSpec::TYPE_NAMES {
-        assert!(message.contains(&format!("`{name}`")), "lists the accepted types: {message}");
+        assert!(
+            message.contains(&format!("`{name}`")),
+            "lists the accepted types: {message}"
+        );
     }
     assert_eq!((line, column), (2, 11), "points at the type's value");
 
@@ -162,7 +197,10 @@ fn unknown_missing_repeated_and_malformed_types_are_named() {
     assert_eq!(column, 10);
 
     let (_, _, message) = parse_err(r#"[{"type": "plane"}]"#);
-    assert!(message.contains("expected a JSON object with a \"type\" field, found an array"), "{message}");
+    assert!(
+        message.contains("expected a JSON object with a \"type\" field, found an array"),
+        "{message}"
+    );
 
     let (_, _, message) = parse_err(r#"{"type": "sphere_cap", "x": [-1, 1], "y": [-1, 1]}"#);
     assert!(message.contains("missing field `radius`"), "{message}");
@@ -176,7 +214,10 @@ fn malformed_json_reports_line_and_column() {
     );
     assert_eq!((line, column), (3, 12), "{message}");
     assert!(message.contains("expected `,` or `}`"), "{message}");
-    assert!(!message.contains(" at line "), "the position is not repeated in the message");
+    assert!(
+        !message.contains(" at line "),
+        "the position is not repeated in the message"
+    );
 
     // Truncated document.
     let (line, _, message) = parse_err("{\"type\": \"plane\",\n \"p\": ");
@@ -184,33 +225,50 @@ fn malformed_json_reports_line_and_column() {
     assert!(message.contains("EOF"), "{message}");
 
     // Wrong value kind, positioned at the value.
-    let (line, column, message) =
-        parse_err("{\"type\": \"sphere_cap\",\n \"radius\": \"two\", \"x\": [-1, 1], \"y\": [-1, 1]}");
-    assert!(message.contains("invalid type: string \"two\", expected f64"), "{message}");
+    let (line, column, message) = parse_err(
+        "{\"type\": \"sphere_cap\",\n \"radius\": \"two\", \"x\": [-1, 1], \"y\": [-1, 1]}",
+    );
+    assert!(
+        message.contains("invalid type: string \"two\", expected f64"),
+        "{message}"
+    );
     assert_eq!((line, column), (2, 16));
-    let (line, column, message) =
-        parse_err("{\"type\": \"nurbs\", \"degree\": [1, 1], \"count\": [2, 2],\n\"knots_u\": [0, \"1\"]}");
+    let (line, column, message) = parse_err(
+        "{\"type\": \"nurbs\", \"degree\": [1, 1], \"count\": [2, 2],\n\"knots_u\": [0, \"1\"]}",
+    );
     assert!(message.contains("invalid type: string \"1\""), "{message}");
-    assert_eq!((line, column), (2, 18), "serde_json reports the end of the bad value");
+    assert_eq!(
+        (line, column),
+        (2, 18),
+        "serde_json reports the end of the bad value"
+    );
 
     // Wrong array length for a range.
     let (_, column, message) =
         parse_err(r#"{"type": "sphere_cap", "radius": 2, "x": [-1, 0, 1], "y": [-1, 1]}"#);
     assert!(message.contains("more elements than expected"), "{message}");
     assert_eq!(column, 50, "at the third element");
-    let (_, _, message) = parse_err(r#"{"type": "sphere_cap", "radius": 2, "x": [-1], "y": [-1, 1]}"#);
-    assert!(message.contains("invalid length 1, expected an array of length 2"), "{message}");
+    let (_, _, message) =
+        parse_err(r#"{"type": "sphere_cap", "radius": 2, "x": [-1], "y": [-1, 1]}"#);
+    assert!(
+        message.contains("invalid length 1, expected an array of length 2"),
+        "{message}"
+    );
     let (_, _, message) =
         parse_err(r#"{"type": "plane", "p": 0, "q": 0, "c0": 0, "x": [0, 1], "y": [0, 1]} x"#);
     assert!(message.contains("trailing characters"), "{message}");
 
     // Not a number JSON allows.
-    let (_, _, message) = parse_err(r#"{"type": "sphere_cap", "radius": NaN, "x": [-1, 1], "y": [-1, 1]}"#);
+    let (_, _, message) =
+        parse_err(r#"{"type": "sphere_cap", "radius": NaN, "x": [-1, 1], "y": [-1, 1]}"#);
     assert!(message.contains("expected value"), "{message}");
 
     // The error displays with its context.
     let e = SurfaceSpec::from_json("[", "surf.json").unwrap_err();
-    assert!(e.to_string().starts_with("surf.json: line 1, column 1"), "{e}");
+    assert!(
+        e.to_string().starts_with("surf.json: line 1, column 1"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -220,22 +278,35 @@ fn invalid_analytic_values_fail_at_build_with_their_field() {
         "surface",
     )
     .unwrap();
-    assert!(matches!(spec.build(), Err(TpiError::InvalidParameter { field, .. }) if field == "radius"));
+    assert!(
+        matches!(spec.build(), Err(TpiError::InvalidParameter { field, .. }) if field == "radius")
+    );
     let spec = SurfaceSpec::from_json(
         r#"{"type": "cylinder", "radius": 1, "x": [-0.5, 0.5], "y": [2, 2]}"#,
         "surface",
     )
     .unwrap();
-    assert_eq!(spec.build(), Err(TpiError::EmptyDomain { direction: Direction::V, min: 2.0, max: 2.0 }));
+    assert_eq!(
+        spec.build(),
+        Err(TpiError::EmptyDomain {
+            direction: Direction::V,
+            min: 2.0,
+            max: 2.0
+        })
+    );
     let spec = SurfaceSpec::from_json(
         r#"{"type": "ellipsoid_cap", "a": 1, "b": 1, "c": 1, "x": [-1, 1], "y": [-0.1, 0.1]}"#,
         "surface",
     )
     .unwrap();
-    assert!(matches!(spec.build(), Err(TpiError::InvalidParameter { field, .. }) if field == "x, y"));
+    assert!(
+        matches!(spec.build(), Err(TpiError::InvalidParameter { field, .. }) if field == "x, y")
+    );
     // Huge literals overflow to an error, not to infinity.
-    let e =
-        SurfaceSpec::from_json(r#"{"type": "egg_crate", "amplitude": 1e999, "x": [0, 1], "y": [0, 1]}"#, "s");
+    let e = SurfaceSpec::from_json(
+        r#"{"type": "egg_crate", "amplitude": 1e999, "x": [0, 1], "y": [0, 1]}"#,
+        "s",
+    );
     assert!(matches!(e, Err(TpiError::Parse { .. })), "{e:?}");
 }
 
@@ -248,16 +319,27 @@ fn nurbs_records_build_dispatch_and_round_trip() {
         "weights": [1, 2, 1, 1, 0.5, 1]}"#;
     let spec = SurfaceSpec::from_json(text, "surface").unwrap();
     let model = spec.build().unwrap();
-    let SurfaceModel::Nurbs(n) = &model else { panic!("expected a NURBS model") };
+    let SurfaceModel::Nurbs(n) = &model else {
+        panic!("expected a NURBS model")
+    };
     assert_eq!(model.domain(), n.domain());
     assert_eq!(model.evaluate(0.7, 2.2), n.evaluate(0.7, 2.2));
     assert_eq!(model.point_at(0.7, 2.2), n.point_at(0.7, 2.2));
-    let SurfaceSpec::Nurbs(written) = model.to_spec() else { panic!("expected a NURBS record") };
-    assert_eq!(written.knots_u, vec![0.0, 2.0], "Rhino convention: count + degree - 1");
+    let SurfaceSpec::Nurbs(written) = model.to_spec() else {
+        panic!("expected a NURBS record")
+    };
+    assert_eq!(
+        written.knots_u,
+        vec![0.0, 2.0],
+        "Rhino convention: count + degree - 1"
+    );
     assert_eq!(written.knots_v, vec![1.0, 1.0, 3.0, 3.0]);
     let again = SurfaceSpec::Nurbs(written).build().unwrap();
     assert_eq!(again.evaluate(0.7, 2.2), model.evaluate(0.7, 2.2));
-    assert!(matches!(model.evaluate_checked(0.7, 0.5), Err(TpiError::OutOfDomain { .. })));
+    assert!(matches!(
+        model.evaluate_checked(0.7, 0.5),
+        Err(TpiError::OutOfDomain { .. })
+    ));
 }
 
 #[test]
@@ -268,7 +350,13 @@ fn nurbs_validation_errors_pass_through_build() {
         "surface",
     )
     .unwrap();
-    assert_eq!(spec.build(), Err(TpiError::PointCount { expected: 4, found: 3 }));
+    assert_eq!(
+        spec.build(),
+        Err(TpiError::PointCount {
+            expected: 4,
+            found: 3
+        })
+    );
 }
 
 #[test]

@@ -12,7 +12,12 @@ fn large_pattern_errors_match_the_pattern_check() {
     assert!(validate_pattern(&base).is_ok());
     // Duplicates at various places, some with ties and several candidates.
     let mut cases: Vec<Vec<[f64; 2]>> = Vec::new();
-    for (later, earlier, offset) in [(19_999, 3, 0.0), (12_000, 11_999, 4e-10), (5_000, 17_000, 9e-10), (7_000, 10, 1.1e-9)] {
+    for (later, earlier, offset) in [
+        (19_999, 3, 0.0),
+        (12_000, 11_999, 4e-10),
+        (5_000, 17_000, 9e-10),
+        (7_000, 10, 1.1e-9),
+    ] {
         let mut p = base.clone();
         p[later] = [base[earlier][0] + offset, base[earlier][1]];
         cases.push(p);
@@ -34,7 +39,10 @@ fn large_pattern_errors_match_the_pattern_check() {
     edge[43] = [1.0, 1.0 - 2e-10];
     cases.push(edge);
     for (k, p) in cases.iter().enumerate() {
-        let expected = Pattern::new(p.clone()).validate().err().map(|e| e.to_string());
+        let expected = Pattern::new(p.clone())
+            .validate()
+            .err()
+            .map(|e| e.to_string());
         let got = validate_pattern(p).err().map(|e| e.to_string());
         assert_eq!(got, expected, "case {k}");
     }

@@ -51,11 +51,14 @@ fn integers<T: std::fmt::Display>(out: &mut String, c_type: &str, name: &str, va
 
 fn string(out: &mut String, name: &str, text: &str) {
     writeln!(out, "static const char {name}[] =").ok();
-    let escaped: String = text.chars().flat_map(|c| match c {
-        '"' => vec!['\\', '"'],
-        '\\' => vec!['\\', '\\'],
-        c => vec![c],
-    }).collect();
+    let escaped: String = text
+        .chars()
+        .flat_map(|c| match c {
+            '"' => vec!['\\', '"'],
+            '\\' => vec!['\\', '\\'],
+            c => vec![c],
+        })
+        .collect();
     let chars: Vec<char> = escaped.chars().collect();
     let mut start = 0;
     while start < chars.len() {
@@ -78,7 +81,14 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let path = std::env::args().nth(1).ok_or("usage: c_fixture OUTPUT.h")?;
     let flat = dome_points(HEIGHT);
     let points: Vec<DVec3> = flat.chunks_exact(3).map(DVec3::from_slice).collect();
-    let dome = NurbsSurface::new([DOME_DEGREE; 2], [DOME_COUNT; 2], &DOME_KNOTS, &DOME_KNOTS, &points, None)?;
+    let dome = NurbsSurface::new(
+        [DOME_DEGREE; 2],
+        [DOME_COUNT; 2],
+        &DOME_KNOTS,
+        &DOME_KNOTS,
+        &points,
+        None,
+    )?;
     let pattern = Generator::parse(PATTERN)?.generate().uv;
     let result = discretise(&dome, &pattern, &DiscretiseOptions::default())?;
     let quality = result.quality.as_ref().ok_or("no quality report")?;
@@ -111,31 +121,98 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
     let vertices: Vec<f64> = result.vertices.iter().flat_map(|v| v.to_array()).collect();
     doubles(&mut out, "expected_vertices", &vertices);
-    let sizes: Vec<u32> = (0..result.facet_count()).map(|i| result.facet(i).len() as u32).collect();
+    let sizes: Vec<u32> = (0..result.facet_count())
+        .map(|i| result.facet(i).len() as u32)
+        .collect();
     integers(&mut out, "uint32_t", "expected_facet_sizes", &sizes);
-    integers(&mut out, "uint32_t", "expected_facet_indices", &result.facet_loops);
-    integers(&mut out, "uint8_t", "expected_facet_flags", &result.facet_flags);
+    integers(
+        &mut out,
+        "uint32_t",
+        "expected_facet_indices",
+        &result.facet_loops,
+    );
+    integers(
+        &mut out,
+        "uint8_t",
+        "expected_facet_flags",
+        &result.facet_flags,
+    );
     let seeds: Vec<f64> = result
         .seeds
         .iter()
-        .flat_map(|s| [s.uv[0], s.uv[1], s.point.x, s.point.y, s.point.z, s.normal.x, s.normal.y, s.normal.z, s.curvatures[0], s.curvatures[1]])
+        .flat_map(|s| {
+            [
+                s.uv[0],
+                s.uv[1],
+                s.point.x,
+                s.point.y,
+                s.point.z,
+                s.normal.x,
+                s.normal.y,
+                s.normal.z,
+                s.curvatures[0],
+                s.curvatures[1],
+            ]
+        })
         .collect();
     doubles(&mut out, "expected_seeds", &seeds);
-    integers(&mut out, "uint32_t", "expected_neighbour_pairs", result.neighbour_pairs().as_flattened());
-    integers(&mut out, "uint32_t", "expected_dual_triangles", result.dual_triangles.as_flattened());
+    integers(
+        &mut out,
+        "uint32_t",
+        "expected_neighbour_pairs",
+        result.neighbour_pairs().as_flattened(),
+    );
+    integers(
+        &mut out,
+        "uint32_t",
+        "expected_dual_triangles",
+        result.dual_triangles.as_flattened(),
+    );
 
     writeln!(out, "#define EXPECTED_FACET_COUNT {}", quality.facet_count)?;
-    writeln!(out, "#define EXPECTED_VERTEX_COUNT {}", quality.vertex_count)?;
+    writeln!(
+        out,
+        "#define EXPECTED_VERTEX_COUNT {}",
+        quality.vertex_count
+    )?;
     writeln!(out, "#define EXPECTED_EDGE_COUNT {}", quality.edge_count)?;
-    writeln!(out, "#define EXPECTED_EULER_CHARACTERISTIC {}", quality.euler_characteristic)?;
-    writeln!(out, "#define EXPECTED_DIAGNOSTIC_COUNT {}", result.diagnostics.len())?;
-    writeln!(out, "#define EXPECTED_MAX_DEVIATION {:?}", quality.max_deviation)?;
-    writeln!(out, "#define EXPECTED_MAX_PLANARITY_ERROR {:?}", quality.max_planarity_error)?;
-    writeln!(out, "#define EXPECTED_BOUNDING_BOX_DIAGONAL {:?}\n", quality.bounding_box_diagonal)?;
+    writeln!(
+        out,
+        "#define EXPECTED_EULER_CHARACTERISTIC {}",
+        quality.euler_characteristic
+    )?;
+    writeln!(
+        out,
+        "#define EXPECTED_DIAGNOSTIC_COUNT {}",
+        result.diagnostics.len()
+    )?;
+    writeln!(
+        out,
+        "#define EXPECTED_MAX_DEVIATION {:?}",
+        quality.max_deviation
+    )?;
+    writeln!(
+        out,
+        "#define EXPECTED_MAX_PLANARITY_ERROR {:?}",
+        quality.max_planarity_error
+    )?;
+    writeln!(
+        out,
+        "#define EXPECTED_BOUNDING_BOX_DIAGONAL {:?}\n",
+        quality.bounding_box_diagonal
+    )?;
 
     string(&mut out, "expected_json", &result.to_json(false));
-    string(&mut out, "expected_quality_json", &serde_json::to_string(quality)?);
-    string(&mut out, "expected_diagnostics_json", &serde_json::to_string(&result.diagnostics)?);
+    string(
+        &mut out,
+        "expected_quality_json",
+        &serde_json::to_string(quality)?,
+    );
+    string(
+        &mut out,
+        "expected_diagnostics_json",
+        &serde_json::to_string(&result.diagnostics)?,
+    );
     out.push_str("#endif /* TPI_FIXTURE_H */\n");
 
     if let Some(dir) = std::path::Path::new(&path).parent() {

@@ -113,7 +113,10 @@ pub struct FfiError {
 impl FfiError {
     /// A new error.
     pub fn new(status: TpiStatus, message: impl Into<String>) -> Self {
-        Self { status, message: message.into() }
+        Self {
+            status,
+            message: message.into(),
+        }
     }
 
     /// A NULL pointer passed as `name`.
@@ -155,9 +158,9 @@ pub type FfiResult<T = ()> = Result<T, FfiError>;
 pub fn status_of(error: &TpiError) -> TpiStatus {
     match error {
         TpiError::NonFinite { .. } => TpiStatus::NonFinite,
-        TpiError::InvalidParameter { .. } | TpiError::EmptyDomain { .. } | TpiError::Parse { .. } => {
-            TpiStatus::InvalidArgument
-        }
+        TpiError::InvalidParameter { .. }
+        | TpiError::EmptyDomain { .. }
+        | TpiError::Parse { .. } => TpiStatus::InvalidArgument,
         TpiError::InvalidDegree { .. }
         | TpiError::KnotCount { .. }
         | TpiError::KnotsDecreasing { .. }
@@ -203,7 +206,11 @@ pub fn set_last_error(message: &str) {
 /// A copy of this thread's last error message ("" if there is none or it is unavailable).
 pub fn last_error() -> String {
     LAST_ERROR
-        .try_with(|cell| cell.try_borrow().map(|message| message.clone()).unwrap_or_default())
+        .try_with(|cell| {
+            cell.try_borrow()
+                .map(|message| message.clone())
+                .unwrap_or_default()
+        })
         .unwrap_or_default()
 }
 
@@ -299,8 +306,13 @@ pub unsafe fn try_slice<'a, T>(ptr: *const T, len: usize, name: &str) -> FfiResu
         return Ok(&[]);
     }
     check_pointer(ptr, name)?;
-    if len.checked_mul(size_of::<T>()).map_or(true, |bytes| bytes > isize::MAX as usize) {
-        return Err(FfiError::invalid(format!("the length {len} of {name} is impossibly large")));
+    if len
+        .checked_mul(size_of::<T>())
+        .map_or(true, |bytes| bytes > isize::MAX as usize)
+    {
+        return Err(FfiError::invalid(format!(
+            "the length {len} of {name} is impossibly large"
+        )));
     }
     // SAFETY: non-NULL, aligned, size fits isize (checked); the caller guarantees `len`
     // initialised elements.
@@ -315,7 +327,8 @@ pub unsafe fn try_str<'a>(ptr: *const c_char, name: &str) -> FfiResult<&'a str> 
     check_pointer(ptr, name)?;
     // SAFETY: non-NULL; the caller guarantees NUL termination.
     let c = unsafe { std::ffi::CStr::from_ptr(ptr) };
-    c.to_str().map_err(|e| FfiError::invalid(format!("{name} is not UTF-8: {e}")))
+    c.to_str()
+        .map_err(|e| FfiError::invalid(format!("{name} is not UTF-8: {e}")))
 }
 
 /// An output pointer argument, checked for NULL and alignment, written without reading.
@@ -410,7 +423,13 @@ unsafe fn prepare_copy<'a, T>(
 ///
 /// # Safety
 /// As [`copy_out`].
-pub unsafe fn check_copy_out<T>(len: usize, out: *mut T, capacity: usize, needed: *mut usize, name: &str) -> FfiResult {
+pub unsafe fn check_copy_out<T>(
+    len: usize,
+    out: *mut T,
+    capacity: usize,
+    needed: *mut usize,
+    name: &str,
+) -> FfiResult {
     // SAFETY: forwarded contract.
     unsafe { prepare_copy(len, out, capacity, needed, name) }.map(|_| ())
 }
@@ -468,7 +487,10 @@ pub fn finite(name: &str, value: f64) -> FfiResult<f64> {
     if value.is_finite() {
         Ok(value)
     } else {
-        Err(FfiError::new(TpiStatus::NonFinite, format!("{name} is not a finite number ({value})")))
+        Err(FfiError::new(
+            TpiStatus::NonFinite,
+            format!("{name} is not a finite number ({value})"),
+        ))
     }
 }
 
@@ -495,11 +517,16 @@ pub fn flag(name: &str, value: u32) -> FfiResult<bool> {
     match value {
         0 => Ok(false),
         1 => Ok(true),
-        _ => Err(FfiError::invalid(format!("{name} is {value}; it must be 0 or 1"))),
+        _ => Err(FfiError::invalid(format!(
+            "{name} is {value}; it must be 0 or 1"
+        ))),
     }
 }
 
 /// [`TpiStatus::IndexOutOfRange`] for `index` in a collection of `len`.
 pub fn index_error(what: &str, index: usize, len: usize) -> FfiError {
-    FfiError::new(TpiStatus::IndexOutOfRange, format!("{what} {index} is out of range (there are {len})"))
+    FfiError::new(
+        TpiStatus::IndexOutOfRange,
+        format!("{what} {index} is out of range (there are {len})"),
+    )
 }

@@ -16,7 +16,9 @@ use tpi_core::pattern::Pattern;
 use tpi_core::spec::SurfaceModel;
 use tpi_core::{Discretisation, DiscretiseOptions, LiveSurface, TpiError};
 
-use crate::boundary::{copy_out, ffi_boundary, finite, index_error, try_ref, FfiResult, OutPtr, TpiStatus};
+use crate::boundary::{
+    copy_out, ffi_boundary, finite, index_error, try_ref, FfiResult, OutPtr, TpiStatus,
+};
 use crate::discretisation::TpiDiscretisation;
 use crate::options::{read_options, TpiOptions};
 use crate::pattern::TpiPattern;
@@ -57,7 +59,10 @@ impl State {
     /// The current mesh, assembled if needed.
     fn mesh(&mut self) -> Arc<Discretisation> {
         let live = &mut self.live;
-        Arc::clone(self.mesh.get_or_insert_with(|| Arc::new(live.take_discretisation())))
+        Arc::clone(
+            self.mesh
+                .get_or_insert_with(|| Arc::new(live.take_discretisation())),
+        )
     }
 
     /// Applies the pending edits: one point edit through live editing, anything else (a
@@ -73,7 +78,11 @@ impl State {
             [Edit::Remove(i)] => self.live.remove_point(*i)?,
             [Edit::Surface] => self.live.set_surface(Box::new(self.surface.clone()))?,
             _ => {
-                self.live = LiveSurface::new(Box::new(self.surface.clone()), self.points.clone(), self.options)?;
+                self.live = LiveSurface::new(
+                    Box::new(self.surface.clone()),
+                    self.points.clone(),
+                    self.options,
+                )?;
             }
         }
         self.pending.clear();
@@ -267,7 +276,10 @@ pub unsafe extern "C" fn tpi_discrete_surface_add_point(
 /// # Safety
 /// `discrete_surface` is NULL or a live handle.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_discrete_surface_remove_point(discrete_surface: *mut TpiDiscreteSurface, index: usize) -> TpiStatus {
+pub unsafe extern "C" fn tpi_discrete_surface_remove_point(
+    discrete_surface: *mut TpiDiscreteSurface,
+    index: usize,
+) -> TpiStatus {
     ffi_boundary! {
         // SAFETY: the caller's contract.
         let ds = unsafe { handle(discrete_surface.cast_const()) }?;
@@ -341,7 +353,9 @@ pub unsafe extern "C" fn tpi_discrete_surface_pending_edits(
 /// # Safety
 /// `discrete_surface` is NULL or a live handle.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_discrete_surface_recompute(discrete_surface: *mut TpiDiscreteSurface) -> TpiStatus {
+pub unsafe extern "C" fn tpi_discrete_surface_recompute(
+    discrete_surface: *mut TpiDiscreteSurface,
+) -> TpiStatus {
     ffi_boundary! {
         // SAFETY: the caller's contract.
         let ds = unsafe { handle(discrete_surface.cast_const()) }?;

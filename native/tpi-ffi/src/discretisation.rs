@@ -7,7 +7,8 @@ use std::sync::{Arc, OnceLock};
 use tpi_core::{discretise, Diagnostic, Discretisation, QualityReport};
 
 use crate::boundary::{
-    check_copy_out, copy_out, copy_out_str, ffi_boundary, flag, try_ref, FfiError, FfiResult, OutPtr, TpiStatus,
+    check_copy_out, copy_out, copy_out_str, ffi_boundary, flag, try_ref, FfiError, FfiResult,
+    OutPtr, TpiStatus,
 };
 use crate::options::{read_options, TpiOptions};
 use crate::pattern::TpiPattern;
@@ -69,7 +70,8 @@ impl TpiDiscretisation {
     }
 
     fn pairs(&self) -> &[u32] {
-        self.pairs.get_or_init(|| self.result.neighbour_pairs().as_flattened().to_vec())
+        self.pairs
+            .get_or_init(|| self.result.neighbour_pairs().as_flattened().to_vec())
     }
 
     fn entries(&self) -> &[TpiDiagnosticEntry] {
@@ -80,9 +82,17 @@ impl TpiDiscretisation {
                 let diagnostic = u32::try_from(index).unwrap_or(u32::MAX);
                 let points = d.points();
                 if points.is_empty() {
-                    entries.push(TpiDiagnosticEntry { point: TPI_NO_POINT, kind, diagnostic });
+                    entries.push(TpiDiagnosticEntry {
+                        point: TPI_NO_POINT,
+                        kind,
+                        diagnostic,
+                    });
                 }
-                entries.extend(points.into_iter().map(|point| TpiDiagnosticEntry { point, kind, diagnostic }));
+                entries.extend(points.into_iter().map(|point| TpiDiagnosticEntry {
+                    point,
+                    kind,
+                    diagnostic,
+                }));
             }
             entries
         })
@@ -90,13 +100,19 @@ impl TpiDiscretisation {
 
     fn quality(&self) -> FfiResult<&QualityReport> {
         self.result.quality.as_ref().ok_or_else(|| {
-            FfiError::new(TpiStatus::Unavailable, "the quality report was switched off (options.quality_report = 0)")
+            FfiError::new(
+                TpiStatus::Unavailable,
+                "the quality report was switched off (options.quality_report = 0)",
+            )
         })
     }
 }
 
 fn json_error(e: serde_json::Error) -> FfiError {
-    FfiError::new(TpiStatus::Panic, format!("internal error: JSON serialisation failed: {e}"))
+    FfiError::new(
+        TpiStatus::Panic,
+        format!("internal error: JSON serialisation failed: {e}"),
+    )
 }
 
 /// Gets or fills a cached string.
@@ -374,7 +390,10 @@ pub unsafe extern "C" fn tpi_discretisation_free(discretisation: *mut TpiDiscret
 /// # Safety
 /// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_discretisation_facet_count(discretisation: *const TpiDiscretisation, out: *mut usize) -> TpiStatus {
+pub unsafe extern "C" fn tpi_discretisation_facet_count(
+    discretisation: *const TpiDiscretisation,
+    out: *mut usize,
+) -> TpiStatus {
     ffi_boundary! {
         // SAFETY: the caller's contract.
         let d = unsafe { handle(discretisation) }?;
@@ -390,7 +409,10 @@ pub unsafe extern "C" fn tpi_discretisation_facet_count(discretisation: *const T
 /// # Safety
 /// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_discretisation_vertex_count(discretisation: *const TpiDiscretisation, out: *mut usize) -> TpiStatus {
+pub unsafe extern "C" fn tpi_discretisation_vertex_count(
+    discretisation: *const TpiDiscretisation,
+    out: *mut usize,
+) -> TpiStatus {
     ffi_boundary! {
         // SAFETY: the caller's contract.
         let d = unsafe { handle(discretisation) }?;
@@ -661,7 +683,10 @@ pub unsafe extern "C" fn tpi_discretisation_quality_json(
 /// # Safety
 /// `discretisation` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_discretisation_diagnostic_count(discretisation: *const TpiDiscretisation, out: *mut usize) -> TpiStatus {
+pub unsafe extern "C" fn tpi_discretisation_diagnostic_count(
+    discretisation: *const TpiDiscretisation,
+    out: *mut usize,
+) -> TpiStatus {
     ffi_boundary! {
         // SAFETY: the caller's contract.
         let d = unsafe { handle(discretisation) }?;

@@ -33,11 +33,11 @@ compile_error!("tpi-ffi must be built with panic = \"unwind\": its panic boundar
 
 // In this order in the header.
 pub mod boundary;
-pub mod options;
-pub mod surface;
-pub mod pattern;
-pub mod discretisation;
 pub mod discrete_surface;
+pub mod discretisation;
+pub mod options;
+pub mod pattern;
+pub mod surface;
 
 use std::ffi::c_char;
 
@@ -107,7 +107,11 @@ pub extern "C" fn tpi_status_name(status: u32) -> *const c_char {
 /// `buf` is NULL or valid for writing `capacity` chars; `needed` is NULL or valid for
 /// writing a `size_t`.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_last_error_message(buf: *mut c_char, capacity: usize, needed: *mut usize) -> TpiStatus {
+pub unsafe extern "C" fn tpi_last_error_message(
+    buf: *mut c_char,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
     let message = last_error();
     let reported = message.as_str();
     let status = ffi_boundary! {

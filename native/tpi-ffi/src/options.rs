@@ -66,17 +66,27 @@ impl TpiOptions {
     pub fn to_core(&self) -> FfiResult<DiscretiseOptions> {
         let far_vertex_factor = finite("options.far_vertex_factor", self.far_vertex_factor)?;
         if far_vertex_factor <= 0.0 {
-            return Err(FfiError::invalid(format!("options.far_vertex_factor is {far_vertex_factor}; it must be > 0")));
+            return Err(FfiError::invalid(format!(
+                "options.far_vertex_factor is {far_vertex_factor}; it must be > 0"
+            )));
         }
         let weld_tolerance = finite("options.weld_tolerance", self.weld_tolerance)?;
         let flat_tolerance = finite("options.flat_tolerance", self.flat_tolerance)?;
-        for (name, value) in [("options.weld_tolerance", weld_tolerance), ("options.flat_tolerance", flat_tolerance)] {
+        for (name, value) in [
+            ("options.weld_tolerance", weld_tolerance),
+            ("options.flat_tolerance", flat_tolerance),
+        ] {
             if value < 0.0 {
-                return Err(FfiError::invalid(format!("{name} is {value}; it must be >= 0")));
+                return Err(FfiError::invalid(format!(
+                    "{name} is {value}; it must be >= 0"
+                )));
             }
         }
         if self.reserved != 0 {
-            return Err(FfiError::invalid(format!("options.reserved is {}; it must be 0", self.reserved)));
+            return Err(FfiError::invalid(format!(
+                "options.reserved is {}; it must be 0",
+                self.reserved
+            )));
         }
         Ok(DiscretiseOptions {
             envelope_repair: flag("options.envelope_repair", self.envelope_repair)?,
@@ -128,7 +138,13 @@ pub unsafe fn read_options(ptr: *const TpiOptions) -> FfiResult<DiscretiseOption
     let mut options = TpiOptions::defaults();
     // SAFETY: `size` bytes are readable (contract) and fit in `options` (clamped); the
     // fields are plain numbers, valid for any bytes.
-    unsafe { std::ptr::copy_nonoverlapping(ptr.cast::<u8>(), (&mut options as *mut TpiOptions).cast::<u8>(), size) };
+    unsafe {
+        std::ptr::copy_nonoverlapping(
+            ptr.cast::<u8>(),
+            (&mut options as *mut TpiOptions).cast::<u8>(),
+            size,
+        )
+    };
     options.to_core()
 }
 

@@ -4,7 +4,9 @@ use std::ffi::c_char;
 
 use tpi_core::pattern::{Generator, GridSize, Pattern};
 
-use crate::boundary::{copy_out, ffi_boundary, try_pairs, try_ref, try_str, FfiResult, OutPtr, TpiStatus};
+use crate::boundary::{
+    copy_out, ffi_boundary, try_pairs, try_ref, try_str, FfiResult, OutPtr, TpiStatus,
+};
 
 /// A set of pattern points (s, t) in the normalised square [0, 1]^2, mapped linearly onto a
 /// surface's domain: u = u_min + s (u_max - u_min), v = v_min + t (v_max - v_min). Immutable
@@ -43,7 +45,11 @@ fn generate(generator: Generator) -> FfiResult<Pattern> {
 /// `uv` is NULL or valid for reading `uv_len` doubles; `out` is NULL or valid for writing a
 /// pointer.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_pattern_new(uv: *const f64, uv_len: usize, out: *mut *mut TpiPattern) -> TpiStatus {
+pub unsafe extern "C" fn tpi_pattern_new(
+    uv: *const f64,
+    uv_len: usize,
+    out: *mut *mut TpiPattern,
+) -> TpiStatus {
     ffi_boundary! {
         create(out, || {
             // SAFETY: the caller's contract.
@@ -64,7 +70,11 @@ pub unsafe extern "C" fn tpi_pattern_new(uv: *const f64, uv_len: usize, out: *mu
 /// # Safety
 /// `out` is NULL or valid for writing a pointer.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_pattern_new_grid(nu: usize, nv: usize, out: *mut *mut TpiPattern) -> TpiStatus {
+pub unsafe extern "C" fn tpi_pattern_new_grid(
+    nu: usize,
+    nv: usize,
+    out: *mut *mut TpiPattern,
+) -> TpiStatus {
     ffi_boundary! { create(out, || generate(Generator::Grid(GridSize::Counts { nu, nv }))) }
 }
 
@@ -76,7 +86,11 @@ pub unsafe extern "C" fn tpi_pattern_new_grid(nu: usize, nv: usize, out: *mut *m
 /// # Safety
 /// `out` is NULL or valid for writing a pointer.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_pattern_new_hex(nu: usize, nv: usize, out: *mut *mut TpiPattern) -> TpiStatus {
+pub unsafe extern "C" fn tpi_pattern_new_hex(
+    nu: usize,
+    nv: usize,
+    out: *mut *mut TpiPattern,
+) -> TpiStatus {
     ffi_boundary! { create(out, || generate(Generator::Hex(GridSize::Counts { nu, nv }))) }
 }
 
@@ -109,7 +123,11 @@ pub unsafe extern "C" fn tpi_pattern_new_jitter(
 /// # Safety
 /// `out` is NULL or valid for writing a pointer.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_pattern_new_random(count: usize, seed: u64, out: *mut *mut TpiPattern) -> TpiStatus {
+pub unsafe extern "C" fn tpi_pattern_new_random(
+    count: usize,
+    seed: u64,
+    out: *mut *mut TpiPattern,
+) -> TpiStatus {
     ffi_boundary! { create(out, || generate(Generator::Random { count, seed })) }
 }
 
@@ -123,7 +141,11 @@ pub unsafe extern "C" fn tpi_pattern_new_random(count: usize, seed: u64, out: *m
 /// # Safety
 /// `out` is NULL or valid for writing a pointer.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_pattern_new_poisson(radius: f64, seed: u64, out: *mut *mut TpiPattern) -> TpiStatus {
+pub unsafe extern "C" fn tpi_pattern_new_poisson(
+    radius: f64,
+    seed: u64,
+    out: *mut *mut TpiPattern,
+) -> TpiStatus {
     ffi_boundary! { create(out, || generate(Generator::Poisson { radius, seed })) }
 }
 
@@ -138,7 +160,10 @@ pub unsafe extern "C" fn tpi_pattern_new_poisson(radius: f64, seed: u64, out: *m
 /// # Safety
 /// `spec` is NULL or a NUL-terminated string; `out` is NULL or valid for writing a pointer.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_pattern_new_from_spec(spec: *const c_char, out: *mut *mut TpiPattern) -> TpiStatus {
+pub unsafe extern "C" fn tpi_pattern_new_from_spec(
+    spec: *const c_char,
+    out: *mut *mut TpiPattern,
+) -> TpiStatus {
     ffi_boundary! {
         create(out, || {
             // SAFETY: the caller's contract.
@@ -170,7 +195,10 @@ pub unsafe extern "C" fn tpi_pattern_free(pattern: *mut TpiPattern) {
 /// # Safety
 /// `pattern` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_pattern_point_count(pattern: *const TpiPattern, out: *mut usize) -> TpiStatus {
+pub unsafe extern "C" fn tpi_pattern_point_count(
+    pattern: *const TpiPattern,
+    out: *mut usize,
+) -> TpiStatus {
     ffi_boundary! {
         // SAFETY: the caller's contract.
         let pattern = unsafe { try_ref(pattern, "pattern") }?;

@@ -5,8 +5,8 @@ use tpi_core::spec::SurfaceModel;
 use tpi_core::{AnalyticSurface, LocalGeometry, NurbsSurface, Surface, TpiError};
 
 use crate::boundary::{
-    check_copy_out, copy_out, ffi_boundary, finite, try_pairs, try_ref, try_slice, FfiError, OutPtr,
-    TpiStatus,
+    check_copy_out, copy_out, ffi_boundary, finite, try_pairs, try_ref, try_slice, FfiError,
+    OutPtr, TpiStatus,
 };
 
 /// A surface: a NURBS surface or an analytic one. Immutable once created.
@@ -71,7 +71,10 @@ impl TpiSample {
 }
 
 /// Stores a new surface handle through `out`, or the error.
-fn create(out: *mut *mut TpiSurface, build: impl FnOnce() -> Result<SurfaceModel, FfiError>) -> Result<(), FfiError> {
+fn create(
+    out: *mut *mut TpiSurface,
+    build: impl FnOnce() -> Result<SurfaceModel, FfiError>,
+) -> Result<(), FfiError> {
     // SAFETY: `out` is NULL or valid for writes (the contract of every create call).
     let out = unsafe { OutPtr::handle(out, "out") }?;
     let model = build()?;
@@ -342,7 +345,10 @@ pub unsafe extern "C" fn tpi_surface_free(surface: *mut TpiSurface) {
 /// # Safety
 /// `surface` is NULL or a live handle; `out` is NULL or valid for writing a `TpiDomain`.
 #[no_mangle]
-pub unsafe extern "C" fn tpi_surface_domain(surface: *const TpiSurface, out: *mut TpiDomain) -> TpiStatus {
+pub unsafe extern "C" fn tpi_surface_domain(
+    surface: *const TpiSurface,
+    out: *mut TpiDomain,
+) -> TpiStatus {
     ffi_boundary! {
         // SAFETY: the caller's contract.
         let surface = unsafe { try_ref(surface, "surface") }?;

@@ -20,7 +20,11 @@ fn status_numbers_are_fixed() {
         (TpiStatus::NullPointer, 1, "TPI_STATUS_NULL_POINTER"),
         (TpiStatus::InvalidArgument, 2, "TPI_STATUS_INVALID_ARGUMENT"),
         (TpiStatus::BufferTooSmall, 3, "TPI_STATUS_BUFFER_TOO_SMALL"),
-        (TpiStatus::IndexOutOfRange, 4, "TPI_STATUS_INDEX_OUT_OF_RANGE"),
+        (
+            TpiStatus::IndexOutOfRange,
+            4,
+            "TPI_STATUS_INDEX_OUT_OF_RANGE",
+        ),
         (TpiStatus::NonFinite, 5, "TPI_STATUS_NON_FINITE"),
         (TpiStatus::InvalidNurbs, 6, "TPI_STATUS_INVALID_NURBS"),
         (TpiStatus::InvalidPattern, 7, "TPI_STATUS_INVALID_PATTERN"),
@@ -29,24 +33,44 @@ fn status_numbers_are_fixed() {
         (TpiStatus::OutOfDomain, 10, "TPI_STATUS_OUT_OF_DOMAIN"),
         (TpiStatus::Unavailable, 11, "TPI_STATUS_UNAVAILABLE"),
     ];
-    assert_eq!(TpiStatus::ALL.len(), expected.len(), "a new status needs a line here, with a new number");
-    let header = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../include/tpi.h")).expect("header");
+    assert_eq!(
+        TpiStatus::ALL.len(),
+        expected.len(),
+        "a new status needs a line here, with a new number"
+    );
+    let header =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../include/tpi.h"))
+            .expect("header");
     for (status, number, name) in expected {
         assert_eq!(status as u32, number);
         assert_eq!(status.name(), name);
         // SAFETY: static NUL-terminated strings.
-        assert_eq!(unsafe { CStr::from_ptr(tpi_status_name(number)) }.to_str(), Ok(name));
-        assert!(header.contains(&format!("{name} = {number},")), "{name} = {number} in the header");
+        assert_eq!(
+            unsafe { CStr::from_ptr(tpi_status_name(number)) }.to_str(),
+            Ok(name)
+        );
+        assert!(
+            header.contains(&format!("{name} = {number},")),
+            "{name} = {number} in the header"
+        );
     }
     // SAFETY: as above.
-    assert_eq!(unsafe { CStr::from_ptr(tpi_status_name(12)) }.to_str(), Ok("TPI_STATUS_UNKNOWN"));
+    assert_eq!(
+        unsafe { CStr::from_ptr(tpi_status_name(12)) }.to_str(),
+        Ok("TPI_STATUS_UNKNOWN")
+    );
     // SAFETY: as above.
-    assert_eq!(unsafe { CStr::from_ptr(tpi_status_name(u32::MAX)) }.to_str(), Ok("TPI_STATUS_UNKNOWN"));
+    assert_eq!(
+        unsafe { CStr::from_ptr(tpi_status_name(u32::MAX)) }.to_str(),
+        Ok("TPI_STATUS_UNKNOWN")
+    );
 }
 
 #[test]
 fn flag_and_kind_numbers_match_the_core() {
-    use tpi_core::quality::{FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP};
+    use tpi_core::quality::{
+        FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
+    };
     assert_eq!(TPI_FACET_OPEN, FLAG_OPEN);
     assert_eq!(TPI_FACET_NON_CONVEX, FLAG_NON_CONVEX);
     assert_eq!(TPI_FACET_NON_SIMPLE, FLAG_NON_SIMPLE);
@@ -64,8 +88,14 @@ fn flag_and_kind_numbers_match_the_core() {
 #[test]
 fn struct_layouts_are_fixed() {
     assert_eq!(size_of::<TpiOptions>(), TPI_OPTIONS_SIZE_V1 as usize);
-    assert_eq!(size_of::<TpiQualityReport>(), TPI_QUALITY_REPORT_SIZE_V2 as usize);
-    assert_eq!(offset_of!(TpiQualityReport, invalid_facets), TPI_QUALITY_REPORT_SIZE_V1 as usize);
+    assert_eq!(
+        size_of::<TpiQualityReport>(),
+        TPI_QUALITY_REPORT_SIZE_V2 as usize
+    );
+    assert_eq!(
+        offset_of!(TpiQualityReport, invalid_facets),
+        TPI_QUALITY_REPORT_SIZE_V1 as usize
+    );
     assert_eq!(align_of::<TpiOptions>(), 8);
     assert_eq!(offset_of!(TpiOptions, far_vertex_factor), 16);
     assert_eq!(offset_of!(TpiQualityReport, facet_count), 8);
@@ -87,17 +117,29 @@ fn options_default_round_trips_and_respects_struct_size() {
     // SAFETY: a full TpiOptions.
     ok(unsafe { tpi_options_default(&mut options) });
     assert_eq!(options, TpiOptions::defaults());
-    assert_eq!(options.to_core().map_err(|e| e.message), Ok(DiscretiseOptions::default()));
+    assert_eq!(
+        options.to_core().map_err(|e| e.message),
+        Ok(DiscretiseOptions::default())
+    );
 
     // Not set: rejected, nothing written.
-    let mut zeroed = TpiOptions { struct_size: 0, ..TpiOptions::defaults() };
+    let mut zeroed = TpiOptions {
+        struct_size: 0,
+        ..TpiOptions::defaults()
+    };
     zeroed.weld_tolerance = 123.0;
     // SAFETY: a full TpiOptions.
-    assert_eq!(unsafe { tpi_options_default(&mut zeroed) }, TpiStatus::InvalidArgument);
+    assert_eq!(
+        unsafe { tpi_options_default(&mut zeroed) },
+        TpiStatus::InvalidArgument
+    );
     assert!(last_error().contains("struct_size"));
     assert_eq!(zeroed.weld_tolerance, 123.0);
     // SAFETY: NULL.
-    assert_eq!(unsafe { tpi_options_default(std::ptr::null_mut()) }, TpiStatus::NullPointer);
+    assert_eq!(
+        unsafe { tpi_options_default(std::ptr::null_mut()) },
+        TpiStatus::NullPointer
+    );
 
     // A caller with a bigger (newer) struct: only this library's bytes are written.
     #[repr(C)]
@@ -105,12 +147,25 @@ fn options_default_round_trips_and_respects_struct_size() {
         options: TpiOptions,
         future: [u8; 16],
     }
-    let mut newer = Newer { options: TpiOptions { struct_size: size_of::<Newer>() as u32, ..TpiOptions::defaults() }, future: [0xAB; 16] };
+    let mut newer = Newer {
+        options: TpiOptions {
+            struct_size: size_of::<Newer>() as u32,
+            ..TpiOptions::defaults()
+        },
+        future: [0xAB; 16],
+    };
     newer.options.flat_tolerance = 5.0;
     // SAFETY: `newer` holds struct_size bytes.
     ok(unsafe { tpi_options_default(&mut newer.options) });
-    assert_eq!(newer.options.struct_size, size_of::<Newer>() as u32, "struct_size is left as the caller set it");
-    assert_eq!(newer.options.flat_tolerance, TpiOptions::defaults().flat_tolerance);
+    assert_eq!(
+        newer.options.struct_size,
+        size_of::<Newer>() as u32,
+        "struct_size is left as the caller set it"
+    );
+    assert_eq!(
+        newer.options.flat_tolerance,
+        TpiOptions::defaults().flat_tolerance
+    );
     assert_eq!(newer.future, [0xAB; 16]);
 }
 
@@ -119,19 +174,43 @@ fn invalid_options_are_rejected_by_name() {
     let surface = dome(3.0);
     let p = pattern(&jittered_grid(5));
     let cases: [(fn(&mut TpiOptions), TpiStatus, &str); 6] = [
-        (|o| o.far_vertex_factor = f64::NAN, TpiStatus::NonFinite, "far_vertex_factor"),
-        (|o| o.far_vertex_factor = 0.0, TpiStatus::InvalidArgument, "far_vertex_factor"),
-        (|o| o.weld_tolerance = -1.0, TpiStatus::InvalidArgument, "weld_tolerance"),
-        (|o| o.envelope_repair = 2, TpiStatus::InvalidArgument, "envelope_repair"),
+        (
+            |o| o.far_vertex_factor = f64::NAN,
+            TpiStatus::NonFinite,
+            "far_vertex_factor",
+        ),
+        (
+            |o| o.far_vertex_factor = 0.0,
+            TpiStatus::InvalidArgument,
+            "far_vertex_factor",
+        ),
+        (
+            |o| o.weld_tolerance = -1.0,
+            TpiStatus::InvalidArgument,
+            "weld_tolerance",
+        ),
+        (
+            |o| o.envelope_repair = 2,
+            TpiStatus::InvalidArgument,
+            "envelope_repair",
+        ),
         (|o| o.reserved = 1, TpiStatus::InvalidArgument, "reserved"),
-        (|o| o.struct_size = 8, TpiStatus::InvalidArgument, "struct_size"),
+        (
+            |o| o.struct_size = 8,
+            TpiStatus::InvalidArgument,
+            "struct_size",
+        ),
     ];
     for (edit, status, field) in cases {
         let mut options = TpiOptions::defaults();
         edit(&mut options);
         let mut d = std::ptr::null_mut();
         // SAFETY: live handles, a full options struct, valid out pointer.
-        assert_eq!(unsafe { tpi_discretise(surface, p, &options, &mut d) }, status, "{field}");
+        assert_eq!(
+            unsafe { tpi_discretise(surface, p, &options, &mut d) },
+            status,
+            "{field}"
+        );
         assert!(d.is_null());
         assert!(last_error().contains(field), "{}", last_error());
     }
@@ -150,23 +229,40 @@ fn copy_out_follows_the_convention() {
     // SAFETY (all calls): live handle; buffers as described.
     unsafe {
         // Size query.
-        assert_eq!(tpi_pattern_points(p, std::ptr::null_mut(), 0, &mut needed), TpiStatus::BufferTooSmall);
+        assert_eq!(
+            tpi_pattern_points(p, std::ptr::null_mut(), 0, &mut needed),
+            TpiStatus::BufferTooSmall
+        );
         assert_eq!(needed, 6);
         // Too small: needed set, nothing written.
         needed = 0;
-        assert_eq!(tpi_pattern_points(p, buf.as_mut_ptr(), 5, &mut needed), TpiStatus::BufferTooSmall);
+        assert_eq!(
+            tpi_pattern_points(p, buf.as_mut_ptr(), 5, &mut needed),
+            TpiStatus::BufferTooSmall
+        );
         assert_eq!(needed, 6);
         assert_eq!(buf, [-1.0; 6]);
         assert!(last_error().contains("capacity 5"), "{}", last_error());
         // NULL out with a capacity.
-        assert_eq!(tpi_pattern_points(p, std::ptr::null_mut(), 6, &mut needed), TpiStatus::NullPointer);
+        assert_eq!(
+            tpi_pattern_points(p, std::ptr::null_mut(), 6, &mut needed),
+            TpiStatus::NullPointer
+        );
         // Enough, with and without `needed`.
-        ok(tpi_pattern_points(p, buf.as_mut_ptr(), 6, std::ptr::null_mut()));
+        ok(tpi_pattern_points(
+            p,
+            buf.as_mut_ptr(),
+            6,
+            std::ptr::null_mut(),
+        ));
         assert_eq!(buf, [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]);
         // Misaligned.
         let mut bytes = [0u8; 64];
         let misaligned = bytes.as_mut_ptr().add(1).cast::<f64>();
-        assert_eq!(tpi_pattern_points(p, misaligned, 6, &mut needed), TpiStatus::InvalidArgument);
+        assert_eq!(
+            tpi_pattern_points(p, misaligned, 6, &mut needed),
+            TpiStatus::InvalidArgument
+        );
         assert!(last_error().contains("aligned"));
         tpi_pattern_free(p);
     }
@@ -176,7 +272,10 @@ fn copy_out_follows_the_convention() {
 fn the_last_error_is_per_thread_and_cleared_by_success() {
     let mut out = std::ptr::null_mut();
     // SAFETY: NULL spec is checked.
-    assert_eq!(unsafe { tpi_pattern_new_from_spec(std::ptr::null(), &mut out) }, TpiStatus::NullPointer);
+    assert_eq!(
+        unsafe { tpi_pattern_new_from_spec(std::ptr::null(), &mut out) },
+        TpiStatus::NullPointer
+    );
     assert_eq!(last_error(), "spec is NULL");
     let other = std::thread::spawn(last_error).join().expect("thread");
     assert_eq!(other, "");
@@ -184,7 +283,10 @@ fn the_last_error_is_per_thread_and_cleared_by_success() {
     let mut tiny = [0 as c_char; 2];
     let mut needed = 0;
     // SAFETY: tiny holds 2 chars.
-    assert_eq!(unsafe { tpi_last_error_message(tiny.as_mut_ptr(), 2, &mut needed) }, TpiStatus::BufferTooSmall);
+    assert_eq!(
+        unsafe { tpi_last_error_message(tiny.as_mut_ptr(), 2, &mut needed) },
+        TpiStatus::BufferTooSmall
+    );
     assert_eq!(needed, "spec is NULL".len() + 1);
     assert_eq!(last_error(), "spec is NULL");
     // SAFETY: valid out pointer.
@@ -197,12 +299,24 @@ fn the_last_error_is_per_thread_and_cleared_by_success() {
 #[test]
 fn sampling_forwards_to_the_core() {
     let surface = dome(3.0);
-    let points: Vec<glam::DVec3> = dome_points(3.0).chunks_exact(3).map(glam::DVec3::from_slice).collect();
-    let core = NurbsSurface::new([3, 3], [4, 4], &DOME_KNOTS, &DOME_KNOTS, &points, None).expect("dome");
+    let points: Vec<glam::DVec3> = dome_points(3.0)
+        .chunks_exact(3)
+        .map(glam::DVec3::from_slice)
+        .collect();
+    let core =
+        NurbsSurface::new([3, 3], [4, 4], &DOME_KNOTS, &DOME_KNOTS, &points, None).expect("dome");
     let uv = [0.0, 0.0, 0.25, 0.75, 0.5, 0.5, 1.0, 0.3];
     let mut samples = [TpiSample::default(); 4];
     // SAFETY: live handle, arrays of the given lengths.
-    ok(unsafe { tpi_surface_evaluate(surface, uv.as_ptr(), uv.len(), samples.as_mut_ptr(), samples.len()) });
+    ok(unsafe {
+        tpi_surface_evaluate(
+            surface,
+            uv.as_ptr(),
+            uv.len(),
+            samples.as_mut_ptr(),
+            samples.len(),
+        )
+    });
     for (k, sample) in samples.iter().enumerate() {
         let g = LocalGeometry::from_derivatives(&core.evaluate(uv[2 * k], uv[2 * k + 1]));
         assert_eq!(sample.point, g.point.to_array());
@@ -215,7 +329,15 @@ fn sampling_forwards_to_the_core() {
     let mut domain = TpiDomain::default();
     // SAFETY: live handle, valid out pointer.
     ok(unsafe { tpi_surface_domain(surface, &mut domain) });
-    assert_eq!(domain, TpiDomain { u_min: 0.0, u_max: 1.0, v_min: 0.0, v_max: 1.0 });
+    assert_eq!(
+        domain,
+        TpiDomain {
+            u_min: 0.0,
+            u_max: 1.0,
+            v_min: 0.0,
+            v_max: 1.0
+        }
+    );
     // SAFETY: our handle.
     unsafe { tpi_surface_free(surface) };
 }
@@ -225,19 +347,43 @@ fn discretising_forwards_to_the_core() {
     let surface = dome(3.0);
     let points = jittered_grid(6);
     let mesh = discretise_from_scratch(surface, &points);
-    let control: Vec<glam::DVec3> = dome_points(3.0).chunks_exact(3).map(glam::DVec3::from_slice).collect();
-    let core = NurbsSurface::new([3, 3], [4, 4], &DOME_KNOTS, &DOME_KNOTS, &control, None).expect("dome");
+    let control: Vec<glam::DVec3> = dome_points(3.0)
+        .chunks_exact(3)
+        .map(glam::DVec3::from_slice)
+        .collect();
+    let core =
+        NurbsSurface::new([3, 3], [4, 4], &DOME_KNOTS, &DOME_KNOTS, &control, None).expect("dome");
     let expected = discretise(&core, &points, &DiscretiseOptions::default()).expect("discretise");
     assert_eq!(mesh.json, expected.to_json(false));
-    assert_eq!(mesh.vertices, expected.vertices.iter().flat_map(|v| v.to_array()).collect::<Vec<_>>());
+    assert_eq!(
+        mesh.vertices,
+        expected
+            .vertices
+            .iter()
+            .flat_map(|v| v.to_array())
+            .collect::<Vec<_>>()
+    );
     assert_eq!(mesh.facet_indices, expected.facet_loops);
-    assert_eq!(mesh.neighbour_pairs, expected.neighbour_pairs().as_flattened());
+    assert_eq!(
+        mesh.neighbour_pairs,
+        expected.neighbour_pairs().as_flattened()
+    );
     assert_eq!(mesh.dual_triangles, expected.dual_triangles.as_flattened());
     assert_eq!(mesh.facet_flags, expected.facet_flags);
     let quality = expected.quality.as_ref().expect("quality");
-    assert_eq!(mesh.quality_json, serde_json::to_string(quality).expect("json"));
-    assert_eq!(mesh.diagnostics_json, serde_json::to_string(&expected.diagnostics).expect("json"));
-    let entries: usize = expected.diagnostics.iter().map(|d| d.points().len().max(1)).sum();
+    assert_eq!(
+        mesh.quality_json,
+        serde_json::to_string(quality).expect("json")
+    );
+    assert_eq!(
+        mesh.diagnostics_json,
+        serde_json::to_string(&expected.diagnostics).expect("json")
+    );
+    let entries: usize = expected
+        .diagnostics
+        .iter()
+        .map(|d| d.points().len().max(1))
+        .sum();
     assert_eq!(mesh.diagnostic_entries.len(), entries);
     // SAFETY: our handle.
     unsafe { tpi_surface_free(surface) };
@@ -250,29 +396,49 @@ fn the_quality_struct_carries_the_json_numbers() {
     let mut d = std::ptr::null_mut();
     // SAFETY: live handles, valid out pointer.
     ok(unsafe { tpi_discretise(surface, p, std::ptr::null(), &mut d) });
-    let mut q = TpiQualityReport { struct_size: size_of::<TpiQualityReport>() as u32, ..Default::default() };
+    let mut q = TpiQualityReport {
+        struct_size: size_of::<TpiQualityReport>() as u32,
+        ..Default::default()
+    };
     // SAFETY: live handle, a full struct.
     ok(unsafe { tpi_discretisation_quality(d, &mut q) });
     // SAFETY: live handle; buffers from read_string.
-    let json: serde_json::Value =
-        serde_json::from_str(&read_string(|o, c, n| unsafe { tpi_discretisation_quality_json(d, o, c, n) })).expect("json");
+    let json: serde_json::Value = serde_json::from_str(&read_string(|o, c, n| unsafe {
+        tpi_discretisation_quality_json(d, o, c, n)
+    }))
+    .expect("json");
     assert_eq!(json["facet_count"].as_u64(), Some(q.facet_count));
     assert_eq!(json["vertex_count"].as_u64(), Some(q.vertex_count));
     assert_eq!(json["edge_count"].as_u64(), Some(q.edge_count));
-    assert_eq!(json["euler_characteristic"].as_i64(), Some(q.euler_characteristic));
+    assert_eq!(
+        json["euler_characteristic"].as_i64(),
+        Some(q.euler_characteristic)
+    );
     assert_eq!(json["max_deviation"].as_f64(), Some(q.max_deviation));
-    assert_eq!(json["neighbours"]["envelope_repairs"].as_u64(), Some(q.envelope_repairs));
+    assert_eq!(
+        json["neighbours"]["envelope_repairs"].as_u64(),
+        Some(q.envelope_repairs)
+    );
     assert_eq!(json["diagnostic_count"].as_u64(), Some(q.diagnostic_count));
     assert_eq!(json["all_finite"].as_bool(), Some(q.all_finite == 1));
     assert_eq!(json["invalid_facets"].as_u64(), Some(q.invalid_facets));
     assert_eq!(json["open_facets"].as_u64(), Some(q.open_facets));
-    assert_eq!(json["neighbours"]["validity_flips"].as_u64(), Some(q.validity_flips));
+    assert_eq!(
+        json["neighbours"]["validity_flips"].as_u64(),
+        Some(q.validity_flips)
+    );
     assert_eq!(q.facet_count, 36);
     assert_eq!(q.struct_size, size_of::<TpiQualityReport>() as u32);
 
-    let mut small = TpiQualityReport { struct_size: 16, ..Default::default() };
+    let mut small = TpiQualityReport {
+        struct_size: 16,
+        ..Default::default()
+    };
     // SAFETY: live handle, a full struct.
-    assert_eq!(unsafe { tpi_discretisation_quality(d, &mut small) }, TpiStatus::InvalidArgument);
+    assert_eq!(
+        unsafe { tpi_discretisation_quality(d, &mut small) },
+        TpiStatus::InvalidArgument
+    );
     // SAFETY: our handles.
     unsafe {
         tpi_discretisation_free(d);
@@ -285,17 +451,34 @@ fn the_quality_struct_carries_the_json_numbers() {
 fn without_the_report_quality_is_unavailable_and_flags_are_empty() {
     let surface = dome(3.0);
     let p = pattern(&jittered_grid(5));
-    let options = TpiOptions { quality_report: 0, ..TpiOptions::defaults() };
+    let options = TpiOptions {
+        quality_report: 0,
+        ..TpiOptions::defaults()
+    };
     let mut d = std::ptr::null_mut();
     // SAFETY: live handles, full options, valid out pointer.
     ok(unsafe { tpi_discretise(surface, p, &options, &mut d) });
-    let mut q = TpiQualityReport { struct_size: size_of::<TpiQualityReport>() as u32, ..Default::default() };
+    let mut q = TpiQualityReport {
+        struct_size: size_of::<TpiQualityReport>() as u32,
+        ..Default::default()
+    };
     let mut needed = 99;
     // SAFETY: live handle; buffers as given.
     unsafe {
-        assert_eq!(tpi_discretisation_quality(d, &mut q), TpiStatus::Unavailable);
-        assert_eq!(tpi_discretisation_quality_json(d, std::ptr::null_mut(), 0, &mut needed), TpiStatus::Unavailable);
-        ok(tpi_discretisation_facet_flags(d, std::ptr::null_mut(), 0, &mut needed));
+        assert_eq!(
+            tpi_discretisation_quality(d, &mut q),
+            TpiStatus::Unavailable
+        );
+        assert_eq!(
+            tpi_discretisation_quality_json(d, std::ptr::null_mut(), 0, &mut needed),
+            TpiStatus::Unavailable
+        );
+        ok(tpi_discretisation_facet_flags(
+            d,
+            std::ptr::null_mut(),
+            0,
+            &mut needed,
+        ));
         assert_eq!(needed, 0);
         tpi_discretisation_free(d);
         tpi_pattern_free(p);
@@ -307,11 +490,26 @@ fn without_the_report_quality_is_unavailable_and_flags_are_empty() {
 fn generators_forward_to_the_core() {
     let cases: Vec<(&str, Box<dyn Fn(*mut *mut TpiPattern) -> TpiStatus>)> = vec![
         // SAFETY (all): valid out pointers.
-        ("grid:4x3", Box::new(|o| unsafe { tpi_pattern_new_grid(4, 3, o) })),
-        ("hex:5x4", Box::new(|o| unsafe { tpi_pattern_new_hex(5, 4, o) })),
-        ("jitter:4x4:amount=0.3:seed=7", Box::new(|o| unsafe { tpi_pattern_new_jitter(4, 4, 0.3, 7, o) })),
-        ("random:25:seed=3", Box::new(|o| unsafe { tpi_pattern_new_random(25, 3, o) })),
-        ("poisson:0.2:seed=5", Box::new(|o| unsafe { tpi_pattern_new_poisson(0.2, 5, o) })),
+        (
+            "grid:4x3",
+            Box::new(|o| unsafe { tpi_pattern_new_grid(4, 3, o) }),
+        ),
+        (
+            "hex:5x4",
+            Box::new(|o| unsafe { tpi_pattern_new_hex(5, 4, o) }),
+        ),
+        (
+            "jitter:4x4:amount=0.3:seed=7",
+            Box::new(|o| unsafe { tpi_pattern_new_jitter(4, 4, 0.3, 7, o) }),
+        ),
+        (
+            "random:25:seed=3",
+            Box::new(|o| unsafe { tpi_pattern_new_random(25, 3, o) }),
+        ),
+        (
+            "poisson:0.2:seed=5",
+            Box::new(|o| unsafe { tpi_pattern_new_poisson(0.2, 5, o) }),
+        ),
     ];
     for (spec, make) in cases {
         let expected = Generator::parse(spec).expect("spec").generate().uv;
@@ -336,15 +534,33 @@ fn generators_forward_to_the_core() {
     let mut p = std::ptr::null_mut();
     // SAFETY: valid out pointers.
     unsafe {
-        assert_eq!(tpi_pattern_new_grid(0, 3, &mut p), TpiStatus::InvalidPattern);
-        assert_eq!(tpi_pattern_new_jitter(3, 3, 1.5, 0, &mut p), TpiStatus::InvalidPattern);
-        assert_eq!(tpi_pattern_new_random(0, 0, &mut p), TpiStatus::InvalidPattern);
-        assert_eq!(tpi_pattern_new_poisson(f64::NAN, 0, &mut p), TpiStatus::InvalidPattern);
+        assert_eq!(
+            tpi_pattern_new_grid(0, 3, &mut p),
+            TpiStatus::InvalidPattern
+        );
+        assert_eq!(
+            tpi_pattern_new_jitter(3, 3, 1.5, 0, &mut p),
+            TpiStatus::InvalidPattern
+        );
+        assert_eq!(
+            tpi_pattern_new_random(0, 0, &mut p),
+            TpiStatus::InvalidPattern
+        );
+        assert_eq!(
+            tpi_pattern_new_poisson(f64::NAN, 0, &mut p),
+            TpiStatus::InvalidPattern
+        );
         let bad = c"grid:3";
-        assert_eq!(tpi_pattern_new_from_spec(bad.as_ptr(), &mut p), TpiStatus::InvalidPattern);
+        assert_eq!(
+            tpi_pattern_new_from_spec(bad.as_ptr(), &mut p),
+            TpiStatus::InvalidPattern
+        );
         assert!(last_error().contains("grid:3"));
         let not_utf8 = c"grid:\xff";
-        assert_eq!(tpi_pattern_new_from_spec(not_utf8.as_ptr(), &mut p), TpiStatus::InvalidArgument);
+        assert_eq!(
+            tpi_pattern_new_from_spec(not_utf8.as_ptr(), &mut p),
+            TpiStatus::InvalidArgument
+        );
     }
     assert!(p.is_null());
 }
@@ -358,28 +574,69 @@ fn analytic_surfaces_forward_to_the_core() {
         // Build and discretise each, one at a time.
         type Make = unsafe fn(*mut *mut TpiSurface) -> TpiStatus;
         let cases: [(Make, TpiStatus); 8] = [
-            (|o| tpi_surface_new_elliptic_paraboloid(0.1, 0.2, -3.0, 3.0, -2.0, 2.0, o), TpiStatus::Ok),
-            (|o| tpi_surface_new_hyperbolic_paraboloid(0.1, 0.2, -3.0, 3.0, -2.0, 2.0, o), TpiStatus::Ok),
-            (|o| tpi_surface_new_sphere_cap(10.0, -3.0, 3.0, -3.0, 3.0, o), TpiStatus::Ok),
-            (|o| tpi_surface_new_sphere_cap_square(10.0, 4.0, o), TpiStatus::Ok),
-            (|o| tpi_surface_new_ellipsoid_cap(10.0, 8.0, 5.0, -3.0, 3.0, -3.0, 3.0, o), TpiStatus::Ok),
-            (|o| tpi_surface_new_egg_crate(1.0, 0.3, 2.8, 0.3, 2.8, o), TpiStatus::Ok),
-            (|o| tpi_surface_new_cylinder(5.0, -3.0, 3.0, 0.0, 10.0, o), TpiStatus::Degenerate),
-            (|o| tpi_surface_new_plane(0.1, 0.2, 1.0, 0.0, 1.0, 0.0, 1.0, o), TpiStatus::Degenerate),
+            (
+                |o| tpi_surface_new_elliptic_paraboloid(0.1, 0.2, -3.0, 3.0, -2.0, 2.0, o),
+                TpiStatus::Ok,
+            ),
+            (
+                |o| tpi_surface_new_hyperbolic_paraboloid(0.1, 0.2, -3.0, 3.0, -2.0, 2.0, o),
+                TpiStatus::Ok,
+            ),
+            (
+                |o| tpi_surface_new_sphere_cap(10.0, -3.0, 3.0, -3.0, 3.0, o),
+                TpiStatus::Ok,
+            ),
+            (
+                |o| tpi_surface_new_sphere_cap_square(10.0, 4.0, o),
+                TpiStatus::Ok,
+            ),
+            (
+                |o| tpi_surface_new_ellipsoid_cap(10.0, 8.0, 5.0, -3.0, 3.0, -3.0, 3.0, o),
+                TpiStatus::Ok,
+            ),
+            (
+                |o| tpi_surface_new_egg_crate(1.0, 0.3, 2.8, 0.3, 2.8, o),
+                TpiStatus::Ok,
+            ),
+            (
+                |o| tpi_surface_new_cylinder(5.0, -3.0, 3.0, 0.0, 10.0, o),
+                TpiStatus::Degenerate,
+            ),
+            (
+                |o| tpi_surface_new_plane(0.1, 0.2, 1.0, 0.0, 1.0, 0.0, 1.0, o),
+                TpiStatus::Degenerate,
+            ),
         ];
         for (k, (make, expected)) in cases.iter().enumerate() {
             let mut surface = std::ptr::null_mut();
             ok(make(&mut surface));
             let mut d = std::ptr::null_mut();
-            assert_eq!(tpi_discretise(surface, p, std::ptr::null(), &mut d), *expected, "case {k}: {}", last_error());
+            assert_eq!(
+                tpi_discretise(surface, p, std::ptr::null(), &mut d),
+                *expected,
+                "case {k}: {}",
+                last_error()
+            );
             tpi_discretisation_free(d);
             tpi_surface_free(surface);
         }
-        assert_eq!(tpi_surface_new_sphere_cap(1.0, -3.0, 3.0, -3.0, 3.0, &mut s), TpiStatus::InvalidArgument);
+        assert_eq!(
+            tpi_surface_new_sphere_cap(1.0, -3.0, 3.0, -3.0, 3.0, &mut s),
+            TpiStatus::InvalidArgument
+        );
         assert!(s.is_null());
-        assert_eq!(tpi_surface_new_elliptic_paraboloid(1.0, -1.0, 0.0, 1.0, 0.0, 1.0, &mut s), TpiStatus::InvalidArgument);
-        assert_eq!(tpi_surface_new_egg_crate(f64::NAN, 0.0, 1.0, 0.0, 1.0, &mut s), TpiStatus::NonFinite);
-        assert_eq!(tpi_surface_new_plane(0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, &mut s), TpiStatus::InvalidArgument);
+        assert_eq!(
+            tpi_surface_new_elliptic_paraboloid(1.0, -1.0, 0.0, 1.0, 0.0, 1.0, &mut s),
+            TpiStatus::InvalidArgument
+        );
+        assert_eq!(
+            tpi_surface_new_egg_crate(f64::NAN, 0.0, 1.0, 0.0, 1.0, &mut s),
+            TpiStatus::NonFinite
+        );
+        assert_eq!(
+            tpi_surface_new_plane(0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, &mut s),
+            TpiStatus::InvalidArgument
+        );
         assert!(s.is_null());
         tpi_pattern_free(p);
     }
@@ -398,7 +655,10 @@ fn a_bigger_quality_struct_gets_this_librarys_fields_and_their_size() {
     // SAFETY: live handles, valid out pointer.
     ok(unsafe { tpi_discretise(surface, p, std::ptr::null(), &mut d) });
     let mut newer = Newer {
-        report: TpiQualityReport { struct_size: size_of::<Newer>() as u32, ..Default::default() },
+        report: TpiQualityReport {
+            struct_size: size_of::<Newer>() as u32,
+            ..Default::default()
+        },
         future: [7, 7],
     };
     // SAFETY: `newer` holds struct_size bytes.
@@ -435,7 +695,15 @@ fn a_first_version_quality_struct_gets_only_its_bytes() {
     ok(unsafe { tpi_discretisation_quality(d, &mut q) });
     assert_eq!(q.struct_size, TPI_QUALITY_REPORT_SIZE_V1);
     assert_eq!(q.facet_count, 36);
-    assert_eq!([q.invalid_facets, q.open_facets, q.validity_flips, q.validity_unresolved], [sentinel; 4]);
+    assert_eq!(
+        [
+            q.invalid_facets,
+            q.open_facets,
+            q.validity_flips,
+            q.validity_unresolved
+        ],
+        [sentinel; 4]
+    );
     // SAFETY: our handles.
     unsafe {
         tpi_discretisation_free(d);

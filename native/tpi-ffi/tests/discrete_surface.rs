@@ -23,7 +23,11 @@ impl Fixture {
         ok(unsafe { tpi_discrete_surface_new(surface, p, std::ptr::null(), &mut ds) });
         // SAFETY: the discrete surface holds its own copy of the pattern.
         unsafe { tpi_pattern_free(p) };
-        Self { surface, ds, points }
+        Self {
+            surface,
+            ds,
+            points,
+        }
     }
 
     fn pending(&self) -> usize {
@@ -72,7 +76,11 @@ fn moving_a_point_gives_the_mesh_from_scratch() {
     ok(unsafe { tpi_discrete_surface_move_point(f.ds, 10, 0.41, 0.37) });
     f.points[10] = [0.41, 0.37];
     assert_eq!(f.pending(), 1);
-    assert_eq!(current_mesh(f.ds), before, "the mesh changes only at recompute");
+    assert_eq!(
+        current_mesh(f.ds),
+        before,
+        "the mesh changes only at recompute"
+    );
     f.recompute();
     assert_ne!(current_mesh(f.ds), before);
     f.check_against_scratch();
@@ -132,7 +140,12 @@ fn a_batch_of_edits_then_one_recompute_gives_the_mesh_from_scratch() {
     unsafe {
         ok(tpi_discrete_surface_move_point(f.ds, 0, 0.02, 0.03));
         ok(tpi_discrete_surface_remove_point(f.ds, 20));
-        ok(tpi_discrete_surface_add_point(f.ds, 0.97, 0.5, std::ptr::null_mut()));
+        ok(tpi_discrete_surface_add_point(
+            f.ds,
+            0.97,
+            0.5,
+            std::ptr::null_mut(),
+        ));
         ok(tpi_discrete_surface_move_point(f.ds, 30, 0.6, 0.66));
         ok(tpi_discrete_surface_set_surface(f.ds, other));
         tpi_surface_free(f.surface);
@@ -174,16 +187,43 @@ fn rejected_edits_change_nothing() {
     let n = f.points.len();
     // SAFETY: live handle throughout.
     unsafe {
-        assert_eq!(tpi_discrete_surface_move_point(f.ds, n, 0.5, 0.5), TpiStatus::IndexOutOfRange);
+        assert_eq!(
+            tpi_discrete_surface_move_point(f.ds, n, 0.5, 0.5),
+            TpiStatus::IndexOutOfRange
+        );
         assert!(last_error().contains(&n.to_string()));
-        assert_eq!(tpi_discrete_surface_remove_point(f.ds, n), TpiStatus::IndexOutOfRange);
-        assert_eq!(tpi_discrete_surface_remove_point(f.ds, usize::MAX), TpiStatus::IndexOutOfRange);
-        assert_eq!(tpi_discrete_surface_move_point(f.ds, 0, f64::NAN, 0.5), TpiStatus::NonFinite);
-        assert_eq!(tpi_discrete_surface_move_point(f.ds, 0, 0.5, f64::INFINITY), TpiStatus::NonFinite);
-        assert_eq!(tpi_discrete_surface_move_point(f.ds, 0, 1.5, 0.5), TpiStatus::InvalidPattern);
-        assert_eq!(tpi_discrete_surface_add_point(f.ds, -0.1, 0.5, std::ptr::null_mut()), TpiStatus::InvalidPattern);
-        assert_eq!(tpi_discrete_surface_add_point(f.ds, f64::NAN, 0.5, std::ptr::null_mut()), TpiStatus::NonFinite);
-        assert_eq!(tpi_discrete_surface_set_surface(f.ds, std::ptr::null()), TpiStatus::NullPointer);
+        assert_eq!(
+            tpi_discrete_surface_remove_point(f.ds, n),
+            TpiStatus::IndexOutOfRange
+        );
+        assert_eq!(
+            tpi_discrete_surface_remove_point(f.ds, usize::MAX),
+            TpiStatus::IndexOutOfRange
+        );
+        assert_eq!(
+            tpi_discrete_surface_move_point(f.ds, 0, f64::NAN, 0.5),
+            TpiStatus::NonFinite
+        );
+        assert_eq!(
+            tpi_discrete_surface_move_point(f.ds, 0, 0.5, f64::INFINITY),
+            TpiStatus::NonFinite
+        );
+        assert_eq!(
+            tpi_discrete_surface_move_point(f.ds, 0, 1.5, 0.5),
+            TpiStatus::InvalidPattern
+        );
+        assert_eq!(
+            tpi_discrete_surface_add_point(f.ds, -0.1, 0.5, std::ptr::null_mut()),
+            TpiStatus::InvalidPattern
+        );
+        assert_eq!(
+            tpi_discrete_surface_add_point(f.ds, f64::NAN, 0.5, std::ptr::null_mut()),
+            TpiStatus::NonFinite
+        );
+        assert_eq!(
+            tpi_discrete_surface_set_surface(f.ds, std::ptr::null()),
+            TpiStatus::NullPointer
+        );
     }
     assert_eq!(f.pending(), 0);
     f.check_against_scratch();
@@ -216,7 +256,14 @@ fn concurrent_edits_on_one_discrete_surface_are_serialised() {
                 for m in 0..5 {
                     let s = 0.02 + 0.2 * k as f64 + 0.03 * m as f64;
                     // SAFETY: the handle outlives the threads (joined below).
-                    ok(unsafe { tpi_discrete_surface_add_point(ds, s, 0.999 - 0.001 * k as f64, std::ptr::null_mut()) });
+                    ok(unsafe {
+                        tpi_discrete_surface_add_point(
+                            ds,
+                            s,
+                            0.999 - 0.001 * k as f64,
+                            std::ptr::null_mut(),
+                        )
+                    });
                 }
                 // SAFETY: as above.
                 ok(unsafe { tpi_discrete_surface_recompute(ds) });
@@ -247,7 +294,9 @@ fn single_edits_recomputed_one_by_one_give_the_mesh_from_scratch() {
     unsafe { tpi_pattern_free(p) };
     let mut state = 12345u64;
     let mut next = || {
-        state = state.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (state >> 11) as f64 / (1u64 << 53) as f64
     };
     for step in 0..60 {
@@ -256,7 +305,10 @@ fn single_edits_recomputed_one_by_one_give_the_mesh_from_scratch() {
         // SAFETY (all calls): live handle.
         match step % 6 {
             0..=3 => {
-                let q = [(points[i][0] + 0.03 * (next() - 0.5)).clamp(0.0, 1.0), (points[i][1] + 0.03 * (next() - 0.5)).clamp(0.0, 1.0)];
+                let q = [
+                    (points[i][0] + 0.03 * (next() - 0.5)).clamp(0.0, 1.0),
+                    (points[i][1] + 0.03 * (next() - 0.5)).clamp(0.0, 1.0),
+                ];
                 ok(unsafe { tpi_discrete_surface_move_point(ds, i, q[0], q[1]) });
                 points[i] = q;
             }
@@ -273,7 +325,11 @@ fn single_edits_recomputed_one_by_one_give_the_mesh_from_scratch() {
         // SAFETY: live handle.
         ok(unsafe { tpi_discrete_surface_recompute(ds) });
         assert_eq!(current_points(ds), points);
-        assert_eq!(current_mesh(ds), discretise_from_scratch(surface, &points), "after edit {step}");
+        assert_eq!(
+            current_mesh(ds),
+            discretise_from_scratch(surface, &points),
+            "after edit {step}"
+        );
     }
     // SAFETY: our handles, freed once.
     unsafe {

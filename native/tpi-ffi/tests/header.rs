@@ -21,7 +21,8 @@ fn header_path() -> PathBuf {
 /// The header as cbindgen generates it now.
 pub fn generate() -> String {
     let dir = crate_dir();
-    let config = cbindgen::Config::from_file(dir.join("cbindgen.toml")).expect("cbindgen.toml must parse");
+    let config =
+        cbindgen::Config::from_file(dir.join("cbindgen.toml")).expect("cbindgen.toml must parse");
     let bindings = cbindgen::Builder::new()
         .with_config(config)
         .with_src(dir.join("src/lib.rs"))
@@ -38,7 +39,11 @@ fn first_difference(a: &str, b: &str) -> String {
             return format!("line {}:\n  committed: {x}\n  generated: {y}", n + 1);
         }
     }
-    format!("lengths differ: committed {} lines, generated {} lines", a.lines().count(), b.lines().count())
+    format!(
+        "lengths differ: committed {} lines, generated {} lines",
+        a.lines().count(),
+        b.lines().count()
+    )
 }
 
 #[test]
@@ -61,5 +66,8 @@ fn committed_header_matches_a_fresh_generation() {
 #[test]
 fn header_declares_no_test_only_entry_points() {
     let fresh = generate();
-    assert!(!fresh.contains("tpi_debug_panic"), "the panic-injection entry point must stay out of the header");
+    assert!(
+        !fresh.contains("tpi_debug_panic"),
+        "the panic-injection entry point must stay out of the header"
+    );
 }

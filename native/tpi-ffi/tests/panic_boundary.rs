@@ -17,7 +17,9 @@ fn last_error() -> String {
     let status = unsafe { tpi::tpi_last_error_message(buf.as_mut_ptr(), buf.len(), &mut needed) };
     assert_eq!(status, TpiStatus::Ok);
     // SAFETY: the call wrote a NUL-terminated string.
-    unsafe { CStr::from_ptr(buf.as_ptr()) }.to_string_lossy().into_owned()
+    unsafe { CStr::from_ptr(buf.as_ptr()) }
+        .to_string_lossy()
+        .into_owned()
 }
 
 #[test]
@@ -27,7 +29,10 @@ fn an_injected_panic_in_an_exported_call_returns_the_panic_status() {
     assert_eq!(status as u32, 9);
     let message = last_error();
     assert!(message.contains("caught panic"), "{message}");
-    assert!(message.contains("tpi_debug_panic: injected panic"), "{message}");
+    assert!(
+        message.contains("tpi_debug_panic: injected panic"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -35,12 +40,18 @@ fn the_library_stays_usable_after_a_panic() {
     assert_eq!(tpi::tpi_debug_panic(), TpiStatus::Panic);
     let mut pattern: *mut tpi::TpiPattern = std::ptr::null_mut();
     // SAFETY: `pattern` is a valid out pointer.
-    assert_eq!(unsafe { tpi::tpi_pattern_new_grid(3, 3, &mut pattern) }, TpiStatus::Ok);
+    assert_eq!(
+        unsafe { tpi::tpi_pattern_new_grid(3, 3, &mut pattern) },
+        TpiStatus::Ok
+    );
     assert!(!pattern.is_null());
     assert_eq!(last_error(), "", "a successful call clears the message");
     let mut count = 0usize;
     // SAFETY: live handle, valid out pointer.
-    assert_eq!(unsafe { tpi::tpi_pattern_point_count(pattern, &mut count) }, TpiStatus::Ok);
+    assert_eq!(
+        unsafe { tpi::tpi_pattern_point_count(pattern, &mut count) },
+        TpiStatus::Ok
+    );
     assert_eq!(count, 9);
     // SAFETY: the handle is ours and freed once.
     unsafe { tpi::tpi_pattern_free(pattern) };

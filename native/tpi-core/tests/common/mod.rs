@@ -4,7 +4,12 @@
 //! crate's `neighbours`, `facets`, `quality`, `planes`, `projection` or `triangulation`
 //! modules. The crate is used only to build surfaces, to evaluate them (`Surface::evaluate`,
 //! `Surface::point_at`) and to run `discretise` itself.
-#![allow(dead_code, clippy::neg_cmp_op_on_partial_ord, clippy::needless_range_loop, clippy::unnecessary_map_or)]
+#![allow(
+    dead_code,
+    clippy::neg_cmp_op_on_partial_ord,
+    clippy::needless_range_loop,
+    clippy::unnecessary_map_or
+)]
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
@@ -64,7 +69,10 @@ pub fn jittered_pattern(rng: &mut Rng, n: usize) -> Vec<[f64; 2]> {
         .into_iter()
         .map(|c| {
             let (i, j) = (c % k, c / k);
-            [(i as f64 + rng.range(0.05, 0.95)) / k as f64, (j as f64 + rng.range(0.05, 0.95)) / k as f64]
+            [
+                (i as f64 + rng.range(0.05, 0.95)) / k as f64,
+                (j as f64 + rng.range(0.05, 0.95)) / k as f64,
+            ]
         })
         .collect()
 }
@@ -135,7 +143,9 @@ pub fn frame(n: DVec3) -> (DVec3, DVec3) {
 /// Coordinates of `x` in the frame of the plane through `o` with unit normal `n`.
 pub fn to_2d(o: DVec3, n: DVec3, xs: &[DVec3]) -> Vec<DVec2> {
     let (e1, e2) = frame(n);
-    xs.iter().map(|&x| DVec2::new((x - o).dot(e1), (x - o).dot(e2))).collect()
+    xs.iter()
+        .map(|&x| DVec2::new((x - o).dot(e1), (x - o).dot(e2)))
+        .collect()
 }
 
 pub fn cross2(a: DVec2, b: DVec2) -> f64 {
@@ -184,7 +194,9 @@ pub fn is_convex(p: &[DVec2]) -> bool {
         return false;
     }
     let n = p.len();
-    let scale = (0..n).map(|k| (p[(k + 1) % n] - p[k]).length()).fold(0.0, f64::max);
+    let scale = (0..n)
+        .map(|k| (p[(k + 1) % n] - p[k]).length())
+        .fold(0.0, f64::max);
     let tolerance = 1e-12 * scale * scale;
     (0..n).all(|k| cross2(p[(k + 1) % n] - p[k], p[(k + 2) % n] - p[(k + 1) % n]) >= -tolerance)
 }
@@ -219,7 +231,10 @@ pub fn gaussian_and_mean(surface: &dyn Surface, u: f64, v: f64) -> (f64, f64) {
     let (e, f, g) = (d.su.dot(d.su), d.su.dot(d.sv), d.sv.dot(d.sv));
     let (l, m, nn) = (d.suu.dot(n), d.suv.dot(n), d.svv.dot(n));
     let det = e * g - f * f;
-    ((l * nn - m * m) / det, (e * nn + g * l - 2.0 * f * m) / (2.0 * det))
+    (
+        (l * nn - m * m) / det,
+        (e * nn + g * l - 2.0 * f * m) / (2.0 * det),
+    )
 }
 
 // ---------------------------------------------------------------------------------------
@@ -281,7 +296,13 @@ fn find(parent: &mut [usize], mut x: usize) -> usize {
 pub fn topology(d: &Discretisation) -> Topology {
     let nf = d.facet_count();
     let nv = d.vertices.len();
-    let mut t = Topology { faces: nf, neighbours: vec![BTreeSet::new(); nf], on_boundary: vec![false; nv], valence: vec![0; nv], ..Default::default() };
+    let mut t = Topology {
+        faces: nf,
+        neighbours: vec![BTreeSet::new(); nf],
+        on_boundary: vec![false; nv],
+        valence: vec![0; nv],
+        ..Default::default()
+    };
     let mut directed: HashMap<(u32, u32), usize> = HashMap::new();
     for i in 0..nf {
         let l = d.facet(i);
@@ -294,7 +315,10 @@ pub fn topology(d: &Discretisation) -> Topology {
             if let Some(other) = directed.insert((a, b), i) {
                 t.problems.push(format!("directed edge ({a}, {b}) used by facets {other} and {i} (inconsistent orientation)"));
             }
-            t.edge_facets.entry((a.min(b), a.max(b))).or_default().push(i);
+            t.edge_facets
+                .entry((a.min(b), a.max(b)))
+                .or_default()
+                .push(i);
         }
         for &v in &distinct {
             t.valence[v as usize] += 1;
@@ -312,20 +336,27 @@ pub fn topology(d: &Discretisation) -> Topology {
                 t.on_boundary[b as usize] = true;
                 // Orientation of the boundary edge as its facet walks it.
                 let i = fs[0];
-                let (from, to) = if directed.get(&(a, b)) == Some(&i) { (a, b) } else { (b, a) };
+                let (from, to) = if directed.get(&(a, b)) == Some(&i) {
+                    (a, b)
+                } else {
+                    (b, a)
+                };
                 boundary_next.entry(from).or_default().push(to);
             }
             2 => {
                 let (f, g) = (fs[0], fs[1]);
                 if f == g {
-                    t.problems.push(format!("edge ({a}, {b}) used twice by facet {f}"));
+                    t.problems
+                        .push(format!("edge ({a}, {b}) used twice by facet {f}"));
                 }
                 t.neighbours[f].insert(g);
                 t.neighbours[g].insert(f);
                 let (rf, rg) = (find(&mut parent, f), find(&mut parent, g));
                 parent[rf.max(rg)] = rf.min(rg);
             }
-            n => t.problems.push(format!("edge ({a}, {b}) shared by {n} facets {fs:?}")),
+            n => t
+                .problems
+                .push(format!("edge ({a}, {b}) shared by {n} facets {fs:?}")),
         }
     }
     t.components = (0..nf).filter(|&i| find(&mut parent, i) == i).count();
@@ -335,7 +366,10 @@ pub fn topology(d: &Discretisation) -> Topology {
     starts.sort_unstable();
     for (&v, next) in &boundary_next {
         if next.len() != 1 {
-            t.problems.push(format!("boundary vertex {v} has {} outgoing boundary edges", next.len()));
+            t.problems.push(format!(
+                "boundary vertex {v} has {} outgoing boundary edges",
+                next.len()
+            ));
         }
     }
     for s in starts {
@@ -348,7 +382,8 @@ pub fn topology(d: &Discretisation) -> Topology {
         while visited.insert(v) {
             steps += 1;
             let Some(next) = boundary_next.get(&v).and_then(|n| n.first()) else {
-                t.problems.push(format!("boundary path stops at vertex {v}"));
+                t.problems
+                    .push(format!("boundary path stops at vertex {v}"));
                 break;
             };
             v = *next;
@@ -357,7 +392,9 @@ pub fn topology(d: &Discretisation) -> Topology {
             }
         }
         if v != s && !t.problems.iter().any(|p| p.contains("boundary")) {
-            t.problems.push(format!("boundary walk from {s} does not close (ends at {v})"));
+            t.problems.push(format!(
+                "boundary walk from {s} does not close (ends at {v})"
+            ));
         }
     }
     // Vertex manifoldness: the corners around each vertex form one fan (a cycle inside, a
@@ -367,7 +404,10 @@ pub fn topology(d: &Discretisation) -> Topology {
         let l = d.facet(i);
         let m = l.len();
         for k in 0..m {
-            corners.entry(l[k]).or_default().push((l[(k + m - 1) % m], l[(k + 1) % m]));
+            corners
+                .entry(l[k])
+                .or_default()
+                .push((l[(k + m - 1) % m], l[(k + 1) % m]));
         }
     }
     for (&v, list) in &corners {
@@ -376,15 +416,22 @@ pub fn topology(d: &Discretisation) -> Topology {
         // equals another corner's `prev`.
         let by_prev: HashMap<u32, usize> = list.iter().enumerate().map(|(k, c)| (c.0, k)).collect();
         if by_prev.len() != list.len() {
-            t.problems.push(format!("vertex {v}: two facets enter it along the same edge"));
+            t.problems.push(format!(
+                "vertex {v}: two facets enter it along the same edge"
+            ));
             continue;
         }
         let start = if t.on_boundary[v as usize] {
             // The chain starts at the corner whose `prev` edge is a boundary edge.
-            match list.iter().position(|c| t.edge_facets.get(&(c.0.min(v), c.0.max(v))).map_or(false, |f| f.len() == 1)) {
+            match list.iter().position(|c| {
+                t.edge_facets
+                    .get(&(c.0.min(v), c.0.max(v)))
+                    .map_or(false, |f| f.len() == 1)
+            }) {
                 Some(k) => k,
                 None => {
-                    t.problems.push(format!("boundary vertex {v}: no boundary corner"));
+                    t.problems
+                        .push(format!("boundary vertex {v}: no boundary corner"));
                     continue;
                 }
             }
@@ -431,7 +478,9 @@ pub fn vertex_facets(d: &Discretisation) -> Vec<Vec<usize>> {
 
 /// Whether facet i has a vertex that is not Interior.
 pub fn touches_boundary(d: &Discretisation, i: usize) -> bool {
-    d.facet(i).iter().any(|&v| d.vertex_kinds[v as usize] != VertexKind::Interior)
+    d.facet(i)
+        .iter()
+        .any(|&v| d.vertex_kinds[v as usize] != VertexKind::Interior)
 }
 
 // ---------------------------------------------------------------------------------------
@@ -457,10 +506,17 @@ pub fn closest_parameters(surface: &dyn Surface, x: DVec3, grid: usize) -> [f64;
         let d = surface.evaluate(u, v);
         let r = d.point - x;
         let g = [r.dot(d.su), r.dot(d.sv)];
-        let h = [d.su.dot(d.su) + r.dot(d.suu), d.su.dot(d.sv) + r.dot(d.suv), d.sv.dot(d.sv) + r.dot(d.svv)];
+        let h = [
+            d.su.dot(d.su) + r.dot(d.suu),
+            d.su.dot(d.sv) + r.dot(d.suv),
+            d.sv.dot(d.sv) + r.dot(d.svv),
+        ];
         let det = h[0] * h[2] - h[1] * h[1];
         let (mut du, mut dv) = if det > 0.0 && h[0] > 0.0 {
-            (-(h[2] * g[0] - h[1] * g[1]) / det, -(h[0] * g[1] - h[1] * g[0]) / det)
+            (
+                -(h[2] * g[0] - h[1] * g[1]) / det,
+                -(h[0] * g[1] - h[1] * g[0]) / det,
+            )
         } else {
             (-g[0] / d.su.length_squared(), -g[1] / d.sv.length_squared())
         };
@@ -505,13 +561,23 @@ pub struct EnvelopeFace {
 
 impl EnvelopeFace {
     pub fn neighbours(&self) -> BTreeSet<usize> {
-        self.labels.iter().copied().filter(|&l| l != SQUARE).collect()
+        self.labels
+            .iter()
+            .copied()
+            .filter(|&l| l != SQUARE)
+            .collect()
     }
 }
 
 /// Sutherland-Hodgman clipping of a convex polygon by `a . q + c >= 0`; `labels[k]` labels
 /// the edge from vertex k to k + 1; the new edge along the clip line gets `label`.
-fn clip(poly: &mut Vec<(DVec2, usize)>, a: DVec2, c: f64, label: usize, scratch: &mut Vec<(DVec2, usize)>) {
+fn clip(
+    poly: &mut Vec<(DVec2, usize)>,
+    a: DVec2,
+    c: f64,
+    label: usize,
+    scratch: &mut Vec<(DVec2, usize)>,
+) {
     scratch.clear();
     let n = poly.len();
     if n == 0 {
@@ -554,12 +620,26 @@ fn clip(poly: &mut Vec<(DVec2, usize)>, a: DVec2, c: f64, label: usize, scratch:
 /// speed). Vertices are recomputed as exact three-plane meeting points by [`meet3`], and
 /// vertices closer than `merge` are merged (the plane of the vanishing edge becomes
 /// ambiguous).
-pub fn envelope_face(i: usize, p: &[DVec3], n: &[DVec3], s: &[f64], half_width: f64, merge: f64) -> EnvelopeFace {
+pub fn envelope_face(
+    i: usize,
+    p: &[DVec3],
+    n: &[DVec3],
+    s: &[f64],
+    half_width: f64,
+    merge: f64,
+) -> EnvelopeFace {
     let (e1, e2) = frame(n[i] * s[i]);
     let h = half_width;
-    let mut poly: Vec<(DVec2, usize)> =
-        vec![(DVec2::new(-h, -h), SQUARE), (DVec2::new(h, -h), SQUARE), (DVec2::new(h, h), SQUARE), (DVec2::new(-h, h), SQUARE)];
-    let mut order: Vec<(f64, usize)> = (0..p.len()).filter(|&j| j != i).map(|j| (p[j].distance_squared(p[i]), j)).collect();
+    let mut poly: Vec<(DVec2, usize)> = vec![
+        (DVec2::new(-h, -h), SQUARE),
+        (DVec2::new(h, -h), SQUARE),
+        (DVec2::new(h, h), SQUARE),
+        (DVec2::new(-h, h), SQUARE),
+    ];
+    let mut order: Vec<(f64, usize)> = (0..p.len())
+        .filter(|&j| j != i)
+        .map(|j| (p[j].distance_squared(p[i]), j))
+        .collect();
     let near = order.len().min(48);
     if near < order.len() {
         order.select_nth_unstable_by(near, |a, b| a.0.total_cmp(&b.0));
@@ -610,7 +690,12 @@ pub fn envelope_face(i: usize, p: &[DVec3], n: &[DVec3], s: &[f64], half_width: 
         vertices = v;
         labels = l;
     }
-    EnvelopeFace { vertices, labels, ambiguous, bounded }
+    EnvelopeFace {
+        vertices,
+        labels,
+        ambiguous,
+        bounded,
+    }
 }
 
 /// Merges consecutive points of a closed loop closer than `merge`.
@@ -640,7 +725,9 @@ pub fn cyclic_match(a: &[DVec3], b: &[DVec3], tol: f64) -> Option<f64> {
         if a[0].distance(b[r]) > tol {
             continue;
         }
-        let worst = (0..m).map(|k| a[k].distance(b[(k + r) % m])).fold(0.0, f64::max);
+        let worst = (0..m)
+            .map(|k| a[k].distance(b[(k + r) % m]))
+            .fold(0.0, f64::max);
         if worst <= tol && best.map_or(true, |b| worst < b) {
             best = Some(worst);
         }
@@ -655,7 +742,9 @@ pub fn cyclic_match(a: &[DVec3], b: &[DVec3], tol: f64) -> Option<f64> {
 /// Greville abscissae of a knot vector in Rhino's convention (count + degree - 1 knots):
 /// xi_i = (k_i + ... + k_(i+p-1)) / p.
 pub fn greville(knots: &[f64], degree: usize, count: usize) -> Vec<f64> {
-    (0..count).map(|i| knots[i..i + degree].iter().sum::<f64>() / degree as f64).collect()
+    (0..count)
+        .map(|i| knots[i..i + degree].iter().sum::<f64>() / degree as f64)
+        .collect()
 }
 
 /// A bicubic (or other degree) NURBS whose control points sit over the Greville abscissae
@@ -687,8 +776,15 @@ pub fn lifted_net(
             }
         }
     }
-    NurbsSurface::new(degree, count, knots_u, knots_v, &points, w.map(|_| weights.as_slice()))
-        .unwrap_or_else(|e| panic!("test NURBS rejected: {e}"))
+    NurbsSurface::new(
+        degree,
+        count,
+        knots_u,
+        knots_v,
+        &points,
+        w.map(|_| weights.as_slice()),
+    )
+    .unwrap_or_else(|e| panic!("test NURBS rejected: {e}"))
 }
 
 /// Checks strict convexity: K > 0 with consistent sign on a dense grid, and every sampled
@@ -708,7 +804,11 @@ pub fn assert_strictly_convex(name: &str, surface: &dyn Surface) -> (f64, f64) {
             if mean_sign == 0.0 {
                 mean_sign = h.signum();
             }
-            assert_eq!(h.signum(), mean_sign, "{name}: mean curvature changes sign at ({u}, {v})");
+            assert_eq!(
+                h.signum(),
+                mean_sign,
+                "{name}: mean curvature changes sign at ({u}, {v})"
+            );
         }
     }
     // Global: the surface on one side of every tangent plane.
@@ -784,14 +884,20 @@ pub fn dome_b() -> NurbsSurface {
             let a = 2.0 * s - 1.0;
             (1.6 * a + 0.2 * a * a * a, 0.8 * (2.0 * t - 1.0))
         },
-        |x, y, i, j| 0.9 - 0.25 * x * x - 0.8 * y * y - 0.02 * x * x * x + 0.05 * x * y + jitter[i * 5 + j],
+        |x, y, i, j| {
+            0.9 - 0.25 * x * x - 0.8 * y * y - 0.02 * x * x * x + 0.05 * x * y + jitter[i * 5 + j]
+        },
         None,
     )
 }
 
 /// Rational, degrees (2, 3), 6 x 6, non-uniform knots, non-separable weights in [0.45, 1.55].
 pub fn dome_c() -> NurbsSurface {
-    let w = |i: usize, j: usize| 1.0 + 0.55 * (1.3 * i as f64 + 0.7 * j as f64).sin() * (0.9 * j as f64 - 0.4 * i as f64).cos();
+    let w = |i: usize, j: usize| {
+        1.0 + 0.55
+            * (1.3 * i as f64 + 0.7 * j as f64).sin()
+            * (0.9 * j as f64 - 0.4 * i as f64).cos()
+    };
     lifted_net(
         [2, 3],
         &[0.0, 0.0, 0.2, 0.5, 0.6, 1.0, 1.0],

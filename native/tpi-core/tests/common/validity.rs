@@ -96,13 +96,20 @@ pub fn check(d: &Discretisation) -> Validity {
         if skip[f] || skip[g] {
             continue;
         }
-        let Some(normal) = (d.seeds[f].normal + d.seeds[g].normal).try_normalize() else { continue };
+        let Some(normal) = (d.seeds[f].normal + d.seeds[g].normal).try_normalize() else {
+            continue;
+        };
         let (e1, e2) = frame(normal);
-        let flat = |xs: &[DVec3]| -> Vec<DVec2> { xs.iter().map(|&x| DVec2::new(x.dot(e1), x.dot(e2))).collect() };
+        let flat = |xs: &[DVec3]| -> Vec<DVec2> {
+            xs.iter()
+                .map(|&x| DVec2::new(x.dot(e1), x.dot(e2)))
+                .collect()
+        };
         let (pf, pg) = (polygon(&flat(&points[f])), polygon(&flat(&points[g])));
         let smaller = pf.unsigned_area().min(pg.unsigned_area());
         // A panic inside the polygon library counts as an overlap (never as valid).
-        let common = std::panic::catch_unwind(|| pf.intersection(&pg).unsigned_area()).unwrap_or(f64::INFINITY);
+        let common = std::panic::catch_unwind(|| pf.intersection(&pg).unsigned_area())
+            .unwrap_or(f64::INFINITY);
         if !(common <= OVERLAP_AREA_FRACTION * smaller) {
             v.overlapping_pairs.push((f, g));
         }

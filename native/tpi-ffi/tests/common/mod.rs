@@ -29,7 +29,11 @@ pub fn dome_points(height: f64) -> Vec<f64> {
     let mut points = Vec::with_capacity(3 * DOME_COUNT * DOME_COUNT);
     for i in 0..DOME_COUNT {
         for j in 0..DOME_COUNT {
-            points.extend([DOME_HALF_WIDTH * A[i], DOME_HALF_WIDTH * A[j], height * (1.0 - Q[i] - Q[j])]);
+            points.extend([
+                DOME_HALF_WIDTH * A[i],
+                DOME_HALF_WIDTH * A[j],
+                height * (1.0 - Q[i] - Q[j]),
+            ]);
         }
     }
     points
@@ -48,7 +52,11 @@ pub fn last_error() -> String {
     let mut buf = vec![0 as c_char; needed.max(1)];
     // SAFETY: buf holds `needed` chars.
     unsafe { tpi_last_error_message(buf.as_mut_ptr(), buf.len(), &mut needed) };
-    let bytes: Vec<u8> = buf.iter().take_while(|&&c| c != 0).map(|&c| c as u8).collect();
+    let bytes: Vec<u8> = buf
+        .iter()
+        .take_while(|&&c| c != 0)
+        .map(|&c| c as u8)
+        .collect();
     String::from_utf8_lossy(&bytes).into_owned()
 }
 
@@ -92,7 +100,11 @@ pub fn read_array<T: Copy + Default>(
 ) -> Vec<T> {
     let mut needed = 0usize;
     let status = call(std::ptr::null_mut(), 0, &mut needed);
-    assert!(status == TpiStatus::Ok || status == TpiStatus::BufferTooSmall, "{status:?}: {}", last_error());
+    assert!(
+        status == TpiStatus::Ok || status == TpiStatus::BufferTooSmall,
+        "{status:?}: {}",
+        last_error()
+    );
     let mut data = vec![T::default(); needed];
     let mut again = 0usize;
     ok(call(data.as_mut_ptr(), data.len(), &mut again));
@@ -140,8 +152,12 @@ pub fn read_mesh(d: *const TpiDiscretisation) -> Mesh {
             neighbour_pairs: read_array(|o, c, n| tpi_discretisation_neighbour_pairs(d, o, c, n)),
             dual_triangles: read_array(|o, c, n| tpi_discretisation_dual_triangles(d, o, c, n)),
             quality_json: read_string(|o, c, n| tpi_discretisation_quality_json(d, o, c, n)),
-            diagnostics_json: read_string(|o, c, n| tpi_discretisation_diagnostics_json(d, o, c, n)),
-            diagnostic_entries: read_array(|o, c, n| tpi_discretisation_diagnostic_entries(d, o, c, n)),
+            diagnostics_json: read_string(|o, c, n| {
+                tpi_discretisation_diagnostics_json(d, o, c, n)
+            }),
+            diagnostic_entries: read_array(|o, c, n| {
+                tpi_discretisation_diagnostic_entries(d, o, c, n)
+            }),
         }
     }
 }
@@ -185,7 +201,10 @@ pub fn jittered_grid(n: usize) -> Vec<[f64; 2]> {
     for i in 0..n {
         for j in 0..n {
             let wobble = ((i * 7 + j * 3) % 5) as f64 / 5.0 - 0.4;
-            points.push([(i as f64 + 0.5 + 0.3 * wobble) / n as f64, (j as f64 + 0.5 - 0.2 * wobble) / n as f64]);
+            points.push([
+                (i as f64 + 0.5 + 0.3 * wobble) / n as f64,
+                (j as f64 + 0.5 - 0.2 * wobble) / n as f64,
+            ]);
         }
     }
     points
