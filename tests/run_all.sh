@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Runs every test of the project:
+#   0. formatting (rustfmt --check) and lints (clippy, every target, warnings are errors);
 #   1. the Rust workspace (unit, integration and doc tests, including the openNURBS
 #      conformance tests that drive rhino3dm from Python, the CLI's end-to-end tests, the C
 #      ABI's Rust tests and the header check);
@@ -29,6 +30,11 @@ if [ ${#missing[@]} -gt 0 ]; then
     fi
 fi
 
+if command -v rustup >/dev/null 2>&1; then
+    rustup component add rustfmt clippy >/dev/null 2>&1 || true
+fi
+cargo fmt --all -- --check
+cargo clippy --workspace --all-targets --locked -- -D warnings
 cargo test --workspace --locked
 bash tests/run_c_tests.sh
 bash tests/run_dotnet_tests.sh

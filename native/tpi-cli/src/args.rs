@@ -8,7 +8,7 @@ use crate::error::CliError;
 
 /// One scanned argument.
 #[derive(Debug, PartialEq)]
-pub enum Arg {
+pub(crate) enum Arg {
     /// `--name` or `--name=value` (the inline value, if any). `-h` reads as `--help`.
     Option(String, Option<String>),
     /// Anything else (including `-` alone, and everything after `--`).
@@ -16,7 +16,7 @@ pub enum Arg {
 }
 
 /// The arguments of one subcommand.
-pub struct Args {
+pub(crate) struct Args {
     rest: VecDeque<String>,
     command: &'static str,
     positional_only: bool,
@@ -24,7 +24,7 @@ pub struct Args {
 
 impl Args {
     /// Scans `rest` (the arguments after the subcommand name).
-    pub fn new(command: &'static str, rest: Vec<String>) -> Self {
+    pub(crate) fn new(command: &'static str, rest: Vec<String>) -> Self {
         Self {
             rest: rest.into(),
             command,
@@ -34,7 +34,7 @@ impl Args {
 
     /// The next argument, or `None` at the end.
     #[allow(clippy::should_implement_trait)]
-    pub fn next(&mut self) -> Option<Arg> {
+    pub(crate) fn next(&mut self) -> Option<Arg> {
         let arg = self.rest.pop_front()?;
         if self.positional_only {
             return Some(Arg::Positional(arg));
@@ -62,7 +62,7 @@ impl Args {
     }
 
     /// The value of option `name`: its inline `=value` or the next argument.
-    pub fn value(&mut self, name: &str, inline: Option<String>) -> Result<String, CliError> {
+    pub(crate) fn value(&mut self, name: &str, inline: Option<String>) -> Result<String, CliError> {
         if let Some(v) = inline {
             return Ok(v);
         }
@@ -73,7 +73,7 @@ impl Args {
     }
 
     /// Rejects an inline value given to a flag that takes none.
-    pub fn flag(&self, name: &str, inline: Option<String>) -> Result<(), CliError> {
+    pub(crate) fn flag(&self, name: &str, inline: Option<String>) -> Result<(), CliError> {
         match inline {
             None => Ok(()),
             Some(v) => Err(self.usage(format!("--{name} takes no value (got `{v}`)"))),
@@ -81,12 +81,12 @@ impl Args {
     }
 
     /// A usage error of this subcommand.
-    pub fn usage(&self, message: impl Into<String>) -> CliError {
+    pub(crate) fn usage(&self, message: impl Into<String>) -> CliError {
         CliError::usage(Some(self.command), message)
     }
 
     /// The error for an option this subcommand does not know.
-    pub fn unknown(&self, name: &str) -> CliError {
+    pub(crate) fn unknown(&self, name: &str) -> CliError {
         self.usage(format!("unknown option `--{name}`"))
     }
 }

@@ -15,7 +15,7 @@ use crate::args::{Arg, Args};
 use crate::error::CliError;
 use crate::output::{check_output_path, write_all};
 
-pub const HELP: &str = "\
+pub(crate) const HELP: &str = "\
 tpi bench: time the discretisation on the benchmark surfaces
 
 USAGE:
@@ -72,7 +72,7 @@ struct Config {
 
 /// One surface and size: the medians.
 #[derive(Clone, Debug, Serialize)]
-pub struct Row {
+pub(crate) struct Row {
     /// Surface name.
     pub surface: &'static str,
     /// Pattern points.
@@ -93,7 +93,7 @@ pub struct Row {
 
 /// Live editing on one surface and size.
 #[derive(Clone, Debug, Serialize)]
-pub struct EditRow {
+pub(crate) struct EditRow {
     /// Edits timed.
     pub count: usize,
     /// Median time of one edit, microseconds.
@@ -106,7 +106,7 @@ pub struct EditRow {
 
 /// The whole run.
 #[derive(Debug, Serialize)]
-pub struct Report {
+pub(crate) struct Report {
     /// tpi's version.
     pub version: &'static str,
     /// rayon threads used.
@@ -120,7 +120,7 @@ pub struct Report {
 }
 
 /// Runs `tpi bench`.
-pub fn run(rest: Vec<String>) -> Result<(), CliError> {
+pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
     let Some(config) = parse(rest)? else {
         return Ok(());
     };
@@ -443,7 +443,7 @@ fn peak_memory_bytes() -> u64 {
 }
 
 /// The human-readable table.
-pub fn table(report: &Report) -> String {
+pub(crate) fn table(report: &Report) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
@@ -504,7 +504,7 @@ pub fn table(report: &Report) -> String {
 
 /// A log-log SVG plot of the median total time against the pattern size, one line per
 /// surface, with dashed n and n log n reference slopes through each line's first point.
-pub fn scaling_plot(report: &Report) -> String {
+pub(crate) fn scaling_plot(report: &Report) -> String {
     let (width, height) = (640.0, 440.0);
     let (left, right, top, bottom) = (70.0, 170.0, 40.0, 50.0);
     let points: Vec<(f64, f64)> = report

@@ -13,7 +13,7 @@ use crate::progress::Progress;
 use crate::render::{self, DEFAULT_SIZE, MAX_SIDE};
 use crate::{obj, summary, svg};
 
-pub const HELP: &str = "\
+pub(crate) const HELP: &str = "\
 tpi discretise: discretise a surface into exactly planar facets, one per pattern point
 
 USAGE:
@@ -178,7 +178,7 @@ fn parse_size(s: &str) -> Option<(u32, u32)> {
 }
 
 /// Runs `tpi discretise`.
-pub fn run(rest: Vec<String>) -> Result<(), CliError> {
+pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
     let Some(opts) = parse(rest)? else {
         print!("{HELP}");
         return Ok(());

@@ -12,7 +12,7 @@ use crate::args::{Arg, Args};
 use crate::error::CliError;
 use crate::input::load_surface_spec;
 
-pub const HELP: &str = "\
+pub(crate) const HELP: &str = "\
 tpi info: describe a surface file and its curvature
 
 USAGE:
@@ -36,10 +36,10 @@ EXAMPLES:
 
 /// |K| below this fraction of the largest squared principal curvature on the grid counts
 /// as K ~ 0 in the report.
-pub const NEAR_ZERO_FRACTION: f64 = 1e-2;
+pub(crate) const NEAR_ZERO_FRACTION: f64 = 1e-2;
 
 /// Runs `tpi info`.
-pub fn run(rest: Vec<String>) -> Result<(), CliError> {
+pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
     let mut a = Args::new("info", rest);
     let (mut file, mut grid): (Option<PathBuf>, usize) = (None, 41);
     while let Some(arg) = a.next() {
@@ -73,7 +73,12 @@ pub fn run(rest: Vec<String>) -> Result<(), CliError> {
 }
 
 /// The whole report.
-pub fn describe(file: &Path, spec: &SurfaceSpec, model: &SurfaceModel, grid: usize) -> String {
+pub(crate) fn describe(
+    file: &Path,
+    spec: &SurfaceSpec,
+    model: &SurfaceModel,
+    grid: usize,
+) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{}: {}", file.display(), spec.type_name());
     match (spec, model) {

@@ -10,7 +10,7 @@ use crate::error::CliError;
 use crate::output::{check_output_path, write_all};
 use crate::{svg, voronoi};
 
-pub const HELP: &str = "\
+pub(crate) const HELP: &str = "\
 tpi pattern: generate pattern points in the unit square
 
 USAGE:
@@ -37,7 +37,7 @@ EXAMPLES:
 ";
 
 /// Runs `tpi pattern`.
-pub fn run(rest: Vec<String>) -> Result<(), CliError> {
+pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
     let mut a = Args::new("pattern", rest);
     let (mut spec, mut out, mut preview): (Option<String>, Option<PathBuf>, Option<PathBuf>) =
         (None, None, None);
@@ -106,7 +106,7 @@ pub fn run(rest: Vec<String>) -> Result<(), CliError> {
 }
 
 /// The pattern file, one point per line, numbers in shortest round-trip form.
-pub fn pattern_json(uv: &[[f64; 2]]) -> String {
+pub(crate) fn pattern_json(uv: &[[f64; 2]]) -> String {
     let mut s = String::with_capacity(uv.len() * 44 + 16);
     s.push_str("{\"uv\": [");
     for (i, p) in uv.iter().enumerate() {

@@ -9,7 +9,7 @@ use tpi_core::TpiError;
 
 /// Everything that ends a run with a non-zero exit code.
 #[derive(Debug)]
-pub enum CliError {
+pub(crate) enum CliError {
     /// Wrong command line: unknown option, missing value, bad extension. Exit code 2.
     Usage {
         /// What is wrong.
@@ -33,7 +33,7 @@ pub enum CliError {
 
 impl CliError {
     /// A usage error of `command`.
-    pub fn usage(command: Option<&'static str>, message: impl Into<String>) -> Self {
+    pub(crate) fn usage(command: Option<&'static str>, message: impl Into<String>) -> Self {
         CliError::Usage {
             message: message.into(),
             command,
@@ -41,7 +41,7 @@ impl CliError {
     }
 
     /// A problem with `subject` (a file name, a generator spec, an option).
-    pub fn input(subject: impl fmt::Display, problem: impl Into<String>) -> Self {
+    pub(crate) fn input(subject: impl fmt::Display, problem: impl Into<String>) -> Self {
         CliError::Input {
             subject: subject.to_string(),
             problem: problem.into(),
@@ -50,7 +50,7 @@ impl CliError {
 
     /// A core error about `subject`. Parse errors carry their own source name (the context
     /// passed to the core), which is the same file name: it is not repeated.
-    pub fn core(subject: impl fmt::Display, error: &TpiError) -> Self {
+    pub(crate) fn core(subject: impl fmt::Display, error: &TpiError) -> Self {
         match error {
             TpiError::Parse {
                 line,
@@ -63,12 +63,12 @@ impl CliError {
     }
 
     /// An I/O error while doing `action` (e.g. "cannot read") on `path`.
-    pub fn io(path: &Path, action: &str, error: &io::Error) -> Self {
+    pub(crate) fn io(path: &Path, action: &str, error: &io::Error) -> Self {
         CliError::input(path.display(), format!("{action}: {}", describe_io(error)))
     }
 
     /// The process exit code.
-    pub fn exit_code(&self) -> i32 {
+    pub(crate) fn exit_code(&self) -> i32 {
         match self {
             CliError::Usage { .. } => 2,
             CliError::Input { .. } => 1,
@@ -103,7 +103,7 @@ impl fmt::Display for CliError {
 }
 
 /// An I/O error as a short lower-case phrase without the "(os error N)" suffix.
-pub fn describe_io(error: &io::Error) -> String {
+pub(crate) fn describe_io(error: &io::Error) -> String {
     let text = match error.kind() {
         io::ErrorKind::NotFound => "no such file or directory".to_string(),
         io::ErrorKind::PermissionDenied => "permission denied".to_string(),

@@ -76,7 +76,7 @@ const GLYPHS: &[(char, [u8; 7])] = &[
 ];
 
 /// An RGB image, row-major, 3 bytes a pixel.
-pub struct Image<'a> {
+pub(crate) struct Image<'a> {
     /// The pixels.
     pub rgb: &'a mut [u8],
     /// Width in pixels.
@@ -87,7 +87,7 @@ pub struct Image<'a> {
 
 impl Image<'_> {
     /// Sets one pixel (ignored outside the image).
-    pub fn set(&mut self, x: usize, y: usize, c: [u8; 3]) {
+    pub(crate) fn set(&mut self, x: usize, y: usize, c: [u8; 3]) {
         if x < self.w && y < self.h {
             let i = (y * self.w + x) * 3;
             self.rgb[i..i + 3].copy_from_slice(&c);
@@ -95,7 +95,7 @@ impl Image<'_> {
     }
 
     /// Fills a rectangle.
-    pub fn fill_rect(&mut self, x: usize, y: usize, rw: usize, rh: usize, c: [u8; 3]) {
+    pub(crate) fn fill_rect(&mut self, x: usize, y: usize, rw: usize, rh: usize, c: [u8; 3]) {
         for py in y..y + rh {
             for px in x..x + rw {
                 self.set(px, py, c);
@@ -106,7 +106,7 @@ impl Image<'_> {
 
 /// Draws `text` with its top left corner at (x, y), each font pixel `scale` x `scale`;
 /// returns the x just past the text. Unknown characters leave a blank.
-pub fn draw_text(
+pub(crate) fn draw_text(
     img: &mut Image<'_>,
     mut x: usize,
     y: usize,

@@ -8,13 +8,13 @@ use crate::error::CliError;
 use crate::output::read_text;
 
 /// Reads and validates a surface file.
-pub fn load_surface(path: &Path) -> Result<SurfaceModel, CliError> {
+pub(crate) fn load_surface(path: &Path) -> Result<SurfaceModel, CliError> {
     let (_, model) = load_surface_spec(path)?;
     Ok(model)
 }
 
 /// Reads a surface file: the record as written and the validated surface.
-pub fn load_surface_spec(path: &Path) -> Result<(SurfaceSpec, SurfaceModel), CliError> {
+pub(crate) fn load_surface_spec(path: &Path) -> Result<(SurfaceSpec, SurfaceModel), CliError> {
     let name = path.display().to_string();
     let text = read_text(path)?;
     let spec = SurfaceSpec::from_json(&text, &name).map_err(|e| CliError::core(&name, &e))?;
@@ -23,7 +23,7 @@ pub fn load_surface_spec(path: &Path) -> Result<(SurfaceSpec, SurfaceModel), Cli
 }
 
 /// A pattern and where it came from.
-pub struct PatternSource {
+pub(crate) struct PatternSource {
     /// The points.
     pub pattern: Pattern,
     /// The file name, or the canonical generator spec.
@@ -32,7 +32,7 @@ pub struct PatternSource {
 
 /// `arg` is an existing file (read as a pattern file) or else a generator spec. A string
 /// that is neither gets an error naming both possibilities.
-pub fn load_pattern(arg: &str) -> Result<PatternSource, CliError> {
+pub(crate) fn load_pattern(arg: &str) -> Result<PatternSource, CliError> {
     let path = Path::new(arg);
     if path.exists() {
         let text = read_text(path)?;

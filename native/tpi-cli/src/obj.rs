@@ -6,7 +6,7 @@ use std::fmt::Write;
 use tpi_core::Discretisation;
 
 /// The mesh as OBJ text. `source` goes into the header comment.
-pub fn to_obj(result: &Discretisation, source: &str) -> String {
+pub(crate) fn to_obj(result: &Discretisation, source: &str) -> String {
     let mut out = String::with_capacity(result.vertices.len() * 48 + result.facet_loops.len() * 8);
     let _ = writeln!(
         out,

@@ -14,7 +14,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use crate::error::CliError;
 
 /// Reads a text input file, naming it in the error.
-pub fn read_text(path: &Path) -> Result<String, CliError> {
+pub(crate) fn read_text(path: &Path) -> Result<String, CliError> {
     if path.is_dir() {
         return Err(CliError::input(
             path.display(),
@@ -34,7 +34,7 @@ fn parent_dir(path: &Path) -> PathBuf {
 
 /// Cheap early check of an output path, before any work is done: its directory exists and
 /// it is not itself a directory. (Permissions are found out when writing.)
-pub fn check_output_path(path: &Path) -> Result<(), CliError> {
+pub(crate) fn check_output_path(path: &Path) -> Result<(), CliError> {
     let dir = parent_dir(path);
     if path.file_name().is_none() {
         return Err(CliError::input(
@@ -95,7 +95,7 @@ fn write_temp(path: &Path, bytes: &[u8]) -> Result<PathBuf, CliError> {
 }
 
 /// Writes every `(path, bytes)` pair, all or nothing (see the module doc).
-pub fn write_all(outputs: &[(PathBuf, Vec<u8>)]) -> Result<(), CliError> {
+pub(crate) fn write_all(outputs: &[(PathBuf, Vec<u8>)]) -> Result<(), CliError> {
     let mut temps: Vec<PathBuf> = Vec::with_capacity(outputs.len());
     for (path, bytes) in outputs {
         match check_output_path(path).and_then(|()| write_temp(path, bytes)) {

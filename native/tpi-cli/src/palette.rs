@@ -1,7 +1,7 @@
 //! Colours shared by the SVG and PNG pictures: facets by side count, flagged outlines.
 
 /// Fill colour of a facet with `sides` sides (RGB).
-pub fn side_colour(sides: usize) -> [u8; 3] {
+pub(crate) fn side_colour(sides: usize) -> [u8; 3] {
     match sides {
         0..=2 => [0xba, 0xb0, 0xac],
         3 => [0xff, 0x9d, 0xa7],
@@ -15,7 +15,7 @@ pub fn side_colour(sides: usize) -> [u8; 3] {
 }
 
 /// Legend label of a side count class ("9+" collects everything above 8).
-pub fn side_label(sides: usize) -> String {
+pub(crate) fn side_label(sides: usize) -> String {
     match sides {
         0..=2 => "<3".to_string(),
         9.. => "9+".to_string(),
@@ -24,7 +24,7 @@ pub fn side_label(sides: usize) -> String {
 }
 
 /// The class a side count is shown in (counts above 8 share one colour).
-pub fn side_class(sides: usize) -> usize {
+pub(crate) fn side_class(sides: usize) -> usize {
     match sides {
         0..=2 => 2,
         9.. => 9,
@@ -33,13 +33,13 @@ pub fn side_class(sides: usize) -> usize {
 }
 
 /// Outline colour of flagged facets.
-pub const FLAG_COLOUR: [u8; 3] = [0xe0, 0x00, 0x00];
+pub(crate) const FLAG_COLOUR: [u8; 3] = [0xe0, 0x00, 0x00];
 
 /// Edge colour.
-pub const EDGE_COLOUR: [u8; 3] = [0x22, 0x22, 0x22];
+pub(crate) const EDGE_COLOUR: [u8; 3] = [0x22, 0x22, 0x22];
 
 /// `#rrggbb`.
-pub fn hex(c: [u8; 3]) -> String {
+pub(crate) fn hex(c: [u8; 3]) -> String {
     format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
 }
 
@@ -47,7 +47,7 @@ pub fn hex(c: [u8; 3]) -> String {
 /// seeds' bounding-box diagonal of that box. A vertex that ran far away (an ill-conditioned
 /// meeting point of nearly parallel planes) would otherwise shrink the whole picture; its
 /// facets are still drawn, clipped by the frame.
-pub fn framing_points(result: &tpi_core::Discretisation) -> Vec<glam::DVec3> {
+pub(crate) fn framing_points(result: &tpi_core::Discretisation) -> Vec<glam::DVec3> {
     use glam::DVec3;
     let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
     for s in result.seeds.iter().filter(|s| s.point.is_finite()) {

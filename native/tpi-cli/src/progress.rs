@@ -13,11 +13,11 @@ use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 /// Delay before anything is drawn.
-pub const SHOW_AFTER: Duration = Duration::from_secs(1);
+pub(crate) const SHOW_AFTER: Duration = Duration::from_secs(1);
 
 /// Environment variable overriding [`SHOW_AFTER`] in milliseconds (for tests: `0` draws at
 /// once, still only on a terminal).
-pub const DELAY_VARIABLE: &str = "TPI_PROGRESS_DELAY_MS";
+pub(crate) const DELAY_VARIABLE: &str = "TPI_PROGRESS_DELAY_MS";
 
 fn show_after() -> Duration {
     std::env::var(DELAY_VARIABLE)
@@ -36,14 +36,14 @@ struct Shared {
 }
 
 /// A progress line (inert when stderr is not a terminal).
-pub struct Progress {
+pub(crate) struct Progress {
     shared: Option<Arc<Shared>>,
     thread: Option<JoinHandle<()>>,
 }
 
 impl Progress {
     /// Starts a progress line of `total` steps; inert unless stderr is a terminal.
-    pub fn start(total: usize) -> Self {
+    pub(crate) fn start(total: usize) -> Self {
         if !std::io::stderr().is_terminal() {
             return Self {
                 shared: None,
@@ -70,7 +70,7 @@ impl Progress {
     }
 
     /// Enters the next step, described by `label`.
-    pub fn step(&self, label: impl Into<String>) {
+    pub(crate) fn step(&self, label: impl Into<String>) {
         if let Some(s) = &self.shared {
             if let Ok(mut l) = s.label.lock() {
                 *l = label.into();
@@ -80,7 +80,7 @@ impl Progress {
     }
 
     /// Stops drawing and clears the line.
-    pub fn finish(mut self) {
+    pub(crate) fn finish(mut self) {
         self.stop();
     }
 

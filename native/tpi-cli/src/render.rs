@@ -17,13 +17,13 @@ use crate::font::{self, Image};
 use crate::palette::{side_class, side_colour, EDGE_COLOUR, FLAG_COLOUR};
 
 /// Default picture size.
-pub const DEFAULT_SIZE: (u32, u32) = (1200, 900);
+pub(crate) const DEFAULT_SIZE: (u32, u32) = (1200, 900);
 
 /// Largest accepted picture side.
-pub const MAX_SIDE: u32 = 16_384;
+pub(crate) const MAX_SIDE: u32 = 16_384;
 
 /// Renders the mesh into an RGB image of `width` x `height` (row-major, 3 bytes a pixel).
-pub fn render(result: &Discretisation, width: u32, height: u32) -> Vec<u8> {
+pub(crate) fn render(result: &Discretisation, width: u32, height: u32) -> Vec<u8> {
     let ss: usize = if (width as usize) * (height as usize) <= 16_000_000 {
         2
     } else {
@@ -62,7 +62,7 @@ pub fn render(result: &Discretisation, width: u32, height: u32) -> Vec<u8> {
 }
 
 /// Encodes an RGB image as PNG.
-pub fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
+pub(crate) fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
     let mut bytes = Vec::new();
     {
         let mut encoder = png::Encoder::new(&mut bytes, width, height);

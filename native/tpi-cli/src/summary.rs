@@ -8,7 +8,7 @@ use tpi_core::Discretisation;
 const LISTED_DIAGNOSTICS: usize = 3;
 
 /// The warning printed on stderr when the mesh has invalid facets.
-pub fn invalid_warning(q: &tpi_core::QualityReport) -> String {
+pub(crate) fn invalid_warning(q: &tpi_core::QualityReport) -> String {
     format!(
         "warning: {} invalid facets (open {}, non-simple {}, overlapping pairs {}); they are flagged in the outputs",
         q.invalid_facets, q.open_facets, q.non_simple_facets, q.overlapping_pairs
@@ -16,7 +16,12 @@ pub fn invalid_warning(q: &tpi_core::QualityReport) -> String {
 }
 
 /// The summary text (several lines, each ending in a newline).
-pub fn summary(result: &Discretisation, surface: &str, pattern: &str, threads: usize) -> String {
+pub(crate) fn summary(
+    result: &Discretisation,
+    surface: &str,
+    pattern: &str,
+    threads: usize,
+) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,

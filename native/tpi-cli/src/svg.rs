@@ -13,7 +13,7 @@ const MARGIN: f64 = 20.0;
 const LEGEND_WIDTH: f64 = 150.0;
 
 /// Escapes text for XML content and attributes.
-pub fn escape(s: &str) -> String {
+pub(crate) fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -22,7 +22,7 @@ pub fn escape(s: &str) -> String {
 
 /// Top view of the mesh: one `<polygon>` per facet (in facet order, `data-facet` = index),
 /// filled by side count, flagged facets outlined red; a legend on the right.
-pub fn mesh_top_view(result: &Discretisation, title: &str) -> String {
+pub(crate) fn mesh_top_view(result: &Discretisation, title: &str) -> String {
     let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
     for v in crate::palette::framing_points(result) {
         lo = [lo[0].min(v.x), lo[1].min(v.y)];
@@ -142,7 +142,7 @@ fn header(out: &mut String, width: f64, height: f64, title: &str) {
 
 /// The pattern in the unit square (s right, t up): its Voronoi cells clipped to the square
 /// as `<polygon>`s (one per point, in point order) and the points as `<circle>`s.
-pub fn pattern_preview(points: &[[f64; 2]], cells: &[Vec<[f64; 2]>], title: &str) -> String {
+pub(crate) fn pattern_preview(points: &[[f64; 2]], cells: &[Vec<[f64; 2]>], title: &str) -> String {
     let size = 800.0;
     let m = MARGIN;
     let map = |p: [f64; 2]| (m + p[0] * size, m + (1.0 - p[1]) * size);

@@ -20,7 +20,7 @@ impl HasPosition for Site {
 
 /// The cell of every point (counter-clockwise polygons, in point order). Points must be
 /// finite and distinct (a validated pattern).
-pub fn cells(points: &[[f64; 2]]) -> Vec<Vec<[f64; 2]>> {
+pub(crate) fn cells(points: &[[f64; 2]]) -> Vec<Vec<[f64; 2]>> {
     let square = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
     let mut neighbours: Vec<Vec<usize>> = vec![Vec::new(); points.len()];
     let sites: Vec<Site> = points

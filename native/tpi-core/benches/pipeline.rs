@@ -4,6 +4,8 @@
 //! `cargo bench -p tpi-core` runs 1k, 10k and 100k points; `TPI_BENCH_LARGE=1` adds 1M.
 //! `tpi bench` prints the same stages from one process with medians, facets/s and peak
 //! memory (docs/performance.md).
+// criterion_group! generates an undocumented public function.
+#![allow(missing_docs)]
 
 use criterion::{
     black_box, criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput,

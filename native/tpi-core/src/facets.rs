@@ -935,7 +935,7 @@ fn edge_crossings(
     // (start, end) in canonical order right -> left; None marks a hull side (a ray).
     let start = (edge.right != NO_TRIANGLE).then(|| end_of(edge.right));
     let end = (edge.left != NO_TRIANGLE).then(|| end_of(edge.left));
-    let inside = |e: &Option<SegmentEnd>| e.map_or(false, |e| e.inside > 0.0);
+    let inside = |e: &Option<SegmentEnd>| e.is_some_and(|e| e.inside > 0.0);
     if inside(&start) && inside(&end) {
         return (Vec::new(), None);
     }

@@ -295,6 +295,7 @@ pub fn slope_edge_repaired(
 /// - for a hull edge (i, j) of triangle (i, j, k), the facet edge T_i ∩ T_j runs from the
 ///   vertex outwards, away from k; on the envelope that ray must stay in H_k, i.e.
 ///   sigma n_k . d > 0 for its direction d.
+///
 /// Either failure means parameter space and the envelope disagree about the hull (typically
 /// for slivers along the boundary): the triangle is dropped, so that its other edges become
 /// hull edges, and the triangles behind them are tested in turn. A triangle is kept if

@@ -264,10 +264,8 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
         used
     };
     let mut roots = std::collections::BTreeSet::new();
-    for v in 0..input.vertices.len() {
-        if on_boundary[v] {
-            roots.insert(root(&mut boundary_parent, v as u32));
-        }
+    for (v, _) in on_boundary.iter().enumerate().filter(|(_, &b)| b) {
+        roots.insert(root(&mut boundary_parent, v as u32));
     }
     r.boundary_loops = roots.len();
     let _ = boundary_vertices;

@@ -568,6 +568,8 @@ fn skip_value(b: &[u8], i: usize) -> Option<usize> {
 
 /// A validated surface of any supported kind: what the pipeline samples.
 #[derive(Clone, Debug, PartialEq)]
+// Built once per run and evaluated millions of times: a box would only add an indirection.
+#[allow(clippy::large_enum_variant)]
 pub enum SurfaceModel {
     /// A NURBS surface.
     Nurbs(NurbsSurface),

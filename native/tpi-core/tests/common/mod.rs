@@ -4,6 +4,8 @@
 //! crate's `neighbours`, `facets`, `quality`, `planes`, `projection` or `triangulation`
 //! modules. The crate is used only to build surfaces, to evaluate them (`Surface::evaluate`,
 //! `Surface::point_at`) and to run `discretise` itself.
+// Test helpers: `pub` is how the test files that include this module reach them.
+#![allow(unreachable_pub)]
 #![allow(
     dead_code,
     clippy::neg_cmp_op_on_partial_ord,

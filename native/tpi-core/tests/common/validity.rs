@@ -3,6 +3,8 @@
 //! its own tangent plane; no two facets that share a vertex overlap when projected along the
 //! mean of their two seed normals (intersection area from the `geo` polygon library); the mesh
 //! is a disc (Euler characteristic and boundary loops from the loops alone).
+// Test helpers: `pub` is how the test files that include this module reach them.
+#![allow(unreachable_pub)]
 
 use std::collections::BTreeSet;
 

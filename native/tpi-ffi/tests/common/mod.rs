@@ -5,7 +5,8 @@
 //! is exactly the elliptic paraboloid z = h (1 - x'^2 - y'^2), x' = x / 5, y' = y / 5, over
 //! [-5, 5]^2: x' = 2u - 1 has cubic Bernstein coefficients (-1, -1/3, 1/3, 1) and x'^2 has
 //! (1, -1/3, -1/3, 1), so control point (i, j) is (5 a_i, 5 a_j, h (1 - q_i - q_j)).
-
+// Test helpers: `pub` is how the test files that include this module reach them.
+#![allow(unreachable_pub)]
 #![allow(dead_code)]
 
 use std::ffi::c_char;
