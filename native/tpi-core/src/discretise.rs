@@ -21,7 +21,7 @@ use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
 use crate::error::TpiError;
 use crate::facets::{
-    build_closed_facets, build_facets, FacetMesh, FacetParams, FootHint, TriangleVertex,
+    build_closed_facets, build_facets, FacetMesh, FacetParams, FootHint, SlopeView, TriangleVertex,
     VertexKind, DEFAULT_FAR_VERTEX_FACTOR,
 };
 use crate::ghosts::augment;
@@ -416,7 +416,10 @@ pub(crate) fn run(
     } else {
         None
     };
-    let slopes = gradient_embedding(&planes, &convex_side, frame);
+    let lifted = gradient_embedding(&planes, &convex_side, frame);
+    let slopes: Option<Vec<[f64; 2]>> = lifted
+        .as_ref()
+        .map(|l| l.iter().map(|p| [p[0], p[1]]).collect());
     // Only curvature compensation (the mixed path) reads the local geometry from here on.
     let geometry = if slopes.is_some() {
         Vec::new()
@@ -435,19 +438,19 @@ pub(crate) fn run(
         convex_side: &convex_side,
         any_curvature: false,
     };
-    let (triangulation, augmented, neighbours) = match &slopes {
+    let (triangulation, augmented, neighbours) = match (&slopes, &lifted) {
         // Convex everywhere: the envelope's own structure, computed in slope space.
-        Some(slopes) => {
+        (Some(slopes), Some(lifted)) => {
             let mut triangulation = DualTriangulation::delaunay(slopes)?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
-            let stats = decide_convex(&mut triangulation, slopes, &input);
+            let stats = decide_convex(&mut triangulation, lifted, &input);
             timings.neighbours = ms(stage);
             (triangulation, None, stats)
         }
         // Strictly convex everywhere but too steep for the slope embedding: the envelope tests
         // on parameter-space candidates, with the boundary clipped on the wall.
-        None if convex_side.iter().all(|&s| s != 0 && s == convex_side[0]) => {
+        _ if convex_side.iter().all(|&s| s != 0 && s == convex_side[0]) => {
             let mut triangulation = DualTriangulation::delaunay(&plane_uv)?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
@@ -462,7 +465,7 @@ pub(crate) fn run(
         }
         // Saddles and mixed curvature: ghost seeds beyond the boundary close every real facet
         // for the validity flips.
-        None => {
+        _ => {
             let extent = plane_extent(&plane_uv, pattern);
             let augmented = augment(
                 surface,
@@ -510,6 +513,10 @@ pub(crate) fn run(
                 &convex_side,
                 &triangulation,
                 &params,
+                slopes.as_ref().zip(frame).map(|(slopes, n)| SlopeView {
+                    axes: SlopeFrame::new(n, convex_side[0]).axes,
+                    slopes,
+                }),
             ),
             triangulation,
         ),

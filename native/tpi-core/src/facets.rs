@@ -243,6 +243,7 @@ pub fn build_facets(
     convex_side: &[i8],
     tri: &DualTriangulation,
     params: &FacetParams,
+    slopes: Option<SlopeView<'_>>,
 ) -> FacetMesh {
     let domain = surface.domain();
     let ctx = Context {
@@ -328,8 +329,40 @@ pub fn build_facets(
         planes,
         params,
         ghosts_from: None,
+        slopes,
         diagnostics,
     })
+}
+
+/// The slope frame's tangent axes and the points' slopes, where the dual structure is the
+/// regular triangulation of the slopes (the convex path): what [`edge_reversed`] reads.
+#[derive(Clone, Copy, Debug)]
+pub struct SlopeView<'a> {
+    /// (e1, e2) of the slope frame.
+    pub axes: (DVec3, DVec3),
+    /// Per point, its slopes.
+    pub slopes: &'a [[f64; 2]],
+}
+
+/// Whether the facet edge from x1, the vertex of the triangle (a, b, c), to x2, the vertex of
+/// the adjacent triangle (b, a, d), runs against the direction the regular triangulation of
+/// the slopes gives it.
+///
+/// Along the line T_a ∩ T_b the upper envelope max_i (s_i . x + c_i) (in frame coordinates
+/// x = (X.e1, X.e2)) leaves plane c behind and meets plane d ahead, so the exact edge satisfies
+/// (x2 - x1) . (s_d - s_c) > 0. Where the computed vertices say otherwise, their distance is
+/// below their rounding error (four planes nearly through one point, the edge nearly of zero
+/// length): the two are one vertex of the mesh, else the edge would turn both facets that
+/// hold it non-simple.
+pub(crate) fn edge_reversed(
+    axes: (DVec3, DVec3),
+    x1: DVec3,
+    x2: DVec3,
+    s_c: [f64; 2],
+    s_d: [f64; 2],
+) -> bool {
+    let w = x2 - x1;
+    w.dot(axes.0) * (s_d[0] - s_c[0]) + w.dot(axes.1) * (s_d[1] - s_c[1]) <= 0.0
 }
 
 /// What the assembly of facet loops into a mesh reads.
@@ -345,6 +378,8 @@ struct Assembly<'a> {
     /// Points from this index on are ghosts ([`crate::ghosts`]): the vertices of their
     /// triangles are boundary vertices.
     ghosts_from: Option<u32>,
+    /// On the convex path: adjacent vertices whose edge is reversed are welded too.
+    slopes: Option<SlopeView<'a>>,
     diagnostics: Vec<Diagnostic>,
 }
 
@@ -359,6 +394,7 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
         planes,
         params,
         ghosts_from,
+        slopes,
         mut diagnostics,
     } = a;
     let uv_len = chunks.iter().map(|c| c.ends.len()).sum::<usize>();
@@ -375,8 +411,25 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
                     return None;
                 }
                 let (a, b) = (t, other as usize);
-                (tv[a].exact && tv[b].exact && tv[a].point.distance(tv[b].point) <= weld)
-                    .then_some((a as u32, b as u32))
+                let reversed = || {
+                    slopes.is_some_and(|view| {
+                        let c = tri.triangles[a][k];
+                        let s = view.slopes;
+                        tri.opposite(b, a as u32).is_some_and(|d| {
+                            edge_reversed(
+                                view.axes,
+                                tv[a].point,
+                                tv[b].point,
+                                s[c as usize],
+                                s[d as usize],
+                            )
+                        })
+                    })
+                };
+                (tv[a].exact
+                    && tv[b].exact
+                    && (tv[a].point.distance(tv[b].point) <= weld || reversed()))
+                .then_some((a as u32, b as u32))
             })
         })
         .collect();
@@ -1523,6 +1576,7 @@ pub(crate) fn build_closed_facets(
         planes,
         params,
         ghosts_from: Some(real_count as u32),
+        slopes: None,
         diagnostics: std::mem::take(&mut diagnostics),
     });
     // Live editing never runs on this path: what only it reads is let go.

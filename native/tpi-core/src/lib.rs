@@ -31,6 +31,7 @@ pub mod neighbours;
 pub mod nurbs;
 pub mod pattern;
 pub mod planes;
+mod predicates;
 pub mod projection;
 pub mod quality;
 pub mod spec;

@@ -46,9 +46,12 @@ use crate::discretise::{
     curvature_class, run, Discretisation, DiscretiseOptions, PipelineState, Seed, Timings,
 };
 use crate::error::TpiError;
-use crate::facets::{accept_newton, single_triangle_vertex, FootHint, TriangleVertex, VertexKind};
-use crate::neighbours::{envelope_quad_illegal_by, slope_repairs, NeighbourStats, SlopeFrame};
+use crate::facets::{
+    accept_newton, edge_reversed, single_triangle_vertex, FootHint, TriangleVertex, VertexKind,
+};
+use crate::neighbours::{slope_repairs, NeighbourStats, SlopeFrame};
 use crate::planes::Plane;
+use crate::predicates::{orient2d, power_illegal};
 use crate::projection::foot;
 use crate::quality::{report, ReportInput};
 use crate::surface::Surface;
@@ -779,7 +782,17 @@ impl State {
     /// stored triangles).
     fn orientation(&self, a: u32, b: u32, c: u32) -> f64 {
         let s = &self.slopes;
-        self.slope_sign * orient(s[a as usize], s[b as usize], s[c as usize])
+        self.slope_sign * orient2d(s[a as usize], s[b as usize], s[c as usize])
+    }
+
+    /// The exact power test of the full run ([`crate::predicates::power_illegal`]) on the
+    /// quad (c, a, b, d), with ties broken by pattern index as there.
+    fn power_illegal(&self, quad: [u32; 4]) -> bool {
+        let lifted = quad.map(|v| {
+            let [a, b] = self.slopes[v as usize];
+            [a, b, self.frame.height(&self.planes[v as usize])]
+        });
+        power_illegal(lifted, quad.map(|v| self.perm[v as usize]))
     }
 
     /// Removes point v: its star becomes a hole, filled with regular ears.
@@ -879,27 +892,11 @@ impl State {
             && self.orientation(c, a, x) > 0.0
     }
 
-    /// Whether no other polygon point's tangent plane cuts off the vertex of (a, b, c).
+    /// Whether no other polygon point's lifted point lies below the plane of (a, b, c)'s, by
+    /// the exact power test: no other tangent plane cuts off the vertex of (a, b, c).
     fn regular_ear(&self, a: u32, b: u32, c: u32, poly: &[u32]) -> bool {
-        let ids = self.in_pattern_order([a, b, c]);
-        let planes = &self.planes;
-        let p = ids.map(|i| &planes[i as usize]);
-        let vertex = crate::planes::intersect_three(p[0], p[1], p[2]).point;
-        if !vertex.is_finite() {
-            return false;
-        }
-        let size = [b, c]
-            .iter()
-            .map(|&i| planes[i as usize].point.distance(planes[a as usize].point))
-            .fold(0.0, f64::max);
-        let tolerance = crate::neighbours::ENVELOPE_FLIP_TOLERANCE * size;
-        let s = self.frame.side;
-        poly.iter().all(|&x| {
-            x == a
-                || x == b
-                || x == c
-                || s * planes[x as usize].signed_distance(vertex) >= -tolerance
-        })
+        poly.iter()
+            .all(|&x| x == a || x == b || x == c || !self.power_illegal([a, b, c, x]))
     }
 
     /// Inserts point v (not in the structure) at its slopes, starting the search at `start`.
@@ -995,10 +992,7 @@ impl State {
                 .position(|&x| x == t)
                 .ok_or(Fallback)?;
             let d = self.tri.triangles[other as usize][k2];
-            let perm = &self.perm;
-            if !envelope_quad_illegal_by(&self.planes, &self.convex_side, [c, a, b, d], |v| {
-                perm[v as usize]
-            }) {
+            if !self.power_illegal([c, a, b, d]) {
                 continue;
             }
             if self.orientation(c, a, d) <= 0.0 || self.orientation(d, b, c) <= 0.0 || budget == 0 {
@@ -1094,12 +1088,25 @@ impl State {
         let weld = options.weld_tolerance * self.diagonal;
         for &t in &created {
             for &u in &self.tri.neighbours[t as usize] {
-                if u == NO_TRIANGLE
-                    || self.vertex[t as usize]
-                        .point
-                        .distance(self.vertex[u as usize].point)
-                        <= weld
-                {
+                if u == NO_TRIANGLE {
+                    return Err(Fallback);
+                }
+                let (x1, x2) = (self.vertex[t as usize].point, self.vertex[u as usize].point);
+                let quad = self
+                    .tri
+                    .opposite(t as usize, u)
+                    .zip(self.tri.opposite(u as usize, t));
+                // The full run welds these (facets::assemble): the edit runs it.
+                let reversed = quad.map_or(true, |(c, d)| {
+                    edge_reversed(
+                        self.frame.axes,
+                        x1,
+                        x2,
+                        self.slopes[c as usize],
+                        self.slopes[d as usize],
+                    )
+                });
+                if x1.distance(x2) <= weld || reversed {
                     return Err(Fallback);
                 }
             }

@@ -34,6 +34,7 @@ use glam::DVec3;
 
 use crate::diffgeo::LocalGeometry;
 use crate::planes::{intersect_three, Plane};
+use crate::predicates::{orient2d, power_illegal};
 
 use crate::triangulation::{orient, DualTriangulation, NO_TRIANGLE};
 use crate::validity_flips::validity_flips;
@@ -141,7 +142,8 @@ pub const GRADIENT_MIN_COS: f64 = 0.2;
 /// upper (sigma = +1) or lower (sigma = -1) envelope of these planes. Its dual is the regular
 /// triangulation of the slopes sigma (a_i, b_i) lifted to -sigma c_i (the lower convex hull of
 /// the lifted points, by Legendre duality): a planar triangulation in slope space whose hull
-/// is exactly the envelope's. Returns the slope coordinates, or None where the conditions fail.
+/// is exactly the envelope's. Returns the lifted points ([`SlopeFrame::lift`]), or None where
+/// the conditions fail.
 ///
 /// N depends on the surface alone, not on the pattern, so each point's slopes are its own
 /// (which is what lets a live surface update them one point at a time).
@@ -149,13 +151,13 @@ pub fn gradient_embedding(
     planes: &[Plane],
     convex_side: &[i8],
     frame: Option<DVec3>,
-) -> Option<Vec<[f64; 2]>> {
+) -> Option<Vec<[f64; 3]>> {
     let side = *convex_side.first()?;
     if side == 0 || convex_side.iter().any(|&s| s != side) {
         return None;
     }
     let frame = SlopeFrame::new(frame?, side);
-    planes.iter().map(|p| frame.slopes(p)).collect()
+    planes.iter().map(|p| frame.lift(p)).collect()
 }
 
 /// The frame of the slope embedding: N, (e1, e2) and the convex side.
@@ -177,6 +179,19 @@ impl SlopeFrame {
             axes: normal.any_orthonormal_pair(),
             side: f64::from(side),
         }
+    }
+
+    /// The lifted point (s, h) of one tangent plane, whose lower convex hull is dual to the
+    /// envelope ([`crate::predicates`]): its slopes and the height h = -sigma c of the plane
+    /// z = a x + b y + c in the frame, c = n.p / n.N. None where [`Self::slopes`] is.
+    pub fn lift(&self, p: &Plane) -> Option<[f64; 3]> {
+        let [a, b] = self.slopes(p)?;
+        Some([a, b, self.height(p)])
+    }
+
+    /// The height -sigma n.p / n.N of [`Self::lift`].
+    pub fn height(&self, p: &Plane) -> f64 {
+        -self.side * (p.normal.dot(p.point) / p.normal.dot(self.normal))
     }
 
     /// The slopes of one tangent plane, or None where its normal is too far from N.
@@ -211,8 +226,9 @@ pub fn slope_frame(surface: &dyn crate::surface::Surface) -> Option<DVec3> {
 }
 
 /// The envelope's dual structure for a convex surface, from the Delaunay triangulation of
-/// the slopes ([`gradient_embedding`]) flipped to the regular triangulation by the envelope
-/// test, with convexity judged in slope space where the result is embedded; then oriented
+/// the slopes ([`gradient_embedding`]) flipped to the regular triangulation of the `lifted`
+/// points ([`SlopeFrame::lift`]) by the exact power test ([`crate::predicates`]), with
+/// convexity judged exactly in slope space where the result is embedded; then oriented
 /// counter-clockwise in parameter space (`plane_uv`), put in canonical order and trimmed.
 ///
 /// `envelope_repairs` counts the interior edges of the result that are not locally Delaunay
@@ -220,11 +236,15 @@ pub fn slope_frame(surface: &dyn crate::surface::Surface) -> Option<DVec3> {
 /// candidates. It depends on the result alone, not on the order of the flips.
 pub fn decide_convex(
     tri: &mut DualTriangulation,
-    slopes: &[[f64; 2]],
+    lifted: &[[f64; 3]],
     input: &NeighbourInput<'_>,
 ) -> NeighbourStats {
-    let (_flips, unresolved) =
-        flip_until_stable(tri, slopes, |tri, t, k| envelope_illegal(tri, input, t, k));
+    let slopes: Vec<[f64; 2]> = lifted.iter().map(|p| [p[0], p[1]]).collect();
+    let slopes = &slopes[..];
+    let (_flips, unresolved) = flip_until_stable(tri, slopes, |tri, t, k| {
+        let ids = quad(tri, t, k);
+        power_illegal(ids.map(|i| lifted[i as usize]), ids)
+    });
     orient_like(tri, input.plane_uv);
     tri.canonicalise(input.plane_uv.len());
     // Rounding can leave slivers along a straight stretch of the hull.
@@ -576,8 +596,8 @@ fn flip_until_stable(
                 .unwrap_or(0);
             let d = tri.triangles[t2 as usize][k2];
             let e = embedding;
-            let convex = orient(e[c as usize], e[a as usize], e[d as usize]) > 0.0
-                && orient(e[d as usize], e[b as usize], e[c as usize]) > 0.0;
+            let convex = orient2d(e[c as usize], e[a as usize], e[d as usize]) > 0.0
+                && orient2d(e[d as usize], e[b as usize], e[c as usize]) > 0.0;
             if !convex || flips >= budget {
                 unresolved += 1;
                 continue;

@@ -177,6 +177,13 @@ impl DualTriangulation {
         self.triangles.is_empty()
     }
 
+    /// The vertex of triangle t across from its neighbour `across` (the fourth point of the
+    /// quad around their shared edge), if `across` is a neighbour of t.
+    pub fn opposite(&self, t: usize, across: u32) -> Option<u32> {
+        let k = self.neighbours[t].iter().position(|&x| x == across)?;
+        Some(self.triangles[t][k])
+    }
+
     /// Position (0, 1, 2) of vertex `v` in triangle `t`.
     pub fn position_of(&self, t: u32, v: u32) -> Option<usize> {
         self.triangles[t as usize].iter().position(|&x| x == v)
