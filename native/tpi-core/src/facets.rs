@@ -168,6 +168,10 @@ struct Context<'a> {
     uv: &'a [[f64; 2]],
     tangents: &'a [[DVec3; 2]],
     convex_side: &'a [i8],
+    /// The dual structure is the exact regular triangulation of the slopes (the convex path):
+    /// every vertex is on the envelope, so a far one (a sliver of nearly collinear slopes) is
+    /// believed up to [`UNREACHABLE_VERTEX_FACTOR`] instead of replaced by a stand-in.
+    regular: bool,
 }
 
 impl Context<'_> {
@@ -253,6 +257,7 @@ pub fn build_facets(
         uv,
         tangents,
         convex_side,
+        regular: slopes.is_some(),
     };
     let mut diagnostics = Vec::new();
 
@@ -842,7 +847,8 @@ fn triangle_vertex_ordered(ctx: &Context<'_>, ids: [u32; 3], far_factor: f64) ->
     let distance = meeting.point.distance(centroid);
     if meeting.point.is_finite() {
         let (linear, reach) = ctx.linear_estimate(ids, meeting.point);
-        let near = distance <= far_factor * longest;
+        let near = distance <= far_factor * longest
+            || (ctx.regular && distance <= UNREACHABLE_VERTEX_FACTOR * longest);
         if near && surely_inside(&ctx.domain, linear, reach) {
             let inside = inside_measure(&ctx.domain, linear);
             return TriangleVertex {
@@ -896,6 +902,7 @@ pub(crate) fn single_triangle_vertex(
     ids: [u32; 3],
     far_factor: f64,
 ) -> TriangleVertex {
+    // Live editing runs on the convex path only.
     let ctx = Context {
         surface,
         domain: surface.domain(),
@@ -903,6 +910,7 @@ pub(crate) fn single_triangle_vertex(
         uv,
         tangents,
         convex_side,
+        regular: true,
     };
     triangle_vertex_ordered(&ctx, ids, far_factor)
 }

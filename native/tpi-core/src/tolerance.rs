@@ -10,3 +10,8 @@ pub const UMBILIC_RELATIVE_TOLERANCE: f64 = 1e-12;
 
 /// Largest NURBS degree evaluated (fixed-size buffers avoid per-call allocation).
 pub const MAX_NURBS_DEGREE: usize = 15;
+
+/// [`crate::Discretisation::sanity_check`]: a facet vertex may lie this far (relative to the
+/// bounding-box diagonal of the vertices) from its seed's tangent plane. The vertices are
+/// computed in that plane, so this only absorbs rounding.
+pub const SANITY_PLANARITY_TOLERANCE: f64 = 1e-9;

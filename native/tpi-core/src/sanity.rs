@@ -1,0 +1,293 @@
+//! The structural contract of a [`Discretisation`], checked from its arrays alone:
+//! [`Discretisation::sanity_check`].
+//!
+//! - one facet per pattern point, every vertex index in range, every vertex finite;
+//! - every facet a loop of at least three distinct vertices, lying in its seed's tangent plane
+//!   (|n . (x - p)| <= [`SANITY_PLANARITY_TOLERANCE`] times the bounding-box diagonal of the
+//!   vertices), simple and counter-clockwise seen from the seed's normal n = Su x Sv (positive
+//!   signed area, no two non-adjacent edges crossing, in a right-handed frame of the plane);
+//! - an oriented 2-manifold: every edge held by one facet (boundary) or by two facets that run
+//!   it in opposite directions;
+//! - a disc: V - E + F = 1 and the boundary edges form one loop.
+//!
+//! It says nothing about overlaps between facets that share no edge (the quality report's
+//! flags do); it is cheap enough to run on every result in tests and fuzzing.
+
+use glam::{DVec2, DVec3};
+
+use crate::discretise::Discretisation;
+use crate::tolerance::SANITY_PLANARITY_TOLERANCE;
+
+/// The first way in which a discretisation breaks its structural contract.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum SanityError {
+    /// The facet count is not the seed count, or the offsets are not a valid partition.
+    #[error("{facets} facet loops for {seeds} seeds (offsets inconsistent)")]
+    FacetCount {
+        /// Facet loops described by the offsets.
+        facets: usize,
+        /// Pattern points.
+        seeds: usize,
+    },
+    /// A loop names a vertex that does not exist.
+    #[error("facet {facet}: vertex index {index} out of range ({vertices} vertices)")]
+    VertexIndex {
+        /// The facet.
+        facet: usize,
+        /// The index it names.
+        index: u32,
+        /// How many vertices there are.
+        vertices: usize,
+    },
+    /// A vertex has a NaN or infinite coordinate.
+    #[error("vertex {vertex} is not finite")]
+    NonFiniteVertex {
+        /// The vertex.
+        vertex: usize,
+    },
+    /// A facet is open (fewer than three distinct vertices, or a vertex repeated), not simple,
+    /// or clockwise.
+    #[error("facet {facet}: {reason}")]
+    BadFacet {
+        /// The facet.
+        facet: usize,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// A facet vertex lies off the facet's plane.
+    #[error(
+        "facet {facet}: vertex {vertex} lies {distance:e} (relative to the diagonal) off its plane"
+    )]
+    NonPlanar {
+        /// The facet.
+        facet: usize,
+        /// The vertex.
+        vertex: u32,
+        /// Its distance from the seed's tangent plane over the diagonal.
+        distance: f64,
+    },
+    /// An edge is held by more than two facets, or twice in the same direction.
+    #[error("edge ({a}, {b}): {reason}")]
+    Edge {
+        /// One end.
+        a: u32,
+        /// The other end.
+        b: u32,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// The mesh is not a disc.
+    #[error("not a disc: Euler characteristic {euler}, {loops} boundary loops")]
+    NotDisc {
+        /// V - E + F (vertices counted when some facet uses them).
+        euler: i64,
+        /// Connected loops of boundary edges.
+        loops: usize,
+    },
+}
+
+impl Discretisation {
+    /// Checks the structural contract of the module doc of [`crate::sanity`]; the first
+    /// violation found is returned, naming its facet, vertex or edge.
+    pub fn sanity_check(&self) -> Result<(), SanityError> {
+        let facets = self.facet_offsets.len().saturating_sub(1);
+        let partition = self.facet_offsets.first() == Some(&0)
+            && self.facet_offsets.windows(2).all(|w| w[0] <= w[1])
+            && self.facet_offsets.last().map(|&e| e as usize) == Some(self.facet_loops.len());
+        if facets != self.seeds.len() || !partition {
+            return Err(SanityError::FacetCount {
+                facets,
+                seeds: self.seeds.len(),
+            });
+        }
+        if let Some(vertex) = self.vertices.iter().position(|v| !v.is_finite()) {
+            return Err(SanityError::NonFiniteVertex { vertex });
+        }
+        let diagonal = diagonal(&self.vertices);
+        let mut used = vec![false; self.vertices.len()];
+        let mut flat = Vec::new();
+        for facet in 0..facets {
+            let lp = self.facet(facet);
+            for &index in lp {
+                let Some(u) = used.get_mut(index as usize) else {
+                    return Err(SanityError::VertexIndex {
+                        facet,
+                        index,
+                        vertices: self.vertices.len(),
+                    });
+                };
+                *u = true;
+            }
+            check_facet(self, facet, diagonal, &mut flat)?;
+        }
+        let (edges, boundary) = edges(self)?;
+        let vertices = used.iter().filter(|&&u| u).count();
+        let euler = vertices as i64 - edges as i64 + facets as i64;
+        let loops = boundary_loops(self.vertices.len(), &boundary);
+        if euler != 1 || loops != 1 {
+            return Err(SanityError::NotDisc { euler, loops });
+        }
+        Ok(())
+    }
+}
+
+fn diagonal(vertices: &[DVec3]) -> f64 {
+    let (lo, hi) = vertices.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &v| (lo.min(v), hi.max(v)),
+    );
+    (hi - lo).length().max(f64::MIN_POSITIVE)
+}
+
+fn check_facet(
+    d: &Discretisation,
+    facet: usize,
+    diagonal: f64,
+    flat: &mut Vec<DVec2>,
+) -> Result<(), SanityError> {
+    let bad = |reason| Err(SanityError::BadFacet { facet, reason });
+    let lp = d.facet(facet);
+    if lp.len() < 3 {
+        return bad("fewer than three vertices");
+    }
+    for (k, v) in lp.iter().enumerate() {
+        if lp[k + 1..].contains(v) {
+            return bad("a vertex repeated in the loop");
+        }
+    }
+    let seed = &d.seeds[facet];
+    let (e1, e2) = right_handed_frame(seed.normal);
+    flat.clear();
+    for &v in lp {
+        let r = d.vertices[v as usize] - seed.point;
+        let distance = seed.normal.dot(r).abs() / diagonal;
+        if !(distance <= SANITY_PLANARITY_TOLERANCE) {
+            return Err(SanityError::NonPlanar {
+                facet,
+                vertex: v,
+                distance,
+            });
+        }
+        flat.push(DVec2::new(r.dot(e1), r.dot(e2)));
+    }
+    let n = flat.len();
+    let area: f64 = (0..n).map(|k| flat[k].perp_dot(flat[(k + 1) % n])).sum();
+    if !(area > 0.0) {
+        return bad("clockwise or of zero area seen from its normal");
+    }
+    for a in 0..n {
+        for b in a + 2..n {
+            if a == 0 && b == n - 1 {
+                continue;
+            }
+            let (p, q) = (flat[a], flat[(a + 1) % n]);
+            let (r, s) = (flat[b], flat[(b + 1) % n]);
+            if crosses(p, q, r, s) {
+                return bad("not simple: two of its edges cross");
+            }
+        }
+    }
+    Ok(())
+}
+
+/// (e1, e2) with e1 x e2 = n.
+fn right_handed_frame(n: DVec3) -> (DVec3, DVec3) {
+    let e1 = n.any_orthonormal_vector();
+    (e1, n.cross(e1))
+}
+
+/// Whether the closed segments pq and rs share a point (they are non-adjacent edges of one
+/// loop, so any contact makes the loop non-simple).
+fn crosses(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
+    let side = |a: DVec2, b: DVec2, c: DVec2| (b - a).perp_dot(c - a);
+    let (d1, d2) = (side(p, q, r), side(p, q, s));
+    let (d3, d4) = (side(r, s, p), side(r, s, q));
+    if d1 * d2 < 0.0 && d3 * d4 < 0.0 {
+        return true;
+    }
+    let on = |a: DVec2, b: DVec2, c: DVec2, o: f64| {
+        o == 0.0
+            && c.x >= a.x.min(b.x)
+            && c.x <= a.x.max(b.x)
+            && c.y >= a.y.min(b.y)
+            && c.y <= a.y.max(b.y)
+    };
+    on(p, q, r, d1) || on(p, q, s, d2) || on(r, s, p, d3) || on(r, s, q, d4)
+}
+
+/// The number of distinct edges, and the boundary edges (held by one facet), after checking
+/// that every edge is held once, or twice in opposite directions.
+fn edges(d: &Discretisation) -> Result<(usize, Vec<(u32, u32)>), SanityError> {
+    // Key: (lo << 32 | hi) << 1 | (direction lo -> hi ? 0 : 1).
+    let mut keys: Vec<u128> = Vec::with_capacity(d.facet_loops.len());
+    for facet in 0..d.facet_count() {
+        let lp = d.facet(facet);
+        for k in 0..lp.len() {
+            let (a, b) = (lp[k], lp[(k + 1) % lp.len()]);
+            let (lo, hi, reversed) = if a < b { (a, b, 0) } else { (b, a, 1) };
+            keys.push(((u128::from(lo) << 32 | u128::from(hi)) << 1) | reversed);
+        }
+    }
+    keys.sort_unstable();
+    let mut count = 0;
+    let mut boundary = Vec::new();
+    let mut k = 0;
+    while k < keys.len() {
+        let edge = keys[k] >> 1;
+        let mut end = k + 1;
+        while end < keys.len() && keys[end] >> 1 == edge {
+            end += 1;
+        }
+        let (a, b) = ((edge >> 32) as u32, edge as u32);
+        match end - k {
+            1 => boundary.push((a, b)),
+            2 if keys[k] & 1 != keys[k + 1] & 1 => {}
+            2 => {
+                return Err(SanityError::Edge {
+                    a,
+                    b,
+                    reason: "run in the same direction by two facets",
+                })
+            }
+            _ => {
+                return Err(SanityError::Edge {
+                    a,
+                    b,
+                    reason: "held by more than two facets",
+                })
+            }
+        }
+        count += 1;
+        k = end;
+    }
+    Ok((count, boundary))
+}
+
+/// Connected components of the boundary edges.
+fn boundary_loops(vertex_count: usize, boundary: &[(u32, u32)]) -> usize {
+    let mut parent: Vec<u32> = (0..vertex_count as u32).collect();
+    fn root(parent: &mut [u32], mut x: u32) -> u32 {
+        while parent[x as usize] != x {
+            parent[x as usize] = parent[parent[x as usize] as usize];
+            x = parent[x as usize];
+        }
+        x
+    }
+    let mut components = 0usize;
+    let mut on_boundary = vec![false; vertex_count];
+    for &(a, b) in boundary {
+        for v in [a, b] {
+            if !on_boundary[v as usize] {
+                on_boundary[v as usize] = true;
+                components += 1;
+            }
+        }
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        if ra != rb {
+            parent[ra.max(rb) as usize] = ra.min(rb);
+            components -= 1;
+        }
+    }
+    components
+}
