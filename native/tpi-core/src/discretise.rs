@@ -18,20 +18,17 @@ use serde::ser::{SerializeMap, SerializeStruct};
 use serde::{Serialize, Serializer};
 
 use crate::diagnostics::Diagnostic;
-use crate::diffgeo::LocalGeometry;
 use crate::error::TpiError;
 use crate::facets::{
     build_closed_facets, build_facets, FacetMesh, FacetParams, FootHint, SlopeView, TriangleVertex,
     VertexKind, DEFAULT_FAR_VERTEX_FACTOR,
 };
 use crate::ghosts::augment;
-use crate::neighbours::{
-    decide, decide_convex, gradient_embedding, slope_frame, NeighbourInput, NeighbourStats,
-    SlopeFrame,
-};
+use crate::neighbours::{decide, decide_convex, NeighbourInput, NeighbourStats, SlopeFrame};
 use crate::pattern::validate_uv;
 use crate::planes::Plane;
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
+use crate::samples::{bounding_box, sample, Samples};
 use crate::surface::Surface;
 use crate::triangulation::{orient, DualTriangulation};
 
@@ -366,66 +363,22 @@ pub(crate) fn run(
 ) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let start = Instant::now();
     validate_pattern(pattern)?;
-    let domain = surface.domain();
     let mut timings = Timings::default();
 
-    // Samples.
-    let uv: Vec<[f64; 2]> = pattern
-        .iter()
-        .map(|&st| domain.from_normalised(st))
-        .collect();
-    let (geometry, tangents): (Vec<LocalGeometry>, Vec<[DVec3; 2]>) = uv
-        .par_iter()
-        .map(|&[u, v]| {
-            let d = surface.evaluate(u, v);
-            (LocalGeometry::from_derivatives(&d), [d.su, d.sv])
-        })
-        .unzip();
-    if let Some(bad) = geometry
-        .iter()
-        .position(|g| !(g.point.is_finite() && g.normal.is_finite()))
-    {
-        return Err(TpiError::NonFinite {
-            field: format!("surface point at pattern point {bad}"),
-            value: f64::NAN,
-        });
-    }
-    let planes: Vec<Plane> = geometry
-        .iter()
-        .map(|g| Plane {
-            point: g.point,
-            normal: g.normal,
-        })
-        .collect();
-    let diagonal = bounding_diagonal(geometry.iter().map(|g| g.point)).max(f64::MIN_POSITIVE);
-    let mut diagnostics = Vec::new();
-    let convex_side = classify_curvature(&geometry, diagonal, options, &mut diagnostics)?;
-    let plane_uv = scaled_parameters(pattern, &geometry, &domain);
-    let seeds: Vec<Seed> = geometry
-        .par_iter()
-        .zip(&uv)
-        .map(|(g, &uv)| Seed {
-            uv,
-            point: g.point,
-            normal: g.normal,
-            curvatures: [g.k1, g.k2],
-        })
-        .collect();
-    let frame = if options.envelope_repair && convex_side.iter().all(|&s| s != 0) {
-        slope_frame(surface)
-    } else {
-        None
-    };
-    let lifted = gradient_embedding(&planes, &convex_side, frame);
-    let slopes: Option<Vec<[f64; 2]>> = lifted
-        .as_ref()
-        .map(|l| l.iter().map(|p| [p[0], p[1]]).collect());
-    // Only curvature compensation (the mixed path) reads the local geometry from here on.
-    let geometry = if slopes.is_some() {
-        Vec::new()
-    } else {
-        geometry
-    };
+    let Samples {
+        uv,
+        geometry,
+        tangents,
+        planes,
+        diagonal,
+        convex_side,
+        plane_uv,
+        seeds,
+        frame,
+        lifted,
+        slopes,
+        mut diagnostics,
+    } = sample(surface, pattern, options)?;
     timings.samples = ms(start);
 
     // Candidates and true neighbours.
@@ -691,91 +644,6 @@ fn ms(since: Instant) -> f64 {
     since.elapsed().as_secs_f64() * 1e3
 }
 
-/// The points' axis-aligned bounding box (min, max corners).
-pub(crate) fn bounding_box(points: impl Iterator<Item = DVec3>) -> (DVec3, DVec3) {
-    let mut lo = DVec3::splat(f64::INFINITY);
-    let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for p in points {
-        lo = lo.min(p);
-        hi = hi.max(p);
-    }
-    (lo, hi)
-}
-
-/// Length of the diagonal of the points' axis-aligned bounding box.
-pub fn bounding_diagonal(points: impl Iterator<Item = DVec3>) -> f64 {
-    let mut lo = DVec3::splat(f64::INFINITY);
-    let mut hi = DVec3::splat(f64::NEG_INFINITY);
-    for p in points {
-        lo = lo.min(p);
-        hi = hi.max(p);
-    }
-    if lo.is_finite() && hi.is_finite() {
-        (hi - lo).length()
-    } else {
-        0.0
-    }
-}
-
-/// Per point: +1/-1 where strictly convex (the side of the centres of curvature), 0 where
-/// saddle-shaped or flat. Flat points get a diagnostic; a surface flat everywhere is an error.
-fn classify_curvature(
-    geometry: &[LocalGeometry],
-    diagonal: f64,
-    options: &DiscretiseOptions,
-    diagnostics: &mut Vec<Diagnostic>,
-) -> Result<Vec<i8>, TpiError> {
-    let mut planar = 0usize;
-    let mut flat = 0usize;
-    let mut sides = Vec::with_capacity(geometry.len());
-    for (i, g) in geometry.iter().enumerate() {
-        let (side, is_planar, is_flat) = curvature_class(g, diagonal, options);
-        planar += usize::from(is_planar);
-        flat += usize::from(is_flat);
-        if is_flat {
-            diagnostics.push(Diagnostic::FlatPoint {
-                point: i as u32,
-                gaussian_curvature: g.k1 * g.k2,
-            });
-        }
-        sides.push(side);
-    }
-    if planar == geometry.len() {
-        return Err(TpiError::DegenerateSurface {
-            reason: "the surface is flat at every pattern point: all tangent planes coincide"
-                .into(),
-        });
-    }
-    if flat == geometry.len() {
-        return Err(TpiError::DegenerateSurface {
-            reason: "the Gaussian curvature is zero at every pattern point (a developable surface such as a cylinder): neighbouring tangent planes meet in parallel lines".into(),
-        });
-    }
-    Ok(sides)
-}
-
-/// One point's class: (convex side or 0, planar, flat), see [`classify_curvature`].
-pub(crate) fn curvature_class(
-    g: &LocalGeometry,
-    diagonal: f64,
-    options: &DiscretiseOptions,
-) -> (i8, bool, bool) {
-    let largest = g.k1.abs().max(g.k2.abs());
-    let gaussian = g.k1 * g.k2;
-    let is_planar = largest * diagonal <= DEFAULT_PLANE_CURVATURE;
-    let is_flat = is_planar || gaussian.abs() <= options.flat_tolerance * largest * largest;
-    let side = if !is_flat && gaussian > 0.0 {
-        if g.k1 > 0.0 {
-            1
-        } else {
-            -1
-        }
-    } else {
-        0
-    };
-    (side, is_planar, is_flat)
-}
-
 /// The size of the triangulation plane's rectangle: the scale factors that
 /// [`scaled_parameters`] applied to the normalised pattern coordinates.
 fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
@@ -790,24 +658,4 @@ fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
         }
     }
     extent
-}
-
-/// Normalised pattern coordinates scaled by the surface's mean extent in u and v, so that
-/// the candidate triangulation sees roughly isotropic distances.
-fn scaled_parameters(
-    pattern: &[[f64; 2]],
-    geometry: &[LocalGeometry],
-    domain: &crate::surface::Domain,
-) -> Vec<[f64; 2]> {
-    let n = geometry.len() as f64;
-    let mean_su = geometry.iter().map(|g| g.first_form[0].sqrt()).sum::<f64>() / n;
-    let mean_sv = geometry.iter().map(|g| g.first_form[2].sqrt()).sum::<f64>() / n;
-    let mut su = mean_su * domain.u.length();
-    let mut sv = mean_sv * domain.v.length();
-    if !(su > 0.0 && su.is_finite() && sv > 0.0 && sv.is_finite()) {
-        su = 1.0;
-        sv = 1.0;
-    }
-    let (su, sv) = (su / su.max(sv), sv / su.max(sv));
-    pattern.iter().map(|&[s, t]| [s * su, t * sv]).collect()
 }

@@ -34,6 +34,7 @@ pub mod planes;
 mod predicates;
 pub mod projection;
 pub mod quality;
+mod samples;
 pub mod sanity;
 pub mod spec;
 pub mod surface;

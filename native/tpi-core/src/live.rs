@@ -42,9 +42,7 @@ use glam::DVec3;
 
 use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
-use crate::discretise::{
-    curvature_class, run, Discretisation, DiscretiseOptions, PipelineState, Seed, Timings,
-};
+use crate::discretise::{run, Discretisation, DiscretiseOptions, PipelineState, Seed, Timings};
 use crate::error::TpiError;
 use crate::facets::{
     accept_newton, edge_reversed, single_triangle_vertex, FootHint, TriangleVertex, VertexKind,
@@ -54,6 +52,7 @@ use crate::planes::Plane;
 use crate::predicates::{orient2d, power_illegal};
 use crate::projection::foot;
 use crate::quality::{report, ReportInput};
+use crate::samples::curvature_class;
 use crate::surface::Surface;
 use crate::tolerance::DUPLICATE_UV_TOLERANCE;
 use crate::triangulation::{orient, DualTriangulation, NO_TRIANGLE};

@@ -60,7 +60,7 @@ pub fn validity_flips(
 ) -> ValidityFlipStats {
     use rayon::prelude::*;
     let n = judged;
-    let (lo, hi) = crate::discretise::bounding_box(planes[..n].iter().map(|p| p.point));
+    let (lo, hi) = crate::samples::bounding_box(planes[..n].iter().map(|p| p.point));
     let weld = crate::discretise::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
     let vertex: Vec<DVec3> = tri
         .triangles

@@ -141,6 +141,10 @@ fn check_pattern(
             topo.components, topo.euler, topo.boundary_loops
         ));
     }
+    // The crate's own structural check must agree with the independent one.
+    if let Err(e) = d.sanity_check() {
+        fail.push(format!("{name} n={n}: sanity check: {e}"));
+    }
     if let Some(q) = &d.quality {
         if q.euler_characteristic != topo.euler || q.boundary_loops != topo.boundary_loops {
             fail.push(format!(

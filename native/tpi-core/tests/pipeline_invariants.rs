@@ -40,6 +40,7 @@ fn check_valid_disc(surface: &dyn Surface, n: usize, seed: u64) {
     let pattern = random_points(n, seed);
     let result = discretise(surface, &pattern, &DiscretiseOptions::default()).expect("discretises");
     assert_eq!(result.facet_count(), n, "no facet dropped");
+    result.sanity_check().expect("structural contract");
     let loops: Vec<Vec<u32>> = (0..n).map(|i| result.facet(i).to_vec()).collect();
     let (euler, boundary_edges) = topology(&loops);
     assert_eq!(euler, 1, "a disc");
