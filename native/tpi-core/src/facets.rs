@@ -239,6 +239,8 @@ fn surely_inside(domain: &Domain, linear: [f64; 2], reach: f64) -> bool {
 }
 
 /// Builds the facets of all pattern points from the dual triangulation.
+// The stage's inputs, each a slice of the samples; one typed input struct is still owed.
+#[allow(clippy::too_many_arguments)]
 pub fn build_facets(
     surface: &dyn Surface,
     uv: &[[f64; 2]],
