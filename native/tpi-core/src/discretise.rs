@@ -30,6 +30,7 @@ use crate::planes::Plane;
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
 use crate::samples::{bounding_box, sample, Samples};
 use crate::surface::Surface;
+use crate::tolerance::REVERSAL_CHECK_TOLERANCE;
 use crate::triangulation::{orient, DualTriangulation};
 
 /// Default weld distance of coincident vertices, relative to the bounding-box diagonal.
@@ -455,6 +456,7 @@ pub(crate) fn run(
     let params = FacetParams {
         far_vertex_factor: options.far_vertex_factor,
         weld_distance: options.weld_tolerance * diagonal,
+        reversal_distance: REVERSAL_CHECK_TOLERANCE * diagonal,
     };
     let (mesh, triangulation) = match &augmented {
         None => (

@@ -79,6 +79,9 @@ pub struct FacetParams {
     pub far_vertex_factor: f64,
     /// Absolute weld distance (model units).
     pub weld_distance: f64,
+    /// Adjacent vertices farther apart than this (model units) are not tested for a reversed
+    /// edge ([`crate::tolerance::REVERSAL_CHECK_TOLERANCE`] times the diagonal).
+    pub reversal_distance: f64,
 }
 
 /// The indexed polygon mesh before reporting.
@@ -433,9 +436,10 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
                         })
                     })
                 };
+                let distance = tv[a].point.distance(tv[b].point);
                 (tv[a].exact
                     && tv[b].exact
-                    && (tv[a].point.distance(tv[b].point) <= weld || reversed()))
+                    && (distance <= weld || (distance <= params.reversal_distance && reversed())))
                 .then_some((a as u32, b as u32))
             })
         })
