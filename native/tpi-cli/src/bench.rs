@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use serde::Serialize;
-use tpi_core::benchmark::{nurbs_dome, paraboloid, random_pattern, saddle};
+use tpi_core::benchmark::{floor, nurbs_dome, paraboloid, random_pattern, saddle, FloorTimings};
 use tpi_core::pattern::SplitMix64;
 use tpi_core::{discretise, DiscretiseOptions, LiveSurface, Surface, Timings};
 
@@ -20,7 +20,7 @@ tpi bench: time the discretisation on the benchmark surfaces
 
 USAGE:
     tpi bench [--sizes N,N,...] [--surfaces paraboloid,nurbs] [--threads T] [--repeat R]
-              [--no-report] [--edits E] [--json] [--plot FILE.svg]
+              [--no-report] [--edits E] [--floor] [--json] [--plot FILE.svg]
 
 Discretises N uniform random pattern points (SplitMix64, seed 7 + N) on (a) the paraboloid
 of revolution z = -0.08 (x^2 + y^2) over [-5, 5]^2 and (b) a bicubic NURBS dome with
@@ -45,6 +45,10 @@ OPTIONS:
     --repeat R         runs per size, the median is reported (default 3; odd is best)
     --no-report        switch the quality report off (DiscretiseOptions::quality_report)
     --edits E          also time E live edits per size (default 0: none)
+    --floor            also time the floor (tpi_core::benchmark::floor: evaluation with
+                       curvature, one Delaunay triangulation of the slopes, one three-plane
+                       solve per triangle; and apart, one text write of the result) in the
+                       same process and print the pipeline's ratio to it
     --json             print JSON instead of the table
     --plot FILE.svg    also write a log-log plot of total time against the pattern size
     -h, --help         this help
@@ -68,6 +72,7 @@ struct Config {
     json: bool,
     plot: Option<PathBuf>,
     edits: usize,
+    floor: bool,
 }
 
 /// One surface and size: the medians.
@@ -89,6 +94,12 @@ pub(crate) struct Row {
     /// Live editing, with --edits.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub edits: Option<EditRow>,
+    /// The floor's medians, with --floor.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub floor_ms: Option<FloorTimings>,
+    /// The pipeline's median total over the floor's median compute, with --floor.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub floor_ratio: Option<f64>,
 }
 
 /// Live editing on one surface and size.
@@ -165,6 +176,7 @@ fn parse(rest: Vec<String>) -> Result<Option<Config>, CliError> {
         json: false,
         plot: None,
         edits: 0,
+        floor: false,
     };
     while let Some(arg) = a.next() {
         match arg {
@@ -172,6 +184,10 @@ fn parse(rest: Vec<String>) -> Result<Option<Config>, CliError> {
                 "help" => {
                     print!("{HELP}");
                     return Ok(None);
+                }
+                "floor" => {
+                    a.flag(&name, inline)?;
+                    config.floor = true;
                 }
                 "sizes" => {
                     let v = a.value(&name, inline)?;
@@ -281,6 +297,23 @@ fn measure(config: &Config) -> Result<Report, CliError> {
                 runs.push(timings);
             }
             let median_ms = median_timings(&runs);
+            let floor_ms = if config.floor {
+                let floors = (0..config.repeat)
+                    .map(|_| {
+                        floor(surface.as_ref(), &pattern).map_err(|e| CliError::core(name, &e))
+                    })
+                    .collect::<Result<Vec<_>, _>>()?;
+                let pick = |f: fn(&FloorTimings) -> f64| median(floors.iter().map(f).collect());
+                Some(FloorTimings {
+                    samples: pick(|f| f.samples),
+                    triangulation: pick(|f| f.triangulation),
+                    plane_solves: pick(|f| f.plane_solves),
+                    write: pick(|f| f.write),
+                    compute: pick(|f| f.compute),
+                })
+            } else {
+                None
+            };
             let edits = if config.edits > 0 {
                 Some(edit_timings(name, &pattern, config.edits, &options)?)
             } else {
@@ -298,6 +331,10 @@ fn measure(config: &Config) -> Result<Report, CliError> {
                 median_ms,
                 peak_memory_mb: peak_memory_bytes() as f64 / 1e6,
                 edits,
+                floor_ratio: floor_ms
+                    .filter(|f| f.compute > 0.0)
+                    .map(|f| median_ms.total / f.compute),
+                floor_ms,
             });
         }
     }
@@ -476,6 +513,42 @@ pub(crate) fn table(report: &Report) -> String {
             "{:<10} {:>8} {:>9.3} {:>9.3} {:>10.3} {:>9.3} {:>9.3} {:>9.3} {:>10.3} {:>12.0} {:>8.1}",
             r.surface, r.points, t.samples, t.delaunay, t.neighbours, t.facets, t.mesh, t.report, t.total, r.facets_per_second, r.peak_memory_mb
         );
+    }
+    if report.results.iter().any(|r| r.floor_ms.is_some()) {
+        let _ = writeln!(
+            s,
+            "floor (what any TPI run must do; ratio = pipeline total / floor compute):"
+        );
+        let _ = writeln!(
+            s,
+            "{:<10} {:>8} {:>9} {:>13} {:>12} {:>9} {:>9} {:>9} {:>7}",
+            "surface",
+            "points",
+            "samples",
+            "triangulation",
+            "plane solves",
+            "compute",
+            "total",
+            "write",
+            "ratio"
+        );
+        for r in &report.results {
+            if let (Some(f), Some(ratio)) = (&r.floor_ms, r.floor_ratio) {
+                let _ = writeln!(
+                    s,
+                    "{:<10} {:>8} {:>9.3} {:>13.3} {:>12.3} {:>9.3} {:>9.3} {:>9.3} {:>6.1}x",
+                    r.surface,
+                    r.points,
+                    f.samples,
+                    f.triangulation,
+                    f.plane_solves,
+                    f.compute,
+                    r.median_ms.total,
+                    f.write,
+                    ratio
+                );
+            }
+        }
     }
     if report.results.iter().any(|r| r.edits.is_some()) {
         let _ = writeln!(s, "live edits (drags inside [0.1, 0.9]^2):");

@@ -1265,6 +1265,60 @@ fn bench_prints_the_table_and_json_and_plot() {
         "{svg}"
     );
 
+    // --floor: the floor's stages and the ratio, consistent with each other (never timings).
+    let out = ok(&[
+        "bench",
+        "--sizes",
+        "500",
+        "--surfaces",
+        "nurbs,saddle",
+        "--repeat",
+        "1",
+        "--floor",
+        "--json",
+    ]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    for r in json["results"].as_array().expect("results") {
+        let f = &r["floor_ms"];
+        let part = |k: &str| f[k].as_f64().unwrap_or_else(|| panic!("{k}: {r}"));
+        let compute = part("compute");
+        for k in ["samples", "triangulation", "plane_solves", "write"] {
+            assert!(part(k) >= 0.0, "{k}: {r}");
+        }
+        assert!(
+            compute >= part("samples") && compute >= part("triangulation"),
+            "{r}"
+        );
+        let ratio = r["floor_ratio"].as_f64().expect("ratio");
+        let total = r["median_ms"]["total"].as_f64().expect("total");
+        assert!((ratio - total / compute).abs() <= 1e-9 * ratio, "{r}");
+    }
+    let table = text(
+        &ok(&[
+            "bench",
+            "--sizes",
+            "500",
+            "--surfaces",
+            "nurbs",
+            "--repeat",
+            "1",
+            "--floor",
+        ])
+        .stdout,
+    );
+    let floor_header = table
+        .lines()
+        .position(|l| l.starts_with("floor"))
+        .expect("floor table");
+    let row: Vec<&str> = table
+        .lines()
+        .nth(floor_header + 2)
+        .expect("floor row")
+        .split_whitespace()
+        .collect();
+    assert_eq!((row[0], row[1]), ("nurbs", "500"), "{table}");
+    assert!(row[8].ends_with('x'), "{table}");
+
     fails(&["bench", "--sizes", "2"], 2, &["--sizes"]);
     fails(&["bench", "--surfaces", "torus"], 2, &["--surfaces"]);
     fails(&["bench", "--repeat", "0"], 2, &["--repeat"]);

@@ -9,12 +9,28 @@
 //!   samples/saddle.json): the any-curvature path (ghosts, |II| flips, validity flips).
 //! - [`random_pattern`]: n uniform random points in the unit square (SplitMix64, fixed seed per
 //!   n), the same generator as `tpi pattern random:N:seed=S`.
+//! - [`floor`]: what any TPI discretisation of the same input cannot avoid, timed stage by
+//!   stage: surface evaluation with curvature at every point, one triangulation of the
+//!   points' slopes (of their parameters where the slope frame does not apply), one
+//!   three-plane solve per triangle, and one write of the result (vertex coordinates and
+//!   triangle indices as text, into memory). `tpi bench --floor` prints the pipeline's
+//!   ratio to it.
+
+use std::io::Write;
+use std::time::Instant;
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::analytic::AnalyticSurface;
+use crate::diffgeo::LocalGeometry;
+use crate::error::TpiError;
+use crate::neighbours::{slope_frame, SlopeFrame};
 use crate::nurbs::NurbsSurface;
 use crate::pattern::Generator;
+use crate::planes::{intersect_three, Plane};
+use crate::surface::Surface;
+use crate::triangulation::DualTriangulation;
 
 /// The benchmark's analytic surface: z = -0.08 (x^2 + y^2) over [-5, 5]^2.
 pub fn paraboloid() -> AnalyticSurface {
@@ -112,6 +128,77 @@ pub fn random_pattern(n: usize) -> Vec<[f64; 2]> {
     }
     .generate()
     .uv
+}
+
+/// The floor's stage times in milliseconds (see the module doc).
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct FloorTimings {
+    /// Evaluation with derivatives and curvature at every point, tangent planes.
+    pub samples: f64,
+    /// One Delaunay triangulation of the slopes (spade's bulk loader).
+    pub triangulation: f64,
+    /// One three-plane intersection per triangle.
+    pub plane_solves: f64,
+    /// Vertex coordinates and triangle indices written as text into memory.
+    pub write: f64,
+    /// samples + triangulation + plane solves: what `discretise` itself cannot avoid.
+    pub compute: f64,
+}
+
+/// Times the floor on `surface` and `pattern` (normalised uv), in the current rayon pool.
+pub fn floor(surface: &dyn Surface, pattern: &[[f64; 2]]) -> Result<FloorTimings, TpiError> {
+    let ms = |since: Instant| since.elapsed().as_secs_f64() * 1e3;
+    let mut t = FloorTimings::default();
+    let start = Instant::now();
+    let domain = surface.domain();
+    let planes: Vec<Plane> = pattern
+        .par_iter()
+        .map(|&st| {
+            let [u, v] = domain.from_normalised(st);
+            let g = LocalGeometry::from_derivatives(&surface.evaluate(u, v));
+            Plane {
+                point: g.point,
+                normal: g.normal,
+            }
+        })
+        .collect();
+    t.samples = ms(start);
+    let stage = Instant::now();
+    let frame = slope_frame(surface).map(|n| SlopeFrame::new(n, 1));
+    let slopes: Option<Vec<[f64; 2]>> =
+        frame.and_then(|f| planes.iter().map(|p| f.slopes(p)).collect());
+    // Folded slopes (a saddle's can repeat) fall back to the parameters.
+    let triangulation = match slopes.as_deref().map(DualTriangulation::delaunay) {
+        Some(Ok(triangulation)) => triangulation,
+        _ => DualTriangulation::delaunay(pattern)?,
+    };
+    t.triangulation = ms(stage);
+    let stage = Instant::now();
+    let vertices: Vec<DVec3> = triangulation
+        .triangles
+        .par_iter()
+        .map(|&[a, b, c]| {
+            intersect_three(
+                &planes[a as usize],
+                &planes[b as usize],
+                &planes[c as usize],
+            )
+            .point
+        })
+        .collect();
+    t.plane_solves = ms(stage);
+    t.compute = ms(start);
+    let stage = Instant::now();
+    let mut out: Vec<u8> = Vec::with_capacity(vertices.len() * 64);
+    for v in &vertices {
+        let _ = writeln!(out, "v {} {} {}", v.x, v.y, v.z);
+    }
+    for [a, b, c] in &triangulation.triangles {
+        let _ = writeln!(out, "f {} {} {}", a + 1, b + 1, c + 1);
+    }
+    std::hint::black_box(&out);
+    t.write = ms(stage);
+    Ok(t)
 }
 
 #[cold]
