@@ -105,11 +105,6 @@
 #define TPI_VERSION_PATCH 0
 
 /**
- * Size in bytes of the first version of `TpiOptions`: the smallest `struct_size` accepted.
- */
-#define TPI_OPTIONS_SIZE_V1 40
-
-/**
  * Per-facet flag: the facet is not convex where its seed is strictly convex (K > 0); on
  * saddle-shaped regions non-convex facets are expected and not flagged.
  */
@@ -154,6 +149,11 @@
  * `open_facets`, `validity_flips` and `validity_unresolved`).
  */
 #define TPI_QUALITY_REPORT_SIZE_V2 232
+
+/**
+ * Size in bytes of the first version of `TpiOptions`: the smallest `struct_size` accepted.
+ */
+#define TPI_OPTIONS_SIZE_V1 40
 
 /**
  * The result of every fallible call. The numbers are part of the ABI: they are never changed
@@ -345,67 +345,6 @@ typedef struct TpiOptions {
 } TpiOptions;
 
 /**
- * The parameter domain [u_min, u_max] x [v_min, v_max] of a surface.
- */
-typedef struct TpiDomain {
-    /**
-     * Start of the u interval.
-     */
-    double u_min;
-    /**
-     * End of the u interval.
-     */
-    double u_max;
-    /**
-     * Start of the v interval.
-     */
-    double v_min;
-    /**
-     * End of the v interval.
-     */
-    double v_max;
-} TpiDomain;
-
-/**
- * Point, normal, principal curvatures and principal directions at one (u, v).
- *
- * The normal is Su x Sv normalised (as RhinoCommon's `NormalAt`). Curvatures are signed
- * relative to the normal: k > 0 where the surface bends towards it; k1 <= k2. (d1, d2,
- * normal) is a right-handed orthonormal frame. Where Su x Sv vanishes (a pole, a collapsed
- * edge) `regular` is 0, the normal is a fallback and the curvatures are 0.
- */
-typedef struct TpiSample {
-    /**
-     * Surface point (x, y, z).
-     */
-    double point[3];
-    /**
-     * Unit normal.
-     */
-    double normal[3];
-    /**
-     * Principal curvatures k1 <= k2.
-     */
-    double curvatures[2];
-    /**
-     * Unit principal direction of k1.
-     */
-    double d1[3];
-    /**
-     * Unit principal direction of k2.
-     */
-    double d2[3];
-    /**
-     * 1 where the surface is regular at this point, 0 where Su x Sv vanishes.
-     */
-    uint32_t regular;
-    /**
-     * Always 0 (padding, kept explicit for other languages).
-     */
-    uint32_t reserved;
-} TpiSample;
-
-/**
  * The pattern point behind a facet: its parameters in the surface's own domain, surface
  * point, unit normal (Su x Sv) and principal curvatures k1 <= k2.
  */
@@ -595,6 +534,67 @@ typedef struct TpiDiagnosticEntry {
     uint32_t diagnostic;
 } TpiDiagnosticEntry;
 
+/**
+ * The parameter domain [u_min, u_max] x [v_min, v_max] of a surface.
+ */
+typedef struct TpiDomain {
+    /**
+     * Start of the u interval.
+     */
+    double u_min;
+    /**
+     * End of the u interval.
+     */
+    double u_max;
+    /**
+     * Start of the v interval.
+     */
+    double v_min;
+    /**
+     * End of the v interval.
+     */
+    double v_max;
+} TpiDomain;
+
+/**
+ * Point, normal, principal curvatures and principal directions at one (u, v).
+ *
+ * The normal is Su x Sv normalised (as RhinoCommon's `NormalAt`). Curvatures are signed
+ * relative to the normal: k > 0 where the surface bends towards it; k1 <= k2. (d1, d2,
+ * normal) is a right-handed orthonormal frame. Where Su x Sv vanishes (a pole, a collapsed
+ * edge) `regular` is 0, the normal is a fallback and the curvatures are 0.
+ */
+typedef struct TpiSample {
+    /**
+     * Surface point (x, y, z).
+     */
+    double point[3];
+    /**
+     * Unit normal.
+     */
+    double normal[3];
+    /**
+     * Principal curvatures k1 <= k2.
+     */
+    double curvatures[2];
+    /**
+     * Unit principal direction of k1.
+     */
+    double d1[3];
+    /**
+     * Unit principal direction of k2.
+     */
+    double d2[3];
+    /**
+     * 1 where the surface is regular at this point, 0 where Su x Sv vanishes.
+     */
+    uint32_t regular;
+    /**
+     * Always 0 (padding, kept explicit for other languages).
+     */
+    uint32_t reserved;
+} TpiSample;
+
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -630,301 +630,140 @@ const char *tpi_status_name(uint32_t status);
 enum TpiStatus tpi_last_error_message(char *buf, size_t capacity, size_t *needed);
 
 /**
- * Fills `*options` with the defaults (see each field). `options->struct_size` must be set
- * to sizeof(TpiOptions) first; only that many bytes are written, and `struct_size` is left
- * as it is.
+ * Creates a discrete surface from copies of `surface` and `pattern` (the caller keeps its
+ * handles and may free them at once) and computes its first mesh. `options` may be NULL for
+ * the defaults; they hold for the object's life.
  *
- * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (`struct_size` smaller than
- * TPI_OPTIONS_SIZE_V1, e.g. not set).
- *
- * # Safety
- * `options` is NULL or valid for reading and writing `options->struct_size` bytes.
- */
-enum TpiStatus tpi_options_default(struct TpiOptions *options);
-
-/**
- * Creates a NURBS surface from the arrays RhinoCommon hands over.
- *
- * - `degree_u`, `degree_v`: degrees (1 to 15).
- * - `count_u`, `count_v`: control point counts (count > degree).
- * - `knots_u` (`knots_u_len` doubles) and `knots_v`: knot vectors in **Rhino's convention**,
- *   count + degree - 1 knots each, as `NurbsSurface.KnotsU`/`KnotsV` give them; the domain is
- *   [knots[degree - 1], knots[count - 1]]. (The textbook convention with two more knots,
- *   count + degree + 1, is recognised by its length and accepted too.)
- * - `points` (`points_len` doubles): the Euclidean control points, u-major: point (i, j) is
- *   `points[3 * (i * count_v + j) + 0..3]`, i.e. `Points.GetControlPoint(i, j).Location`;
- *   `points_len` must be 3 * count_u * count_v.
- * - `weights` (`weights_len` doubles): the weights in the same order, all > 0, or NULL (with
- *   `weights_len` 0) for a non-rational surface. The points are **not** premultiplied.
- *
- * On success stores a new handle in `*out`, which the caller frees with `tpi_surface_free`;
- * on failure `*out` is NULL. Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT
- * (a length not a multiple of 3, weights_len without weights), TPI_STATUS_NON_FINITE (a NaN
- * or infinite knot, coordinate or weight), TPI_STATUS_INVALID_NURBS (everything else wrong
- * with the data, e.g. a wrong number of knots).
+ * On success `*out` is a new handle (free with `tpi_discrete_surface_free`), else NULL.
+ * Errors: as `tpi_discretise`.
  *
  * # Safety
- * Each array pointer is NULL or valid for reading its length in doubles; `out` is NULL or
- * valid for writing a pointer.
+ * `surface` and `pattern` are NULL or live handles; `options` is NULL or a `TpiOptions`
+ * with `struct_size` readable bytes; `out` is NULL or valid for writing a pointer.
  */
-enum TpiStatus tpi_surface_new_nurbs(size_t degree_u, size_t degree_v, size_t count_u, size_t count_v, const double *knots_u, size_t knots_u_len, const double *knots_v, size_t knots_v_len, const double *points, size_t points_len, const double *weights, size_t weights_len, struct TpiSurface **out);
+enum TpiStatus tpi_discrete_surface_new(const struct TpiSurface *surface, const struct TpiPattern *pattern, const struct TpiOptions *options, struct TpiDiscreteSurface **out);
 
 /**
- * Creates the elliptic paraboloid z = a x^2 + b y^2 over [x0, x1] x [y0, y1] (u = x,
- * v = y); a and b non-zero with the same sign.
- *
- * On success `*out` is a new handle (free with `tpi_surface_free`), else NULL. Errors:
- * TPI_STATUS_NULL_POINTER, TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_ARGUMENT.
+ * Frees a discrete surface. NULL is allowed and does nothing. Meshes taken from it with
+ * `tpi_discrete_surface_mesh` stay valid.
  *
  * # Safety
- * `out` is NULL or valid for writing a pointer.
+ * `discrete_surface` is NULL or a handle that was not freed yet, and no other call is using
+ * it.
  */
-enum TpiStatus tpi_surface_new_elliptic_paraboloid(double a, double b, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+void tpi_discrete_surface_free(struct TpiDiscreteSurface *discrete_surface);
 
 /**
- * Creates the hyperbolic paraboloid z = a x^2 - b y^2 over [x0, x1] x [y0, y1]; a and b
- * non-zero with the same sign.
- *
- * On success `*out` is a new handle, else NULL. Errors as
- * `tpi_surface_new_elliptic_paraboloid`.
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_surface_new_hyperbolic_paraboloid(double a, double b, double x0, double x1, double y0, double y1, struct TpiSurface **out);
-
-/**
- * Creates the sphere cap z = sqrt(r^2 - x^2 - y^2) over [x0, x1] x [y0, y1], which must lie
- * strictly inside the disc of radius r.
- *
- * On success `*out` is a new handle, else NULL. Errors as
- * `tpi_surface_new_elliptic_paraboloid`.
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_surface_new_sphere_cap(double radius, double x0, double x1, double y0, double y1, struct TpiSurface **out);
-
-/**
- * Creates the sphere cap over the centred square [-h, h]^2 (needs h > 0 and
- * h * sqrt(2) < radius).
- *
- * On success `*out` is a new handle, else NULL. Errors as
- * `tpi_surface_new_elliptic_paraboloid`.
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_surface_new_sphere_cap_square(double radius, double half_width, struct TpiSurface **out);
-
-/**
- * Creates the ellipsoid cap z = c sqrt(1 - x^2/a^2 - y^2/b^2) over [x0, x1] x [y0, y1],
- * strictly inside the ellipse; a, b, c > 0.
- *
- * On success `*out` is a new handle, else NULL. Errors as
- * `tpi_surface_new_elliptic_paraboloid`.
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_surface_new_ellipsoid_cap(double a, double b, double c, double x0, double x1, double y0, double y1, struct TpiSurface **out);
-
-/**
- * Creates the egg-crate z = A sin(x) sin(y) over [x0, x1] x [y0, y1]; A non-zero.
- *
- * On success `*out` is a new handle, else NULL. Errors as
- * `tpi_surface_new_elliptic_paraboloid`.
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_surface_new_egg_crate(double amplitude, double x0, double x1, double y0, double y1, struct TpiSurface **out);
-
-/**
- * Creates the cylinder z = sqrt(r^2 - x^2) over [x0, x1] x [y0, y1] with |x| < r. Its
- * Gaussian curvature is 0 everywhere, so discretising it fails with TPI_STATUS_DEGENERATE;
- * it is here for sampling and for tests.
- *
- * On success `*out` is a new handle, else NULL. Errors as
- * `tpi_surface_new_elliptic_paraboloid`.
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_surface_new_cylinder(double radius, double x0, double x1, double y0, double y1, struct TpiSurface **out);
-
-/**
- * Creates the plane z = p x + q y + c0 over [x0, x1] x [y0, y1]. Discretising it fails with
- * TPI_STATUS_DEGENERATE; it is here for sampling and for tests.
- *
- * On success `*out` is a new handle, else NULL. Errors as
- * `tpi_surface_new_elliptic_paraboloid`.
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_surface_new_plane(double p, double q, double c0, double x0, double x1, double y0, double y1, struct TpiSurface **out);
-
-/**
- * Frees a surface. NULL is allowed and does nothing. Handles created from this surface
- * (patterns do not depend on it; discretisations and discrete surfaces hold their own copy)
- * stay valid.
- *
- * # Safety
- * `surface` is NULL or a handle from a `tpi_surface_new_*` call that was not freed yet, and
- * no other call is using it.
- */
-void tpi_surface_free(struct TpiSurface *surface);
-
-/**
- * Stores the surface's parameter domain in `*out`.
+ * Stores the current number of pattern points in `*out` (edits included, recomputed or not).
  *
  * Errors: TPI_STATUS_NULL_POINTER.
  *
  * # Safety
- * `surface` is NULL or a live handle; `out` is NULL or valid for writing a `TpiDomain`.
+ * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
  */
-enum TpiStatus tpi_surface_domain(const struct TpiSurface *surface, struct TpiDomain *out);
+enum TpiStatus tpi_discrete_surface_point_count(const struct TpiDiscreteSurface *discrete_surface, size_t *out);
 
 /**
- * Evaluates the surface at `uv_len / 2` parameter pairs: `uv` holds u0, v0, u1, v1, ... in
- * the surface's own domain (not normalised). Writes one `TpiSample` per pair to `out`, which
- * has room for `out_capacity` samples.
- *
- * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (odd `uv_len`),
- * TPI_STATUS_BUFFER_TOO_SMALL (`out_capacity < uv_len / 2`; nothing written),
- * TPI_STATUS_NON_FINITE (a NaN or infinite parameter), TPI_STATUS_OUT_OF_DOMAIN (a pair
- * outside the domain). On an error nothing is written to `out`; the message names the first
- * offending pair.
- *
- * # Safety
- * `surface` is NULL or a live handle; `uv` is NULL or valid for reading `uv_len` doubles;
- * `out` is NULL or valid for writing `out_capacity` samples.
- */
-enum TpiStatus tpi_surface_evaluate(const struct TpiSurface *surface, const double *uv, size_t uv_len, struct TpiSample *out, size_t out_capacity);
-
-/**
- * Creates a pattern from `uv_len / 2` points: `uv` holds s0, t0, s1, t1, ... in [0, 1].
- *
- * The points are validated: each finite and inside [0, 1]^2, no two closer than 1e-9.
- * Fewer than three points make a valid pattern, but discretising it fails.
- *
- * On success `*out` is a new handle (free with `tpi_pattern_free`), else NULL. Errors:
- * TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (odd `uv_len`),
- * TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_PATTERN (a point outside the square, a
- * duplicate; the message names the point).
- *
- * # Safety
- * `uv` is NULL or valid for reading `uv_len` doubles; `out` is NULL or valid for writing a
- * pointer.
- */
-enum TpiStatus tpi_pattern_new(const double *uv, size_t uv_len, struct TpiPattern **out);
-
-/**
- * Creates the square grid of `nu` x `nv` cell centres ((i + 1/2)/nu, (j + 1/2)/nv), point
- * (i, j) at index i * nv + j (generator `grid:NUxNV`).
- *
- * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
- * TPI_STATUS_INVALID_PATTERN (a count of 0, more than 10^7 points).
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_pattern_new_grid(size_t nu, size_t nv, struct TpiPattern **out);
-
-/**
- * Creates the hexagonal grid of `nu` x `nv` points: rows at t = (j + 1/2)/nv, points at
- * s = (i + 1/4)/nu in even rows and (i + 3/4)/nu in odd rows (generator `hex:NUxNV`).
- *
- * On success `*out` is a new handle, else NULL. Errors as `tpi_pattern_new_grid`.
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_pattern_new_hex(size_t nu, size_t nv, struct TpiPattern **out);
-
-/**
- * Creates the `nu` x `nv` grid with each cell centre moved by uniform random offsets in
- * [-amount/2, amount/2) of the cell's size; `amount` in [0, 1] (generator
- * `jitter:NUxNV:amount=A:seed=S`). Deterministic for a given seed.
- *
- * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
- * TPI_STATUS_INVALID_PATTERN.
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_pattern_new_jitter(size_t nu, size_t nv, double amount, uint64_t seed, struct TpiPattern **out);
-
-/**
- * Creates `count` uniform random points (generator `random:N:seed=S`). Deterministic for a
- * given seed.
- *
- * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
- * TPI_STATUS_INVALID_PATTERN.
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_pattern_new_random(size_t count, uint64_t seed, struct TpiPattern **out);
-
-/**
- * Creates a Poisson-disk sampling with minimum distance `radius` (>= 0.001) in normalised
- * units (generator `poisson:R:seed=S`). Deterministic for a given seed; the number of points
- * depends on the radius (about 0.7 / radius^2).
- *
- * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
- * TPI_STATUS_INVALID_PATTERN.
- *
- * # Safety
- * `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_pattern_new_poisson(double radius, uint64_t seed, struct TpiPattern **out);
-
-/**
- * Creates a pattern from a generator spec, the command line's syntax: `grid:NUxNV`,
- * `grid:spacing=D`, `hex:NUxNV`, `hex:spacing=D`, `jitter:NUxNV[:amount=A][:seed=S]`,
- * `jitter:spacing=D[...]`, `random:N[:seed=S]`, `poisson:R[:seed=S]`.
- *
- * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
- * TPI_STATUS_INVALID_ARGUMENT (not UTF-8), TPI_STATUS_INVALID_PATTERN (malformed spec, with
- * the accepted syntax in the message).
- *
- * # Safety
- * `spec` is NULL or a NUL-terminated string; `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_pattern_new_from_spec(const char *spec, struct TpiPattern **out);
-
-/**
- * Frees a pattern. NULL is allowed and does nothing.
- *
- * # Safety
- * `pattern` is NULL or a handle from a `tpi_pattern_new*` call that was not freed yet, and
- * no other call is using it.
- */
-void tpi_pattern_free(struct TpiPattern *pattern);
-
-/**
- * Stores the number of points in `*out`.
- *
- * Errors: TPI_STATUS_NULL_POINTER.
- *
- * # Safety
- * `pattern` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
- */
-enum TpiStatus tpi_pattern_point_count(const struct TpiPattern *pattern, size_t *out);
-
-/**
- * Copies the points to `out` as s0, t0, s1, t1, ... (2 doubles per point); the copy-out
- * convention (see the header's introduction): `*needed` = 2 * point count.
+ * Copies the current pattern points s0, t0, s1, t1, ... (edits included). Copy-out
+ * convention; `*needed` = 2 * point count.
  *
  * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
  *
  * # Safety
- * `pattern` is NULL or a live handle; `out` is NULL or valid for writing `capacity` doubles;
- * `needed` is NULL or valid for writing a `size_t`.
+ * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing
+ * `capacity` doubles; `needed` is NULL or valid for writing a `size_t`.
  */
-enum TpiStatus tpi_pattern_points(const struct TpiPattern *pattern, double *out, size_t capacity, size_t *needed);
+enum TpiStatus tpi_discrete_surface_points(const struct TpiDiscreteSurface *discrete_surface, double *out, size_t capacity, size_t *needed);
+
+/**
+ * Moves pattern point `index` to (s, t) in [0, 1]^2. A pending edit: the mesh changes at
+ * the next `tpi_discrete_surface_recompute`.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INDEX_OUT_OF_RANGE, TPI_STATUS_NON_FINITE,
+ * TPI_STATUS_INVALID_PATTERN (outside the square). On an error nothing changes.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle.
+ */
+enum TpiStatus tpi_discrete_surface_move_point(struct TpiDiscreteSurface *discrete_surface, size_t index, double s, double t);
+
+/**
+ * Appends the pattern point (s, t) in [0, 1]^2; its index (the previous point count) is
+ * stored in `*index` unless `index` is NULL. A pending edit.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_PATTERN. On
+ * an error nothing changes.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle; `index` is NULL or valid for writing a
+ * `size_t`.
+ */
+enum TpiStatus tpi_discrete_surface_add_point(struct TpiDiscreteSurface *discrete_surface, double s, double t, size_t *index);
+
+/**
+ * Removes pattern point `index`; the points after it move down by one index (as the facets
+ * of the next mesh do). A pending edit.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INDEX_OUT_OF_RANGE. On an error nothing
+ * changes.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle.
+ */
+enum TpiStatus tpi_discrete_surface_remove_point(struct TpiDiscreteSurface *discrete_surface, size_t index);
+
+/**
+ * Replaces the surface with a copy of `surface` (e.g. after its control points were
+ * edited); the pattern points stay where they are in the normalised square. The caller
+ * keeps its handle. A pending edit.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `discrete_surface` and `surface` are NULL or live handles.
+ */
+enum TpiStatus tpi_discrete_surface_set_surface(struct TpiDiscreteSurface *discrete_surface, const struct TpiSurface *surface);
+
+/**
+ * Stores the number of edits since the last successful recompute in `*out`; 0 means the
+ * mesh is up to date.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_discrete_surface_pending_edits(const struct TpiDiscreteSurface *discrete_surface, size_t *out);
+
+/**
+ * Brings the mesh up to date with the pending edits. With no pending edits this does
+ * nothing and succeeds.
+ *
+ * On an error the edits stay (still pending), the previous mesh stays current, and the
+ * message says what is wrong with the edited input (e.g. a moved point duplicating
+ * another), so the host can undo or fix an edit and recompute again.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_PATTERN, TPI_STATUS_DEGENERATE,
+ * TPI_STATUS_NON_FINITE.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle.
+ */
+enum TpiStatus tpi_discrete_surface_recompute(struct TpiDiscreteSurface *discrete_surface);
+
+/**
+ * Stores in `*out` a new discretisation handle for the current mesh (that of the last
+ * successful recompute), to be read with the `tpi_discretisation_*` calls and freed with
+ * `tpi_discretisation_free`. The mesh is shared, not copied, and it is immutable: later
+ * edits and recomputes make new meshes and leave this one as it is, and it outlives the
+ * discrete surface.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER. On an error `*out` is NULL.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_discrete_surface_mesh(const struct TpiDiscreteSurface *discrete_surface, struct TpiDiscretisation **out);
 
 /**
  * Discretises `surface` with `pattern`: one planar facet per pattern point.
@@ -1154,140 +993,301 @@ enum TpiStatus tpi_discretisation_diagnostics_json(const struct TpiDiscretisatio
 enum TpiStatus tpi_discretisation_json(const struct TpiDiscretisation *discretisation, uint32_t include_timings, char *out, size_t capacity, size_t *needed);
 
 /**
- * Creates a discrete surface from copies of `surface` and `pattern` (the caller keeps its
- * handles and may free them at once) and computes its first mesh. `options` may be NULL for
- * the defaults; they hold for the object's life.
+ * Fills `*options` with the defaults (see each field). `options->struct_size` must be set
+ * to sizeof(TpiOptions) first; only that many bytes are written, and `struct_size` is left
+ * as it is.
  *
- * On success `*out` is a new handle (free with `tpi_discrete_surface_free`), else NULL.
- * Errors: as `tpi_discretise`.
- *
- * # Safety
- * `surface` and `pattern` are NULL or live handles; `options` is NULL or a `TpiOptions`
- * with `struct_size` readable bytes; `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_discrete_surface_new(const struct TpiSurface *surface, const struct TpiPattern *pattern, const struct TpiOptions *options, struct TpiDiscreteSurface **out);
-
-/**
- * Frees a discrete surface. NULL is allowed and does nothing. Meshes taken from it with
- * `tpi_discrete_surface_mesh` stay valid.
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (`struct_size` smaller than
+ * TPI_OPTIONS_SIZE_V1, e.g. not set).
  *
  * # Safety
- * `discrete_surface` is NULL or a handle that was not freed yet, and no other call is using
- * it.
+ * `options` is NULL or valid for reading and writing `options->struct_size` bytes.
  */
-void tpi_discrete_surface_free(struct TpiDiscreteSurface *discrete_surface);
+enum TpiStatus tpi_options_default(struct TpiOptions *options);
 
 /**
- * Stores the current number of pattern points in `*out` (edits included, recomputed or not).
+ * Creates a pattern from `uv_len / 2` points: `uv` holds s0, t0, s1, t1, ... in [0, 1].
+ *
+ * The points are validated: each finite and inside [0, 1]^2, no two closer than 1e-9.
+ * Fewer than three points make a valid pattern, but discretising it fails.
+ *
+ * On success `*out` is a new handle (free with `tpi_pattern_free`), else NULL. Errors:
+ * TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (odd `uv_len`),
+ * TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_PATTERN (a point outside the square, a
+ * duplicate; the message names the point).
+ *
+ * # Safety
+ * `uv` is NULL or valid for reading `uv_len` doubles; `out` is NULL or valid for writing a
+ * pointer.
+ */
+enum TpiStatus tpi_pattern_new(const double *uv, size_t uv_len, struct TpiPattern **out);
+
+/**
+ * Creates the square grid of `nu` x `nv` cell centres ((i + 1/2)/nu, (j + 1/2)/nv), point
+ * (i, j) at index i * nv + j (generator `grid:NUxNV`).
+ *
+ * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
+ * TPI_STATUS_INVALID_PATTERN (a count of 0, more than 10^7 points).
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_grid(size_t nu, size_t nv, struct TpiPattern **out);
+
+/**
+ * Creates the hexagonal grid of `nu` x `nv` points: rows at t = (j + 1/2)/nv, points at
+ * s = (i + 1/4)/nu in even rows and (i + 3/4)/nu in odd rows (generator `hex:NUxNV`).
+ *
+ * On success `*out` is a new handle, else NULL. Errors as `tpi_pattern_new_grid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_hex(size_t nu, size_t nv, struct TpiPattern **out);
+
+/**
+ * Creates the `nu` x `nv` grid with each cell centre moved by uniform random offsets in
+ * [-amount/2, amount/2) of the cell's size; `amount` in [0, 1] (generator
+ * `jitter:NUxNV:amount=A:seed=S`). Deterministic for a given seed.
+ *
+ * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
+ * TPI_STATUS_INVALID_PATTERN.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_jitter(size_t nu, size_t nv, double amount, uint64_t seed, struct TpiPattern **out);
+
+/**
+ * Creates `count` uniform random points (generator `random:N:seed=S`). Deterministic for a
+ * given seed.
+ *
+ * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
+ * TPI_STATUS_INVALID_PATTERN.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_random(size_t count, uint64_t seed, struct TpiPattern **out);
+
+/**
+ * Creates a Poisson-disk sampling with minimum distance `radius` (>= 0.001) in normalised
+ * units (generator `poisson:R:seed=S`). Deterministic for a given seed; the number of points
+ * depends on the radius (about 0.7 / radius^2).
+ *
+ * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
+ * TPI_STATUS_INVALID_PATTERN.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_poisson(double radius, uint64_t seed, struct TpiPattern **out);
+
+/**
+ * Creates a pattern from a generator spec, the command line's syntax: `grid:NUxNV`,
+ * `grid:spacing=D`, `hex:NUxNV`, `hex:spacing=D`, `jitter:NUxNV[:amount=A][:seed=S]`,
+ * `jitter:spacing=D[...]`, `random:N[:seed=S]`, `poisson:R[:seed=S]`.
+ *
+ * On success `*out` is a new handle, else NULL. Errors: TPI_STATUS_NULL_POINTER,
+ * TPI_STATUS_INVALID_ARGUMENT (not UTF-8), TPI_STATUS_INVALID_PATTERN (malformed spec, with
+ * the accepted syntax in the message).
+ *
+ * # Safety
+ * `spec` is NULL or a NUL-terminated string; `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_from_spec(const char *spec, struct TpiPattern **out);
+
+/**
+ * Frees a pattern. NULL is allowed and does nothing.
+ *
+ * # Safety
+ * `pattern` is NULL or a handle from a `tpi_pattern_new*` call that was not freed yet, and
+ * no other call is using it.
+ */
+void tpi_pattern_free(struct TpiPattern *pattern);
+
+/**
+ * Stores the number of points in `*out`.
  *
  * Errors: TPI_STATUS_NULL_POINTER.
  *
  * # Safety
- * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
+ * `pattern` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
  */
-enum TpiStatus tpi_discrete_surface_point_count(const struct TpiDiscreteSurface *discrete_surface, size_t *out);
+enum TpiStatus tpi_pattern_point_count(const struct TpiPattern *pattern, size_t *out);
 
 /**
- * Copies the current pattern points s0, t0, s1, t1, ... (edits included). Copy-out
- * convention; `*needed` = 2 * point count.
+ * Copies the points to `out` as s0, t0, s1, t1, ... (2 doubles per point); the copy-out
+ * convention (see the header's introduction): `*needed` = 2 * point count.
  *
  * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
  *
  * # Safety
- * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing
- * `capacity` doubles; `needed` is NULL or valid for writing a `size_t`.
+ * `pattern` is NULL or a live handle; `out` is NULL or valid for writing `capacity` doubles;
+ * `needed` is NULL or valid for writing a `size_t`.
  */
-enum TpiStatus tpi_discrete_surface_points(const struct TpiDiscreteSurface *discrete_surface, double *out, size_t capacity, size_t *needed);
+enum TpiStatus tpi_pattern_points(const struct TpiPattern *pattern, double *out, size_t capacity, size_t *needed);
 
 /**
- * Moves pattern point `index` to (s, t) in [0, 1]^2. A pending edit: the mesh changes at
- * the next `tpi_discrete_surface_recompute`.
+ * Creates a NURBS surface from the arrays RhinoCommon hands over.
  *
- * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INDEX_OUT_OF_RANGE, TPI_STATUS_NON_FINITE,
- * TPI_STATUS_INVALID_PATTERN (outside the square). On an error nothing changes.
+ * - `degree_u`, `degree_v`: degrees (1 to 15).
+ * - `count_u`, `count_v`: control point counts (count > degree).
+ * - `knots_u` (`knots_u_len` doubles) and `knots_v`: knot vectors in **Rhino's convention**,
+ *   count + degree - 1 knots each, as `NurbsSurface.KnotsU`/`KnotsV` give them; the domain is
+ *   [knots[degree - 1], knots[count - 1]]. (The textbook convention with two more knots,
+ *   count + degree + 1, is recognised by its length and accepted too.)
+ * - `points` (`points_len` doubles): the Euclidean control points, u-major: point (i, j) is
+ *   `points[3 * (i * count_v + j) + 0..3]`, i.e. `Points.GetControlPoint(i, j).Location`;
+ *   `points_len` must be 3 * count_u * count_v.
+ * - `weights` (`weights_len` doubles): the weights in the same order, all > 0, or NULL (with
+ *   `weights_len` 0) for a non-rational surface. The points are **not** premultiplied.
+ *
+ * On success stores a new handle in `*out`, which the caller frees with `tpi_surface_free`;
+ * on failure `*out` is NULL. Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT
+ * (a length not a multiple of 3, weights_len without weights), TPI_STATUS_NON_FINITE (a NaN
+ * or infinite knot, coordinate or weight), TPI_STATUS_INVALID_NURBS (everything else wrong
+ * with the data, e.g. a wrong number of knots).
  *
  * # Safety
- * `discrete_surface` is NULL or a live handle.
+ * Each array pointer is NULL or valid for reading its length in doubles; `out` is NULL or
+ * valid for writing a pointer.
  */
-enum TpiStatus tpi_discrete_surface_move_point(struct TpiDiscreteSurface *discrete_surface, size_t index, double s, double t);
+enum TpiStatus tpi_surface_new_nurbs(size_t degree_u, size_t degree_v, size_t count_u, size_t count_v, const double *knots_u, size_t knots_u_len, const double *knots_v, size_t knots_v_len, const double *points, size_t points_len, const double *weights, size_t weights_len, struct TpiSurface **out);
 
 /**
- * Appends the pattern point (s, t) in [0, 1]^2; its index (the previous point count) is
- * stored in `*index` unless `index` is NULL. A pending edit.
+ * Creates the elliptic paraboloid z = a x^2 + b y^2 over [x0, x1] x [y0, y1] (u = x,
+ * v = y); a and b non-zero with the same sign.
  *
- * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_PATTERN. On
- * an error nothing changes.
+ * On success `*out` is a new handle (free with `tpi_surface_free`), else NULL. Errors:
+ * TPI_STATUS_NULL_POINTER, TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_ARGUMENT.
  *
  * # Safety
- * `discrete_surface` is NULL or a live handle; `index` is NULL or valid for writing a
- * `size_t`.
+ * `out` is NULL or valid for writing a pointer.
  */
-enum TpiStatus tpi_discrete_surface_add_point(struct TpiDiscreteSurface *discrete_surface, double s, double t, size_t *index);
+enum TpiStatus tpi_surface_new_elliptic_paraboloid(double a, double b, double x0, double x1, double y0, double y1, struct TpiSurface **out);
 
 /**
- * Removes pattern point `index`; the points after it move down by one index (as the facets
- * of the next mesh do). A pending edit.
+ * Creates the hyperbolic paraboloid z = a x^2 - b y^2 over [x0, x1] x [y0, y1]; a and b
+ * non-zero with the same sign.
  *
- * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INDEX_OUT_OF_RANGE. On an error nothing
- * changes.
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
  *
  * # Safety
- * `discrete_surface` is NULL or a live handle.
+ * `out` is NULL or valid for writing a pointer.
  */
-enum TpiStatus tpi_discrete_surface_remove_point(struct TpiDiscreteSurface *discrete_surface, size_t index);
+enum TpiStatus tpi_surface_new_hyperbolic_paraboloid(double a, double b, double x0, double x1, double y0, double y1, struct TpiSurface **out);
 
 /**
- * Replaces the surface with a copy of `surface` (e.g. after its control points were
- * edited); the pattern points stay where they are in the normalised square. The caller
- * keeps its handle. A pending edit.
+ * Creates the sphere cap z = sqrt(r^2 - x^2 - y^2) over [x0, x1] x [y0, y1], which must lie
+ * strictly inside the disc of radius r.
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_sphere_cap(double radius, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Creates the sphere cap over the centred square [-h, h]^2 (needs h > 0 and
+ * h * sqrt(2) < radius).
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_sphere_cap_square(double radius, double half_width, struct TpiSurface **out);
+
+/**
+ * Creates the ellipsoid cap z = c sqrt(1 - x^2/a^2 - y^2/b^2) over [x0, x1] x [y0, y1],
+ * strictly inside the ellipse; a, b, c > 0.
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_ellipsoid_cap(double a, double b, double c, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Creates the egg-crate z = A sin(x) sin(y) over [x0, x1] x [y0, y1]; A non-zero.
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_egg_crate(double amplitude, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Creates the cylinder z = sqrt(r^2 - x^2) over [x0, x1] x [y0, y1] with |x| < r. Its
+ * Gaussian curvature is 0 everywhere, so discretising it fails with TPI_STATUS_DEGENERATE;
+ * it is here for sampling and for tests.
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_cylinder(double radius, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Creates the plane z = p x + q y + c0 over [x0, x1] x [y0, y1]. Discretising it fails with
+ * TPI_STATUS_DEGENERATE; it is here for sampling and for tests.
+ *
+ * On success `*out` is a new handle, else NULL. Errors as
+ * `tpi_surface_new_elliptic_paraboloid`.
+ *
+ * # Safety
+ * `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_plane(double p, double q, double c0, double x0, double x1, double y0, double y1, struct TpiSurface **out);
+
+/**
+ * Frees a surface. NULL is allowed and does nothing. Handles created from this surface
+ * (patterns do not depend on it; discretisations and discrete surfaces hold their own copy)
+ * stay valid.
+ *
+ * # Safety
+ * `surface` is NULL or a handle from a `tpi_surface_new_*` call that was not freed yet, and
+ * no other call is using it.
+ */
+void tpi_surface_free(struct TpiSurface *surface);
+
+/**
+ * Stores the surface's parameter domain in `*out`.
  *
  * Errors: TPI_STATUS_NULL_POINTER.
  *
  * # Safety
- * `discrete_surface` and `surface` are NULL or live handles.
+ * `surface` is NULL or a live handle; `out` is NULL or valid for writing a `TpiDomain`.
  */
-enum TpiStatus tpi_discrete_surface_set_surface(struct TpiDiscreteSurface *discrete_surface, const struct TpiSurface *surface);
+enum TpiStatus tpi_surface_domain(const struct TpiSurface *surface, struct TpiDomain *out);
 
 /**
- * Stores the number of edits since the last successful recompute in `*out`; 0 means the
- * mesh is up to date.
+ * Evaluates the surface at `uv_len / 2` parameter pairs: `uv` holds u0, v0, u1, v1, ... in
+ * the surface's own domain (not normalised). Writes one `TpiSample` per pair to `out`, which
+ * has room for `out_capacity` samples.
  *
- * Errors: TPI_STATUS_NULL_POINTER.
- *
- * # Safety
- * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a `size_t`.
- */
-enum TpiStatus tpi_discrete_surface_pending_edits(const struct TpiDiscreteSurface *discrete_surface, size_t *out);
-
-/**
- * Brings the mesh up to date with the pending edits. With no pending edits this does
- * nothing and succeeds.
- *
- * On an error the edits stay (still pending), the previous mesh stays current, and the
- * message says what is wrong with the edited input (e.g. a moved point duplicating
- * another), so the host can undo or fix an edit and recompute again.
- *
- * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_PATTERN, TPI_STATUS_DEGENERATE,
- * TPI_STATUS_NON_FINITE.
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (odd `uv_len`),
+ * TPI_STATUS_BUFFER_TOO_SMALL (`out_capacity < uv_len / 2`; nothing written),
+ * TPI_STATUS_NON_FINITE (a NaN or infinite parameter), TPI_STATUS_OUT_OF_DOMAIN (a pair
+ * outside the domain). On an error nothing is written to `out`; the message names the first
+ * offending pair.
  *
  * # Safety
- * `discrete_surface` is NULL or a live handle.
+ * `surface` is NULL or a live handle; `uv` is NULL or valid for reading `uv_len` doubles;
+ * `out` is NULL or valid for writing `out_capacity` samples.
  */
-enum TpiStatus tpi_discrete_surface_recompute(struct TpiDiscreteSurface *discrete_surface);
-
-/**
- * Stores in `*out` a new discretisation handle for the current mesh (that of the last
- * successful recompute), to be read with the `tpi_discretisation_*` calls and freed with
- * `tpi_discretisation_free`. The mesh is shared, not copied, and it is immutable: later
- * edits and recomputes make new meshes and leave this one as it is, and it outlives the
- * discrete surface.
- *
- * Errors: TPI_STATUS_NULL_POINTER. On an error `*out` is NULL.
- *
- * # Safety
- * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a pointer.
- */
-enum TpiStatus tpi_discrete_surface_mesh(const struct TpiDiscreteSurface *discrete_surface, struct TpiDiscretisation **out);
+enum TpiStatus tpi_surface_evaluate(const struct TpiSurface *surface, const double *uv, size_t uv_len, struct TpiSample *out, size_t out_capacity);
 
 #ifdef __cplusplus
 }  // extern "C"

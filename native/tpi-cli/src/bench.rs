@@ -8,7 +8,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 use tpi_core::benchmark::{floor, nurbs_dome, paraboloid, random_pattern, saddle, FloorTimings};
-use tpi_core::pattern::SplitMix64;
+use tpi_core::SplitMix64;
 use tpi_core::{discretise, DiscretiseOptions, LiveSurface, Surface, Timings};
 
 use crate::args::{Arg, Args};

@@ -4,8 +4,8 @@
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
-use tpi_core::discretise::DEFAULT_FLAT_TOLERANCE;
-use tpi_core::spec::sampled_bounding_box;
+use tpi_core::sampled_bounding_box;
+use tpi_core::DEFAULT_FLAT_TOLERANCE;
 use tpi_core::{LocalGeometry, Surface, SurfaceModel, SurfaceSpec};
 
 use crate::args::{Arg, Args};

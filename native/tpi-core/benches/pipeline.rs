@@ -10,8 +10,7 @@
 use criterion::{
     black_box, criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput,
 };
-use tpi_core::benchmark::{nurbs_dome, paraboloid, random_pattern};
-use tpi_core::triangulation::DualTriangulation;
+use tpi_core::benchmark::{delaunay_triangle_count, nurbs_dome, paraboloid, random_pattern};
 use tpi_core::{discretise, DiscretiseOptions, LocalGeometry, Surface};
 
 fn sizes() -> Vec<usize> {
@@ -84,7 +83,7 @@ fn delaunay(c: &mut Criterion) {
         let pattern = random_pattern(n);
         group.throughput(Throughput::Elements(n as u64));
         group.bench_with_input(BenchmarkId::from_parameter(n), &pattern, |b, p| {
-            b.iter(|| black_box(DualTriangulation::delaunay(p).map(|t| t.len())))
+            b.iter(|| black_box(delaunay_triangle_count(p)))
         });
     }
     group.finish();

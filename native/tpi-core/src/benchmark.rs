@@ -130,6 +130,12 @@ pub fn random_pattern(n: usize) -> Vec<[f64; 2]> {
     .uv
 }
 
+/// The Delaunay triangulation the pipeline starts from (spade's bulk loader, converted to the
+/// dual structure's flat arrays), for timing that stage alone: its triangle count.
+pub fn delaunay_triangle_count(points: &[[f64; 2]]) -> Result<usize, TpiError> {
+    DualTriangulation::delaunay(points).map(|t| t.len())
+}
+
 /// The floor's stage times in milliseconds (see the module doc).
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct FloorTimings {

@@ -217,7 +217,7 @@ impl Serialize for ContractView<'_> {
 }
 
 /// Checks normalised pattern points: finite, inside [0, 1]^2, no duplicates
-/// ([`crate::pattern::validate_uv`]), and at least three of them.
+/// (`validate_uv` in the pattern module), and at least three of them.
 pub fn validate_pattern(points: &[[f64; 2]]) -> Result<(), TpiError> {
     if points.len() < 4096 {
         validate_uv(points)?;
@@ -640,7 +640,7 @@ fn check_not_collinear(points: &[[f64; 2]]) -> Result<(), TpiError> {
 
 /// Points whose twice-signed triangle area with the pattern's longest chord from its first
 /// point is below this fraction of the chord's squared length count as collinear.
-pub const COLLINEAR_TOLERANCE: f64 = 1e-12;
+pub(crate) const COLLINEAR_TOLERANCE: f64 = 1e-12;
 
 fn ms(since: Instant) -> f64 {
     since.elapsed().as_secs_f64() * 1e3

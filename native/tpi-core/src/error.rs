@@ -210,7 +210,7 @@ pub enum TpiError {
 }
 
 /// Checks that `value` is finite, naming `field` otherwise.
-pub fn check_finite(field: impl FnOnce() -> String, value: f64) -> Result<f64, TpiError> {
+pub(crate) fn check_finite(field: impl FnOnce() -> String, value: f64) -> Result<f64, TpiError> {
     if value.is_finite() {
         Ok(value)
     } else {

@@ -42,13 +42,13 @@ const OUTSIDE_SEGMENT_SAMPLES: usize = 8;
 /// A point of a facet edge counts as inside the domain only if its distance from the surface
 /// is at most this fraction of its distance from the edge's two pattern points (a facet of
 /// size r deviates about k r^2 / 2 from the surface, far less for any sensible panel size).
-pub const NEAR_SURFACE_RATIO: f64 = 0.25;
+pub(crate) const NEAR_SURFACE_RATIO: f64 = 0.25;
 
 /// Regula falsi iterations for a boundary crossing.
 const CROSSING_ITERATIONS: usize = 80;
 
 /// A boundary crossing is converged when |inside measure| falls below this (normalised).
-pub const CROSSING_TOLERANCE: f64 = 1e-13;
+pub(crate) const CROSSING_TOLERANCE: f64 = 1e-13;
 
 /// A crossing search that ends farther than this from the boundary (normalised) has failed.
 const CROSSING_ACCEPTANCE: f64 = 1e-9;
@@ -74,7 +74,7 @@ pub enum VertexKind {
 
 /// Parameters of facet construction.
 #[derive(Clone, Copy, Debug)]
-pub struct FacetParams {
+pub(crate) struct FacetParams {
     /// See [`DEFAULT_FAR_VERTEX_FACTOR`].
     pub far_vertex_factor: f64,
     /// Absolute weld distance (model units).
@@ -86,7 +86,7 @@ pub struct FacetParams {
 
 /// The indexed polygon mesh before reporting.
 #[derive(Clone, Debug, Default)]
-pub struct FacetMesh {
+pub(crate) struct FacetMesh {
     /// Vertex positions.
     pub vertices: Vec<DVec3>,
     /// What each vertex is.
@@ -116,7 +116,7 @@ pub struct FacetMesh {
 
 /// What the facet stage knows about a mesh vertex's closest point on the surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum FootHint {
+pub(crate) enum FootHint {
     /// The foot (Newton's converged projection, in the surface's parameters).
     Known([f64; 2]),
     /// Project by Newton from this first-order estimate; accept the result if it lies within
@@ -129,13 +129,6 @@ pub enum FootHint {
     },
     /// Project from the parameters of the first facet that holds the vertex.
     FromSeed,
-}
-
-impl FacetMesh {
-    /// The loop of facet i.
-    pub fn facet(&self, i: usize) -> &[u32] {
-        &self.loops[self.offsets[i] as usize..self.offsets[i + 1] as usize]
-    }
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -228,7 +221,12 @@ impl Context<'_> {
 
 /// Whether Newton's foot `newton`, started from the first-order estimate `linear` of a
 /// triangle vertex whose points lie within `reach` of it, stayed with the triangle.
-pub fn accept_newton(domain: &Domain, newton: [f64; 2], linear: [f64; 2], reach: f64) -> bool {
+pub(crate) fn accept_newton(
+    domain: &Domain,
+    newton: [f64; 2],
+    linear: [f64; 2],
+    reach: f64,
+) -> bool {
     normalised_distance(domain, newton, linear) <= 2.0 * reach + 1e-9
 }
 
@@ -244,7 +242,7 @@ fn surely_inside(domain: &Domain, linear: [f64; 2], reach: f64) -> bool {
 /// Builds the facets of all pattern points from the dual triangulation.
 // The stage's inputs, each a slice of the samples; one typed input struct is still owed.
 #[allow(clippy::too_many_arguments)]
-pub fn build_facets(
+pub(crate) fn build_facets(
     surface: &dyn Surface,
     uv: &[[f64; 2]],
     tangents: &[[DVec3; 2]],
@@ -347,7 +345,7 @@ pub fn build_facets(
 /// The slope frame's tangent axes and the points' slopes, where the dual structure is the
 /// regular triangulation of the slopes (the convex path): what [`edge_reversed`] reads.
 #[derive(Clone, Copy, Debug)]
-pub struct SlopeView<'a> {
+pub(crate) struct SlopeView<'a> {
     /// (e1, e2) of the slope frame.
     pub axes: (DVec3, DVec3),
     /// Per point, its slopes.
@@ -621,7 +619,7 @@ fn assemble(a: Assembly<'_>) -> FacetMesh {
 /// On the ghost-closed path, a vertex farther than this many triangle sides from its
 /// triangle's centroid (or not finite) is unreachable: its facets get stand-ins on their edge
 /// lines instead (leaving a small hole); nearer far vertices stay exact and are diagnosed.
-pub const UNREACHABLE_VERTEX_FACTOR: f64 = 1e6;
+pub(crate) const UNREACHABLE_VERTEX_FACTOR: f64 = 1e6;
 
 /// Whether the meeting point `x` of three planes lies within [`UNREACHABLE_VERTEX_FACTOR`]
 /// triangle sides of their points' centroid (false for a point that is not finite).

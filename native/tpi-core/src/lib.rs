@@ -18,41 +18,49 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
-pub mod analytic;
+mod analytic;
 pub mod benchmark;
-pub mod diagnostics;
-pub mod diffgeo;
-pub mod discretise;
-pub mod error;
-pub mod facets;
+mod diagnostics;
+mod diffgeo;
+mod discretise;
+mod error;
+mod facets;
 mod ghosts;
-pub mod live;
-pub mod neighbours;
-pub mod nurbs;
-pub mod pattern;
-pub mod planes;
+mod live;
+mod neighbours;
+mod nurbs;
+mod pattern;
+mod planes;
 mod predicates;
-pub mod projection;
-pub mod quality;
+mod projection;
+mod quality;
 mod samples;
-pub mod sanity;
-pub mod spec;
-pub mod surface;
+mod sanity;
+mod spec;
+mod surface;
 pub mod tolerance;
-pub mod triangulation;
-pub mod validity_flips;
+mod triangulation;
+mod validity_flips;
 
-pub use analytic::{AnalyticKind, AnalyticSurface};
+pub use analytic::{AnalyticKind, AnalyticSurface, MAX_ANALYTIC_MAGNITUDE, MIN_ANALYTIC_LENGTH};
 pub use diagnostics::Diagnostic;
 pub use diffgeo::LocalGeometry;
 pub use discretise::{
     discretise, validate_pattern, Discretisation, DiscretiseOptions, Seed, Timings,
+    DEFAULT_FLAT_TOLERANCE, DEFAULT_PLANE_CURVATURE, DEFAULT_WELD_TOLERANCE,
 };
 pub use error::{Direction, TpiError};
+pub use facets::{VertexKind, DEFAULT_FAR_VERTEX_FACTOR};
 pub use live::{LiveStats, LiveSurface};
 pub use nurbs::{NurbsSpec, NurbsSurface};
-pub use pattern::{Generator, GridSize, Pattern};
-pub use quality::QualityReport;
+pub use pattern::{
+    Generator, GridSize, Pattern, SplitMix64, DEFAULT_JITTER_AMOUNT, MAX_GENERATED_POINTS,
+    MIN_POISSON_RADIUS,
+};
+pub use quality::{
+    QualityReport, FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
+    INVALID_FLAGS,
+};
 pub use sanity::SanityError;
-pub use spec::{SurfaceModel, SurfaceSpec};
+pub use spec::{sampled_bounding_box, SurfaceModel, SurfaceSpec};
 pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};

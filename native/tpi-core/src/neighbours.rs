@@ -42,16 +42,16 @@ use crate::validity_flips::validity_flips;
 /// Weight of the isotropic term that keeps the compensation metric definite: each point
 /// contributes |II| + METRIC_REGULARISATION max(|k1|, |k2|) I (largest |k| over the quad), so
 /// that the metric never degenerates where one principal curvature vanishes.
-pub const METRIC_REGULARISATION: f64 = 0.05;
+pub(crate) const METRIC_REGULARISATION: f64 = 0.05;
 
 /// On strictly convex surfaces off the slope-space path, the isotropic term is this fraction
 /// of the summed metric's trace (the envelope test decides after it anyway).
-pub const CONVEX_METRIC_REGULARISATION: f64 = 1e-3;
+pub(crate) const CONVEX_METRIC_REGULARISATION: f64 = 1e-3;
 
 /// A vertex must lie this far (relative to the quad's size) outside a half-space before
 /// the envelope test flips: ties (four planes through one point, e.g. a square grid on a
 /// paraboloid of revolution) are left alone.
-pub const ENVELOPE_FLIP_TOLERANCE: f64 = 1e-10;
+pub(crate) const ENVELOPE_FLIP_TOLERANCE: f64 = 1e-10;
 
 /// Counts of what the neighbour decision did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -79,7 +79,7 @@ pub struct NeighbourStats {
 }
 
 /// Inputs of the neighbour decision for every pattern point.
-pub struct NeighbourInput<'a> {
+pub(crate) struct NeighbourInput<'a> {
     /// Coordinates the triangulation lives in (scaled parameter space).
     pub plane_uv: &'a [[f64; 2]],
     /// Local geometry per point.
@@ -98,7 +98,7 @@ pub struct NeighbourInput<'a> {
 /// Runs both criteria to convergence, then the validity flips of the facets of points
 /// `0..real_count` ([`crate::validity_flips`]); points from `real_count` on are ghosts
 /// ([`crate::ghosts`]), whose facets are not judged. Deterministic (a stack in edge order).
-pub fn decide(
+pub(crate) fn decide(
     tri: &mut DualTriangulation,
     input: &NeighbourInput<'_>,
     envelope: bool,
@@ -129,11 +129,11 @@ pub fn decide(
 
 /// A hull triangle whose vertex lies farther than this many times its size from its points
 /// is numerically degenerate (its points are collinear to rounding) and is trimmed.
-pub const DEGENERATE_SLIVER_FACTOR: f64 = 1e8;
+pub(crate) const DEGENERATE_SLIVER_FACTOR: f64 = 1e8;
 
 /// Smallest cosine between any normal and the mean normal for which a convex surface is
 /// treated as a graph over the plane of the mean normal (see [`gradient_embedding`]).
-pub const GRADIENT_MIN_COS: f64 = 0.2;
+pub(crate) const GRADIENT_MIN_COS: f64 = 0.2;
 
 /// Where every point is strictly convex with the same side and all normals lie within
 /// acos([`GRADIENT_MIN_COS`]) of the surface's mean normal N ([`slope_frame`]), the surface is
@@ -147,7 +147,7 @@ pub const GRADIENT_MIN_COS: f64 = 0.2;
 ///
 /// N depends on the surface alone, not on the pattern, so each point's slopes are its own
 /// (which is what lets a live surface update them one point at a time).
-pub fn gradient_embedding(
+pub(crate) fn gradient_embedding(
     planes: &[Plane],
     convex_side: &[i8],
     frame: Option<DVec3>,
@@ -162,7 +162,7 @@ pub fn gradient_embedding(
 
 /// The frame of the slope embedding: N, (e1, e2) and the convex side.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SlopeFrame {
+pub(crate) struct SlopeFrame {
     /// The unit mean normal of the surface.
     pub normal: DVec3,
     /// Tangent axes: (e1, e2, N) right-handed.
@@ -173,7 +173,7 @@ pub struct SlopeFrame {
 
 impl SlopeFrame {
     /// The frame of unit normal `normal` for convex side `side`.
-    pub fn new(normal: DVec3, side: i8) -> Self {
+    pub(crate) fn new(normal: DVec3, side: i8) -> Self {
         Self {
             normal,
             axes: normal.any_orthonormal_pair(),
@@ -184,18 +184,18 @@ impl SlopeFrame {
     /// The lifted point (s, h) of one tangent plane, whose lower convex hull is dual to the
     /// envelope ([`crate::predicates`]): its slopes and the height h = -sigma c of the plane
     /// z = a x + b y + c in the frame, c = n.p / n.N. None where [`Self::slopes`] is.
-    pub fn lift(&self, p: &Plane) -> Option<[f64; 3]> {
+    pub(crate) fn lift(&self, p: &Plane) -> Option<[f64; 3]> {
         let [a, b] = self.slopes(p)?;
         Some([a, b, self.height(p)])
     }
 
     /// The height -sigma n.p / n.N of [`Self::lift`].
-    pub fn height(&self, p: &Plane) -> f64 {
+    pub(crate) fn height(&self, p: &Plane) -> f64 {
         -self.side * (p.normal.dot(p.point) / p.normal.dot(self.normal))
     }
 
     /// The slopes of one tangent plane, or None where its normal is too far from N.
-    pub fn slopes(&self, p: &Plane) -> Option<[f64; 2]> {
+    pub(crate) fn slopes(&self, p: &Plane) -> Option<[f64; 2]> {
         let nz = p.normal.dot(self.normal);
         let (e1, e2) = self.axes;
         (nz >= GRADIENT_MIN_COS).then(|| {
@@ -208,11 +208,11 @@ impl SlopeFrame {
 }
 
 /// Samples per side of the grid whose mean normal is the slope frame's N.
-pub const SLOPE_FRAME_SAMPLES: usize = 5;
+pub(crate) const SLOPE_FRAME_SAMPLES: usize = 5;
 
 /// The unit mean of the surface's normals on a [`SLOPE_FRAME_SAMPLES`]^2 grid over its domain
 /// (corners included), or None where it vanishes or is not finite.
-pub fn slope_frame(surface: &dyn crate::surface::Surface) -> Option<DVec3> {
+pub(crate) fn slope_frame(surface: &dyn crate::surface::Surface) -> Option<DVec3> {
     let domain = surface.domain();
     let last = (SLOPE_FRAME_SAMPLES - 1) as f64;
     let mut sum = DVec3::ZERO;
@@ -234,7 +234,7 @@ pub fn slope_frame(surface: &dyn crate::surface::Surface) -> Option<DVec3> {
 /// `envelope_repairs` counts the interior edges of the result that are not locally Delaunay
 /// in slope space ([`slope_repairs`]): where the envelope departs from the plain Delaunay
 /// candidates. It depends on the result alone, not on the order of the flips.
-pub fn decide_convex(
+pub(crate) fn decide_convex(
     tri: &mut DualTriangulation,
     lifted: &[[f64; 3]],
     input: &NeighbourInput<'_>,
@@ -261,7 +261,7 @@ pub fn decide_convex(
 
 /// Makes the triangles counter-clockwise in `uv` (the orientation the facet loops inherit),
 /// judged by the majority so that a few slivers cannot decide.
-pub fn orient_like(tri: &mut DualTriangulation, uv: &[[f64; 2]]) {
+pub(crate) fn orient_like(tri: &mut DualTriangulation, uv: &[[f64; 2]]) {
     let reversed = tri
         .triangles
         .iter()
@@ -274,7 +274,7 @@ pub fn orient_like(tri: &mut DualTriangulation, uv: &[[f64; 2]]) {
 
 /// Interior edges (each once) whose quad is not locally Delaunay in slope space: the fourth
 /// point strictly inside the circle through the other three.
-pub fn slope_repairs(tri: &DualTriangulation, slopes: &[[f64; 2]]) -> usize {
+pub(crate) fn slope_repairs(tri: &DualTriangulation, slopes: &[[f64; 2]]) -> usize {
     use rayon::prelude::*;
     (0..tri.len())
         .into_par_iter()
@@ -293,7 +293,7 @@ pub fn slope_repairs(tri: &DualTriangulation, slopes: &[[f64; 2]]) -> usize {
 
 /// Whether the interior edge opposite vertex k of triangle t is not locally Delaunay in slope
 /// space (see [`slope_repairs`]).
-pub fn slope_edge_repaired(
+pub(crate) fn slope_edge_repaired(
     tri: &DualTriangulation,
     slopes: &[[f64; 2]],
     t: usize,
@@ -735,7 +735,7 @@ fn compensation_illegal(
 
 /// Relative size of the in-circle determinant (against the quad's squared size, squared)
 /// below which the compensation test counts four points as cocircular.
-pub const COMPENSATION_TIE_TOLERANCE: f64 = 1e-10;
+pub(crate) const COMPENSATION_TIE_TOLERANCE: f64 = 1e-10;
 
 /// Positive when d lies strictly inside the circle through the counter-clockwise a, b, c.
 pub(crate) fn in_circle(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {
@@ -797,7 +797,7 @@ pub(crate) fn envelope_quad_illegal_by(
 }
 
 /// The meeting point of the tangent planes of three points, in canonical (ascending) order.
-pub fn three_plane_vertex(planes: &[Plane], mut ids: [u32; 3]) -> DVec3 {
+pub(crate) fn three_plane_vertex(planes: &[Plane], mut ids: [u32; 3]) -> DVec3 {
     ids.sort_unstable();
     intersect_three(
         &planes[ids[0] as usize],

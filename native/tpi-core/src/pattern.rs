@@ -49,7 +49,7 @@ pub const MAX_GENERATED_POINTS: usize = 10_000_000;
 pub const MIN_POISSON_RADIUS: f64 = 1e-3;
 
 /// Candidates tried around each active point in Bridson's algorithm.
-pub const POISSON_CANDIDATES: usize = 30;
+pub(crate) const POISSON_CANDIDATES: usize = 30;
 
 /// Default jitter amount when the generator spec leaves it out.
 pub const DEFAULT_JITTER_AMOUNT: f64 = 0.5;
@@ -108,7 +108,7 @@ impl Pattern {
 }
 
 /// The checks of [`Pattern::validate`] on a plain slice of normalised points.
-pub fn validate_uv(uv: &[[f64; 2]]) -> Result<(), TpiError> {
+pub(crate) fn validate_uv(uv: &[[f64; 2]]) -> Result<(), TpiError> {
     for (index, &[s, t]) in uv.iter().enumerate() {
         if !in_unit_square(s, t) {
             return Err(TpiError::PatternPointOutOfRange { index, s, t });

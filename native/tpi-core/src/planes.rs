@@ -20,7 +20,7 @@ use glam::DVec3;
 
 /// A plane through `point` with unit `normal`.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Plane {
+pub(crate) struct Plane {
     /// A point of the plane.
     pub point: DVec3,
     /// Unit normal.
@@ -29,14 +29,14 @@ pub struct Plane {
 
 impl Plane {
     /// Signed distance of `x` from the plane (positive on the normal's side).
-    pub fn signed_distance(&self, x: DVec3) -> f64 {
+    pub(crate) fn signed_distance(&self, x: DVec3) -> f64 {
         self.normal.dot(x - self.point)
     }
 }
 
 /// The meeting point of three planes and the determinant of their normals.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ThreePlanePoint {
+pub(crate) struct ThreePlanePoint {
     /// The intersection point (only meaningful when `determinant` is not ~0).
     pub point: DVec3,
     /// n_a . (n_b x n_c) for the planes in ascending index order.
@@ -44,7 +44,7 @@ pub struct ThreePlanePoint {
 }
 
 /// Intersects three planes given in ascending index order (the caller sorts).
-pub fn intersect_three(a: &Plane, b: &Plane, c: &Plane) -> ThreePlanePoint {
+pub(crate) fn intersect_three(a: &Plane, b: &Plane, c: &Plane) -> ThreePlanePoint {
     let centroid = (a.point + b.point + c.point) / 3.0;
     let bc = b.normal.cross(c.normal);
     let ca = c.normal.cross(a.normal);
@@ -60,7 +60,7 @@ pub fn intersect_three(a: &Plane, b: &Plane, c: &Plane) -> ThreePlanePoint {
 /// The point nearest to `anchor` that minimises the summed squared distances to the three
 /// planes, Tikhonov-regularised with weight `mu`: stays near `anchor` when the planes are
 /// nearly parallel. Used only as a finite stand-in for an ill-conditioned vertex.
-pub fn regularised_meeting_point(planes: [&Plane; 3], anchor: DVec3, mu: f64) -> DVec3 {
+pub(crate) fn regularised_meeting_point(planes: [&Plane; 3], anchor: DVec3, mu: f64) -> DVec3 {
     // Normal equations (A^T A + mu I) y = A^T r, y = x - anchor, r_m = n_m.(p_m - anchor).
     let mut m = [[0.0f64; 3]; 3];
     let mut rhs = [0.0f64; 3];
@@ -84,9 +84,4 @@ pub fn regularised_meeting_point(planes: [&Plane; 3], anchor: DVec3, mu: f64) ->
     } else {
         anchor
     }
-}
-
-/// Direction of the line T_a ∩ T_b (unnormalised n_a x n_b).
-pub fn edge_direction(a: &Plane, b: &Plane) -> DVec3 {
-    a.normal.cross(b.normal)
 }

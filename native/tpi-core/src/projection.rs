@@ -16,13 +16,13 @@ use glam::DVec3;
 use crate::surface::{Domain, Surface};
 
 /// Newton iterations for a projection (quadratic convergence: 3 to 5 are typical).
-pub const MAX_PROJECTION_ITERATIONS: usize = 16;
+pub(crate) const MAX_PROJECTION_ITERATIONS: usize = 16;
 
 /// Stop when the Newton step is below this, in normalised parameters.
-pub const PROJECTION_STEP_TOLERANCE: f64 = 1e-14;
+pub(crate) const PROJECTION_STEP_TOLERANCE: f64 = 1e-14;
 
 /// The foot of `x` on the (extended) surface, starting from `guess`.
-pub fn foot(surface: &dyn Surface, domain: &Domain, x: DVec3, guess: [f64; 2]) -> [f64; 2] {
+pub(crate) fn foot(surface: &dyn Surface, domain: &Domain, x: DVec3, guess: [f64; 2]) -> [f64; 2] {
     let (mut u, mut v) = (guess[0], guess[1]);
     let (du_scale, dv_scale) = (domain.u.length(), domain.v.length());
     for _ in 0..MAX_PROJECTION_ITERATIONS {
@@ -63,7 +63,7 @@ pub fn foot(surface: &dyn Surface, domain: &Domain, x: DVec3, guess: [f64; 2]) -
 
 /// Signed distance of `uv` from the domain boundary in normalised parameters:
 /// min(s, 1 - s, t, 1 - t), positive inside.
-pub fn inside_measure(domain: &Domain, uv: [f64; 2]) -> f64 {
+pub(crate) fn inside_measure(domain: &Domain, uv: [f64; 2]) -> f64 {
     let [s, t] = domain.to_normalised(uv);
     s.min(1.0 - s).min(t).min(1.0 - t)
 }
@@ -71,7 +71,7 @@ pub fn inside_measure(domain: &Domain, uv: [f64; 2]) -> f64 {
 /// Position along the boundary loop, in [0, 4): side 0 is v = v0 (u rising), side 1 is
 /// u = u1 (v rising), side 2 is v = v1 (u falling), side 3 is u = u0 (v falling), so that
 /// the loop runs counter-clockwise in parameter space and corner c sits at c.
-pub fn boundary_parameter(domain: &Domain, uv: [f64; 2]) -> f64 {
+pub(crate) fn boundary_parameter(domain: &Domain, uv: [f64; 2]) -> f64 {
     let [s, t] = domain.to_normalised(uv);
     let s = s.clamp(0.0, 1.0);
     let t = t.clamp(0.0, 1.0);
@@ -91,7 +91,7 @@ pub fn boundary_parameter(domain: &Domain, uv: [f64; 2]) -> f64 {
 }
 
 /// The corners of the domain in boundary-loop order (corner c at boundary parameter c).
-pub fn domain_corners(domain: &Domain) -> [[f64; 2]; 4] {
+pub(crate) fn domain_corners(domain: &Domain) -> [[f64; 2]; 4] {
     [
         [domain.u.min, domain.v.min],
         [domain.u.max, domain.v.min],

@@ -105,7 +105,7 @@ pub struct QualityReport {
 }
 
 /// Inputs of the report.
-pub struct ReportInput<'a> {
+pub(crate) struct ReportInput<'a> {
     /// The surface.
     pub surface: &'a dyn Surface,
     /// Seeds' parameters (for projection guesses).
@@ -140,7 +140,7 @@ fn facet<'a>(input: &ReportInput<'a>, i: usize) -> &'a [u32] {
 }
 
 /// Computes the report and the per-facet flags.
-pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
+pub(crate) fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
     let facet_count = input.offsets.len().saturating_sub(1);
     let mut r = QualityReport {
         facet_count,
@@ -358,7 +358,7 @@ pub fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
 /// vertices: known feet as given; a first-order guess refined by Newton and kept if it stays
 /// with its triangle ([`accept_newton`]); otherwise Newton from the parameters of the first
 /// facet that holds the vertex. Missing hints count as [`FootHint::FromSeed`].
-pub fn resolve_feet(
+pub(crate) fn resolve_feet(
     surface: &dyn Surface,
     uv: &[[f64; 2]],
     vertices: &[DVec3],
@@ -423,14 +423,14 @@ fn root(parent: &mut [u32], mut x: u32) -> u32 {
 }
 
 /// 2D coordinates in a plane: (x - p) . (e1, e2) with e1, e2, n right-handed.
-pub fn plane_frame(plane: &Plane) -> (DVec3, DVec3) {
+pub(crate) fn plane_frame(plane: &Plane) -> (DVec3, DVec3) {
     let (e1, e2) = plane.normal.any_orthonormal_pair();
     (e1, e2)
 }
 
 /// Shape measures of a polygon in its plane.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FacetShape {
+pub(crate) struct FacetShape {
     /// Area (positive when counter-clockwise seen from the normal).
     pub area: f64,
     /// Counter-clockwise, at least 3 vertices, no two non-adjacent edges intersecting.
@@ -439,12 +439,8 @@ pub struct FacetShape {
     pub convex: bool,
 }
 
-/// Measures a polygon lying (nearly) in `plane`.
-pub fn facet_shape(plane: &Plane, points: impl Iterator<Item = DVec3>) -> FacetShape {
-    facet_shape_into(plane, points, &mut Vec::new())
-}
-
-/// [`facet_shape`] with a caller's buffer for the 2D points (no allocation per facet).
+/// Measures a polygon lying (nearly) in `plane`, with a caller's buffer for the 2D points (no
+/// allocation per facet).
 fn facet_shape_into(
     plane: &Plane,
     points: impl Iterator<Item = DVec3>,
@@ -549,7 +545,7 @@ fn edge_pair_overlaps(input: &ReportInput<'_>, f: u32, g: u32, a: u32, b: u32) -
 
 /// A vertex within this fraction of an edge's length of the edge's line counts as on it in
 /// the separating-line test of [`edge_pair_overlaps`] (the full test then decides).
-pub const SEPARATION_MARGIN: f64 = 1e-9;
+pub(crate) const SEPARATION_MARGIN: f64 = 1e-9;
 
 /// Overlapping pairs of simple facets that share a vertex but no edge (only where four or
 /// more facets meet at a vertex).

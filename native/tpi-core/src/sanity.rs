@@ -88,7 +88,13 @@ pub enum SanityError {
 }
 
 impl Discretisation {
-    /// Checks the structural contract of the module doc of [`crate::sanity`]; the first
+    /// Checks the structural contract of a discretisation from its arrays alone: one facet per
+    /// pattern point; every vertex index in range and every vertex finite; every facet a loop
+    /// of at least three distinct vertices in its seed's tangent plane (within
+    /// [`crate::tolerance::SANITY_PLANARITY_TOLERANCE`] of the diagonal), simple and
+    /// counter-clockwise seen from the seed's normal; every edge held by one facet or by two
+    /// running it in opposite directions; Euler characteristic 1 and one boundary loop (a
+    /// disc). Overlaps of facets that share no edge are the quality report's to flag. The first
     /// violation found is returned, naming its facet, vertex or edge.
     pub fn sanity_check(&self) -> Result<(), SanityError> {
         let facets = self.facet_offsets.len().saturating_sub(1);

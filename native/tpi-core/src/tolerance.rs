@@ -17,7 +17,7 @@ pub const MAX_NURBS_DEGREE: usize = 15;
 pub const SANITY_PLANARITY_TOLERANCE: f64 = 1e-9;
 
 /// On the convex path, adjacent facet vertices closer than this (relative to the bounding-box
-/// diagonal) are tested for an edge reversed by rounding ([`crate::facets::edge_reversed`])
+/// diagonal) are tested for an edge reversed by rounding (the weld pass of the facet stage)
 /// and welded when it is. Rounding moves a vertex by far less (about 1e-16 times the
 /// coordinates times the condition of its three planes); the bound only spares the test on
 /// the ordinary edges.

@@ -18,7 +18,7 @@ use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation as _};
 use crate::error::TpiError;
 
 /// Marks a missing neighbour (a hull edge) or an unset index.
-pub const NO_TRIANGLE: u32 = u32::MAX;
+pub(crate) const NO_TRIANGLE: u32 = u32::MAX;
 
 #[derive(Clone, Copy)]
 struct Site {
@@ -35,7 +35,7 @@ impl HasPosition for Site {
 
 /// A triangulation of points 0..n with counter-clockwise triangles and adjacency.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct DualTriangulation {
+pub(crate) struct DualTriangulation {
     /// Counter-clockwise vertex triples.
     pub triangles: Vec<[u32; 3]>,
     /// Triangle across the edge opposite each vertex, or [`NO_TRIANGLE`].
@@ -44,7 +44,7 @@ pub struct DualTriangulation {
 
 /// One undirected edge of the triangulation with its (up to) two triangles.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Edge {
+pub(crate) struct Edge {
     /// Smaller endpoint.
     pub lo: u32,
     /// Larger endpoint.
@@ -57,7 +57,7 @@ pub struct Edge {
 
 impl DualTriangulation {
     /// Delaunay triangulation of `points` (any 2D coordinates, validated finite and distinct).
-    pub fn delaunay(points: &[[f64; 2]]) -> Result<Self, TpiError> {
+    pub(crate) fn delaunay(points: &[[f64; 2]]) -> Result<Self, TpiError> {
         if points.len() < 3 {
             return Err(TpiError::TooFewPatternPoints {
                 found: points.len(),
@@ -108,7 +108,7 @@ impl DualTriangulation {
     /// on how it was built): each triangle rotated so that its smallest point comes first
     /// (orientation kept), the triangles sorted by (first point, second point). A directed
     /// edge belongs to one triangle, so the key is unique. `point_count` bounds the indices.
-    pub fn canonicalise(&mut self, point_count: usize) {
+    pub(crate) fn canonicalise(&mut self, point_count: usize) {
         let n = self.triangles.len();
         for (t, nb) in self.triangles.iter_mut().zip(self.neighbours.iter_mut()) {
             let k = (0..3).min_by_key(|&k| t[k]).unwrap_or(0);
@@ -160,7 +160,7 @@ impl DualTriangulation {
     }
 
     /// Reverses every triangle's orientation (counter-clockwise becomes clockwise).
-    pub fn reverse(&mut self) {
+    pub(crate) fn reverse(&mut self) {
         for (t, n) in self.triangles.iter_mut().zip(self.neighbours.iter_mut()) {
             t.swap(1, 2);
             n.swap(1, 2);
@@ -168,30 +168,30 @@ impl DualTriangulation {
     }
 
     /// Number of triangles.
-    pub fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.triangles.len()
     }
 
     /// Whether there are no triangles.
-    pub fn is_empty(&self) -> bool {
+    pub(crate) fn is_empty(&self) -> bool {
         self.triangles.is_empty()
     }
 
     /// The vertex of triangle t across from its neighbour `across` (the fourth point of the
     /// quad around their shared edge), if `across` is a neighbour of t.
-    pub fn opposite(&self, t: usize, across: u32) -> Option<u32> {
+    pub(crate) fn opposite(&self, t: usize, across: u32) -> Option<u32> {
         let k = self.neighbours[t].iter().position(|&x| x == across)?;
         Some(self.triangles[t][k])
     }
 
     /// Position (0, 1, 2) of vertex `v` in triangle `t`.
-    pub fn position_of(&self, t: u32, v: u32) -> Option<usize> {
+    pub(crate) fn position_of(&self, t: u32, v: u32) -> Option<usize> {
         self.triangles[t as usize].iter().position(|&x| x == v)
     }
 
     /// Flips the edge opposite vertex `k` of triangle `t`. The caller has checked that the
     /// quadrilateral is strictly convex. Returns the two new triangles (same indices as before).
-    pub fn flip(&mut self, t: u32, k: usize) -> (u32, u32) {
+    pub(crate) fn flip(&mut self, t: u32, k: usize) -> (u32, u32) {
         let t1 = t as usize;
         let t2 = self.neighbours[t1][k] as usize;
         let [c, a, b] = rotate(self.triangles[t1], k);
@@ -219,7 +219,7 @@ impl DualTriangulation {
 
     /// Drops the triangles marked in `removed` (their neighbours must already point past
     /// them) and renumbers the rest, keeping their order.
-    pub fn remove_triangles(&mut self, removed: &[bool]) {
+    pub(crate) fn remove_triangles(&mut self, removed: &[bool]) {
         let mut new_index = vec![NO_TRIANGLE; self.triangles.len()];
         let mut next = 0u32;
         for (t, &gone) in removed.iter().enumerate() {
@@ -247,7 +247,7 @@ impl DualTriangulation {
 
     /// Drops every triangle with a point index `>= count` (keeping the order of the rest);
     /// the edges they shared with kept triangles become hull edges.
-    pub fn retain_points(&mut self, count: usize) {
+    pub(crate) fn retain_points(&mut self, count: usize) {
         let removed: Vec<bool> = self
             .triangles
             .iter()
@@ -278,47 +278,8 @@ impl DualTriangulation {
         }
     }
 
-    /// The undirected edges with their triangles, and for every triangle the edge index
-    /// opposite each of its vertices. Deterministic order (by first triangle, then k).
-    pub fn edges(&self) -> (Vec<Edge>, Vec<[u32; 3]>) {
-        let mut edges = Vec::with_capacity(self.triangles.len() * 3 / 2 + 3);
-        let mut edge_of = vec![[NO_TRIANGLE; 3]; self.triangles.len()];
-        for t in 0..self.triangles.len() {
-            for k in 0..3 {
-                let other = self.neighbours[t][k];
-                if other != NO_TRIANGLE && (other as usize) < t {
-                    continue;
-                }
-                let tri = self.triangles[t];
-                let (from, to) = (tri[(k + 1) % 3], tri[(k + 2) % 3]);
-                let id = edges.len() as u32;
-                let (lo, hi, left, right) = if from < to {
-                    (from, to, t as u32, other)
-                } else {
-                    (to, from, other, t as u32)
-                };
-                edges.push(Edge {
-                    lo,
-                    hi,
-                    left,
-                    right,
-                });
-                edge_of[t][k] = id;
-                if other != NO_TRIANGLE {
-                    if let Some(j) = self.neighbours[other as usize]
-                        .iter()
-                        .position(|&x| x as usize == t)
-                    {
-                        edge_of[other as usize][j] = id;
-                    }
-                }
-            }
-        }
-        (edges, edge_of)
-    }
-
     /// For every point, one incident triangle (the first in triangle order), or [`NO_TRIANGLE`].
-    pub fn incident_triangles(&self, point_count: usize) -> Vec<u32> {
+    pub(crate) fn incident_triangles(&self, point_count: usize) -> Vec<u32> {
         let mut incident = vec![NO_TRIANGLE; point_count];
         for (t, tri) in self.triangles.iter().enumerate() {
             for &v in tri {
@@ -333,7 +294,7 @@ impl DualTriangulation {
     /// The fan of triangles around point `v` in counter-clockwise order into `out`, starting
     /// from any incident triangle `start`. A hull point's fan starts at the triangle holding
     /// its clockwise-most edge.
-    pub fn fan(&self, v: u32, start: u32, out: &mut Vec<u32>) -> Fan {
+    pub(crate) fn fan(&self, v: u32, start: u32, out: &mut Vec<u32>) -> Fan {
         out.clear();
         if start == NO_TRIANGLE {
             return Fan::Broken;
@@ -397,7 +358,7 @@ impl DualTriangulation {
 
 /// How the triangles around a point close up.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Fan {
+pub(crate) enum Fan {
     /// An interior point: the fan closes.
     Closed,
     /// A point on the convex hull: the fan runs from hull edge to hull edge.
@@ -412,6 +373,6 @@ fn rotate<T: Copy>(x: [T; 3], k: usize) -> [T; 3] {
 }
 
 /// Twice the signed area of (a, b, c): positive when counter-clockwise.
-pub fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
+pub(crate) fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
 }

@@ -38,11 +38,11 @@ use crate::planes::Plane;
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
 /// Rounds of validity flips at most (each round visits every invalid facet once).
-pub const MAX_VALIDITY_ROUNDS: usize = 8;
+pub(crate) const MAX_VALIDITY_ROUNDS: usize = 8;
 
 /// What the validity flips did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct ValidityFlipStats {
+pub(crate) struct ValidityFlipStats {
     /// Flips kept.
     pub flips: usize,
     /// Interior facets still invalid by the local test afterwards.
@@ -52,7 +52,7 @@ pub struct ValidityFlipStats {
 /// Repairs invalid interior facets of the points `0..judged` by flips (module doc).
 /// `embedding` holds the triangulation's points (ghosts included); `planes` the tangent
 /// planes of all of them.
-pub fn validity_flips(
+pub(crate) fn validity_flips(
     tri: &mut DualTriangulation,
     embedding: &[[f64; 2]],
     planes: &[Plane],
@@ -520,7 +520,7 @@ fn flatten(points: &[DVec3], normal: DVec3, origin: DVec3) -> Vec<DVec2> {
 /// Relative tolerance of the local validity tests: orientations smaller than this times the
 /// squared size of the polygons count as collinear, distances smaller than this times the
 /// size as zero (rounding of the three-plane vertices is far below it).
-pub const VALIDITY_TOLERANCE: f64 = 1e-9;
+pub(crate) const VALIDITY_TOLERANCE: f64 = 1e-9;
 
 /// Longest edge of a closed polygon.
 fn size(p: &[DVec2]) -> f64 {

@@ -1,6 +1,6 @@
 //! Every invalid analytic parameter gives its specific typed error, naming the field.
 
-use tpi_core::analytic::AnalyticKind;
+use tpi_core::AnalyticKind;
 use tpi_core::{AnalyticSurface, Direction, TpiError};
 
 const X: [f64; 2] = [-1.0, 1.0];
@@ -227,7 +227,7 @@ fn accessors_return_what_was_built() {
 
 #[test]
 fn magnitudes_are_bounded_so_evaluation_cannot_overflow() {
-    use tpi_core::analytic::{MAX_ANALYTIC_MAGNITUDE, MIN_ANALYTIC_LENGTH};
+    use tpi_core::{MAX_ANALYTIC_MAGNITUDE, MIN_ANALYTIC_LENGTH};
     // a x^2 - b y^2 would be inf - inf = NaN at the corner.
     assert_eq!(
         invalid_field(AnalyticSurface::hyperbolic_paraboloid(1e300, 1e300, X, Y).unwrap_err()),

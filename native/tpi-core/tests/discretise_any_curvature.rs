@@ -16,11 +16,11 @@ mod common;
 use common::validity::{check, Validity};
 use common::*;
 use glam::DVec3;
-use tpi_core::quality::{FLAG_NON_SIMPLE, FLAG_OVERLAP};
 use tpi_core::{
     discretise, AnalyticKind, AnalyticSurface, DiscretiseOptions, Generator, NurbsSurface, Surface,
     SurfaceSpec,
 };
+use tpi_core::{FLAG_NON_SIMPLE, FLAG_OVERLAP};
 
 /// A hex (triangular-lattice) pattern of about `n` points in the unit square, rotated by
 /// `degrees` about the square's centre.
@@ -212,7 +212,7 @@ fn run(
             .collect();
         let interior: Vec<_> = boundary
             .iter()
-            .filter(|b| b.2 == tpi_core::facets::VertexKind::Interior)
+            .filter(|b| b.2 == tpi_core::VertexKind::Interior)
             .collect();
         eprintln!("interior-kind boundary edges: {interior:?}");
     }

@@ -31,7 +31,7 @@ use std::collections::BTreeSet;
 
 use common::*;
 use glam::DVec3;
-use tpi_core::facets::VertexKind;
+use tpi_core::VertexKind;
 use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, Surface};
 
 /// Relative tolerance of vertex positions and planarity (issue 3).

@@ -14,8 +14,8 @@ mod common;
 
 use common::*;
 use glam::DVec2;
-use tpi_core::facets::VertexKind;
-use tpi_core::quality::INVALID_FLAGS;
+use tpi_core::VertexKind;
+use tpi_core::INVALID_FLAGS;
 use tpi_core::{
     discretise, AnalyticSurface, Discretisation, DiscretiseOptions, SanityError, TpiError,
 };

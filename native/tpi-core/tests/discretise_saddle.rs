@@ -26,10 +26,8 @@ mod common;
 
 use common::*;
 
-use tpi_core::quality::{
-    FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
-};
 use tpi_core::{discretise, AnalyticSurface, Discretisation, DiscretiseOptions, Surface};
+use tpi_core::{FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP};
 
 const TOL: f64 = 1e-9;
 

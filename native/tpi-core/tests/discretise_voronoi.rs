@@ -26,7 +26,7 @@ mod common;
 
 use common::*;
 use glam::DVec2;
-use tpi_core::facets::VertexKind;
+use tpi_core::VertexKind;
 use tpi_core::{discretise, AnalyticSurface, Discretisation, DiscretiseOptions};
 
 const TOL: f64 = 1e-9;

@@ -5,7 +5,7 @@
 //! edits take the incremental path (issue 7, item 3).
 
 use tpi_core::benchmark::{nurbs_dome, paraboloid, random_pattern};
-use tpi_core::pattern::SplitMix64;
+use tpi_core::SplitMix64;
 use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, LiveSurface, Surface};
 
 /// Compares the live mesh with a fresh run, byte for byte.

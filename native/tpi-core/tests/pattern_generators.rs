@@ -1,7 +1,7 @@
 //! Pattern generators: syntax, counts, placement, determinism, Poisson-disk distances.
 
-use tpi_core::pattern::{SplitMix64, MAX_GENERATED_POINTS, MIN_POISSON_RADIUS};
 use tpi_core::{Generator, GridSize, Pattern, TpiError};
+use tpi_core::{SplitMix64, MAX_GENERATED_POINTS, MIN_POISSON_RADIUS};
 
 fn generate(spec: &str) -> Pattern {
     let g = Generator::parse(spec).unwrap_or_else(|e| panic!("{spec}: {e}"));

@@ -5,7 +5,7 @@
 use std::collections::{HashMap, HashSet};
 
 use glam::DVec3;
-use tpi_core::facets::VertexKind;
+use tpi_core::VertexKind;
 use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, Surface, TpiError};
 
 fn random_points(n: usize, mut seed: u64) -> Vec<[f64; 2]> {

@@ -1,6 +1,6 @@
 //! The surface file: reading, writing, building, and every way a record can be wrong.
 
-use tpi_core::spec::sampled_bounding_box;
+use tpi_core::sampled_bounding_box;
 use tpi_core::{AnalyticSurface, Direction, Surface, SurfaceModel, SurfaceSpec, TpiError};
 
 fn parse_err(text: &str) -> (usize, usize, String) {

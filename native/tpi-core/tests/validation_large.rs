@@ -3,8 +3,8 @@
 //! distance, and range errors first.
 
 use tpi_core::benchmark::random_pattern;
-use tpi_core::pattern::Pattern;
 use tpi_core::validate_pattern;
+use tpi_core::Pattern;
 
 #[test]
 fn large_pattern_errors_match_the_pattern_check() {

@@ -16,7 +16,7 @@ use std::fmt::Write as _;
 
 use common::{dome_points, DOME_COUNT, DOME_DEGREE, DOME_KNOTS};
 use glam::DVec3;
-use tpi_core::pattern::Generator;
+use tpi_core::Generator;
 use tpi_core::{discretise, DiscretiseOptions, LocalGeometry, NurbsSurface, Surface};
 
 /// Height of the dome of the C test.

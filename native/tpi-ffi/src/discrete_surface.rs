@@ -12,8 +12,8 @@
 
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
-use tpi_core::pattern::Pattern;
-use tpi_core::spec::SurfaceModel;
+use tpi_core::Pattern;
+use tpi_core::SurfaceModel;
 use tpi_core::{Discretisation, DiscretiseOptions, LiveSurface, TpiError};
 
 use crate::boundary::{

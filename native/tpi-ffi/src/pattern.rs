@@ -2,7 +2,7 @@
 
 use std::ffi::c_char;
 
-use tpi_core::pattern::{Generator, GridSize, Pattern};
+use tpi_core::{Generator, GridSize, Pattern};
 
 use crate::boundary::{
     copy_out, ffi_boundary, try_pairs, try_ref, try_str, FfiResult, OutPtr, TpiStatus,

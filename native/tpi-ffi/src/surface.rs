@@ -1,7 +1,7 @@
 //! Surface handles: NURBS from RhinoCommon's arrays, the analytic surfaces, sampling.
 
 use glam::DVec3;
-use tpi_core::spec::SurfaceModel;
+use tpi_core::SurfaceModel;
 use tpi_core::{AnalyticSurface, LocalGeometry, NurbsSurface, Surface, TpiError};
 
 use crate::boundary::{

@@ -10,7 +10,7 @@ use std::mem::{align_of, offset_of, size_of};
 
 use common::*;
 use tpi::*;
-use tpi_core::pattern::Generator;
+use tpi_core::Generator;
 use tpi_core::{discretise, DiscretiseOptions, LocalGeometry, NurbsSurface, Surface};
 
 #[test]
@@ -68,9 +68,7 @@ fn status_numbers_are_fixed() {
 
 #[test]
 fn flag_and_kind_numbers_match_the_core() {
-    use tpi_core::quality::{
-        FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
-    };
+    use tpi_core::{FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP};
     assert_eq!(TPI_FACET_OPEN, FLAG_OPEN);
     assert_eq!(TPI_FACET_NON_CONVEX, FLAG_NON_CONVEX);
     assert_eq!(TPI_FACET_NON_SIMPLE, FLAG_NON_SIMPLE);

@@ -16,7 +16,7 @@
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use glam::{DVec2, DVec3};
-use tpi_core::facets::VertexKind;
+use tpi_core::VertexKind;
 use tpi_core::{Discretisation, NurbsSurface, Surface};
 
 pub mod validity;
