@@ -20,10 +20,11 @@ use serde::{Serialize, Serializer};
 use crate::diagnostics::Diagnostic;
 use crate::error::TpiError;
 use crate::facets::{
-    build_closed_facets, build_facets, FacetMesh, FacetParams, FootHint, SlopeView, TriangleVertex,
-    VertexKind, DEFAULT_FAR_VERTEX_FACTOR,
+    build_closed_facets, build_facets, FacetParams, FootHint, TriangleVertex, VertexKind,
+    DEFAULT_FAR_VERTEX_FACTOR,
 };
 use crate::ghosts::augment;
+use crate::mesh::{FacetMesh, SlopeView};
 use crate::neighbours::{decide, decide_convex, NeighbourInput, NeighbourStats, SlopeFrame};
 use crate::pattern::validate_uv;
 use crate::planes::Plane;

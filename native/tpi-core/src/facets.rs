@@ -15,9 +15,9 @@
 //!   counter-clockwise and picks up the domain corners it passes; corner c contributes the
 //!   point where the corner's normal line meets T_i. Every vertex of facet i lies in T_i by
 //!   construction, so every facet is exactly planar.
-//! - **Welding.** Where four or more planes meet in one point (cocircular configurations,
-//!   such as a square grid on a paraboloid of revolution) the two triangles of an edge give
-//!   the same vertex; they are merged when closer than the weld tolerance.
+//! - **Mesh.** The loops, as items (triangle vertices, crossings, edge points, corners), go to
+//!   [`crate::mesh`], which welds the vertices where four or more planes meet in one point,
+//!   numbers them and writes the loops.
 
 use std::collections::HashMap;
 
@@ -25,6 +25,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::diagnostics::Diagnostic;
+use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
 use crate::planes::{intersect_three, regularised_meeting_point, Plane};
 use crate::projection::{boundary_parameter, domain_corners, foot, inside_measure};
 use crate::surface::{Domain, Surface};
@@ -84,36 +85,6 @@ pub(crate) struct FacetParams {
     pub reversal_distance: f64,
 }
 
-/// The indexed polygon mesh before reporting.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct FacetMesh {
-    /// Vertex positions.
-    pub vertices: Vec<DVec3>,
-    /// What each vertex is.
-    pub vertex_kinds: Vec<VertexKind>,
-    /// Facet i's loop is `loops[offsets[i]..offsets[i + 1]]`.
-    pub offsets: Vec<u32>,
-    /// Flat vertex loops.
-    pub loops: Vec<u32>,
-    /// Problems found.
-    pub diagnostics: Vec<Diagnostic>,
-    /// Wall-clock time of the assembly (welding, numbering, loops) in milliseconds.
-    pub assembly_ms: f64,
-    /// Per vertex, what is known about its foot on the surface (for the quality report's
-    /// deviation, so that no projection is done twice).
-    pub feet: Vec<FootHint>,
-    /// Per triangle of the dual structure, its vertex (for live editing).
-    pub(crate) triangle_vertices: Vec<TriangleVertex>,
-    /// Per mesh vertex, the triangle it is the meeting point of (welds resolved to the
-    /// representative), or `u32::MAX` for boundary, corner and stand-in vertices.
-    pub(crate) vertex_source: Vec<u32>,
-    /// Per facet, whether its loop is just the vertices of its closed fan of triangles
-    /// (all exact and inside): no boundary, no stand-in.
-    pub(crate) facet_simple: Vec<bool>,
-    /// The triangles whose vertices were welded to another's.
-    pub(crate) welded: Vec<u32>,
-}
-
 /// What the facet stage knows about a mesh vertex's closest point on the surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) enum FootHint {
@@ -132,19 +103,19 @@ pub(crate) enum FootHint {
 }
 
 #[derive(Clone, Copy, Debug)]
-struct Crossing {
-    point: DVec3,
+pub(crate) struct Crossing {
+    pub(crate) point: DVec3,
     wall: f64,
     /// Leaving the domain when walking the edge in canonical direction (right to left).
     exit: bool,
     /// Whether the search ended on the boundary (|inside measure| below tolerance).
     converged: bool,
     /// The Newton foot of `point`, when the search computed it.
-    foot: Option<[f64; 2]>,
+    pub(crate) foot: Option<[f64; 2]>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Item {
+pub(crate) enum Item {
     Triangle(u32),
     /// An ill-conditioned triangle's stand-in, moved onto the line of one of its edges
     /// (shared by the two facets of that edge).
@@ -342,280 +313,6 @@ pub(crate) fn build_facets(
     })
 }
 
-/// The slope frame's tangent axes and the points' slopes, where the dual structure is the
-/// regular triangulation of the slopes (the convex path): what [`edge_reversed`] reads.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct SlopeView<'a> {
-    /// (e1, e2) of the slope frame.
-    pub axes: (DVec3, DVec3),
-    /// Per point, its slopes.
-    pub slopes: &'a [[f64; 2]],
-}
-
-/// Whether the facet edge from x1, the vertex of the triangle (a, b, c), to x2, the vertex of
-/// the adjacent triangle (b, a, d), runs against the direction the regular triangulation of
-/// the slopes gives it.
-///
-/// Along the line T_a ∩ T_b the upper envelope max_i (s_i . x + c_i) (in frame coordinates
-/// x = (X.e1, X.e2)) leaves plane c behind and meets plane d ahead, so the exact edge satisfies
-/// (x2 - x1) . (s_d - s_c) > 0. Where the computed vertices say otherwise, their distance is
-/// below their rounding error (four planes nearly through one point, the edge nearly of zero
-/// length): the two are one vertex of the mesh, else the edge would turn both facets that
-/// hold it non-simple.
-pub(crate) fn edge_reversed(
-    axes: (DVec3, DVec3),
-    x1: DVec3,
-    x2: DVec3,
-    s_c: [f64; 2],
-    s_d: [f64; 2],
-) -> bool {
-    let w = x2 - x1;
-    w.dot(axes.0) * (s_d[0] - s_c[0]) + w.dot(axes.1) * (s_d[1] - s_c[1]) <= 0.0
-}
-
-/// What the assembly of facet loops into a mesh reads.
-struct Assembly<'a> {
-    tri: &'a DualTriangulation,
-    triangle_vertices: Vec<TriangleVertex>,
-    chunks: Vec<FacetChunk>,
-    crossings: &'a [Crossing],
-    /// Point and normal over each domain corner; None where no facet holds a corner.
-    corners: Option<&'a [(DVec3, DVec3); 4]>,
-    planes: &'a [Plane],
-    params: &'a FacetParams,
-    /// Points from this index on are ghosts ([`crate::ghosts`]): the vertices of their
-    /// triangles are boundary vertices.
-    ghosts_from: Option<u32>,
-    /// On the convex path: adjacent vertices whose edge is reversed are welded too.
-    slopes: Option<SlopeView<'a>>,
-    diagnostics: Vec<Diagnostic>,
-}
-
-/// Steps 4 and 5 of [`build_facets`]: welding, vertex numbering in facet order, loops.
-fn assemble(a: Assembly<'_>) -> FacetMesh {
-    let Assembly {
-        tri,
-        triangle_vertices,
-        chunks,
-        crossings,
-        corners,
-        planes,
-        params,
-        ghosts_from,
-        slopes,
-        mut diagnostics,
-    } = a;
-    let uv_len = chunks.iter().map(|c| c.ends.len()).sum::<usize>();
-    // 4. Welding of coincident triangle vertices across interior edges.
-    let assembly = std::time::Instant::now();
-    let weld_pairs: Vec<(u32, u32)> = (0..tri.len())
-        .into_par_iter()
-        .flat_map_iter(|t| {
-            let weld = params.weld_distance;
-            let tv = &triangle_vertices;
-            (0..3).filter_map(move |k| {
-                let other = tri.neighbours[t][k];
-                if other == NO_TRIANGLE || (other as usize) < t {
-                    return None;
-                }
-                let (a, b) = (t, other as usize);
-                let reversed = || {
-                    slopes.is_some_and(|view| {
-                        let c = tri.triangles[a][k];
-                        let s = view.slopes;
-                        tri.opposite(b, a as u32).is_some_and(|d| {
-                            edge_reversed(
-                                view.axes,
-                                tv[a].point,
-                                tv[b].point,
-                                s[c as usize],
-                                s[d as usize],
-                            )
-                        })
-                    })
-                };
-                let distance = tv[a].point.distance(tv[b].point);
-                (tv[a].exact
-                    && tv[b].exact
-                    && (distance <= weld || (distance <= params.reversal_distance && reversed())))
-                .then_some((a as u32, b as u32))
-            })
-        })
-        .collect();
-    // Unions in the order of `DualTriangulation::edges` (by triangle, then side): the pairs
-    // were collected in that order.
-    let welded: Vec<u32> = weld_pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
-    let mut representative: Vec<u32> = if weld_pairs.is_empty() {
-        Vec::new()
-    } else {
-        (0..tri.len() as u32).collect()
-    };
-    for &(a, b) in &weld_pairs {
-        let (ra, rb) = (find(&mut representative, a), find(&mut representative, b));
-        if ra != rb {
-            let (low, high) = (ra.min(rb), ra.max(rb));
-            representative[high as usize] = low;
-        }
-    }
-
-    // 5. Vertex numbering in facet order (deterministic), corners per facet.
-    let mut mesh = FacetMesh {
-        offsets: Vec::with_capacity(uv_len + 1),
-        ..FacetMesh::default()
-    };
-    let vertex_estimate = tri.len() + crossings.len() + 4;
-    mesh.vertices.reserve(vertex_estimate);
-    mesh.vertex_kinds.reserve(vertex_estimate);
-    mesh.feet.reserve(vertex_estimate);
-    mesh.loops
-        .reserve(chunks.iter().map(|c| c.items.len()).sum());
-    debug_assert!(tri.len() < ITEM_INDEX as usize);
-    mesh.offsets.push(0);
-    let mut triangle_id = vec![u32::MAX; tri.len()];
-    let mut crossing_id = vec![u32::MAX; crossings.len()];
-    let mut edge_point_id: HashMap<(u32, u32, u32), u32> = HashMap::new();
-    let mut corner_claims = [0u32; 4];
-    let mut i = 0usize;
-    for chunk in chunks {
-        let mut start_item = 0usize;
-        let mut walk_diagnostics = chunk.diagnostics.into_iter().peekable();
-        mesh.facet_simple.extend_from_slice(&chunk.simple);
-        for &end_item in &chunk.ends {
-            // Diagnostics of this facet's walk come before those of its assembly.
-            while let Some((_, d)) = walk_diagnostics.next_if(|(f, _)| *f as usize == i) {
-                diagnostics.push(d);
-            }
-            let items = (start_item..end_item as usize).map(|k| chunk.items.get(k));
-            start_item = end_item as usize;
-            let start = mesh.loops.len();
-            for item in items {
-                let id = match item {
-                    Item::Triangle(t) => {
-                        let r = if representative.is_empty() {
-                            t as usize
-                        } else {
-                            find(&mut representative, t) as usize
-                        };
-                        if triangle_id[r] == u32::MAX {
-                            let v = &triangle_vertices[r];
-                            let ghost = ghosts_from
-                                .is_some_and(|g| tri.triangles[r].iter().any(|&x| x >= g));
-                            let kind = if ghost {
-                                VertexKind::Boundary
-                            } else {
-                                VertexKind::Interior
-                            };
-                            triangle_id[r] =
-                                push_vertex(&mut mesh, v.point, kind, v.hint(), r as u32);
-                        }
-                        triangle_id[r]
-                    }
-                    Item::EdgePoint { triangle, lo, hi } => {
-                        let stand_in = triangle_vertices[triangle as usize].point;
-                        match edge_point(
-                            &planes[lo as usize],
-                            &planes[hi as usize],
-                            stand_in,
-                            params.far_vertex_factor,
-                        ) {
-                            Some(position) => {
-                                *edge_point_id.entry((triangle, lo, hi)).or_insert_with(|| {
-                                    push_vertex(
-                                        &mut mesh,
-                                        position,
-                                        VertexKind::Interior,
-                                        FootHint::FromSeed,
-                                        u32::MAX,
-                                    )
-                                })
-                            }
-                            None => {
-                                // No usable line: a vertex of this facet alone, in its own plane.
-                                let plane = &planes[i];
-                                let position =
-                                    stand_in - plane.normal * plane.signed_distance(stand_in);
-                                push_vertex(
-                                    &mut mesh,
-                                    position,
-                                    VertexKind::Interior,
-                                    FootHint::FromSeed,
-                                    u32::MAX,
-                                )
-                            }
-                        }
-                    }
-                    Item::Crossing(c) => {
-                        if crossing_id[c as usize] == u32::MAX {
-                            let crossing = &crossings[c as usize];
-                            let hint = crossing.foot.map_or(FootHint::FromSeed, FootHint::Known);
-                            crossing_id[c as usize] = push_vertex(
-                                &mut mesh,
-                                crossing.point,
-                                VertexKind::Boundary,
-                                hint,
-                                u32::MAX,
-                            );
-                        }
-                        crossing_id[c as usize]
-                    }
-                    Item::Corner(c) => {
-                        corner_claims[c as usize] += 1;
-                        let Some(corners) = corners else { continue };
-                        let (point, normal) = corners[c as usize];
-                        let plane = &planes[i];
-                        let denominator = plane.normal.dot(normal);
-                        let mu = plane.normal.dot(plane.point - point) / denominator;
-                        let position = point + normal * mu;
-                        if !position.is_finite() || denominator.abs() < 1e-9 {
-                            diagnostics.push(Diagnostic::CornerUnreachable {
-                                point: i as u32,
-                                corner: c,
-                            });
-                            continue;
-                        }
-                        push_vertex(
-                            &mut mesh,
-                            position,
-                            VertexKind::Corner,
-                            FootHint::FromSeed,
-                            u32::MAX,
-                        )
-                    }
-                };
-                if mesh.loops.len() == start || mesh.loops[mesh.loops.len() - 1] != id {
-                    mesh.loops.push(id);
-                }
-            }
-            while mesh.loops.len() > start + 1
-                && mesh.loops[start] == mesh.loops[mesh.loops.len() - 1]
-            {
-                mesh.loops.pop();
-            }
-            if mesh.loops.len() - start < 3 {
-                diagnostics.push(Diagnostic::OpenFacet {
-                    point: i as u32,
-                    reason: "fewer than three vertices".into(),
-                });
-            }
-            mesh.offsets.push(mesh.loops.len() as u32);
-            i += 1;
-        }
-    }
-    for (corner, &claims) in corner_claims.iter().enumerate() {
-        if corners.is_some() && claims != 1 {
-            diagnostics.push(Diagnostic::CornerClaims {
-                corner: corner as u8,
-                claims,
-            });
-        }
-    }
-    mesh.diagnostics = diagnostics;
-    mesh.welded = welded;
-    mesh.triangle_vertices = triangle_vertices;
-    mesh.assembly_ms = assembly.elapsed().as_secs_f64() * 1e3;
-    mesh
-}
-
 /// On the ghost-closed path, a vertex farther than this many triangle sides from its
 /// triangle's centroid (or not finite) is unreachable: its facets get stand-ins on their edge
 /// lines instead (leaving a small hole); nearer far vertices stay exact and are diagnosed.
@@ -638,31 +335,32 @@ const FACET_CHUNK: usize = 512;
 
 /// The items of a run of consecutive facets: `ends[k]` closes facet k's items.
 #[derive(Default)]
-struct FacetChunk {
+pub(crate) struct FacetChunk {
     /// Packed items (see [`PackedItems`]).
-    items: PackedItems,
-    ends: Vec<u32>,
+    pub(crate) items: PackedItems,
+    /// Per facet, the end of its items.
+    pub(crate) ends: Vec<u32>,
     /// Walk diagnostics with their facet, in facet order.
-    diagnostics: Vec<(u32, Diagnostic)>,
+    pub(crate) diagnostics: Vec<(u32, Diagnostic)>,
     /// Per facet, whether its loop is its closed fan (`facet_items`' fast path).
-    simple: Vec<bool>,
+    pub(crate) simple: Vec<bool>,
 }
 
 /// Facet loop items packed into 4 bytes each: the top two bits tell the kind (triangle,
 /// crossing, corner, edge point), the rest its index; edge points index a side table.
 #[derive(Default)]
-struct PackedItems {
+pub(crate) struct PackedItems {
     codes: Vec<u32>,
     edge_points: Vec<(u32, u32, u32)>,
 }
 
-const ITEM_INDEX: u32 = (1 << 30) - 1;
+pub(crate) const ITEM_INDEX: u32 = (1 << 30) - 1;
 const ITEM_CROSSING: u32 = 1 << 30;
 const ITEM_CORNER: u32 = 2 << 30;
 const ITEM_EDGE_POINT: u32 = 3 << 30;
 
 impl PackedItems {
-    fn len(&self) -> usize {
+    pub(crate) fn len(&self) -> usize {
         self.codes.len()
     }
 
@@ -679,7 +377,7 @@ impl PackedItems {
         self.codes.push(code);
     }
 
-    fn get(&self, k: usize) -> Item {
+    pub(crate) fn get(&self, k: usize) -> Item {
         let code = self.codes[k];
         let index = code & ITEM_INDEX;
         match code & !ITEM_INDEX {
@@ -734,29 +432,6 @@ fn crossing_edges(tri: &DualTriangulation, tv: &[TriangleVertex]) -> Vec<Edge> {
         }
     }
     edges
-}
-
-fn push_vertex(
-    mesh: &mut FacetMesh,
-    position: DVec3,
-    kind: VertexKind,
-    foot: FootHint,
-    source: u32,
-) -> u32 {
-    mesh.vertex_source.push(source);
-    mesh.vertices.push(position);
-    mesh.vertex_kinds.push(kind);
-    mesh.feet.push(foot);
-    (mesh.vertices.len() - 1) as u32
-}
-
-fn find(representative: &mut [u32], mut x: u32) -> u32 {
-    while representative[x as usize] != x {
-        let parent = representative[x as usize];
-        representative[x as usize] = representative[parent as usize];
-        x = parent;
-    }
-    x
 }
 
 /// Whether a triangle lies within twice its own size (in normalised parameters) of the
@@ -942,7 +617,7 @@ fn ill_conditioned(ctx: &Context<'_>, mut ids: [u32; 3], _vertex: &TriangleVerte
 /// A = [n_a; n_b]. When the planes coincide, the projection of x onto them. None when the
 /// planes are parallel but distinct, or the line lies farther than `far_factor` times the
 /// points' distance from x.
-fn edge_point(a: &Plane, b: &Plane, x: DVec3, far_factor: f64) -> Option<DVec3> {
+pub(crate) fn edge_point(a: &Plane, b: &Plane, x: DVec3, far_factor: f64) -> Option<DVec3> {
     let (ra, rb) = (a.signed_distance(x), b.signed_distance(x));
     let c = a.normal.dot(b.normal);
     let det = 1.0 - c * c;

@@ -27,6 +27,7 @@ mod error;
 mod facets;
 mod ghosts;
 mod live;
+mod mesh;
 mod neighbours;
 mod nurbs;
 mod pattern;

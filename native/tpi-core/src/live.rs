@@ -44,9 +44,8 @@ use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
 use crate::discretise::{run, Discretisation, DiscretiseOptions, PipelineState, Seed, Timings};
 use crate::error::TpiError;
-use crate::facets::{
-    accept_newton, edge_reversed, single_triangle_vertex, FootHint, TriangleVertex, VertexKind,
-};
+use crate::facets::{accept_newton, single_triangle_vertex, FootHint, TriangleVertex, VertexKind};
+use crate::mesh::edge_reversed;
 use crate::neighbours::{slope_repairs, NeighbourStats, SlopeFrame};
 use crate::planes::Plane;
 use crate::predicates::{orient2d, power_illegal};

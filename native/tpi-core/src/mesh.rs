@@ -1,0 +1,355 @@
+//! Stage 4 of the pipeline: facet loops -> mesh.
+//!
+//! The facet stage ([`crate::facets`]) gives one vertex per dual triangle (the meeting point of
+//! three tangent planes) and each facet's loop as items: triangle vertices, boundary crossings,
+//! edge points, corners. Assembly turns them into one indexed polygon mesh:
+//!
+//! 1. **Welding.** The vertices of two adjacent triangles (a, b, c) and (b, a, d) are one mesh
+//!    vertex when closer than the weld distance, or, on the convex path, when their edge runs
+//!    against the direction of the regular triangulation ([`edge_reversed`]): four or more
+//!    planes through (nearly) one point. Welds are resolved by union-find, the smallest
+//!    triangle index representing its class.
+//! 2. **Numbering.** Vertices are numbered in the order the facets first use them (facet 0's
+//!    loop first), so the output does not depend on the threads.
+//! 3. **Loops.** Consecutive repeats (welded vertices) are dropped; a loop of fewer than three
+//!    vertices is an open facet, diagnosed.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+use rayon::prelude::*;
+
+use crate::diagnostics::Diagnostic;
+use crate::facets::{
+    edge_point, Crossing, FacetChunk, FacetParams, FootHint, Item, TriangleVertex, VertexKind,
+    ITEM_INDEX,
+};
+use crate::planes::Plane;
+use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
+
+/// The indexed polygon mesh before reporting.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct FacetMesh {
+    /// Vertex positions.
+    pub vertices: Vec<DVec3>,
+    /// What each vertex is.
+    pub vertex_kinds: Vec<VertexKind>,
+    /// Facet i's loop is `loops[offsets[i]..offsets[i + 1]]`.
+    pub offsets: Vec<u32>,
+    /// Flat vertex loops.
+    pub loops: Vec<u32>,
+    /// Problems found.
+    pub diagnostics: Vec<Diagnostic>,
+    /// Wall-clock time of the assembly (welding, numbering, loops) in milliseconds.
+    pub assembly_ms: f64,
+    /// Per vertex, what is known about its foot on the surface (for the quality report's
+    /// deviation, so that no projection is done twice).
+    pub feet: Vec<FootHint>,
+    /// Per triangle of the dual structure, its vertex (for live editing).
+    pub(crate) triangle_vertices: Vec<TriangleVertex>,
+    /// Per mesh vertex, the triangle it is the meeting point of (welds resolved to the
+    /// representative), or `u32::MAX` for boundary, corner and stand-in vertices.
+    pub(crate) vertex_source: Vec<u32>,
+    /// Per facet, whether its loop is just the vertices of its closed fan of triangles
+    /// (all exact and inside): no boundary, no stand-in.
+    pub(crate) facet_simple: Vec<bool>,
+    /// The triangles whose vertices were welded to another's.
+    pub(crate) welded: Vec<u32>,
+}
+
+/// The slope frame's tangent axes and the points' slopes, where the dual structure is the
+/// regular triangulation of the slopes (the convex path): what [`edge_reversed`] reads.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct SlopeView<'a> {
+    /// (e1, e2) of the slope frame.
+    pub axes: (DVec3, DVec3),
+    /// Per point, its slopes.
+    pub slopes: &'a [[f64; 2]],
+}
+
+/// Whether the facet edge from x1, the vertex of the triangle (a, b, c), to x2, the vertex of
+/// the adjacent triangle (b, a, d), runs against the direction the regular triangulation of
+/// the slopes gives it.
+///
+/// Along the line T_a ∩ T_b the upper envelope max_i (s_i . x + c_i) (in frame coordinates
+/// x = (X.e1, X.e2)) leaves plane c behind and meets plane d ahead, so the exact edge satisfies
+/// (x2 - x1) . (s_d - s_c) > 0. Where the computed vertices say otherwise, their distance is
+/// below their rounding error (four planes nearly through one point, the edge nearly of zero
+/// length): the two are one vertex of the mesh, else the edge would turn both facets that
+/// hold it non-simple.
+pub(crate) fn edge_reversed(
+    axes: (DVec3, DVec3),
+    x1: DVec3,
+    x2: DVec3,
+    s_c: [f64; 2],
+    s_d: [f64; 2],
+) -> bool {
+    let w = x2 - x1;
+    w.dot(axes.0) * (s_d[0] - s_c[0]) + w.dot(axes.1) * (s_d[1] - s_c[1]) <= 0.0
+}
+
+/// What the assembly of facet loops into a mesh reads.
+pub(crate) struct Assembly<'a> {
+    pub(crate) tri: &'a DualTriangulation,
+    pub(crate) triangle_vertices: Vec<TriangleVertex>,
+    pub(crate) chunks: Vec<FacetChunk>,
+    pub(crate) crossings: &'a [Crossing],
+    /// Point and normal over each domain corner; None where no facet holds a corner.
+    pub(crate) corners: Option<&'a [(DVec3, DVec3); 4]>,
+    pub(crate) planes: &'a [Plane],
+    pub(crate) params: &'a FacetParams,
+    /// Points from this index on are ghosts ([`crate::ghosts`]): the vertices of their
+    /// triangles are boundary vertices.
+    pub(crate) ghosts_from: Option<u32>,
+    /// On the convex path: adjacent vertices whose edge is reversed are welded too.
+    pub(crate) slopes: Option<SlopeView<'a>>,
+    pub(crate) diagnostics: Vec<Diagnostic>,
+}
+
+/// Welding, vertex numbering in facet order, loops (see the module doc).
+pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
+    let Assembly {
+        tri,
+        triangle_vertices,
+        chunks,
+        crossings,
+        corners,
+        planes,
+        params,
+        ghosts_from,
+        slopes,
+        mut diagnostics,
+    } = a;
+    let uv_len = chunks.iter().map(|c| c.ends.len()).sum::<usize>();
+    // 4. Welding of coincident triangle vertices across interior edges.
+    let assembly = std::time::Instant::now();
+    let weld_pairs: Vec<(u32, u32)> = (0..tri.len())
+        .into_par_iter()
+        .flat_map_iter(|t| {
+            let weld = params.weld_distance;
+            let tv = &triangle_vertices;
+            (0..3).filter_map(move |k| {
+                let other = tri.neighbours[t][k];
+                if other == NO_TRIANGLE || (other as usize) < t {
+                    return None;
+                }
+                let (a, b) = (t, other as usize);
+                let reversed = || {
+                    slopes.is_some_and(|view| {
+                        let c = tri.triangles[a][k];
+                        let s = view.slopes;
+                        tri.opposite(b, a as u32).is_some_and(|d| {
+                            edge_reversed(
+                                view.axes,
+                                tv[a].point,
+                                tv[b].point,
+                                s[c as usize],
+                                s[d as usize],
+                            )
+                        })
+                    })
+                };
+                let distance = tv[a].point.distance(tv[b].point);
+                (tv[a].exact
+                    && tv[b].exact
+                    && (distance <= weld || (distance <= params.reversal_distance && reversed())))
+                .then_some((a as u32, b as u32))
+            })
+        })
+        .collect();
+    // Unions in the order of `DualTriangulation::edges` (by triangle, then side): the pairs
+    // were collected in that order.
+    let welded: Vec<u32> = weld_pairs.iter().flat_map(|&(a, b)| [a, b]).collect();
+    let mut representative: Vec<u32> = if weld_pairs.is_empty() {
+        Vec::new()
+    } else {
+        (0..tri.len() as u32).collect()
+    };
+    for &(a, b) in &weld_pairs {
+        let (ra, rb) = (find(&mut representative, a), find(&mut representative, b));
+        if ra != rb {
+            let (low, high) = (ra.min(rb), ra.max(rb));
+            representative[high as usize] = low;
+        }
+    }
+
+    // 5. Vertex numbering in facet order (deterministic), corners per facet.
+    let mut mesh = FacetMesh {
+        offsets: Vec::with_capacity(uv_len + 1),
+        ..FacetMesh::default()
+    };
+    let vertex_estimate = tri.len() + crossings.len() + 4;
+    mesh.vertices.reserve(vertex_estimate);
+    mesh.vertex_kinds.reserve(vertex_estimate);
+    mesh.feet.reserve(vertex_estimate);
+    mesh.loops
+        .reserve(chunks.iter().map(|c| c.items.len()).sum());
+    debug_assert!(tri.len() < ITEM_INDEX as usize);
+    mesh.offsets.push(0);
+    let mut triangle_id = vec![u32::MAX; tri.len()];
+    let mut crossing_id = vec![u32::MAX; crossings.len()];
+    let mut edge_point_id: HashMap<(u32, u32, u32), u32> = HashMap::new();
+    let mut corner_claims = [0u32; 4];
+    let mut i = 0usize;
+    for chunk in chunks {
+        let mut start_item = 0usize;
+        let mut walk_diagnostics = chunk.diagnostics.into_iter().peekable();
+        mesh.facet_simple.extend_from_slice(&chunk.simple);
+        for &end_item in &chunk.ends {
+            // Diagnostics of this facet's walk come before those of its assembly.
+            while let Some((_, d)) = walk_diagnostics.next_if(|(f, _)| *f as usize == i) {
+                diagnostics.push(d);
+            }
+            let items = (start_item..end_item as usize).map(|k| chunk.items.get(k));
+            start_item = end_item as usize;
+            let start = mesh.loops.len();
+            for item in items {
+                let id = match item {
+                    Item::Triangle(t) => {
+                        let r = if representative.is_empty() {
+                            t as usize
+                        } else {
+                            find(&mut representative, t) as usize
+                        };
+                        if triangle_id[r] == u32::MAX {
+                            let v = &triangle_vertices[r];
+                            let ghost = ghosts_from
+                                .is_some_and(|g| tri.triangles[r].iter().any(|&x| x >= g));
+                            let kind = if ghost {
+                                VertexKind::Boundary
+                            } else {
+                                VertexKind::Interior
+                            };
+                            triangle_id[r] =
+                                push_vertex(&mut mesh, v.point, kind, v.hint(), r as u32);
+                        }
+                        triangle_id[r]
+                    }
+                    Item::EdgePoint { triangle, lo, hi } => {
+                        let stand_in = triangle_vertices[triangle as usize].point;
+                        match edge_point(
+                            &planes[lo as usize],
+                            &planes[hi as usize],
+                            stand_in,
+                            params.far_vertex_factor,
+                        ) {
+                            Some(position) => {
+                                *edge_point_id.entry((triangle, lo, hi)).or_insert_with(|| {
+                                    push_vertex(
+                                        &mut mesh,
+                                        position,
+                                        VertexKind::Interior,
+                                        FootHint::FromSeed,
+                                        u32::MAX,
+                                    )
+                                })
+                            }
+                            None => {
+                                // No usable line: a vertex of this facet alone, in its own plane.
+                                let plane = &planes[i];
+                                let position =
+                                    stand_in - plane.normal * plane.signed_distance(stand_in);
+                                push_vertex(
+                                    &mut mesh,
+                                    position,
+                                    VertexKind::Interior,
+                                    FootHint::FromSeed,
+                                    u32::MAX,
+                                )
+                            }
+                        }
+                    }
+                    Item::Crossing(c) => {
+                        if crossing_id[c as usize] == u32::MAX {
+                            let crossing = &crossings[c as usize];
+                            let hint = crossing.foot.map_or(FootHint::FromSeed, FootHint::Known);
+                            crossing_id[c as usize] = push_vertex(
+                                &mut mesh,
+                                crossing.point,
+                                VertexKind::Boundary,
+                                hint,
+                                u32::MAX,
+                            );
+                        }
+                        crossing_id[c as usize]
+                    }
+                    Item::Corner(c) => {
+                        corner_claims[c as usize] += 1;
+                        let Some(corners) = corners else { continue };
+                        let (point, normal) = corners[c as usize];
+                        let plane = &planes[i];
+                        let denominator = plane.normal.dot(normal);
+                        let mu = plane.normal.dot(plane.point - point) / denominator;
+                        let position = point + normal * mu;
+                        if !position.is_finite() || denominator.abs() < 1e-9 {
+                            diagnostics.push(Diagnostic::CornerUnreachable {
+                                point: i as u32,
+                                corner: c,
+                            });
+                            continue;
+                        }
+                        push_vertex(
+                            &mut mesh,
+                            position,
+                            VertexKind::Corner,
+                            FootHint::FromSeed,
+                            u32::MAX,
+                        )
+                    }
+                };
+                if mesh.loops.len() == start || mesh.loops[mesh.loops.len() - 1] != id {
+                    mesh.loops.push(id);
+                }
+            }
+            while mesh.loops.len() > start + 1
+                && mesh.loops[start] == mesh.loops[mesh.loops.len() - 1]
+            {
+                mesh.loops.pop();
+            }
+            if mesh.loops.len() - start < 3 {
+                diagnostics.push(Diagnostic::OpenFacet {
+                    point: i as u32,
+                    reason: "fewer than three vertices".into(),
+                });
+            }
+            mesh.offsets.push(mesh.loops.len() as u32);
+            i += 1;
+        }
+    }
+    for (corner, &claims) in corner_claims.iter().enumerate() {
+        if corners.is_some() && claims != 1 {
+            diagnostics.push(Diagnostic::CornerClaims {
+                corner: corner as u8,
+                claims,
+            });
+        }
+    }
+    mesh.diagnostics = diagnostics;
+    mesh.welded = welded;
+    mesh.triangle_vertices = triangle_vertices;
+    mesh.assembly_ms = assembly.elapsed().as_secs_f64() * 1e3;
+    mesh
+}
+
+fn push_vertex(
+    mesh: &mut FacetMesh,
+    position: DVec3,
+    kind: VertexKind,
+    foot: FootHint,
+    source: u32,
+) -> u32 {
+    mesh.vertex_source.push(source);
+    mesh.vertices.push(position);
+    mesh.vertex_kinds.push(kind);
+    mesh.feet.push(foot);
+    (mesh.vertices.len() - 1) as u32
+}
+
+fn find(representative: &mut [u32], mut x: u32) -> u32 {
+    while representative[x as usize] != x {
+        let parent = representative[x as usize];
+        representative[x as usize] = representative[parent as usize];
+        x = parent;
+    }
+    x
+}
