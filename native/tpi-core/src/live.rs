@@ -783,14 +783,19 @@ impl State {
         self.slope_sign * orient2d(s[a as usize], s[b as usize], s[c as usize])
     }
 
+    /// The lifted point of v ([`SlopeFrame::lift`], from the kept slopes).
+    fn lifted(&self, v: u32) -> [f64; 3] {
+        let [a, b] = self.slopes[v as usize];
+        [a, b, self.frame.height(&self.planes[v as usize])]
+    }
+
     /// The exact power test of the full run ([`crate::predicates::power_illegal`]) on the
     /// quad (c, a, b, d), with ties broken by pattern index as there.
     fn power_illegal(&self, quad: [u32; 4]) -> bool {
-        let lifted = quad.map(|v| {
-            let [a, b] = self.slopes[v as usize];
-            [a, b, self.frame.height(&self.planes[v as usize])]
-        });
-        power_illegal(lifted, quad.map(|v| self.perm[v as usize]))
+        power_illegal(
+            quad.map(|v| self.lifted(v)),
+            quad.map(|v| self.perm[v as usize]),
+        )
     }
 
     /// Removes point v: its star becomes a hole, filled with regular ears.
@@ -893,8 +898,17 @@ impl State {
     /// Whether no other polygon point's lifted point lies below the plane of (a, b, c)'s, by
     /// the exact power test: no other tangent plane cuts off the vertex of (a, b, c).
     fn regular_ear(&self, a: u32, b: u32, c: u32, poly: &[u32]) -> bool {
-        poly.iter()
-            .all(|&x| x == a || x == b || x == c || !self.power_illegal([a, b, c, x]))
+        let ear = [a, b, c].map(|v| self.lifted(v));
+        let keys = [a, b, c].map(|v| self.perm[v as usize]);
+        poly.iter().all(|&x| {
+            x == a
+                || x == b
+                || x == c
+                || !power_illegal(
+                    [ear[0], ear[1], ear[2], self.lifted(x)],
+                    [keys[0], keys[1], keys[2], self.perm[x as usize]],
+                )
+        })
     }
 
     /// Inserts point v (not in the structure) at its slopes, starting the search at `start`.
