@@ -328,8 +328,11 @@ impl State<'_> {
         if !facet.simple {
             return true;
         }
-        let neighbours = facet.neighbours.clone();
-        for (j, ends) in neighbours {
+        // By index: judging a neighbour may build its facet, which needs `self` mutably.
+        for n in 0..facet.neighbours.len() {
+            let Some((j, ends)) = self.facets[i as usize].as_ref().map(|f| f.neighbours[n]) else {
+                return false;
+            };
             if let Some(&(_, verdict)) = self.overlaps[i as usize].iter().find(|&&(x, _)| x == j) {
                 if verdict {
                     return true;
@@ -603,23 +606,46 @@ pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool 
     let pb = &*pb;
     let eps = VALIDITY_TOLERANCE * scale * scale;
     let (na, nb) = (pa.len(), pb.len());
+    // Segments (and points) whose bounding boxes miss the other polygon's cannot cross it (or
+    // lie inside it): only the few near the shared part are tested pair by pair.
+    let (box_a, box_b) = (bounds(pa), bounds(pb));
     for x in 0..na {
+        let (p, q) = (pa[x], pa[(x + 1) % na]);
+        let edge = (p.min(q), p.max(q));
+        if !boxes_meet(edge, box_b) {
+            continue;
+        }
         for y in 0..nb {
-            if proper_crossing(pa[x], pa[(x + 1) % na], pb[y], pb[(y + 1) % nb], eps) {
+            let (r, t) = (pb[y], pb[(y + 1) % nb]);
+            if boxes_meet(edge, (r.min(t), r.max(t))) && proper_crossing(p, q, r, t, eps) {
                 return true;
             }
         }
     }
     // No proper crossing: overlap means a vertex of one strictly inside the other.
-    let inside = |points: &[DVec2], poly: &[DVec2]| {
+    let inside = |points: &[DVec2], poly: &[DVec2], poly_box: (DVec2, DVec2)| {
         points.iter().any(|&p| {
-            !poly
-                .iter()
-                .any(|q| (*q - p).length_squared() <= tolerance * tolerance)
+            boxes_meet((p, p), poly_box)
+                && !poly
+                    .iter()
+                    .any(|q| (*q - p).length_squared() <= tolerance * tolerance)
                 && point_in_polygon(p, poly, tolerance) == Some(true)
         })
     };
-    inside(pb, pa) || inside(pa, pb)
+    inside(pb, pa, box_a) || inside(pa, pb, box_b)
+}
+
+/// The (min, max) corners of the points' bounding box.
+fn bounds(points: &[DVec2]) -> (DVec2, DVec2) {
+    points.iter().fold(
+        (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    )
+}
+
+/// Whether two closed boxes (min, max) share a point.
+fn boxes_meet(a: (DVec2, DVec2), b: (DVec2, DVec2)) -> bool {
+    a.0.x <= b.1.x && b.0.x <= a.1.x && a.0.y <= b.1.y && b.0.y <= a.1.y
 }
 
 /// Whether the line through the shared edge `ends` separates polygons a and b seen along
