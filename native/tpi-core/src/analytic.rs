@@ -48,6 +48,7 @@ use glam::DVec3;
 
 use crate::error::{check_finite, Direction, TpiError};
 use crate::surface::{Domain, Interval, Surface, SurfaceDerivatives};
+use crate::tolerance::{MAX_ANALYTIC_MAGNITUDE, MIN_ANALYTIC_LENGTH};
 
 /// The shape of an analytic surface: the height function z = f(x, y) and its parameters.
 ///
@@ -149,15 +150,6 @@ fn invalid(field: &str, value: f64, reason: impl Into<String>) -> TpiError {
         reason: reason.into(),
     }
 }
-
-/// Largest magnitude accepted for any analytic parameter or rectangle coordinate. Far beyond
-/// any model (in any unit), and small enough that no product or square in the formulas
-/// overflows, so that evaluation never meets inf - inf or inf / inf.
-pub const MAX_ANALYTIC_MAGNITUDE: f64 = 1e50;
-
-/// Smallest radius or semi-axis accepted: keeps the cubes of square roots in the second
-/// derivatives clear of underflow.
-pub const MIN_ANALYTIC_LENGTH: f64 = 1e-50;
 
 /// Finite and at most [`MAX_ANALYTIC_MAGNITUDE`] in magnitude.
 fn finite(field: &str, value: f64) -> Result<f64, TpiError> {

@@ -21,7 +21,6 @@ use crate::diagnostics::Diagnostic;
 use crate::error::TpiError;
 use crate::facets::{
     build_closed_facets, build_facets, FacetParams, FootHint, TriangleVertex, VertexKind,
-    DEFAULT_FAR_VERTEX_FACTOR,
 };
 use crate::ghosts::augment;
 use crate::mesh::{FacetMesh, SlopeView};
@@ -31,18 +30,11 @@ use crate::planes::Plane;
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
 use crate::samples::{bounding_box, sample, Samples};
 use crate::surface::Surface;
-use crate::tolerance::REVERSAL_CHECK_TOLERANCE;
+use crate::tolerance::{
+    COLLINEAR_TOLERANCE, DEFAULT_FAR_VERTEX_FACTOR, DEFAULT_FLAT_TOLERANCE, DEFAULT_WELD_TOLERANCE,
+    REVERSAL_CHECK_TOLERANCE,
+};
 use crate::triangulation::{orient, DualTriangulation};
-
-/// Default weld distance of coincident vertices, relative to the bounding-box diagonal.
-pub const DEFAULT_WELD_TOLERANCE: f64 = 1e-10;
-
-/// Default flatness threshold: a point is flat when |K| <= this * max(k1^2, k2^2), or when
-/// both curvatures are below [`DEFAULT_PLANE_CURVATURE`] / diagonal.
-pub const DEFAULT_FLAT_TOLERANCE: f64 = 1e-6;
-
-/// Curvature (times the bounding-box diagonal) below which a point counts as planar.
-pub const DEFAULT_PLANE_CURVATURE: f64 = 1e-9;
 
 /// Options of [`discretise`]. `Default` gives the documented defaults.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -638,10 +630,6 @@ fn check_not_collinear(points: &[[f64; 2]]) -> Result<(), TpiError> {
         })
     }
 }
-
-/// Points whose twice-signed triangle area with the pattern's longest chord from its first
-/// point is below this fraction of the chord's squared length count as collinear.
-pub(crate) const COLLINEAR_TOLERANCE: f64 = 1e-12;
 
 fn ms(since: Instant) -> f64 {
     since.elapsed().as_secs_f64() * 1e3

@@ -29,37 +29,12 @@ use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
 use crate::planes::{intersect_three, regularised_meeting_point, Plane};
 use crate::projection::{boundary_parameter, domain_corners, foot, inside_measure};
 use crate::surface::{Domain, Surface};
+use crate::tolerance::{
+    CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE, DEFAULT_FAR_VERTEX_FACTOR,
+    NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES, RAY_DOUBLINGS, RAY_FAR_FACTOR,
+    UNREACHABLE_VERTEX_FACTOR,
+};
 use crate::triangulation::{DualTriangulation, Edge, Fan, NO_TRIANGLE};
-
-/// A triangle vertex farther than this many times the triangle's longest side from the
-/// triangle's centroid is ill-conditioned (nearly parallel planes), unless it is an outside
-/// vertex of a triangle at the boundary.
-pub const DEFAULT_FAR_VERTEX_FACTOR: f64 = 8.0;
-
-/// Interior sample count used to detect an edge that dips into the domain between two
-/// outside endpoints.
-const OUTSIDE_SEGMENT_SAMPLES: usize = 8;
-
-/// A point of a facet edge counts as inside the domain only if its distance from the surface
-/// is at most this fraction of its distance from the edge's two pattern points (a facet of
-/// size r deviates about k r^2 / 2 from the surface, far less for any sensible panel size).
-pub(crate) const NEAR_SURFACE_RATIO: f64 = 0.25;
-
-/// Regula falsi iterations for a boundary crossing.
-const CROSSING_ITERATIONS: usize = 80;
-
-/// A boundary crossing is converged when |inside measure| falls below this (normalised).
-pub(crate) const CROSSING_TOLERANCE: f64 = 1e-13;
-
-/// A crossing search that ends farther than this from the boundary (normalised) has failed.
-const CROSSING_ACCEPTANCE: f64 = 1e-9;
-
-/// Doublings of the step when following a hull ray outwards.
-const RAY_DOUBLINGS: usize = 60;
-
-/// An outside segment end farther than this many neighbour spacings is not used directly:
-/// the line is followed from the inside end instead.
-const RAY_FAR_FACTOR: f64 = 16.0;
 
 /// What a mesh vertex is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -312,11 +287,6 @@ pub(crate) fn build_facets(
         diagnostics,
     })
 }
-
-/// On the ghost-closed path, a vertex farther than this many triangle sides from its
-/// triangle's centroid (or not finite) is unreachable: its facets get stand-ins on their edge
-/// lines instead (leaving a small hole); nearer far vertices stay exact and are diagnosed.
-pub(crate) const UNREACHABLE_VERTEX_FACTOR: f64 = 1e6;
 
 /// Whether the meeting point `x` of three planes lies within [`UNREACHABLE_VERTEX_FACTOR`]
 /// triangle sides of their points' centroid (false for a point that is not finite).

@@ -23,14 +23,7 @@
 use crate::diffgeo::LocalGeometry;
 use crate::planes::Plane;
 use crate::surface::{Surface, SurfaceDerivatives};
-
-/// Width of the band of seeds mirrored across each side, in mean pattern spacings
-/// sqrt(area / n) of the triangulation's plane.
-pub(crate) const GHOST_BAND: f64 = 3.0;
-
-/// A ghost lies at least this many mean spacings beyond its side, so that a seed on the side
-/// (or very near it) still gets a ghost apart from itself; see [`ghost_depth`].
-pub(crate) const GHOST_MIN_DEPTH: f64 = 0.25;
+use crate::tolerance::{GHOST_BAND, GHOST_MIN_DEPTH};
 
 /// The depth beyond the side of the ghost of a seed at distance d >= 0 inside it, for mean
 /// spacing h: the mirror distance d from h / 2 on, and d + m (1 - 2 d / h) with

@@ -43,20 +43,18 @@ pub mod tolerance;
 mod triangulation;
 mod validity_flips;
 
-pub use analytic::{AnalyticKind, AnalyticSurface, MAX_ANALYTIC_MAGNITUDE, MIN_ANALYTIC_LENGTH};
+pub use analytic::{AnalyticKind, AnalyticSurface};
 pub use diagnostics::Diagnostic;
 pub use diffgeo::LocalGeometry;
 pub use discretise::{
     discretise, validate_pattern, Discretisation, DiscretiseOptions, Seed, Timings,
-    DEFAULT_FLAT_TOLERANCE, DEFAULT_PLANE_CURVATURE, DEFAULT_WELD_TOLERANCE,
 };
 pub use error::{Direction, TpiError};
-pub use facets::{VertexKind, DEFAULT_FAR_VERTEX_FACTOR};
+pub use facets::VertexKind;
 pub use live::{LiveStats, LiveSurface};
 pub use nurbs::{NurbsSpec, NurbsSurface};
 pub use pattern::{
     Generator, GridSize, Pattern, SplitMix64, DEFAULT_JITTER_AMOUNT, MAX_GENERATED_POINTS,
-    MIN_POISSON_RADIUS,
 };
 pub use quality::{
     QualityReport, FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
@@ -65,3 +63,8 @@ pub use quality::{
 pub use sanity::SanityError;
 pub use spec::{sampled_bounding_box, SurfaceModel, SurfaceSpec};
 pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};
+// The tolerances a caller sets or checks against, also at the root.
+pub use tolerance::{
+    DEFAULT_FAR_VERTEX_FACTOR, DEFAULT_FLAT_TOLERANCE, DEFAULT_PLANE_CURVATURE,
+    DEFAULT_WELD_TOLERANCE, MAX_ANALYTIC_MAGNITUDE, MIN_ANALYTIC_LENGTH, MIN_POISSON_RADIUS,
+};

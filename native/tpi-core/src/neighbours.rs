@@ -35,23 +35,13 @@ use glam::DVec3;
 use crate::diffgeo::LocalGeometry;
 use crate::planes::{intersect_three, Plane};
 use crate::predicates::{orient2d, power_illegal};
+use crate::tolerance::{
+    COMPENSATION_TIE_TOLERANCE, CONVEX_METRIC_REGULARISATION, DEGENERATE_SLIVER_FACTOR,
+    ENVELOPE_FLIP_TOLERANCE, GRADIENT_MIN_COS, METRIC_REGULARISATION, SLOPE_FRAME_SAMPLES,
+};
 
 use crate::triangulation::{orient, DualTriangulation, NO_TRIANGLE};
 use crate::validity_flips::validity_flips;
-
-/// Weight of the isotropic term that keeps the compensation metric definite: each point
-/// contributes |II| + METRIC_REGULARISATION max(|k1|, |k2|) I (largest |k| over the quad), so
-/// that the metric never degenerates where one principal curvature vanishes.
-pub(crate) const METRIC_REGULARISATION: f64 = 0.05;
-
-/// On strictly convex surfaces off the slope-space path, the isotropic term is this fraction
-/// of the summed metric's trace (the envelope test decides after it anyway).
-pub(crate) const CONVEX_METRIC_REGULARISATION: f64 = 1e-3;
-
-/// A vertex must lie this far (relative to the quad's size) outside a half-space before
-/// the envelope test flips: ties (four planes through one point, e.g. a square grid on a
-/// paraboloid of revolution) are left alone.
-pub(crate) const ENVELOPE_FLIP_TOLERANCE: f64 = 1e-10;
 
 /// Counts of what the neighbour decision did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -127,14 +117,6 @@ pub(crate) fn decide(
     stats
 }
 
-/// A hull triangle whose vertex lies farther than this many times its size from its points
-/// is numerically degenerate (its points are collinear to rounding) and is trimmed.
-pub(crate) const DEGENERATE_SLIVER_FACTOR: f64 = 1e8;
-
-/// Smallest cosine between any normal and the mean normal for which a convex surface is
-/// treated as a graph over the plane of the mean normal (see [`gradient_embedding`]).
-pub(crate) const GRADIENT_MIN_COS: f64 = 0.2;
-
 /// Where every point is strictly convex with the same side and all normals lie within
 /// acos([`GRADIENT_MIN_COS`]) of the surface's mean normal N ([`slope_frame`]), the surface is
 /// a graph over the plane perpendicular to N, each tangent plane is z = a_i x + b_i y + c_i in
@@ -206,9 +188,6 @@ impl SlopeFrame {
         })
     }
 }
-
-/// Samples per side of the grid whose mean normal is the slope frame's N.
-pub(crate) const SLOPE_FRAME_SAMPLES: usize = 5;
 
 /// The unit mean of the surface's normals on a [`SLOPE_FRAME_SAMPLES`]^2 grid over its domain
 /// (corners included), or None where it vanishes or is not finite.
@@ -732,10 +711,6 @@ fn compensation_illegal(
     };
     in_circle(c, a, b, d) > tie
 }
-
-/// Relative size of the in-circle determinant (against the quad's squared size, squared)
-/// below which the compensation test counts four points as cocircular.
-pub(crate) const COMPENSATION_TIE_TOLERANCE: f64 = 1e-10;
 
 /// Positive when d lies strictly inside the circle through the counter-clockwise a, b, c.
 pub(crate) fn in_circle(a: [f64; 2], b: [f64; 2], c: [f64; 2], d: [f64; 2]) -> f64 {

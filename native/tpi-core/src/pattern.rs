@@ -41,12 +41,10 @@ use crate::error::TpiError;
 use crate::spec::parse_error;
 use crate::surface::Domain;
 use crate::tolerance::DUPLICATE_UV_TOLERANCE;
+use crate::tolerance::MIN_POISSON_RADIUS;
 
 /// Largest number of points a generator produces (grids: NU * NV; random: N).
 pub const MAX_GENERATED_POINTS: usize = 10_000_000;
-
-/// Smallest Poisson-disk radius (in normalised units): about 1.3 million points at most.
-pub const MIN_POISSON_RADIUS: f64 = 1e-3;
 
 /// Candidates tried around each active point in Bridson's algorithm.
 pub(crate) const POISSON_CANDIDATES: usize = 30;

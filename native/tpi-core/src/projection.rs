@@ -14,12 +14,7 @@
 use glam::DVec3;
 
 use crate::surface::{Domain, Surface};
-
-/// Newton iterations for a projection (quadratic convergence: 3 to 5 are typical).
-pub(crate) const MAX_PROJECTION_ITERATIONS: usize = 16;
-
-/// Stop when the Newton step is below this, in normalised parameters.
-pub(crate) const PROJECTION_STEP_TOLERANCE: f64 = 1e-14;
+use crate::tolerance::{MAX_PROJECTION_ITERATIONS, PROJECTION_STEP_TOLERANCE};
 
 /// The foot of `x` on the (extended) surface, starting from `guess`.
 pub(crate) fn foot(surface: &dyn Surface, domain: &Domain, x: DVec3, guess: [f64; 2]) -> [f64; 2] {

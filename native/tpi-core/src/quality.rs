@@ -29,6 +29,7 @@ use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
 use crate::projection::foot;
 use crate::surface::Surface;
+use crate::tolerance::SEPARATION_MARGIN;
 use crate::validity_flips::polygons_overlap;
 
 /// Per-facet flag: not convex.
@@ -542,10 +543,6 @@ fn edge_pair_overlaps(input: &ReportInput<'_>, f: u32, g: u32, a: u32, b: u32) -
     let separated = (fp && !fn_ && gn && !gp) || (fn_ && !fp && gp && !gn);
     !separated && polygons_overlap(&loop_points(input, f), &loop_points(input, g), normal)
 }
-
-/// A vertex within this fraction of an edge's length of the edge's line counts as on it in
-/// the separating-line test of [`edge_pair_overlaps`] (the full test then decides).
-pub(crate) const SEPARATION_MARGIN: f64 = 1e-9;
 
 /// Overlapping pairs of simple facets that share a vertex but no edge (only where four or
 /// more facets meet at a vertex).

@@ -14,11 +14,12 @@ use rayon::prelude::*;
 
 use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
-use crate::discretise::{DiscretiseOptions, Seed, DEFAULT_PLANE_CURVATURE};
+use crate::discretise::{DiscretiseOptions, Seed};
 use crate::error::TpiError;
 use crate::neighbours::{gradient_embedding, slope_frame};
 use crate::planes::Plane;
 use crate::surface::Surface;
+use crate::tolerance::DEFAULT_PLANE_CURVATURE;
 
 /// The samples of every pattern point, in pattern order.
 pub(crate) struct Samples {

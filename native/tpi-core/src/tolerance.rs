@@ -22,3 +22,137 @@ pub const SANITY_PLANARITY_TOLERANCE: f64 = 1e-9;
 /// coordinates times the condition of its three planes); the bound only spares the test on
 /// the ordinary edges.
 pub const REVERSAL_CHECK_TOLERANCE: f64 = 1e-6;
+
+// ---- read by analytic.rs ----
+
+/// Largest magnitude accepted for any analytic parameter or rectangle coordinate. Far beyond
+/// any model (in any unit), and small enough that no product or square in the formulas
+/// overflows, so that evaluation never meets inf - inf or inf / inf.
+pub const MAX_ANALYTIC_MAGNITUDE: f64 = 1e50;
+
+/// Smallest radius or semi-axis accepted: keeps the cubes of square roots in the second
+/// derivatives clear of underflow.
+pub const MIN_ANALYTIC_LENGTH: f64 = 1e-50;
+
+// ---- read by discretise.rs ----
+
+/// Default weld distance of coincident vertices, relative to the bounding-box diagonal.
+pub const DEFAULT_WELD_TOLERANCE: f64 = 1e-10;
+
+/// Default flatness threshold: a point is flat when |K| <= this * max(k1^2, k2^2), or when
+/// both curvatures are below [`DEFAULT_PLANE_CURVATURE`] / diagonal.
+pub const DEFAULT_FLAT_TOLERANCE: f64 = 1e-6;
+
+/// Curvature (times the bounding-box diagonal) below which a point counts as planar.
+pub const DEFAULT_PLANE_CURVATURE: f64 = 1e-9;
+
+/// Points whose twice-signed triangle area with the pattern's longest chord from its first
+/// point is below this fraction of the chord's squared length count as collinear.
+pub const COLLINEAR_TOLERANCE: f64 = 1e-12;
+
+// ---- read by facets.rs ----
+
+/// A triangle vertex farther than this many times the triangle's longest side from the
+/// triangle's centroid is ill-conditioned (nearly parallel planes), unless it is an outside
+/// vertex of a triangle at the boundary.
+pub const DEFAULT_FAR_VERTEX_FACTOR: f64 = 8.0;
+
+/// Interior sample count used to detect an edge that dips into the domain between two
+/// outside endpoints.
+pub const OUTSIDE_SEGMENT_SAMPLES: usize = 8;
+
+/// A point of a facet edge counts as inside the domain only if its distance from the surface
+/// is at most this fraction of its distance from the edge's two pattern points (a facet of
+/// size r deviates about k r^2 / 2 from the surface, far less for any sensible panel size).
+pub const NEAR_SURFACE_RATIO: f64 = 0.25;
+
+/// Regula falsi iterations for a boundary crossing.
+pub const CROSSING_ITERATIONS: usize = 80;
+
+/// A boundary crossing is converged when |inside measure| falls below this (normalised).
+pub const CROSSING_TOLERANCE: f64 = 1e-13;
+
+/// A crossing search that ends farther than this from the boundary (normalised) has failed.
+pub const CROSSING_ACCEPTANCE: f64 = 1e-9;
+
+/// Doublings of the step when following a hull ray outwards.
+pub const RAY_DOUBLINGS: usize = 60;
+
+/// An outside segment end farther than this many neighbour spacings is not used directly:
+/// the line is followed from the inside end instead.
+pub const RAY_FAR_FACTOR: f64 = 16.0;
+
+/// On the ghost-closed path, a vertex farther than this many triangle sides from its
+/// triangle's centroid (or not finite) is unreachable: its facets get stand-ins on their edge
+/// lines instead (leaving a small hole); nearer far vertices stay exact and are diagnosed.
+pub const UNREACHABLE_VERTEX_FACTOR: f64 = 1e6;
+
+// ---- read by ghosts.rs ----
+
+/// Width of the band of seeds mirrored across each side, in mean pattern spacings
+/// sqrt(area / n) of the triangulation's plane.
+pub const GHOST_BAND: f64 = 3.0;
+
+/// A ghost lies at least this many mean spacings beyond its side, so that a seed on the side
+/// (or very near it) still gets a ghost apart from itself; see `ghosts::ghost_depth`.
+pub const GHOST_MIN_DEPTH: f64 = 0.25;
+
+// ---- read by neighbours.rs ----
+
+/// Weight of the isotropic term that keeps the compensation metric definite: each point
+/// contributes |II| + METRIC_REGULARISATION max(|k1|, |k2|) I (largest |k| over the quad), so
+/// that the metric never degenerates where one principal curvature vanishes.
+pub const METRIC_REGULARISATION: f64 = 0.05;
+
+/// On strictly convex surfaces off the slope-space path, the isotropic term is this fraction
+/// of the summed metric's trace (the envelope test decides after it anyway).
+pub const CONVEX_METRIC_REGULARISATION: f64 = 1e-3;
+
+/// A vertex must lie this far (relative to the quad's size) outside a half-space before
+/// the envelope test flips: ties (four planes through one point, e.g. a square grid on a
+/// paraboloid of revolution) are left alone.
+pub const ENVELOPE_FLIP_TOLERANCE: f64 = 1e-10;
+
+/// A hull triangle whose vertex lies farther than this many times its size from its points
+/// is numerically degenerate (its points are collinear to rounding) and is trimmed.
+pub const DEGENERATE_SLIVER_FACTOR: f64 = 1e8;
+
+/// Smallest cosine between any normal and the mean normal for which a convex surface is
+/// treated as a graph over the plane of the mean normal (see `neighbours::gradient_embedding`).
+pub const GRADIENT_MIN_COS: f64 = 0.2;
+
+/// Samples per side of the grid whose mean normal is the slope frame's N.
+pub const SLOPE_FRAME_SAMPLES: usize = 5;
+
+/// Relative size of the in-circle determinant (against the quad's squared size, squared)
+/// below which the compensation test counts four points as cocircular.
+pub const COMPENSATION_TIE_TOLERANCE: f64 = 1e-10;
+
+// ---- read by pattern.rs ----
+
+/// Smallest Poisson-disk radius (in normalised units): about 1.3 million points at most.
+pub const MIN_POISSON_RADIUS: f64 = 1e-3;
+
+// ---- read by projection.rs ----
+
+/// Newton iterations for a projection (quadratic convergence: 3 to 5 are typical).
+pub const MAX_PROJECTION_ITERATIONS: usize = 16;
+
+/// Stop when the Newton step is below this, in normalised parameters.
+pub const PROJECTION_STEP_TOLERANCE: f64 = 1e-14;
+
+// ---- read by quality.rs ----
+
+/// A vertex within this fraction of an edge's length of the edge's line counts as on it in
+/// the separating-line test of `quality::edge_pair_overlaps` (the full test then decides).
+pub const SEPARATION_MARGIN: f64 = 1e-9;
+
+// ---- read by validity_flips.rs ----
+
+/// Rounds of validity flips at most (each round visits every invalid facet once).
+pub const MAX_VALIDITY_ROUNDS: usize = 8;
+
+/// Relative tolerance of the local validity tests: orientations smaller than this times the
+/// squared size of the polygons count as collinear, distances smaller than this times the
+/// size as zero (rounding of the three-plane vertices is far below it).
+pub const VALIDITY_TOLERANCE: f64 = 1e-9;

@@ -35,10 +35,8 @@ use glam::{DVec2, DVec3};
 use crate::facets::reachable;
 use crate::neighbours::three_plane_vertex;
 use crate::planes::Plane;
+use crate::tolerance::{MAX_VALIDITY_ROUNDS, VALIDITY_TOLERANCE};
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
-
-/// Rounds of validity flips at most (each round visits every invalid facet once).
-pub(crate) const MAX_VALIDITY_ROUNDS: usize = 8;
 
 /// What the validity flips did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -61,7 +59,7 @@ pub(crate) fn validity_flips(
     use rayon::prelude::*;
     let n = judged;
     let (lo, hi) = crate::samples::bounding_box(planes[..n].iter().map(|p| p.point));
-    let weld = crate::discretise::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
+    let weld = crate::tolerance::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
     let vertex: Vec<DVec3> = tri
         .triangles
         .par_iter()
@@ -519,11 +517,6 @@ fn flatten(points: &[DVec3], normal: DVec3, origin: DVec3) -> Vec<DVec2> {
         .map(|&x| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2)))
         .collect()
 }
-
-/// Relative tolerance of the local validity tests: orientations smaller than this times the
-/// squared size of the polygons count as collinear, distances smaller than this times the
-/// size as zero (rounding of the three-plane vertices is far below it).
-pub(crate) const VALIDITY_TOLERANCE: f64 = 1e-9;
 
 /// Longest edge of a closed polygon.
 fn size(p: &[DVec2]) -> f64 {
