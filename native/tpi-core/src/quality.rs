@@ -187,7 +187,6 @@ pub(crate) fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
     let mut shared_edges: Vec<(u32, u32, u32, u32)> = Vec::new();
     let mut on_boundary = vec![false; input.vertices.len()];
     let mut boundary_parent: Vec<u32> = (0..input.vertices.len() as u32).collect();
-    let mut boundary_vertices = 0usize;
     let mut k = 0;
     while k < edges.len() {
         let mut m = k + 1;
@@ -201,12 +200,8 @@ pub(crate) fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
         r.max_edge_length = r.max_edge_length.max(length);
         match m - k {
             1 => {
-                for v in [a, b] {
-                    if !on_boundary[v as usize] {
-                        on_boundary[v as usize] = true;
-                        boundary_vertices += 1;
-                    }
-                }
+                on_boundary[a as usize] = true;
+                on_boundary[b as usize] = true;
                 let (ra, rb) = (root(&mut boundary_parent, a), root(&mut boundary_parent, b));
                 if ra != rb {
                     boundary_parent[ra.max(rb) as usize] = ra.min(rb);
@@ -269,7 +264,6 @@ pub(crate) fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
         roots.insert(root(&mut boundary_parent, v as u32));
     }
     r.boundary_loops = roots.len();
-    let _ = boundary_vertices;
     let used_count = used.iter().filter(|&&u| u).count();
     r.euler_characteristic = used_count as i64 - r.edge_count as i64 + facet_count as i64;
 

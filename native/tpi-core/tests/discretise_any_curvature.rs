@@ -190,6 +190,8 @@ struct Case {
     invalid_at_boundary: usize,
     /// Invalid facets farther than 4 pattern spacings from every parabolic line.
     invalid_far_from_parabolic: usize,
+    /// The crate's own structural check (`Discretisation::sanity_check`).
+    sanity: Result<(), String>,
 }
 
 fn run(
@@ -249,6 +251,7 @@ fn run(
         flagged_missing,
         invalid_at_boundary,
         invalid_far_from_parabolic,
+        sanity: d.sanity_check().map_err(|e| e.to_string()),
     }
 }
 
@@ -367,6 +370,8 @@ fn saddles_give_valid_meshes_with_exact_planes() {
                 "{} / {}: invalid facets {v:?}",
                 c.surface, c.pattern
             );
+            // Valid by the independent check: the crate's structural check agrees.
+            assert_eq!(c.sanity, Ok(()), "{} / {}", c.surface, c.pattern);
         }
     }
 }
