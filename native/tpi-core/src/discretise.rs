@@ -391,7 +391,7 @@ pub(crate) fn run(
             let mut triangulation = DualTriangulation::delaunay(slopes)?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
-            let stats = decide_convex(&mut triangulation, lifted, &input);
+            let stats = decide_convex(&mut triangulation, slopes, lifted, &input);
             timings.neighbours = ms(stage);
             (triangulation, None, stats)
         }

@@ -345,7 +345,8 @@ fn push_vertex(
     (mesh.vertices.len() - 1) as u32
 }
 
-fn find(representative: &mut [u32], mut x: u32) -> u32 {
+/// The root of x in a union-find forest (`parent[r] == r` at a root), halving the path.
+pub(crate) fn find(representative: &mut [u32], mut x: u32) -> u32 {
     while representative[x as usize] != x {
         let parent = representative[x as usize];
         representative[x as usize] = representative[parent as usize];

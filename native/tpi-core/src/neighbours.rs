@@ -206,7 +206,7 @@ pub(crate) fn slope_frame(surface: &dyn crate::surface::Surface) -> Option<DVec3
 
 /// The envelope's dual structure for a convex surface, from the Delaunay triangulation of
 /// the slopes ([`gradient_embedding`]) flipped to the regular triangulation of the `lifted`
-/// points ([`SlopeFrame::lift`]) by the exact power test ([`crate::predicates`]), with
+/// points ([`SlopeFrame::lift`], whose first two coordinates are `slopes`) by the exact power test ([`crate::predicates`]), with
 /// convexity judged exactly in slope space where the result is embedded; then oriented
 /// counter-clockwise in parameter space (`plane_uv`), put in canonical order and trimmed.
 ///
@@ -215,11 +215,10 @@ pub(crate) fn slope_frame(surface: &dyn crate::surface::Surface) -> Option<DVec3
 /// candidates. It depends on the result alone, not on the order of the flips.
 pub(crate) fn decide_convex(
     tri: &mut DualTriangulation,
+    slopes: &[[f64; 2]],
     lifted: &[[f64; 3]],
     input: &NeighbourInput<'_>,
 ) -> NeighbourStats {
-    let slopes: Vec<[f64; 2]> = lifted.iter().map(|p| [p[0], p[1]]).collect();
-    let slopes = &slopes[..];
     let (_flips, unresolved) = flip_until_stable(tri, slopes, |tri, t, k| {
         let ids = quad(tri, t, k);
         power_illegal(ids.map(|i| lifted[i as usize]), ids)
@@ -636,11 +635,8 @@ fn rotated(x: [u32; 3], k: usize) -> [u32; 3] {
 fn quad(tri: &DualTriangulation, t: usize, k: usize) -> [u32; 4] {
     let [c, a, b] = rotated(tri.triangles[t], k);
     let t2 = tri.neighbours[t][k] as usize;
-    let k2 = tri.neighbours[t2]
-        .iter()
-        .position(|&x| x as usize == t)
-        .unwrap_or(0);
-    [c, a, b, tri.triangles[t2][k2]]
+    let d = tri.opposite(t2, t as u32).unwrap_or(tri.triangles[t2][0]);
+    [c, a, b, d]
 }
 
 /// In-circle test in the averaged curvature-compensation metric.
@@ -735,18 +731,8 @@ fn envelope_illegal(
 
 /// The envelope test on the quad (c, a, b, d) around the edge (a, b): true where T_d cuts
 /// off the vertex T_a ∩ T_b ∩ T_c and T_c the vertex T_a ∩ T_b ∩ T_d (beyond the tolerance).
-pub(crate) fn envelope_quad_illegal(planes: &[Plane], convex_side: &[i8], quad: [u32; 4]) -> bool {
-    envelope_quad_illegal_by(planes, convex_side, quad, |i| i)
-}
-
-/// [`envelope_quad_illegal`] with the three planes of each vertex taken in the order of
-/// `key` (the pattern indices, where the points are numbered otherwise).
-pub(crate) fn envelope_quad_illegal_by(
-    planes: &[Plane],
-    convex_side: &[i8],
-    [c, a, b, d]: [u32; 4],
-    key: impl Fn(u32) -> u32,
-) -> bool {
+/// The three planes of each vertex are taken in ascending index order.
+fn envelope_quad_illegal(planes: &[Plane], convex_side: &[i8], [c, a, b, d]: [u32; 4]) -> bool {
     let side = convex_side[c as usize];
     if side == 0 || [a, b, d].iter().any(|&i| convex_side[i as usize] != side) {
         return false;
@@ -758,7 +744,7 @@ pub(crate) fn envelope_quad_illegal_by(
     let tolerance = ENVELOPE_FLIP_TOLERANCE * size;
     let s = f64::from(side);
     let outside = |mut x: [u32; 3], other: u32| {
-        x.sort_unstable_by_key(|&i| key(i));
+        x.sort_unstable();
         let vertex = intersect_three(
             &planes[x[0] as usize],
             &planes[x[1] as usize],

@@ -25,6 +25,7 @@ use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
 use crate::facets::{accept_newton, FootHint};
+use crate::mesh::find;
 use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
 use crate::projection::foot;
@@ -202,7 +203,7 @@ pub(crate) fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
             1 => {
                 on_boundary[a as usize] = true;
                 on_boundary[b as usize] = true;
-                let (ra, rb) = (root(&mut boundary_parent, a), root(&mut boundary_parent, b));
+                let (ra, rb) = (find(&mut boundary_parent, a), find(&mut boundary_parent, b));
                 if ra != rb {
                     boundary_parent[ra.max(rb) as usize] = ra.min(rb);
                 }
@@ -261,7 +262,7 @@ pub(crate) fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
     };
     let mut roots = std::collections::BTreeSet::new();
     for (v, _) in on_boundary.iter().enumerate().filter(|(_, &b)| b) {
-        roots.insert(root(&mut boundary_parent, v as u32));
+        roots.insert(find(&mut boundary_parent, v as u32));
     }
     r.boundary_loops = roots.len();
     let used_count = used.iter().filter(|&&u| u).count();
@@ -407,14 +408,6 @@ fn map_feet<T: Send>(
             Some(f(v, resolved))
         })
         .collect()
-}
-
-fn root(parent: &mut [u32], mut x: u32) -> u32 {
-    while parent[x as usize] != x {
-        parent[x as usize] = parent[parent[x as usize] as usize];
-        x = parent[x as usize];
-    }
-    x
 }
 
 /// 2D coordinates in a plane: (x - p) . (e1, e2) with e1, e2, n right-handed.

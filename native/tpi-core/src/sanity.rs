@@ -13,9 +13,11 @@
 //! It says nothing about overlaps between facets that share no edge (the quality report's
 //! flags do); it is cheap enough to run on every result in tests and fuzzing.
 
-use glam::{DVec2, DVec3};
+use glam::DVec2;
 
 use crate::discretise::Discretisation;
+use crate::mesh::find;
+use crate::samples::bounding_diagonal;
 use crate::tolerance::SANITY_PLANARITY_TOLERANCE;
 
 /// The first way in which a discretisation breaks its structural contract.
@@ -110,7 +112,7 @@ impl Discretisation {
         if let Some(vertex) = self.vertices.iter().position(|v| !v.is_finite()) {
             return Err(SanityError::NonFiniteVertex { vertex });
         }
-        let diagonal = diagonal(&self.vertices);
+        let diagonal = bounding_diagonal(self.vertices.iter().copied()).max(f64::MIN_POSITIVE);
         let mut used = vec![false; self.vertices.len()];
         let mut flat = Vec::new();
         for facet in 0..facets {
@@ -138,14 +140,6 @@ impl Discretisation {
     }
 }
 
-fn diagonal(vertices: &[DVec3]) -> f64 {
-    let (lo, hi) = vertices.iter().fold(
-        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
-        |(lo, hi), &v| (lo.min(v), hi.max(v)),
-    );
-    (hi - lo).length().max(f64::MIN_POSITIVE)
-}
-
 fn check_facet(
     d: &Discretisation,
     facet: usize,
@@ -163,7 +157,7 @@ fn check_facet(
         }
     }
     let seed = &d.seeds[facet];
-    let (e1, e2) = right_handed_frame(seed.normal);
+    let (e1, e2) = seed.normal.any_orthonormal_pair();
     flat.clear();
     for &v in lp {
         let r = d.vertices[v as usize] - seed.point;
@@ -195,12 +189,6 @@ fn check_facet(
         }
     }
     Ok(())
-}
-
-/// (e1, e2) with e1 x e2 = n.
-fn right_handed_frame(n: DVec3) -> (DVec3, DVec3) {
-    let e1 = n.any_orthonormal_vector();
-    (e1, n.cross(e1))
 }
 
 /// Whether the closed segments pq and rs share a point (they are non-adjacent edges of one
@@ -273,13 +261,6 @@ fn edges(d: &Discretisation) -> Result<(usize, Vec<(u32, u32)>), SanityError> {
 /// Connected components of the boundary edges.
 fn boundary_loops(vertex_count: usize, boundary: &[(u32, u32)]) -> usize {
     let mut parent: Vec<u32> = (0..vertex_count as u32).collect();
-    fn root(parent: &mut [u32], mut x: u32) -> u32 {
-        while parent[x as usize] != x {
-            parent[x as usize] = parent[parent[x as usize] as usize];
-            x = parent[x as usize];
-        }
-        x
-    }
     let mut components = 0usize;
     let mut on_boundary = vec![false; vertex_count];
     for &(a, b) in boundary {
@@ -289,7 +270,7 @@ fn boundary_loops(vertex_count: usize, boundary: &[(u32, u32)]) -> usize {
                 components += 1;
             }
         }
-        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
         if ra != rb {
             parent[ra.max(rb) as usize] = ra.min(rb);
             components -= 1;
