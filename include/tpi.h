@@ -156,6 +156,23 @@
 #define TPI_OPTIONS_SIZE_V1 40
 
 /**
+ * Size in bytes of the second version of `TpiOptions` (adds `plane_mode`).
+ */
+#define TPI_OPTIONS_SIZE_V2 48
+
+/**
+ * `plane_mode`: every facet in the exact tangent plane at its seed.
+ */
+#define TPI_PLANES_EXACT 0
+
+/**
+ * `plane_mode`: exact tangent planes, except where they cannot give a valid facet on a
+ * surface that is not convex everywhere: there a few planes are tilted by at most 5
+ * degrees (`tpi_discretisation_planes` gives each facet's plane).
+ */
+#define TPI_PLANES_ADJUSTED 1
+
+/**
  * The result of every fallible call. The numbers are part of the ABI: they are never changed
  * and never reused, and new codes are only ever appended.
  */
@@ -342,6 +359,15 @@ typedef struct TpiOptions {
      * Default value: 1e-6.
      */
     double flat_tolerance;
+    /**
+     * TPI_PLANES_EXACT or TPI_PLANES_ADJUSTED (since TPI_OPTIONS_SIZE_V2). Default value:
+     * TPI_PLANES_EXACT.
+     */
+    uint32_t plane_mode;
+    /**
+     * Always 0 (padding, kept explicit for other languages).
+     */
+    uint32_t reserved2;
 } TpiOptions;
 
 /**
@@ -368,16 +394,16 @@ typedef struct TpiSeed {
 } TpiSeed;
 
 /**
- * A facet's tangent plane: the plane through `point` with unit normal `normal`. Every vertex
- * of the facet lies in it.
+ * A facet's plane: the plane through `point` with unit normal `normal`. Every vertex of the
+ * facet lies in it.
  */
 typedef struct TpiPlane {
     /**
-     * A point of the plane (the seed's surface point).
+     * A point of the plane (the seed's surface point, unless the adjusted plane is offset).
      */
     double point[3];
     /**
-     * Unit normal (the surface normal at the seed).
+     * Unit normal (the surface normal at the seed, unless the plane is adjusted).
      */
     double normal[3];
 } TpiPlane;
@@ -873,7 +899,9 @@ enum TpiStatus tpi_discretisation_facet_flags(const struct TpiDiscretisation *di
 enum TpiStatus tpi_discretisation_seeds(const struct TpiDiscretisation *discretisation, struct TpiSeed *out, size_t capacity, size_t *needed);
 
 /**
- * Copies the tangent plane of each facet (one TpiPlane per facet). Copy-out convention;
+ * Copies the plane of each facet (one TpiPlane per facet): the tangent plane at its seed,
+ * or with `plane_mode` TPI_PLANES_ADJUSTED the facet's adjusted plane (its tilt is the angle
+ * between its normal and the seed's, from `tpi_discretisation_seeds`). Copy-out convention;
  * `*needed` = facet count.
  *
  * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use tpi_core::{discretise, Discretisation, DiscretiseOptions, SurfaceModel, TpiError};
+use tpi_core::{discretise, Discretisation, DiscretiseOptions, PlaneMode, SurfaceModel, TpiError};
 
 use crate::args::{Arg, Args};
 use crate::error::CliError;
@@ -35,8 +35,10 @@ OPTIONS:
     --size WxH          PNG size in pixels (default 1200x900)
     --threads N         run the core on N threads (default: one per core)
     --no-report         skip the quality report (faster; no facet flags)
-    --planes exact      facet planes: the exact tangent planes (the default and, for now,
-                        the only mode; `adjusted` is not implemented yet)
+    --planes MODE       facet planes: `exact` (the default) puts every facet in the exact
+                        tangent plane at its seed; `adjusted` tilts the planes of the few
+                        facets that exact planes cannot make valid (saddles, parabolic
+                        lines, random patterns) by at most 5 degrees through their seeds
     --strict            exit with code 3 when the mesh has invalid facets (open,
                         non-simple or overlapping; the outputs are still written)
     -h, --help          this help
@@ -86,6 +88,7 @@ struct Options {
     threads: Option<usize>,
     report: bool,
     strict: bool,
+    planes: PlaneMode,
 }
 
 fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
@@ -93,6 +96,7 @@ fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
     let (mut surface, mut pattern, mut outs, mut size, mut threads, mut report) =
         (None, None, Vec::new(), None, None, true);
     let mut strict = false;
+    let mut planes = PlaneMode::Exact;
     while let Some(arg) = a.next() {
         match arg {
             Arg::Option(name, inline) => match name.as_str() {
@@ -137,14 +141,14 @@ fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
                 }
                 "planes" => {
                     let v = a.value(&name, inline)?;
-                    match v.as_str() {
-                        "exact" => {}
-                        "adjusted" => {
-                            return Err(a.usage(
-                                "--planes adjusted: adjusted (tilted) planes are not implemented yet; only `exact` is available",
-                            ))
+                    planes = match v.as_str() {
+                        "exact" => PlaneMode::Exact,
+                        "adjusted" => PlaneMode::Adjusted,
+                        _ => {
+                            return Err(
+                                a.usage(format!("--planes {v}: expected `exact` or `adjusted`"))
+                            )
                         }
-                        _ => return Err(a.usage(format!("--planes {v}: expected `exact`"))),
                     }
                 }
                 _ => return Err(a.unknown(&name)),
@@ -168,6 +172,7 @@ fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
         threads,
         report,
         strict,
+        planes,
     }))
 }
 
@@ -199,6 +204,7 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
     progress.step(format!("discretising {} points", pattern.pattern.len()));
     let options = DiscretiseOptions {
         quality_report: opts.report,
+        planes: opts.planes,
         ..DiscretiseOptions::default()
     };
     let run_core = || discretise(&surface, &pattern.pattern.uv, &options);

@@ -86,6 +86,9 @@ pub(crate) fn summary(
             );
         }
     }
+    if !result.plane_adjustments.is_empty() {
+        let _ = writeln!(s, "  {}", plane_summary(result));
+    }
     let d = &result.diagnostics;
     if d.is_empty() {
         let _ = writeln!(s, "  diagnostics: none");
@@ -118,4 +121,32 @@ fn truncate(s: &str, n: usize) -> String {
     } else {
         s.chars().take(n - 3).collect::<String>() + "..."
     }
+}
+
+/// The tilt distribution of adjusted planes: how many facets were tilted, the largest and
+/// the median tilt among them, and the largest offset.
+fn plane_summary(result: &Discretisation) -> String {
+    let mut tilts: Vec<f64> = result
+        .plane_adjustments
+        .iter()
+        .map(|a| a.tilt_degrees)
+        .filter(|&t| t > 0.0)
+        .collect();
+    tilts.sort_by(f64::total_cmp);
+    let offset = result
+        .plane_adjustments
+        .iter()
+        .map(|a| a.offset.abs())
+        .fold(0.0, f64::max);
+    if tilts.is_empty() {
+        return "planes: adjusted mode, every facet in its exact tangent plane".into();
+    }
+    format!(
+        "planes: {} of {} facets tilted, tilt max {:.2} deg, median {:.2} deg; offset max {}",
+        tilts.len(),
+        result.plane_adjustments.len(),
+        tilts[tilts.len() - 1],
+        tilts[tilts.len() / 2],
+        offset
+    )
 }

@@ -503,7 +503,7 @@ fn strict_exits_3_on_invalid_facets_and_still_writes_the_outputs() {
         2,
         &["--strict"],
     );
-    // Exact planes are the default and may be named; adjusted planes are refused clearly.
+    // Exact planes are the default and may be named.
     ok(&[
         "discretise",
         "--surface",
@@ -513,19 +513,47 @@ fn strict_exits_3_on_invalid_facets_and_still_writes_the_outputs() {
         "--planes",
         "exact",
     ]);
-    fails(
-        &[
-            "discretise",
-            "--surface",
-            &sample("saddle.json"),
-            "--pattern",
-            "hex:6x6",
-            "--planes",
-            "adjusted",
-        ],
-        2,
-        &["--planes adjusted", "not implemented"],
+    // Adjusted planes make the mixed roof valid (exit 0 under --strict, where exact planes
+    // exit 3): each facet names its plane's tilt and offset, the summary the distribution.
+    let dir = scratch("adjusted-planes");
+    let out = dir.join("r.json");
+    let run = ok(&[
+        "discretise",
+        "--surface",
+        &sample("mixed-roof.json"),
+        "--pattern",
+        "hex:24x20",
+        "--planes",
+        "adjusted",
+        "--strict",
+        "--out",
+        &out.to_string_lossy(),
+    ]);
+    let summary = text(&run.stderr);
+    assert!(
+        summary.contains("planes: ") && summary.contains("tilted"),
+        "{summary}"
     );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&out).expect("r.json")).expect("json");
+    let facets = json["facets"].as_array().expect("facets");
+    let tilts: Vec<f64> = facets
+        .iter()
+        .map(|f| f["plane_tilt_deg"].as_f64().expect("plane_tilt_deg"))
+        .collect();
+    assert!(tilts.iter().all(|&t| (0.0..=5.0 + 1e-9).contains(&t)));
+    assert!(tilts.iter().any(|&t| t > 0.0));
+    assert!(facets.iter().all(|f| f["plane_offset"].is_f64()));
+    assert_eq!(json["quality"]["invalid_facets"], 0);
+    let exact = tpi(&[
+        "discretise",
+        "--surface",
+        &sample("mixed-roof.json"),
+        "--pattern",
+        "hex:24x20",
+        "--strict",
+    ]);
+    assert_eq!(exact.status.code(), Some(3), "{}", text(&exact.stderr));
     fails(
         &[
             "discretise",

@@ -17,6 +17,7 @@ use rayon::prelude::*;
 use serde::ser::{SerializeMap, SerializeStruct};
 use serde::{Serialize, Serializer};
 
+use crate::adjusted_planes::{adjust_planes, tilt_and_offset};
 use crate::diagnostics::Diagnostic;
 use crate::error::TpiError;
 use crate::facets::{
@@ -50,6 +51,35 @@ pub struct DiscretiseOptions {
     pub weld_tolerance: f64,
     /// See [`DEFAULT_FLAT_TOLERANCE`]. Default value: 1e-6.
     pub flat_tolerance: f64,
+    /// Which planes the facets lie in. Default value: [`PlaneMode::Exact`].
+    pub planes: PlaneMode,
+}
+
+/// Which planes the facets lie in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PlaneMode {
+    /// Every facet in the exact tangent plane at its seed.
+    #[default]
+    Exact,
+    /// Exact tangent planes, except where they cannot give a valid facet on a surface that is
+    /// not convex everywhere: there a few planes are tilted, by at most
+    /// [`crate::tolerance::MAX_PLANE_TILT_DEGREES`], through their seeds
+    /// ([`crate::adjusted_planes`]). Convex surfaces are unaffected (their exact planes are
+    /// always valid).
+    Adjusted,
+}
+
+/// How a facet's plane differs from the exact tangent plane at its seed
+/// ([`PlaneMode::Adjusted`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PlaneAdjustment {
+    /// Unit normal of the facet's plane (the seed's normal where it was not tilted).
+    pub normal: DVec3,
+    /// Angle between the facet's plane and the tangent plane at its seed, in degrees.
+    pub tilt_degrees: f64,
+    /// Signed distance of the facet's plane from its seed along `normal` (model units).
+    pub offset: f64,
 }
 
 impl Default for DiscretiseOptions {
@@ -60,6 +90,7 @@ impl Default for DiscretiseOptions {
             far_vertex_factor: DEFAULT_FAR_VERTEX_FACTOR,
             weld_tolerance: DEFAULT_WELD_TOLERANCE,
             flat_tolerance: DEFAULT_FLAT_TOLERANCE,
+            planes: PlaneMode::Exact,
         }
     }
 }
@@ -118,6 +149,9 @@ pub struct Discretisation {
     pub facet_flags: Vec<u8>,
     /// Local problems, each naming its pattern points.
     pub diagnostics: Vec<Diagnostic>,
+    /// Per facet, its plane against the exact tangent plane ([`PlaneMode::Adjusted`]; empty
+    /// with exact planes).
+    pub plane_adjustments: Vec<PlaneAdjustment>,
     /// Stage timings.
     pub timings: Timings,
 }
@@ -126,6 +160,16 @@ impl Discretisation {
     /// Number of facets.
     pub fn facet_count(&self) -> usize {
         self.seeds.len()
+    }
+
+    /// The plane of facet i as (a point of it, unit normal): the seed's tangent plane, or its
+    /// adjusted plane ([`PlaneMode::Adjusted`]).
+    pub fn facet_plane(&self, i: usize) -> (DVec3, DVec3) {
+        let seed = &self.seeds[i];
+        match self.plane_adjustments.get(i) {
+            Some(a) => (seed.point + a.normal * a.offset, a.normal),
+            None => (seed.point, seed.normal),
+        }
     }
 
     /// The vertex loop of facet i.
@@ -176,6 +220,11 @@ impl Serialize for FacetView<'_> {
         s.serialize_field("point", &seed.point.to_array())?;
         s.serialize_field("normal", &seed.normal.to_array())?;
         s.serialize_field("vertices", self.result.facet(self.index))?;
+        if let Some(a) = self.result.plane_adjustments.get(self.index) {
+            s.serialize_field("plane_normal", &a.normal.to_array())?;
+            s.serialize_field("plane_tilt_deg", &a.tilt_degrees)?;
+            s.serialize_field("plane_offset", &a.offset)?;
+        }
         s.serialize_field(
             "flags",
             &self
@@ -363,7 +412,7 @@ pub(crate) fn run(
         uv,
         geometry,
         tangents,
-        planes,
+        mut planes,
         diagonal,
         convex_side,
         plane_uv,
@@ -385,7 +434,7 @@ pub(crate) fn run(
         convex_side: &convex_side,
         any_curvature: false,
     };
-    let (triangulation, augmented, neighbours) = match (&slopes, &lifted) {
+    let (mut triangulation, mut augmented, mut neighbours) = match (&slopes, &lifted) {
         // Convex everywhere: the envelope's own structure, computed in slope space.
         (Some(slopes), Some(lifted)) => {
             let mut triangulation = DualTriangulation::delaunay(slopes)?;
@@ -451,7 +500,8 @@ pub(crate) fn run(
         weld_distance: options.weld_tolerance * diagonal,
         reversal_distance: REVERSAL_CHECK_TOLERANCE * diagonal,
     };
-    let (mesh, triangulation) = match &augmented {
+    let mut adjustment = None;
+    let (mesh, triangulation) = match &mut augmented {
         None => (
             build_facets(
                 surface,
@@ -469,6 +519,11 @@ pub(crate) fn run(
             triangulation,
         ),
         Some(augmented) => {
+            if options.planes == PlaneMode::Adjusted {
+                let stats = adjust_planes(&mut triangulation, &mut augmented.planes, uv.len());
+                adjustment = Some(stats);
+                planes.copy_from_slice(&augmented.planes[..uv.len()]);
+            }
             let mesh = build_closed_facets(
                 &triangulation,
                 &augmented.planes,
@@ -537,8 +592,26 @@ pub(crate) fn run(
         quality: None,
         facet_flags: Vec::new(),
         diagnostics,
+        plane_adjustments: Vec::new(),
         timings,
     };
+    if let Some(stats) = adjustment {
+        neighbours.plane_tilts = stats.tilts;
+        neighbours.validity_unresolved = stats.unresolved;
+        result.plane_adjustments = result
+            .seeds
+            .iter()
+            .zip(&planes)
+            .map(|(seed, plane)| {
+                let (tilt_degrees, offset) = tilt_and_offset(plane, seed.point, seed.normal);
+                PlaneAdjustment {
+                    normal: plane.normal,
+                    tilt_degrees,
+                    offset,
+                }
+            })
+            .collect();
+    }
     let mut resolved = Vec::new();
     let mut feet = feet;
     if options.quality_report {

@@ -18,6 +18,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+mod adjusted_planes;
 mod analytic;
 pub mod benchmark;
 mod diagnostics;
@@ -47,7 +48,8 @@ pub use analytic::{AnalyticKind, AnalyticSurface};
 pub use diagnostics::Diagnostic;
 pub use diffgeo::LocalGeometry;
 pub use discretise::{
-    discretise, validate_pattern, Discretisation, DiscretiseOptions, Seed, Timings,
+    discretise, validate_pattern, Discretisation, DiscretiseOptions, PlaneAdjustment, PlaneMode,
+    Seed, Timings,
 };
 pub use error::{Direction, TpiError};
 pub use facets::VertexKind;

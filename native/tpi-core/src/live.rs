@@ -1286,6 +1286,8 @@ impl State {
             quality: None,
             facet_flags: Vec::new(),
             diagnostics: self.diagnostics.clone(),
+            // The incremental path runs only on convex surfaces, whose exact planes stay.
+            plane_adjustments: Vec::new(),
             timings: Timings::default(),
         };
         if options.quality_report {

@@ -63,9 +63,13 @@ pub struct NeighbourStats {
     /// Flips kept by the validity repair of interior facets ([`crate::validity_flips`]).
     #[serde(default)]
     pub validity_flips: usize,
-    /// Interior facets the validity repair could not make valid.
+    /// Interior facets the validity repair could not make valid (with adjusted planes: after
+    /// the plane adjustment).
     #[serde(default)]
     pub validity_unresolved: usize,
+    /// Plane tilts kept by the plane adjustment ([`crate::PlaneMode::Adjusted`]).
+    #[serde(default)]
+    pub plane_tilts: usize,
 }
 
 /// Inputs of the neighbour decision for every pattern point.

@@ -2,9 +2,10 @@
 //! [`Discretisation::sanity_check`].
 //!
 //! - one facet per pattern point, every vertex index in range, every vertex finite;
-//! - every facet a loop of at least three distinct vertices, lying in its seed's tangent plane
-//!   (|n . (x - p)| <= [`SANITY_PLANARITY_TOLERANCE`] times the bounding-box diagonal of the
-//!   vertices), simple and counter-clockwise seen from the seed's normal n = Su x Sv (positive
+//! - every facet a loop of at least three distinct vertices, lying in its plane (the seed's
+//!   tangent plane, or the adjusted plane of [`crate::PlaneMode::Adjusted`]: |n . (x - p)| <=
+//!   [`SANITY_PLANARITY_TOLERANCE`] times the bounding-box diagonal of the vertices), simple
+//!   and counter-clockwise seen from that plane's normal n (for exact planes Su x Sv; positive
 //!   signed area, no two non-adjacent edges crossing, in a right-handed frame of the plane);
 //! - an oriented 2-manifold: every edge held by one facet (boundary) or by two facets that run
 //!   it in opposite directions;
@@ -156,12 +157,13 @@ fn check_facet(
             return bad("a vertex repeated in the loop");
         }
     }
-    let seed = &d.seeds[facet];
-    let (e1, e2) = seed.normal.any_orthonormal_pair();
+    // The facet's plane: the seed's tangent plane, or its adjusted plane.
+    let (origin, normal) = d.facet_plane(facet);
+    let (e1, e2) = normal.any_orthonormal_pair();
     flat.clear();
     for &v in lp {
-        let r = d.vertices[v as usize] - seed.point;
-        let distance = seed.normal.dot(r).abs() / diagonal;
+        let r = d.vertices[v as usize] - origin;
+        let distance = normal.dot(r).abs() / diagonal;
         if !(distance <= SANITY_PLANARITY_TOLERANCE) {
             return Err(SanityError::NonPlanar {
                 facet,

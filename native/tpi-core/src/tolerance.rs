@@ -147,6 +147,39 @@ pub const PROJECTION_STEP_TOLERANCE: f64 = 1e-14;
 /// the separating-line test of `quality::edge_pair_overlaps` (the full test then decides).
 pub const SEPARATION_MARGIN: f64 = 1e-9;
 
+// ---- read by adjusted_planes.rs ----
+
+/// Largest tilt of an adjusted plane against the exact tangent plane at its seed, in degrees
+/// (`--planes adjusted`). A facet tilted more would stray visibly from the surface's shading.
+pub const MAX_PLANE_TILT_DEGREES: f64 = 5.0;
+
+/// The tilts tried, smallest first (degrees, each at most [`MAX_PLANE_TILT_DEGREES`]): the
+/// first that helps is kept, so a plane is tilted by about the least amount that works.
+pub const PLANE_TILT_STEPS_DEGREES: &[f64] = &[0.25, 0.5, 1.0, 2.0, 3.5, 5.0];
+
+/// The tilts tried together with a flip that does not pay by itself (degrees).
+pub const RESCUE_TILT_STEPS_DEGREES: &[f64] = &[1.0, 2.5, 5.0];
+
+/// The offsets of a plane along its exact normal tried where no tilt helps, as fractions of
+/// the local spacing of the seeds, smallest first.
+pub const PLANE_OFFSET_STEPS: &[f64] = &[0.01, 0.02, 0.05, 0.1];
+
+/// Directions of tilt tried per step, evenly spaced around the exact normal.
+pub const PLANE_TILT_DIRECTIONS: usize = 8;
+
+/// A tilt that leaves as many invalid facets around it is still kept when it brings their
+/// farthest vertices (relative to the local spacing, summed) to less than this fraction.
+pub const REACH_GAIN: f64 = 0.9;
+
+/// Random restarts tried around each facet the greedy plane adjustment left invalid.
+pub const PLANE_KICKS: usize = 24;
+
+/// Passes of greedy tilts after each random restart.
+pub const KICK_REPAIR_PASSES: usize = 4;
+
+/// Rounds of plane adjustment at most (each round visits every invalid facet once).
+pub const MAX_PLANE_ADJUST_ROUNDS: usize = 40;
+
 // ---- read by validity_flips.rs ----
 
 /// Rounds of validity flips at most (each round visits every invalid facet once).

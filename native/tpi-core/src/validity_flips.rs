@@ -30,6 +30,8 @@
 // NaN-safe negated comparisons are intended: a NaN area or length must fail the test.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+use std::borrow::Cow;
+
 use glam::{DVec2, DVec3};
 
 use crate::facets::reachable;
@@ -56,29 +58,8 @@ pub(crate) fn validity_flips(
     planes: &[Plane],
     judged: usize,
 ) -> ValidityFlipStats {
-    use rayon::prelude::*;
     let n = judged;
-    let (lo, hi) = crate::samples::bounding_box(planes[..n].iter().map(|p| p.point));
-    let weld = crate::tolerance::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
-    let vertex: Vec<DVec3> = tri
-        .triangles
-        .par_iter()
-        .map(|&t| triangle_vertex(planes, t))
-        .collect();
-    let incident = tri.incident_triangles(embedding.len());
-    let points = embedding.len();
-    let mut state = State {
-        tri,
-        incident,
-        planes,
-        vertex,
-        invalid: Vec::new(),
-        weld,
-        judged: n,
-        facets: (0..points).map(|_| None).collect(),
-        overlaps: vec![Vec::new(); points],
-    };
-    state.invalid = state.initial_verdicts(n);
+    let mut state = State::new(tri, embedding.len(), Cow::Borrowed(planes), judged);
     let mut stats = ValidityFlipStats::default();
     // A facet whose repair failed is tried again only after a kept flip changed its
     // neighbourhood.
@@ -114,12 +95,16 @@ pub(crate) fn validity_flips(
 
 /// The triangulation being repaired with what the tests read: an incident triangle per point,
 /// the vertex T_i ∩ T_j ∩ T_k of every triangle, and the verdict of every judged facet.
-struct State<'a> {
-    tri: &'a mut DualTriangulation,
-    incident: Vec<u32>,
-    planes: &'a [Plane],
+pub(crate) struct State<'a> {
+    pub(crate) tri: &'a mut DualTriangulation,
+    /// One incident triangle per point.
+    pub(crate) incident: Vec<u32>,
+    /// The planes of all points (borrowed by the flips, owned and edited by the plane
+    /// adjustment, [`crate::adjusted_planes`]).
+    pub(crate) planes: Cow<'a, [Plane]>,
     vertex: Vec<DVec3>,
-    invalid: Vec<bool>,
+    /// The verdict of every judged facet.
+    pub(crate) invalid: Vec<bool>,
     /// Vertices closer than this become one, as in the facet stage's welding.
     weld: f64,
     /// Points from this index on are ghosts: not judged, and not part of the mesh.
@@ -128,6 +113,29 @@ struct State<'a> {
     facets: Vec<Option<Facet>>,
     /// Per point, the overlap verdicts with neighbours computed so far.
     overlaps: Vec<Vec<(u32, bool)>>,
+    /// Where Some, every plane replaced and every verdict set is logged here (old values)
+    /// so that a tentative sequence of changes can be undone ([`State::undo`]).
+    pub(crate) journal: Option<Journal>,
+}
+
+/// The old values of what a tentative sequence of changes replaced, in order.
+#[derive(Default)]
+pub(crate) struct Journal {
+    planes: Vec<(u32, Plane)>,
+    verdicts: Vec<(u32, bool)>,
+}
+
+impl Journal {
+    /// How many more invalid facets there are now than before the journal began.
+    pub(crate) fn invalid_gain(&self, state_invalid: &[bool]) -> isize {
+        let mut seen = std::collections::HashMap::new();
+        for &(x, old) in &self.verdicts {
+            seen.entry(x).or_insert(old);
+        }
+        seen.iter()
+            .map(|(&x, &old)| isize::from(state_invalid[x as usize]) - isize::from(old))
+            .sum()
+    }
 }
 
 /// A facet as the local test sees it.
@@ -136,11 +144,101 @@ struct Facet {
     polygon: Option<Vec<DVec3>>,
     /// Finite, simple and counter-clockwise in the seed's plane.
     simple: bool,
+    /// The polygon's [`tangle`] (0 where simple, or where the fan does not close).
+    tangle: usize,
     /// Real edge neighbours with the ends of the polygon edge shared with each.
     neighbours: Vec<(u32, [DVec3; 2])>,
 }
 
-impl State<'_> {
+impl<'a> State<'a> {
+    /// The state of a triangulation of `points` points (ghosts from `judged` on) with every
+    /// vertex computed and every judged facet's verdict.
+    pub(crate) fn new(
+        tri: &'a mut DualTriangulation,
+        points: usize,
+        planes: Cow<'a, [Plane]>,
+        judged: usize,
+    ) -> Self {
+        use rayon::prelude::*;
+        let (lo, hi) = crate::samples::bounding_box(planes[..judged].iter().map(|p| p.point));
+        let weld = crate::tolerance::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
+        let vertex: Vec<DVec3> = tri
+            .triangles
+            .par_iter()
+            .map(|&t| triangle_vertex(&planes, t))
+            .collect();
+        let incident = tri.incident_triangles(points);
+        let mut state = State {
+            tri,
+            incident,
+            planes,
+            vertex,
+            invalid: Vec::new(),
+            weld,
+            judged,
+            facets: (0..points).map(|_| None).collect(),
+            overlaps: vec![Vec::new(); points],
+            journal: None,
+        };
+        state.invalid = state.initial_verdicts(judged);
+        state
+    }
+
+    /// Sets the verdict of facet x (logged in the journal).
+    pub(crate) fn set_verdict(&mut self, x: u32, invalid: bool) {
+        if let Some(journal) = &mut self.journal {
+            journal.verdicts.push((x, self.invalid[x as usize]));
+        }
+        self.invalid[x as usize] = invalid;
+    }
+
+    /// Undoes everything the journal logged and ends it.
+    pub(crate) fn undo(&mut self) {
+        let Some(journal) = self.journal.take() else {
+            return;
+        };
+        for &(x, old) in journal.verdicts.iter().rev() {
+            self.invalid[x as usize] = old;
+        }
+        for &(j, old) in journal.planes.iter().rev() {
+            self.set_plane(j, old);
+        }
+    }
+
+    /// How far facet i's polygon reaches from its seed: its farthest vertex's distance over
+    /// `spacing`; infinite where a vertex is unreachable, 0 where the fan does not close.
+    pub(crate) fn reach(&mut self, i: u32, spacing: f64) -> f64 {
+        let seed = self.planes[i as usize].point;
+        let facet = self.facet(i);
+        facet.polygon.as_ref().map_or(0.0, |p| {
+            p.iter()
+                .map(|x| x.distance(seed) / spacing)
+                .map(|r| if r.is_finite() { r } else { f64::INFINITY })
+                .fold(0.0, f64::max)
+        })
+    }
+
+    /// Facet i's [`tangle`] in its own plane (0 where its fan does not close).
+    pub(crate) fn tangle(&mut self, i: u32) -> usize {
+        self.facet(i).tangle
+    }
+
+    /// Replaces the plane of point j and renews the vertices of the triangles around it.
+    pub(crate) fn set_plane(&mut self, j: u32, plane: Plane) {
+        if let Some(journal) = &mut self.journal {
+            journal.planes.push((j, self.planes[j as usize]));
+        }
+        self.planes.to_mut()[j as usize] = plane;
+        let mut fan = Vec::new();
+        self.tri.fan(j, self.incident[j as usize], &mut fan);
+        for t in fan {
+            self.vertex[t as usize] = triangle_vertex(&self.planes, self.tri.triangles[t as usize]);
+            for v in self.tri.triangles[t as usize] {
+                self.forget(v);
+            }
+        }
+    }
+
     /// Whether point x keeps the mesh a disc around it: a real point has a real neighbour
     /// and its ghost neighbours in one run around it; a ghost's real neighbours are in one run.
     fn one_ghost_arc(&self, x: u32) -> bool {
@@ -196,9 +294,10 @@ impl State<'_> {
     /// Flips triangle t's edge opposite k and brings the caches up to date; returns the two
     /// triangles holding the new diagonal (the first at position 1 of the second).
     fn flip(&mut self, t: u32, k: usize) -> (u32, u32) {
+        debug_assert!(self.journal.is_none(), "flips are not journaled");
         let (t1, t2) = self.tri.flip(t, k);
         for t in [t1, t2] {
-            self.vertex[t as usize] = triangle_vertex(self.planes, self.tri.triangles[t as usize]);
+            self.vertex[t as usize] = triangle_vertex(&self.planes, self.tri.triangles[t as usize]);
             for v in self.tri.triangles[t as usize] {
                 self.incident[v as usize] = t;
                 self.forget(v);
@@ -220,10 +319,10 @@ impl State<'_> {
         if self.facets[i as usize].is_none() {
             let mut fan = Vec::new();
             let polygon = self.polygon(i, &mut fan);
-            let simple = polygon.as_ref().is_some_and(|p| {
-                p.iter().all(|x| x.is_finite())
-                    && simple_in_plane(p, self.planes[i as usize].normal)
-            });
+            let tangle = polygon
+                .as_ref()
+                .map_or(0, |p| tangle(p, self.planes[i as usize].normal));
+            let simple = polygon.is_some() && tangle == 0;
             let neighbours = if polygon.is_some() {
                 (0..fan.len())
                     .filter_map(|k| {
@@ -242,6 +341,7 @@ impl State<'_> {
             self.facets[i as usize] = Some(Facet {
                 polygon,
                 simple,
+                tangle,
                 neighbours,
             });
         }
@@ -318,7 +418,7 @@ impl State<'_> {
     }
 
     /// Whether interior facet i is invalid (module doc); hull facets are never judged.
-    fn facet_invalid(&mut self, i: u32) -> bool {
+    pub(crate) fn facet_invalid(&mut self, i: u32) -> bool {
         let facet = self.facet(i);
         if facet.polygon.is_none() {
             return false;
@@ -369,7 +469,20 @@ impl State<'_> {
 
     /// Tries the star and link edges of facet i; keeps the first flip that lowers the number
     /// of invalid facets around it and returns the points whose verdicts it renewed.
-    fn try_repair(&mut self, i: u32, judged: usize) -> Option<Vec<u32>> {
+    pub(crate) fn try_repair(&mut self, i: u32, judged: usize) -> Option<Vec<u32>> {
+        self.try_repair_with(i, judged, &mut |_, _| false)
+    }
+
+    /// [`State::try_repair`], where a flip that does not lower the count by itself is handed
+    /// to `rescue` (with the quad's points and the count to beat) before it is undone;
+    /// `rescue` returns whether it lowered the count (its changes then stay, and it has set
+    /// the verdicts), or undoes its own changes.
+    pub(crate) fn try_repair_with(
+        &mut self,
+        i: u32,
+        judged: usize,
+        rescue: &mut dyn FnMut(&mut Self, [u32; 4]) -> bool,
+    ) -> Option<Vec<u32>> {
         let mut fan = Vec::new();
         if self.tri.fan(i, self.incident[i as usize], &mut fan) != Fan::Closed {
             return None;
@@ -396,7 +509,7 @@ impl State<'_> {
                 continue;
             }
             let touches_ghost = quad.iter().any(|&x| x as usize >= judged);
-            let mut affected = affected_points(self.tri, &self.incident, quad);
+            let mut affected = affected_points(self.tri, &self.incident, &quad);
             affected.retain(|&x| (x as usize) < judged);
             let before = affected
                 .iter()
@@ -431,6 +544,9 @@ impl State<'_> {
                 }
                 return Some(affected);
             }
+            if rescue(self, quad) {
+                return Some(affected);
+            }
             // Undo: the new diagonal (c, d) is the edge opposite position 1 of t1 = [c, a, d].
             self.flip(t1, 1);
         }
@@ -458,10 +574,10 @@ fn has_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32) -> bool {
 
 /// Points whose validity a flip of the quad's diagonal can change: the quad's four points
 /// (their polygons change) and their neighbours (their overlap with those polygons).
-fn affected_points(tri: &DualTriangulation, incident: &[u32], quad: [u32; 4]) -> Vec<u32> {
+pub(crate) fn affected_points(tri: &DualTriangulation, incident: &[u32], quad: &[u32]) -> Vec<u32> {
     let mut out: Vec<u32> = quad.to_vec();
     let mut fan = Vec::new();
-    for &p in &quad {
+    for &p in quad {
         tri.fan(p, incident[p as usize], &mut fan);
         for &t in &fan {
             out.extend_from_slice(&tri.triangles[t as usize]);
@@ -527,31 +643,38 @@ fn size(p: &[DVec2]) -> f64 {
 
 /// Simple and counter-clockwise seen from `normal`, at least three distinct vertices.
 pub(crate) fn simple_in_plane(points: &[DVec3], normal: DVec3) -> bool {
+    tangle(points, normal) == 0
+}
+
+/// How far a polygon is from simple and counter-clockwise in the plane perpendicular to
+/// `normal`: the number of properly crossing pairs of non-adjacent edges, plus the number of
+/// edges if its signed area is not positive (0: simple and counter-clockwise; `usize::MAX`:
+/// fewer than three points or a non-finite one).
+pub(crate) fn tangle(points: &[DVec3], normal: DVec3) -> usize {
     let Some(&origin) = points.first() else {
-        return false;
+        return usize::MAX;
     };
+    if !points.iter().all(|x| x.is_finite()) {
+        return usize::MAX;
+    }
     let p = flatten(points, normal, origin);
     let n = p.len();
     if n < 3 {
-        return false;
+        return usize::MAX;
     }
-    // Strict, as any independent check of the finished mesh is: a fold of any size fails.
     let area: f64 = (0..n).map(|k| p[k].perp_dot(p[(k + 1) % n])).sum();
-    if !(area > 0.0) {
-        return false;
-    }
-    let eps = 0.0;
+    let mut tangle = if area > 0.0 { 0 } else { n };
     for a in 0..n {
         for b in a + 2..n {
             if a == 0 && b == n - 1 {
                 continue;
             }
-            if proper_crossing(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n], eps) {
-                return false;
+            if edges_meet(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n]) {
+                tangle += 1;
             }
         }
     }
-    true
+    tangle
 }
 
 /// Whether two simple polygons that may share vertices overlap in area, seen along
@@ -687,6 +810,40 @@ fn point_in_polygon(p: DVec2, poly: &[DVec2], tolerance: f64) -> Option<bool> {
 
 /// The segments ab and cd cross properly: each strictly (beyond `eps`, an area) on both
 /// sides of the other.
+/// Whether segments pq and rs cross properly, or an end of one lies on the other up to
+/// [`VALIDITY_TOLERANCE`] times the other's squared length (a facet whose vertex sits on a
+/// non-adjacent edge, as where four planes share a ruling of the surface, is not simple:
+/// rounding decides which side it falls on).
+fn edges_meet(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
+    // Disjoint bounding boxes (most pairs of a polygon's edges) cannot meet.
+    if p.x.max(q.x) < r.x.min(s.x)
+        || r.x.max(s.x) < p.x.min(q.x)
+        || p.y.max(q.y) < r.y.min(s.y)
+        || r.y.max(s.y) < p.y.min(q.y)
+    {
+        return false;
+    }
+    let (pq, rs) = (q - p, s - r);
+    let (d1, d2) = (pq.perp_dot(r - p), pq.perp_dot(s - p));
+    let (d3, d4) = (rs.perp_dot(p - r), rs.perp_dot(q - r));
+    if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+    {
+        return true;
+    }
+    let within = |a: DVec2, b: DVec2, c: DVec2| {
+        c.x >= a.x.min(b.x) && c.x <= a.x.max(b.x) && c.y >= a.y.min(b.y) && c.y <= a.y.max(b.y)
+    };
+    let (t1, t2) = (
+        VALIDITY_TOLERANCE * pq.length_squared(),
+        VALIDITY_TOLERANCE * rs.length_squared(),
+    );
+    (d1.abs() <= t1 && within(p, q, r))
+        || (d2.abs() <= t1 && within(p, q, s))
+        || (d3.abs() <= t2 && within(r, s, p))
+        || (d4.abs() <= t2 && within(r, s, q))
+}
+
 fn proper_crossing(a: DVec2, b: DVec2, c: DVec2, d: DVec2, eps: f64) -> bool {
     let d1 = (b - a).perp_dot(c - a);
     let d2 = (b - a).perp_dot(d - a);

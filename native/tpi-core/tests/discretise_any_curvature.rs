@@ -17,8 +17,8 @@ use common::validity::{check, Validity};
 use common::*;
 use glam::DVec3;
 use tpi_core::{
-    discretise, AnalyticKind, AnalyticSurface, DiscretiseOptions, Generator, NurbsSurface, Surface,
-    SurfaceSpec,
+    discretise, AnalyticKind, AnalyticSurface, Discretisation, DiscretiseOptions, Generator,
+    NurbsSurface, PlaneMode, Surface, SurfaceSpec,
 };
 use tpi_core::{FLAG_NON_SIMPLE, FLAG_OVERLAP};
 
@@ -200,7 +200,24 @@ fn run(
     pattern_name: &str,
     pattern: &[[f64; 2]],
 ) -> Case {
-    let d = discretise(surface, pattern, &DiscretiseOptions::default())
+    run_with(
+        surface_name,
+        surface,
+        pattern_name,
+        pattern,
+        &DiscretiseOptions::default(),
+    )
+    .0
+}
+
+fn run_with(
+    surface_name: &str,
+    surface: &dyn Surface,
+    pattern_name: &str,
+    pattern: &[[f64; 2]],
+    options: &DiscretiseOptions,
+) -> (Case, Discretisation) {
+    let d = discretise(surface, pattern, options)
         .unwrap_or_else(|e| panic!("{surface_name} / {pattern_name}: {e}"));
     let validity = check(&d);
     if std::env::var_os("TPI_DEBUG").is_some() && !validity.is_disc() {
@@ -243,16 +260,20 @@ fn run(
         .into_iter()
         .filter(|&i| !near_parabolic_line(surface, pattern[i], 4.0 * spacing))
         .count();
-    Case {
-        surface: surface_name.into(),
-        pattern: pattern_name.into(),
-        points: pattern.len(),
-        validity,
-        flagged_missing,
-        invalid_at_boundary,
-        invalid_far_from_parabolic,
-        sanity: d.sanity_check().map_err(|e| e.to_string()),
-    }
+    let sanity = d.sanity_check().map_err(|e| e.to_string());
+    (
+        Case {
+            surface: surface_name.into(),
+            pattern: pattern_name.into(),
+            points: pattern.len(),
+            validity,
+            flagged_missing,
+            invalid_at_boundary,
+            invalid_far_from_parabolic,
+            sanity,
+        },
+        d,
+    )
 }
 
 fn patterns(n: usize) -> Vec<(String, Vec<[f64; 2]>)> {
@@ -516,4 +537,118 @@ fn random_patterns_give_discs_on_any_curvature() {
             "{name} / closed grid: invalid facets not flagged"
         );
     }
+}
+
+/// The plane of facet i measured from its vertices alone: Newell's normal (oriented like the
+/// seed's normal), the largest distance of a vertex from the plane through their centroid,
+/// and the distance of the seed's surface point from that plane.
+fn measured_plane(d: &Discretisation, i: usize) -> (DVec3, f64, f64) {
+    let points: Vec<DVec3> = d.facet(i).iter().map(|&v| d.vertices[v as usize]).collect();
+    let centroid = points.iter().copied().sum::<DVec3>() / points.len() as f64;
+    let mut normal = DVec3::ZERO;
+    for k in 0..points.len() {
+        let (a, b) = (
+            points[k] - centroid,
+            points[(k + 1) % points.len()] - centroid,
+        );
+        normal += a.cross(b);
+    }
+    let mut normal = normal.normalize();
+    if normal.dot(d.seeds[i].normal) < 0.0 {
+        normal = -normal;
+    }
+    let flatness = points
+        .iter()
+        .map(|p| (*p - centroid).dot(normal).abs())
+        .fold(0.0, f64::max);
+    (
+        normal,
+        flatness,
+        (d.seeds[i].point - centroid).dot(normal).abs(),
+    )
+}
+
+/// Adjusted planes (`PlaneMode::Adjusted`) on saddles, ruled sides, mixed surfaces and
+/// uniform random patterns: a disc, and every facet exactly planar in a plane through its
+/// seed tilted by at most 5 degrees from the tangent plane, all measured from the mesh's
+/// vertices, not taken from the result's fields. On saddles (K < 0 everywhere) every facet
+/// is valid by the independent check. Known gap: on mixed surfaces, where exact planes
+/// leave 1-4 % of the facets invalid, at most two per mesh stay invalid (all flagged).
+#[test]
+fn adjusted_planes_give_valid_meshes_on_any_curvature() {
+    let options = DiscretiseOptions {
+        planes: PlaneMode::Adjusted,
+        ..DiscretiseOptions::default()
+    };
+    let mut surfaces = saddles();
+    surfaces.push(("rotated-hypar", Box::new(rotated_hypar())));
+    let saddle_count = surfaces.len();
+    surfaces.push(("mixed-roof", Box::new(sample_surface("mixed-roof.json"))));
+    surfaces.push(("crest-roof", Box::new(crest_roof())));
+    let mut rng = Rng::new(2027);
+    let mut cases = Vec::new();
+    let mut tilts = Vec::new();
+    let mut failures = Vec::new();
+    let mut offsets = Vec::new();
+    for (index, (name, surface)) in surfaces.iter().enumerate() {
+        let mixed = index >= saddle_count;
+        let mut all = patterns(300);
+        all.extend(patterns(2000));
+        all.push(("random1000".into(), uniform_pattern(&mut rng, 1000)));
+        for (pattern_name, pattern) in all {
+            let (case, d) = run_with(name, surface.as_ref(), &pattern_name, &pattern, &options);
+            let v = &case.validity;
+            let what = format!("{name} / {pattern_name}");
+            // Validity is collected (the whole table is worth seeing when a case fails).
+            let allowed = if mixed { 2 } else { 0 };
+            if !v.is_disc()
+                || v.invalid_facets().len() > allowed
+                || case.flagged_missing > 0
+                || (v.invalid_facets().is_empty() && case.sanity.is_err())
+            {
+                failures.push(format!(
+                    "{what}: {v:?} {:?}; neighbours {:?}",
+                    case.sanity,
+                    d.quality.as_ref().map(|q| q.neighbours)
+                ));
+            }
+            assert_eq!(d.plane_adjustments.len(), d.facet_count(), "{what}");
+            let diagonal = seed_diagonal(&d);
+            for i in 0..d.facet_count() {
+                let (normal, flatness, seed_distance) = measured_plane(&d, i);
+                assert!(flatness <= 1e-9 * diagonal, "{what}: facet {i} not planar");
+                let offset = d.plane_adjustments[i].offset;
+                assert!(
+                    (seed_distance - offset.abs()).abs() <= 1e-9 * diagonal,
+                    "{what}: facet {i}'s plane is {seed_distance} from its seed, reported {offset}"
+                );
+                offsets.push(seed_distance / diagonal);
+                let tilt = normal.angle_between(d.seeds[i].normal).to_degrees();
+                assert!(
+                    tilt <= 5.0 + 1e-4,
+                    "{what}: facet {i} tilted {tilt} degrees"
+                );
+                let reported = d.plane_adjustments[i].tilt_degrees;
+                assert!(
+                    (tilt - reported).abs() <= 1e-4,
+                    "{what}: facet {i} tilted {tilt} degrees, reported {reported}"
+                );
+                tilts.push(tilt);
+            }
+            cases.push(case);
+        }
+    }
+    report(&cases);
+    if std::env::var_os("TPI_TABLE").is_some() {
+        let tilted: Vec<f64> = tilts.iter().copied().filter(|&t| t > 1e-9).collect();
+        println!(
+            "tilted {} of {} facets, max {:.2} deg; offset {} facets, max {:.2e} of the diagonal",
+            tilted.len(),
+            tilts.len(),
+            tilted.iter().copied().fold(0.0, f64::max),
+            offsets.iter().filter(|&&o| o > 1e-12).count(),
+            offsets.iter().copied().fold(0.0, f64::max)
+        );
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
 }

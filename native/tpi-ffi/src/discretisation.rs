@@ -139,14 +139,14 @@ pub struct TpiSeed {
     pub curvatures: [f64; 2],
 }
 
-/// A facet's tangent plane: the plane through `point` with unit normal `normal`. Every vertex
-/// of the facet lies in it.
+/// A facet's plane: the plane through `point` with unit normal `normal`. Every vertex of the
+/// facet lies in it.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct TpiPlane {
-    /// A point of the plane (the seed's surface point).
+    /// A point of the plane (the seed's surface point, unless the adjusted plane is offset).
     pub point: [f64; 3],
-    /// Unit normal (the surface normal at the seed).
+    /// Unit normal (the surface normal at the seed, unless the plane is adjusted).
     pub normal: [f64; 3],
 }
 
@@ -542,7 +542,9 @@ pub unsafe extern "C" fn tpi_discretisation_seeds(
     }
 }
 
-/// Copies the tangent plane of each facet (one TpiPlane per facet). Copy-out convention;
+/// Copies the plane of each facet (one TpiPlane per facet): the tangent plane at its seed,
+/// or with `plane_mode` TPI_PLANES_ADJUSTED the facet's adjusted plane (its tilt is the angle
+/// between its normal and the seed's, from `tpi_discretisation_seeds`). Copy-out convention;
 /// `*needed` = facet count.
 ///
 /// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
@@ -560,9 +562,16 @@ pub unsafe extern "C" fn tpi_discretisation_planes(
     ffi_boundary! {
         // SAFETY: the caller's contract.
         let d = unsafe { handle(discretisation) }?;
-        let seeds = &d.result.seeds;
-        let make = || seeds.iter().map(|s| TpiPlane { point: s.point.to_array(), normal: s.normal.to_array() }).collect();
-        unsafe { copy_out_lazy(seeds.len(), make, out, capacity, needed) }
+        let result = &d.result;
+        let make = || {
+            (0..result.facet_count())
+                .map(|i| {
+                    let (point, normal) = result.facet_plane(i);
+                    TpiPlane { point: point.to_array(), normal: normal.to_array() }
+                })
+                .collect()
+        };
+        unsafe { copy_out_lazy(result.facet_count(), make, out, capacity, needed) }
     }
 }
 

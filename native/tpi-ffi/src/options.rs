@@ -2,12 +2,23 @@
 
 use std::mem::size_of;
 
-use tpi_core::DiscretiseOptions;
+use tpi_core::{DiscretiseOptions, PlaneMode};
 
 use crate::boundary::{ffi_boundary, finite, flag, FfiError, FfiResult, TpiStatus};
 
 /// Size in bytes of the first version of `TpiOptions`: the smallest `struct_size` accepted.
 pub const TPI_OPTIONS_SIZE_V1: u32 = 40;
+
+/// Size in bytes of the second version of `TpiOptions` (adds `plane_mode`).
+pub const TPI_OPTIONS_SIZE_V2: u32 = 48;
+
+/// `plane_mode`: every facet in the exact tangent plane at its seed.
+pub const TPI_PLANES_EXACT: u32 = 0;
+
+/// `plane_mode`: exact tangent planes, except where they cannot give a valid facet on a
+/// surface that is not convex everywhere: there a few planes are tilted by at most 5
+/// degrees (`tpi_discretisation_planes` gives each facet's plane).
+pub const TPI_PLANES_ADJUSTED: u32 = 1;
 
 /// Options of a discretisation.
 ///
@@ -45,6 +56,11 @@ pub struct TpiOptions {
     /// A point is flat when |K| <= flat_tolerance * max(k1^2, k2^2). Finite, >= 0.
     /// Default value: 1e-6.
     pub flat_tolerance: f64,
+    /// TPI_PLANES_EXACT or TPI_PLANES_ADJUSTED (since TPI_OPTIONS_SIZE_V2). Default value:
+    /// TPI_PLANES_EXACT.
+    pub plane_mode: u32,
+    /// Always 0 (padding, kept explicit for other languages).
+    pub reserved2: u32,
 }
 
 impl TpiOptions {
@@ -59,6 +75,11 @@ impl TpiOptions {
             far_vertex_factor: d.far_vertex_factor,
             weld_tolerance: d.weld_tolerance,
             flat_tolerance: d.flat_tolerance,
+            plane_mode: match d.planes {
+                PlaneMode::Exact => TPI_PLANES_EXACT,
+                PlaneMode::Adjusted => TPI_PLANES_ADJUSTED,
+            },
+            reserved2: 0,
         }
     }
 
@@ -82,18 +103,32 @@ impl TpiOptions {
                 )));
             }
         }
-        if self.reserved != 0 {
-            return Err(FfiError::invalid(format!(
-                "options.reserved is {}; it must be 0",
-                self.reserved
-            )));
+        for (name, value) in [
+            ("options.reserved", self.reserved),
+            ("options.reserved2", self.reserved2),
+        ] {
+            if value != 0 {
+                return Err(FfiError::invalid(format!(
+                    "{name} is {value}; it must be 0"
+                )));
+            }
         }
+        let planes = match self.plane_mode {
+            TPI_PLANES_EXACT => PlaneMode::Exact,
+            TPI_PLANES_ADJUSTED => PlaneMode::Adjusted,
+            other => {
+                return Err(FfiError::invalid(format!(
+                    "options.plane_mode is {other}; it must be TPI_PLANES_EXACT (0) or TPI_PLANES_ADJUSTED (1)"
+                )))
+            }
+        };
         Ok(DiscretiseOptions {
             envelope_repair: flag("options.envelope_repair", self.envelope_repair)?,
             quality_report: flag("options.quality_report", self.quality_report)?,
             far_vertex_factor,
             weld_tolerance,
             flat_tolerance,
+            planes,
         })
     }
 }

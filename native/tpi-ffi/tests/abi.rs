@@ -85,7 +85,11 @@ fn flag_and_kind_numbers_match_the_core() {
 
 #[test]
 fn struct_layouts_are_fixed() {
-    assert_eq!(size_of::<TpiOptions>(), TPI_OPTIONS_SIZE_V1 as usize);
+    assert_eq!(size_of::<TpiOptions>(), TPI_OPTIONS_SIZE_V2 as usize);
+    assert_eq!(
+        offset_of!(TpiOptions, plane_mode),
+        TPI_OPTIONS_SIZE_V1 as usize
+    );
     assert_eq!(
         size_of::<TpiQualityReport>(),
         TPI_QUALITY_REPORT_SIZE_V2 as usize
@@ -171,7 +175,13 @@ fn options_default_round_trips_and_respects_struct_size() {
 fn invalid_options_are_rejected_by_name() {
     let surface = dome(3.0);
     let p = pattern(&jittered_grid(5));
-    let cases: [(fn(&mut TpiOptions), TpiStatus, &str); 6] = [
+    let cases: [(fn(&mut TpiOptions), TpiStatus, &str); 8] = [
+        (
+            |o| o.plane_mode = 2,
+            TpiStatus::InvalidArgument,
+            "plane_mode",
+        ),
+        (|o| o.reserved2 = 3, TpiStatus::InvalidArgument, "reserved2"),
         (
             |o| o.far_vertex_factor = f64::NAN,
             TpiStatus::NonFinite,
@@ -707,5 +717,98 @@ fn a_first_version_quality_struct_gets_only_its_bytes() {
         tpi_discretisation_free(d);
         tpi_pattern_free(p);
         tpi_surface_free(surface);
+    }
+}
+
+/// `plane_mode` TPI_PLANES_ADJUSTED reaches the core (the same mesh as the Rust API), and
+/// `tpi_discretisation_planes` then gives each facet's own plane: every vertex of the facet
+/// lies in it, some are tilted against the seed's normal (by at most 5 degrees), and with
+/// TPI_PLANES_EXACT every plane is the seed's tangent plane. A first-version options struct
+/// (40 bytes) keeps the default, exact planes.
+#[test]
+fn adjusted_planes_reach_the_core_and_the_planes_copy_out() {
+    let mut s = std::ptr::null_mut();
+    // SAFETY: valid out pointer.
+    ok(unsafe { tpi_surface_new_hyperbolic_paraboloid(0.1, 0.1, -3.0, 3.0, -3.0, 3.0, &mut s) });
+    let core = tpi_core::AnalyticSurface::new(
+        tpi_core::AnalyticKind::HyperbolicParaboloid { a: 0.1, b: 0.1 },
+        [-3.0, 3.0],
+        [-3.0, 3.0],
+    )
+    .expect("hypar");
+    let points = tpi_core::Generator::Random {
+        count: 1500,
+        seed: 11,
+    }
+    .generate()
+    .uv;
+    let p = pattern(&points);
+    for (mode, struct_size) in [
+        (TPI_PLANES_EXACT, TPI_OPTIONS_SIZE_V2),
+        (TPI_PLANES_ADJUSTED, TPI_OPTIONS_SIZE_V2),
+        (TPI_PLANES_ADJUSTED, TPI_OPTIONS_SIZE_V1),
+    ] {
+        let options = TpiOptions {
+            plane_mode: mode,
+            struct_size,
+            ..TpiOptions::defaults()
+        };
+        let adjusted = mode == TPI_PLANES_ADJUSTED && struct_size == TPI_OPTIONS_SIZE_V2;
+        let mut d = std::ptr::null_mut();
+        // SAFETY: live handles, a full options struct, valid out pointer.
+        ok(unsafe { tpi_discretise(s, p, &options, &mut d) });
+        let expected = discretise(
+            &core,
+            &points,
+            &DiscretiseOptions {
+                planes: if adjusted {
+                    tpi_core::PlaneMode::Adjusted
+                } else {
+                    tpi_core::PlaneMode::Exact
+                },
+                ..DiscretiseOptions::default()
+            },
+        )
+        .expect("discretise");
+        let mesh = read_mesh(d);
+        assert_eq!(mesh.json, expected.to_json(false));
+        // SAFETY: live handle; the copy-out convention.
+        let planes: Vec<TpiPlane> =
+            read_array(|o, c, n| unsafe { tpi_discretisation_planes(d, o, c, n) });
+        let seeds: Vec<TpiSeed> =
+            read_array(|o, c, n| unsafe { tpi_discretisation_seeds(d, o, c, n) });
+        let mut tilted = 0;
+        let mut offset = 0;
+        for (f, (plane, seed)) in planes.iter().zip(&seeds).enumerate() {
+            let normal = glam::DVec3::from_array(plane.normal);
+            let point = glam::DVec3::from_array(plane.point);
+            let tilt = normal
+                .angle_between(glam::DVec3::from_array(seed.normal))
+                .to_degrees();
+            assert!(tilt <= 5.0 + 1e-9, "facet {f} tilted {tilt} degrees");
+            tilted += usize::from(tilt > 1e-9);
+            let corner = expected.facet(f);
+            for &v in corner {
+                let x = expected.vertices[v as usize];
+                assert!(
+                    normal.dot(x - point).abs() <= 1e-9,
+                    "facet {f}: vertex {v} off its plane"
+                );
+            }
+            offset += usize::from(point != glam::DVec3::from_array(seed.point));
+        }
+        if adjusted {
+            assert!(tilted > 0, "no plane was adjusted");
+            assert_eq!(expected.quality.as_ref().map(|q| q.invalid_facets), Some(0));
+        } else {
+            assert_eq!((tilted, offset), (0, 0));
+        }
+        // SAFETY: our handle.
+        unsafe { tpi_discretisation_free(d) };
+    }
+    // SAFETY: our handles.
+    unsafe {
+        tpi_pattern_free(p);
+        tpi_surface_free(s);
     }
 }

@@ -1,0 +1,406 @@
+//! Adjusted planes (`--planes adjusted`): where exact tangent planes cannot give a valid mesh,
+//! the planes of a few facets are tilted by the least amount that makes every facet valid.
+//!
+//! After the validity flips ([`crate::validity_flips`]) the dual structure is fixed, and some
+//! facets may still be invalid with exact tangent planes: at parabolic lines (K = 0) and with
+//! uniform random patterns, neighbouring planes are nearly parallel, so the vertex
+//! T_i ∩ T_j ∩ T_k = [n_i; n_j; n_k]^-1 [n_i.p_i; n_j.p_j; n_k.p_k] runs away (its condition is
+//! det = n_i . (n_j x n_k) ~ 0). That ill-conditioning is also the remedy: a small tilt of one
+//! of the three planes moves the vertex a long way, so a few degrees suffice to bring it back
+//! between its seeds. (Zimmer, Campen, Herkrath and Kobbelt, *Variational Tangent Plane
+//! Intersection for Planar Polygonal Meshing*, AAG 2012, optimise all planes at once; this is
+//! a local, greedy version of the same idea that touches only the facets involved.)
+//!
+//! A plane keeps its seed point p_j and gets the normal
+//!
+//! ```text
+//! n'_j = cos(theta) n_j + sin(theta) (cos(phi) e1_j + sin(phi) e2_j)
+//! ```
+//!
+//! with (e1_j, e2_j, n_j) a right-handed frame of the exact tangent plane: theta is the tilt
+//! (the angle between the facet's plane and the surface's tangent plane at its seed), at most
+//! [`MAX_PLANE_TILT_DEGREES`]; the plane's offset from its seed stays 0, so the facet still
+//! touches the surface at its seed. For each invalid facet i, the planes of i and of its
+//! neighbours (ghosts included, which shape the boundary facets) are tried with tilts of
+//! increasing size ([`PLANE_TILT_STEPS_DEGREES`]) in [`PLANE_TILT_DIRECTIONS`] directions,
+//! each measured from the exact plane; a tilt is kept when the number of invalid facets among
+//! those it can change (the points of the triangles around j and their neighbours) drops, by
+//! the same local test as the flips. Every kept tilt lowers the count, so the loop ends; it is
+//! bounded by [`MAX_PLANE_ADJUST_ROUNDS`] rounds.
+//!
+//! Facets stay exactly planar: every vertex is the meeting point of three (adjusted) planes,
+//! computed once and shared by the three facets.
+
+use std::borrow::Cow;
+
+use glam::DVec3;
+
+use crate::pattern::SplitMix64;
+use crate::planes::Plane;
+use crate::tolerance::{
+    KICK_REPAIR_PASSES, MAX_PLANE_ADJUST_ROUNDS, MAX_PLANE_TILT_DEGREES, PLANE_KICKS,
+    PLANE_OFFSET_STEPS, PLANE_TILT_DIRECTIONS, PLANE_TILT_STEPS_DEGREES, REACH_GAIN,
+    RESCUE_TILT_STEPS_DEGREES,
+};
+use crate::triangulation::DualTriangulation;
+use crate::validity_flips::{affected_points, Journal, State};
+
+/// What the plane adjustment did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct PlaneAdjustStats {
+    /// Tilts kept (a plane may be tilted more than once).
+    pub tilts: usize,
+    /// Facets still invalid by the local test afterwards.
+    pub unresolved: usize,
+}
+
+/// Tilts the planes of points around invalid facets of the points `0..judged` (module doc).
+/// `planes` holds the planes of every point of the triangulation (ghosts from `judged` on)
+/// and is replaced by the adjusted planes.
+pub(crate) fn adjust_planes(
+    tri: &mut DualTriangulation,
+    planes: &mut Vec<Plane>,
+    judged: usize,
+) -> PlaneAdjustStats {
+    let exact = planes.clone();
+    let points = planes.len();
+    let mut state = State::new(tri, points, Cow::Owned(std::mem::take(planes)), judged);
+    let spacing = local_spacing(&state, points);
+    let mut stats = PlaneAdjustStats::default();
+    // A facet whose repair failed is tried again only after a kept move changed its
+    // neighbourhood.
+    let mut retry = vec![true; judged];
+    for _ in 0..MAX_PLANE_ADJUST_ROUNDS {
+        let queue: Vec<u32> = (0..judged as u32)
+            .filter(|&i| state.invalid[i as usize] && retry[i as usize])
+            .collect();
+        if queue.is_empty() {
+            break;
+        }
+        retry.iter_mut().for_each(|r| *r = false);
+        let mut kept = 0;
+        for i in queue {
+            // A tilt can make a flip worth while and the other way round: both are tried.
+            if state.invalid[i as usize]
+                && (try_tilts(&mut state, &exact, &spacing, i)
+                    || state
+                        .try_repair_with(i, judged, &mut |state, quad| {
+                            rescue_flip(state, &exact, &spacing, quad)
+                        })
+                        .is_some())
+            {
+                kept += 1;
+                // A move on a plane of i's ring renews verdicts up to three rings from i.
+                let near = polygons_of_plane(&state, i);
+                let near = affected_points(state.tri, &state.incident, &near);
+                for x in judged_around(&state, &near) {
+                    retry[x as usize] = true;
+                }
+            }
+        }
+        stats.tilts += kept;
+        if kept == 0 {
+            break;
+        }
+    }
+    // What the greedy moves cannot repair, random restarts around it may.
+    for i in 0..judged as u32 {
+        if state.invalid[i as usize] && kick(&mut state, &exact, &spacing, i) {
+            stats.tilts += 1;
+        }
+    }
+    stats.unresolved = state.invalid.iter().filter(|&&x| x).count();
+    *planes = state.planes.into_owned();
+    stats
+}
+
+/// Per point, the mean distance from its seed to its neighbours' seeds (1 for an isolated
+/// point).
+fn local_spacing(state: &State<'_>, points: usize) -> Vec<f64> {
+    let mut sum = vec![0.0; points];
+    let mut count = vec![0u32; points];
+    for t in &state.tri.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            let d = state.planes[a].point.distance(state.planes[b].point);
+            for x in [a, b] {
+                sum[x] += d;
+                count[x] += 1;
+            }
+        }
+    }
+    sum.iter()
+        .zip(&count)
+        .map(|(&s, &c)| {
+            if c > 0 && s > 0.0 {
+                s / f64::from(c)
+            } else {
+                1.0
+            }
+        })
+        .collect()
+}
+
+/// The exact plane of a point tilted by `degrees` towards direction `phi` (radians) of its
+/// tangent frame, through the same seed point.
+pub(crate) fn tilted(exact: &Plane, degrees: f64, phi: f64) -> Plane {
+    let (e1, e2) = exact.normal.any_orthonormal_pair();
+    let (s, c) = degrees.to_radians().sin_cos();
+    let direction = e1 * phi.cos() + e2 * phi.sin();
+    Plane {
+        point: exact.point,
+        normal: (exact.normal * c + direction * s).normalize(),
+    }
+}
+
+/// Tries tilts of the planes of facet i and its neighbours, smallest first; keeps the first
+/// that lowers the number of invalid facets around the tilted plane.
+fn try_tilts(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32) -> bool {
+    let mut fan = Vec::new();
+    state.tri.fan(i, state.incident[i as usize], &mut fan);
+    let mut ring: Vec<u32> = fan
+        .iter()
+        .flat_map(|&t| state.tri.triangles[t as usize])
+        .collect();
+    ring.sort_unstable();
+    ring.dedup();
+    // The facet's own plane first: its tilt is the one the user asked about.
+    ring.sort_by_key(|&j| j != i);
+    for &degrees in PLANE_TILT_STEPS_DEGREES {
+        debug_assert!(degrees <= MAX_PLANE_TILT_DEGREES);
+        for &j in &ring {
+            for d in 0..PLANE_TILT_DIRECTIONS {
+                let phi = std::f64::consts::TAU * d as f64 / PLANE_TILT_DIRECTIONS as f64;
+                let candidate = tilted(&exact[j as usize], degrees, phi);
+                if try_plane(state, spacing, j, candidate) {
+                    return true;
+                }
+            }
+        }
+    }
+    // Then offsets along the exact normal (the facet leaves its seed: last resort).
+    for &fraction in PLANE_OFFSET_STEPS {
+        for &j in &ring {
+            for sign in [1.0, -1.0] {
+                let e = &exact[j as usize];
+                let candidate = Plane {
+                    point: e.point + e.normal * (sign * fraction * spacing[j as usize]),
+                    normal: e.normal,
+                };
+                if try_plane(state, spacing, j, candidate) {
+                    return true;
+                }
+            }
+        }
+    }
+    false
+}
+
+/// Sets the plane of point j to `candidate` and keeps it if the number of invalid facets it
+/// can change drops, or stays while their runaway vertices come back ([`REACH_GAIN`]);
+/// otherwise restores the old plane.
+fn try_plane(state: &mut State<'_>, spacing: &[f64], j: u32, candidate: Plane) -> bool {
+    let old = state.planes[j as usize];
+    if old == candidate {
+        return false;
+    }
+    let points = judged_around(state, &polygons_of_plane(state, j));
+    let before = current(state, spacing, &points);
+    if before.count == 0 {
+        return false;
+    }
+    state.set_plane(j, candidate);
+    if let Some(verdicts) = judge(state, spacing, &points, &before) {
+        commit(state, verdicts);
+        return true;
+    }
+    state.set_plane(j, old);
+    false
+}
+
+/// After a flip of the quad's diagonal that did not pay by itself: tilts of the quad's
+/// planes, smallest first, until one makes the flip and the tilt together lower the number
+/// of invalid facets around them. Restores the planes when none does.
+fn rescue_flip(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], quad: [u32; 4]) -> bool {
+    for &degrees in RESCUE_TILT_STEPS_DEGREES {
+        for j in quad {
+            let old = state.planes[j as usize];
+            let mut changed = polygons_of_plane(state, j);
+            changed.extend_from_slice(&quad);
+            let points = judged_around(state, &changed);
+            // The verdicts still describe the mesh before the flip (the reach is measured
+            // after it, which only makes the test stricter for polygons the flip stretched).
+            let before = current(state, spacing, &points);
+            for d in 0..PLANE_TILT_DIRECTIONS {
+                let phi = std::f64::consts::TAU * d as f64 / PLANE_TILT_DIRECTIONS as f64;
+                state.set_plane(j, tilted(&exact[j as usize], degrees, phi));
+                if let Some(verdicts) = judge(state, spacing, &points, &before) {
+                    commit(state, verdicts);
+                    return true;
+                }
+            }
+            state.set_plane(j, old);
+        }
+    }
+    false
+}
+
+/// The points whose polygons a new plane of point j changes: j and its neighbours.
+fn polygons_of_plane(state: &State<'_>, j: u32) -> Vec<u32> {
+    affected_points(state.tri, &state.incident, &[j])
+}
+
+/// The judged points whose verdict can change when the polygons of `changed` change: them
+/// and their neighbours (overlap is judged between neighbours).
+fn judged_around(state: &State<'_>, changed: &[u32]) -> Vec<u32> {
+    let mut points = affected_points(state.tri, &state.incident, changed);
+    points.retain(|&x| (x as usize) < state.invalid.len());
+    points
+}
+
+/// How bad the invalid facets among some points are, compared lexicographically: how many,
+/// then their summed [`State::tangle`] (crossing edge pairs), then their summed reach.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Badness {
+    count: usize,
+    tangle: usize,
+    reach: f64,
+}
+
+impl Badness {
+    fn of(state: &mut State<'_>, spacing: &[f64], invalid: &[u32]) -> Self {
+        let mut tangle = 0usize;
+        let mut reach = 0.0;
+        for &x in invalid {
+            tangle = tangle.saturating_add(state.tangle(x));
+            reach += state.reach(x, spacing[x as usize]);
+        }
+        Badness {
+            count: invalid.len(),
+            tangle,
+            reach,
+        }
+    }
+
+    /// Fewer invalid facets; or as many, less tangled; or as tangled, with their runaway
+    /// vertices come back towards their seeds by [`REACH_GAIN`] (a runaway vertex is what
+    /// usually makes a facet invalid, and it returns step by step).
+    fn better_than(&self, before: &Badness) -> bool {
+        self.count < before.count
+            || (self.count == before.count
+                && (self.tangle < before.tangle
+                    || (self.tangle == before.tangle && self.reach < REACH_GAIN * before.reach)))
+    }
+}
+
+/// The badness of `points` by their current verdicts.
+fn current(state: &mut State<'_>, spacing: &[f64], points: &[u32]) -> Badness {
+    let invalid: Vec<u32> = points
+        .iter()
+        .copied()
+        .filter(|&x| state.invalid[x as usize])
+        .collect();
+    Badness::of(state, spacing, &invalid)
+}
+
+/// Fresh verdicts of `points` if they are better than `before`, None otherwise (known as soon
+/// as more facets are invalid than before).
+fn judge(
+    state: &mut State<'_>,
+    spacing: &[f64],
+    points: &[u32],
+    before: &Badness,
+) -> Option<Vec<(u32, bool)>> {
+    let mut verdicts = Vec::with_capacity(points.len());
+    let mut invalid = Vec::new();
+    // Those invalid before first: when they are all still invalid and no less bad, the move
+    // cannot pay (every other facet can only add to the badness), and that is known after
+    // judging only them, which is what most futile moves come to.
+    let (was_invalid, was_valid): (Vec<u32>, Vec<u32>) =
+        points.iter().partition(|&&x| state.invalid[x as usize]);
+    for &x in &was_invalid {
+        let v = state.facet_invalid(x);
+        verdicts.push((x, v));
+        if v {
+            invalid.push(x);
+        }
+    }
+    if invalid.len() == before.count && !Badness::of(state, spacing, &invalid).better_than(before) {
+        return None;
+    }
+    for x in was_valid {
+        let v = state.facet_invalid(x);
+        verdicts.push((x, v));
+        if v {
+            invalid.push(x);
+            if invalid.len() > before.count {
+                return None;
+            }
+        }
+    }
+    Badness::of(state, spacing, &invalid)
+        .better_than(before)
+        .then_some(verdicts)
+}
+
+fn commit(state: &mut State<'_>, verdicts: Vec<(u32, bool)>) {
+    for (x, v) in verdicts {
+        state.set_verdict(x, v);
+    }
+}
+
+/// Iterated local search around facet i, which the greedy moves left invalid: up to
+/// [`PLANE_KICKS`] times, tilt one or two planes of i and its neighbours at random (within
+/// [`MAX_PLANE_TILT_DEGREES`]), let the greedy tilts repair what that broke, and keep the
+/// whole when it leaves fewer invalid facets than before; otherwise undo it.
+fn kick(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32) -> bool {
+    let mut rng = SplitMix64::new(0x7469_6c74 ^ u64::from(i));
+    for _ in 0..PLANE_KICKS {
+        let ring = polygons_of_plane(state, i);
+        state.journal = Some(Journal::default());
+        for _ in 0..1 + rng.below(3) {
+            let j = ring[rng.below(ring.len())];
+            let degrees = MAX_PLANE_TILT_DEGREES * (0.2 + 0.8 * rng.next_f64());
+            let phi = std::f64::consts::TAU * rng.next_f64();
+            state.set_plane(j, tilted(&exact[j as usize], degrees, phi));
+        }
+        let points = judged_around(state, &ring);
+        let verdicts: Vec<(u32, bool)> = points
+            .iter()
+            .map(|&x| (x, state.facet_invalid(x)))
+            .collect();
+        commit(state, verdicts);
+        for _ in 0..KICK_REPAIR_PASSES {
+            let mut any = false;
+            for &x in &points {
+                if state.invalid[x as usize] {
+                    any |= try_tilts(state, exact, spacing, x);
+                }
+            }
+            if !any {
+                break;
+            }
+        }
+        let gain = state
+            .journal
+            .as_ref()
+            .map_or(0, |journal| journal.invalid_gain(&state.invalid));
+        if gain < 0 {
+            state.journal = None;
+            return true;
+        }
+        state.undo();
+    }
+    false
+}
+
+/// The tilt of `plane` against the exact tangent plane with unit normal `normal` at `seed`,
+/// in degrees, and the plane's signed offset from the seed along its normal.
+pub(crate) fn tilt_and_offset(plane: &Plane, seed: DVec3, normal: DVec3) -> (f64, f64) {
+    let cos = plane.normal.dot(normal).clamp(-1.0, 1.0);
+    let sin = plane.normal.cross(normal).length();
+    (
+        sin.atan2(cos).to_degrees(),
+        plane.normal.dot(plane.point - seed),
+    )
+}
