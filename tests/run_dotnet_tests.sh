@@ -97,6 +97,7 @@ cp "$NUNIT" "$BUILD_DIR/"
 # shellcheck disable=SC2046
 "${MCS[@]}" -target:exe -out:"$BUILD_DIR/Tpi.Tests.exe" -r:"$BUILD_DIR/Tpi.Native.dll" -r:"$BUILD_DIR/Tpi.Logic.dll" \
     -r:"$BUILD_DIR/nunit.framework.dll" -r:System.Core.dll \
+    $(for f in "$PLUGIN"/Tpi.Tests/Fixtures/*.bin; do echo "-resource:$f,Tpi.Tests.Fixtures.$(basename "$f")"; done) \
     $(sources "$PLUGIN/Tpi.Tests") || fail "compiling Tpi.Tests failed"
 
 echo "native library: $LIB_DIR/libtpi.so"
