@@ -16,7 +16,8 @@ namespace Tpi.GhComponents
         /// <inheritdoc/>
         public override string Description { get { return "Planar panels on free-form surfaces by tangent plane intersection."; } }
         /// <summary>Never change: identifies the library in .gh files.</summary>
-        public override Guid Id { get { return new Guid("3C8A1F52-6E0D-4D7B-A2B9-51F0E7C4D6A3"); } }
+        public override Guid Id { get { return LibraryId; } }
+        internal static readonly Guid LibraryId = new Guid("3C8A1F52-6E0D-4D7B-A2B9-51F0E7C4D6A3");
         /// <inheritdoc/>
         public override string AuthorName { get { return "TPI contributors"; } }
         /// <inheritdoc/>
@@ -40,7 +41,19 @@ namespace Tpi.GhComponents
     {
         public static string Problem
         {
-            get { return Tpi.Plugin.NativeLoader.Ensure(); }
+            get { return Tpi.Plugin.NativeLoader.Ensure(GhaFolder()); }
+        }
+
+        /// <summary>
+        /// The .gha's folder as Grasshopper knows it: with "memory load" (COFF byte arrays) the
+        /// assembly has no Location, but Grasshopper's assembly record still has the file.
+        /// </summary>
+        static string GhaFolder()
+        {
+            var server = Grasshopper.Instances.ComponentServer;
+            var info = server == null ? null : server.FindAssembly(TpiGrasshopperInfo.LibraryId);
+            var location = info == null ? null : info.Location;
+            return string.IsNullOrEmpty(location) ? null : System.IO.Path.GetDirectoryName(location);
         }
     }
 }

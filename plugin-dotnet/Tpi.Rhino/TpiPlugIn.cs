@@ -20,7 +20,9 @@ namespace Tpi.RhinoPlugIn
         /// <inheritdoc/>
         protected override LoadReturnCode OnLoad(ref string errorMessage)
         {
-            var problem = Tpi.Plugin.NativeLoader.Ensure();
+            // The .rhp's own folder as Rhino knows it (Assembly.Location is the fallback).
+            string path = PlugIn.PathFromId(Id);
+            var problem = Tpi.Plugin.NativeLoader.Ensure(string.IsNullOrEmpty(path) ? null : System.IO.Path.GetDirectoryName(path));
             if (problem != null)
             {
                 errorMessage = "TPI: " + problem;

@@ -33,12 +33,13 @@ namespace Tpi.RhinoPlugIn
             var get = new GetObject();
             get.SetCommandPrompt("Select a discrete surface");
             get.GeometryFilter = ObjectType.Mesh;
-            get.SetCustomGeometryFilter((obj, geometry, ci) => obj is DiscreteSurfaceObject);
+            get.SetCustomGeometryFilter((obj, geometry, ci) => DiscreteSurfaceObject.IsDiscreteSurface(obj));
             if (get.Get() != GetResult.Object) return get.CommandResult();
             var objRef = get.Object(0);
-            var target = objRef.Object() as DiscreteSurfaceObject;
-            var document = target == null ? null : target.Document;
-            if (document == null) return Result.Failure;
+            // A plain mesh carrying the data (opened or pasted, not upgraded yet) works too: the
+            // replace below makes it a discrete surface object.
+            var document = DiscreteSurfaceObject.StoredDocumentOf(objRef.Object());
+            if (document == null) { RhinoApp.WriteLine("TPI: the object's discrete surface data cannot be read."); return Result.Failure; }
             var spec = document.Surface as NurbsSurfaceSpec;
             if (spec == null) { RhinoApp.WriteLine("TPI: only NURBS-based discrete surfaces can be edited."); return Result.Failure; }
             var surface = RhinoConvert.ToNurbsSurface(spec);
@@ -129,7 +130,7 @@ namespace Tpi.RhinoPlugIn
                     doc.Views.Redraw();
                 }
                 if (!changed || state.PendingEdits > 0) return Result.Nothing;
-                DiscreteSurfaceObject.Replace(doc, objRef, state, document.SourceSurfaceId);
+                DiscreteSurfaceObject.Replace(doc, objRef, state, document);
             }
             doc.Views.Redraw();
             return Result.Success;

@@ -9,6 +9,14 @@ using System.Drawing;
 using System.Threading;
 using System.Threading.Tasks;
 
+namespace Grasshopper
+{
+    public static class Instances
+    {
+        public static Kernel.GH_ComponentServer ComponentServer { get { return null; } }
+    }
+}
+
 namespace Grasshopper.Kernel
 {
     public enum GH_ParamAccess { item = 0, list = 1, tree = 2 }
@@ -27,8 +35,14 @@ namespace Grasshopper.Kernel
         bool SetDataList(int paramIndex, IEnumerable data);
     }
 
+    public class GH_ComponentServer
+    {
+        public GH_AssemblyInfo FindAssembly(Guid libraryId) { return null; }
+    }
+
     public abstract class GH_AssemblyInfo
     {
+        public string Location { get { return null; } }
         public virtual string Name { get { return null; } }
         public virtual Bitmap Icon { get { return null; } }
         public virtual string Description { get { return null; } }

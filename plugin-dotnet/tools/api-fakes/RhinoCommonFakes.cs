@@ -13,10 +13,31 @@ namespace Rhino
     public class RhinoDoc
     {
         public static event EventHandler<DocObjects.RhinoReplaceObjectEventArgs> ReplaceRhinoObject;
+        public static event EventHandler<DocumentOpenEventArgs> BeginOpenDocument;
+        public static event EventHandler<DocumentOpenEventArgs> EndOpenDocument;
+        public static event EventHandler<DocumentEventArgs> CloseDocument;
+        public static event EventHandler<DocObjects.RhinoObjectEventArgs> AddRhinoObject;
+        public static event EventHandler<DocObjects.RhinoObjectEventArgs> UndeleteRhinoObject;
+        public uint BeginUndoRecord(string description) { return 0; }
+        public bool EndUndoRecord(uint undoRecordSerialNumber) { return false; }
+        public bool UndoRecordingEnabled { get; set; }
         public static RhinoDoc FromRuntimeSerialNumber(uint serialNumber) { return null; }
         public uint RuntimeSerialNumber { get { return 0; } }
         public DocObjects.Tables.ObjectTable Objects { get { return null; } }
         public DocObjects.Tables.ViewTable Views { get { return null; } }
+    }
+
+    public class DocumentEventArgs : EventArgs
+    {
+        public RhinoDoc Document { get { return null; } }
+        public uint DocumentSerialNumber { get { return 0; } }
+    }
+
+    public class DocumentOpenEventArgs : DocumentEventArgs
+    {
+        public string FileName { get { return null; } }
+        public bool Merge { get { return false; } }
+        public bool Reference { get { return false; } }
     }
 
     public static class RhinoApp
@@ -35,6 +56,8 @@ namespace Rhino.PlugIns
 
     public abstract class PlugIn
     {
+        public Guid Id { get { return Guid.Empty; } }
+        public static string PathFromId(Guid pluginId) { return null; }
         public virtual PlugInLoadTime LoadTime { get { return PlugInLoadTime.WhenNeeded; } }
         protected virtual LoadReturnCode OnLoad(ref string errorMessage) { return LoadReturnCode.Success; }
     }
@@ -49,6 +72,7 @@ namespace Rhino.Commands
     {
         public abstract string EnglishName { get; }
         protected abstract Result RunCommand(RhinoDoc doc, RunMode mode);
+        public static bool InCommand() { return false; }
     }
 }
 
@@ -76,6 +100,8 @@ namespace Rhino.DocObjects
     {
         public Guid Id { get { return Guid.Empty; } }
         public Geometry.GeometryBase Geometry { get { return null; } }
+        public RhinoDoc Document { get { return null; } }
+        public bool IsDeleted { get { return false; } }
         public virtual string ShortDescription(bool plural) { return null; }
     }
 
@@ -88,6 +114,8 @@ namespace Rhino.DocObjects
     {
         public ObjRef(RhinoDoc doc, Guid id) { }
         public Geometry.Surface Surface() { return null; }
+        public Geometry.Brep Brep() { return null; }
+        public Geometry.ComponentIndex GeometryComponentIndex { get { return new Geometry.ComponentIndex(); } }
         public Geometry.Point Point() { return null; }
         public RhinoObject Object() { return null; }
         public Guid ObjectId { get { return Guid.Empty; } }
@@ -97,6 +125,12 @@ namespace Rhino.DocObjects
     {
         public bool HiddenObjects { get; set; }
         public bool LockedObjects { get; set; }
+    }
+
+    public class RhinoObjectEventArgs : EventArgs
+    {
+        public Guid ObjectId { get { return Guid.Empty; } }
+        public RhinoObject TheObject { get { return null; } }
     }
 
     public class RhinoReplaceObjectEventArgs : EventArgs
@@ -114,6 +148,7 @@ namespace Rhino.DocObjects.Tables
     {
         public void AddRhinoObject(Custom.CustomMeshObject meshObject) { }
         public bool Replace(ObjRef objref, RhinoObject newObject) { return false; }
+        public RhinoObject FindId(Guid id) { return null; }
         public Guid AddPoint(Geometry.Point3d point) { return Guid.Empty; }
         public Guid AddPolyline(IEnumerable<Geometry.Point3d> points) { return Guid.Empty; }
         public Guid AddMesh(Geometry.Mesh mesh) { return Guid.Empty; }
@@ -286,7 +321,13 @@ namespace Rhino.Geometry
         public double T1 { get; set; }
     }
 
-    public struct ComponentIndex { }
+    public enum ComponentIndexType { InvalidType = 0, BrepVertex = 1, BrepEdge = 2, BrepFace = 3, BrepTrim = 4, BrepLoop = 5 }
+
+    public struct ComponentIndex
+    {
+        public ComponentIndexType ComponentIndexType { get { return 0; } }
+        public int Index { get { return 0; } }
+    }
 
     public struct Transform
     {
@@ -341,6 +382,15 @@ namespace Rhino.Geometry
         public Point3d PointAt(double u, double v) { return new Point3d(); }
     }
 
+    public class SurfaceProxy : Surface { }
+
+    public class BrepFace : SurfaceProxy { }
+
+    public class Brep : GeometryBase
+    {
+        public Collections.BrepFaceList Faces { get { return null; } }
+    }
+
     public class NurbsSurface : Surface
     {
         public static NurbsSurface Create(int dimension, bool isRational, int order0, int order1, int controlPointCount0, int controlPointCount1) { return null; }
@@ -364,11 +414,18 @@ namespace Rhino.Geometry
         public Collections.MeshFaceList Faces { get { return null; } }
         public Collections.MeshNgonList Ngons { get { return null; } }
         public Collections.MeshVertexNormalList Normals { get { return null; } }
+        public Mesh DuplicateMesh() { return null; }
     }
 }
 
 namespace Rhino.Geometry.Collections
 {
+    public class BrepFaceList
+    {
+        public int Count { get { return 0; } }
+        public BrepFace this[int index] { get { return null; } }
+    }
+
     public class NurbsSurfacePointList
     {
         public int CountU { get { return 0; } }
