@@ -2,6 +2,7 @@
 // plugin-dotnet/API-CHECK.md.
 using System;
 using System.Drawing;
+using System.Reflection;
 using Grasshopper.Kernel;
 
 namespace Tpi.GhComponents
@@ -21,9 +22,32 @@ namespace Tpi.GhComponents
         /// <inheritdoc/>
         public override string AuthorName { get { return "TPI contributors"; } }
         /// <inheritdoc/>
-        public override string AuthorContact { get { return "https://github.com/ (see README)"; } }
+        public override string AuthorContact { get { return ProjectUrl; } }
+
+        /// <summary>
+        /// The project's address, set at build time (-p:TpiProjectUrl=..., the release workflow
+        /// passes the GitHub repository's); the README's section otherwise.
+        /// </summary>
+        static string ProjectUrl
+        {
+            get
+            {
+                foreach (AssemblyMetadataAttribute a in typeof(TpiGrasshopperInfo).Assembly.GetCustomAttributes(typeof(AssemblyMetadataAttribute), false))
+                    if (a.Key == "TpiProjectUrl" && !string.IsNullOrEmpty(a.Value)) return a.Value;
+                return "see plugin-dotnet/README.md of the TPI sources";
+            }
+        }
         /// <inheritdoc/>
         public override string Version { get { return "0.1.0"; } }
+    }
+
+    /// <summary>Where the components sit: our own "TPI" tab, one panel per step.</summary>
+    internal static class Tab
+    {
+        public const string Name = "TPI";
+        public const string Pattern = "1 Pattern";
+        public const string Panels = "2 Panels";
+        public const string Analysis = "3 Analysis";
     }
 
     /// <summary>The 24x24 icons, embedded as Tpi.Grasshopper.Icons.NAME.png.</summary>

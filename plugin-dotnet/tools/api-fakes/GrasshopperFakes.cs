@@ -19,6 +19,7 @@ namespace Grasshopper
 
 namespace Grasshopper.Kernel
 {
+    public enum GH_Exposure { hidden = -1, primary = 2, secondary = 4, tertiary = 8, quarternary = 16, quinary = 32, senary = 64, septenary = 128, octonary = 256, last = 256, dropdown = 65536, obscure = 65536 }
     public enum GH_ParamAccess { item = 0, list = 1, tree = 2 }
     public enum GH_RuntimeMessageLevel { Blank = 0, Remark = 1, Warning = 10, Error = 20 }
 
@@ -61,6 +62,7 @@ namespace Grasshopper.Kernel
         protected abstract void RegisterOutputParams(GH_OutputParamManager pManager);
         protected abstract void SolveInstance(IGH_DataAccess DA);
         public void AddRuntimeMessage(GH_RuntimeMessageLevel level, string text) { }
+        public virtual GH_Exposure Exposure { get { return GH_Exposure.primary; } }
 
         protected class GH_InputParamManager
         {
