@@ -100,6 +100,9 @@ cp "$NUNIT" "$BUILD_DIR/"
     $(for f in "$PLUGIN"/Tpi.Tests/Fixtures/*.bin; do echo "-resource:$f,Tpi.Tests.Fixtures.$(basename "$f")"; done) \
     $(sources "$PLUGIN/Tpi.Tests") || fail "compiling Tpi.Tests failed"
 
+# pack.sh on fake build outputs: fails loudly on a missing or wrong-architecture native library.
+bash "$PLUGIN/yak/test_pack.sh" || fail "pack.sh tests failed (plugin-dotnet/yak/test_pack.sh)"
+
 echo "native library: $LIB_DIR/libtpi.so"
 export TPI_HEADER=$ROOT/include/tpi.h
 export TPI_TEST_DATA_DIR=$BUILD_DIR
