@@ -8,12 +8,16 @@
 # type-checked against fakes of the members listed in plugin-dotnet/API-CHECK.md.
 # Closes with the line "N passed, M failed" and exits non-zero if anything failed.
 #
+# Also: the API check of the adapters against the RhinoCommon/Grasshopper typed stubs from PyPI
+# (plugin-dotnet/tools/api-check) and the pack.sh tests (plugin-dotnet/yak/test_pack.sh).
+#
 # Environment (all optional):
 #   CARGO_TARGET_DIR      cargo's target directory (default: target)
 #   TPI_LIB_DIR           directory holding libtpi.so (default: $CARGO_TARGET_DIR/release)
 #   TPI_SKIP_BUILD=1      use the library already in TPI_LIB_DIR instead of running cargo
 #   TPI_DOTNET_BUILD_DIR  where the compiled assemblies go (default: $CARGO_TARGET_DIR/dotnet-tests)
 #   TPI_DOTNET_FILTER     only run tests whose Fixture.Method name contains this text
+#   TPI_STUBS_DIR         unpacked rhino-stubs-typed + grasshopper-stubs-typed (default: pip download)
 #
 # Needs: cargo, and Debian's mono-devel (mcs, mono) and nunit-console (nunit.framework.dll);
 # when they are missing and this runs as root with apt-get, it installs them:
@@ -92,6 +96,10 @@ FAKES=$PLUGIN/tools/api-fakes
     -r:"$BUILD_DIR/Tpi.Logic.dll" -r:System.Drawing.dll \
     $(sources "$PLUGIN/Tpi.Grasshopper") "$PLUGIN/Shared/NativeLoader.cs" || fail "type check of Tpi.Grasshopper against the API fakes failed"
 echo "adapters type-checked against the API fakes (plugin-dotnet/tools/api-fakes)"
+# The API the compiled adapters use (read from their metadata) and every member of the fakes,
+# checked against the official typed stubs (pip: rhino-stubs-typed, grasshopper-stubs-typed);
+# includes the tests that a renamed member fails. TPI_STUBS_DIR: an unpacked copy (no download).
+bash "$PLUGIN/tools/api-check/run_api_check.sh" "$BUILD_DIR" || fail "API check against the RhinoCommon/Grasshopper stubs failed"
 
 cp "$NUNIT" "$BUILD_DIR/"
 # shellcheck disable=SC2046

@@ -21,7 +21,7 @@ namespace Grasshopper.Kernel
 {
     public enum GH_Exposure { hidden = -1, primary = 2, secondary = 4, tertiary = 8, quarternary = 16, quinary = 32, senary = 64, septenary = 128, octonary = 256, last = 256, dropdown = 65536, obscure = 65536 }
     public enum GH_ParamAccess { item = 0, list = 1, tree = 2 }
-    public enum GH_RuntimeMessageLevel { Blank = 0, Remark = 1, Warning = 10, Error = 20 }
+    public enum GH_RuntimeMessageLevel { Blank = 0, Warning = 10, Error = 20, Remark = 255 }
 
     public interface IGH_Param
     {

@@ -189,7 +189,7 @@ namespace Rhino.DocObjects.Custom
 
 namespace Rhino.Input
 {
-    public enum GetResult { NoResult = 0, Cancel = 1, Nothing = 2, Option = 3, Number = 4, Color = 5, Undo = 6, Miss = 7, Point = 8, Point2d = 9, Line2d = 10, Rectangle2d = 11, Object = 12, String = 13, Timeout = 23, User1 = 0x40000000 }
+    public enum GetResult { NoResult = 0, Cancel = 1, Nothing = 2, Option = 3, Number = 4, Color = 5, Undo = 6, Miss = 7, Point = 8, Point2d = 9, Line2d = 10, Rectangle2d = 11, Object = 12, String = 13, Timeout = 15, ExitRhino = 268435455 }
 
     public static class RhinoGet
     {
@@ -264,7 +264,7 @@ namespace Rhino.Input.Custom
 
 namespace Rhino.Display
 {
-    public enum PointStyle { Simple = 0, ControlPoint = 1, RoundControlPoint = 2, ActivePoint = 3, RoundActivePoint = 4, X = 5 }
+    public enum PointStyle { Simple = 0, ControlPoint = 1, ActivePoint = 2, X = 3, RoundControlPoint = 5, RoundActivePoint = 6 }
 
     public class DisplayPipeline
     {
@@ -350,15 +350,11 @@ namespace Rhino.Geometry
         public Vector3d Diagonal { get { return new Vector3d(); } }
     }
 
-    public class CommonObject
-    {
-        public DocObjects.Custom.UserDataList UserData { get { return null; } }
-    }
-
-    public class GeometryBase : CommonObject { }
+    public class GeometryBase : Runtime.CommonObject { }
 
     public class Point : GeometryBase
     {
+        internal Point() { }
         public Point3d Location { get { return new Point3d(); } set { } }
     }
 
@@ -393,6 +389,7 @@ namespace Rhino.Geometry
 
     public class NurbsSurface : Surface
     {
+        internal NurbsSurface() { }
         public static NurbsSurface Create(int dimension, bool isRational, int order0, int order1, int controlPointCount0, int controlPointCount1) { return null; }
         public Collections.NurbsSurfacePointList Points { get { return null; } }
         public Collections.NurbsSurfaceKnotList KnotsU { get { return null; } }
@@ -415,6 +412,14 @@ namespace Rhino.Geometry
         public Collections.MeshNgonList Ngons { get { return null; } }
         public Collections.MeshVertexNormalList Normals { get { return null; } }
         public Mesh DuplicateMesh() { return null; }
+    }
+}
+
+namespace Rhino.Runtime
+{
+    public class CommonObject
+    {
+        public DocObjects.Custom.UserDataList UserData { get { return null; } }
     }
 }
 
