@@ -85,7 +85,7 @@ namespace Tpi.Tests
     /// median of several drags; asserts correctness only (a timing depends on the machine).
     /// Targets: 5 ms at 10k, 30 ms at 100k. TPI_BENCH_LARGE=0 skips the 100k size.
     /// </summary>
-    [TestFixture]
+    [TestFixture, Category("Benchmark")]
     public class DisplayUpdateBenchmark
     {
         static double Median(List<double> xs) { xs.Sort(); return xs[xs.Count / 2]; }
