@@ -48,10 +48,15 @@ namespace Tpi.RhinoPlugIn
             catch (FormatException) { return null; }
         }
 
-        /// <summary>True if <paramref name="obj"/> is or will become a discrete surface (a filter for GetObject).</summary>
+        /// <summary>
+        /// True if <paramref name="obj"/> is or will become a discrete surface (a filter for
+        /// GetObject, called for every candidate: it looks for the data without reading it).
+        /// </summary>
         public static bool IsDiscreteSurface(RhinoObject obj)
         {
-            return obj is DiscreteSurfaceObject || StoredDocumentOf(obj) != null;
+            if (obj is DiscreteSurfaceObject) return true;
+            var data = obj == null ? null : DiscreteSurfaceUserData.Find(obj.Geometry);
+            return data != null && data.Data != null;
         }
 
         /// <summary>The mesh of <paramref name="state"/> with <paramref name="document"/> (the state's, plus source id, face and transform) attached.</summary>
