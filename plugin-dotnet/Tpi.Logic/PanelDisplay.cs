@@ -69,5 +69,21 @@ namespace Tpi.Logic
             }
             return changed.ToArray();
         }
+
+        /// <summary>
+        /// <see cref="Update"/>, then keeps <paramref name="converted"/> (one item per panel, e.g.
+        /// the host's point lists) in step: resized to the panel count, and
+        /// <paramref name="convert"/> called only for the panels rebuilt. Returns those panels.
+        /// </summary>
+        public int[] UpdateInto<T>(MeshData mesh, List<T> converted, Func<Vec3[], T> convert)
+        {
+            if (converted == null) throw new ArgumentNullException("converted");
+            if (convert == null) throw new ArgumentNullException("convert");
+            var changed = Update(mesh);
+            if (converted.Count > Count) converted.RemoveRange(Count, converted.Count - Count);
+            while (converted.Count < Count) converted.Add(default(T));
+            foreach (var f in changed) converted[f] = convert(_polylines[f]);
+            return changed;
+        }
     }
 }

@@ -78,6 +78,48 @@ namespace Tpi.Tests
         }
     }
 
+    [TestFixture]
+    public class PanelDisplayIntoTests
+    {
+        [Test]
+        public void ConvertedItemsFollowTheMeshAndOnlyChangedOnesAreConverted()
+        {
+            using (var state = new DiscreteSurfaceState(LogicData.Dome(), LogicData.Hex(10, 10)))
+            {
+                var display = new PanelDisplay();
+                var converted = new List<string>();
+                int calls = 0;
+                Func<Vec3[], string> convert = p => { calls++; return string.Join(";", p.Select(v => v.X + "," + v.Y + "," + v.Z)); };
+                Action check = () =>
+                {
+                    var expected = MeshConversion.FacetPolylines(state.Mesh).Select(p => string.Join(";", p.Select(v => v.X + "," + v.Y + "," + v.Z))).ToList();
+                    CollectionAssert.AreEqual(expected, converted);
+                };
+                display.UpdateInto(state.Mesh, converted, convert);
+                Assert.AreEqual(100, calls);
+                check();
+                calls = 0;
+                var p0 = state.Points[44];
+                state.MovePoint(44, p0.S + 0.01, p0.T);
+                state.Recompute();
+                var changed = display.UpdateInto(state.Mesh, converted, convert);
+                Assert.AreEqual(changed.Length, calls, "converted exactly the changed panels");
+                Assert.Less(calls, 20);
+                check();
+                state.RemovePoint(7);
+                state.Recompute();
+                display.UpdateInto(state.Mesh, converted, convert);
+                Assert.AreEqual(99, converted.Count);
+                check();
+                state.AddPoint(0.5, 0.52);
+                state.Recompute();
+                display.UpdateInto(state.Mesh, converted, convert);
+                Assert.AreEqual(100, converted.Count);
+                check();
+            }
+        }
+    }
+
     /// <summary>
     /// The live-editing benchmark of issue 13, item 4: one pattern-point move through the native
     /// DiscreteSurface (edit + recompute), the copy of the mesh out of the library and the

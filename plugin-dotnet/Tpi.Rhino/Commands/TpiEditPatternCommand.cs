@@ -145,7 +145,10 @@ namespace Tpi.RhinoPlugIn
                 drag.SetCommandPrompt("New location on the surface");
                 drag.Constrain(surface, false);
                 drag.SetBasePoint(from, true);
-                List<List<Point3d>> panels = Panels(state.Mesh);
+                // The drawn panels: only those whose vertices changed are converted again (PanelDisplay).
+                var display = new PanelDisplay();
+                var panels = new List<List<Point3d>>();
+                Refresh(display, panels, state.Mesh);
                 drag.DynamicDraw += (sender, e) =>
                 {
                     PatternPoint st;
@@ -155,7 +158,7 @@ namespace Tpi.RhinoPlugIn
                         try
                         {
                             preview.MovePoint(point, st.S, st.T);
-                            if (preview.TryRecompute(out error)) panels = Panels(preview.Mesh);
+                            if (preview.TryRecompute(out error)) Refresh(display, panels, preview.Mesh);
                         }
                         catch (Tpi.Native.TpiException) { }
                     }
@@ -189,6 +192,12 @@ namespace Tpi.RhinoPlugIn
         {
             try { return edit(); }
             catch (Tpi.Native.TpiException e) { RhinoApp.WriteLine("TPI: " + e.NativeMessage); return failed; }
+        }
+
+        /// <summary>Brings <paramref name="panels"/> to <paramref name="mesh"/>, converting only the panels that changed.</summary>
+        static void Refresh(PanelDisplay display, List<List<Point3d>> panels, MeshData mesh)
+        {
+            display.UpdateInto(mesh, panels, polyline => polyline.Select(RhinoConvert.ToPoint).ToList());
         }
 
         static List<List<Point3d>> Panels(MeshData mesh)
