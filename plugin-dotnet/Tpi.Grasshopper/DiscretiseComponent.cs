@@ -79,6 +79,9 @@ namespace Tpi.GhComponents
             if (output == null) return;
             foreach (var e in output.Errors) AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e);
             foreach (var w in output.Warnings) AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, w);
+            // Under the component: the size of the last result (the library reports no progress
+            // while it runs, so there is nothing to show during a solve).
+            Message = output.Success ? output.Mesh.FacetCount + " panels" : null;
             if (!output.Success) return;
             DA.SetDataList(0, output.Polylines.Select(p => new PolylineCurve(GhConvert.ToPolyline(p))));
             DA.SetDataList(1, output.Planes.Select(GhConvert.ToPlane));

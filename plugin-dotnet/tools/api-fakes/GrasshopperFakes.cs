@@ -63,6 +63,7 @@ namespace Grasshopper.Kernel
         protected abstract void SolveInstance(IGH_DataAccess DA);
         public void AddRuntimeMessage(GH_RuntimeMessageLevel level, string text) { }
         public virtual GH_Exposure Exposure { get { return GH_Exposure.primary; } }
+        public string Message { get; set; }
 
         protected class GH_InputParamManager
         {
