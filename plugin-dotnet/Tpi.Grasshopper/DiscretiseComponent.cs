@@ -1,6 +1,6 @@
 // Checked against: Grasshopper 8 (grasshopper-stubs-typed 8.20.25157; GH_TaskCapableComponent<T>
 // and the nested GH_InputParamManager/GH_OutputParamManager, which the stubs omit, against the
-// Grasshopper SDK). Members used: see plugin-dotnet/API-CHECK.md.
+// Grasshopper SDK). Members used: read from the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 using System;
 using System.Collections.Generic;
 using System.Drawing;

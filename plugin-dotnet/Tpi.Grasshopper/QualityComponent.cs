@@ -1,5 +1,5 @@
 // Checked against: Grasshopper 8 (grasshopper-stubs-typed 8.20.25157; the nested param managers
-// against the Grasshopper SDK). Members used: see plugin-dotnet/API-CHECK.md.
+// against the Grasshopper SDK). Members used: read from the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 using System;
 using System.Drawing;
 using Grasshopper.Kernel;

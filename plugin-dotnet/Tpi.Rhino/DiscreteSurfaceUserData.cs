@@ -1,5 +1,5 @@
 // Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157; the protected virtuals of
-// UserData against the RhinoCommon source). Members used: see plugin-dotnet/API-CHECK.md.
+// UserData against the RhinoCommon source). Members used: read from the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 //
 // The discrete surface's data (surface, pattern points, options, source surface id) as user
 // data on the object's mesh, written into the .3dm as the bytes of Tpi.Logic.UserDataFormat.

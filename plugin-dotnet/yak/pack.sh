@@ -8,6 +8,7 @@
 # Usage: bash plugin-dotnet/yak/pack.sh VERSION URL   (after dotnet build -c Release, see README.md)
 #   URL: the project's address (the release workflow passes its GitHub repository's).
 # Environment: TPI_BUILD_ROOT   where the projects' bin/Release folders are (default: plugin-dotnet)
+#              TPI_DIST_DIR     where to lay out the package (default: plugin-dotnet/yak/dist)
 #
 # Fails, naming what is wrong, when anything is missing: a project output, a managed assembly,
 # the Windows tpi.dll (x86-64 PE), the macOS libtpi.dylib (universal: x86_64 and arm64), or a
@@ -17,7 +18,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 version=${1:?usage: pack.sh VERSION URL}
 url=${2:?usage: pack.sh VERSION URL (the project address, e.g. https://github.com/OWNER/REPO)}
 root=${TPI_BUILD_ROOT:-$here/..}
-dist=$here/dist
+dist=${TPI_DIST_DIR:-$here/dist}
 
 die() { echo "pack.sh: $*" >&2; exit 1; }
 

@@ -7,7 +7,8 @@
 set -uo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
-trap 'rm -rf "$work" "$here/dist"' EXIT
+trap 'rm -rf "$work"' EXIT
+dist=$work/dist
 passed=0; failed=0
 
 pe_dll() { # a PE32+ x86-64 DLL header: MZ, e_lfanew = 0x40, PE\0\0, machine 0x8664, optional header 0x20b, DLL flag
@@ -71,15 +72,15 @@ macho "$work/universal.dylib" x86_64 arm64
 macho "$work/intel.dylib" x86_64
 printf '\177ELF\002\001\001' > "$work/elf.so"; head -c 200 /dev/zero >> "$work/elf.so"
 url=https://github.com/tpi-project/tpi
-pack() { TPI_BUILD_ROOT=$work/root bash "$here/pack.sh" "$@"; }
+pack() { TPI_BUILD_ROOT=$work/root TPI_DIST_DIR=$dist bash "$here/pack.sh" "$@"; }
 
 layout "$work/root" "$work/tpi.dll" "$work/universal.dylib"
 expect "complete layout packs" 0 "" pack 1.2.3 "$url"
-if [ -f "$here/dist/net7.0/libtpi.dylib" ] && [ -f "$here/dist/net48/tpi.dll" ] && [ ! -f "$here/dist/net48/libtpi.dylib" ] \
-    && grep -qx "version: 1.2.3" "$here/dist/manifest.yml" && grep -qx "url: $url" "$here/dist/manifest.yml"; then
+if [ -f "$dist/net7.0/libtpi.dylib" ] && [ -f "$dist/net48/tpi.dll" ] && [ ! -f "$dist/net48/libtpi.dylib" ] \
+    && grep -qx "version: 1.2.3" "$dist/manifest.yml" && grep -qx "url: $url" "$dist/manifest.yml"; then
     passed=$((passed + 1)); echo "PASS  pack.sh: dist holds the libraries and the filled-in manifest"
 else
-    failed=$((failed + 1)); echo "FAIL  pack.sh: dist holds the libraries and the filled-in manifest"; ls -R "$here/dist" 2>&1 | sed 's/^/      /'
+    failed=$((failed + 1)); echo "FAIL  pack.sh: dist holds the libraries and the filled-in manifest"; ls -R "$dist" 2>&1 | sed 's/^/      /'
 fi
 layout "$work/root" "" "$work/universal.dylib"
 expect "no Windows DLL: fails naming tpi.dll" fail "missing the Windows native library tpi.dll" pack 1.2.3 "$url"

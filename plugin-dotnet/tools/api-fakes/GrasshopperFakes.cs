@@ -1,6 +1,7 @@
-// Fakes of the Grasshopper 8 members listed in plugin-dotnet/API-CHECK.md (stubs and the
-// Grasshopper SDK reference), for the Mono type check of the components only. Keep in step
-// with API-CHECK.md.
+// Fakes of the Grasshopper 8 members the components use (stubs and the Grasshopper SDK
+// reference), for the Mono type check of the components only. Every member here is itself
+// checked against the typed stubs (tools/api-check, see API-CHECK.md), except those listed with
+// their reason in tools/api-check/not-in-stubs.txt.
 #pragma warning disable 67, 649, 1591
 using System;
 using System.Collections;

@@ -1,8 +1,9 @@
-// Fakes of the RhinoCommon 8 members listed in plugin-dotnet/API-CHECK.md, with the C#
-// signatures the stubs and the RhinoCommon source give. Bodies do nothing. They exist only so
+// Fakes of the RhinoCommon 8 members the Rhino adapters use, with the C# signatures the stubs
+// and the RhinoCommon source give. Bodies do nothing. They exist only so
 // tests/run_dotnet_tests.sh can type-check the Rhino adapters with Mono (no RhinoCommon here):
-// a call the adapters make that is not in this list, or that does not match its signature,
-// fails that check. Keep in step with API-CHECK.md.
+// a call the adapters make that is not here, or that does not match its signature, fails that
+// check. Every member here is itself checked against the typed stubs (tools/api-check, see
+// API-CHECK.md), so the fakes cannot drift from the real API.
 #pragma warning disable 67, 649, 1591
 using System;
 using System.Collections.Generic;
