@@ -97,11 +97,21 @@ namespace Tpi.Logic
     /// </summary>
     public sealed class DocumentWorkQueue
     {
+        /// <summary>Ids in the order they came, each once (a file read may report an object twice).</summary>
+        sealed class OrderedIds
+        {
+            readonly List<Guid> _order = new List<Guid>();
+            readonly HashSet<Guid> _set = new HashSet<Guid>();
+            public int Count { get { return _order.Count; } }
+            public void Add(Guid id) { if (id != Guid.Empty && _set.Add(id)) _order.Add(id); }
+            public Guid[] Take() { var ids = _order.ToArray(); _order.Clear(); _set.Clear(); return ids; }
+        }
+
         sealed class PerDocument
         {
-            public readonly List<Guid> Upgrades = new List<Guid>();
-            public readonly List<Guid> ChangedSources = new List<Guid>();
-            public readonly List<Guid> Recompute = new List<Guid>();
+            public readonly OrderedIds Upgrades = new OrderedIds();
+            public readonly OrderedIds ChangedSources = new OrderedIds();
+            public readonly OrderedIds Recompute = new OrderedIds();
             public readonly HashSet<Guid> Reported = new HashSet<Guid>();
             public bool Opening;
         }
@@ -114,11 +124,6 @@ namespace Tpi.Logic
             PerDocument state;
             if (!_documents.TryGetValue(document, out state)) _documents[document] = state = new PerDocument();
             return state;
-        }
-
-        static void AddOnce(List<Guid> list, Guid id)
-        {
-            if (id != Guid.Empty && !list.Contains(id)) list.Add(id);
         }
 
         /// <summary>
@@ -140,7 +145,7 @@ namespace Tpi.Logic
         public void ObjectAdded(uint document, Guid id, bool carriesData, bool isDiscreteSurfaceObject)
         {
             if (!carriesData || isDiscreteSurfaceObject) return;
-            lock (_lock) AddOnce(Get(document).Upgrades, id);
+            lock (_lock) Get(document).Upgrades.Add(id);
         }
 
         /// <summary>
@@ -151,13 +156,13 @@ namespace Tpi.Logic
         public void ObjectReplaced(uint document, Guid id, bool newIsDiscreteSurfaceObject)
         {
             if (newIsDiscreteSurfaceObject) return;
-            lock (_lock) AddOnce(Get(document).ChangedSources, id);
+            lock (_lock) Get(document).ChangedSources.Add(id);
         }
 
         /// <summary>A discrete surface must be recomputed from its stored data.</summary>
         public void RecomputeLater(uint document, Guid id)
         {
-            lock (_lock) AddOnce(Get(document).Recompute, id);
+            lock (_lock) Get(document).Recompute.Add(id);
         }
 
         /// <summary>The document closed: everything recorded for it is dropped.</summary>
@@ -194,14 +199,11 @@ namespace Tpi.Logic
                 PerDocument state;
                 var work = new DocumentWork { Document = document, Upgrades = new Guid[0], ChangedSources = new Guid[0], Recompute = new Guid[0] };
                 if (!_documents.TryGetValue(document, out state) || state.Opening) return work;
-                work.Upgrades = state.Upgrades.ToArray();
-                work.ChangedSources = state.ChangedSources.ToArray();
+                work.Upgrades = state.Upgrades.Take();
+                work.ChangedSources = state.ChangedSources.Take();
                 // An upgrade recomputes nothing, so a recompute asked for an object that is also
                 // upgraded still runs after it.
-                work.Recompute = state.Recompute.ToArray();
-                state.Upgrades.Clear();
-                state.ChangedSources.Clear();
-                state.Recompute.Clear();
+                work.Recompute = state.Recompute.Take();
                 return work;
             }
         }

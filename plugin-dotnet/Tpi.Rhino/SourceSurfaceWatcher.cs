@@ -52,9 +52,12 @@ namespace Tpi.RhinoPlugIn
             var doc = e.Document;
             if (doc != null)
             {
+                // Keyed by the document's own serial number, as the Idle handler looks it up.
+                uint serial = doc.RuntimeSerialNumber;
                 var settings = new ObjectEnumeratorSettings { HiddenObjects = true, LockedObjects = true };
                 foreach (var obj in doc.Objects.GetObjectList(settings))
-                    s_queue.ObjectAdded(e.DocumentSerialNumber, obj.Id, DiscreteSurfaceUserData.Find(obj.Geometry) != null, obj is DiscreteSurfaceObject);
+                    s_queue.ObjectAdded(serial, obj.Id, DiscreteSurfaceUserData.Find(obj.Geometry) != null, obj is DiscreteSurfaceObject);
+                s_queue.EndOpen(serial);
             }
             s_queue.EndOpen(e.DocumentSerialNumber);
         }

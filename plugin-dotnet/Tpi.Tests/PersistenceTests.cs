@@ -301,6 +301,7 @@ namespace Tpi.Tests
             queue.ObjectAdded(3, B, true, false);
             Assert.IsFalse(queue.HasWork(3));
             Assert.IsTrue(queue.Take(3).IsEmpty);
+            queue.ObjectAdded(3, A, true, false); // the scan after the read reports it again
             queue.EndOpen(3);
             Assert.IsTrue(queue.HasWork(3));
             CollectionAssert.AreEqual(new[] { A, B }, queue.Take(3).Upgrades, "in the order they were read");
