@@ -139,7 +139,11 @@ namespace Tpi.RhinoPlugIn
         /// <summary>Second click of a move: returns the new (s, t), or null when cancelled.</summary>
         static PatternPoint? DragTo(RhinoDoc doc, NurbsSurface surface, DiscreteSurfaceState state, int point, Point3d from)
         {
-            using (var preview = new DiscreteSurfaceState(state.Document))
+            // The preview only draws panels: no quality report per mouse move (the same panels; the
+            // report is computed when the move is applied).
+            var previewDocument = state.Document;
+            previewDocument.Options.QualityReport = false;
+            using (var preview = new DiscreteSurfaceState(previewDocument))
             {
                 var drag = new GetPoint();
                 drag.SetCommandPrompt("New location on the surface");
