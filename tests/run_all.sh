@@ -7,7 +7,9 @@
 #   2. the C ABI tested from C (tests/run_c_tests.sh: compile against include/tpi.h, run,
 #      run again under valgrind);
 #   3. the .NET binding and the Rhino-free plugin logic with Mono against the real native
-#      library (tests/run_dotnet_tests.sh).
+#      library, the API check of the Rhino/Grasshopper adapters against the RhinoCommon and
+#      Grasshopper typed stubs, the pack.sh tests and actionlint on the release workflow
+#      (tests/run_dotnet_tests.sh).
 # Each of 2 and 3 ends with its own line "N passed, N failed".
 # Installs what it needs when missing, so it also works on a fresh machine.
 set -euo pipefail

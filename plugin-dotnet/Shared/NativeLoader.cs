@@ -1,53 +1,71 @@
-// Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157) — uses no RhinoCommon member.
-// Linked into Tpi.Rhino and Tpi.Grasshopper (not compiled with Mono here).
+// Checked against: .NET Framework 4.8 / .NET 7 (System.Runtime.InteropServices.NativeLibrary);
+// uses no RhinoCommon member. Linked into Tpi.Rhino and Tpi.Grasshopper (type-checked here
+// against the fakes in the net48 flavour; the net7.0 branch needs the .NET SDK).
 //
 // Makes DllImport("tpi") find the native library shipped beside the plug-in:
-//   - net48 (Rhino 8 on Windows, .NET Framework): loads tpi.dll from the plug-in folder by full
-//     path with LoadLibraryW; later DllImport("tpi") calls bind to the module already loaded;
+//   - net48 (Rhino 8 on Windows, .NET Framework): loads tpi.dll by full path with LoadLibraryW;
+//     later DllImport("tpi") calls bind to the module already loaded;
 //   - net7.0 (Rhino 8 on Windows and macOS): registers a DllImport resolver for Tpi.Native
-//     that loads tpi.dll / libtpi.dylib from the plug-in folder.
-// Both plug-ins call Ensure(); the first call wins, later calls do nothing.
+//     that loads tpi.dll / libtpi.dylib by full path.
+// Where to look and the decide-once-after-the-compatibility-check rule are
+// Tpi.Logic.NativeLoadDecision (tested with Mono): the folders the caller names (the .rhp's
+// path from Rhino, the .gha's from Grasshopper: a .gha loaded from bytes has an empty
+// Assembly.Location), then this assembly's and Tpi.Native.dll's folders when they have one.
+// Every later call returns the first answer: a mismatched library is never used.
 using System;
-using System.IO;
 using System.Reflection;
 using System.Runtime.InteropServices;
+using Tpi.Logic;
 
 namespace Tpi.Plugin
 {
     internal static class NativeLoader
     {
-        static readonly object s_lock = new object();
-        static bool s_done;
+        static readonly NativeLoadDecision s_decision = new NativeLoadDecision();
 
-        /// <summary>Returns null on success, else a message for the user.</summary>
-        public static string Ensure()
+        /// <summary>The library's file name on this platform.</summary>
+        public static string FileName
         {
-            lock (s_lock)
-            {
-                if (s_done) return null;
-                var folder = Path.GetDirectoryName(typeof(NativeLoader).Assembly.Location) ?? ".";
-                bool windows = Environment.OSVersion.Platform == PlatformID.Win32NT;
-                var file = Path.Combine(folder, windows ? "tpi.dll" : "libtpi.dylib");
-                if (!File.Exists(file)) return "the native library is missing: " + file;
+            get { return Environment.OSVersion.Platform == PlatformID.Win32NT ? "tpi.dll" : "libtpi.dylib"; }
+        }
+
+        /// <summary>Returns null when the library is loaded and compatible, else a message for the user (the same on every call).</summary>
+        public static string Ensure(params string[] folders)
+        {
+            var searched = NativeLoadDecision.Folders(folders,
+                new[] { LocationOf(typeof(NativeLoader).Assembly), LocationOf(typeof(Tpi.Native.TpiLibrary).Assembly) });
+            return s_decision.Ensure(FileName, searched, System.IO.File.Exists, Load, CompatibilityProblem);
+        }
+
+        static string LocationOf(Assembly assembly)
+        {
+            try { return assembly.Location; } // "" when loaded from bytes
+            catch (NotSupportedException) { return null; } // dynamic assemblies
+        }
+
+        static string Load(string file)
+        {
 #if NETFRAMEWORK
-                if (LoadLibraryW(file) == IntPtr.Zero) return "could not load " + file + " (error " + Marshal.GetLastWin32Error() + ")";
+            if (LoadLibraryW(file) == IntPtr.Zero) return "could not load " + file + " (Windows error " + Marshal.GetLastWin32Error() + ")";
 #else
-                try
-                {
-                    NativeLibrary.SetDllImportResolver(typeof(Tpi.Native.TpiLibrary).Assembly,
-                        (name, assembly, path) => name == "tpi" ? NativeLibrary.Load(file) : IntPtr.Zero);
-                }
-                catch (InvalidOperationException)
-                {
-                    // The other plug-in (Rhino or Grasshopper) registered it already.
-                }
-#endif
-                s_done = true;
-                if (!Tpi.Native.TpiLibrary.IsCompatible)
-                    return "native library " + Tpi.Native.TpiLibrary.Version + " does not match this plug-in (ABI " +
-                        Tpi.Native.TpiLibrary.AbiMajor + "." + Tpi.Native.TpiLibrary.AbiMinor + ")";
-                return null;
+            try
+            {
+                NativeLibrary.SetDllImportResolver(typeof(Tpi.Native.TpiLibrary).Assembly,
+                    (name, assembly, path) => name == "tpi" ? NativeLibrary.Load(file) : IntPtr.Zero);
             }
+            catch (InvalidOperationException)
+            {
+                // The other plug-in (Rhino or Grasshopper) registered it already.
+            }
+#endif
+            return null;
+        }
+
+        static string CompatibilityProblem(string file)
+        {
+            if (Tpi.Native.TpiLibrary.IsCompatible) return null;
+            return "the native library " + file + " (version " + Tpi.Native.TpiLibrary.Version + ") does not match this plug-in (ABI " +
+                Tpi.Native.TpiLibrary.AbiMajor + "." + Tpi.Native.TpiLibrary.AbiMinor + "): install matching versions";
         }
 
 #if NETFRAMEWORK

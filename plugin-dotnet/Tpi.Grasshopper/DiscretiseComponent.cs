@@ -1,6 +1,6 @@
 // Checked against: Grasshopper 8 (grasshopper-stubs-typed 8.20.25157; GH_TaskCapableComponent<T>
 // and the nested GH_InputParamManager/GH_OutputParamManager, which the stubs omit, against the
-// Grasshopper SDK). Members used: see plugin-dotnet/API-CHECK.md.
+// Grasshopper SDK). Members used: read from the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 using System;
 using System.Collections.Generic;
 using System.Drawing;
@@ -19,7 +19,7 @@ namespace Tpi.GhComponents
     {
         /// <summary>Made by Grasshopper.</summary>
         public DiscretiseComponent()
-            : base("TPI Discretise", "TPI", "Planar panels on a surface by tangent plane intersection: one planar panel per pattern point.", "Mesh", "TPI")
+            : base("TPI Discretise", "TPI", "Planar panels on a surface by tangent plane intersection: one planar panel per pattern point.", Tab.Name, Tab.Panels)
         {
         }
 
@@ -28,6 +28,9 @@ namespace Tpi.GhComponents
 
         /// <inheritdoc/>
         protected override Bitmap Icon { get { return Icons.Load("discretise"); } }
+
+        /// <inheritdoc/>
+        public override GH_Exposure Exposure { get { return GH_Exposure.primary; } }
 
         /// <inheritdoc/>
         protected override void RegisterInputParams(GH_InputParamManager pManager)
@@ -57,23 +60,28 @@ namespace Tpi.GhComponents
             var problem = Native.Problem;
             if (problem != null) { AddRuntimeMessage(GH_RuntimeMessageLevel.Error, problem); return; }
 
+            List<string> errors, warnings;
             if (InPreSolve)
             {
-                var input = CollectInput(DA);
-                if (input != null) TaskList.Add(Task.Run(() => ComponentSolvers.Discretise(input), CancelToken));
+                // One task per iteration, valid input or not, so GetSolveResults stays in step.
+                var input = CollectInput(DA, out errors, out warnings);
+                if (input == null) TaskList.Add(Task.FromResult(ComponentSolvers.DiscretiseOrReject(null, errors, warnings)));
+                else TaskList.Add(Task.Run(() => ComponentSolvers.DiscretiseOrReject(input, errors, warnings), CancelToken));
                 return;
             }
 
             DiscretiseOutput output;
             if (!GetSolveResults(DA, out output))
             {
-                var input = CollectInput(DA);
-                if (input == null) return;
-                output = ComponentSolvers.Discretise(input);
+                var input = CollectInput(DA, out errors, out warnings);
+                output = ComponentSolvers.DiscretiseOrReject(input, errors, warnings);
             }
             if (output == null) return;
             foreach (var e in output.Errors) AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e);
             foreach (var w in output.Warnings) AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, w);
+            // Under the component: the size of the last result (the library reports no progress
+            // while it runs, so there is nothing to show during a solve).
+            Message = output.Success ? output.Mesh.FacetCount + " panels" : null;
             if (!output.Success) return;
             DA.SetDataList(0, output.Polylines.Select(p => new PolylineCurve(GhConvert.ToPolyline(p))));
             DA.SetDataList(1, output.Planes.Select(GhConvert.ToPlane));
@@ -83,12 +91,16 @@ namespace Tpi.GhComponents
         }
 
         /// <summary>Reads the inputs on the UI thread (RhinoCommon calls stay off the worker).</summary>
-        DiscretiseInput CollectInput(IGH_DataAccess DA)
+        /// Returns null when the inputs cannot be used; the messages go into the lists (they are
+        /// reported with the result, on the UI thread).
+        DiscretiseInput CollectInput(IGH_DataAccess DA, out List<string> errors, out List<string> warnings)
         {
+            errors = new List<string>();
+            warnings = new List<string>();
             Surface surface = null;
-            if (!DA.GetData(0, ref surface) || surface == null) return null;
+            if (!DA.GetData(0, ref surface) || surface == null) return null; // Grasshopper itself warns about a missing S
             var spec = GhConvert.ToSpec(surface);
-            if (spec == null) { AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "the surface has no NURBS form"); return null; }
+            if (spec == null) { errors.Add("the surface has no NURBS form"); return null; }
             var points = new List<Point3d>();
             DA.GetDataList(1, points);
             var uv = new List<Point3d>();
@@ -100,10 +112,8 @@ namespace Tpi.GhComponents
             var input = new DiscretiseInput { Surface = spec, Options = options };
             if (points.Count > 0)
             {
-                var problems = new List<string>();
-                input.Points = GhConvert.ClosestParameters(surface, points, problems);
+                input.Points = GhConvert.ClosestParameters(surface, points, warnings);
                 input.PointsInSurfaceDomain = true;
-                foreach (var p in problems) AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, p);
                 // ClosestPoint works on the original surface; its domain is the NURBS form's.
             }
             else if (uv.Count > 0)
@@ -112,7 +122,7 @@ namespace Tpi.GhComponents
             }
             else
             {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, "give pattern points (P) or normalised uv (UV)");
+                warnings.Add("give pattern points (P) or normalised uv (UV)");
                 return null;
             }
             return input;

@@ -1,5 +1,5 @@
-// Checked against: RhinoCommon 8 and Grasshopper 8 (stubs 8.20.25157). Members used: see
-// plugin-dotnet/API-CHECK.md. Conversions between RhinoCommon types and Tpi.Logic data.
+// Checked against: RhinoCommon 8 and Grasshopper 8 (stubs 8.20.25157). Members used: read from
+// the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md). Conversions between RhinoCommon types and Tpi.Logic data.
 using System.Collections.Generic;
 using System.Linq;
 using Rhino.Geometry;

@@ -1,5 +1,5 @@
 // Checked against: Grasshopper 8 (grasshopper-stubs-typed 8.20.25157; the nested param managers
-// against the Grasshopper SDK). Members used: see plugin-dotnet/API-CHECK.md.
+// against the Grasshopper SDK). Members used: read from the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 using System;
 using System.Collections.Generic;
 using System.Drawing;
@@ -15,7 +15,7 @@ namespace Tpi.GhComponents
     {
         /// <summary>Made by Grasshopper.</summary>
         public PatternComponent()
-            : base("TPI Pattern", "TPIPat", "Pattern points in the unit square from a generator (grid, hex, jitter, random, poisson) or a spec such as hex:12x12.", "Mesh", "TPI")
+            : base("TPI Pattern", "TPIPat", "Pattern points in the unit square from a generator (grid, hex, jitter, random, poisson) or a spec such as hex:12x12.", Tab.Name, Tab.Pattern)
         {
         }
 
@@ -24,6 +24,9 @@ namespace Tpi.GhComponents
 
         /// <inheritdoc/>
         protected override Bitmap Icon { get { return Icons.Load("pattern"); } }
+
+        /// <inheritdoc/>
+        public override GH_Exposure Exposure { get { return GH_Exposure.primary; } }
 
         /// <inheritdoc/>
         protected override void RegisterInputParams(GH_InputParamManager pManager)

@@ -1,5 +1,5 @@
 // Checked against: Grasshopper 8 (grasshopper-stubs-typed 8.20.25157; the nested param managers
-// against the Grasshopper SDK). Members used: see plugin-dotnet/API-CHECK.md.
+// against the Grasshopper SDK). Members used: read from the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 using System;
 using System.Drawing;
 using Grasshopper.Kernel;
@@ -13,7 +13,7 @@ namespace Tpi.GhComponents
     {
         /// <summary>Made by Grasshopper.</summary>
         public QualityComponent()
-            : base("TPI Quality", "TPIQ", "Per-panel quality of a TPI Discretise result.", "Mesh", "TPI")
+            : base("TPI Quality", "TPIQ", "Per-panel quality of a TPI Discretise result.", Tab.Name, Tab.Analysis)
         {
         }
 
@@ -22,6 +22,9 @@ namespace Tpi.GhComponents
 
         /// <inheritdoc/>
         protected override Bitmap Icon { get { return Icons.Load("quality"); } }
+
+        /// <inheritdoc/>
+        public override GH_Exposure Exposure { get { return GH_Exposure.secondary; } }
 
         /// <inheritdoc/>
         protected override void RegisterInputParams(GH_InputParamManager pManager)

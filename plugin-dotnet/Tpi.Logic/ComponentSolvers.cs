@@ -100,7 +100,31 @@ namespace Tpi.Logic
     /// <summary>The components' solve functions.</summary>
     public static class ComponentSolvers
     {
-        /// <summary>"TPI Discretise".</summary>
+        /// <summary>
+        /// "TPI Discretise". The task-capable component's one result per solve: when reading the inputs failed
+        /// (<paramref name="input"/> null) an output without a mesh that carries
+        /// <paramref name="errors"/> and <paramref name="warnings"/>, else the discretisation
+        /// with <paramref name="warnings"/> (from reading the inputs) in front of its own.
+        /// So the pre-solve pass adds exactly one task per iteration, valid or not, and the
+        /// results never shift by one iteration.
+        /// </summary>
+        public static DiscretiseOutput DiscretiseOrReject(DiscretiseInput input, IEnumerable<string> errors, IEnumerable<string> warnings)
+        {
+            DiscretiseOutput output;
+            if (input == null)
+            {
+                output = new DiscretiseOutput();
+                if (errors != null) output.Errors.AddRange(errors);
+            }
+            else
+            {
+                output = Discretise(input);
+            }
+            if (warnings != null) output.Warnings.InsertRange(0, warnings);
+            return output;
+        }
+
+        /// <summary>"TPI Discretise": problems are reported in the output, never thrown.</summary>
         public static DiscretiseOutput Discretise(DiscretiseInput input)
         {
             var output = new DiscretiseOutput();

@@ -103,7 +103,7 @@ namespace Tpi.Logic
         }
 
         /// <summary>Newell's normal of a loop: twice the area vector.</summary>
-        static Vec3 NewellNormal(Vec3[] vertices, int[] loop)
+        internal static Vec3 NewellNormal(Vec3[] vertices, int[] loop)
         {
             var n = new Vec3();
             for (int k = 0; k < loop.Length; k++)

@@ -42,7 +42,7 @@ namespace Tpi.Logic
         public static MeshData From(Discretisation mesh)
         {
             if (mesh == null) throw new ArgumentNullException("mesh");
-            var sizes = mesh.GetFacetSizeArray().Select(s => (int)s).ToArray();
+            var sizes = ToInt(mesh.GetFacetSizeArray());
             var flags = mesh.Flags.ToArray();
             if (flags.Length == 0) flags = new FacetFlags[sizes.Length];
             QualityReport report;
@@ -51,11 +51,11 @@ namespace Tpi.Logic
             {
                 Vertices = mesh.Vertices.ToArray(),
                 FacetSizes = sizes,
-                FacetIndices = mesh.GetFacetIndexArray().Select(i => (int)i).ToArray(),
+                FacetIndices = ToInt(mesh.GetFacetIndexArray()),
                 Flags = flags,
                 Seeds = mesh.Seeds.ToArray(),
                 Planes = mesh.Planes.ToArray(),
-                DualTriangles = mesh.DualTriangles.Select(i => (int)i).ToArray(),
+                DualTriangles = ToInt(mesh.DualTriangles),
                 Quality = hasQuality ? report : (QualityReport?)null,
                 QualityJson = hasQuality ? mesh.QualityJson : null,
                 Diagnostics = mesh.DiagnosticEntries.ToArray(),
@@ -63,6 +63,14 @@ namespace Tpi.Logic
             };
             data.FacetStarts = Starts(sizes);
             return data;
+        }
+
+        /// <summary>uint to int with a plain loop (LINQ's Select costs more than the copy out of the library).</summary>
+        static int[] ToInt(IReadOnlyList<uint> values)
+        {
+            var result = new int[values.Count];
+            for (int i = 0; i < result.Length; i++) result[i] = checked((int)values[i]);
+            return result;
         }
 
         /// <summary>Plain mesh from vertices and facet loops (for tests and conversions).</summary>

@@ -15,9 +15,17 @@
 //              reader skips what it does not know and gives missing fields their defaults)
 //   generator  int32 byte length, UTF-8
 //   source     16 bytes Guid
+//   follow     (format 2 and later) int32 byte length L, then L bytes: 16 doubles source
+//              transform (row-major), int32 source face index (later versions append; a reader
+//              skips what it does not know)
 //   crc32      uint32 of everything before it (IEEE polynomial)
 //
 // where "array" is int32 count followed by count doubles.
+//
+// Versions: 1 (TPI 0.1, commit 9e2b174; Tpi.Tests/Fixtures/discrete-surface-v1.bin is such a
+// blob) has no follow block: it reads as source face -1 and the identity source transform.
+// 2 adds the follow block. A reader rejects a newer version than its own (FormatException
+// naming both), so an older plug-in never follows a source with a transform it cannot see.
 using System;
 using System.IO;
 using System.Text;
@@ -29,10 +37,13 @@ namespace Tpi.Logic
     public static class UserDataFormat
     {
         /// <summary>The format version written.</summary>
-        public const ushort FormatVersion = 1;
+        public const ushort FormatVersion = 2;
+        /// <summary>The oldest format version read (and migrated on read).</summary>
+        public const ushort OldestReadableVersion = 1;
         static readonly byte[] Magic = { (byte)'T', (byte)'P', (byte)'D', (byte)'S' };
         const int MaxArray = 1 << 27;
         const int OptionsV1Length = 2 + 3 * 8;
+        const int FollowV2Length = 16 * 8 + 4;
 
         /// <summary>The bytes of <paramref name="document"/>.</summary>
         public static byte[] Write(DiscreteSurfaceDocument document)
@@ -73,6 +84,9 @@ namespace Tpi.Logic
                     var generator = Encoding.UTF8.GetBytes(document.Generator ?? string.Empty);
                     w.Write(generator.Length); w.Write(generator);
                     w.Write(document.SourceSurfaceId.ToByteArray());
+                    w.Write(FollowV2Length);
+                    foreach (var x in document.SourceTransform) w.Write(x);
+                    w.Write(document.SourceFaceIndex);
                 }
                 var body = stream.ToArray();
                 var crc = Crc32(body, 0, body.Length);
@@ -87,6 +101,18 @@ namespace Tpi.Logic
         /// <summary>Reads bytes written by <see cref="Write"/>; a <see cref="FormatException"/> says what is wrong.</summary>
         public static DiscreteSurfaceDocument Read(byte[] bytes)
         {
+            ushort version;
+            return Read(bytes, out version);
+        }
+
+        /// <summary>
+        /// Reads bytes of any version from <see cref="OldestReadableVersion"/> to
+        /// <see cref="FormatVersion"/>; <paramref name="version"/> is the version found (less
+        /// than FormatVersion: the caller should store the migrated document again).
+        /// </summary>
+        public static DiscreteSurfaceDocument Read(byte[] bytes, out ushort version)
+        {
+            version = 0;
             if (bytes == null) throw new ArgumentNullException("bytes");
             if (bytes.Length < Magic.Length + 4 + 4) throw new FormatException("discrete surface data is truncated (" + bytes.Length + " bytes)");
             for (int i = 0; i < Magic.Length; i++)
@@ -98,7 +124,8 @@ namespace Tpi.Logic
                 using (var r = new BinaryReader(new MemoryStream(bytes, 0, bytes.Length - 4), Encoding.UTF8))
                 {
                     r.ReadBytes(Magic.Length);
-                    ushort version = r.ReadUInt16();
+                    version = r.ReadUInt16();
+                    if (version < OldestReadableVersion) throw new FormatException("discrete surface data of format " + version + " is not a known format");
                     if (version > FormatVersion)
                         throw new FormatException("discrete surface data of format " + version + " was written by a newer TPI plugin (this one reads up to " + FormatVersion + ")");
                     r.ReadUInt16();
@@ -132,12 +159,27 @@ namespace Tpi.Logic
                         WeldTolerance = r.ReadDouble(),
                         FlatTolerance = r.ReadDouble(),
                     };
-                    r.ReadBytes(optionsLength - OptionsV1Length); // fields of later versions
+                    Exact(r, optionsLength - OptionsV1Length); // fields of later versions
                     document.Options = options;
                     int generatorLength = r.ReadInt32();
                     if (generatorLength < 0 || generatorLength > 65536) throw new FormatException("bad generator length " + generatorLength);
                     document.Generator = Encoding.UTF8.GetString(Exact(r, generatorLength));
                     document.SourceSurfaceId = new Guid(Exact(r, 16));
+                    if (version >= 2)
+                    {
+                        int followLength = r.ReadInt32();
+                        if (followLength < FollowV2Length || followLength > 4096) throw new FormatException("bad follow block length " + followLength);
+                        var transform = new double[16];
+                        for (int i = 0; i < 16; i++) transform[i] = r.ReadDouble();
+                        try { document.SourceTransform = transform; }
+                        catch (ArgumentException e) { throw new FormatException("bad source transform: " + e.Message); }
+                        int face = r.ReadInt32();
+                        if (face < -1) throw new FormatException("bad source face index " + face);
+                        document.SourceFaceIndex = face;
+                        Exact(r, followLength - FollowV2Length); // fields of later versions
+                    }
+                    if (r.BaseStream.Position != r.BaseStream.Length)
+                        throw new FormatException("discrete surface data has " + (r.BaseStream.Length - r.BaseStream.Position) + " unexpected trailing bytes");
                     return document;
                 }
             }

@@ -1,5 +1,5 @@
 // Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157; the protected virtuals of
-// UserData against the RhinoCommon source). Members used: see plugin-dotnet/API-CHECK.md.
+// UserData against the RhinoCommon source). Members used: read from the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 //
 // The discrete surface's data (surface, pattern points, options, source surface id) as user
 // data on the object's mesh, written into the .3dm as the bytes of Tpi.Logic.UserDataFormat.
@@ -62,19 +62,36 @@ namespace Tpi.RhinoPlugIn
         protected override void OnDuplicate(UserData source)
         {
             var other = source as DiscreteSurfaceUserData;
-            if (other != null && other.Data != null) Data = (byte[])other.Data.Clone();
+            if (other != null && other.Data != null) { Data = (byte[])other.Data.Clone(); NeedsRecompute = other.NeedsRecompute; }
         }
+
+        /// <summary>
+        /// Set (never stored) when a transform that is not a similarity moved the data: the
+        /// mesh Rhino transformed is then not the recomputed one, and the watcher recomputes
+        /// the object when the document is idle.
+        /// </summary>
+        public bool NeedsRecompute { get; private set; }
 
         /// <inheritdoc/>
         protected override void OnTransform(Transform transform)
         {
             base.OnTransform(transform);
             if (Data == null) return;
-            var document = UserDataFormat.Read(Data);
-            if (document.Surface is NurbsSurfaceSpec)
+            DiscreteSurfaceDocument document;
+            try { document = UserDataFormat.Read(Data); }
+            catch (FormatException) { return; } // unreadable data stays as it is (the upgrade reports it)
+            var m = RhinoConvert.ToMatrix(transform);
+            try
             {
-                document.Surface = document.Surface.Transformed(RhinoConvert.ToMatrix(transform));
-                Data = UserDataFormat.Write(document);
+                // The surface moves with the mesh, the pattern with the surface, and the source
+                // transform remembers the move so the source keeps being followed.
+                Data = UserDataFormat.Write(document.Transformed(m));
+                if (Transforms.Classify(m) != TransformKind.Similarity) NeedsRecompute = true;
+            }
+            catch (NotSupportedException)
+            {
+                // An analytic surface (made in Grasshopper) has no transformed form: the mesh
+                // moved, the stored surface did not; a recompute would jump back, so none is asked.
             }
         }
 

@@ -1,5 +1,5 @@
 // Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157; DisplayConduit's protected
-// virtuals against the RhinoCommon source). Members used: see plugin-dotnet/API-CHECK.md.
+// virtuals against the RhinoCommon source). Members used: read from the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 using System.Collections.Generic;
 using System.Drawing;
 using Rhino.Display;

@@ -1,5 +1,5 @@
 // Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157; protected members against the
-// RhinoCommon source). Members used: see plugin-dotnet/API-CHECK.md.
+// RhinoCommon source). Members used: read from the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 using Rhino;
 using Rhino.PlugIns;
 
@@ -20,7 +20,9 @@ namespace Tpi.RhinoPlugIn
         /// <inheritdoc/>
         protected override LoadReturnCode OnLoad(ref string errorMessage)
         {
-            var problem = Tpi.Plugin.NativeLoader.Ensure();
+            // The .rhp's own folder as Rhino knows it (Assembly.Location is the fallback).
+            string path = PlugIn.PathFromId(Id);
+            var problem = Tpi.Plugin.NativeLoader.Ensure(string.IsNullOrEmpty(path) ? null : System.IO.Path.GetDirectoryName(path));
             if (problem != null)
             {
                 errorMessage = "TPI: " + problem;

@@ -411,6 +411,27 @@ namespace Tpi.Tests
     public class ComponentSolverTests
     {
         [Test]
+        public void RejectedInputStillGivesOneResultWithItsMessages()
+        {
+            // The task-capable component adds this as the iteration's task when its inputs are
+            // unusable, so the results of later iterations keep their places.
+            var rejected = ComponentSolvers.DiscretiseOrReject(null, new[] { "the surface has no NURBS form" }, new[] { "point 3 is off the surface" });
+            Assert.IsFalse(rejected.Success);
+            CollectionAssert.AreEqual(new[] { "the surface has no NURBS form" }, rejected.Errors);
+            CollectionAssert.AreEqual(new[] { "point 3 is off the surface" }, rejected.Warnings);
+            var warnedOnly = ComponentSolvers.DiscretiseOrReject(null, null, new[] { "give pattern points (P) or normalised uv (UV)" });
+            Assert.IsFalse(warnedOnly.Success);
+            Assert.IsEmpty(warnedOnly.Errors);
+
+            var input = new DiscretiseInput { Surface = LogicData.Dome(), Points = LogicData.Hex(4, 4) };
+            var solved = ComponentSolvers.DiscretiseOrReject(input, null, new[] { "point 3 was clamped" });
+            Assert.IsTrue(solved.Success);
+            Assert.AreEqual(16, solved.Mesh.FacetCount);
+            Assert.AreEqual("point 3 was clamped", solved.Warnings[0], "input warnings come first");
+            Assert.IsTrue(solved.Mesh.SameMesh(ComponentSolvers.Discretise(input).Mesh));
+        }
+
+        [Test]
         public void DiscretiseWithNormalisedPoints()
         {
             var output = ComponentSolvers.Discretise(new DiscretiseInput { Surface = LogicData.Dome(), Points = LogicData.Hex(6, 6) });

@@ -1,10 +1,11 @@
-// Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157). Members used: see
-// plugin-dotnet/API-CHECK.md.
+// Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157). Members used: read from
+// the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 using System;
 using System.Collections.Generic;
 using Rhino;
 using Rhino.Commands;
 using Rhino.DocObjects;
+using ComponentIndexType = Rhino.Geometry.ComponentIndexType;
 using Rhino.Input;
 using Rhino.Input.Custom;
 using Tpi.Logic;
@@ -72,10 +73,13 @@ namespace Tpi.RhinoPlugIn
                     Options = Tpi.Native.DiscretisationOptions.Default(),
                     Generator = generatorSpec,
                     SourceSurfaceId = surfaceRef.ObjectId,
+                    // A face picked on a polysurface: the watcher follows that face.
+                    SourceFaceIndex = surfaceRef.GeometryComponentIndex.ComponentIndexType == ComponentIndexType.BrepFace
+                        ? surfaceRef.GeometryComponentIndex.Index : -1,
                 };
                 using (var state = new DiscreteSurfaceState(document))
                 {
-                    DiscreteSurfaceObject.Add(doc, state, surfaceRef.ObjectId);
+                    DiscreteSurfaceObject.Add(doc, state, document);
                     RhinoApp.WriteLine("TPI: {0} planar panels, max deviation {1:G4}.", state.Mesh.FacetCount,
                         state.Mesh.Quality.HasValue ? state.Mesh.Quality.Value.MaxDeviation : double.NaN);
                 }

@@ -1,5 +1,5 @@
-// Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157). Members used: see
-// plugin-dotnet/API-CHECK.md.
+// Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157). Members used: read from
+// the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 using System;
 using System.Collections.Generic;
 using System.Drawing;
@@ -33,12 +33,13 @@ namespace Tpi.RhinoPlugIn
             var get = new GetObject();
             get.SetCommandPrompt("Select a discrete surface");
             get.GeometryFilter = ObjectType.Mesh;
-            get.SetCustomGeometryFilter((obj, geometry, ci) => obj is DiscreteSurfaceObject);
+            get.SetCustomGeometryFilter((obj, geometry, ci) => DiscreteSurfaceObject.IsDiscreteSurface(obj));
             if (get.Get() != GetResult.Object) return get.CommandResult();
             var objRef = get.Object(0);
-            var target = objRef.Object() as DiscreteSurfaceObject;
-            var document = target == null ? null : target.Document;
-            if (document == null) return Result.Failure;
+            // A plain mesh carrying the data (opened or pasted, not upgraded yet) works too: the
+            // replace below makes it a discrete surface object.
+            var document = DiscreteSurfaceObject.StoredDocumentOf(objRef.Object());
+            if (document == null) { RhinoApp.WriteLine("TPI: the object's discrete surface data cannot be read."); return Result.Failure; }
             var spec = document.Surface as NurbsSurfaceSpec;
             if (spec == null) { RhinoApp.WriteLine("TPI: only NURBS-based discrete surfaces can be edited."); return Result.Failure; }
             var surface = RhinoConvert.ToNurbsSurface(spec);
@@ -129,7 +130,7 @@ namespace Tpi.RhinoPlugIn
                     doc.Views.Redraw();
                 }
                 if (!changed || state.PendingEdits > 0) return Result.Nothing;
-                DiscreteSurfaceObject.Replace(doc, objRef, state, document.SourceSurfaceId);
+                DiscreteSurfaceObject.Replace(doc, objRef, state, document);
             }
             doc.Views.Redraw();
             return Result.Success;
@@ -138,13 +139,20 @@ namespace Tpi.RhinoPlugIn
         /// <summary>Second click of a move: returns the new (s, t), or null when cancelled.</summary>
         static PatternPoint? DragTo(RhinoDoc doc, NurbsSurface surface, DiscreteSurfaceState state, int point, Point3d from)
         {
-            using (var preview = new DiscreteSurfaceState(state.Document))
+            // The preview only draws panels: no quality report per mouse move (the same panels; the
+            // report is computed when the move is applied).
+            var previewDocument = state.Document;
+            previewDocument.Options.QualityReport = false;
+            using (var preview = new DiscreteSurfaceState(previewDocument))
             {
                 var drag = new GetPoint();
                 drag.SetCommandPrompt("New location on the surface");
                 drag.Constrain(surface, false);
                 drag.SetBasePoint(from, true);
-                List<List<Point3d>> panels = Panels(state.Mesh);
+                // The drawn panels: only those whose vertices changed are converted again (PanelDisplay).
+                var display = new PanelDisplay();
+                var panels = new List<List<Point3d>>();
+                Refresh(display, panels, state.Mesh);
                 drag.DynamicDraw += (sender, e) =>
                 {
                     PatternPoint st;
@@ -154,7 +162,7 @@ namespace Tpi.RhinoPlugIn
                         try
                         {
                             preview.MovePoint(point, st.S, st.T);
-                            if (preview.TryRecompute(out error)) panels = Panels(preview.Mesh);
+                            if (preview.TryRecompute(out error)) Refresh(display, panels, preview.Mesh);
                         }
                         catch (Tpi.Native.TpiException) { }
                     }
@@ -188,6 +196,12 @@ namespace Tpi.RhinoPlugIn
         {
             try { return edit(); }
             catch (Tpi.Native.TpiException e) { RhinoApp.WriteLine("TPI: " + e.NativeMessage); return failed; }
+        }
+
+        /// <summary>Brings <paramref name="panels"/> to <paramref name="mesh"/>, converting only the panels that changed.</summary>
+        static void Refresh(PanelDisplay display, List<List<Point3d>> panels, MeshData mesh)
+        {
+            display.UpdateInto(mesh, panels, polyline => polyline.Select(RhinoConvert.ToPoint).ToList());
         }
 
         static List<List<Point3d>> Panels(MeshData mesh)

@@ -1,5 +1,5 @@
-// Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157). Members used: see
-// plugin-dotnet/API-CHECK.md.
+// Checked against: RhinoCommon 8 (rhino-stubs-typed 8.20.25157). Members used: read from
+// the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 using Rhino;
 using Rhino.Commands;
 using Rhino.DocObjects;
@@ -23,7 +23,7 @@ namespace Tpi.RhinoPlugIn
             var get = new GetObject();
             get.SetCommandPrompt("Select discrete surfaces");
             get.GeometryFilter = ObjectType.Mesh;
-            get.SetCustomGeometryFilter((obj, geometry, ci) => obj is DiscreteSurfaceObject);
+            get.SetCustomGeometryFilter((obj, geometry, ci) => DiscreteSurfaceObject.IsDiscreteSurface(obj));
             int outputIndex = get.AddOptionList("Output", new[] { "Polylines", "Mesh" }, s_output);
             while (true)
             {
@@ -40,8 +40,7 @@ namespace Tpi.RhinoPlugIn
             int panels = 0;
             for (int i = 0; i < get.ObjectCount; i++)
             {
-                var obj = get.Object(i).Object() as DiscreteSurfaceObject;
-                var document = obj == null ? null : obj.Document;
+                var document = DiscreteSurfaceObject.StoredDocumentOf(get.Object(i).Object());
                 if (document == null) continue;
                 MeshData mesh;
                 try

@@ -1,6 +1,7 @@
-// Fakes of the Grasshopper 8 members listed in plugin-dotnet/API-CHECK.md (stubs and the
-// Grasshopper SDK reference), for the Mono type check of the components only. Keep in step
-// with API-CHECK.md.
+// Fakes of the Grasshopper 8 members the components use (stubs and the Grasshopper SDK
+// reference), for the Mono type check of the components only. Every member here is itself
+// checked against the typed stubs (tools/api-check, see API-CHECK.md), except those listed with
+// their reason in tools/api-check/not-in-stubs.txt.
 #pragma warning disable 67, 649, 1591
 using System;
 using System.Collections;
@@ -9,10 +10,19 @@ using System.Drawing;
 using System.Threading;
 using System.Threading.Tasks;
 
+namespace Grasshopper
+{
+    public static class Instances
+    {
+        public static Kernel.GH_ComponentServer ComponentServer { get { return null; } }
+    }
+}
+
 namespace Grasshopper.Kernel
 {
+    public enum GH_Exposure { hidden = -1, primary = 2, secondary = 4, tertiary = 8, quarternary = 16, quinary = 32, senary = 64, septenary = 128, octonary = 256, last = 256, dropdown = 65536, obscure = 65536 }
     public enum GH_ParamAccess { item = 0, list = 1, tree = 2 }
-    public enum GH_RuntimeMessageLevel { Blank = 0, Remark = 1, Warning = 10, Error = 20 }
+    public enum GH_RuntimeMessageLevel { Blank = 0, Warning = 10, Error = 20, Remark = 255 }
 
     public interface IGH_Param
     {
@@ -27,8 +37,14 @@ namespace Grasshopper.Kernel
         bool SetDataList(int paramIndex, IEnumerable data);
     }
 
+    public class GH_ComponentServer
+    {
+        public GH_AssemblyInfo FindAssembly(Guid libraryId) { return null; }
+    }
+
     public abstract class GH_AssemblyInfo
     {
+        public string Location { get { return null; } }
         public virtual string Name { get { return null; } }
         public virtual Bitmap Icon { get { return null; } }
         public virtual string Description { get { return null; } }
@@ -47,6 +63,8 @@ namespace Grasshopper.Kernel
         protected abstract void RegisterOutputParams(GH_OutputParamManager pManager);
         protected abstract void SolveInstance(IGH_DataAccess DA);
         public void AddRuntimeMessage(GH_RuntimeMessageLevel level, string text) { }
+        public virtual GH_Exposure Exposure { get { return GH_Exposure.primary; } }
+        public string Message { get; set; }
 
         protected class GH_InputParamManager
         {

@@ -1,8 +1,9 @@
-// Fakes of the RhinoCommon 8 members listed in plugin-dotnet/API-CHECK.md, with the C#
-// signatures the stubs and the RhinoCommon source give. Bodies do nothing. They exist only so
+// Fakes of the RhinoCommon 8 members the Rhino adapters use, with the C# signatures the stubs
+// and the RhinoCommon source give. Bodies do nothing. They exist only so
 // tests/run_dotnet_tests.sh can type-check the Rhino adapters with Mono (no RhinoCommon here):
-// a call the adapters make that is not in this list, or that does not match its signature,
-// fails that check. Keep in step with API-CHECK.md.
+// a call the adapters make that is not here, or that does not match its signature, fails that
+// check. Every member here is itself checked against the typed stubs (tools/api-check, see
+// API-CHECK.md), so the fakes cannot drift from the real API.
 #pragma warning disable 67, 649, 1591
 using System;
 using System.Collections.Generic;
@@ -13,10 +14,31 @@ namespace Rhino
     public class RhinoDoc
     {
         public static event EventHandler<DocObjects.RhinoReplaceObjectEventArgs> ReplaceRhinoObject;
+        public static event EventHandler<DocumentOpenEventArgs> BeginOpenDocument;
+        public static event EventHandler<DocumentOpenEventArgs> EndOpenDocument;
+        public static event EventHandler<DocumentEventArgs> CloseDocument;
+        public static event EventHandler<DocObjects.RhinoObjectEventArgs> AddRhinoObject;
+        public static event EventHandler<DocObjects.RhinoObjectEventArgs> UndeleteRhinoObject;
+        public uint BeginUndoRecord(string description) { return 0; }
+        public bool EndUndoRecord(uint undoRecordSerialNumber) { return false; }
+        public bool UndoRecordingEnabled { get; set; }
         public static RhinoDoc FromRuntimeSerialNumber(uint serialNumber) { return null; }
         public uint RuntimeSerialNumber { get { return 0; } }
         public DocObjects.Tables.ObjectTable Objects { get { return null; } }
         public DocObjects.Tables.ViewTable Views { get { return null; } }
+    }
+
+    public class DocumentEventArgs : EventArgs
+    {
+        public RhinoDoc Document { get { return null; } }
+        public uint DocumentSerialNumber { get { return 0; } }
+    }
+
+    public class DocumentOpenEventArgs : DocumentEventArgs
+    {
+        public string FileName { get { return null; } }
+        public bool Merge { get { return false; } }
+        public bool Reference { get { return false; } }
     }
 
     public static class RhinoApp
@@ -35,6 +57,8 @@ namespace Rhino.PlugIns
 
     public abstract class PlugIn
     {
+        public Guid Id { get { return Guid.Empty; } }
+        public static string PathFromId(Guid pluginId) { return null; }
         public virtual PlugInLoadTime LoadTime { get { return PlugInLoadTime.WhenNeeded; } }
         protected virtual LoadReturnCode OnLoad(ref string errorMessage) { return LoadReturnCode.Success; }
     }
@@ -49,6 +73,7 @@ namespace Rhino.Commands
     {
         public abstract string EnglishName { get; }
         protected abstract Result RunCommand(RhinoDoc doc, RunMode mode);
+        public static bool InCommand() { return false; }
     }
 }
 
@@ -76,6 +101,8 @@ namespace Rhino.DocObjects
     {
         public Guid Id { get { return Guid.Empty; } }
         public Geometry.GeometryBase Geometry { get { return null; } }
+        public RhinoDoc Document { get { return null; } }
+        public bool IsDeleted { get { return false; } }
         public virtual string ShortDescription(bool plural) { return null; }
     }
 
@@ -88,6 +115,8 @@ namespace Rhino.DocObjects
     {
         public ObjRef(RhinoDoc doc, Guid id) { }
         public Geometry.Surface Surface() { return null; }
+        public Geometry.Brep Brep() { return null; }
+        public Geometry.ComponentIndex GeometryComponentIndex { get { return new Geometry.ComponentIndex(); } }
         public Geometry.Point Point() { return null; }
         public RhinoObject Object() { return null; }
         public Guid ObjectId { get { return Guid.Empty; } }
@@ -97,6 +126,12 @@ namespace Rhino.DocObjects
     {
         public bool HiddenObjects { get; set; }
         public bool LockedObjects { get; set; }
+    }
+
+    public class RhinoObjectEventArgs : EventArgs
+    {
+        public Guid ObjectId { get { return Guid.Empty; } }
+        public RhinoObject TheObject { get { return null; } }
     }
 
     public class RhinoReplaceObjectEventArgs : EventArgs
@@ -114,6 +149,7 @@ namespace Rhino.DocObjects.Tables
     {
         public void AddRhinoObject(Custom.CustomMeshObject meshObject) { }
         public bool Replace(ObjRef objref, RhinoObject newObject) { return false; }
+        public RhinoObject FindId(Guid id) { return null; }
         public Guid AddPoint(Geometry.Point3d point) { return Guid.Empty; }
         public Guid AddPolyline(IEnumerable<Geometry.Point3d> points) { return Guid.Empty; }
         public Guid AddMesh(Geometry.Mesh mesh) { return Guid.Empty; }
@@ -154,7 +190,7 @@ namespace Rhino.DocObjects.Custom
 
 namespace Rhino.Input
 {
-    public enum GetResult { NoResult = 0, Cancel = 1, Nothing = 2, Option = 3, Number = 4, Color = 5, Undo = 6, Miss = 7, Point = 8, Point2d = 9, Line2d = 10, Rectangle2d = 11, Object = 12, String = 13, Timeout = 23, User1 = 0x40000000 }
+    public enum GetResult { NoResult = 0, Cancel = 1, Nothing = 2, Option = 3, Number = 4, Color = 5, Undo = 6, Miss = 7, Point = 8, Point2d = 9, Line2d = 10, Rectangle2d = 11, Object = 12, String = 13, Timeout = 15, ExitRhino = 268435455 }
 
     public static class RhinoGet
     {
@@ -229,7 +265,7 @@ namespace Rhino.Input.Custom
 
 namespace Rhino.Display
 {
-    public enum PointStyle { Simple = 0, ControlPoint = 1, RoundControlPoint = 2, ActivePoint = 3, RoundActivePoint = 4, X = 5 }
+    public enum PointStyle { Simple = 0, ControlPoint = 1, ActivePoint = 2, X = 3, RoundControlPoint = 5, RoundActivePoint = 6 }
 
     public class DisplayPipeline
     {
@@ -286,7 +322,13 @@ namespace Rhino.Geometry
         public double T1 { get; set; }
     }
 
-    public struct ComponentIndex { }
+    public enum ComponentIndexType { InvalidType = 0, BrepVertex = 1, BrepEdge = 2, BrepFace = 3, BrepTrim = 4, BrepLoop = 5 }
+
+    public struct ComponentIndex
+    {
+        public ComponentIndexType ComponentIndexType { get { return 0; } }
+        public int Index { get { return 0; } }
+    }
 
     public struct Transform
     {
@@ -309,15 +351,11 @@ namespace Rhino.Geometry
         public Vector3d Diagonal { get { return new Vector3d(); } }
     }
 
-    public class CommonObject
-    {
-        public DocObjects.Custom.UserDataList UserData { get { return null; } }
-    }
-
-    public class GeometryBase : CommonObject { }
+    public class GeometryBase : Runtime.CommonObject { }
 
     public class Point : GeometryBase
     {
+        internal Point() { }
         public Point3d Location { get { return new Point3d(); } set { } }
     }
 
@@ -341,8 +379,18 @@ namespace Rhino.Geometry
         public Point3d PointAt(double u, double v) { return new Point3d(); }
     }
 
+    public class SurfaceProxy : Surface { }
+
+    public class BrepFace : SurfaceProxy { }
+
+    public class Brep : GeometryBase
+    {
+        public Collections.BrepFaceList Faces { get { return null; } }
+    }
+
     public class NurbsSurface : Surface
     {
+        internal NurbsSurface() { }
         public static NurbsSurface Create(int dimension, bool isRational, int order0, int order1, int controlPointCount0, int controlPointCount1) { return null; }
         public Collections.NurbsSurfacePointList Points { get { return null; } }
         public Collections.NurbsSurfaceKnotList KnotsU { get { return null; } }
@@ -364,11 +412,26 @@ namespace Rhino.Geometry
         public Collections.MeshFaceList Faces { get { return null; } }
         public Collections.MeshNgonList Ngons { get { return null; } }
         public Collections.MeshVertexNormalList Normals { get { return null; } }
+        public Mesh DuplicateMesh() { return null; }
+    }
+}
+
+namespace Rhino.Runtime
+{
+    public class CommonObject
+    {
+        public DocObjects.Custom.UserDataList UserData { get { return null; } }
     }
 }
 
 namespace Rhino.Geometry.Collections
 {
+    public class BrepFaceList
+    {
+        public int Count { get { return 0; } }
+        public BrepFace this[int index] { get { return null; } }
+    }
+
     public class NurbsSurfacePointList
     {
         public int CountU { get { return 0; } }
