@@ -136,6 +136,36 @@ namespace Tpi.Tests
         }
 
         [Test]
+        public void AdjustedPlanesReachTheLibraryAndEachFacetGetsItsPlane()
+        {
+            var options = DiscretisationOptions.Default();
+            Assert.AreEqual(PlaneMode.Exact, options.Planes, "exact planes by default");
+            options.Planes = PlaneMode.Adjusted;
+            using (var hypar = Surface.HyperbolicParaboloid(0.1, 0.1, -3, 3, -3, 3))
+            using (var pattern = Pattern.Random(1500, 11))
+            using (var exact = Discretisation.Create(hypar, pattern))
+            using (var adjusted = Discretisation.Create(hypar, pattern, options))
+            {
+                int tilted = 0;
+                for (int f = 0; f < adjusted.FacetCount; f++)
+                {
+                    var plane = adjusted.Planes[f];
+                    var seed = adjusted.Seeds[f];
+                    double cos = Math.Min(1.0, Vec3.Dot(plane.Normal, seed.Normal));
+                    double degrees = Math.Acos(cos) * 180.0 / Math.PI;
+                    Assert.LessOrEqual(degrees, 5.0 + 1e-6, "facet {0} tilted", f);
+                    if (degrees > 1e-9) tilted++;
+                    foreach (var v in adjusted.GetFacet(f))
+                        Assert.AreEqual(0.0, plane.SignedDistance(adjusted.Vertices[v]), 1e-9, "facet {0} off its plane", f);
+                    Assert.AreEqual(exact.Seeds[f].Normal.X, exact.Planes[f].Normal.X, 0.0, "exact planes are the seeds'");
+                }
+                Assert.Greater(tilted, 0, "no plane adjusted");
+                Assert.AreEqual(0ul, adjusted.Quality.InvalidFacets);
+                Assert.Greater(exact.Quality.InvalidFacets, 0ul, "the case needs adjusting");
+            }
+        }
+
+        [Test]
         public void DiscreteSurfaceEditsThenRecomputeEqualADiscretisationFromScratch()
         {
             using (var dome = TestData.Dome())

@@ -38,7 +38,7 @@ use glam::DVec3;
 use crate::pattern::SplitMix64;
 use crate::planes::Plane;
 use crate::tolerance::{
-    KICK_REPAIR_PASSES, MAX_PLANE_ADJUST_ROUNDS, MAX_PLANE_TILT_DEGREES, PLANE_KICKS,
+    KICK_REPAIR_PASSES, MAX_PLANE_ADJUST_ROUNDS, MAX_PLANE_TILT_DEGREES, MAX_REACH, PLANE_KICKS,
     PLANE_OFFSET_STEPS, PLANE_TILT_DIRECTIONS, PLANE_TILT_STEPS_DEGREES, REACH_GAIN,
     RESCUE_TILT_STEPS_DEGREES,
 };
@@ -66,6 +66,7 @@ pub(crate) fn adjust_planes(
     let points = planes.len();
     let mut state = State::new(tri, points, Cow::Owned(std::mem::take(planes)), judged);
     let spacing = local_spacing(&state, points);
+    state.impose_reach_limit(spacing.iter().map(|&h| MAX_REACH * h).collect());
     let mut stats = PlaneAdjustStats::default();
     // A facet whose repair failed is tried again only after a kept move changed its
     // neighbourhood.

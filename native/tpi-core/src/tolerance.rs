@@ -171,6 +171,11 @@ pub const PLANE_TILT_DIRECTIONS: usize = 8;
 /// farthest vertices (relative to the local spacing, summed) to less than this fraction.
 pub const REACH_GAIN: f64 = 0.9;
 
+/// With adjusted planes a facet whose vertices lie farther than this many local spacings
+/// (mean distance to the neighbouring seeds) from its seed counts as invalid, so that
+/// runaway vertices at parabolic lines are pulled in too.
+pub const MAX_REACH: f64 = 2.5;
+
 /// Random restarts tried around each facet the greedy plane adjustment left invalid.
 pub const PLANE_KICKS: usize = 24;
 

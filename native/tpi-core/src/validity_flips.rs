@@ -116,6 +116,10 @@ pub(crate) struct State<'a> {
     /// Where Some, every plane replaced and every verdict set is logged here (old values)
     /// so that a tentative sequence of changes can be undone ([`State::undo`]).
     pub(crate) journal: Option<Journal>,
+    /// Where Some, per point the farthest its facet's vertices may lie from its seed; a
+    /// facet reaching farther counts as invalid (the plane adjustment pulls runaway vertices
+    /// in; exact planes leave them, and the report names them).
+    reach_limit: Option<Vec<f64>>,
 }
 
 /// The old values of what a tentative sequence of changes replaced, in order.
@@ -179,9 +183,29 @@ impl<'a> State<'a> {
             facets: (0..points).map(|_| None).collect(),
             overlaps: vec![Vec::new(); points],
             journal: None,
+            reach_limit: None,
         };
         state.invalid = state.initial_verdicts(judged);
         state
+    }
+
+    /// From now on a facet whose vertices lie farther from its seed than `limits[i]` counts as
+    /// invalid; the verdicts are renewed accordingly.
+    pub(crate) fn impose_reach_limit(&mut self, limits: Vec<f64>) {
+        self.reach_limit = Some(limits);
+        for i in 0..self.judged as u32 {
+            if !self.invalid[i as usize] && self.beyond_reach(i) {
+                self.invalid[i as usize] = true;
+            }
+        }
+    }
+
+    /// Whether facet i reaches beyond its limit ([`State::impose_reach_limit`]).
+    fn beyond_reach(&mut self, i: u32) -> bool {
+        let Some(limit) = self.reach_limit.as_ref().map(|l| l[i as usize]) else {
+            return false;
+        };
+        self.reach(i, limit) > 1.0
     }
 
     /// Sets the verdict of facet x (logged in the journal).
@@ -419,6 +443,9 @@ impl<'a> State<'a> {
 
     /// Whether interior facet i is invalid (module doc); hull facets are never judged.
     pub(crate) fn facet_invalid(&mut self, i: u32) -> bool {
+        if self.beyond_reach(i) {
+            return true;
+        }
         let facet = self.facet(i);
         if facet.polygon.is_none() {
             return false;

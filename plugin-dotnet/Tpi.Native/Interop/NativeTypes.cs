@@ -308,11 +308,12 @@ namespace Tpi.Native
         public ulong ValidityUnresolved;
     }
 
-    /// <summary>TpiOptions as it crosses the boundary (first version, 40 bytes).</summary>
+    /// <summary>TpiOptions as it crosses the boundary (second version, 48 bytes).</summary>
     [StructLayout(LayoutKind.Sequential)]
     internal struct NativeOptions
     {
         public const int SizeV1 = 40;
+        public const int SizeV2 = 48;
         public uint StructSize;
         public uint EnvelopeRepair;
         public uint QualityReport;
@@ -320,5 +321,8 @@ namespace Tpi.Native
         public double FarVertexFactor;
         public double WeldTolerance;
         public double FlatTolerance;
+        /// <summary>TPI_PLANES_EXACT (0) or TPI_PLANES_ADJUSTED (1).</summary>
+        public uint PlaneMode;
+        public uint Reserved2;
     }
 }
