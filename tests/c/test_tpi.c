@@ -131,7 +131,9 @@ static void test_version_and_status_names(void) {
     CHECK(TPI_STATUS_INVALID_PATTERN == 7 && TPI_STATUS_DEGENERATE == 8 && TPI_STATUS_PANIC == 9);
     CHECK(TPI_STATUS_OUT_OF_DOMAIN == 10 && TPI_STATUS_UNAVAILABLE == 11);
     /* Struct sizes as the library sees them. */
-    CHECK(sizeof(TpiOptions) == TPI_OPTIONS_SIZE_V1);
+    CHECK(sizeof(TpiOptions) == TPI_OPTIONS_SIZE_V2);
+    CHECK(offsetof(TpiOptions, plane_mode) == TPI_OPTIONS_SIZE_V1);
+    CHECK(TPI_PLANES_EXACT == 0 && TPI_PLANES_ADJUSTED == 1);
     CHECK(sizeof(TpiQualityReport) == TPI_QUALITY_REPORT_SIZE_V2);
     CHECK(offsetof(TpiQualityReport, invalid_facets) == TPI_QUALITY_REPORT_SIZE_V1);
     CHECK(TPI_FACET_OPEN == 16);
@@ -167,6 +169,7 @@ static void test_options(void) {
     CHECK(options.far_vertex_factor == 8.0);
     CHECK(options.weld_tolerance == 1e-10);
     CHECK(options.flat_tolerance == 1e-6);
+    CHECK(options.plane_mode == TPI_PLANES_EXACT && options.reserved2 == 0);
     CHECK_STATUS(tpi_options_default(NULL), TPI_STATUS_NULL_POINTER);
     TpiOptions unset;
     memset(&unset, 0, sizeof unset);
@@ -998,6 +1001,68 @@ static void test_threads(void) {
     tpi_surface_free(surface);
 }
 
+/* Adjusted planes on a saddle with a uniform random pattern: every facet valid, each facet's
+ * plane (tpi_discretisation_planes) holds its vertices and is tilted at most 5 degrees from
+ * its seed's normal, some are tilted; an unknown plane mode is refused by name. */
+static void test_adjusted_planes(void) {
+    TpiSurface *s = NULL;
+    TpiPattern *p = NULL;
+    TpiDiscretisation *d = NULL;
+    CHECK_OK(tpi_surface_new_hyperbolic_paraboloid(0.1, 0.1, -3, 3, -3, 3, &s));
+    CHECK_OK(tpi_pattern_new_random(1500, 11, &p));
+    TpiOptions options = default_options();
+    options.plane_mode = 7;
+    CHECK_STATUS(tpi_discretise(s, p, &options, &d), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK(last_error_contains("plane_mode"));
+    options.plane_mode = TPI_PLANES_ADJUSTED;
+    CHECK_OK(tpi_discretise(s, p, &options, &d));
+    size_t facets = 0, needed = 0;
+    CHECK_OK(tpi_discretisation_facet_count(d, &facets));
+    TpiPlane *planes = calloc(facets, sizeof *planes);
+    TpiSeed *seeds = calloc(facets, sizeof *seeds);
+    uint32_t *sizes = calloc(facets, sizeof *sizes);
+    size_t vertex_count = 0, index_count = 0;
+    CHECK_OK(tpi_discretisation_planes(d, planes, facets, &needed));
+    CHECK_OK(tpi_discretisation_seeds(d, seeds, facets, &needed));
+    CHECK_OK(tpi_discretisation_facet_sizes(d, sizes, facets, &needed));
+    CHECK_OK(tpi_discretisation_vertex_count(d, &vertex_count));
+    tpi_discretisation_facet_indices(d, NULL, 0, &index_count);
+    double *xyz = calloc(3 * vertex_count, sizeof *xyz);
+    uint32_t *indices = calloc(index_count, sizeof *indices);
+    CHECK_OK(tpi_discretisation_vertices(d, xyz, 3 * vertex_count, &needed));
+    CHECK_OK(tpi_discretisation_facet_indices(d, indices, index_count, &needed));
+    size_t tilted = 0, at = 0, off_plane = 0, too_steep = 0;
+    for (size_t f = 0; f < facets; f++) {
+        const double *n = planes[f].normal, *m = seeds[f].normal;
+        double cosine = n[0] * m[0] + n[1] * m[1] + n[2] * m[2];
+        /* cos(5 degrees) = 0.996194698 */
+        if (cosine < 0.9961946) too_steep++;
+        if (cosine < 1.0 - 1e-15) tilted++;
+        for (uint32_t k = 0; k < sizes[f]; k++, at++) {
+            const double *x = xyz + 3 * indices[at];
+            double dist = 0.0;
+            for (int c = 0; c < 3; c++) dist += n[c] * (x[c] - planes[f].point[c]);
+            if (dist > 1e-9 || dist < -1e-9) off_plane++;
+        }
+    }
+    CHECK(at == index_count);
+    CHECK(off_plane == 0 && too_steep == 0);
+    CHECK(tilted > 0);
+    TpiQualityReport quality;
+    memset(&quality, 0, sizeof quality);
+    quality.struct_size = sizeof quality;
+    CHECK_OK(tpi_discretisation_quality(d, &quality));
+    CHECK(quality.invalid_facets == 0);
+    free(planes);
+    free(seeds);
+    free(sizes);
+    free(xyz);
+    free(indices);
+    tpi_discretisation_free(d);
+    tpi_pattern_free(p);
+    tpi_surface_free(s);
+}
+
 int main(void) {
     test_version_and_status_names();
     test_last_error();
@@ -1010,6 +1075,7 @@ int main(void) {
     test_patterns();
     test_dome_discretisation();
     test_options_in_use();
+    test_adjusted_planes();
     test_diagnostics();
     test_discrete_surface();
     test_free_null();
