@@ -1,0 +1,1 @@
+//! The files: panels.json, panels.obj, bevels.csv, sheets.svg, sheets.dxf.
