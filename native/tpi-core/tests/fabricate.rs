@@ -507,3 +507,68 @@ fn bad_thickness_is_refused_with_a_reason() {
     .unwrap_err();
     assert!(matches!(err, FabricationError::PartTooLarge { .. }), "{err}");
 }
+
+#[test]
+fn poisson_patterns_on_the_nurbs_dome_and_the_saddle() {
+    for (surface, pattern, relative) in [
+        ("nurbs-dome.json", "poisson:0.03:seed=7", 0.004),
+        ("saddle.json", "poisson:0.03:seed=7", 0.002),
+    ] {
+        let mesh = sample_mesh(surface, pattern);
+        let diag = diagonal(&mesh);
+        let t = relative * diag;
+        let fab = fabricate(
+            &mesh,
+            &FabricateOptions {
+                thickness: t,
+                sheet: [diag, diag / 2.0],
+                gap: 0.002 * diag,
+                ..FabricateOptions::default()
+            },
+        )
+        .unwrap();
+        let side = fab.panels[0].normal.dot(mesh.seeds[0].normal).signum();
+        check_panels(&mesh, &fab, t, side);
+        check_nesting(&fab);
+    }
+}
+
+#[test]
+fn a_thickness_beyond_a_short_edge_is_named() {
+    // Random patterns leave short edges; their bottom edges collapse early.
+    let mesh = sample_mesh("hypar.json", "random:400:seed=1");
+    let err = fabricate(
+        &mesh,
+        &FabricateOptions {
+            thickness: 0.5,
+            sheet: [100.0, 100.0],
+            ..FabricateOptions::default()
+        },
+    )
+    .unwrap_err();
+    let FabricationError::ThicknessTooLarge { max, panel, .. } = err else {
+        panic!("{err}");
+    };
+    assert!(max < 0.5 && (panel as usize) < mesh.facet_count());
+    // Just below the limit, every bottom edge keeps its direction.
+    let t = max * 0.999;
+    let fab = fabricate(
+        &mesh,
+        &FabricateOptions {
+            thickness: t,
+            sheet: [100.0, 100.0],
+            ..FabricateOptions::default()
+        },
+    )
+    .unwrap();
+    for p in &fab.panels {
+        let r = p.top.len();
+        for k in 0..r {
+            let top = p.top[(k + 1) % r] - p.top[k];
+            let bottom = p.bottom[(k + 1) % r] - p.bottom[k];
+            if top.length() > 1e-9 {
+                assert!(top.dot(bottom) > 0.0, "panel {}: bottom edge {k} reversed", p.seed);
+            }
+        }
+    }
+}
