@@ -54,7 +54,7 @@ pub use discretise::{
 pub use error::{Direction, TpiError};
 pub use fabricate::{
     fabricate, Cleat, FabricateOptions, Fabrication, FabricationDiagnostic, FabricationError,
-    Panel, PanelSide, Placement, Polyhedron, Sheet, Side, Slot, SlotPlan, ToolpathOptions,
+    Panel, PanelSide, Placement, Polyhedron, Sheet, Side, Slot, SlotPlan, ToolpathOptions, Units,
 };
 pub use facets::VertexKind;
 pub use live::{LiveStats, LiveSurface};

@@ -12,7 +12,7 @@ use glam::{DVec2, DVec3};
 use tpi_core::{
     discretise, fabricate, Discretisation, DiscretiseOptions, FabricateOptions, Fabrication,
     FabricationError, Generator, PanelSide, Polyhedron, Seed, SlotPlan, SurfaceSpec,
-    VertexKind,
+    ToolpathOptions, Units, VertexKind,
 };
 
 const TOL: f64 = 1e-9;
@@ -571,4 +571,226 @@ fn a_thickness_beyond_a_short_edge_is_named() {
             }
         }
     }
+}
+
+fn workshop() -> (Discretisation, Fabrication) {
+    let mesh = sample_mesh("paraboloid.json", "hex:12x10");
+    let fab = fabricate(
+        &mesh,
+        &FabricateOptions {
+            thickness: 0.05,
+            slots: SlotPlan::Even(1),
+            slot_length: Some(0.1),
+            slot_depth: Some(0.06),
+            sheet: [3.0, 1.5],
+            gap: 0.03,
+            ..FabricateOptions::default()
+        },
+    )
+    .unwrap();
+    (mesh, fab)
+}
+
+#[test]
+fn toolpath_runs_one_tool_radius_outside_every_outline() {
+    let (_, fab) = workshop();
+    let d = 0.008;
+    let code = fab
+        .gcode(&ToolpathOptions {
+            tool_diameter: d,
+            ..ToolpathOptions::default()
+        })
+        .unwrap();
+    let r = d / 2.0;
+    let mut sheet = 0usize;
+    let mut part: Option<usize> = None;
+    let mut pos = DVec2::ZERO;
+    let mut z = 0.0;
+    let mut measured = 0usize;
+    let mut worst: f64 = 0.0;
+    let outlines: Vec<geo::LineString<f64>> = fab
+        .panels
+        .iter()
+        .map(|p| {
+            let mut pts: Vec<(f64, f64)> = p
+                .cut_outline
+                .iter()
+                .map(|&q| {
+                    let s = p.placement.apply(q);
+                    (s.x, s.y)
+                })
+                .collect();
+            pts.push(pts[0]);
+            geo::LineString::from(pts)
+        })
+        .collect();
+    let word = |line: &str, c: char| -> Option<f64> {
+        line.split_whitespace()
+            .find(|w| w.starts_with(c))
+            .and_then(|w| w[1..].parse().ok())
+    };
+    for line in code.lines() {
+        if let Some(rest) = line.strip_prefix("(tpi fabricate: sheet ") {
+            sheet = rest.split_whitespace().next().unwrap().parse().unwrap();
+            continue;
+        }
+        if let Some(rest) = line.strip_prefix("(part ") {
+            let mut w = rest.split_whitespace();
+            let seed: usize = w.next().unwrap().parse().unwrap();
+            part = (w.next() == Some("profile)")).then_some(seed);
+            if let Some(q) = part {
+                assert_eq!(fab.panels[q].placement.sheet, sheet);
+            }
+            continue;
+        }
+        let (x, y) = (word(line, 'X'), word(line, 'Y'));
+        if let Some(nz) = word(line, 'Z') {
+            z = nz;
+        }
+        let to = DVec2::new(x.unwrap_or(pos.x), y.unwrap_or(pos.y));
+        let cutting = z < 0.0 && (line.starts_with("G1") || line.starts_with("G3"));
+        if let (Some(q), true) = (part, cutting && (x.is_some() || y.is_some())) {
+            let samples: Vec<DVec2> = if line.starts_with("G3") {
+                let c = pos + DVec2::new(word(line, 'I').unwrap(), word(line, 'J').unwrap());
+                assert!(((pos - c).length() - r).abs() < 1e-8, "arc radius");
+                let a0 = (pos - c).y.atan2((pos - c).x);
+                let mut a1 = (to - c).y.atan2((to - c).x);
+                if a1 < a0 {
+                    a1 += std::f64::consts::TAU;
+                }
+                (0..=16)
+                    .map(|s| {
+                        let a = a0 + (a1 - a0) * s as f64 / 16.0;
+                        c + DVec2::new(a.cos(), a.sin()) * r
+                    })
+                    .collect()
+            } else {
+                (0..=16).map(|s| pos + (to - pos) * (s as f64 / 16.0)).collect()
+            };
+            let poly = geo::Polygon::new(outlines[q].clone(), vec![]);
+            for p in samples {
+                let pt = geo::Point::new(p.x, p.y);
+                assert!(!poly.contains(&pt), "part {q}: the tool enters the part at {p}");
+                let dist = Euclidean::distance(&pt, &outlines[q]);
+                worst = worst.max((dist - r).abs());
+                measured += 1;
+            }
+        }
+        pos = to;
+    }
+    assert!(measured > 1000, "{measured} samples");
+    assert!(worst < 1e-8, "the toolpath strays {worst} from one tool radius");
+    assert!(code.contains("G3 ") && code.contains("(part 0 slot)") && code.ends_with("M30\n"));
+    // A gap the tool does not fit into is refused.
+    let err = fab
+        .gcode(&ToolpathOptions {
+            tool_diameter: 0.05,
+            ..ToolpathOptions::default()
+        })
+        .unwrap_err();
+    assert!(matches!(err, FabricationError::InvalidOption { field: "gap", .. }), "{err}");
+}
+
+#[test]
+fn files_read_back() {
+    let (_, fab) = workshop();
+    // panels.json
+    let json: serde_json::Value = serde_json::from_str(&fab.to_json()).unwrap();
+    assert_eq!(json["thickness"], 0.05);
+    let panels = json["panels"].as_array().unwrap();
+    assert_eq!(panels.len(), fab.panels.len());
+    for (p, v) in fab.panels.iter().zip(panels) {
+        let top = v["top"].as_array().unwrap();
+        assert_eq!(top.len(), v["bottom"].as_array().unwrap().len());
+        assert_eq!(top.len(), v["sides"].as_array().unwrap().len());
+        assert_eq!(top.len(), v["flat"].as_array().unwrap().len());
+        assert_eq!(v["seed"], p.seed);
+        let pl = &v["placement"];
+        assert!(pl["sheet"].as_u64().unwrap() < fab.sheets.len() as u64);
+        for s in v["sides"].as_array().unwrap() {
+            assert_eq!(s["plane"].as_array().unwrap().len(), 4);
+            assert_eq!(s["neighbour"].is_null(), s["dihedral_deg"].is_null());
+        }
+    }
+    assert_eq!(json["sheets"].as_array().unwrap().len(), fab.sheets.len());
+    // panels.obj: one closed object per panel and per cleat.
+    let obj = fab.to_obj();
+    let mut verts: Vec<DVec3> = Vec::new();
+    let mut objects: Vec<(String, Vec<Vec<usize>>)> = Vec::new();
+    for line in obj.lines() {
+        let mut w = line.split_whitespace();
+        match w.next() {
+            Some("o") => objects.push((w.next().unwrap().to_string(), Vec::new())),
+            Some("v") => {
+                let c: Vec<f64> = w.map(|x| x.parse().unwrap()).collect();
+                verts.push(DVec3::new(c[0], c[1], c[2]));
+            }
+            Some("f") => objects
+                .last_mut()
+                .unwrap()
+                .1
+                .push(w.map(|x| x.parse::<usize>().unwrap() - 1).collect()),
+            _ => {}
+        }
+    }
+    assert_eq!(objects.len(), fab.panels.len() + fab.cleats.len());
+    assert!(!fab.cleats.is_empty());
+    for (name, faces) in &objects {
+        let mut edges: HashMap<(usize, usize), i32> = HashMap::new();
+        for f in faces {
+            for k in 0..f.len() {
+                *edges.entry((f[k], f[(k + 1) % f.len()])).or_default() += 1;
+            }
+        }
+        for (&(a, b), &c) in &edges {
+            assert!(c == 1 && edges.get(&(b, a)) == Some(&1), "{name}: open at {a}-{b}");
+        }
+    }
+    // bevels.csv: one row per side.
+    let csv = fab.bevels_csv();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(rows[0], "panel,side,neighbour,length,dihedral_deg,bevel_deg");
+    assert_eq!(rows.len() - 1, fab.panels.iter().map(|p| p.sides.len()).sum::<usize>());
+    for r in &rows[1..] {
+        let c: Vec<&str> = r.split(',').collect();
+        assert_eq!(c.len(), 6);
+        assert!(c[3].parse::<f64>().unwrap() >= 0.0);
+        assert_eq!(c[2].is_empty(), c[4].is_empty());
+    }
+    // sheets.dxf: group code / value pairs, R12, units, layers, one CUT polyline per part.
+    let dxf = fab.sheets_dxf(Units::Millimetres);
+    let lines: Vec<&str> = dxf.lines().collect();
+    assert_eq!(lines.len() % 2, 0);
+    let pairs: Vec<(i32, &str)> = lines
+        .chunks(2)
+        .map(|c| (c[0].trim().parse::<i32>().unwrap(), c[1]))
+        .collect();
+    let after = |name: &str| pairs.iter().position(|&(c, v)| c == 9 && v == name).map(|q| pairs[q + 1]);
+    assert_eq!(after("$ACADVER"), Some((1, "AC1009")));
+    assert_eq!(after("$INSUNITS"), Some((70, "4")));
+    for layer in ["CUT", "SLOT", "ENGRAVE"] {
+        assert!(pairs.windows(2).any(|w| w[0] == (0, "LAYER") && w[1] == (2, layer)), "{layer}");
+    }
+    let mut cut = 0;
+    let mut q = 0;
+    while q < pairs.len() {
+        if pairs[q] == (0, "POLYLINE") && pairs[q + 1] == (8, "CUT") {
+            cut += 1;
+            let mut n = 0;
+            q += 1;
+            while pairs[q] != (0, "SEQEND") {
+                if pairs[q] == (0, "VERTEX") {
+                    n += 1;
+                }
+                q += 1;
+            }
+            assert!(n >= 3);
+        }
+        q += 1;
+    }
+    assert_eq!(cut, fab.panels.len());
+    assert_eq!(pairs.last(), Some(&(0, "EOF")));
+    let svg = fab.sheets_svg();
+    assert_eq!(svg.matches("<polygon").count(), fab.panels.len());
+    assert_eq!(svg.matches("<rect").count(), fab.sheets.len());
 }

@@ -71,6 +71,7 @@ use crate::Discretisation;
 
 pub use layout::Placement;
 pub use toolpath::ToolpathOptions;
+pub use writers::Units;
 
 /// Which side of the facets the panels are thickened to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
