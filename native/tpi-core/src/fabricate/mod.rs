@@ -251,6 +251,14 @@ pub enum FabricationDiagnostic {
         /// The panel.
         panel: u32,
     },
+    /// `--slots N` put a slot where it does not fit (the edge is too short for its length,
+    /// or the bottom edge is): the slot was left out.
+    SlotSkipped {
+        /// The two panels of the edge.
+        panels: [u32; 2],
+        /// The slot's parameter along the edge.
+        t: f64,
+    },
     /// The discretisation flagged this facet invalid (open, non-simple or overlapping): its
     /// panel is built but should be checked before cutting.
     InvalidFacet {

@@ -479,6 +479,13 @@ pub(super) fn cut_slots(
         let lo = 0f64.max(ba0).max(bb1);
         let hi = edge_len.min(ba1).min(bb0);
         if s0 < lo || s1 > hi {
+            if matches!(plan, SlotPlan::Even(_)) {
+                built.diagnostics.push(FabricationDiagnostic::SlotSkipped {
+                    panels: [a, b],
+                    t,
+                });
+                continue;
+            }
             return Err(bad(format!(
                 "a slot of length {length} at {centre} needs [{s0}, {s1}] along the edge, and the edge offers [{lo}, {hi}] on both faces of both panels"
             )));
@@ -508,11 +515,6 @@ pub(super) fn cut_slots(
             solid.faces.push(vec![q, q1, q1 + 6, q + 6]);
         }
         orient_outward(&mut solid);
-        cleats.push(Cleat {
-            panels: [a.min(b), a.max(b)],
-            t,
-            solid,
-        });
         // The notches, in each panel's own coordinates along its side.
         let pa_flat = |x: DVec3| flat_of(pa, x);
         let pb_flat = |x: DVec3| flat_of(pb, x);
@@ -547,18 +549,32 @@ pub(super) fn cut_slots(
             ]
             .map(|p| [p.x, p.y]),
         };
-        for (panel, notch) in [(a, (ka, s0, s1)), (b, (kb, sb0, sb1))] {
-            let list = &mut built.notches[panel as usize];
-            if list
+        let notches = [(a, (ka, s0, s1)), (b, (kb, sb0, sb1))];
+        let overlaps = notches.iter().any(|&(panel, (k, n0, n1))| {
+            built.notches[panel as usize]
                 .iter()
-                .any(|&(k, x0, x1, _)| k == notch.0 && x0 < notch.2 && notch.1 < x1)
-            {
-                return Err(bad("it overlaps another slot on the same edge".into()));
+                .any(|&(k2, x0, x1, _)| k2 == k && x0 < n1 && n0 < x1)
+        });
+        if overlaps {
+            if matches!(plan, SlotPlan::Even(_)) {
+                built.diagnostics.push(FabricationDiagnostic::SlotSkipped {
+                    panels: [a, b],
+                    t,
+                });
+                continue;
             }
-            list.push((notch.0, notch.1, notch.2, depth));
+            return Err(bad("it overlaps another slot on the same edge".into()));
+        }
+        for (panel, (k, n0, n1)) in notches {
+            built.notches[panel as usize].push((k, n0, n1, depth));
         }
         built.panels[a as usize].slots.push(slot_a);
         built.panels[b as usize].slots.push(slot_b);
+        cleats.push(Cleat {
+            panels: [a.min(b), a.max(b)],
+            t,
+            solid,
+        });
     }
     for (p, notches) in built.panels.iter_mut().zip(&built.notches) {
         p.solid = panel_solid(p, notches);
