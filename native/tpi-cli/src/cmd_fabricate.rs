@@ -99,7 +99,11 @@ fn number(a: &Args, name: &str, v: &str) -> Result<f64, CliError> {
 }
 
 fn pair(a: &Args, name: &str, v: &str, example: &str) -> Result<[f64; 2], CliError> {
-    let bad = || a.usage(format!("--{name} {v}: expected two numbers AxB, e.g. {example}"));
+    let bad = || {
+        a.usage(format!(
+            "--{name} {v}: expected two numbers AxB, e.g. {example}"
+        ))
+    };
     let (x, y) = v.split_once(['x', 'X']).ok_or_else(bad)?;
     match (x.trim().parse::<f64>(), y.trim().parse::<f64>()) {
         (Ok(x), Ok(y)) => Ok([x, y]),
@@ -332,10 +336,19 @@ fn summary(fab: &Fabrication, density: Option<f64>) -> String {
         .iter()
         .map(|x| format!("{:.0} %", x.utilisation * 100.0))
         .collect();
-    s += &format!("  sheets: {} (utilisation {})\n", fab.sheets.len(), util.join(", "));
-    s += &format!("  total area {area:.6}, panel volume {volume:.6}, cleat volume {cleat_volume:.6}\n");
+    s += &format!(
+        "  sheets: {} (utilisation {})\n",
+        fab.sheets.len(),
+        util.join(", ")
+    );
+    s += &format!(
+        "  total area {area:.6}, panel volume {volume:.6}, cleat volume {cleat_volume:.6}\n"
+    );
     if let Some(rho) = density {
-        s += &format!("  mass {:.3} (density {rho})\n", (volume + cleat_volume) * rho);
+        s += &format!(
+            "  mass {:.3} (density {rho})\n",
+            (volume + cleat_volume) * rho
+        );
     }
     if let (Some(a), Some(b)) = (smallest, largest) {
         s += &format!(

@@ -16,10 +16,8 @@ fn sample(name: &str) -> String {
 }
 
 fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
-        "tpi-fabricate-{}-{name}",
-        std::process::id()
-    ));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("tpi-fabricate-{}-{name}", std::process::id()));
     let _ = fs::remove_dir_all(&dir);
     fs::create_dir_all(&dir).unwrap();
     dir
@@ -76,7 +74,14 @@ fn every_output_is_written_and_reads_back() {
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let err = stderr(&o);
-    for needle in ["120 panels", "1 cleats", "sheets:", "utilisation", "mass", "bevels"] {
+    for needle in [
+        "120 panels",
+        "1 cleats",
+        "sheets:",
+        "utilisation",
+        "mass",
+        "bevels",
+    ] {
         assert!(err.contains(needle), "summary lacks {needle}: {err}");
     }
     let json: serde_json::Value =
@@ -94,7 +99,9 @@ fn every_output_is_written_and_reads_back() {
     let dxf = fs::read_to_string(dir.join("sheets.dxf")).unwrap();
     assert!(dxf.contains("$INSUNITS\n 70\n4\n") && dxf.ends_with("  0\nEOF\n"));
     let nc = fs::read_to_string(dir.join("cut.nc")).unwrap();
-    assert!(nc.starts_with("(tpi fabricate: sheet 0") && nc.contains("G21") && nc.ends_with("M30\n"));
+    assert!(
+        nc.starts_with("(tpi fabricate: sheet 0") && nc.contains("G21") && nc.ends_with("M30\n")
+    );
     let csv = fs::read_to_string(dir.join("bevels.csv")).unwrap();
     assert!(csv.starts_with("panel,side,neighbour,length,dihedral_deg,bevel_deg\n"));
     let svg = fs::read_to_string(dir.join("sheets.svg")).unwrap();
@@ -129,9 +136,19 @@ fn a_bad_thickness_is_named_and_nothing_is_written() {
         let err = stderr(&o);
         assert!(err.contains(needle), "{t}: {err}");
         assert_eq!(err.lines().count(), 1, "{err}");
-        assert_eq!(fs::read_dir(&dir).unwrap().count(), 0, "{t}: a file was written");
+        assert_eq!(
+            fs::read_dir(&dir).unwrap().count(),
+            0,
+            "{t}: a file was written"
+        );
     }
-    let o = tpi(&["fabricate", "--surface", &sample("hypar.json"), "--pattern", "hex:5x5"]);
+    let o = tpi(&[
+        "fabricate",
+        "--surface",
+        &sample("hypar.json"),
+        "--pattern",
+        "hex:5x5",
+    ]);
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--thickness is required"));
     fs::remove_dir_all(&dir).unwrap();

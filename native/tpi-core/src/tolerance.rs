@@ -173,6 +173,11 @@ pub const FABRICATION_SINGULAR_TOLERANCE: f64 = 1e-12;
 /// collapse and gets no slot.
 pub const FABRICATION_SHORT_EDGE: f64 = 1e-12;
 
+/// Flat outline vertices closer than this (relative to the bounding-box diagonal) are one
+/// vertex of the cut outline: nesting and the tool-radius offset need edges with a direction.
+/// The same distance decides whether a bottom vertex lies outside the top outline.
+pub const FABRICATION_OUTLINE_MERGE: f64 = 1e-9;
+
 /// Largest number of panels walked around one vertex before the walk counts as broken
 /// (a non-manifold mesh): far above any real valence.
 pub const FABRICATION_MAX_VALENCE: usize = 64;
@@ -182,7 +187,3 @@ pub const DEFAULT_SLOT_LENGTH_FACTOR: f64 = 4.0;
 
 /// Default slot depth into each panel, in panel thicknesses.
 pub const DEFAULT_SLOT_DEPTH_FACTOR: f64 = 2.0;
-
-/// Acceptance of the independent checks ([`crate::Fabrication::sanity_check`]): planarity,
-/// offset distance and shared side faces, relative to the bounding-box diagonal.
-pub const FABRICATION_CHECK_TOLERANCE: f64 = 1e-9;

@@ -98,10 +98,16 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
         assert_eq!(p.top.len(), p.bottom.len());
         for b in &p.bottom {
             let dist = n.dot(*b - seed.point) * expect_side;
-            assert!((dist - t).abs() <= tol, "panel {i}: bottom at {dist}, not {t}");
+            assert!(
+                (dist - t).abs() <= tol,
+                "panel {i}: bottom at {dist}, not {t}"
+            );
         }
         for v in &p.top {
-            assert!(n.dot(*v - seed.point).abs() <= tol, "panel {i}: top off its plane");
+            assert!(
+                n.dot(*v - seed.point).abs() <= tol,
+                "panel {i}: top off its plane"
+            );
         }
         // Each top vertex is a vertex of the facet, in order.
         let facet: Vec<DVec3> = mesh
@@ -123,7 +129,12 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
         // Prismatoid volume against the divergence theorem.
         let a_top = area_vector(&p.top).length();
         let a_bot = area_vector(&p.bottom).length();
-        let mid: Vec<DVec3> = p.top.iter().zip(&p.bottom).map(|(a, b)| (*a + *b) / 2.0).collect();
+        let mid: Vec<DVec3> = p
+            .top
+            .iter()
+            .zip(&p.bottom)
+            .map(|(a, b)| (*a + *b) / 2.0)
+            .collect();
         let a_mid = area_vector(&mid).length();
         let prismatoid = t * (a_top + 4.0 * a_mid + a_bot) / 6.0;
         let div = volume_by_divergence(&p.solid);
@@ -140,7 +151,10 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
             let sn = DVec3::new(s.plane[0], s.plane[1], s.plane[2]);
             assert!((sn.length() - 1.0).abs() < 1e-12);
             for q in [p.top[k], p.top[k1], p.bottom[k], p.bottom[k1]] {
-                assert!((sn.dot(q) - s.plane[3]).abs() <= tol, "panel {i} side {k} off its plane");
+                assert!(
+                    (sn.dot(q) - s.plane[3]).abs() <= tol,
+                    "panel {i} side {k} off its plane"
+                );
             }
             let Some(j) = s.neighbour else {
                 // Square: contains the normal.
@@ -152,7 +166,10 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
             // Independent bisector: points x with n.(x - p_i) = nj.(x - p_j).
             for q in [p.top[k], p.top[k1], p.bottom[k], p.bottom[k1]] {
                 let r = n.dot(q - seed.point) - nj.dot(q - sj.point);
-                assert!(r.abs() <= 2.0 * tol, "panel {i} side {k}: not on the bisector ({r})");
+                assert!(
+                    r.abs() <= 2.0 * tol,
+                    "panel {i} side {k}: not on the bisector ({r})"
+                );
             }
             // The neighbour's side over the same edge: the same plane, opposite normal.
             let pj = &fab.panels[j as usize];
@@ -166,7 +183,10 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
             };
             let o = &pj.sides[kj].plane;
             for c in 0..4 {
-                assert!((o[c] + s.plane[c]).abs() <= tol.max(1e-12), "panel {i}/{j}: planes differ");
+                assert!(
+                    (o[c] + s.plane[c]).abs() <= tol.max(1e-12),
+                    "panel {i}/{j}: planes differ"
+                );
             }
             // No gap, no overlap: where both ends are interior vertices, the two side faces
             // have the same corners.
@@ -180,8 +200,14 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
             });
             if ends_interior {
                 let kj1 = (kj + 1) % rj;
-                assert!((pj.bottom[kj1] - p.bottom[k]).length() <= tol, "panel {i}/{j}: bottom corner differs");
-                assert!((pj.bottom[kj] - p.bottom[k1]).length() <= tol, "panel {i}/{j}: bottom corner differs");
+                assert!(
+                    (pj.bottom[kj1] - p.bottom[k]).length() <= tol,
+                    "panel {i}/{j}: bottom corner differs"
+                );
+                assert!(
+                    (pj.bottom[kj] - p.bottom[k1]).length() <= tol,
+                    "panel {i}/{j}: bottom corner differs"
+                );
                 shared_interior_sides += 1;
             }
         }
@@ -190,16 +216,25 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
             for b in a + 1..ring {
                 let d3 = (p.top[a] - p.top[b]).length();
                 let d2 = (p.flat[a] - p.flat[b]).length();
-                assert!((d3 - d2).abs() <= tol, "panel {i}: flat distance {d2} vs {d3}");
+                assert!(
+                    (d3 - d2).abs() <= tol,
+                    "panel {i}: flat distance {d2} vs {d3}"
+                );
             }
         }
-        assert!(signed_area(&p.flat) > 0.0, "panel {i}: flat outline not counter-clockwise");
+        assert!(
+            signed_area(&p.flat) > 0.0,
+            "panel {i}: flat outline not counter-clockwise"
+        );
     }
     assert!(shared_interior_sides > 0, "no interior side was compared");
 }
 
 fn signed_area(p: &[DVec2]) -> f64 {
-    (0..p.len()).map(|k| p[k].perp_dot(p[(k + 1) % p.len()])).sum::<f64>() / 2.0
+    (0..p.len())
+        .map(|k| p[k].perp_dot(p[(k + 1) % p.len()]))
+        .sum::<f64>()
+        / 2.0
 }
 
 fn geo_polygon(points: &[DVec2]) -> geo::Polygon<f64> {
@@ -233,7 +268,12 @@ fn check_nesting(fab: &Fabrication) {
         for a in 0..parts.len() {
             for b in a + 1..parts.len() {
                 let (pa, pb) = (&parts[a].1, &parts[b].1);
-                assert!(!pa.intersects(pb), "parts {} and {} overlap", parts[a].0, parts[b].0);
+                assert!(
+                    !pa.intersects(pb),
+                    "parts {} and {} overlap",
+                    parts[a].0,
+                    parts[b].0
+                );
                 let d = Euclidean::distance(pa, pb);
                 assert!(
                     d >= fab.gap - 1e-9,
@@ -359,7 +399,11 @@ fn v_fold_volumes_and_angles_match_the_closed_form() {
         check_closed_planar(&p.solid, 1e-12, "v fold");
         // Section: top w, bottom w - T tan(alpha) (mitre at the fold, square at the far end).
         let closed = l * (t * w - t * t * alpha.tan() / 2.0);
-        assert!((p.solid.volume() - closed).abs() < 1e-14, "{} vs {closed}", p.solid.volume());
+        assert!(
+            (p.solid.volume() - closed).abs() < 1e-14,
+            "{} vs {closed}",
+            p.solid.volume()
+        );
         assert!((volume_by_divergence(&p.solid) - closed).abs() < 1e-14);
         let fold = p.sides.iter().find(|s| s.neighbour.is_some()).unwrap();
         assert!((fold.bevel_deg - alpha.to_degrees()).abs() < 1e-12);
@@ -418,7 +462,10 @@ fn slots_are_notches_of_volume_l_d_t_and_cleats_fill_both() {
         assert_eq!(p.slots.len(), 3);
         check_closed_planar(&p.solid, 1e-12, "notched panel");
         let removed = q.solid.volume() - volume_by_divergence(&p.solid);
-        assert!((removed - 3.0 * sl * sd * t).abs() < 1e-14, "removed {removed}");
+        assert!(
+            (removed - 3.0 * sl * sd * t).abs() < 1e-14,
+            "removed {removed}"
+        );
     }
     let mut centres = Vec::new();
     for c in &fab.cleats {
@@ -428,7 +475,11 @@ fn slots_are_notches_of_volume_l_d_t_and_cleats_fill_both() {
         centres.push(centre.y);
         // The cleat fills the two notches: each of its vertices is a vertex of a notched panel.
         for v in &c.solid.vertices {
-            assert!(fab.panels.iter().any(|p| p.solid.vertices.iter().any(|u| (*u - *v).length() < 1e-12)));
+            assert!(fab.panels.iter().any(|p| p
+                .solid
+                .vertices
+                .iter()
+                .any(|u| (*u - *v).length() < 1e-12)));
         }
     }
     centres.sort_by(f64::total_cmp);
@@ -448,7 +499,10 @@ fn slots_are_notches_of_volume_l_d_t_and_cleats_fill_both() {
         },
     )
     .unwrap_err();
-    assert!(matches!(err, FabricationError::BadSlot { a: 0, b: 1, .. }), "{err}");
+    assert!(
+        matches!(err, FabricationError::BadSlot { a: 0, b: 1, .. }),
+        "{err}"
+    );
     assert!(SlotPlan::from_json(r#"{"slot": []}"#, "s.json").is_err());
 }
 
@@ -465,7 +519,13 @@ fn bad_thickness_is_refused_with_a_reason() {
         )
         .unwrap_err();
         assert!(
-            matches!(err, FabricationError::InvalidOption { field: "thickness", .. }),
+            matches!(
+                err,
+                FabricationError::InvalidOption {
+                    field: "thickness",
+                    ..
+                }
+            ),
             "{bad}: {err}"
         );
     }
@@ -505,7 +565,10 @@ fn bad_thickness_is_refused_with_a_reason() {
         },
     )
     .unwrap_err();
-    assert!(matches!(err, FabricationError::PartTooLarge { .. }), "{err}");
+    assert!(
+        matches!(err, FabricationError::PartTooLarge { .. }),
+        "{err}"
+    );
 }
 
 #[test]
@@ -567,7 +630,11 @@ fn a_thickness_beyond_a_short_edge_is_named() {
             let top = p.top[(k + 1) % r] - p.top[k];
             let bottom = p.bottom[(k + 1) % r] - p.bottom[k];
             if top.length() > 1e-9 {
-                assert!(top.dot(bottom) > 0.0, "panel {}: bottom edge {k} reversed", p.seed);
+                assert!(
+                    top.dot(bottom) > 0.0,
+                    "panel {}: bottom edge {k} reversed",
+                    p.seed
+                );
             }
         }
     }
@@ -665,12 +732,17 @@ fn toolpath_runs_one_tool_radius_outside_every_outline() {
                     })
                     .collect()
             } else {
-                (0..=16).map(|s| pos + (to - pos) * (s as f64 / 16.0)).collect()
+                (0..=16)
+                    .map(|s| pos + (to - pos) * (s as f64 / 16.0))
+                    .collect()
             };
             let poly = geo::Polygon::new(outlines[q].clone(), vec![]);
             for p in samples {
                 let pt = geo::Point::new(p.x, p.y);
-                assert!(!poly.contains(&pt), "part {q}: the tool enters the part at {p}");
+                assert!(
+                    !poly.contains(&pt),
+                    "part {q}: the tool enters the part at {p}"
+                );
                 let dist = Euclidean::distance(&pt, &outlines[q]);
                 worst = worst.max((dist - r).abs());
                 measured += 1;
@@ -679,7 +751,10 @@ fn toolpath_runs_one_tool_radius_outside_every_outline() {
         pos = to;
     }
     assert!(measured > 1000, "{measured} samples");
-    assert!(worst < 1e-8, "the toolpath strays {worst} from one tool radius");
+    assert!(
+        worst < 1e-8,
+        "the toolpath strays {worst} from one tool radius"
+    );
     assert!(code.contains("G3 ") && code.contains("(part 0 slot)") && code.ends_with("M30\n"));
     // A gap the tool does not fit into is refused.
     let err = fab
@@ -688,7 +763,10 @@ fn toolpath_runs_one_tool_radius_outside_every_outline() {
             ..ToolpathOptions::default()
         })
         .unwrap_err();
-    assert!(matches!(err, FabricationError::InvalidOption { field: "gap", .. }), "{err}");
+    assert!(
+        matches!(err, FabricationError::InvalidOption { field: "gap", .. }),
+        "{err}"
+    );
 }
 
 #[test]
@@ -743,14 +821,23 @@ fn files_read_back() {
             }
         }
         for (&(a, b), &c) in &edges {
-            assert!(c == 1 && edges.get(&(b, a)) == Some(&1), "{name}: open at {a}-{b}");
+            assert!(
+                c == 1 && edges.get(&(b, a)) == Some(&1),
+                "{name}: open at {a}-{b}"
+            );
         }
     }
     // bevels.csv: one row per side.
     let csv = fab.bevels_csv();
     let rows: Vec<&str> = csv.lines().collect();
-    assert_eq!(rows[0], "panel,side,neighbour,length,dihedral_deg,bevel_deg");
-    assert_eq!(rows.len() - 1, fab.panels.iter().map(|p| p.sides.len()).sum::<usize>());
+    assert_eq!(
+        rows[0],
+        "panel,side,neighbour,length,dihedral_deg,bevel_deg"
+    );
+    assert_eq!(
+        rows.len() - 1,
+        fab.panels.iter().map(|p| p.sides.len()).sum::<usize>()
+    );
     for r in &rows[1..] {
         let c: Vec<&str> = r.split(',').collect();
         assert_eq!(c.len(), 6);
@@ -765,11 +852,21 @@ fn files_read_back() {
         .chunks(2)
         .map(|c| (c[0].trim().parse::<i32>().unwrap(), c[1]))
         .collect();
-    let after = |name: &str| pairs.iter().position(|&(c, v)| c == 9 && v == name).map(|q| pairs[q + 1]);
+    let after = |name: &str| {
+        pairs
+            .iter()
+            .position(|&(c, v)| c == 9 && v == name)
+            .map(|q| pairs[q + 1])
+    };
     assert_eq!(after("$ACADVER"), Some((1, "AC1009")));
     assert_eq!(after("$INSUNITS"), Some((70, "4")));
     for layer in ["CUT", "SLOT", "ENGRAVE"] {
-        assert!(pairs.windows(2).any(|w| w[0] == (0, "LAYER") && w[1] == (2, layer)), "{layer}");
+        assert!(
+            pairs
+                .windows(2)
+                .any(|w| w[0] == (0, "LAYER") && w[1] == (2, layer)),
+            "{layer}"
+        );
     }
     let mut cut = 0;
     let mut q = 0;

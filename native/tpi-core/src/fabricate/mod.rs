@@ -426,12 +426,7 @@ pub fn fabricate(
     check_positive("slot length", slot_length)?;
     check_positive("slot depth", slot_depth)?;
     let mut built = solids::build(mesh, t, options.side)?;
-    let cleats = solids::cut_slots(
-        &mut built,
-        &options.slots,
-        slot_length,
-        slot_depth,
-    )?;
+    let cleats = solids::cut_slots(&mut built, &options.slots, slot_length, slot_depth)?;
     let mut diagnostics = std::mem::take(&mut built.diagnostics);
     let mut panels = built.panels;
     let sheets = layout::nest(&mut panels, options.sheet, options.gap, &mut diagnostics)?;

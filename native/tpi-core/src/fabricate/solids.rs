@@ -11,8 +11,8 @@ use super::{
     SlotPlan,
 };
 use crate::tolerance::{
-    FABRICATION_MAX_VALENCE, FABRICATION_PARALLEL_TOLERANCE, FABRICATION_SHORT_EDGE,
-    FABRICATION_SINGULAR_TOLERANCE,
+    FABRICATION_MAX_VALENCE, FABRICATION_OUTLINE_MERGE, FABRICATION_PARALLEL_TOLERANCE,
+    FABRICATION_SHORT_EDGE, FABRICATION_SINGULAR_TOLERANCE,
 };
 use crate::Discretisation;
 
@@ -132,8 +132,8 @@ pub(super) fn build(
 
     // The concave side: where the neighbours' seeds lie.
     let mut lean = 0.0;
-    for i in 0..n {
-        for j in neighbours[i].iter().flatten() {
+    for (i, around) in neighbours.iter().enumerate() {
+        for j in around.iter().flatten() {
             let (si, sj) = (&mesh.seeds[i], &mesh.seeds[*j as usize]);
             lean += si.normal.normalize().dot(sj.point - si.point);
         }
@@ -264,7 +264,8 @@ pub(super) fn build(
                     let pair = [(i as u32).min(j), (i as u32).max(j)];
                     if !parallel_seen.contains(&pair) {
                         parallel_seen.push(pair);
-                        diagnostics.push(FabricationDiagnostic::ParallelNeighbours { panels: pair });
+                        diagnostics
+                            .push(FabricationDiagnostic::ParallelNeighbours { panels: pair });
                     }
                 }
             }
@@ -297,16 +298,16 @@ pub(super) fn build(
         let to_flat = |x: DVec3| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2));
         let flat: Vec<DVec2> = top.iter().map(|&x| to_flat(x)).collect();
         let flat_bottom: Vec<DVec2> = bottom.iter().map(|&x| to_flat(x)).collect();
+        let tol = FABRICATION_OUTLINE_MERGE * diagonal;
         let mut outline: Vec<DVec2> = Vec::with_capacity(ring);
         for &p in &flat {
-            if outline.last() != Some(&p) {
+            if outline.last().map_or(true, |q| (*q - p).length() > tol) {
                 outline.push(p);
             }
         }
-        while outline.len() > 1 && outline.first() == outline.last() {
+        while outline.len() > 1 && (outline[0] - outline[outline.len() - 1]).length() <= tol {
             outline.pop();
         }
-        let tol = 1e-9 * diagonal;
         let outside = flat_bottom.iter().any(|&p| {
             !point_in_polygon(p, &outline)
                 && (0..outline.len())
@@ -361,7 +362,7 @@ pub(super) fn build(
             let shrink = -((p.bottom[k1] - p.top[k1]) - (p.bottom[k] - p.top[k])).dot(d) / t;
             if shrink > 0.0 {
                 let max = l / shrink;
-                if worst.is_none_or(|(w, _, _)| max < w) {
+                if worst.map_or(true, |(w, _, _)| max < w) {
                     worst = Some((max, p.seed, p.sides[k].neighbour.unwrap_or(u32::MAX)));
                 }
             }
@@ -480,10 +481,9 @@ pub(super) fn cut_slots(
         let hi = edge_len.min(ba1).min(bb0);
         if s0 < lo || s1 > hi {
             if matches!(plan, SlotPlan::Even(_)) {
-                built.diagnostics.push(FabricationDiagnostic::SlotSkipped {
-                    panels: [a, b],
-                    t,
-                });
+                built
+                    .diagnostics
+                    .push(FabricationDiagnostic::SlotSkipped { panels: [a, b], t });
                 continue;
             }
             return Err(bad(format!(
@@ -557,10 +557,9 @@ pub(super) fn cut_slots(
         });
         if overlaps {
             if matches!(plan, SlotPlan::Even(_)) {
-                built.diagnostics.push(FabricationDiagnostic::SlotSkipped {
-                    panels: [a, b],
-                    t,
-                });
+                built
+                    .diagnostics
+                    .push(FabricationDiagnostic::SlotSkipped { panels: [a, b], t });
                 continue;
             }
             return Err(bad("it overlaps another slot on the same edge".into()));
@@ -607,8 +606,7 @@ fn panel_solid(p: &Panel, notches: &[(usize, f64, f64, f64)]) -> Polyhedron {
     let mut pairs: Vec<(DVec3, DVec3)> = Vec::with_capacity(ring + 4 * notches.len());
     for k in 0..ring {
         pairs.push((p.top[k], p.bottom[k]));
-        let mut here: Vec<&(usize, f64, f64, f64)> =
-            notches.iter().filter(|n| n.0 == k).collect();
+        let mut here: Vec<&(usize, f64, f64, f64)> = notches.iter().filter(|n| n.0 == k).collect();
         if here.is_empty() {
             continue;
         }

@@ -185,7 +185,8 @@ impl Fabrication {
                                 let _ = writeln!(out, "G0 X{} Y{}", f(a.x), f(a.y));
                                 let _ = writeln!(out, "G1 Z{} F{}", f(z), options.plunge);
                             } else {
-                                let _ = writeln!(out, "G1 X{} Y{} F{}", f(a.x), f(a.y), options.feed);
+                                let _ =
+                                    writeln!(out, "G1 X{} Y{} F{}", f(a.x), f(a.y), options.feed);
                             }
                             let _ = writeln!(out, "G1 X{} Y{}", f(b.x), f(b.y));
                         }

@@ -237,27 +237,46 @@ impl Fabrication {
         }
         let text_size = self.label_height();
         for p in &self.panels {
-            let (outline, slots, centre) = self.placed(p);
+            let (outline, slots, _) = self.placed(p);
             let _ = writeln!(
                 out,
                 r##"<polygon stroke="#c00" points="{}"/>"##,
                 points(&outline)
             );
             for s in &slots {
-                let _ = writeln!(
-                    out,
-                    r##"<polyline stroke="#00c" points="{}"/>"##,
-                    points(s)
-                );
+                let _ = writeln!(out, r##"<polyline stroke="#00c" points="{}"/>"##, points(s));
             }
-            let _ = writeln!(
-                out,
-                r##"<text transform="translate({} {}) scale(1,-1)" font-size="{text_size}" text-anchor="middle" fill="#080" stroke="none">{}</text>"##,
-                centre.x, centre.y, p.seed
-            );
+            let mut d = String::new();
+            for [a, b] in self.labels(p, text_size) {
+                let _ = write!(d, "M{},{}L{},{}", a.x, a.y, b.x, b.y);
+            }
+            let _ = writeln!(out, r##"<path stroke="#080" d="{d}"/>"##);
         }
         out.push_str("</g>\n</svg>\n");
         out
+    }
+
+    /// A part's engraving on its sheet (sheet offset included): its seed at the centre, and
+    /// each interior side's neighbour beside the side, inside the part, along the side.
+    fn labels(&self, p: &Panel, h: f64) -> Vec<[DVec2; 2]> {
+        let pl = p.placement;
+        let dx = DVec2::new(self.sheet_offset(pl.sheet), 0.0);
+        let (_, _, centre) = self.placed(p);
+        let mut strokes = number_strokes(&p.seed.to_string(), centre, h, 0.0);
+        let r = p.flat.len();
+        for (k, s) in p.sides.iter().enumerate() {
+            let Some(j) = s.neighbour else { continue };
+            let (a, b) = (p.flat[k], p.flat[(k + 1) % r]);
+            let label = j.to_string();
+            if (b - a).length() < (label.len() as f64 + 1.0) * h * 0.6 {
+                continue;
+            }
+            let inward = (b - a).perp().normalize();
+            let at = pl.apply((a + b) / 2.0 + inward * h) + dx;
+            let dir = pl.apply(b) - pl.apply(a);
+            strokes.extend(number_strokes(&label, at, h * 0.6, dir.y.atan2(dir.x)));
+        }
+        strokes
     }
 
     fn label_height(&self) -> f64 {
@@ -270,9 +289,9 @@ impl Fabrication {
         sizes.get(sizes.len() / 2).copied().unwrap_or(1.0) / 6.0
     }
 
-    /// sheets.dxf: ASCII DXF R12, layers CUT (part outlines), SLOT (notches) and ENGRAVE
-    /// (panel labels at the centre, and each side's neighbour id beside the side, as TEXT in
-    /// the single-stroke STANDARD font); sheets side by side, 10 % apart.
+    /// sheets.dxf: ASCII DXF R12, layers SHEET, CUT (part outlines), SLOT (notches) and
+    /// ENGRAVE (panel labels at the centre, and each side's neighbour id beside the side, as
+    /// single strokes); sheets side by side, 10 % apart.
     pub fn sheets_dxf(&self, units: Units) -> String {
         let mut out = String::new();
         let mut pair = |code: u32, value: &str| {
@@ -301,7 +320,12 @@ impl Fabrication {
         pair(0, "TABLE");
         pair(2, "LAYER");
         pair(70, "4");
-        for (name, colour) in [("SHEET", "8"), ("CUT", "1"), ("SLOT", "5"), ("ENGRAVE", "3")] {
+        for (name, colour) in [
+            ("SHEET", "8"),
+            ("CUT", "1"),
+            ("SLOT", "5"),
+            ("ENGRAVE", "3"),
+        ] {
             pair(0, "LAYER");
             pair(2, name);
             pair(70, "0");
@@ -312,24 +336,25 @@ impl Fabrication {
         pair(0, "ENDSEC");
         pair(0, "SECTION");
         pair(2, "ENTITIES");
-        let polyline = |pair: &mut dyn FnMut(u32, &str), layer: &str, pts: &[DVec2], closed: bool| {
-            pair(0, "POLYLINE");
-            pair(8, layer);
-            pair(66, "1");
-            pair(70, if closed { "1" } else { "0" });
-            pair(10, "0.0");
-            pair(20, "0.0");
-            pair(30, "0.0");
-            for p in pts {
-                pair(0, "VERTEX");
+        let polyline =
+            |pair: &mut dyn FnMut(u32, &str), layer: &str, pts: &[DVec2], closed: bool| {
+                pair(0, "POLYLINE");
                 pair(8, layer);
-                pair(10, &p.x.to_string());
-                pair(20, &p.y.to_string());
+                pair(66, "1");
+                pair(70, if closed { "1" } else { "0" });
+                pair(10, "0.0");
+                pair(20, "0.0");
                 pair(30, "0.0");
-            }
-            pair(0, "SEQEND");
-            pair(8, layer);
-        };
+                for p in pts {
+                    pair(0, "VERTEX");
+                    pair(8, layer);
+                    pair(10, &p.x.to_string());
+                    pair(20, &p.y.to_string());
+                    pair(30, "0.0");
+                }
+                pair(0, "SEQEND");
+                pair(8, layer);
+            };
         for (k, s) in self.sheets.iter().enumerate() {
             let x0 = self.sheet_offset(k);
             let rect = [
@@ -341,49 +366,73 @@ impl Fabrication {
             polyline(&mut pair, "SHEET", &rect, true);
         }
         let h = self.label_height();
-        let text = |pair: &mut dyn FnMut(u32, &str), at: DVec2, height: f64, angle: f64, s: &str| {
-            pair(0, "TEXT");
-            pair(8, "ENGRAVE");
-            pair(10, &at.x.to_string());
-            pair(20, &at.y.to_string());
-            pair(30, "0.0");
-            pair(40, &height.to_string());
-            pair(1, s);
-            pair(50, &angle.to_string());
-            pair(72, "1");
-            pair(73, "2");
-            pair(11, &at.x.to_string());
-            pair(21, &at.y.to_string());
-            pair(31, "0.0");
-        };
         for p in &self.panels {
-            let (outline, slots, centre) = self.placed(p);
+            let (outline, slots, _) = self.placed(p);
             polyline(&mut pair, "CUT", &outline, true);
             for s in &slots {
                 polyline(&mut pair, "SLOT", s, false);
             }
-            text(&mut pair, centre, h, 0.0, &p.seed.to_string());
-            // Each side's neighbour, inside the part beside the side's midpoint.
-            let pl = p.placement;
-            let dx = DVec2::new(self.sheet_offset(pl.sheet), 0.0);
-            let r = p.flat.len();
-            for (k, s) in p.sides.iter().enumerate() {
-                let Some(j) = s.neighbour else { continue };
-                let (a, b) = (p.flat[k], p.flat[(k + 1) % r]);
-                if (b - a).length() < 2.0 * h {
-                    continue;
-                }
-                let inward = (b - a).perp().normalize();
-                let at = pl.apply((a + b) / 2.0 + inward * h) + dx;
-                let dir = pl.apply(b) - pl.apply(a);
-                let angle = dir.y.atan2(dir.x).to_degrees();
-                text(&mut pair, at, h * 0.6, angle, &j.to_string());
+            for stroke in self.labels(p, h) {
+                polyline(&mut pair, "ENGRAVE", &stroke, false);
             }
         }
         pair(0, "ENDSEC");
         pair(0, "EOF");
         out
     }
+}
+
+/// The seven segments of a digit cell of width 0.6 and height 1: a (top), b, c (right, top
+/// to bottom), d (bottom), e, f (left, bottom to top), g (middle).
+const SEGMENTS: [[(f64, f64); 2]; 7] = [
+    [(0.0, 1.0), (0.6, 1.0)],
+    [(0.6, 1.0), (0.6, 0.5)],
+    [(0.6, 0.5), (0.6, 0.0)],
+    [(0.0, 0.0), (0.6, 0.0)],
+    [(0.0, 0.0), (0.0, 0.5)],
+    [(0.0, 0.5), (0.0, 1.0)],
+    [(0.0, 0.5), (0.6, 0.5)],
+];
+
+/// Segments lit per digit, bits a..g from bit 0.
+const DIGITS: [u8; 10] = [
+    0b0111111, 0b0000110, 0b1011011, 0b1001111, 0b1100110, 0b1101101, 0b1111101, 0b0000111,
+    0b1111111, 0b1101111,
+];
+
+/// A number as single strokes (seven-segment digits) a router can engrave: straight
+/// two-point strokes, the text of height `height` centred on `centre`, turned by `angle`
+/// radians. Characters other than digits are left out.
+pub(super) fn number_strokes(
+    text: &str,
+    centre: DVec2,
+    height: f64,
+    angle: f64,
+) -> Vec<[DVec2; 2]> {
+    let digits: Vec<usize> = text
+        .chars()
+        .filter_map(|c| c.to_digit(10).map(|d| d as usize))
+        .collect();
+    let advance = 0.9;
+    let width = digits.len() as f64 * advance - 0.3;
+    let (sin, cos) = angle.sin_cos();
+    let place = |x: f64, y: f64| {
+        let local = DVec2::new((x - width / 2.0) * height, (y - 0.5) * height);
+        centre + DVec2::new(cos * local.x - sin * local.y, sin * local.x + cos * local.y)
+    };
+    let mut strokes = Vec::new();
+    for (q, &d) in digits.iter().enumerate() {
+        let x0 = q as f64 * advance;
+        for (bit, seg) in SEGMENTS.iter().enumerate() {
+            if DIGITS[d] & (1 << bit) != 0 {
+                strokes.push([
+                    place(x0 + seg[0].0, seg[0].1),
+                    place(x0 + seg[1].0, seg[1].1),
+                ]);
+            }
+        }
+    }
+    strokes
 }
 
 fn points(p: &[DVec2]) -> String {
