@@ -306,7 +306,7 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
 fn summary(fab: &Fabrication, density: Option<f64>) -> String {
     let area: f64 = fab.panels.iter().map(|p| p.top_area().abs()).sum();
     let volume: f64 = fab.panels.iter().map(|p| p.solid.volume()).sum();
-    let cleat_volume: f64 = fab.cleats.iter().map(|c| c.solid.volume()).sum();
+    let cleat_volume: f64 = fab.cleats.iter().map(|c| c.solid.volume()).sum::<f64>() + 0.0;
     let by_area = |p: &&tpi_core::Panel| p.top_area().abs();
     let smallest = fab
         .panels
@@ -331,15 +331,16 @@ fn summary(fab: &Fabrication, density: Option<f64>) -> String {
         fab.cleats.len(),
         fab.diagnostics.len()
     );
-    let util: Vec<String> = fab
-        .sheets
+    let utils: Vec<f64> = fab.sheets.iter().map(|x| x.utilisation * 100.0).collect();
+    let mean = utils.iter().sum::<f64>() / utils.len().max(1) as f64;
+    let (lo, hi) = utils
         .iter()
-        .map(|x| format!("{:.0} %", x.utilisation * 100.0))
-        .collect();
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &u| {
+            (a.min(u), b.max(u))
+        });
     s += &format!(
-        "  sheets: {} (utilisation {})\n",
-        fab.sheets.len(),
-        util.join(", ")
+        "  sheets: {} (utilisation mean {mean:.0} %, lowest {lo:.0} %, highest {hi:.0} %)\n",
+        fab.sheets.len()
     );
     s += &format!(
         "  total area {area:.6}, panel volume {volume:.6}, cleat volume {cleat_volume:.6}\n"

@@ -245,10 +245,12 @@ pub(super) fn nest(
                     candidates.push(DVec2::new(o.hi.x + gap, gap));
                     candidates.push(DVec2::new(gap, o.hi.y + gap));
                 }
-                for c in candidates {
-                    if !feasible(c) {
-                        continue;
-                    }
+                // The two lowest feasible candidates (then leftmost) are dropped.
+                let mut feasible_corners: Vec<DVec2> =
+                    candidates.into_iter().filter(|&c| feasible(c)).collect();
+                feasible_corners.sort_by(|a, b| a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x)));
+                feasible_corners.truncate(2);
+                for c in feasible_corners {
                     // Drop down, then left, then down again (bisection to 1e-4 of the gap).
                     let mut at = c;
                     for axis in [1usize, 0, 1] {

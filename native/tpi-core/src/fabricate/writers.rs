@@ -247,8 +247,10 @@ impl Fabrication {
                 let _ = writeln!(out, r##"<polyline stroke="#00c" points="{}"/>"##, points(s));
             }
             let mut d = String::new();
-            for [a, b] in self.labels(p, text_size) {
-                let _ = write!(d, "M{},{}L{},{}", a.x, a.y, b.x, b.y);
+            for stroke in self.labels(p, text_size) {
+                for (q, a) in stroke.iter().enumerate() {
+                    let _ = write!(d, "{}{:.6},{:.6}", if q == 0 { 'M' } else { 'L' }, a.x, a.y);
+                }
             }
             let _ = writeln!(out, r##"<path stroke="#080" d="{d}"/>"##);
         }
@@ -258,7 +260,7 @@ impl Fabrication {
 
     /// A part's engraving on its sheet (sheet offset included): its seed at the centre, and
     /// each interior side's neighbour beside the side, inside the part, along the side.
-    fn labels(&self, p: &Panel, h: f64) -> Vec<[DVec2; 2]> {
+    fn labels(&self, p: &Panel, h: f64) -> Vec<Vec<DVec2>> {
         let pl = p.placement;
         let dx = DVec2::new(self.sheet_offset(pl.sheet), 0.0);
         let (_, _, centre) = self.placed(p);
@@ -382,33 +384,39 @@ impl Fabrication {
     }
 }
 
-/// The seven segments of a digit cell of width 0.6 and height 1: a (top), b, c (right, top
-/// to bottom), d (bottom), e, f (left, bottom to top), g (middle).
-const SEGMENTS: [[(f64, f64); 2]; 7] = [
-    [(0.0, 1.0), (0.6, 1.0)],
-    [(0.6, 1.0), (0.6, 0.5)],
-    [(0.6, 0.5), (0.6, 0.0)],
-    [(0.0, 0.0), (0.6, 0.0)],
-    [(0.0, 0.0), (0.0, 0.5)],
-    [(0.0, 0.5), (0.0, 1.0)],
-    [(0.0, 0.5), (0.6, 0.5)],
-];
+/// Seven-segment digits as polylines in a cell of width 0.6 and height 1, each digit one or
+/// two strokes (corners: top left, top right, middle right, bottom right, bottom left, middle
+/// left).
+const DIGIT_STROKES: [&[&[(f64, f64)]]; 10] = {
+    const A: (f64, f64) = (0.0, 1.0);
+    const B: (f64, f64) = (0.6, 1.0);
+    const C: (f64, f64) = (0.6, 0.5);
+    const D: (f64, f64) = (0.6, 0.0);
+    const E: (f64, f64) = (0.0, 0.0);
+    const F: (f64, f64) = (0.0, 0.5);
+    [
+        &[&[A, B, D, E, A]],
+        &[&[B, D]],
+        &[&[A, B, C, F, E, D]],
+        &[&[A, B, D, E], &[F, C]],
+        &[&[A, F, C], &[B, D]],
+        &[&[B, A, F, C, D, E]],
+        &[&[B, A, E, D, C, F]],
+        &[&[A, B, D]],
+        &[&[A, B, D, E, A], &[F, C]],
+        &[&[C, F, A, B, D, E]],
+    ]
+};
 
-/// Segments lit per digit, bits a..g from bit 0.
-const DIGITS: [u8; 10] = [
-    0b0111111, 0b0000110, 0b1011011, 0b1001111, 0b1100110, 0b1101101, 0b1111101, 0b0000111,
-    0b1111111, 0b1101111,
-];
-
-/// A number as single strokes (seven-segment digits) a router can engrave: straight
-/// two-point strokes, the text of height `height` centred on `centre`, turned by `angle`
-/// radians. Characters other than digits are left out.
+/// A number as single strokes (seven-segment digits) a router can engrave: polylines, the
+/// text of height `height` centred on `centre`, turned by `angle` radians. Characters other
+/// than digits are left out.
 pub(super) fn number_strokes(
     text: &str,
     centre: DVec2,
     height: f64,
     angle: f64,
-) -> Vec<[DVec2; 2]> {
+) -> Vec<Vec<DVec2>> {
     let digits: Vec<usize> = text
         .chars()
         .filter_map(|c| c.to_digit(10).map(|d| d as usize))
@@ -423,13 +431,8 @@ pub(super) fn number_strokes(
     let mut strokes = Vec::new();
     for (q, &d) in digits.iter().enumerate() {
         let x0 = q as f64 * advance;
-        for (bit, seg) in SEGMENTS.iter().enumerate() {
-            if DIGITS[d] & (1 << bit) != 0 {
-                strokes.push([
-                    place(x0 + seg[0].0, seg[0].1),
-                    place(x0 + seg[1].0, seg[1].1),
-                ]);
-            }
+        for stroke in DIGIT_STROKES[d] {
+            strokes.push(stroke.iter().map(|&(x, y)| place(x0 + x, y)).collect());
         }
     }
     strokes
