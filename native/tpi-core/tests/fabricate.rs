@@ -11,7 +11,7 @@ use geo::{Contains, Distance, Euclidean, Intersects};
 use glam::{DVec2, DVec3};
 use tpi_core::{
     discretise, fabricate, Discretisation, DiscretiseOptions, FabricateOptions, Fabrication,
-    FabricationError, Generator, PanelSide, Polyhedron, Seed, SlotPlan, SurfaceSpec,
+    FabricationDiagnostic, FabricationError, Generator, PanelSide, Polyhedron, Seed, SlotPlan, SurfaceSpec,
     ToolpathOptions, Units, VertexKind,
 };
 
@@ -890,4 +890,97 @@ fn files_read_back() {
     let svg = fab.sheets_svg();
     assert_eq!(svg.matches("<polygon").count(), fab.panels.len());
     assert_eq!(svg.matches("<rect").count(), fab.sheets.len());
+}
+
+/// Four planar quads around one vertex: the 3 x 3 grid x in {-1, 0, 1.5}, y in {-0.7, 0, 1}
+/// lifted to z = a x^2 + b y^2 (a sum f(x) + g(y) is planar over every grid rectangle), four
+/// different planes through the centre whose offsets do not meet in a point.
+fn four_quads(a: f64, b: f64) -> Discretisation {
+    let z = |x: f64, y: f64| a * x * x + b * y * y;
+    let mut vertices = Vec::new();
+    for y in [-0.7, 0.0, 1.0] {
+        for x in [-1.0, 0.0, 1.5] {
+            vertices.push(DVec3::new(x, y, z(x, y)));
+        }
+    }
+    let idx = |x: i32, y: i32| ((y + 1) * 3 + (x + 1)) as u32;
+    let mut loops = Vec::new();
+    let mut offsets = vec![0u32];
+    let mut seeds = Vec::new();
+    for (cx, cy) in [(-1, -1), (0, -1), (-1, 0), (0, 0)] {
+        // Counter-clockwise seen from above.
+        let quad = [
+            idx(cx, cy),
+            idx(cx + 1, cy),
+            idx(cx + 1, cy + 1),
+            idx(cx, cy + 1),
+        ];
+        let pts: Vec<DVec3> = quad.iter().map(|&q| vertices[q as usize]).collect();
+        let normal = area_vector(&pts).normalize();
+        loops.extend_from_slice(&quad);
+        offsets.push(loops.len() as u32);
+        seeds.push(Seed {
+            uv: [0.0, 0.0],
+            point: pts.iter().sum::<DVec3>() / 4.0,
+            normal,
+            curvatures: [0.0, 0.0],
+        });
+    }
+    let mut kinds = vec![VertexKind::Boundary; 9];
+    kinds[4] = VertexKind::Interior;
+    Discretisation {
+        vertices,
+        vertex_kinds: kinds,
+        facet_offsets: offsets,
+        facet_loops: loops,
+        seeds,
+        ..Discretisation::default()
+    }
+}
+
+#[test]
+fn four_panels_at_a_vertex_are_split_the_same_way_for_all() {
+    let mesh = four_quads(1.0, 0.8);
+    for p in mesh.seeds.iter() {
+        assert!(p.normal.z > 0.4);
+    }
+    let t = 0.2;
+    let fab = fabricate(
+        &mesh,
+        &FabricateOptions {
+            thickness: t,
+            sheet: [5.0, 5.0],
+            ..FabricateOptions::default()
+        },
+    )
+    .unwrap();
+    // The four offset planes do not meet in a point: an independent check.
+    let m: Vec<DVec3> = mesh.seeds.iter().map(|s| s.normal).collect();
+    let w = |i: usize, j: usize, k: usize| {
+        let det = m[i].dot(m[j].cross(m[k]));
+        (m[j].cross(m[k]) + m[k].cross(m[i]) + m[i].cross(m[j])) * (t / det)
+    };
+    assert!((w(0, 1, 2) - w(1, 2, 3)).length() > 1e-4);
+    // The surface bends up (towards +z): the panels go up.
+    check_panels(&mesh, &fab, t, 1.0);
+    let split: Vec<_> = fab
+        .diagnostics
+        .iter()
+        .filter_map(|d| match d {
+            FabricationDiagnostic::SplitVertex { vertex, panels } => Some((*vertex, panels.clone())),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(split.len(), 1, "{:?}", fab.diagnostics);
+    assert_eq!(split[0].0, 4);
+    assert_eq!(split[0].1.len(), 4);
+    // Two panels (a diagonal pair) get a zero-length top edge, the other two do not.
+    let zero: Vec<u32> = fab
+        .panels
+        .iter()
+        .filter(|p| p.sides.iter().any(|s| s.length == 0.0))
+        .map(|p| p.seed)
+        .collect();
+    assert_eq!(zero.len(), 2, "{zero:?}");
+    assert!(fab.panels.iter().all(|p| p.top.len() == 4 || p.top.len() == 5));
 }
