@@ -11,8 +11,8 @@ use geo::{Contains, Distance, Euclidean, Intersects};
 use glam::{DVec2, DVec3};
 use tpi_core::{
     discretise, fabricate, Discretisation, DiscretiseOptions, FabricateOptions, Fabrication,
-    FabricationDiagnostic, FabricationError, Generator, PanelSide, Polyhedron, Seed, SlotPlan, SurfaceSpec,
-    ToolpathOptions, Units, VertexKind,
+    FabricationDiagnostic, FabricationError, Generator, PanelSide, Polyhedron, Seed, SlotPlan,
+    SurfaceSpec, ToolpathOptions, Units, VertexKind,
 };
 
 const TOL: f64 = 1e-9;
@@ -967,7 +967,9 @@ fn four_panels_at_a_vertex_are_split_the_same_way_for_all() {
         .diagnostics
         .iter()
         .filter_map(|d| match d {
-            FabricationDiagnostic::SplitVertex { vertex, panels } => Some((*vertex, panels.clone())),
+            FabricationDiagnostic::SplitVertex { vertex, panels } => {
+                Some((*vertex, panels.clone()))
+            }
             _ => None,
         })
         .collect();
@@ -982,5 +984,8 @@ fn four_panels_at_a_vertex_are_split_the_same_way_for_all() {
         .map(|p| p.seed)
         .collect();
     assert_eq!(zero.len(), 2, "{zero:?}");
-    assert!(fab.panels.iter().all(|p| p.top.len() == 4 || p.top.len() == 5));
+    assert!(fab
+        .panels
+        .iter()
+        .all(|p| p.top.len() == 4 || p.top.len() == 5));
 }

@@ -75,6 +75,13 @@ pub(super) fn build(
             ),
         });
     }
+    if mesh.facet_offsets.windows(2).any(|w| w[0] > w[1])
+        || mesh.facet_offsets.last().map(|&l| l as usize) != Some(mesh.facet_loops.len())
+    {
+        return Err(FabricationError::BadMesh {
+            reason: "the facet offsets do not describe the facet loops (decreasing, or not ending at the loops' length)".into(),
+        });
+    }
     for (q, v) in mesh.vertices.iter().enumerate() {
         if !v.is_finite() {
             return Err(FabricationError::BadMesh {
@@ -307,6 +314,13 @@ pub(super) fn build(
         }
         while outline.len() > 1 && (outline[0] - outline[outline.len() - 1]).length() <= tol {
             outline.pop();
+        }
+        if outline.len() < 3 {
+            return Err(FabricationError::BadMesh {
+                reason: format!(
+                    "facet {i} is degenerate: fewer than 3 of its vertices are apart by more than {tol}"
+                ),
+            });
         }
         let outside = flat_bottom.iter().any(|&p| {
             !point_in_polygon(p, &outline)
