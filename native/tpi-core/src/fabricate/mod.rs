@@ -172,7 +172,7 @@ pub enum FabricationError {
         reason: &'static str,
     },
     /// The thickness collapses a bottom edge: the offset vertices pass each other.
-    #[error("thickness {thickness} is too large for this mesh: the bottom edge of panel {panel} along neighbour {neighbour} collapses at thickness {max}; use a thickness below {max} (or a coarser pattern there)")]
+    #[error("thickness {thickness} is too large for this mesh: the bottom edge of panel {panel} {} collapses at thickness {max}; use a thickness below {max} (or a coarser pattern there)", across(.neighbour))]
     ThicknessTooLarge {
         /// The thickness asked for.
         thickness: f64,
@@ -180,8 +180,8 @@ pub enum FabricationError {
         max: f64,
         /// The panel (seed) whose bottom edge collapses first.
         panel: u32,
-        /// Its neighbour along that edge (a boundary side: `u32::MAX`).
-        neighbour: u32,
+        /// Its neighbour along that edge (None: a boundary side).
+        neighbour: Option<u32>,
     },
     /// The discretisation cannot be fabricated (empty, a facet with fewer than three vertices,
     /// a vertex that is not finite).
@@ -438,6 +438,13 @@ pub fn fabricate(
         gap: options.gap,
         diagnostics,
     })
+}
+
+fn across(neighbour: &Option<u32>) -> String {
+    match neighbour {
+        Some(j) => format!("along neighbour {j}"),
+        None => "along the boundary".to_string(),
+    }
 }
 
 fn check_positive(field: &'static str, value: f64) -> Result<(), FabricationError> {

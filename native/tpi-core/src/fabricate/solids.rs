@@ -362,7 +362,7 @@ pub(super) fn build(
     }
 
     // Thickness limit: no bottom edge may collapse.
-    let mut worst: Option<(f64, u32, u32)> = None;
+    let mut worst: Option<(f64, u32, Option<u32>)> = None;
     for p in &panels {
         let ring = p.top.len();
         for k in 0..ring {
@@ -377,7 +377,7 @@ pub(super) fn build(
             if shrink > 0.0 {
                 let max = l / shrink;
                 if worst.map_or(true, |(w, _, _)| max < w) {
-                    worst = Some((max, p.seed, p.sides[k].neighbour.unwrap_or(u32::MAX)));
+                    worst = Some((max, p.seed, p.sides[k].neighbour));
                 }
             }
         }
