@@ -105,7 +105,7 @@ fn every_output_is_written_and_reads_back() {
     let csv = fs::read_to_string(dir.join("bevels.csv")).unwrap();
     assert!(csv.starts_with("panel,side,neighbour,length,dihedral_deg,bevel_deg\n"));
     let svg = fs::read_to_string(dir.join("sheets.svg")).unwrap();
-    assert_eq!(svg.matches("<polygon").count(), 120);
+    assert_eq!(svg.matches("<polygon stroke=\"#c00\"").count(), 120);
     fs::remove_dir_all(&dir).unwrap();
 }
 

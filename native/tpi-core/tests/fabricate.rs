@@ -860,7 +860,7 @@ fn files_read_back() {
     };
     assert_eq!(after("$ACADVER"), Some((1, "AC1009")));
     assert_eq!(after("$INSUNITS"), Some((70, "4")));
-    for layer in ["CUT", "SLOT", "ENGRAVE"] {
+    for layer in ["CUT", "BOTTOM", "SLOT", "ENGRAVE"] {
         assert!(
             pairs
                 .windows(2)
@@ -888,7 +888,7 @@ fn files_read_back() {
     assert_eq!(cut, fab.panels.len());
     assert_eq!(pairs.last(), Some(&(0, "EOF")));
     let svg = fab.sheets_svg();
-    assert_eq!(svg.matches("<polygon").count(), fab.panels.len());
+    assert_eq!(svg.matches("<polygon stroke=\"#c00\"").count(), fab.panels.len());
     assert_eq!(svg.matches("<rect").count(), fab.sheets.len());
 }
 

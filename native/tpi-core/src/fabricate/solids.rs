@@ -688,7 +688,6 @@ fn panel_solid(p: &Panel, notches: &[(usize, f64, f64, f64)]) -> Polyhedron {
         .filter(|f| f.len() >= 3)
         .collect();
     let mut solid = Polyhedron { vertices, faces };
-    // Unused top vertices (merged duplicates) are not referenced; keep the indices stable.
     orient_outward(&mut solid);
     solid
 }

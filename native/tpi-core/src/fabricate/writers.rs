@@ -207,7 +207,15 @@ impl Fabrication {
         (outline, slots, pl.apply(centre) + dx)
     }
 
-    /// sheets.svg: the sheets side by side (model units, y up), cut outlines, slots and labels.
+    /// A part's bottom outline (seen through the part along its normal) on its sheet.
+    fn placed_bottom(&self, p: &Panel) -> Vec<DVec2> {
+        let pl = p.placement;
+        let dx = DVec2::new(self.sheet_offset(pl.sheet), 0.0);
+        p.flat_bottom.iter().map(|&q| pl.apply(q) + dx).collect()
+    }
+
+    /// sheets.svg: the sheets side by side (model units, y up), cut outlines, bottom outlines
+    /// (dashed), slots and labels.
     pub fn sheets_svg(&self) -> String {
         let total: f64 = self.sheet_offset(self.sheets.len());
         let height = self.sheets.iter().map(|s| s.size[1]).fold(0.0, f64::max);
@@ -242,6 +250,13 @@ impl Fabrication {
                 out,
                 r##"<polygon stroke="#c00" points="{}"/>"##,
                 points(&outline)
+            );
+            let _ = writeln!(
+                out,
+                r##"<polygon stroke="#999" stroke-dasharray="{} {}" points="{}"/>"##,
+                stroke * 4.0,
+                stroke * 4.0,
+                points(&self.placed_bottom(p))
             );
             for s in &slots {
                 let _ = writeln!(out, r##"<polyline stroke="#00c" points="{}"/>"##, points(s));
@@ -291,8 +306,8 @@ impl Fabrication {
         sizes.get(sizes.len() / 2).copied().unwrap_or(1.0) / 6.0
     }
 
-    /// sheets.dxf: ASCII DXF R12, layers SHEET, CUT (part outlines), SLOT (notches) and
-    /// ENGRAVE (panel labels at the centre, and each side's neighbour id beside the side, as
+    /// sheets.dxf: ASCII DXF R12, layers SHEET, CUT (part outlines), BOTTOM (the bottom
+    /// outline seen through the part, for the bevels), SLOT (notches) and ENGRAVE (panel labels at the centre, and each side's neighbour id beside the side, as
     /// single strokes); sheets side by side, 10 % apart.
     pub fn sheets_dxf(&self, units: Units) -> String {
         let mut out = String::new();
@@ -321,10 +336,11 @@ impl Fabrication {
         pair(0, "ENDTAB");
         pair(0, "TABLE");
         pair(2, "LAYER");
-        pair(70, "4");
+        pair(70, "5");
         for (name, colour) in [
             ("SHEET", "8"),
             ("CUT", "1"),
+            ("BOTTOM", "9"),
             ("SLOT", "5"),
             ("ENGRAVE", "3"),
         ] {
@@ -371,6 +387,7 @@ impl Fabrication {
         for p in &self.panels {
             let (outline, slots, _) = self.placed(p);
             polyline(&mut pair, "CUT", &outline, true);
+            polyline(&mut pair, "BOTTOM", &self.placed_bottom(p), true);
             for s in &slots {
                 polyline(&mut pair, "SLOT", s, false);
             }
