@@ -888,7 +888,10 @@ fn files_read_back() {
     assert_eq!(cut, fab.panels.len());
     assert_eq!(pairs.last(), Some(&(0, "EOF")));
     let svg = fab.sheets_svg();
-    assert_eq!(svg.matches("<polygon stroke=\"#c00\"").count(), fab.panels.len());
+    assert_eq!(
+        svg.matches("<polygon stroke=\"#c00\"").count(),
+        fab.panels.len()
+    );
     assert_eq!(svg.matches("<rect").count(), fab.sheets.len());
 }
 
