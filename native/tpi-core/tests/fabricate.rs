@@ -222,6 +222,32 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
                 );
             }
         }
+        // The cut outline holds the top and the bottom seen along the normal, and is no
+        // larger than the top widened by the outward reach of the bottom along its perimeter
+        // (so a non-convex facet keeps its shape: no convex hull).
+        let cut = geo_polygon(&p.cut_outline);
+        let mut reach: f64 = 0.0;
+        for (a, b) in p.flat.iter().zip(&p.flat_bottom) {
+            let q = geo::Point::new(a.x, a.y);
+            assert!(
+                Euclidean::distance(&q, &cut) <= tol,
+                "panel {i}: top outside the cut"
+            );
+            let q = geo::Point::new(b.x, b.y);
+            assert!(
+                Euclidean::distance(&q, &cut) <= tol,
+                "panel {i}: bottom outside the cut"
+            );
+            reach = reach.max((*b - *a).length());
+        }
+        let perimeter: f64 = (0..ring)
+            .map(|k| (p.flat[(k + 1) % ring] - p.flat[k]).length())
+            .sum();
+        let grown = signed_area(&p.cut_outline) - signed_area(&p.flat);
+        assert!(
+            grown >= -tol && grown <= perimeter * reach + reach * reach * ring as f64 + tol,
+            "panel {i}: cut outline grows the top by {grown}"
+        );
         assert!(
             signed_area(&p.flat) > 0.0,
             "panel {i}: flat outline not counter-clockwise"

@@ -60,34 +60,6 @@ pub(super) fn convex_hull(points: &[DVec2]) -> Vec<DVec2> {
     hull
 }
 
-/// Whether p lies inside the polygon (even-odd rule).
-pub(super) fn point_in_polygon(p: DVec2, poly: &[DVec2]) -> bool {
-    let n = poly.len();
-    let mut inside = false;
-    for k in 0..n {
-        let (a, b) = (poly[k], poly[(k + 1) % n]);
-        if (a.y > p.y) != (b.y > p.y) {
-            let x = a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x);
-            if p.x < x {
-                inside = !inside;
-            }
-        }
-    }
-    inside
-}
-
-/// Distance from p to the segment ab.
-pub(super) fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let ab = b - a;
-    let l2 = ab.length_squared();
-    let t = if l2 > 0.0 {
-        ((p - a).dot(ab) / l2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (p - (a + ab * t)).length()
-}
-
 pub(super) fn rotate(p: DVec2, angle: f64) -> DVec2 {
     let (s, c) = angle.sin_cos();
     DVec2::new(c * p.x - s * p.y, s * p.x + c * p.y)

@@ -5,7 +5,7 @@ use std::collections::HashMap;
 
 use glam::{DVec2, DVec3};
 
-use super::layout::{convex_hull, point_in_polygon, segment_distance, Placement};
+use super::layout::Placement;
 use super::{
     Cleat, FabricationDiagnostic, FabricationError, Panel, PanelSide, Polyhedron, Side, Slot,
     SlotPlan,
@@ -322,18 +322,53 @@ pub(super) fn build(
                 ),
             });
         }
-        let outside = flat_bottom.iter().any(|&p| {
-            !point_in_polygon(p, &outline)
-                && (0..outline.len())
-                    .map(|q| segment_distance(p, outline[q], outline[(q + 1) % outline.len()]))
-                    .fold(f64::INFINITY, f64::min)
-                    > tol
-        });
-        let cut_outline = if outside {
+        // The outline a vertical cut must follow: each side's top edge line, moved out to the
+        // side's bottom edge where that lies outside (a negative bevel); consecutive lines
+        // meet at the corners. Without negative bevels this is the top outline itself.
+        let mut lines: Vec<(DVec2, DVec2)> = Vec::with_capacity(ring); // (point, direction)
+        let mut widened = false;
+        for k in 0..ring {
+            let k1 = (k + 1) % ring;
+            let e = flat[k1] - flat[k];
+            if e.length() <= tol {
+                continue;
+            }
+            let d = e.normalize();
+            let out = DVec2::new(d.y, -d.x);
+            let push = (flat_bottom[k] - flat[k])
+                .dot(out)
+                .max((flat_bottom[k1] - flat[k1]).dot(out))
+                .max(0.0);
+            if push > tol {
+                widened = true;
+            }
+            lines.push((flat[k] + out * push, d));
+        }
+        let cut_outline = if widened {
             diagnostics.push(FabricationDiagnostic::BottomOutsideTop { panel: i as u32 });
-            let mut all = outline.clone();
-            all.extend_from_slice(&flat_bottom);
-            convex_hull(&all)
+            let n_lines = lines.len();
+            let mut corners: Vec<DVec2> = Vec::with_capacity(n_lines);
+            for q in 0..n_lines {
+                let (p0, d0) = lines[(q + n_lines - 1) % n_lines];
+                let (p1, d1) = lines[q];
+                let cross = d0.perp_dot(d1);
+                let corner = if cross.abs() <= 1e-12 {
+                    p1
+                } else {
+                    // p0 + a d0 = p1 + b d1
+                    p0 + d0 * ((p1 - p0).perp_dot(d1) / cross)
+                };
+                if corners
+                    .last()
+                    .map_or(true, |c| (*c - corner).length() > tol)
+                {
+                    corners.push(corner);
+                }
+            }
+            while corners.len() > 1 && (corners[0] - corners[corners.len() - 1]).length() <= tol {
+                corners.pop();
+            }
+            corners
         } else {
             outline
         };
