@@ -687,7 +687,35 @@ fn workshop() -> (Discretisation, Fabrication) {
 #[test]
 fn toolpath_runs_one_tool_radius_outside_every_outline() {
     let (_, fab) = workshop();
-    let d = 0.008;
+    assert!(fab.cleats.len() > 10);
+    check_toolpath(&fab, 0.008);
+    // A saddle: non-convex outlines, so reflex corners too.
+    let mesh = sample_mesh("hypar.json", "hex:10x10");
+    let diag = diagonal(&mesh);
+    let saddle = fabricate(
+        &mesh,
+        &FabricateOptions {
+            thickness: 0.005 * diag,
+            sheet: [diag, diag / 2.0],
+            gap: 0.01 * diag,
+            ..FabricateOptions::default()
+        },
+    )
+    .unwrap();
+    let reflex = saddle
+        .panels
+        .iter()
+        .filter(|p| {
+            let c = &p.cut_outline;
+            let n = c.len();
+            (0..n).any(|k| (c[k] - c[(k + n - 1) % n]).perp_dot(c[(k + 1) % n] - c[k]) < 0.0)
+        })
+        .count();
+    assert!(reflex > 0, "no non-convex outline to test");
+    check_toolpath(&saddle, 0.004 * diag);
+}
+
+fn check_toolpath(fab: &Fabrication, d: f64) {
     let code = fab
         .gcode(&ToolpathOptions {
             tool_diameter: d,
@@ -781,11 +809,15 @@ fn toolpath_runs_one_tool_radius_outside_every_outline() {
         worst < 1e-8,
         "the toolpath strays {worst} from one tool radius"
     );
-    assert!(code.contains("G3 ") && code.contains("(part 0 slot)") && code.ends_with("M30\n"));
+    assert!(code.contains("G3 ") && code.ends_with("M30\n"));
+    assert_eq!(
+        code.matches(" slot)").count(),
+        fab.panels.iter().map(|p| p.slots.len()).sum::<usize>()
+    );
     // A gap the tool does not fit into is refused.
     let err = fab
         .gcode(&ToolpathOptions {
-            tool_diameter: 0.05,
+            tool_diameter: fab.gap * 1.5,
             ..ToolpathOptions::default()
         })
         .unwrap_err();
