@@ -229,6 +229,8 @@ fn fabrication_error(e: &FabricationError) -> CliError {
             "gap" => "--gap",
             "tool diameter" => "--tool-diameter",
             "slot length" | "slot depth" | "slot size" => "--slot-size",
+            "slots per edge" => "--slots",
+            "step down" => "--tool-diameter",
             _ => "--sheet",
         },
         FabricationError::ThicknessTooLarge { .. } => "--thickness",
@@ -252,8 +254,7 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
     if let Some(s) = &opts.slots_arg {
         opts.fab.slots = match s.parse::<u32>() {
             Ok(0) => SlotPlan::None,
-            Ok(n) if n <= 1000 => SlotPlan::Even(n),
-            Ok(_) => return Err(CliError::input("--slots", "at most 1000 slots per edge")),
+            Ok(n) => SlotPlan::Even(n),
             Err(_) => {
                 let text = read_text(Path::new(s))?;
                 SlotPlan::from_json(&text, s).map_err(|e| CliError::input(s, e.to_string()))?

@@ -55,6 +55,7 @@ pub use error::{Direction, TpiError};
 pub use fabricate::{
     fabricate, Cleat, FabricateOptions, Fabrication, FabricationDiagnostic, FabricationError,
     Panel, PanelSide, Placement, Polyhedron, Sheet, Side, Slot, SlotPlan, ToolpathOptions, Units,
+    MAX_SLOTS_PER_EDGE,
 };
 pub use facets::VertexKind;
 pub use live::{LiveStats, LiveSurface};

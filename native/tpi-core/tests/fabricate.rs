@@ -1050,3 +1050,43 @@ fn four_panels_at_a_vertex_are_split_the_same_way_for_all() {
         .iter()
         .all(|p| p.top.len() == 4 || p.top.len() == 5));
 }
+
+#[test]
+fn absurd_counts_are_refused_not_attempted() {
+    let mesh = v_fold(0.7, 1.3, 0.3);
+    let err = fabricate(
+        &mesh,
+        &FabricateOptions {
+            slots: SlotPlan::Even(u32::MAX),
+            ..FabricateOptions::default()
+        },
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            FabricationError::InvalidOption {
+                field: "slots per edge",
+                ..
+            }
+        ),
+        "{err}"
+    );
+    let fab = fabricate(&mesh, &FabricateOptions::default()).unwrap();
+    let err = fab
+        .gcode(&ToolpathOptions {
+            step_down: Some(1e-12),
+            ..ToolpathOptions::default()
+        })
+        .unwrap_err();
+    assert!(
+        matches!(
+            err,
+            FabricationError::InvalidOption {
+                field: "step down",
+                ..
+            }
+        ),
+        "{err}"
+    );
+}

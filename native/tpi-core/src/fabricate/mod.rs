@@ -73,6 +73,9 @@ pub use layout::Placement;
 pub use toolpath::ToolpathOptions;
 pub use writers::Units;
 
+/// Most slots [`SlotPlan::Even`] may put on one edge.
+pub const MAX_SLOTS_PER_EDGE: u32 = 1000;
+
 /// Which side of the facets the panels are thickened to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum PanelSide {
@@ -415,6 +418,15 @@ pub fn fabricate(
             value: options.gap,
             reason: "must be a finite number >= 0",
         });
+    }
+    if let SlotPlan::Even(count) = options.slots {
+        if count > MAX_SLOTS_PER_EDGE {
+            return Err(FabricationError::InvalidOption {
+                field: "slots per edge",
+                value: f64::from(count),
+                reason: "at most 1000 slots per edge",
+            });
+        }
     }
     let t = options.thickness;
     let slot_length = options

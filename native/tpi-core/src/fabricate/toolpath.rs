@@ -17,6 +17,9 @@ use glam::DVec2;
 
 use super::{Fabrication, FabricationError, Units};
 
+/// Most step-down passes per profile.
+const MAX_PASSES: f64 = 10_000.0;
+
 /// Parameters of the G-code.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ToolpathOptions {
@@ -129,7 +132,15 @@ impl Fabrication {
             return Err(invalid("safe height", safe, "must be a finite number > 0"));
         }
         let depth = t + options.breakthrough.max(0.0);
-        let passes = (depth / step).ceil().max(1.0) as usize;
+        let passes = (depth / step).ceil().max(1.0);
+        if passes > MAX_PASSES {
+            return Err(invalid(
+                "step down",
+                step,
+                "needs more than 10000 passes for the thickness; use a larger step",
+            ));
+        }
+        let passes = passes as usize;
         let tab_length = options.tab_length.unwrap_or(4.0 * d).max(0.0);
         let tab_z = -depth + options.tab_height.unwrap_or(t / 3.0).clamp(0.0, depth);
         let mut out = String::new();
