@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use tpi_core::{
-    discretise, fabricate, DiscretiseOptions, FabricateOptions, Fabrication, FabricationError,
-    PanelSide, SlotPlan, ToolpathOptions, Units,
+    discretise, fabricate, DiscretiseOptions, FabricateOptions, Fabrication, FabricationDiagnostic,
+    FabricationError, PanelSide, SlotPlan, ToolpathOptions, Units,
 };
 
 use crate::args::{Arg, Args};
@@ -332,6 +332,28 @@ fn summary(fab: &Fabrication, density: Option<f64>) -> String {
         fab.cleats.len(),
         fab.diagnostics.len()
     );
+    if !fab.diagnostics.is_empty() {
+        let mut kinds: Vec<(&str, usize)> = Vec::new();
+        for d in &fab.diagnostics {
+            let kind = match d {
+                FabricationDiagnostic::SplitVertex { .. } => "split vertex",
+                FabricationDiagnostic::ParallelNeighbours { .. } => "coplanar neighbours",
+                FabricationDiagnostic::BottomOutsideTop { .. } => "cut outline widened",
+                FabricationDiagnostic::SlotSkipped { .. } => "slot left out",
+                FabricationDiagnostic::InvalidFacet { .. } => "invalid facet",
+                _ => "other",
+            };
+            match kinds.iter_mut().find(|(k, _)| *k == kind) {
+                Some((_, n)) => *n += 1,
+                None => kinds.push((kind, 1)),
+            }
+        }
+        let list: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        s += &format!(
+            "  diagnostics: {} (each named in the .json output)\n",
+            list.join(", ")
+        );
+    }
     let utils: Vec<f64> = fab.sheets.iter().map(|x| x.utilisation * 100.0).collect();
     let mean = utils.iter().sum::<f64>() / utils.len().max(1) as f64;
     let (lo, hi) = utils
