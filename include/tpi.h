@@ -151,6 +151,41 @@
 #define TPI_QUALITY_REPORT_SIZE_V2 232
 
 /**
+ * `side` of `tpi_fabricate`: thicken towards the centres of curvature (the concave side).
+ */
+#define TPI_SIDE_INSIDE 0
+
+/**
+ * `side` of `tpi_fabricate`: thicken away from the centres of curvature.
+ */
+#define TPI_SIDE_OUTSIDE 1
+
+/**
+ * File of `tpi_fabrication_file`: panels.json (the contract in docs/fabrication.md).
+ */
+#define TPI_FILE_PANELS_JSON 0
+
+/**
+ * File of `tpi_fabrication_file`: panels.obj, one closed polyhedron per panel and cleat.
+ */
+#define TPI_FILE_PANELS_OBJ 1
+
+/**
+ * File of `tpi_fabrication_file`: sheets.svg.
+ */
+#define TPI_FILE_SHEETS_SVG 2
+
+/**
+ * File of `tpi_fabrication_file`: sheets.dxf (ASCII DXF R12, `$INSUNITS` metres).
+ */
+#define TPI_FILE_SHEETS_DXF 3
+
+/**
+ * File of `tpi_fabrication_file`: bevels.csv.
+ */
+#define TPI_FILE_BEVELS_CSV 4
+
+/**
  * Size in bytes of the first version of `TpiOptions`: the smallest `struct_size` accepted.
  */
 #define TPI_OPTIONS_SIZE_V1 40
@@ -290,6 +325,11 @@ typedef struct TpiDiscreteSurface TpiDiscreteSurface;
  * `tpi_discretisation_free`. May be used from several threads at once.
  */
 typedef struct TpiDiscretisation TpiDiscretisation;
+
+/**
+ * Fabricated panels, cleats and sheets. Immutable.
+ */
+typedef struct TpiFabrication TpiFabrication;
 
 /**
  * A set of pattern points (s, t) in the normalised square [0, 1]^2, mapped linearly onto a
@@ -1019,6 +1059,71 @@ enum TpiStatus tpi_discretisation_diagnostics_json(const struct TpiDiscretisatio
  * chars; `needed` is NULL or valid for writing a `size_t`.
  */
 enum TpiStatus tpi_discretisation_json(const struct TpiDiscretisation *discretisation, uint32_t include_timings, char *out, size_t capacity, size_t *needed);
+
+/**
+ * Builds the panels of `discretisation`: thickness `thickness` (> 0, below the limit the
+ * mesh allows), `side` TPI_SIDE_INSIDE or TPI_SIDE_OUTSIDE, `slots_per_edge` cleat slots
+ * evenly along every interior edge (0 for none; default slot size 4T x 2T; slots that do
+ * not fit are left out), parts nested on sheets of `sheet_width` x `sheet_height` kept `gap`
+ * apart. Lengths in model units.
+ *
+ * On success `*out` is a new handle (free with `tpi_fabrication_free`), else NULL.
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_NON_FINITE (a NaN or infinite length),
+ * TPI_STATUS_INVALID_ARGUMENT (a length <= 0, a thickness beyond the mesh's limit, a part
+ * larger than the sheet, `side` not 0 or 1), TPI_STATUS_DEGENERATE (a facet that cannot be
+ * a panel). The message names the option, or the panel.
+ *
+ * # Safety
+ * `discretisation` is NULL or a live handle; `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_fabricate(const struct TpiDiscretisation *discretisation, double thickness, uint32_t side, uint32_t slots_per_edge, double sheet_width, double sheet_height, double gap, struct TpiFabrication **out);
+
+/**
+ * Frees a fabrication. NULL is allowed and does nothing.
+ *
+ * # Safety
+ * `fabrication` is NULL or a handle that was not freed yet, and no other call is using it.
+ */
+void tpi_fabrication_free(struct TpiFabrication *fabrication);
+
+/**
+ * Stores the number of panels (one per facet) in `*panels` and of sheets in `*sheets`.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `fabrication` is NULL or a live handle; `panels` and `sheets` are NULL or valid for
+ * writing a `size_t`.
+ */
+enum TpiStatus tpi_fabrication_counts(const struct TpiFabrication *fabrication, size_t *panels, size_t *sheets);
+
+/**
+ * Copies one of the files (`file`: a TPI_FILE_* number) as text, NUL terminated.
+ * Copy-out convention; `*needed` counts the NUL.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (an unknown `file`),
+ * TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `fabrication` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * chars; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_fabrication_file(const struct TpiFabrication *fabrication, uint32_t file, char *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the G-code for a 3-axis router with a tool of `tool_diameter` (model units; at
+ * most the gap), NUL terminated: one program per sheet (docs/fabrication.md). Copy-out
+ * convention; `*needed` counts the NUL. Not cached: a call that only asks for the size
+ * computes the text too.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_NON_FINITE, TPI_STATUS_INVALID_ARGUMENT (a
+ * diameter <= 0 or larger than the gap), TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `fabrication` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * chars; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_fabrication_gcode(const struct TpiFabrication *fabrication, double tool_diameter, char *out, size_t capacity, size_t *needed);
 
 /**
  * Fills `*options` with the defaults (see each field). `options->struct_size` must be set

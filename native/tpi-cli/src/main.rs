@@ -4,6 +4,7 @@
 //!   quality summary
 //! - `tpi pattern`: pattern files and their Voronoi preview
 //! - `tpi info`: a surface's parameters, domain and curvature regions
+//! - `tpi fabricate`: panel solids, joints, nested sheets and toolpaths (docs/fabrication.md)
 //! - `tpi bench`: stage timings, facets per second and peak memory on benchmark surfaces
 //!
 //! Exit codes: 0 success, 1 bad input or output (one line on stderr, `tpi: error: FILE:
@@ -12,6 +13,7 @@
 mod args;
 mod bench;
 mod cmd_discretise;
+mod cmd_fabricate;
 mod cmd_info;
 mod cmd_pattern;
 mod error;
@@ -40,6 +42,7 @@ USAGE:
 COMMANDS:
     discretise   surface + pattern -> mesh of planar facets (JSON, OBJ, SVG, PNG) + report
     pattern      generate pattern points (grid, hex, jitter, random, Poisson-disk) + preview
+    fabricate    mesh -> panel solids, mitred joints, cleat slots, nested sheets, G-code
     info         a surface's parameters, domain and curvature regions
     bench        time the discretisation stage by stage (docs/performance.md)
     help         this help, or `tpi help COMMAND` for a command's help
@@ -85,6 +88,10 @@ fn main() {
                 print!("{}", cmd_pattern::HELP);
                 Ok(())
             }
+            Some("fabricate") => {
+                print!("{}", cmd_fabricate::HELP);
+                Ok(())
+            }
             Some("info") => {
                 print!("{}", cmd_info::HELP);
                 Ok(())
@@ -101,12 +108,13 @@ fn main() {
         }
         Some("discretise" | "discretize") => cmd_discretise::run(rest),
         Some("pattern") => cmd_pattern::run(rest),
+        Some("fabricate") => cmd_fabricate::run(rest),
         Some("info") => cmd_info::run(rest),
         Some("bench") => bench::run(rest),
         Some(other) => Err(CliError::usage(
             None,
             format!(
-                "unknown command `{other}`; the commands are discretise, pattern, info and bench"
+                "unknown command `{other}`; the commands are discretise, pattern, fabricate, info and bench"
             ),
         )),
     };

@@ -14,6 +14,7 @@
 //!   -> facets     one vertex per dual triangle: the meeting point of three tangent planes
 //!   -> mesh       shared vertices, boundary closed on the surface's boundary
 //!   -> report     planarity, deviation, validity flags, diagnostics
+//!   -> fabricate  panel solids with mitred joints, cleat slots, flat parts on sheets, files
 //! ```
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
@@ -25,6 +26,7 @@ mod diagnostics;
 mod diffgeo;
 mod discretise;
 mod error;
+mod fabricate;
 mod facets;
 mod ghosts;
 mod live;
@@ -52,6 +54,11 @@ pub use discretise::{
     Seed, Timings,
 };
 pub use error::{Direction, TpiError};
+pub use fabricate::{
+    fabricate, Cleat, FabricateOptions, Fabrication, FabricationDiagnostic, FabricationError,
+    Panel, PanelSide, Placement, Polyhedron, Sheet, Side, Slot, SlotPlan, ToolpathOptions, Units,
+    MAX_SLOTS_PER_EDGE,
+};
 pub use facets::VertexKind;
 pub use live::{LiveStats, LiveSurface};
 pub use nurbs::{NurbsSpec, NurbsSurface};

@@ -194,3 +194,34 @@ pub const MAX_VALIDITY_ROUNDS: usize = 8;
 /// squared size of the polygons count as collinear, distances smaller than this times the
 /// size as zero (rounding of the three-plane vertices is far below it).
 pub const VALIDITY_TOLERANCE: f64 = 1e-9;
+
+// ---- read by fabricate/ ----
+
+/// Two facet planes whose unit normals differ by less than this (|m_i - m_j|) count as
+/// parallel: their bisector plane is undefined, and the side face between them is cut square
+/// to the panel instead of mitred (named by a diagnostic).
+pub const FABRICATION_PARALLEL_TOLERANCE: f64 = 1e-9;
+
+/// Three side and offset planes whose 3 x 3 determinant is below this count as dependent
+/// (collinear boundary edges): the offset vertex is then taken from two of them.
+pub const FABRICATION_SINGULAR_TOLERANCE: f64 = 1e-12;
+
+/// A top edge shorter than this fraction of the bounding-box diagonal counts as zero-length
+/// (the split of a vertex where more than three panels meet): it is not checked for
+/// collapse and gets no slot.
+pub const FABRICATION_SHORT_EDGE: f64 = 1e-12;
+
+/// Flat outline vertices closer than this (relative to the bounding-box diagonal) are one
+/// vertex of the cut outline: nesting and the tool-radius offset need edges with a direction.
+/// The same distance decides whether a bottom vertex lies outside the top outline.
+pub const FABRICATION_OUTLINE_MERGE: f64 = 1e-9;
+
+/// Largest number of panels walked around one vertex before the walk counts as broken
+/// (a non-manifold mesh): far above any real valence.
+pub const FABRICATION_MAX_VALENCE: usize = 64;
+
+/// Default slot (cleat notch) length along the edge, in panel thicknesses.
+pub const DEFAULT_SLOT_LENGTH_FACTOR: f64 = 4.0;
+
+/// Default slot depth into each panel, in panel thicknesses.
+pub const DEFAULT_SLOT_DEPTH_FACTOR: f64 = 2.0;

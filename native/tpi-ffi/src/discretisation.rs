@@ -57,6 +57,11 @@ pub struct TpiDiscretisation {
 }
 
 impl TpiDiscretisation {
+    /// The core's result (for the fabrication entry points).
+    pub(crate) fn result(&self) -> &Discretisation {
+        &self.result
+    }
+
     pub(crate) fn new(result: Arc<Discretisation>) -> Self {
         Self {
             result,

@@ -35,6 +35,7 @@ compile_error!("tpi-ffi must be built with panic = \"unwind\": its panic boundar
 pub mod boundary;
 pub mod discrete_surface;
 pub mod discretisation;
+pub mod fabrication;
 pub mod options;
 pub mod pattern;
 pub mod surface;
@@ -45,6 +46,7 @@ use std::ffi::c_char;
 pub use boundary::{FfiError, FfiResult, TpiStatus};
 pub use discrete_surface::*;
 pub use discretisation::*;
+pub use fabrication::*;
 pub use options::*;
 pub use pattern::*;
 pub use surface::*;

@@ -1,0 +1,390 @@
+//! `tpi fabricate`: surface + pattern + thickness -> panel solids, joints, nested sheets and
+//! toolpaths.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use tpi_core::{
+    discretise, fabricate, DiscretiseOptions, FabricateOptions, Fabrication, FabricationDiagnostic,
+    FabricationError, PanelSide, SlotPlan, ToolpathOptions, Units,
+};
+
+use crate::args::{Arg, Args};
+use crate::error::CliError;
+use crate::input::{load_pattern, load_surface};
+use crate::output::{check_output_path, read_text, write_all};
+
+pub(crate) const HELP: &str = "\
+tpi fabricate: panel solids with mitred joints, cleat slots, nested sheets and toolpaths
+
+USAGE:
+    tpi fabricate --surface S.json --pattern P --thickness T [--out FILE]... [OPTIONS]
+
+Every facet becomes a panel of thickness T: its bottom face is the facet's plane offset by T,
+neighbouring panels are cut on the bisector plane of their facets (a mitre with no gap), and
+boundary sides are square. Lengths are in the surface's model units. docs/fabrication.md.
+
+OPTIONS:
+    --surface FILE       surface file (docs/formats.md)
+    --pattern P          pattern file or generator spec (as for `tpi discretise`)
+    --thickness T        panel thickness (required; > 0, below the limit the mesh allows)
+    --side SIDE          inside (default: towards the centres of curvature) or outside
+    --slots N|FILE       N cleat slots evenly along every interior edge, or a JSON file
+                         {\"slots\": [{\"edge\": [i, j], \"at\": [t, ...]}]}
+    --slot-size LxD      slot length along the edge x depth into each panel
+                         (default 4T x 2T)
+    --sheet WxH          sheet size (default 2.5x1.25)
+    --gap G              least distance between parts and from the sheet edge (default 0.02)
+    --tool-diameter D    router tool diameter for cut.nc (default 0.006; at most the gap)
+    --units U            mm, cm, m (default), in or ft: DXF $INSUNITS and G20/G21
+    --density RHO        material density, for the mass in the summary
+    --planes exact       facet planes (only `exact` is implemented)
+    --threads N          run the core on N threads (default: one per core)
+    --out FILE           output, repeatable; the extension picks the format:
+                           .json  panels, sides, angles, flat outlines, placements, slots
+                           .obj   one closed polyhedron per panel and per cleat
+                           .svg   the nested sheets side by side
+                           .dxf   the nested sheets, ASCII DXF R12 (CUT, SLOT, ENGRAVE)
+                           .nc    G-code for a 3-axis router, one program per sheet
+                           .csv   bevels: panel, side, neighbour, length, dihedral, bevel
+    -h, --help           this help
+
+EXAMPLES:
+    tpi fabricate --surface samples/nurbs-dome.json --pattern samples/poisson-0.03.json \\
+        --thickness 0.04 --slots 2 --out panels.json --out sheets.svg --out cut.nc
+";
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Format {
+    Json,
+    Obj,
+    Svg,
+    Dxf,
+    Nc,
+    Csv,
+}
+
+impl Format {
+    fn of(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        Some(match ext.as_str() {
+            "json" => Format::Json,
+            "obj" => Format::Obj,
+            "svg" => Format::Svg,
+            "dxf" => Format::Dxf,
+            "nc" | "gcode" | "ngc" => Format::Nc,
+            "csv" => Format::Csv,
+            _ => return None,
+        })
+    }
+}
+
+struct Options {
+    surface: String,
+    pattern: String,
+    outs: Vec<(PathBuf, Format)>,
+    fab: FabricateOptions,
+    slots_arg: Option<String>,
+    tool: ToolpathOptions,
+    units: Units,
+    density: Option<f64>,
+    threads: Option<usize>,
+}
+
+/// A number; NaN and infinities pass, for the core to name what they break.
+fn number(a: &Args, name: &str, v: &str) -> Result<f64, CliError> {
+    v.trim()
+        .parse::<f64>()
+        .map_err(|_| a.usage(format!("--{name} {v}: expected a number")))
+}
+
+fn pair(a: &Args, name: &str, v: &str, example: &str) -> Result<[f64; 2], CliError> {
+    let bad = || {
+        a.usage(format!(
+            "--{name} {v}: expected two numbers AxB, e.g. {example}"
+        ))
+    };
+    let (x, y) = v.split_once(['x', 'X']).ok_or_else(bad)?;
+    match (x.trim().parse::<f64>(), y.trim().parse::<f64>()) {
+        (Ok(x), Ok(y)) => Ok([x, y]),
+        _ => Err(bad()),
+    }
+}
+
+fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
+    let mut a = Args::new("fabricate", rest);
+    let (mut surface, mut pattern, mut outs) = (None, None, Vec::new());
+    let mut thickness = None;
+    let mut fab = FabricateOptions::default();
+    let mut tool = ToolpathOptions::default();
+    let (mut slots_arg, mut units, mut density, mut threads) = (None, Units::Metres, None, None);
+    while let Some(arg) = a.next() {
+        match arg {
+            Arg::Option(name, inline) => match name.as_str() {
+                "help" => return Ok(None),
+                "surface" => surface = Some(a.value(&name, inline)?),
+                "pattern" => pattern = Some(a.value(&name, inline)?),
+                "thickness" | "t" => {
+                    let v = a.value(&name, inline)?;
+                    thickness = Some(number(&a, &name, &v)?);
+                }
+                "side" => {
+                    let v = a.value(&name, inline)?;
+                    fab.side = match v.as_str() {
+                        "inside" => PanelSide::Inside,
+                        "outside" => PanelSide::Outside,
+                        _ => return Err(a.usage(format!("--side {v}: expected inside or outside"))),
+                    };
+                }
+                "slots" => slots_arg = Some(a.value(&name, inline)?),
+                "slot-size" => {
+                    let v = a.value(&name, inline)?;
+                    let [l, d] = pair(&a, &name, &v, "0.16x0.08")?;
+                    fab.slot_length = Some(l);
+                    fab.slot_depth = Some(d);
+                }
+                "sheet" => {
+                    let v = a.value(&name, inline)?;
+                    fab.sheet = pair(&a, &name, &v, "2.5x1.25")?;
+                }
+                "gap" => {
+                    let v = a.value(&name, inline)?;
+                    fab.gap = number(&a, &name, &v)?;
+                }
+                "tool-diameter" => {
+                    let v = a.value(&name, inline)?;
+                    tool.tool_diameter = number(&a, &name, &v)?;
+                }
+                "units" => {
+                    let v = a.value(&name, inline)?;
+                    units = Units::parse(&v).ok_or_else(|| {
+                        a.usage(format!("--units {v}: expected mm, cm, m, in or ft"))
+                    })?;
+                }
+                "density" => {
+                    let v = a.value(&name, inline)?;
+                    let x = number(&a, &name, &v)?;
+                    if !(x > 0.0 && x.is_finite()) {
+                        return Err(a.usage(format!("--density {v}: must be > 0")));
+                    }
+                    density = Some(x);
+                }
+                "planes" => {
+                    let v = a.value(&name, inline)?;
+                    match v.as_str() {
+                        "exact" => {}
+                        "adjusted" => return Err(a.usage("--planes adjusted: adjusted (tilted) planes are not implemented yet; only `exact` is available")),
+                        _ => return Err(a.usage(format!("--planes {v}: expected `exact`"))),
+                    }
+                }
+                "threads" | "j" => {
+                    let v = a.value(&name, inline)?;
+                    match v.parse::<usize>() {
+                        Ok(n) if (1..=1024).contains(&n) => threads = Some(n),
+                        _ => {
+                            return Err(a.usage(format!(
+                                "--threads {v}: expected a whole number from 1 to 1024"
+                            )))
+                        }
+                    }
+                }
+                "out" | "o" => {
+                    let v = a.value(&name, inline)?;
+                    let path = PathBuf::from(&v);
+                    let Some(format) = Format::of(&path) else {
+                        return Err(a.usage(format!("--out {v}: unknown output format; the extension must be .json, .obj, .svg, .dxf, .nc or .csv")));
+                    };
+                    if outs.iter().any(|(p, _)| *p == path) {
+                        return Err(a.usage(format!("--out {v} is given twice")));
+                    }
+                    outs.push((path, format));
+                }
+                _ => return Err(a.unknown(&name)),
+            },
+            Arg::Positional(p) => return Err(a.usage(format!("unexpected argument `{p}`"))),
+        }
+    }
+    let surface = surface.ok_or_else(|| a.usage("--surface is required"))?;
+    let pattern = pattern.ok_or_else(|| a.usage("--pattern is required"))?;
+    fab.thickness = thickness.ok_or_else(|| a.usage("--thickness is required"))?;
+    tool.units = units;
+    Ok(Some(Options {
+        surface,
+        pattern,
+        outs,
+        fab,
+        slots_arg,
+        tool,
+        units,
+        density,
+        threads,
+    }))
+}
+
+/// The option a core error is about, named first in the message.
+fn fabrication_error(e: &FabricationError) -> CliError {
+    let subject = match e {
+        FabricationError::InvalidOption { field, .. } => match *field {
+            "thickness" => "--thickness",
+            "gap" => "--gap",
+            "tool diameter" => "--tool-diameter",
+            "slot length" | "slot depth" | "slot size" => "--slot-size",
+            "slots per edge" => "--slots",
+            "step down" => "--tool-diameter",
+            _ => "--sheet",
+        },
+        FabricationError::ThicknessTooLarge { .. } => "--thickness",
+        FabricationError::BadSlot { .. } | FabricationError::SlotFile { .. } => "--slots",
+        FabricationError::PartTooLarge { .. } => "--sheet",
+        _ => "the mesh",
+    };
+    CliError::input(subject, e.to_string())
+}
+
+/// Runs `tpi fabricate`.
+pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
+    let Some(mut opts) = parse(rest)? else {
+        print!("{HELP}");
+        return Ok(());
+    };
+    for (path, _) in &opts.outs {
+        check_output_path(path)?;
+    }
+    let started = Instant::now();
+    if let Some(s) = &opts.slots_arg {
+        opts.fab.slots = match s.parse::<u32>() {
+            Ok(0) => SlotPlan::None,
+            Ok(n) => SlotPlan::Even(n),
+            Err(_) => {
+                let text = read_text(Path::new(s))?;
+                SlotPlan::from_json(&text, s).map_err(|e| CliError::input(s, e.to_string()))?
+            }
+        };
+    }
+    let surface = load_surface(Path::new(&opts.surface))?;
+    let pattern = load_pattern(&opts.pattern)?;
+    let run_core = || -> Result<Result<Fabrication, FabricationError>, tpi_core::TpiError> {
+        let mesh = discretise(&surface, &pattern.pattern.uv, &DiscretiseOptions::default())?;
+        Ok(fabricate(&mesh, &opts.fab))
+    };
+    let result = match opts.threads {
+        Some(n) => rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build()
+            .map_err(|e| CliError::input("--threads", format!("cannot start {n} threads: {e}")))?
+            .install(run_core),
+        None => run_core(),
+    };
+    let fab = result
+        .map_err(|e| CliError::core(&opts.surface, &e))?
+        .map_err(|e| fabrication_error(&e))?;
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::with_capacity(opts.outs.len());
+    for (path, format) in &opts.outs {
+        let bytes = match format {
+            Format::Json => fab.to_json().into_bytes(),
+            Format::Obj => fab.to_obj().into_bytes(),
+            Format::Svg => fab.sheets_svg().into_bytes(),
+            Format::Dxf => fab.sheets_dxf(opts.units).into_bytes(),
+            Format::Csv => fab.bevels_csv().into_bytes(),
+            Format::Nc => fab
+                .gcode(&opts.tool)
+                .map_err(|e| fabrication_error(&e))?
+                .into_bytes(),
+        };
+        files.push((path.clone(), bytes));
+    }
+    write_all(&files)?;
+    eprint!("{}", summary(&fab, opts.density));
+    if !files.is_empty() {
+        let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+        eprintln!("  wrote {}", names.join(", "));
+    }
+    eprintln!("  done in {:.0} ms", started.elapsed().as_secs_f64() * 1e3);
+    Ok(())
+}
+
+/// The summary on stderr.
+fn summary(fab: &Fabrication, density: Option<f64>) -> String {
+    let area: f64 = fab.panels.iter().map(|p| p.top_area().abs()).sum();
+    let volume: f64 = fab.panels.iter().map(|p| p.solid.volume()).sum();
+    let cleat_volume: f64 = fab.cleats.iter().map(|c| c.solid.volume()).sum::<f64>() + 0.0;
+    let by_area = |p: &&tpi_core::Panel| p.top_area().abs();
+    let smallest = fab
+        .panels
+        .iter()
+        .min_by(|a, b| by_area(a).total_cmp(&by_area(b)));
+    let largest = fab
+        .panels
+        .iter()
+        .max_by(|a, b| by_area(a).total_cmp(&by_area(b)));
+    let bevels = fab
+        .panels
+        .iter()
+        .flat_map(|p| p.sides.iter().filter(|s| s.neighbour.is_some()))
+        .map(|s| s.bevel_deg)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), b| {
+            (lo.min(b), hi.max(b))
+        });
+    let mut s = format!(
+        "tpi fabricate: {} panels of thickness {}, {} cleats, {} diagnostics\n",
+        fab.panels.len(),
+        fab.thickness,
+        fab.cleats.len(),
+        fab.diagnostics.len()
+    );
+    if !fab.diagnostics.is_empty() {
+        let mut kinds: Vec<(&str, usize)> = Vec::new();
+        for d in &fab.diagnostics {
+            let kind = match d {
+                FabricationDiagnostic::SplitVertex { .. } => "split vertex",
+                FabricationDiagnostic::ParallelNeighbours { .. } => "coplanar neighbours",
+                FabricationDiagnostic::BottomOutsideTop { .. } => "cut outline widened",
+                FabricationDiagnostic::SlotSkipped { .. } => "slot left out",
+                FabricationDiagnostic::InvalidFacet { .. } => "invalid facet",
+                _ => "other",
+            };
+            match kinds.iter_mut().find(|(k, _)| *k == kind) {
+                Some((_, n)) => *n += 1,
+                None => kinds.push((kind, 1)),
+            }
+        }
+        let list: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        s += &format!(
+            "  diagnostics: {} (each named in the .json output)\n",
+            list.join(", ")
+        );
+    }
+    let utils: Vec<f64> = fab.sheets.iter().map(|x| x.utilisation * 100.0).collect();
+    let mean = utils.iter().sum::<f64>() / utils.len().max(1) as f64;
+    let (lo, hi) = utils
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &u| {
+            (a.min(u), b.max(u))
+        });
+    s += &format!(
+        "  sheets: {} (utilisation mean {mean:.0} %, lowest {lo:.0} %, highest {hi:.0} %)\n",
+        fab.sheets.len()
+    );
+    s += &format!(
+        "  total area {area:.6}, panel volume {volume:.6}, cleat volume {cleat_volume:.6}\n"
+    );
+    if let Some(rho) = density {
+        s += &format!(
+            "  mass {:.3} (density {rho})\n",
+            (volume + cleat_volume) * rho
+        );
+    }
+    if let (Some(a), Some(b)) = (smallest, largest) {
+        s += &format!(
+            "  smallest part: panel {} ({:.6}), largest: panel {} ({:.6})\n",
+            a.seed,
+            a.top_area().abs(),
+            b.seed,
+            b.top_area().abs()
+        );
+    }
+    if bevels.0.is_finite() {
+        s += &format!("  bevels {:.3} to {:.3} degrees\n", bevels.0, bevels.1);
+    }
+    s
+}

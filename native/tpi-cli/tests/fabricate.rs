@@ -1,0 +1,155 @@
+//! End-to-end tests of `tpi fabricate`: every output is written and reads back, and a bad
+//! thickness fails with one line naming it and leaves no file behind.
+
+use std::fs;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+const TPI: &str = env!("CARGO_BIN_EXE_tpi");
+
+fn sample(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../samples")
+        .join(name)
+        .to_string_lossy()
+        .into_owned()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(format!("tpi-fabricate-{}-{name}", std::process::id()));
+    let _ = fs::remove_dir_all(&dir);
+    fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn tpi(args: &[&str]) -> Output {
+    Command::new(TPI).args(args).output().expect("run tpi")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn every_output_is_written_and_reads_back() {
+    let dir = scratch("all");
+    let out = |f: &str| dir.join(f).to_string_lossy().into_owned();
+    let slots = dir.join("slots.json");
+    fs::write(&slots, r#"{"slots": [{"edge": [0, 1], "at": [0.5]}]}"#).unwrap();
+    let o = tpi(&[
+        "fabricate",
+        "--surface",
+        &sample("paraboloid.json"),
+        "--pattern",
+        "hex:12x10",
+        "--thickness",
+        "0.05",
+        "--slots",
+        &slots.to_string_lossy(),
+        "--slot-size",
+        "0.1x0.06",
+        "--sheet",
+        "3x1.5",
+        "--gap",
+        "0.03",
+        "--tool-diameter",
+        "0.008",
+        "--density",
+        "450",
+        "--units",
+        "mm",
+        "--out",
+        &out("panels.json"),
+        "--out",
+        &out("panels.obj"),
+        "--out",
+        &out("sheets.svg"),
+        "--out",
+        &out("sheets.dxf"),
+        "--out",
+        &out("cut.nc"),
+        "--out",
+        &out("bevels.csv"),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    for needle in [
+        "120 panels",
+        "1 cleats",
+        "sheets:",
+        "utilisation",
+        "mass",
+        "bevels",
+    ] {
+        assert!(err.contains(needle), "summary lacks {needle}: {err}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(dir.join("panels.json")).unwrap()).unwrap();
+    let panels = json["panels"].as_array().unwrap();
+    assert_eq!(panels.len(), 120);
+    assert_eq!(json["thickness"], 0.05);
+    let slotted: usize = panels
+        .iter()
+        .map(|p| p["slots"].as_array().unwrap().len())
+        .sum();
+    assert_eq!(slotted, 2, "one slot, in both panels of the edge");
+    let obj = fs::read_to_string(dir.join("panels.obj")).unwrap();
+    assert_eq!(obj.lines().filter(|l| l.starts_with("o ")).count(), 121);
+    let dxf = fs::read_to_string(dir.join("sheets.dxf")).unwrap();
+    assert!(dxf.contains("$INSUNITS\n 70\n4\n") && dxf.ends_with("  0\nEOF\n"));
+    let nc = fs::read_to_string(dir.join("cut.nc")).unwrap();
+    assert!(
+        nc.starts_with("(tpi fabricate: sheet 0") && nc.contains("G21") && nc.ends_with("M30\n")
+    );
+    let csv = fs::read_to_string(dir.join("bevels.csv")).unwrap();
+    assert!(csv.starts_with("panel,side,neighbour,length,dihedral_deg,bevel_deg\n"));
+    let svg = fs::read_to_string(dir.join("sheets.svg")).unwrap();
+    assert_eq!(svg.matches("<polygon stroke=\"#c00\"").count(), 120);
+    fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_bad_thickness_is_named_and_nothing_is_written() {
+    let dir = scratch("bad");
+    let json = dir.join("p.json").to_string_lossy().into_owned();
+    for (t, needle) in [
+        ("nan", "--thickness: thickness = NaN"),
+        ("-0.1", "--thickness: thickness = -0.1"),
+        ("0", "must be a finite number > 0"),
+        ("5", "collapses at thickness"),
+    ] {
+        let o = tpi(&[
+            "fabricate",
+            "--surface",
+            &sample("hypar.json"),
+            "--pattern",
+            "random:400:seed=1",
+            "--thickness",
+            t,
+            "--sheet",
+            "100x100",
+            "--out",
+            &json,
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{t}: {}", stderr(&o));
+        let err = stderr(&o);
+        assert!(err.contains(needle), "{t}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert_eq!(
+            fs::read_dir(&dir).unwrap().count(),
+            0,
+            "{t}: a file was written"
+        );
+    }
+    let o = tpi(&[
+        "fabricate",
+        "--surface",
+        &sample("hypar.json"),
+        "--pattern",
+        "hex:5x5",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--thickness is required"));
+    fs::remove_dir_all(&dir).unwrap();
+}
