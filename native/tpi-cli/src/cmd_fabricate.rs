@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use tpi_core::{
     discretise, fabricate, DiscretiseOptions, FabricateOptions, Fabrication, FabricationDiagnostic,
-    FabricationError, PanelSide, SlotPlan, ToolpathOptions, Units,
+    FabricationError, PanelSide, PlaneMode, SlotPlan, ToolpathOptions, Units,
 };
 
 use crate::args::{Arg, Args};
@@ -38,7 +38,8 @@ OPTIONS:
     --tool-diameter D    router tool diameter for cut.nc (default 0.006; at most the gap)
     --units U            mm, cm, m (default), in or ft: DXF $INSUNITS and G20/G21
     --density RHO        material density, for the mass in the summary
-    --planes exact       facet planes (only `exact` is implemented)
+    --planes MODE        facet planes: `exact` (default) or `adjusted` (tilted where exact
+                         planes cannot give a valid facet; see `tpi discretise --help`)
     --threads N          run the core on N threads (default: one per core)
     --out FILE           output, repeatable; the extension picks the format:
                            .json  panels, sides, angles, flat outlines, placements, slots
@@ -89,6 +90,7 @@ struct Options {
     units: Units,
     density: Option<f64>,
     threads: Option<usize>,
+    planes: PlaneMode,
 }
 
 /// A number; NaN and infinities pass, for the core to name what they break.
@@ -118,6 +120,7 @@ fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
     let mut fab = FabricateOptions::default();
     let mut tool = ToolpathOptions::default();
     let (mut slots_arg, mut units, mut density, mut threads) = (None, Units::Metres, None, None);
+    let mut planes = PlaneMode::Exact;
     while let Some(arg) = a.next() {
         match arg {
             Arg::Option(name, inline) => match name.as_str() {
@@ -171,10 +174,14 @@ fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
                 }
                 "planes" => {
                     let v = a.value(&name, inline)?;
-                    match v.as_str() {
-                        "exact" => {}
-                        "adjusted" => return Err(a.usage("--planes adjusted: adjusted (tilted) planes are not implemented yet; only `exact` is available")),
-                        _ => return Err(a.usage(format!("--planes {v}: expected `exact`"))),
+                    planes = match v.as_str() {
+                        "exact" => PlaneMode::Exact,
+                        "adjusted" => PlaneMode::Adjusted,
+                        _ => {
+                            return Err(
+                                a.usage(format!("--planes {v}: expected `exact` or `adjusted`"))
+                            )
+                        }
                     }
                 }
                 "threads" | "j" => {
@@ -218,6 +225,7 @@ fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
         units,
         density,
         threads,
+        planes,
     }))
 }
 
@@ -264,7 +272,14 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
     let surface = load_surface(Path::new(&opts.surface))?;
     let pattern = load_pattern(&opts.pattern)?;
     let run_core = || -> Result<Result<Fabrication, FabricationError>, tpi_core::TpiError> {
-        let mesh = discretise(&surface, &pattern.pattern.uv, &DiscretiseOptions::default())?;
+        let mesh = discretise(
+            &surface,
+            &pattern.pattern.uv,
+            &DiscretiseOptions {
+                planes: opts.planes,
+                ..DiscretiseOptions::default()
+            },
+        )?;
         Ok(fabricate(&mesh, &opts.fab))
     };
     let result = match opts.threads {

@@ -91,13 +91,29 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
     let diag = diagonal(mesh);
     let tol = TOL * diag;
     let mut shared_interior_sides = 0;
+    // Each facet's plane, measured from its vertices (Newell's normal, oriented like the
+    // seed's): the tangent plane, or the adjusted one.
+    let planes: Vec<(DVec3, DVec3)> = (0..mesh.facet_count())
+        .map(|i| {
+            let corners: Vec<DVec3> = mesh
+                .facet(i)
+                .iter()
+                .map(|&q| mesh.vertices[q as usize])
+                .collect();
+            let mut n = area_vector(&corners).normalize();
+            if n.dot(mesh.seeds[i].normal) < 0.0 {
+                n = -n;
+            }
+            let origin = corners.iter().copied().sum::<DVec3>() / corners.len() as f64;
+            (origin, n)
+        })
+        .collect();
     for (i, p) in fab.panels.iter().enumerate() {
-        let seed = &mesh.seeds[i];
-        let n = seed.normal.normalize();
+        let (origin, n) = planes[i];
         // Bottom at distance T from the top plane, on the expected side.
         assert_eq!(p.top.len(), p.bottom.len());
         for b in &p.bottom {
-            let dist = n.dot(*b - seed.point) * expect_side;
+            let dist = n.dot(*b - origin) * expect_side;
             assert!(
                 (dist - t).abs() <= tol,
                 "panel {i}: bottom at {dist}, not {t}"
@@ -105,7 +121,7 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
         }
         for v in &p.top {
             assert!(
-                n.dot(*v - seed.point).abs() <= tol,
+                n.dot(*v - origin).abs() <= tol,
                 "panel {i}: top off its plane"
             );
         }
@@ -161,11 +177,10 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
                 assert!(sn.dot(n).abs() <= 1e-9, "panel {i} side {k} not square");
                 continue;
             };
-            let sj = &mesh.seeds[j as usize];
-            let nj = sj.normal.normalize();
+            let (oj, nj) = planes[j as usize];
             // Independent bisector: points x with n.(x - p_i) = nj.(x - p_j).
             for q in [p.top[k], p.top[k1], p.bottom[k], p.bottom[k1]] {
-                let r = n.dot(q - seed.point) - nj.dot(q - sj.point);
+                let r = n.dot(q - origin) - nj.dot(q - oj);
                 assert!(
                     r.abs() <= 2.0 * tol,
                     "panel {i} side {k}: not on the bisector ({r})"
@@ -377,6 +392,44 @@ fn saddle_panels_are_exact_too() {
     let side = fab.panels[0].normal.dot(mesh.seeds[0].normal).signum();
     check_panels(&mesh, &fab, t, side);
     check_nesting(&fab);
+}
+
+/// With adjusted planes (a mixed roof, where a few planes are tilted) each panel is the
+/// exact offset of its facet's own plane, with the same mitres.
+#[test]
+fn panels_follow_adjusted_planes() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../samples/mixed-roof.json");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let model = SurfaceSpec::from_json(&text, "mixed-roof.json")
+        .unwrap()
+        .build()
+        .unwrap();
+    let pattern = Generator::parse("hex:30x24").unwrap().generate();
+    let options = DiscretiseOptions {
+        planes: tpi_core::PlaneMode::Adjusted,
+        ..DiscretiseOptions::default()
+    };
+    let mesh = discretise(&model, &pattern.uv, &options).unwrap();
+    let tilted = mesh
+        .plane_adjustments
+        .iter()
+        .filter(|a| a.tilt_degrees > 0.0)
+        .count();
+    assert!(tilted > 0, "the case needs adjusted planes");
+    let diag = diagonal(&mesh);
+    let t = 2e-5 * diag;
+    let fab = fabricate(
+        &mesh,
+        &FabricateOptions {
+            thickness: t,
+            sheet: [diag, diag / 2.0],
+            gap: t,
+            ..FabricateOptions::default()
+        },
+    )
+    .unwrap();
+    let side = fab.panels[0].normal.dot(mesh.seeds[0].normal).signum();
+    check_panels(&mesh, &fab, t, side);
 }
 
 /// Two rectangles w x L folded along the y axis, each rising at angle alpha: a V.

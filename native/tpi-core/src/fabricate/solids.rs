@@ -149,12 +149,14 @@ pub(super) fn build(
     if side == PanelSide::Outside {
         sigma = -sigma;
     }
-    let m: Vec<DVec3> = mesh
-        .seeds
+    // Each panel's top plane is its facet's plane: the seed's tangent plane, or the adjusted
+    // plane of `PlaneMode::Adjusted`.
+    let planes: Vec<(DVec3, DVec3)> = (0..n).map(|i| mesh.facet_plane(i)).collect();
+    let m: Vec<DVec3> = planes
         .iter()
-        .map(|s| s.normal.normalize() * sigma)
+        .map(|(_, normal)| normal.normalize() * sigma)
         .collect();
-    let e: Vec<f64> = (0..n).map(|i| m[i].dot(mesh.seeds[i].point)).collect();
+    let e: Vec<f64> = (0..n).map(|i| m[i].dot(planes[i].0)).collect();
     let centroid: Vec<DVec3> = (0..n)
         .map(|i| {
             let f = mesh.facet(i);
