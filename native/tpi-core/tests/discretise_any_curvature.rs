@@ -664,6 +664,27 @@ fn adjusted_planes_give_valid_meshes_on_any_curvature() {
                 );
                 tilts.push(tilt);
             }
+            if std::env::var_os("TPI_TABLE").is_some() {
+                let mut tilted: Vec<f64> = d
+                    .plane_adjustments
+                    .iter()
+                    .map(|a| a.tilt_degrees)
+                    .filter(|&t| t > 0.0)
+                    .collect();
+                tilted.sort_by(f64::total_cmp);
+                let exact = check(
+                    &discretise(surface.as_ref(), &pattern, &DiscretiseOptions::default()).unwrap(),
+                );
+                println!(
+                    "TILT {name:<14} {pattern_name:<12} {:>5} invalid exact {:>3} adjusted {:>2}  tilted {:>3}  max {:.2}  median {:.2}",
+                    d.facet_count(),
+                    exact.invalid_facets().len(),
+                    v.invalid_facets().len(),
+                    tilted.len(),
+                    tilted.last().copied().unwrap_or(0.0),
+                    tilted.get(tilted.len() / 2).copied().unwrap_or(0.0)
+                );
+            }
             cases.push(case);
         }
     }
