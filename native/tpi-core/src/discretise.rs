@@ -598,19 +598,11 @@ pub(crate) fn run(
     if let Some(stats) = adjustment {
         neighbours.plane_tilts = stats.tilts;
         neighbours.validity_unresolved = stats.unresolved;
-        result.plane_adjustments = result
-            .seeds
-            .iter()
-            .zip(&planes)
-            .map(|(seed, plane)| {
-                let (tilt_degrees, offset) = tilt_and_offset(plane, seed.point, seed.normal);
-                PlaneAdjustment {
-                    normal: plane.normal,
-                    tilt_degrees,
-                    offset,
-                }
-            })
-            .collect();
+    }
+    if options.planes == PlaneMode::Adjusted {
+        // Every facet says how its plane differs (0 where it is the exact tangent plane, as
+        // everywhere on convex surfaces).
+        result.plane_adjustments = plane_adjustments(&result.seeds, &planes);
     }
     let mut resolved = Vec::new();
     let mut feet = feet;
@@ -679,6 +671,22 @@ pub(crate) fn run(
         }
     });
     Ok((result, state))
+}
+
+/// Each facet's plane against the exact tangent plane at its seed.
+pub(crate) fn plane_adjustments(seeds: &[Seed], planes: &[Plane]) -> Vec<PlaneAdjustment> {
+    seeds
+        .iter()
+        .zip(planes)
+        .map(|(seed, plane)| {
+            let (tilt_degrees, offset) = tilt_and_offset(plane, seed.point, seed.normal);
+            PlaneAdjustment {
+                normal: plane.normal,
+                tilt_degrees,
+                offset,
+            }
+        })
+        .collect()
 }
 
 /// Rejects patterns whose points all lie on one line in parameter space (no facet could

@@ -42,7 +42,10 @@ use glam::DVec3;
 
 use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
-use crate::discretise::{run, Discretisation, DiscretiseOptions, PipelineState, Seed, Timings};
+use crate::discretise::{
+    plane_adjustments, run, Discretisation, DiscretiseOptions, PipelineState, PlaneMode, Seed,
+    Timings,
+};
 use crate::error::TpiError;
 use crate::facets::{accept_newton, single_triangle_vertex, FootHint, TriangleVertex, VertexKind};
 use crate::mesh::edge_reversed;
@@ -1276,6 +1279,12 @@ impl State {
             envelope_repairs: slope_repairs(&canonical, &slopes),
             ..self.stats
         };
+        // The incremental path runs only on convex surfaces, whose exact planes stay.
+        let adjustments = if options.planes == PlaneMode::Adjusted {
+            plane_adjustments(&seeds, &planes)
+        } else {
+            Vec::new()
+        };
         let mut result = Discretisation {
             vertices,
             vertex_kinds,
@@ -1286,8 +1295,7 @@ impl State {
             quality: None,
             facet_flags: Vec::new(),
             diagnostics: self.diagnostics.clone(),
-            // The incremental path runs only on convex surfaces, whose exact planes stay.
-            plane_adjustments: Vec::new(),
+            plane_adjustments: adjustments,
             timings: Timings::default(),
         };
         if options.quality_report {

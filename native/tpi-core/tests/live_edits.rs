@@ -138,6 +138,25 @@ fn edits_without_report_equal_fresh_runs() {
 }
 
 #[test]
+fn edits_with_adjusted_planes_equal_fresh_runs() {
+    // On a convex surface adjusted planes are the exact ones (tilt 0), also after edits.
+    let options = DiscretiseOptions {
+        planes: tpi_core::PlaneMode::Adjusted,
+        ..DiscretiseOptions::default()
+    };
+    random_edits(
+        "NURBS dome, adjusted planes",
+        &nurbs_dome(),
+        Box::new(nurbs_dome()),
+        150,
+        200,
+        74,
+        options,
+        0.3,
+    );
+}
+
+#[test]
 fn anisotropic_and_saddle_surfaces_fall_back_and_still_agree() {
     // Convex, but its normals turn too far for the slope embedding (the mixed path): every
     // edit runs the pipeline, with the same result.
