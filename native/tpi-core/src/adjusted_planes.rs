@@ -19,14 +19,27 @@
 //!
 //! with (e1_j, e2_j, n_j) a right-handed frame of the exact tangent plane: theta is the tilt
 //! (the angle between the facet's plane and the surface's tangent plane at its seed), at most
-//! [`MAX_PLANE_TILT_DEGREES`]; the plane's offset from its seed stays 0, so the facet still
-//! touches the surface at its seed. For each invalid facet i, the planes of i and of its
-//! neighbours (ghosts included, which shape the boundary facets) are tried with tilts of
-//! increasing size ([`PLANE_TILT_STEPS_DEGREES`]) in [`PLANE_TILT_DIRECTIONS`] directions,
-//! each measured from the exact plane; a tilt is kept when the number of invalid facets among
-//! those it can change (the points of the triangles around j and their neighbours) drops, by
-//! the same local test as the flips. Every kept tilt lowers the count, so the loop ends; it is
-//! bounded by [`MAX_PLANE_ADJUST_ROUNDS`] rounds.
+//! [`MAX_PLANE_TILT_DEGREES`]; the plane still passes through p_j, so the facet touches the
+//! surface at its seed. Only where no tilt helps is an exact plane offset along its normal
+//! instead, by a few per cent of the local spacing ([`PLANE_OFFSET_STEPS`]).
+//!
+//! The moves, each judged by the local validity test of the flips on the facets it can
+//! change (the points of the triangles around the plane and their neighbours):
+//! - for each invalid facet i, tilts of the planes of i and its neighbours (ghosts included,
+//!   which shape the boundary facets) of increasing size ([`PLANE_TILT_STEPS_DEGREES`]) in
+//!   [`PLANE_TILT_DIRECTIONS`] directions, each measured from the exact plane, then offsets;
+//! - a flip of i's star or link edges together with a tilt of one of its quad's planes
+//!   ([`RESCUE_TILT_STEPS_DEGREES`]), where the flip alone does not pay;
+//! - a move is kept when it leaves fewer invalid facets around it, or as many but less
+//!   tangled (crossing edge pairs), or as tangled with their runaway vertices pulled back
+//!   ([`REACH_GAIN`]); rounds until nothing is kept, at most [`MAX_PLANE_ADJUST_ROUNDS`];
+//! - then, around each facet still invalid, random restarts ([`PLANE_KICKS`]), kept only when
+//!   they leave fewer invalid facets, undone otherwise (seeded by the facet's index, so the
+//!   result is deterministic).
+//!
+//! With adjusted planes a facet whose vertices lie farther than [`MAX_REACH`] local spacings
+//! from its seed also counts as invalid, so that runaway vertices at parabolic lines are
+//! pulled in, not only folds repaired.
 //!
 //! Facets stay exactly planar: every vertex is the meeting point of three (adjusted) planes,
 //! computed once and shared by the three facets.
@@ -351,7 +364,7 @@ fn commit(state: &mut State<'_>, verdicts: Vec<(u32, bool)>) {
 }
 
 /// Iterated local search around facet i, which the greedy moves left invalid: up to
-/// [`PLANE_KICKS`] times, tilt one or two planes of i and its neighbours at random (within
+/// [`PLANE_KICKS`] times, tilt one to three planes of i and its neighbours at random (within
 /// [`MAX_PLANE_TILT_DEGREES`]), let the greedy tilts repair what that broke, and keep the
 /// whole when it leaves fewer invalid facets than before; otherwise undo it.
 fn kick(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32) -> bool {
@@ -365,7 +378,10 @@ fn kick(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32) -> bool
             let phi = std::f64::consts::TAU * rng.next_f64();
             state.set_plane(j, tilted(&exact[j as usize], degrees, phi));
         }
-        let points = judged_around(state, &ring);
+        // The tilted planes are in i's ring: their polygons reach two rings from i, the
+        // verdicts that can change three.
+        let changed = affected_points(state.tri, &state.incident, &ring);
+        let points = judged_around(state, &changed);
         let verdicts: Vec<(u32, bool)> = points
             .iter()
             .map(|&x| (x, state.facet_invalid(x)))
