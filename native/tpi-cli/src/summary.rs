@@ -142,7 +142,7 @@ fn plane_summary(result: &Discretisation) -> String {
         return "planes: adjusted mode, every facet in its exact tangent plane".into();
     }
     format!(
-        "planes: {} of {} facets tilted, tilt max {:.2} deg, median {:.2} deg; offset max {}",
+        "planes: {} of {} facets tilted, tilt max {:.2} deg, median {:.2} deg; offset max {:.4}",
         tilts.len(),
         result.plane_adjustments.len(),
         tilts[tilts.len() - 1],
