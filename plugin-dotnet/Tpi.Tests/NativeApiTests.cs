@@ -166,6 +166,25 @@ namespace Tpi.Tests
         }
 
         [Test]
+        public void FabricationFromADiscretisation()
+        {
+            using (var dome = TestData.Dome())
+            using (var pattern = Pattern.Hex(6, 6))
+            using (var mesh = Discretisation.Create(dome, pattern))
+            using (var fab = Fabrication.Create(mesh, 0.05, PanelSide.Inside, 2, 4.0, 2.0, 0.05))
+            {
+                Assert.AreEqual(mesh.FacetCount, fab.PanelCount, "one panel per facet");
+                Assert.Greater(fab.SheetCount, 0);
+                StringAssert.Contains("\"panels\"", fab.File(FabricationFile.PanelsJson));
+                StringAssert.StartsWith("<", fab.File(FabricationFile.SheetsSvg).TrimStart());
+                StringAssert.Contains("EOF", fab.File(FabricationFile.SheetsDxf));
+                StringAssert.Contains("G1", fab.GCode(0.01));
+                var bad = Assert.Throws<TpiException>(() => Fabrication.Create(mesh, -1.0, PanelSide.Inside, 0, 4.0, 2.0, 0.05));
+                StringAssert.Contains("thickness", bad.Message);
+            }
+        }
+
+        [Test]
         public void DiscreteSurfaceEditsThenRecomputeEqualADiscretisationFromScratch()
         {
             using (var dome = TestData.Dome())

@@ -69,6 +69,15 @@ namespace Tpi.Native.Interop
         protected override void Free(IntPtr native) { UnsafeNativeMethods.tpi_discretisation_free(native); }
     }
 
+    /// <summary>Owns a TpiFabrication.</summary>
+    public sealed class FabricationHandle : TpiHandle
+    {
+        /// <summary>Used by the marshaller.</summary>
+        public FabricationHandle() { }
+        /// <inheritdoc/>
+        protected override void Free(IntPtr native) { UnsafeNativeMethods.tpi_fabrication_free(native); }
+    }
+
     /// <summary>Owns a TpiDiscreteSurface.</summary>
     public sealed class DiscreteSurfaceHandle : TpiHandle
     {

@@ -241,6 +241,32 @@ namespace Tpi.Native.Interop
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         internal static extern Status tpi_discretisation_json(DiscretisationHandle discretisation, uint include_timings, [Out] byte[] @out, UIntPtr capacity, out UIntPtr needed);
 
+        // ---- fabrication ----------------------------------------------------------------
+
+        // enum TpiStatus tpi_fabricate(const struct TpiDiscretisation *discretisation, double thickness,
+        //     uint32_t side, uint32_t slots_per_edge, double sheet_width, double sheet_height, double gap,
+        //     struct TpiFabrication **out);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_fabricate(DiscretisationHandle discretisation, double thickness, uint side, uint slots_per_edge, double sheet_width, double sheet_height, double gap, out FabricationHandle @out);
+
+        // void tpi_fabrication_free(struct TpiFabrication *fabrication);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern void tpi_fabrication_free(IntPtr fabrication);
+
+        // enum TpiStatus tpi_fabrication_counts(const struct TpiFabrication *fabrication, size_t *panels, size_t *sheets);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_fabrication_counts(FabricationHandle fabrication, out UIntPtr panels, out UIntPtr sheets);
+
+        // enum TpiStatus tpi_fabrication_file(const struct TpiFabrication *fabrication, uint32_t file,
+        //     char *out, size_t capacity, size_t *needed);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_fabrication_file(FabricationHandle fabrication, uint file, [Out] byte[] @out, UIntPtr capacity, out UIntPtr needed);
+
+        // enum TpiStatus tpi_fabrication_gcode(const struct TpiFabrication *fabrication, double tool_diameter,
+        //     char *out, size_t capacity, size_t *needed);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_fabrication_gcode(FabricationHandle fabrication, double tool_diameter, [Out] byte[] @out, UIntPtr capacity, out UIntPtr needed);
+
         // ---- discrete surface ---------------------------------------------------------
 
         // enum TpiStatus tpi_discrete_surface_new(const struct TpiSurface *surface,
