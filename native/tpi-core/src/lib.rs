@@ -49,7 +49,10 @@ pub use diffgeo::LocalGeometry;
 pub use discretise::{
     discretise, validate_pattern, Discretisation, DiscretiseOptions, Seed, Timings,
 };
-pub use error::{Direction, TpiError};
+pub use error::{
+    bound_message, bounded, Direction, Num, TpiError, MAX_COORDINATE, MAX_WEIGHT, MAX_WEIGHT_RATIO,
+    MESSAGE_LIMIT, MIN_WEIGHT, QUOTE_LIMIT,
+};
 pub use facets::VertexKind;
 pub use live::{LiveStats, LiveSurface};
 pub use nurbs::{NurbsSpec, NurbsSurface};

@@ -68,6 +68,12 @@
 //! ([`TpiError::NonFinite`] naming e.g. `points[12][1]`), weights ([`TpiError::WeightCount`],
 //! [`TpiError::NonFinite`] naming e.g. `weights[5]`, [`TpiError::NonPositiveWeight`]).
 //!
+//! Bounds ([`TpiError::OutOfBounds`], naming the control point and the bound): knots and
+//! control point coordinates have |x| <= [`crate::MAX_COORDINATE`] (1e15), weights lie in
+//! [[`crate::MIN_WEIGHT`], [`crate::MAX_WEIGHT`]] and the largest is at most
+//! [`crate::MAX_WEIGHT_RATIO`] (1e6) times the smallest. Beyond them evaluation overflows
+//! (a control point at 1e308 gave infinite points and NaN normals).
+//!
 //! Knot multiplicity follows openNURBS: in the Rhino convention no knot value may occur more than
 //! `degree` times (an interior knot of multiplicity degree + 1 would break the surface apart; an
 //! end knot repeated more often than a clamped end needs makes a control point meaningless). For
@@ -85,7 +91,10 @@
 use glam::{DVec3, DVec4};
 use serde::{Deserialize, Serialize};
 
-use crate::error::{check_finite, Direction, TpiError};
+use crate::error::{
+    check_finite, check_magnitude, Direction, Num, TpiError, MAX_WEIGHT, MAX_WEIGHT_RATIO,
+    MIN_WEIGHT,
+};
 use crate::surface::{Domain, Interval, Surface, SurfaceDerivatives};
 use crate::tolerance::MAX_NURBS_DEGREE;
 
@@ -182,6 +191,7 @@ impl KnotVector {
 
         for (index, &value) in given.iter().enumerate() {
             check_finite(|| format!("{field}[{index}]"), value)?;
+            check_magnitude(|| format!("{field}[{index}]"), value)?;
         }
         for index in 1..given.len() {
             let (previous, value) = (given[index - 1], given[index]);
@@ -468,9 +478,17 @@ impl NurbsSurface {
         let basis_u = KnotVector::new(Direction::U, degree[0], count[0], knots_u)?;
         let basis_v = KnotVector::new(Direction::V, degree[1], count[1], knots_v)?;
 
+        let control_point = |index: usize, coordinate: usize| {
+            format!(
+                "points[{index}][{coordinate}] (control point u {}, v {})",
+                index / count[1],
+                index % count[1]
+            )
+        };
         for (index, point) in points.iter().enumerate() {
             for (coordinate, &value) in point.to_array().iter().enumerate() {
                 check_finite(|| format!("points[{index}][{coordinate}]"), value)?;
+                check_magnitude(|| control_point(index, coordinate), value)?;
             }
         }
 
@@ -486,6 +504,44 @@ impl NurbsSurface {
                 if value <= 0.0 {
                     return Err(TpiError::NonPositiveWeight { index, value });
                 }
+                if !(MIN_WEIGHT..=MAX_WEIGHT).contains(&value) {
+                    return Err(TpiError::OutOfBounds {
+                        field: format!(
+                            "weights[{index}] (control point u {}, v {})",
+                            index / count[1],
+                            index % count[1]
+                        ),
+                        value,
+                        requirement: format!("{} <= w <= {}", Num(MIN_WEIGHT), Num(MAX_WEIGHT)),
+                        reason: "the rational quotient would underflow or overflow".to_string(),
+                    });
+                }
+            }
+            // Both exist: the weights are non-empty (point_count >= 4) and all in range.
+            let (lowest, highest) = weights
+                .iter()
+                .enumerate()
+                .fold((0, 0), |(lo, hi), (k, &w)| {
+                    (
+                        if w < weights[lo] { k } else { lo },
+                        if w > weights[hi] { k } else { hi },
+                    )
+                });
+            if weights[highest] / weights[lowest] > MAX_WEIGHT_RATIO {
+                return Err(TpiError::OutOfBounds {
+                    field: format!(
+                        "weights[{lowest}] (control point u {}, v {}, against weights[{highest}] = {})",
+                        lowest / count[1],
+                        lowest % count[1],
+                        Num(weights[highest])
+                    ),
+                    value: weights[lowest],
+                    requirement: format!(
+                        "largest weight / smallest weight <= {}",
+                        Num(MAX_WEIGHT_RATIO)
+                    ),
+                    reason: "derivatives at that control point would grow with the ratio and overflow; rescale the weights or the model".to_string(),
+                });
             }
         }
 

@@ -431,7 +431,8 @@ pub(crate) fn parse_error(e: serde_json::Error, context: &str) -> TpiError {
         context: context.to_string(),
         line: e.line(),
         column: e.column(),
-        message,
+        // serde_json quotes a wrong value whole (a 50 MB string gave a 50 MB message).
+        message: crate::error::bound_message(&message),
     }
 }
 
