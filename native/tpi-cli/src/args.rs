@@ -20,6 +20,10 @@ pub(crate) struct Args {
     rest: VecDeque<String>,
     command: &'static str,
     positional_only: bool,
+    /// Options that may be given more than once (`out` of `tpi discretise`).
+    repeatable: &'static [&'static str],
+    /// Options seen so far.
+    seen: Vec<String>,
 }
 
 impl Args {
@@ -29,7 +33,28 @@ impl Args {
             rest: rest.into(),
             command,
             positional_only: false,
+            repeatable: &[],
+            seen: Vec::new(),
         }
+    }
+
+    /// Allows these options (by long name) to be given more than once.
+    pub(crate) fn repeatable(mut self, names: &'static [&'static str]) -> Self {
+        self.repeatable = names;
+        self
+    }
+
+    /// Records option `name`; a second use of an option that is not repeatable is a usage
+    /// error (a repeated `--surface` used to be taken silently, the last one winning).
+    fn once(&mut self, name: &str) -> Result<(), CliError> {
+        if self.repeatable.contains(&name) {
+            return Ok(());
+        }
+        if self.seen.iter().any(|s| s == name) {
+            return Err(self.usage(format!("--{name} is given more than once; give it once")));
+        }
+        self.seen.push(name.to_string());
+        Ok(())
     }
 
     /// The next argument, or `None` at the end.
@@ -63,6 +88,7 @@ impl Args {
 
     /// The value of option `name`: its inline `=value` or the next argument.
     pub(crate) fn value(&mut self, name: &str, inline: Option<String>) -> Result<String, CliError> {
+        self.once(name)?;
         if let Some(v) = inline {
             return Ok(v);
         }
@@ -73,7 +99,8 @@ impl Args {
     }
 
     /// Rejects an inline value given to a flag that takes none.
-    pub(crate) fn flag(&self, name: &str, inline: Option<String>) -> Result<(), CliError> {
+    pub(crate) fn flag(&mut self, name: &str, inline: Option<String>) -> Result<(), CliError> {
+        self.once(name)?;
         match inline {
             None => Ok(()),
             Some(v) => Err(self.usage(format!("--{name} takes no value (got `{v}`)"))),

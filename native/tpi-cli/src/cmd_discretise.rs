@@ -8,7 +8,7 @@ use tpi_core::{discretise, Discretisation, DiscretiseOptions, SurfaceModel, TpiE
 use crate::args::{Arg, Args};
 use crate::error::CliError;
 use crate::input::{load_pattern, load_surface, PatternSource};
-use crate::output::{check_output_path, write_all};
+use crate::output::{check_not_an_input, check_output_path, write_all};
 use crate::progress::Progress;
 use crate::render::{self, DEFAULT_SIZE, MAX_SIDE};
 use crate::{obj, summary, svg};
@@ -89,7 +89,7 @@ struct Options {
 }
 
 fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
-    let mut a = Args::new("discretise", rest);
+    let mut a = Args::new("discretise", rest).repeatable(&["out", "o"]);
     let (mut surface, mut pattern, mut outs, mut size, mut threads, mut report) =
         (None, None, Vec::new(), None, None, true);
     let mut strict = false;
@@ -183,8 +183,15 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
         print!("{HELP}");
         return Ok(());
     };
-    // Cheap checks first: an output that can never be written fails before any work.
+    // Cheap checks first: an output that can never be written, or that would overwrite an
+    // input, fails before any work.
+    let pattern_path = Path::new(&opts.pattern);
+    let mut inputs = vec![Path::new(&opts.surface)];
+    if pattern_path.exists() {
+        inputs.push(pattern_path);
+    }
     for (path, _) in &opts.outs {
+        check_not_an_input(path, &inputs, "discretise")?;
         check_output_path(path)?;
     }
     let started = Instant::now();
@@ -216,6 +223,13 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
         None => (run_core(), rayon::current_num_threads()),
     };
     let result = result.map_err(|e| core_error(&e, &opts.surface, &pattern))?;
+    // Never a file with a non-finite number in it (issue 14: exit 0 with `null` vertices).
+    check_finite(&result).map_err(|problem| {
+        CliError::input(
+            &opts.surface,
+            format!("{problem}; no output written (the surface's evaluation does not stay finite at this pattern)"),
+        )
+    })?;
 
     progress.step("rendering the outputs");
     let title = format!("{} with {}", opts.surface, pattern.label);
@@ -280,6 +294,52 @@ fn core_error(e: &TpiError, surface: &str, pattern: &PatternSource) -> CliError 
         | TpiError::CollinearPattern { .. } => CliError::core(&pattern.label, e),
         _ => CliError::core(surface, e),
     }
+}
+
+/// The first non-finite number of a result that an output would carry: a vertex, a seed's
+/// point, normal or curvatures, a number of the quality report.
+fn check_finite(result: &Discretisation) -> Result<(), String> {
+    if let Some((i, v)) = result
+        .vertices
+        .iter()
+        .enumerate()
+        .find(|(_, v)| !v.is_finite())
+    {
+        return Err(format!("vertex {i} is not finite ({}, {}, {})", v.x, v.y, v.z));
+    }
+    for (i, s) in result.seeds.iter().enumerate() {
+        let numbers = [s.point.to_array(), s.normal.to_array()].concat();
+        if numbers
+            .iter()
+            .chain(&s.uv)
+            .chain(&s.curvatures)
+            .any(|x| !x.is_finite())
+        {
+            return Err(format!(
+                "pattern point {i}: surface point, normal or curvature not finite"
+            ));
+        }
+    }
+    if let Some(q) = &result.quality {
+        let numbers = [
+            ("trivalent fraction", q.trivalent_fraction),
+            ("planarity", q.max_planarity_error),
+            ("deviation", q.max_deviation),
+            ("mean deviation", q.mean_deviation),
+            ("facet area", q.min_facet_area),
+            ("facet area", q.max_facet_area),
+            ("edge length", q.min_edge_length),
+            ("edge length", q.max_edge_length),
+            ("bounding box diagonal", q.bounding_box_diagonal),
+        ];
+        if let Some((name, x)) = numbers.iter().find(|(_, x)| !x.is_finite()) {
+            return Err(format!("the quality report's {name} is not finite ({x})"));
+        }
+        if !q.all_finite {
+            return Err("the quality report found non-finite vertices".to_string());
+        }
+    }
+    Ok(())
 }
 
 fn human_size(n: usize) -> String {

@@ -60,6 +60,8 @@ Formats: docs/formats.md.
 ";
 
 fn main() {
+    // Before anything is written: SIGINT/SIGTERM remove the temporary output files.
+    output::clean_up_on_signals();
     let mut argv = std::env::args().skip(1);
     let command = argv.next();
     let rest: Vec<String> = argv.collect();
