@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use tpi_core::sampled_bounding_box;
 use tpi_core::DEFAULT_FLAT_TOLERANCE;
-use tpi_core::{LocalGeometry, Surface, SurfaceModel, SurfaceSpec};
+use tpi_core::{LocalGeometry, Pattern, Surface, SurfaceModel, SurfaceSpec};
 
 use crate::args::{Arg, Args};
 use crate::error::CliError;
@@ -67,9 +67,55 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
         }
     }
     let file = file.ok_or_else(|| a.usage("a surface file is required"))?;
+    // A pattern file is described as one (it used to fail with "missing field `type`").
+    let text = crate::output::read_text(&file)?;
+    if let Ok(serde_json::Value::Object(o)) = serde_json::from_str::<serde_json::Value>(&text) {
+        if o.contains_key("uv") && !o.contains_key("type") {
+            let name = file.display().to_string();
+            let pattern =
+                Pattern::from_json(&text, &name).map_err(|e| CliError::core(&name, &e))?;
+            print!("{}", describe_pattern(&file, &pattern));
+            return Ok(());
+        }
+    }
     let (spec, model) = load_surface_spec(&file)?;
     print!("{}", describe(&file, &spec, &model, grid));
     Ok(())
+}
+
+/// What `tpi info` says about a pattern file.
+fn describe_pattern(file: &Path, pattern: &Pattern) -> String {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in &pattern.uv {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let mut s = format!(
+        "{}: pattern file (not a surface), {} points\n",
+        file.display(),
+        pattern.len()
+    );
+    if !pattern.uv.is_empty() {
+        let _ = writeln!(
+            s,
+            "  s in [{}, {}], t in [{}, {}]",
+            g(lo[0]),
+            g(hi[0]),
+            g(lo[1]),
+            g(hi[1])
+        );
+    }
+    match pattern.validate() {
+        Ok(()) => {
+            let _ = writeln!(s, "  valid: use it as `tpi discretise --surface SURFACE.json --pattern {}`", file.display());
+        }
+        Err(e) => {
+            let _ = writeln!(s, "  not usable for discretise: {e}");
+        }
+    }
+    s
 }
 
 /// The whole report.
@@ -250,16 +296,7 @@ pub(crate) fn describe(
     if strict > 0 {
         let _ = writeln!(s, "  {strict} samples are flat by the discretiser's own test (flat-point diagnostics expected there)");
     }
-    let verdict = if positive == samples.len() {
-        "K > 0 everywhere: expect convex facets meeting three at a vertex"
-    } else if negative == samples.len() {
-        "K < 0 everywhere: expect non-convex (but simple) facets"
-    } else if zero + irregular == samples.len() {
-        "K ~ 0 everywhere: tangent plane intersection is ill-conditioned on this surface"
-    } else {
-        "mixed curvature: convex facets where K > 0, non-convex where K < 0, ill-conditioned vertices near K = 0"
-    };
-    let _ = writeln!(s, "  {verdict}");
+    let _ = writeln!(s, "  {}", verdict(positive, negative, zero, irregular));
 
     // Map: columns along s, rows along t (t up).
     let (cols, rows) = (48usize, 16usize);
@@ -279,6 +316,46 @@ pub(crate) fn describe(
     let _ = writeln!(s, "  t=0 +{}+", "-".repeat(cols));
     let _ = writeln!(s, "      s=0{}s=1", " ".repeat(cols.saturating_sub(4)));
     s
+}
+
+/// The one-line verdict from the sample counts of each class: it names only what the
+/// numbers show (issue 14: a sphere patch with a pole was called "mixed curvature ...
+/// non-convex where K < 0" with K < 0 at 0 %).
+fn verdict(positive: usize, negative: usize, zero: usize, irregular: usize) -> String {
+    let total = positive + negative + zero + irregular;
+    if positive == total {
+        return "K > 0 everywhere: expect convex facets meeting three at a vertex".into();
+    }
+    if negative == total {
+        return "K < 0 everywhere: expect non-convex (but simple) facets".into();
+    }
+    if zero == total {
+        return "K ~ 0 everywhere: tangent plane intersection is ill-conditioned on this surface"
+            .into();
+    }
+    let head = match (positive > 0, negative > 0) {
+        (true, true) => "mixed curvature",
+        (true, false) => "K > 0 where the surface is regular and curved",
+        (false, true) => "K < 0 where the surface is regular and curved",
+        (false, false) => "no curved regular sample",
+    };
+    let mut parts: Vec<String> = Vec::new();
+    if positive > 0 {
+        parts.push("convex facets where K > 0".into());
+    }
+    if negative > 0 {
+        parts.push("non-convex (but simple) facets where K < 0".into());
+    }
+    if zero > 0 {
+        parts.push("ill-conditioned vertices near K = 0".into());
+    }
+    if irregular > 0 {
+        parts.push(format!(
+            "{irregular} singular sample{} (Su x Sv = 0: a pole or a collapsed edge, where the surface has no tangent plane)",
+            if irregular == 1 { "" } else { "s" }
+        ));
+    }
+    format!("{head}: {}", parts.join(", "))
 }
 
 /// Connected regions of the sample indices `hits` on the n x n grid, as normalised bounding

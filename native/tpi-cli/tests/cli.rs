@@ -1570,3 +1570,70 @@ fn concurrent_runs_leave_outputs_of_one_run() {
         assert_eq!(names.len(), 2, "{names:?}");
     }
 }
+
+/// A dome whose u = 0 edge collapses to one point (a pole) used to get the verdict "mixed
+/// curvature: ... non-convex where K < 0" with K < 0 at 0 %; the verdict now names only what
+/// the counts show, and the pole as singular samples.
+#[test]
+fn info_verdict_matches_the_numbers_at_a_pole() {
+    let dir = scratch("pole");
+    let surface = edited_dome(&dir, "pole.json", |v| {
+        for j in 0..6 {
+            v["points"][j] = serde_json::json!([-6.0, 0.0, -1.0]);
+        }
+    });
+    let out = text(&ok(&["info", &surface]).stdout);
+    assert!(
+        out.contains("K < 0 (saddle: non-convex facets): 0.0% of the samples"),
+        "{out}"
+    );
+    assert!(!out.contains("mixed curvature"), "{out}");
+    assert!(!out.contains("non-convex (but simple) facets where K < 0"), "{out}");
+    assert!(out.contains("singular samples (Su x Sv = 0: a pole"), "{out}");
+}
+
+/// `tpi info` on a pattern file used to fail with "missing field `type`".
+#[test]
+fn info_recognises_a_pattern_file() {
+    let out = text(&ok(&["info", &sample("hex-24x20.json")]).stdout);
+    assert!(
+        out.contains("pattern file (not a surface), 480 points"),
+        "{out}"
+    );
+}
+
+/// The summary used to print `deviation max 0.0000` for a small model (here 10 cm across,
+/// deviations of about 2e-7): four significant digits whatever the scale.
+#[test]
+fn the_summary_keeps_significant_digits() {
+    let dir = scratch("small");
+    let surface = dir.join("small.json");
+    fs::write(
+        &surface,
+        r#"{"type": "elliptic_paraboloid", "a": 0.01, "b": 0.01, "x": [-0.05, 0.05], "y": [-0.05, 0.05]}"#,
+    )
+    .unwrap();
+    let out = ok(&[
+        "discretise",
+        "--surface",
+        surface.to_str().unwrap(),
+        "--pattern",
+        "hex:20x20",
+    ]);
+    let err = text(&out.stderr);
+    let line = err
+        .lines()
+        .find(|l| l.contains("deviation max"))
+        .unwrap()
+        .to_string();
+    let max: f64 = line
+        .split("deviation max ")
+        .nth(1)
+        .unwrap()
+        .split_whitespace()
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert!(max > 0.0, "{line}");
+}
