@@ -200,6 +200,9 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
     progress.step("reading the surface");
     let surface: SurfaceModel = load_surface(Path::new(&opts.surface))?;
 
+    // Sampled, a few milliseconds: a folded surface gets a warning, not silence.
+    let self_intersection = crate::selfx::find(&surface, crate::selfx::DEFAULT_SAMPLES);
+
     progress.step("reading the pattern");
     let pattern = load_pattern(&opts.pattern)?;
 
@@ -257,6 +260,9 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
         eprintln!("  wrote {}", names.join(", "));
     }
     eprintln!("  done in {:.0} ms", started.elapsed().as_secs_f64() * 1e3);
+    if let Some(c) = &self_intersection {
+        eprintln!("{}", crate::selfx::warning(c));
+    }
     if let Some(q) = result.quality.as_ref().filter(|q| q.invalid_facets > 0) {
         eprintln!("{}", summary::invalid_warning(q));
         if opts.strict {
@@ -305,7 +311,10 @@ fn check_finite(result: &Discretisation) -> Result<(), String> {
         .enumerate()
         .find(|(_, v)| !v.is_finite())
     {
-        return Err(format!("vertex {i} is not finite ({}, {}, {})", v.x, v.y, v.z));
+        return Err(format!(
+            "vertex {i} is not finite ({}, {}, {})",
+            v.x, v.y, v.z
+        ));
     }
     for (i, s) in result.seeds.iter().enumerate() {
         let numbers = [s.point.to_array(), s.normal.to_array()].concat();

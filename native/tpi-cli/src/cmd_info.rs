@@ -109,7 +109,11 @@ fn describe_pattern(file: &Path, pattern: &Pattern) -> String {
     }
     match pattern.validate() {
         Ok(()) => {
-            let _ = writeln!(s, "  valid: use it as `tpi discretise --surface SURFACE.json --pattern {}`", file.display());
+            let _ = writeln!(
+                s,
+                "  valid: use it as `tpi discretise --surface SURFACE.json --pattern {}`",
+                file.display()
+            );
         }
         Err(e) => {
             let _ = writeln!(s, "  not usable for discretise: {e}");
@@ -297,6 +301,22 @@ pub(crate) fn describe(
         let _ = writeln!(s, "  {strict} samples are flat by the discretiser's own test (flat-point diagnostics expected there)");
     }
     let _ = writeln!(s, "  {}", verdict(positive, negative, zero, irregular));
+    match crate::selfx::find(model, crate::selfx::DEFAULT_SAMPLES) {
+        Some(c) => {
+            let _ = writeln!(
+                s,
+                "  {}",
+                crate::selfx::warning(&c).replacen("warning: ", "", 1)
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "  no self-intersection found (sampled on a {0} x {0} grid)",
+                crate::selfx::DEFAULT_SAMPLES
+            );
+        }
+    }
 
     // Map: columns along s, rows along t (t up).
     let (cols, rows) = (48usize, 16usize);

@@ -22,6 +22,7 @@ mod output;
 mod palette;
 mod progress;
 mod render;
+mod selfx;
 mod summary;
 mod svg;
 mod voronoi;

@@ -92,7 +92,12 @@ mod tests {
             curvatures: [1.0, 1.0],
         };
         let result = Discretisation {
-            vertices: vec![glam::DVec3::X, glam::DVec3::Y, glam::DVec3::Z, glam::DVec3::ONE],
+            vertices: vec![
+                glam::DVec3::X,
+                glam::DVec3::Y,
+                glam::DVec3::Z,
+                glam::DVec3::ONE,
+            ],
             facet_offsets: vec![0, 3, 5, 8, 10],
             facet_loops: vec![0, 1, 2, 2, 3, 1, 2, 3, 3, 3],
             seeds: vec![seed; 4],

@@ -129,10 +129,7 @@ fn write_temp(path: &Path, bytes: &[u8]) -> Result<PathBuf, CliError> {
     let temp = sibling(path, "tmp");
     let created = {
         let mut pending = pending();
-        let file = OpenOptions::new()
-            .write(true)
-            .create_new(true)
-            .open(&temp);
+        let file = OpenOptions::new().write(true).create_new(true).open(&temp);
         if file.is_ok() {
             pending.push(temp.clone());
         }

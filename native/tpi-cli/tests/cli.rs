@@ -1363,7 +1363,9 @@ fn an_overflowing_control_point_is_refused_by_name() {
     });
     discretise_fails(&dir, &surface, "hex:12x12", 1, &["knots_u[3] = 1.5e300"]);
     let surface = edited_dome(&dir, "w.json", |v| {
-        let weights: Vec<f64> = (0..42).map(|i| if i == 20 { 1e-300 } else { 1.0 }).collect();
+        let weights: Vec<f64> = (0..42)
+            .map(|i| if i == 20 { 1e-300 } else { 1.0 })
+            .collect();
         v["weights"] = weights.into();
     });
     discretise_fails(
@@ -1404,12 +1406,27 @@ fn an_output_that_is_an_input_is_refused() {
 fn repeated_options_are_refused() {
     let (s, p) = (sample("paraboloid.json"), sample("hex-24x20.json"));
     fails(
-        &["discretise", "--surface", &s, "--surface", &s, "--pattern", &p],
+        &[
+            "discretise",
+            "--surface",
+            &s,
+            "--surface",
+            &s,
+            "--pattern",
+            &p,
+        ],
         2,
         &["--surface is given more than once"],
     );
     fails(
-        &["discretise", "--surface", &s, "--pattern", &p, "--pattern=hex:3x3"],
+        &[
+            "discretise",
+            "--surface",
+            &s,
+            "--pattern",
+            &p,
+            "--pattern=hex:3x3",
+        ],
         2,
         &["--pattern is given more than once"],
     );
@@ -1555,8 +1572,7 @@ fn concurrent_runs_leave_outputs_of_one_run() {
         for mut c in children {
             assert!(c.wait().unwrap().success());
         }
-        let contract: Contract =
-            serde_json::from_str(&fs::read_to_string(&json).unwrap()).unwrap();
+        let contract: Contract = serde_json::from_str(&fs::read_to_string(&json).unwrap()).unwrap();
         let faces = fs::read_to_string(&obj)
             .unwrap()
             .lines()
@@ -1588,8 +1604,14 @@ fn info_verdict_matches_the_numbers_at_a_pole() {
         "{out}"
     );
     assert!(!out.contains("mixed curvature"), "{out}");
-    assert!(!out.contains("non-convex (but simple) facets where K < 0"), "{out}");
-    assert!(out.contains("singular samples (Su x Sv = 0: a pole"), "{out}");
+    assert!(
+        !out.contains("non-convex (but simple) facets where K < 0"),
+        "{out}"
+    );
+    assert!(
+        out.contains("singular samples (Su x Sv = 0: a pole"),
+        "{out}"
+    );
 }
 
 /// `tpi info` on a pattern file used to fail with "missing field `type`".
@@ -1636,4 +1658,38 @@ fn the_summary_keeps_significant_digits() {
         .parse()
         .unwrap();
     assert!(max > 0.0, "{line}");
+}
+
+/// A folded, self-intersecting surface used to get "K ~ 0 everywhere" or silence from
+/// `discretise`; both commands now warn (the loop of the cubic with control points
+/// (0, 0), (3, 2), (-2, 2), (1, 0) in the xz plane, swept along y with a bulge).
+#[test]
+fn a_self_intersecting_surface_is_warned_about() {
+    let dir = scratch("fold");
+    let surface = dir.join("fold.json");
+    let (xs, zs, w) = (
+        [0.0, 3.0, -2.0, 1.0],
+        [0.0, 2.0, 2.0, 0.0],
+        [0.0, 1.0, 1.0, 0.0],
+    );
+    let mut points = Vec::new();
+    for i in 0..4 {
+        for j in 0..4 {
+            points.push(serde_json::json!([xs[i], j as f64, zs[i] + 0.8 * w[j]]));
+        }
+    }
+    let spec = serde_json::json!({"type": "nurbs", "degree": [3, 3], "count": [4, 4],
+        "knots_u": [0, 0, 0, 1, 1, 1], "knots_v": [0, 0, 0, 1, 1, 1], "points": points});
+    fs::write(&surface, spec.to_string()).unwrap();
+    let s = surface.to_str().unwrap();
+    let info = text(&ok(&["info", s]).stdout);
+    assert!(info.contains("the surface intersects itself"), "{info}");
+    let run = tpi(&["discretise", "--surface", s, "--pattern", "hex:10x10"]);
+    let err = text(&run.stderr);
+    assert!(
+        err.contains("warning: the surface intersects itself"),
+        "{err}"
+    );
+    let dome = text(&ok(&["info", &sample("nurbs-dome.json")]).stdout);
+    assert!(dome.contains("no self-intersection found"), "{dome}");
 }
