@@ -5,7 +5,6 @@ use std::time::Instant;
 
 use tpi_core::{discretise, Discretisation, DiscretiseOptions, SurfaceModel, TpiError};
 
-use crate::args::{Arg, Args};
 use crate::error::CliError;
 use crate::input::{load_pattern, load_surface, PatternSource};
 use crate::output::{check_not_an_input, check_output_path, write_all};
@@ -13,40 +12,16 @@ use crate::progress::Progress;
 use crate::render::{self, DEFAULT_SIZE, MAX_SIDE};
 use crate::{obj, summary, svg};
 
-pub(crate) const HELP: &str = "\
-tpi discretise: discretise a surface into exactly planar facets, one per pattern point
-
-USAGE:
-    tpi discretise --surface S.json --pattern P.json|GENERATOR [--out FILE]... [OPTIONS]
-
-OPTIONS:
-    --surface FILE      surface file (docs/formats.md): NURBS or analytic
-    --pattern P         a pattern file ({\"uv\": [[s, t], ...]}) or a generator spec:
-                          grid:NUxNV  grid:spacing=D  hex:NUxNV  hex:spacing=D
-                          jitter:NUxNV[:amount=A][:seed=S]  random:N[:seed=S]
-                          poisson:R[:seed=S]
-                        an existing file wins over a spec of the same name
-    --out FILE          output, repeatable; the extension picks the format:
-                          .json  the output contract (vertices, facets, quality, timings_ms)
-                          .obj   Wavefront OBJ, one n-gon per facet, shared vertices
-                          .svg   top view (x, y), facets coloured by side count,
-                                 flagged facets outlined red
-                          .png   shaded 3D view rendered in-process
-    --size WxH          PNG size in pixels (default 1200x900)
-    --threads N         run the core on N threads (default: one per core)
-    --no-report         skip the quality report (faster; no facet flags)
-    --planes exact      facet planes: the exact tangent planes (the default and, for now,
-                        the only mode; `adjusted` is not implemented yet)
-    --strict            exit with code 3 when the mesh has invalid facets (open,
-                        non-simple or overlapping; the outputs are still written)
-    -h, --help          this help
-
-All outputs are computed in memory first and then written through temporary files, so a
-failing run leaves no output file (and no half-written one). A summary of the quality
-report goes to stderr; a progress line too when stderr is a terminal and the run takes
-more than a second. When the report finds invalid facets, a line `warning: N invalid
-facets (...)` goes to stderr. Exit code 0 on success, 1 for bad input or output, 2 for
-usage, 3 for invalid facets with --strict.
+/// The text after the options in `tpi discretise --help`.
+pub(crate) const AFTER_HELP: &str = "\
+All outputs are computed in memory first, checked (every number finite, every OBJ face with
+at least 3 distinct vertices) and then written through temporary files renamed together, so
+a failing or interrupted run leaves no output file (and no half-written one); an output that
+is also an input is refused. A summary of the quality report goes to stderr; progress bars
+too when stderr is a terminal and the run takes more than a second. When the report finds
+invalid facets, or the surface intersects itself (sampled), a `warning:` line goes to
+stderr. Exit code 0 on success, 1 for bad input or output, 2 for usage, 3 for invalid facets
+with --strict.
 
 EXAMPLES:
     tpi discretise --surface samples/nurbs-dome.json --pattern samples/random-1000.json \\
@@ -55,6 +30,42 @@ EXAMPLES:
     tpi discretise --surface samples/hypar.json --pattern poisson:0.03:seed=7 \\
         --out hypar.png --size 800x600 --threads 2
 ";
+
+/// The arguments of `tpi discretise`, as given (checked in [`run`]).
+#[derive(clap::Args, Debug)]
+pub(crate) struct DiscretiseArgs {
+    /// Surface file (docs/formats.md): NURBS or analytic [required]
+    #[arg(long, value_name = "FILE")]
+    surface: Option<String>,
+    /// A pattern file ({"uv": [[s, t], ...]}) or a generator spec: grid:NUxNV,
+    /// grid:spacing=D, hex:NUxNV, hex:spacing=D, jitter:NUxNV[:amount=A][:seed=S],
+    /// random:N[:seed=S], poisson:R[:seed=S]; an existing file wins over a spec of the same
+    /// name [required]
+    #[arg(long, value_name = "P")]
+    pattern: Option<String>,
+    /// Output, repeatable; the extension picks the format: .json (the output contract),
+    /// .obj (Wavefront OBJ, one n-gon per facet), .svg (top view, facets coloured by side
+    /// count, flagged facets outlined red), .png (shaded 3D view)
+    #[arg(long, short = 'o', value_name = "FILE")]
+    out: Vec<String>,
+    /// PNG size in pixels [default: 1200x900]
+    #[arg(long, value_name = "WxH")]
+    size: Option<String>,
+    /// Run the core on N threads (the result is identical for any N) [default: one per core]
+    #[arg(long, short = 'j', value_name = "N")]
+    threads: Option<String>,
+    /// Skip the quality report (faster; no facet flags)
+    #[arg(long)]
+    no_report: bool,
+    /// Facet planes: `exact`, the exact tangent planes (the default and, for now, the only
+    /// mode; `adjusted` is not implemented yet)
+    #[arg(long, value_name = "MODE")]
+    planes: Option<String>,
+    /// Exit with code 3 when the mesh has invalid facets (open, non-simple or overlapping;
+    /// the outputs are still written)
+    #[arg(long)]
+    strict: bool,
+}
 
 /// Output formats, by file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -88,87 +99,75 @@ struct Options {
     strict: bool,
 }
 
-fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
-    let mut a = Args::new("discretise", rest).repeatable(&["out", "o"]);
-    let (mut surface, mut pattern, mut outs, mut size, mut threads, mut report) =
-        (None, None, Vec::new(), None, None, true);
-    let mut strict = false;
-    while let Some(arg) = a.next() {
-        match arg {
-            Arg::Option(name, inline) => match name.as_str() {
-                "help" => return Ok(None),
-                "surface" => surface = Some(a.value(&name, inline)?),
-                "pattern" => pattern = Some(a.value(&name, inline)?),
-                "out" | "o" => {
-                    let v = a.value(&name, inline)?;
-                    let path = PathBuf::from(&v);
-                    let Some(format) = Format::of(&path) else {
-                        return Err(a.usage(format!("--out {v}: unknown output format; the extension must be .json, .obj, .svg or .png")));
-                    };
-                    if outs.iter().any(|(p, _)| *p == path) {
-                        return Err(a.usage(format!("--out {v} is given twice")));
-                    }
-                    outs.push((path, format));
-                }
-                "size" => {
-                    let v = a.value(&name, inline)?;
-                    size = Some(parse_size(&v).ok_or_else(|| {
-                        a.usage(format!("--size {v}: expected WIDTHxHEIGHT in pixels, each 16..={MAX_SIDE}, e.g. 1200x900"))
-                    })?);
-                }
-                "threads" | "j" => {
-                    let v = a.value(&name, inline)?;
-                    match v.parse::<usize>() {
-                        Ok(n) if (1..=1024).contains(&n) => threads = Some(n),
-                        _ => {
-                            return Err(a.usage(format!(
-                                "--threads {v}: expected a whole number from 1 to 1024"
-                            )))
-                        }
-                    }
-                }
-                "no-report" => {
-                    a.flag(&name, inline)?;
-                    report = false;
-                }
-                "strict" => {
-                    a.flag(&name, inline)?;
-                    strict = true;
-                }
-                "planes" => {
-                    let v = a.value(&name, inline)?;
-                    match v.as_str() {
-                        "exact" => {}
-                        "adjusted" => {
-                            return Err(a.usage(
-                                "--planes adjusted: adjusted (tilted) planes are not implemented yet; only `exact` is available",
-                            ))
-                        }
-                        _ => return Err(a.usage(format!("--planes {v}: expected `exact`"))),
-                    }
-                }
-                _ => return Err(a.unknown(&name)),
-            },
-            Arg::Positional(p) => return Err(a.usage(format!("unexpected argument `{p}`"))),
+fn parse(args: DiscretiseArgs) -> Result<Options, CliError> {
+    let usage = |message: String| CliError::usage(Some("discretise"), message);
+    let mut outs: Vec<(PathBuf, Format)> = Vec::new();
+    for v in &args.out {
+        let path = PathBuf::from(v);
+        let Some(format) = Format::of(&path) else {
+            return Err(usage(format!(
+                "--out {v}: unknown output format; the extension must be .json, .obj, .svg or .png"
+            )));
+        };
+        if outs.iter().any(|(p, _)| *p == path) {
+            return Err(usage(format!("--out {v} is given twice")));
         }
+        outs.push((path, format));
     }
-    let surface = surface.ok_or_else(|| a.usage("--surface is required"))?;
-    let pattern = pattern.ok_or_else(|| a.usage("--pattern is required"))?;
+    let size = match &args.size {
+        None => None,
+        Some(v) => Some(parse_size(v).ok_or_else(|| {
+            usage(format!(
+                "--size {v}: expected WIDTHxHEIGHT in pixels, each 16..={MAX_SIDE}, e.g. 1200x900"
+            ))
+        })?),
+    };
+    let threads = match &args.threads {
+        None => None,
+        Some(v) => match v.parse::<usize>() {
+            Ok(n) if (1..=1024).contains(&n) => Some(n),
+            _ => {
+                return Err(usage(format!(
+                    "--threads {v}: expected a whole number from 1 to 1024"
+                )))
+            }
+        },
+    };
+    match args.planes.as_deref() {
+        None | Some("exact") => {}
+        Some("adjusted") => {
+            return Err(usage(
+                "--planes adjusted: adjusted (tilted) planes are not implemented yet; only `exact` is available".into(),
+            ))
+        }
+        Some(v) => return Err(usage(format!("--planes {v}: expected `exact`"))),
+    }
+    let surface = args
+        .surface
+        .ok_or_else(|| usage("--surface is required".into()))?;
+    let pattern = args
+        .pattern
+        .ok_or_else(|| usage("--pattern is required".into()))?;
     if size.is_some() && !outs.iter().any(|(_, f)| *f == Format::Png) {
-        return Err(a.usage("--size applies to a .png output, and none is given"));
+        return Err(usage(
+            "--size applies to a .png output, and none is given".into(),
+        ));
     }
-    if strict && !report {
-        return Err(a.usage("--strict needs the quality report; drop --no-report"));
+    let report = !args.no_report;
+    if args.strict && !report {
+        return Err(usage(
+            "--strict needs the quality report; drop --no-report".into(),
+        ));
     }
-    Ok(Some(Options {
+    Ok(Options {
         surface,
         pattern,
         outs,
         size: size.unwrap_or(DEFAULT_SIZE),
         threads,
         report,
-        strict,
-    }))
+        strict: args.strict,
+    })
 }
 
 fn parse_size(s: &str) -> Option<(u32, u32)> {
@@ -178,11 +177,8 @@ fn parse_size(s: &str) -> Option<(u32, u32)> {
 }
 
 /// Runs `tpi discretise`.
-pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
-    let Some(opts) = parse(rest)? else {
-        print!("{HELP}");
-        return Ok(());
-    };
+pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
+    let opts = parse(args)?;
     // Cheap checks first: an output that can never be written, or that would overwrite an
     // input, fails before any work.
     let pattern_path = Path::new(&opts.pattern);

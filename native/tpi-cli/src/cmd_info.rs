@@ -8,65 +8,56 @@ use tpi_core::sampled_bounding_box;
 use tpi_core::DEFAULT_FLAT_TOLERANCE;
 use tpi_core::{LocalGeometry, Pattern, Surface, SurfaceModel, SurfaceSpec};
 
-use crate::args::{Arg, Args};
 use crate::error::CliError;
 use crate::input::load_surface_spec;
 
-pub(crate) const HELP: &str = "\
-tpi info: describe a surface file and its curvature
-
-USAGE:
-    tpi info S.json [--grid N]
-
+/// The text after the options in `tpi info --help`.
+pub(crate) const AFTER_HELP: &str = "\
 Prints the surface type and parameters (degrees, control point count, knots and weights
 for NURBS), the parameter domain, the bounding box, the range of the principal
 curvatures k1 <= k2 and of the Gaussian curvature K = k1 k2 over an N x N grid of
 parameters (default 41), and where K > 0 (facets convex), K < 0 (saddle: facets
-non-convex) and K ~ 0 (tangent planes nearly parallel: facet vertices ill-conditioned),
-with a map of the parameter square.
-
-OPTIONS:
-    --grid N       sample grid per side (2..=1001, default 41)
-    -h, --help     this help
+non-convex), K ~ 0 (tangent planes nearly parallel: facet vertices ill-conditioned) and
+where the surface is singular (a pole, a collapsed edge), a verdict, whether the surface
+intersects itself (sampled on a 41 x 41 grid), and a map of the parameter square. Given a
+pattern file, it says so and describes the points.
 
 EXAMPLES:
     tpi info samples/nurbs-dome.json
     tpi info samples/mixed-roof.json --grid 81
 ";
 
+/// The arguments of `tpi info`, as given (checked in [`run`]).
+#[derive(clap::Args, Debug)]
+pub(crate) struct InfoArgs {
+    /// The surface file (or a pattern file) [required]
+    #[arg(value_name = "FILE")]
+    file: Option<PathBuf>,
+    /// Sample grid per side (2..=1001) [default: 41]
+    #[arg(long, value_name = "N")]
+    grid: Option<String>,
+}
+
 /// |K| below this fraction of the largest squared principal curvature on the grid counts
 /// as K ~ 0 in the report.
 pub(crate) const NEAR_ZERO_FRACTION: f64 = 1e-2;
 
 /// Runs `tpi info`.
-pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
-    let mut a = Args::new("info", rest);
-    let (mut file, mut grid): (Option<PathBuf>, usize) = (None, 41);
-    while let Some(arg) = a.next() {
-        match arg {
-            Arg::Option(name, inline) => match name.as_str() {
-                "help" => {
-                    print!("{HELP}");
-                    return Ok(());
-                }
-                "grid" => {
-                    let v = a.value(&name, inline)?;
-                    grid = match v.parse::<usize>() {
-                        Ok(n) if (2..=1001).contains(&n) => n,
-                        _ => {
-                            return Err(a.usage(format!(
-                                "--grid {v}: expected a whole number from 2 to 1001"
-                            )))
-                        }
-                    };
-                }
-                _ => return Err(a.unknown(&name)),
-            },
-            Arg::Positional(p) if file.is_none() => file = Some(PathBuf::from(p)),
-            Arg::Positional(p) => return Err(a.usage(format!("unexpected argument `{p}`"))),
-        }
-    }
-    let file = file.ok_or_else(|| a.usage("a surface file is required"))?;
+pub(crate) fn run(args: InfoArgs) -> Result<(), CliError> {
+    let usage = |message: String| CliError::usage(Some("info"), message);
+    let grid = match &args.grid {
+        None => 41,
+        Some(v) => match v.parse::<usize>() {
+            Ok(n) if (2..=1001).contains(&n) => n,
+            _ => {
+                return Err(usage(format!(
+                    "--grid {v}: expected a whole number from 2 to 1001"
+                )))
+            }
+        },
+    };
+    let file = args.file;
+    let file = file.ok_or_else(|| usage("a surface file is required".into()))?;
     // A pattern file is described as one (it used to fail with "missing field `type`").
     let text = crate::output::read_text(&file)?;
     if let Ok(serde_json::Value::Object(o)) = serde_json::from_str::<serde_json::Value>(&text) {

@@ -1693,3 +1693,34 @@ fn a_self_intersecting_surface_is_warned_about() {
     let dome = text(&ok(&["info", &sample("nurbs-dome.json")]).stdout);
     assert!(dome.contains("no self-intersection found"), "{dome}");
 }
+
+/// Completions for bash, zsh, fish and PowerShell, and a man page, each naming every command
+/// and the options of `tpi discretise`.
+#[test]
+fn completions_and_man_page() {
+    for (shell, marker) in [
+        ("bash", "complete -F"),
+        ("zsh", "#compdef tpi"),
+        ("fish", "complete -c tpi"),
+        ("powershell", "Register-ArgumentCompleter"),
+    ] {
+        let script = text(&ok(&["completions", shell]).stdout);
+        assert!(script.contains(marker), "{shell}: {script}");
+        for word in [
+            "discretise",
+            "pattern",
+            "info",
+            "bench",
+            "surface",
+            "strict",
+        ] {
+            assert!(script.contains(word), "{shell} lacks {word}");
+        }
+    }
+    let man = text(&ok(&["man"]).stdout);
+    assert!(man.starts_with(".ie") || man.contains(".TH tpi 1"), "{man}");
+    for word in ["discretise", "pattern", "info", "bench"] {
+        assert!(man.contains(word), "man page lacks {word}");
+    }
+    fails(&["completions", "tcsh"], 2, &["tcsh"]);
+}
