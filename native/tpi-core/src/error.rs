@@ -293,7 +293,7 @@ pub const QUOTE_LIMIT: usize = 80;
 pub const MESSAGE_LIMIT: usize = 480;
 
 /// `text` cut to at most `limit` characters: the first ones, then `...` and the length of
-/// the whole (`"aaaa..." (52428800 characters)`).
+/// the whole (`aaaa... (52428800 characters)`).
 pub fn bounded(text: &str, limit: usize) -> std::borrow::Cow<'_, str> {
     let count = text.chars().count();
     if count <= limit {
