@@ -1673,9 +1673,9 @@ fn a_self_intersecting_surface_is_warned_about() {
         [0.0, 1.0, 1.0, 0.0],
     );
     let mut points = Vec::new();
-    for i in 0..4 {
-        for j in 0..4 {
-            points.push(serde_json::json!([xs[i], j as f64, zs[i] + 0.8 * w[j]]));
+    for (x, z) in xs.iter().zip(zs) {
+        for (j, wj) in w.iter().enumerate() {
+            points.push(serde_json::json!([x, j as f64, z + 0.8 * wj]));
         }
     }
     let spec = serde_json::json!({"type": "nurbs", "degree": [3, 3], "count": [4, 4],

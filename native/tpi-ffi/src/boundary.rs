@@ -165,6 +165,7 @@ pub fn status_of(error: &TpiError) -> TpiStatus {
     match error {
         TpiError::NonFinite { .. } => TpiStatus::NonFinite,
         TpiError::InvalidParameter { .. }
+        | TpiError::OutOfBounds { .. }
         | TpiError::EmptyDomain { .. }
         | TpiError::Parse { .. } => TpiStatus::InvalidArgument,
         TpiError::InvalidDegree { .. }
