@@ -9,19 +9,54 @@ use tpi::*;
 
 #[derive(Arbitrary, Debug)]
 enum Call {
-    NewSurface { height: i8 },
-    NewPattern { n: u8, seed: u8 },
-    Discretise { surface: u8, pattern: u8 },
-    NewLive { surface: u8, pattern: u8 },
-    Move { live: u8, index: u16, s: u16, t: u16 },
-    Add { live: u8, s: u16, t: u16 },
-    Remove { live: u8, index: u16 },
-    Recompute { live: u8 },
-    Mesh { live: u8 },
-    CopyVertices { mesh: u8 },
-    WrongKindMove { mesh: u8 },
-    FreeMesh { mesh: u8 },
-    FreeLive { live: u8 },
+    NewSurface {
+        height: i8,
+    },
+    NewPattern {
+        n: u8,
+        seed: u8,
+    },
+    Discretise {
+        surface: u8,
+        pattern: u8,
+    },
+    NewLive {
+        surface: u8,
+        pattern: u8,
+    },
+    Move {
+        live: u8,
+        index: u16,
+        s: u16,
+        t: u16,
+    },
+    Add {
+        live: u8,
+        s: u16,
+        t: u16,
+    },
+    Remove {
+        live: u8,
+        index: u16,
+    },
+    Recompute {
+        live: u8,
+    },
+    Mesh {
+        live: u8,
+    },
+    CopyVertices {
+        mesh: u8,
+    },
+    WrongKindMove {
+        mesh: u8,
+    },
+    FreeMesh {
+        mesh: u8,
+    },
+    FreeLive {
+        live: u8,
+    },
 }
 
 struct Handles {
@@ -41,7 +76,10 @@ fn check_message() {
     let mut needed = 0usize;
     // SAFETY: buf holds 4096 chars, needed is valid.
     let status = unsafe { tpi_last_error_message(buf.as_mut_ptr(), buf.len(), &mut needed) };
-    assert!(status == TpiStatus::Ok, "message longer than 4 kB: {needed} bytes");
+    assert!(
+        status == TpiStatus::Ok,
+        "message longer than 4 kB: {needed} bytes"
+    );
 }
 
 fn dome(height: f64) -> *mut TpiSurface {
@@ -58,15 +96,31 @@ fn dome(height: f64) -> *mut TpiSurface {
     // SAFETY: arrays valid for their lengths, valid out pointer.
     unsafe {
         tpi_surface_new_nurbs(
-            3, 3, 4, 4, knots.as_ptr(), 6, knots.as_ptr(), 6, points.as_ptr(), points.len(),
-            std::ptr::null(), 0, &mut out,
+            3,
+            3,
+            4,
+            4,
+            knots.as_ptr(),
+            6,
+            knots.as_ptr(),
+            6,
+            points.as_ptr(),
+            points.len(),
+            std::ptr::null(),
+            0,
+            &mut out,
         )
     };
     out
 }
 
 fuzz_target!(|calls: Vec<Call>| {
-    let mut h = Handles { surfaces: vec![], patterns: vec![], meshes: vec![], lives: vec![] };
+    let mut h = Handles {
+        surfaces: vec![],
+        patterns: vec![],
+        meshes: vec![],
+        lives: vec![],
+    };
     for call in calls.iter().take(64) {
         // SAFETY: every handle comes from this library and is freed once (removed from its
         // list when freed); the wrong-kind calls pass live handles of another kind.
@@ -156,10 +210,16 @@ fuzz_target!(|calls: Vec<Call>| {
                 Call::CopyVertices { mesh } => match pick(&h.meshes, mesh) {
                     Some(m) => {
                         let mut needed = 0usize;
-                        let st = tpi_discretisation_vertices(m, std::ptr::null_mut(), 0, &mut needed);
+                        let st =
+                            tpi_discretisation_vertices(m, std::ptr::null_mut(), 0, &mut needed);
                         if st == TpiStatus::Ok || st == TpiStatus::BufferTooSmall {
                             let mut buf = vec![0.0f64; needed];
-                            let st = tpi_discretisation_vertices(m, buf.as_mut_ptr(), buf.len(), &mut needed);
+                            let st = tpi_discretisation_vertices(
+                                m,
+                                buf.as_mut_ptr(),
+                                buf.len(),
+                                &mut needed,
+                            );
                             assert_eq!(st, TpiStatus::Ok);
                             assert!(buf.iter().all(|x| x.is_finite()));
                         }

@@ -12,12 +12,25 @@ use tpi_core::{
 
 #[derive(Arbitrary, Debug)]
 enum Shape {
-    Elliptic { a: i8, b: i8 },
-    Hyperbolic { a: i8, b: i8 },
-    Sphere { radius: u8 },
-    Egg { amplitude: i8 },
+    Elliptic {
+        a: i8,
+        b: i8,
+    },
+    Hyperbolic {
+        a: i8,
+        b: i8,
+    },
+    Sphere {
+        radius: u8,
+    },
+    Egg {
+        amplitude: i8,
+    },
     /// A 4 x 4 bicubic Bezier patch: heights on a 3 x 3 square grid, optional weights.
-    Bezier { heights: [i8; 16], weights: Option<[u8; 16]> },
+    Bezier {
+        heights: [i8; 16],
+        weights: Option<[u8; 16]>,
+    },
 }
 
 #[derive(Arbitrary, Debug)]
@@ -29,7 +42,11 @@ struct Input {
 
 fn surface(shape: &Shape) -> Option<SurfaceModel> {
     let x = [-1.0, 1.0];
-    let analytic = |kind| AnalyticSurface::new(kind, x, x).ok().map(SurfaceModel::from);
+    let analytic = |kind| {
+        AnalyticSurface::new(kind, x, x)
+            .ok()
+            .map(SurfaceModel::from)
+    };
     match *shape {
         Shape::Elliptic { a, b } => analytic(AnalyticKind::EllipticParaboloid {
             a: f64::from(a) / 16.0,

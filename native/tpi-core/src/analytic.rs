@@ -229,29 +229,6 @@ impl AnalyticSurface {
     /// leaves the sphere's disc (`x`/`y` named as the field `x, y`), the ellipse or the
     /// cylinder's strip.
     pub fn new(kind: AnalyticKind, x: [f64; 2], y: [f64; 2]) -> Result<Self, TpiError> {
-        // Finite numbers beyond MAX_COORDINATE overflow in evaluation (issue 14): refused
-        // first, naming the field; non-finite ones get their own error below.
-        let parameters: Vec<(&str, f64)> = match kind {
-            AnalyticKind::EllipticParaboloid { a, b }
-            | AnalyticKind::HyperbolicParaboloid { a, b } => vec![("a", a), ("b", b)],
-            AnalyticKind::SphereCap { radius } | AnalyticKind::Cylinder { radius } => {
-                vec![("radius", radius)]
-            }
-            AnalyticKind::EllipsoidCap { a, b, c } => vec![("a", a), ("b", b), ("c", c)],
-            AnalyticKind::EggCrate { amplitude } => vec![("amplitude", amplitude)],
-            AnalyticKind::Plane { p, q, c0 } => vec![("p", p), ("q", q), ("c0", c0)],
-        };
-        let rectangle = [
-            ("x[0]", x[0]),
-            ("x[1]", x[1]),
-            ("y[0]", y[0]),
-            ("y[1]", y[1]),
-        ];
-        for (field, value) in parameters.into_iter().chain(rectangle) {
-            if value.is_finite() {
-                crate::error::check_magnitude(|| field.to_string(), value)?;
-            }
-        }
         // Parameters first, then the rectangle, then their compatibility.
         match kind {
             AnalyticKind::EllipticParaboloid { a, b } => {

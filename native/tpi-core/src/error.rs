@@ -181,7 +181,11 @@ pub enum TpiError {
         count: usize,
     },
     /// A pattern generator specification is malformed.
-    #[error("invalid pattern generator `{}`: {reason}", bounded(spec, QUOTE_LIMIT))]
+    #[error(
+        "invalid pattern generator `{}`: {}",
+        bounded(spec, QUOTE_LIMIT),
+        bound_message(reason)
+    )]
     InvalidGenerator {
         /// The specification given.
         spec: String,
@@ -195,9 +199,10 @@ pub enum TpiError {
         /// Why.
         reason: String,
     },
-    /// A number beyond what evaluation can represent: a control point coordinate, a knot, a
-    /// weight (or a weight ratio) or an analytic parameter whose use in evaluation would
-    /// overflow or underflow to a non-finite or meaningless result. Scale the model (or the
+    /// A number of a NURBS surface beyond what evaluation can represent: a control point
+    /// coordinate, a knot or a weight (or the weights' ratio) whose use in evaluation would
+    /// overflow or underflow to a non-finite or meaningless result. (Analytic surfaces have
+    /// their own bound, [`crate::MAX_ANALYTIC_MAGNITUDE`], reported as `InvalidParameter`.) Scale the model (or the
     /// knots) into range; the bounds are [`MAX_COORDINATE`], [`MIN_WEIGHT`], [`MAX_WEIGHT`]
     /// and [`MAX_WEIGHT_RATIO`].
     #[error("{field} = {} is out of bounds: {requirement} ({reason})", Num(*value))]
@@ -241,8 +246,8 @@ pub(crate) fn check_finite(field: impl FnOnce() -> String, value: f64) -> Result
     }
 }
 
-/// The largest magnitude accepted for a control point coordinate, a knot or an analytic
-/// surface's parameter (1e15 model units: coordinates, their squares and the products that
+/// The largest magnitude accepted for a NURBS control point coordinate or knot (1e15 model
+/// units: coordinates, their squares and the products that
 /// curvature takes stay far from overflow, and a coordinate still resolves 0.1 units).
 pub const MAX_COORDINATE: f64 = 1e15;
 /// The smallest weight accepted (below it, the squared weight sums of the rational quotient
@@ -292,16 +297,18 @@ pub const QUOTE_LIMIT: usize = 80;
 /// The longest message, in characters, that [`bound_message`] lets through.
 pub const MESSAGE_LIMIT: usize = 480;
 
-/// `text` cut to at most `limit` characters: the first ones, then `...` and the length of
-/// the whole (`aaaa... (52428800 characters)`).
+/// `text` cut to at most `limit` characters (for a limit of at least 30 or so): the first
+/// ones, then `...` and the length of the whole (`aaaa... (52428800 characters)`).
 pub fn bounded(text: &str, limit: usize) -> std::borrow::Cow<'_, str> {
     let count = text.chars().count();
     if count <= limit {
         return std::borrow::Cow::Borrowed(text);
     }
-    let keep = limit.saturating_sub(3);
+    // The suffix counts against the limit: the result never exceeds it.
+    let suffix = format!("... ({count} characters)");
+    let keep = limit.saturating_sub(suffix.len());
     let head: String = text.chars().take(keep).collect();
-    std::borrow::Cow::Owned(format!("{head}... ({count} characters)"))
+    std::borrow::Cow::Owned(format!("{head}{suffix}"))
 }
 
 /// A message with every quoted part (between `"` or between backticks) longer than
@@ -357,6 +364,35 @@ mod tests {
             value: -5e-324,
         };
         assert_eq!(e.to_string(), "weights[0] = -5e-324 must be > 0");
+    }
+
+    /// Found by the surface_json fuzz target (fuzz/, issue 14): cutting a message to
+    /// MESSAGE_LIMIT appended the length after the limit, so the result was longer than it.
+    #[test]
+    fn fuzz_regression_bounded_never_exceeds_its_limit() {
+        let text = format!(
+            "unknown variant `{}`, expected one of `nurbs`",
+            "z".repeat(500)
+        );
+        for limit in [30, QUOTE_LIMIT, MESSAGE_LIMIT] {
+            assert!(bounded(&text, limit).chars().count() <= limit);
+        }
+        let json = format!("{{\"type\" :\"pected `,8{}`]\"}}", "z/7 ".repeat(200));
+        let e = crate::SurfaceSpec::from_json(&json, "fuzz.json").unwrap_err();
+        assert!(bound_message(&e.to_string()).chars().count() <= MESSAGE_LIMIT);
+        assert!(e.to_string().len() < 1024, "{e}");
+    }
+
+    /// Found by the pattern_input fuzz target (fuzz/, issue 14): a 27 kB text read as a
+    /// generator spec gave a 27 kB message, the reason quoting the whole unknown kind.
+    #[test]
+    fn fuzz_regression_long_generator_reason_is_bounded() {
+        let spec = format!("h~x\"y\"x   $ {}", "R".repeat(27_000));
+        let e = crate::Generator::parse(&spec).unwrap_err();
+        assert!(e.to_string().len() < 1024, "{}", e.to_string().len());
+        let spec = format!("grid:{}x3", "9".repeat(27_000));
+        let e = crate::Generator::parse(&spec).unwrap_err();
+        assert!(e.to_string().len() < 1024, "{}", e.to_string().len());
     }
 
     #[test]
