@@ -203,8 +203,7 @@ pub enum TpiError {
     /// coordinate, a knot or a weight (or the weights' ratio) whose use in evaluation would
     /// overflow or underflow to a non-finite or meaningless result. (Analytic surfaces have
     /// their own bound, [`crate::MAX_ANALYTIC_MAGNITUDE`], reported as `InvalidParameter`.) Scale the model (or the
-    /// knots) into range; the bounds are [`MAX_COORDINATE`], [`MIN_WEIGHT`], [`MAX_WEIGHT`]
-    /// and [`MAX_WEIGHT_RATIO`].
+    /// knots) into range; the bounds are [`MAX_COORDINATE`] and [`MAX_WEIGHT_RATIO`].
     #[error("{field} = {} is out of bounds: {requirement} ({reason})", Num(*value))]
     OutOfBounds {
         /// The offending number, e.g. `points[12][0] (control point u 3, v 0)`.
@@ -250,11 +249,6 @@ pub(crate) fn check_finite(field: impl FnOnce() -> String, value: f64) -> Result
 /// units: coordinates, their squares and the products that
 /// curvature takes stay far from overflow, and a coordinate still resolves 0.1 units).
 pub const MAX_COORDINATE: f64 = 1e15;
-/// The smallest weight accepted (below it, the squared weight sums of the rational quotient
-/// rule underflow).
-pub const MIN_WEIGHT: f64 = 1e-100;
-/// The largest weight accepted.
-pub const MAX_WEIGHT: f64 = 1e100;
 /// The largest ratio of the largest weight to the smallest accepted: at a clamped corner
 /// the derivatives grow with this ratio and their products with its square (a weight of
 /// 1e-300 beside weights of 1 made every derivative there overflow).

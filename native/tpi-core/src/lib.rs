@@ -50,8 +50,8 @@ pub use discretise::{
     discretise, validate_pattern, Discretisation, DiscretiseOptions, Seed, Timings,
 };
 pub use error::{
-    bound_message, bounded, Direction, Num, TpiError, MAX_COORDINATE, MAX_WEIGHT, MAX_WEIGHT_RATIO,
-    MESSAGE_LIMIT, MIN_WEIGHT, QUOTE_LIMIT,
+    bound_message, bounded, Direction, Num, TpiError, MAX_COORDINATE, MAX_WEIGHT_RATIO,
+    MESSAGE_LIMIT, QUOTE_LIMIT,
 };
 pub use facets::VertexKind;
 pub use live::{LiveStats, LiveSurface};

@@ -69,10 +69,10 @@
 //! [`TpiError::NonFinite`] naming e.g. `weights[5]`, [`TpiError::NonPositiveWeight`]).
 //!
 //! Bounds ([`TpiError::OutOfBounds`], naming the control point and the bound): knots and
-//! control point coordinates have |x| <= [`crate::MAX_COORDINATE`] (1e15), weights lie in
-//! [[`crate::MIN_WEIGHT`], [`crate::MAX_WEIGHT`]] and the largest is at most
-//! [`crate::MAX_WEIGHT_RATIO`] (1e6) times the smallest. Beyond them evaluation overflows
-//! (a control point at 1e308 gave infinite points and NaN normals).
+//! control point coordinates have |x| <= [`crate::MAX_COORDINATE`] (1e15), and the largest
+//! weight is at most [`crate::MAX_WEIGHT_RATIO`] (1e6) times the smallest (equal weights of
+//! any size are fine). Beyond them evaluation overflows (a control point at 1e308 gave
+//! infinite points and NaN normals). They are checked after the finiteness checks above.
 //!
 //! Knot multiplicity follows openNURBS: in the Rhino convention no knot value may occur more than
 //! `degree` times (an interior knot of multiplicity degree + 1 would break the surface apart; an
@@ -91,10 +91,7 @@
 use glam::{DVec3, DVec4};
 use serde::{Deserialize, Serialize};
 
-use crate::error::{
-    check_finite, check_magnitude, Direction, Num, TpiError, MAX_WEIGHT, MAX_WEIGHT_RATIO,
-    MIN_WEIGHT,
-};
+use crate::error::{check_finite, check_magnitude, Direction, Num, TpiError, MAX_WEIGHT_RATIO};
 use crate::surface::{Domain, Interval, Surface, SurfaceDerivatives};
 use crate::tolerance::MAX_NURBS_DEGREE;
 
@@ -191,7 +188,6 @@ impl KnotVector {
 
         for (index, &value) in given.iter().enumerate() {
             check_finite(|| format!("{field}[{index}]"), value)?;
-            check_magnitude(|| format!("{field}[{index}]"), value)?;
         }
         for index in 1..given.len() {
             let (previous, value) = (given[index - 1], given[index]);
@@ -210,6 +206,9 @@ impl KnotVector {
             || format!("{field}[{}] - {field}[0]", given.len() - 1),
             last - first,
         )?;
+        for (index, &value) in given.iter().enumerate() {
+            check_magnitude(|| format!("{field}[{index}]"), value)?;
+        }
 
         let rhino = &given[rhino_offset..rhino_offset + rhino_len];
         let (min, max) = (rhino[degree - 1], rhino[count - 1]);
@@ -488,7 +487,6 @@ impl NurbsSurface {
         for (index, point) in points.iter().enumerate() {
             for (coordinate, &value) in point.to_array().iter().enumerate() {
                 check_finite(|| format!("points[{index}][{coordinate}]"), value)?;
-                check_magnitude(|| control_point(index, coordinate), value)?;
             }
         }
 
@@ -504,44 +502,6 @@ impl NurbsSurface {
                 if value <= 0.0 {
                     return Err(TpiError::NonPositiveWeight { index, value });
                 }
-                if !(MIN_WEIGHT..=MAX_WEIGHT).contains(&value) {
-                    return Err(TpiError::OutOfBounds {
-                        field: format!(
-                            "weights[{index}] (control point u {}, v {})",
-                            index / count[1],
-                            index % count[1]
-                        ),
-                        value,
-                        requirement: format!("{} <= w <= {}", Num(MIN_WEIGHT), Num(MAX_WEIGHT)),
-                        reason: "the rational quotient would underflow or overflow".to_string(),
-                    });
-                }
-            }
-            // Both exist: the weights are non-empty (point_count >= 4) and all in range.
-            let (lowest, highest) = weights
-                .iter()
-                .enumerate()
-                .fold((0, 0), |(lo, hi), (k, &w)| {
-                    (
-                        if w < weights[lo] { k } else { lo },
-                        if w > weights[hi] { k } else { hi },
-                    )
-                });
-            if weights[highest] / weights[lowest] > MAX_WEIGHT_RATIO {
-                return Err(TpiError::OutOfBounds {
-                    field: format!(
-                        "weights[{lowest}] (control point u {}, v {}, against weights[{highest}] = {})",
-                        lowest / count[1],
-                        lowest % count[1],
-                        Num(weights[highest])
-                    ),
-                    value: weights[lowest],
-                    requirement: format!(
-                        "largest weight / smallest weight <= {}",
-                        Num(MAX_WEIGHT_RATIO)
-                    ),
-                    reason: "derivatives at that control point would grow with the ratio and overflow; rescale the weights or the model".to_string(),
-                });
             }
         }
 
@@ -555,6 +515,41 @@ impl NurbsSurface {
         };
         // Finite points and weights can still overflow to infinity in x * w.
         check_homogeneous_finite(&homogeneous)?;
+        if let Some(weights) = weights {
+            // Both exist: the weights are non-empty (point_count >= 4) and all > 0. Only the
+            // ratio matters: equal weights of any size (even subnormal) evaluate as weights 1.
+            let (lowest, highest) = weights
+                .iter()
+                .enumerate()
+                .fold((0, 0), |(lo, hi), (k, &w)| {
+                    (
+                        if w < weights[lo] { k } else { lo },
+                        if w > weights[hi] { k } else { hi },
+                    )
+                });
+            if weights[highest] / weights[lowest] > MAX_WEIGHT_RATIO {
+                return Err(TpiError::OutOfBounds {
+                field: format!(
+                    "weights[{lowest}] (control point u {}, v {})",
+                    lowest / count[1],
+                    lowest % count[1],
+                ),
+                value: weights[lowest],
+                requirement: format!(
+                    "weights[{highest}] / weights[{lowest}] <= {} (weights[{highest}] = {})",
+                    Num(MAX_WEIGHT_RATIO),
+                    Num(weights[highest])
+                ),
+                reason: "derivatives at that control point would grow with the ratio and overflow; rescale the weights or the model".to_string(),
+            });
+            }
+        }
+        // Finite coordinates beyond MAX_COORDINATE overflow in evaluation (issue 14).
+        for (index, point) in points.iter().enumerate() {
+            for (coordinate, &value) in point.to_array().iter().enumerate() {
+                check_magnitude(|| control_point(index, coordinate), value)?;
+            }
+        }
 
         let (net_min, net_max) = points
             .iter()

@@ -4,34 +4,35 @@
 
 use tpi_core::{discretise, AnalyticKind, AnalyticSurface, DiscretiseOptions, SurfaceModel};
 
-/// Found by `fuzz/fuzz_targets/discretise.rs`: three pattern points on the elliptic
-/// paraboloid z = -4.8125 (x^2 + y^2) over [-1, 1]^2. The quality report counts 0 invalid
-/// facets, yet `sanity_check` finds facet 0 (vertices 0 1 2 3 4) not simple: two of its
-/// edges cross. One of the two is wrong; the geometry is not this to change.
+/// Found by `fuzz/fuzz_targets/discretise.rs`: three pattern points, two of them domain
+/// corners, on the elliptic paraboloids z = a (x^2 + y^2), a = -4.8125 and a = 1.4375, over
+/// [-1, 1]^2. The quality report counts 0 invalid facets, yet `sanity_check` finds a facet
+/// whose edges cross. One of the two is wrong; the geometry is not this to change.
 #[test]
 #[ignore = "open finding: the quality report and sanity_check disagree on facet 0"]
 fn fuzz_three_points_on_a_steep_paraboloid_report_and_sanity_agree() {
-    let surface: SurfaceModel = AnalyticSurface::new(
-        AnalyticKind::EllipticParaboloid {
-            a: -77.0 / 16.0,
-            b: -77.0 / 16.0,
-        },
-        [-1.0, 1.0],
-        [-1.0, 1.0],
-    )
-    .unwrap()
-    .into();
-    let uv = [
-        [1.0, 1.0],
-        [57343.0 / 65535.0, 63711.0 / 65535.0],
-        [0.0, 0.0],
-    ];
-    let result = discretise(&surface, &uv, &DiscretiseOptions::default()).unwrap();
-    let invalid = result.quality.as_ref().unwrap().invalid_facets;
-    let sane = result.sanity_check();
-    assert_eq!(
-        invalid == 0,
-        sane.is_ok(),
-        "report: {invalid} invalid facets; sanity_check: {sane:?}"
-    );
+    let f = |k: f64| k / 65535.0;
+    for (a, uv) in [
+        (
+            -77.0 / 16.0,
+            [[1.0, 1.0], [f(57343.0), f(63711.0)], [0.0, 0.0]],
+        ),
+        (23.0 / 16.0, [[f(23.0), 1.0], [1.0, 1.0], [0.0, 0.0]]),
+    ] {
+        let surface: SurfaceModel = AnalyticSurface::new(
+            AnalyticKind::EllipticParaboloid { a, b: a },
+            [-1.0, 1.0],
+            [-1.0, 1.0],
+        )
+        .unwrap()
+        .into();
+        let result = discretise(&surface, &uv, &DiscretiseOptions::default()).unwrap();
+        let invalid = result.quality.as_ref().unwrap().invalid_facets;
+        let sane = result.sanity_check();
+        assert_eq!(
+            invalid == 0,
+            sane.is_ok(),
+            "a = {a}: report: {invalid} invalid facets; sanity_check: {sane:?}"
+        );
+    }
 }
