@@ -17,7 +17,7 @@ pub(crate) const AFTER_HELP: &str = "\
 All outputs are computed in memory first, checked (every number finite, every OBJ face with
 at least 3 distinct vertices) and then written through temporary files renamed together, so
 a failing or interrupted run leaves no output file (and no half-written one); an output that
-is also an input is refused. A summary of the quality report goes to stderr; progress bars
+is also an input is refused. A summary of the quality report goes to stderr; a progress line
 too when stderr is a terminal and the run takes more than a second. When the report finds
 invalid facets, or the surface intersects itself (sampled), a `warning:` line goes to
 stderr. Exit code 0 on success, 1 for bad input or output, 2 for usage, 3 for invalid facets
