@@ -38,7 +38,6 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use crate::error::TpiError;
-use crate::spec::parse_error;
 use crate::surface::Domain;
 use crate::tolerance::DUPLICATE_UV_TOLERANCE;
 use crate::tolerance::MIN_POISSON_RADIUS;
@@ -91,7 +90,7 @@ impl Pattern {
     /// Errors: [`TpiError::Parse`] (with line and column; `context` names the source) for
     /// malformed JSON or unknown fields, then the errors of [`Pattern::validate`].
     pub fn from_json(text: &str, context: &str) -> Result<Pattern, TpiError> {
-        let pattern: Pattern = serde_json::from_str(text).map_err(|e| parse_error(e, context))?;
+        let pattern: Pattern = crate::spec::read(text, context)?;
         pattern.validate()?;
         Ok(pattern)
     }
