@@ -34,8 +34,12 @@
  * store the new handle through their last argument `out`; the caller owns it and frees it
  * with the matching tpi_*_free call exactly once. On failure `*out` is set to NULL, so a
  * handle from a failed create stays NULL and a later call on it gives
- * TPI_STATUS_NULL_POINTER. The *_free calls accept NULL. No handle refers to another: a call
- * that takes a handle as input copies what it needs, so handles may be freed in any order.
+ * TPI_STATUS_NULL_POINTER. The *_free calls accept NULL. Every handle carries a tag of its
+ * kind: a handle of another kind (a TpiDiscretisation where a TpiDiscreteSurface is expected)
+ * gives TPI_STATUS_INVALID_HANDLE, and so does a freed handle whose memory still reads as
+ * freed (a *_free call overwrites the tag first); a *_free call given a handle of another
+ * kind does nothing. No handle refers to another: a call that takes a handle as input
+ * copies what it needs, so handles may be freed in any order.
  * Input arrays are only read during the call and never kept. Strings returned as
  * `const char *` (tpi_version, tpi_status_name) are static and never freed.
  *
@@ -269,6 +273,12 @@ typedef enum TpiStatus {
      * options).
      */
     TPI_STATUS_UNAVAILABLE = 11,
+    /**
+     * A handle argument is not a live handle of the kind the call takes: a handle of
+     * another kind (a TpiDiscretisation passed where a TpiDiscreteSurface is expected), or
+     * one that was already freed and still reads as freed. Nothing was read through it.
+     */
+    TPI_STATUS_INVALID_HANDLE = 12,
 } TpiStatus;
 
 /**

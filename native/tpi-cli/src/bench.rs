@@ -11,17 +11,10 @@ use tpi_core::benchmark::{floor, nurbs_dome, paraboloid, random_pattern, saddle,
 use tpi_core::SplitMix64;
 use tpi_core::{discretise, DiscretiseOptions, LiveSurface, Surface, Timings};
 
-use crate::args::{Arg, Args};
 use crate::error::CliError;
 use crate::output::{check_output_path, write_all};
 
-pub(crate) const HELP: &str = "\
-tpi bench: time the discretisation on the benchmark surfaces
-
-USAGE:
-    tpi bench [--sizes N,N,...] [--surfaces paraboloid,nurbs] [--threads T] [--repeat R]
-              [--no-report] [--edits E] [--floor] [--json] [--plot FILE.svg]
-
+pub(crate) const AFTER_HELP: &str = "\
 Discretises N uniform random pattern points (SplitMix64, seed 7 + N) on (a) the paraboloid
 of revolution z = -0.08 (x^2 + y^2) over [-5, 5]^2 and (b) a bicubic NURBS dome with
 12 x 12 control points and non-uniform knots, R times each, and prints the median time of
@@ -37,28 +30,47 @@ data), the share that took the incremental path, and the median time to assemble
 edited mesh (numbering, loops, the report's aggregates) after an edit (5 samples, timed
 apart from the edits).
 
-OPTIONS:
-    --sizes LIST       pattern sizes (default 1000,10000,100000,1000000)
-    --surfaces LIST    paraboloid, nurbs, saddle, comma-separated (default all three;
-                       saddle: K < 0 everywhere, the any-curvature path)
-    --threads T        rayon threads (default: all cores)
-    --repeat R         runs per size, the median is reported (default 3; odd is best)
-    --no-report        switch the quality report off (DiscretiseOptions::quality_report)
-    --edits E          also time E live edits per size (default 0: none)
-    --floor            also time the floor (tpi_core::benchmark::floor: evaluation with
-                       curvature, one Delaunay triangulation of the slopes, one three-plane
-                       solve per triangle; and apart, one text write of the result) in the
-                       same process and print the pipeline's ratio to it
-    --json             print JSON instead of the table
-    --plot FILE.svg    also write a log-log plot of total time against the pattern size
-    -h, --help         this help
-
 EXAMPLES:
     tpi bench
     tpi bench --sizes 1000 --threads 1 --repeat 101
     tpi bench --sizes 1000,1000000 --repeat 1 --edits 1001 --surfaces nurbs
     tpi bench --sizes 1000,10000,100000,1000000 --json --plot docs/performance-scaling.svg
 ";
+
+/// The arguments of `tpi bench`, as given (checked in [`parse`]).
+#[derive(clap::Args, Debug)]
+pub(crate) struct BenchArgs {
+    /// Pattern sizes, comma-separated [default: 1000,10000,100000,1000000]
+    #[arg(long, value_name = "LIST")]
+    sizes: Option<String>,
+    /// paraboloid, nurbs, saddle, comma-separated (saddle: K < 0 everywhere, the
+    /// any-curvature path) [default: all three]
+    #[arg(long, value_name = "LIST")]
+    surfaces: Option<String>,
+    /// Rayon threads [default: all cores]
+    #[arg(long, value_name = "T")]
+    threads: Option<String>,
+    /// Runs per size, the median is reported (odd is best) [default: 3]
+    #[arg(long, value_name = "R")]
+    repeat: Option<String>,
+    /// Switch the quality report off (DiscretiseOptions::quality_report)
+    #[arg(long)]
+    no_report: bool,
+    /// Also time E live edits per size [default: 0]
+    #[arg(long, value_name = "E")]
+    edits: Option<String>,
+    /// Also time the floor (tpi_core::benchmark::floor: evaluation with curvature, one
+    /// Delaunay triangulation of the slopes, one three-plane solve per triangle; and apart,
+    /// one text write of the result) in the same process and print the pipeline's ratio to it
+    #[arg(long)]
+    floor: bool,
+    /// Print JSON instead of the table
+    #[arg(long)]
+    json: bool,
+    /// Also write a log-log plot of total time against the pattern size
+    #[arg(long, value_name = "FILE.svg")]
+    plot: Option<PathBuf>,
+}
 
 /// The benchmark's surfaces by name.
 const SURFACES: [&str; 3] = ["paraboloid", "nurbs", "saddle"];
@@ -131,10 +143,8 @@ pub(crate) struct Report {
 }
 
 /// Runs `tpi bench`.
-pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
-    let Some(config) = parse(rest)? else {
-        return Ok(());
-    };
+pub(crate) fn run(args: BenchArgs) -> Result<(), CliError> {
+    let config = parse(args)?;
     if let Some(plot) = &config.plot {
         check_output_path(plot)?;
     }
@@ -165,109 +175,86 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
     Ok(())
 }
 
-fn parse(rest: Vec<String>) -> Result<Option<Config>, CliError> {
-    let mut a = Args::new("bench", rest);
+fn parse(args: BenchArgs) -> Result<Config, CliError> {
+    let usage = |message: String| CliError::usage(Some("bench"), message);
     let mut config = Config {
         sizes: vec![1_000, 10_000, 100_000, 1_000_000],
         surfaces: SURFACES.to_vec(),
         threads: None,
         repeat: 3,
-        report: true,
-        json: false,
+        report: !args.no_report,
+        json: args.json,
         plot: None,
         edits: 0,
-        floor: false,
+        floor: args.floor,
     };
-    while let Some(arg) = a.next() {
-        match arg {
-            Arg::Option(name, inline) => match name.as_str() {
-                "help" => {
-                    print!("{HELP}");
-                    return Ok(None);
-                }
-                "floor" => {
-                    a.flag(&name, inline)?;
-                    config.floor = true;
-                }
-                "sizes" => {
-                    let v = a.value(&name, inline)?;
-                    config.sizes = v
-                        .split(',')
-                        .map(|s| match s.trim().replace('_', "").parse::<usize>() {
-                            Ok(n) if (3..=10_000_000).contains(&n) => Ok(n),
-                            _ => Err(a.usage(format!("--sizes {v}: expected whole numbers from 3 to 10000000, comma-separated"))),
-                        })
-                        .collect::<Result<_, _>>()?;
-                }
-                "surfaces" => {
-                    let v = a.value(&name, inline)?;
-                    config.surfaces = v
-                        .split(',')
-                        .map(|s| {
-                            SURFACES
-                                .iter()
-                                .find(|&&known| known == s.trim())
-                                .copied()
-                                .ok_or_else(|| a.usage(format!("--surfaces {v}: the surfaces are paraboloid, nurbs and saddle")))
-                        })
-                        .collect::<Result<_, _>>()?;
-                }
-                "threads" => {
-                    let v = a.value(&name, inline)?;
-                    config.threads = match v.parse::<usize>() {
-                        Ok(n) if (1..=1024).contains(&n) => Some(n),
-                        _ => {
-                            return Err(a.usage(format!(
-                                "--threads {v}: expected a whole number from 1 to 1024"
-                            )))
-                        }
-                    };
-                }
-                "repeat" => {
-                    let v = a.value(&name, inline)?;
-                    config.repeat = match v.parse::<usize>() {
-                        Ok(n) if (1..=100_000).contains(&n) => n,
-                        _ => {
-                            return Err(a.usage(format!(
-                                "--repeat {v}: expected a whole number from 1 to 100000"
-                            )))
-                        }
-                    };
-                }
-                "no-report" => {
-                    a.flag(&name, inline)?;
-                    config.report = false;
-                }
-                "json" => {
-                    a.flag(&name, inline)?;
-                    config.json = true;
-                }
-                "edits" => {
-                    let v = a.value(&name, inline)?;
-                    config.edits = match v.parse::<usize>() {
-                        Ok(n) if n <= 1_000_000 => n,
-                        _ => {
-                            return Err(a.usage(format!(
-                                "--edits {v}: expected a whole number up to 1000000"
-                            )))
-                        }
-                    };
-                }
-                "plot" => {
-                    let v = PathBuf::from(a.value(&name, inline)?);
-                    if v.extension().and_then(|e| e.to_str()) != Some("svg") {
-                        return Err(
-                            a.usage(format!("--plot {}: the plot is an .svg file", v.display()))
-                        );
-                    }
-                    config.plot = Some(v);
-                }
-                _ => return Err(a.unknown(&name)),
-            },
-            Arg::Positional(p) => return Err(a.usage(format!("unexpected argument `{p}`"))),
-        }
+    if let Some(v) = &args.sizes {
+        config.sizes = v
+            .split(',')
+            .map(|s| match s.trim().replace('_', "").parse::<usize>() {
+                Ok(n) if (3..=10_000_000).contains(&n) => Ok(n),
+                _ => Err(usage(format!(
+                    "--sizes {v}: expected whole numbers from 3 to 10000000, comma-separated"
+                ))),
+            })
+            .collect::<Result<_, _>>()?;
     }
-    Ok(Some(config))
+    if let Some(v) = &args.surfaces {
+        config.surfaces = v
+            .split(',')
+            .map(|s| {
+                SURFACES
+                    .iter()
+                    .find(|&&known| known == s.trim())
+                    .copied()
+                    .ok_or_else(|| {
+                        usage(format!(
+                            "--surfaces {v}: the surfaces are paraboloid, nurbs and saddle"
+                        ))
+                    })
+            })
+            .collect::<Result<_, _>>()?;
+    }
+    if let Some(v) = &args.threads {
+        config.threads = match v.parse::<usize>() {
+            Ok(n) if (1..=1024).contains(&n) => Some(n),
+            _ => {
+                return Err(usage(format!(
+                    "--threads {v}: expected a whole number from 1 to 1024"
+                )))
+            }
+        };
+    }
+    if let Some(v) = &args.repeat {
+        config.repeat = match v.parse::<usize>() {
+            Ok(n) if (1..=100_000).contains(&n) => n,
+            _ => {
+                return Err(usage(format!(
+                    "--repeat {v}: expected a whole number from 1 to 100000"
+                )))
+            }
+        };
+    }
+    if let Some(v) = &args.edits {
+        config.edits = match v.parse::<usize>() {
+            Ok(n) if n <= 1_000_000 => n,
+            _ => {
+                return Err(usage(format!(
+                    "--edits {v}: expected a whole number up to 1000000"
+                )))
+            }
+        };
+    }
+    if let Some(v) = args.plot {
+        if v.extension().and_then(|e| e.to_str()) != Some("svg") {
+            return Err(usage(format!(
+                "--plot {}: the plot is an .svg file",
+                v.display()
+            )));
+        }
+        config.plot = Some(v);
+    }
+    Ok(config)
 }
 
 fn measure(config: &Config) -> Result<Report, CliError> {

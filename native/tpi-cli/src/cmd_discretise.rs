@@ -5,50 +5,23 @@ use std::time::Instant;
 
 use tpi_core::{discretise, Discretisation, DiscretiseOptions, PlaneMode, SurfaceModel, TpiError};
 
-use crate::args::{Arg, Args};
 use crate::error::CliError;
 use crate::input::{load_pattern, load_surface, PatternSource};
-use crate::output::{check_output_path, write_all};
+use crate::output::{check_not_an_input, check_output_path, write_all};
 use crate::progress::Progress;
 use crate::render::{self, DEFAULT_SIZE, MAX_SIDE};
 use crate::{obj, summary, svg};
 
-pub(crate) const HELP: &str = "\
-tpi discretise: discretise a surface into exactly planar facets, one per pattern point
-
-USAGE:
-    tpi discretise --surface S.json --pattern P.json|GENERATOR [--out FILE]... [OPTIONS]
-
-OPTIONS:
-    --surface FILE      surface file (docs/formats.md): NURBS or analytic
-    --pattern P         a pattern file ({\"uv\": [[s, t], ...]}) or a generator spec:
-                          grid:NUxNV  grid:spacing=D  hex:NUxNV  hex:spacing=D
-                          jitter:NUxNV[:amount=A][:seed=S]  random:N[:seed=S]
-                          poisson:R[:seed=S]
-                        an existing file wins over a spec of the same name
-    --out FILE          output, repeatable; the extension picks the format:
-                          .json  the output contract (vertices, facets, quality, timings_ms)
-                          .obj   Wavefront OBJ, one n-gon per facet, shared vertices
-                          .svg   top view (x, y), facets coloured by side count,
-                                 flagged facets outlined red
-                          .png   shaded 3D view rendered in-process
-    --size WxH          PNG size in pixels (default 1200x900)
-    --threads N         run the core on N threads (default: one per core)
-    --no-report         skip the quality report (faster; no facet flags)
-    --planes MODE       facet planes: `exact` (the default) puts every facet in the exact
-                        tangent plane at its seed; `adjusted` tilts the planes of the few
-                        facets that exact planes cannot make valid (saddles, parabolic
-                        lines, random patterns) by at most 5 degrees through their seeds
-    --strict            exit with code 3 when the mesh has invalid facets (open,
-                        non-simple or overlapping; the outputs are still written)
-    -h, --help          this help
-
-All outputs are computed in memory first and then written through temporary files, so a
-failing run leaves no output file (and no half-written one). A summary of the quality
-report goes to stderr; a progress line too when stderr is a terminal and the run takes
-more than a second. When the report finds invalid facets, a line `warning: N invalid
-facets (...)` goes to stderr. Exit code 0 on success, 1 for bad input or output, 2 for
-usage, 3 for invalid facets with --strict.
+/// The text after the options in `tpi discretise --help`.
+pub(crate) const AFTER_HELP: &str = "\
+All outputs are computed in memory first, checked (every number finite, every OBJ face with
+at least 3 distinct vertices) and then written through temporary files renamed together, so
+a failing or interrupted run leaves no output file (and no half-written one); an output that
+is also an input is refused. A summary of the quality report goes to stderr; a progress line
+too when stderr is a terminal and the run takes more than a second. When the report finds
+invalid facets, or the surface intersects itself (sampled), a `warning:` line goes to
+stderr. Exit code 0 on success, 1 for bad input or output, 2 for usage, 3 for invalid facets
+with --strict.
 
 EXAMPLES:
     tpi discretise --surface samples/nurbs-dome.json --pattern samples/random-1000.json \\
@@ -57,6 +30,44 @@ EXAMPLES:
     tpi discretise --surface samples/hypar.json --pattern poisson:0.03:seed=7 \\
         --out hypar.png --size 800x600 --threads 2
 ";
+
+/// The arguments of `tpi discretise`, as given (checked in [`run`]).
+#[derive(clap::Args, Debug)]
+pub(crate) struct DiscretiseArgs {
+    /// Surface file (docs/formats.md): NURBS or analytic [required]
+    #[arg(long, value_name = "FILE")]
+    surface: Option<String>,
+    /// A pattern file ({"uv": [[s, t], ...]}) or a generator spec: grid:NUxNV,
+    /// grid:spacing=D, hex:NUxNV, hex:spacing=D, jitter:NUxNV[:amount=A][:seed=S],
+    /// random:N[:seed=S], poisson:R[:seed=S]; an existing file wins over a spec of the same
+    /// name [required]
+    #[arg(long, value_name = "P")]
+    pattern: Option<String>,
+    /// Output, repeatable; the extension picks the format: .json (the output contract),
+    /// .obj (Wavefront OBJ, one n-gon per facet), .svg (top view, facets coloured by side
+    /// count, flagged facets outlined red), .png (shaded 3D view)
+    #[arg(long, short = 'o', value_name = "FILE")]
+    out: Vec<String>,
+    /// PNG size in pixels [default: 1200x900]
+    #[arg(long, value_name = "WxH")]
+    size: Option<String>,
+    /// Run the core on N threads (the result is identical for any N) [default: one per core]
+    #[arg(long, short = 'j', value_name = "N")]
+    threads: Option<String>,
+    /// Skip the quality report (faster; no facet flags)
+    #[arg(long)]
+    no_report: bool,
+    /// Facet planes: `exact` (the default) puts every facet in the exact tangent plane at its
+    /// seed; `adjusted` tilts the planes of the few facets that exact planes cannot make
+    /// valid (saddles, parabolic lines, random patterns) by at most 5 degrees through their
+    /// seeds
+    #[arg(long, value_name = "MODE")]
+    planes: Option<String>,
+    /// Exit with code 3 when the mesh has invalid facets (open, non-simple or overlapping;
+    /// the outputs are still written)
+    #[arg(long)]
+    strict: bool,
+}
 
 /// Output formats, by file extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -91,89 +102,76 @@ struct Options {
     planes: PlaneMode,
 }
 
-fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
-    let mut a = Args::new("discretise", rest);
-    let (mut surface, mut pattern, mut outs, mut size, mut threads, mut report) =
-        (None, None, Vec::new(), None, None, true);
-    let mut strict = false;
-    let mut planes = PlaneMode::Exact;
-    while let Some(arg) = a.next() {
-        match arg {
-            Arg::Option(name, inline) => match name.as_str() {
-                "help" => return Ok(None),
-                "surface" => surface = Some(a.value(&name, inline)?),
-                "pattern" => pattern = Some(a.value(&name, inline)?),
-                "out" | "o" => {
-                    let v = a.value(&name, inline)?;
-                    let path = PathBuf::from(&v);
-                    let Some(format) = Format::of(&path) else {
-                        return Err(a.usage(format!("--out {v}: unknown output format; the extension must be .json, .obj, .svg or .png")));
-                    };
-                    if outs.iter().any(|(p, _)| *p == path) {
-                        return Err(a.usage(format!("--out {v} is given twice")));
-                    }
-                    outs.push((path, format));
-                }
-                "size" => {
-                    let v = a.value(&name, inline)?;
-                    size = Some(parse_size(&v).ok_or_else(|| {
-                        a.usage(format!("--size {v}: expected WIDTHxHEIGHT in pixels, each 16..={MAX_SIDE}, e.g. 1200x900"))
-                    })?);
-                }
-                "threads" | "j" => {
-                    let v = a.value(&name, inline)?;
-                    match v.parse::<usize>() {
-                        Ok(n) if (1..=1024).contains(&n) => threads = Some(n),
-                        _ => {
-                            return Err(a.usage(format!(
-                                "--threads {v}: expected a whole number from 1 to 1024"
-                            )))
-                        }
-                    }
-                }
-                "no-report" => {
-                    a.flag(&name, inline)?;
-                    report = false;
-                }
-                "strict" => {
-                    a.flag(&name, inline)?;
-                    strict = true;
-                }
-                "planes" => {
-                    let v = a.value(&name, inline)?;
-                    planes = match v.as_str() {
-                        "exact" => PlaneMode::Exact,
-                        "adjusted" => PlaneMode::Adjusted,
-                        _ => {
-                            return Err(
-                                a.usage(format!("--planes {v}: expected `exact` or `adjusted`"))
-                            )
-                        }
-                    }
-                }
-                _ => return Err(a.unknown(&name)),
-            },
-            Arg::Positional(p) => return Err(a.usage(format!("unexpected argument `{p}`"))),
+fn parse(args: DiscretiseArgs) -> Result<Options, CliError> {
+    let usage = |message: String| CliError::usage(Some("discretise"), message);
+    let mut outs: Vec<(PathBuf, Format)> = Vec::new();
+    for v in &args.out {
+        let path = PathBuf::from(v);
+        let Some(format) = Format::of(&path) else {
+            return Err(usage(format!(
+                "--out {v}: unknown output format; the extension must be .json, .obj, .svg or .png"
+            )));
+        };
+        if outs.iter().any(|(p, _)| *p == path) {
+            return Err(usage(format!("--out {v} is given twice")));
         }
+        outs.push((path, format));
     }
-    let surface = surface.ok_or_else(|| a.usage("--surface is required"))?;
-    let pattern = pattern.ok_or_else(|| a.usage("--pattern is required"))?;
+    let size = match &args.size {
+        None => None,
+        Some(v) => Some(parse_size(v).ok_or_else(|| {
+            usage(format!(
+                "--size {v}: expected WIDTHxHEIGHT in pixels, each 16..={MAX_SIDE}, e.g. 1200x900"
+            ))
+        })?),
+    };
+    let threads = match &args.threads {
+        None => None,
+        Some(v) => match v.parse::<usize>() {
+            Ok(n) if (1..=1024).contains(&n) => Some(n),
+            _ => {
+                return Err(usage(format!(
+                    "--threads {v}: expected a whole number from 1 to 1024"
+                )))
+            }
+        },
+    };
+    let planes = match args.planes.as_deref() {
+        None | Some("exact") => PlaneMode::Exact,
+        Some("adjusted") => PlaneMode::Adjusted,
+        Some(v) => {
+            return Err(usage(format!(
+                "--planes {v}: expected `exact` or `adjusted`"
+            )))
+        }
+    };
+    let surface = args
+        .surface
+        .ok_or_else(|| usage("--surface is required".into()))?;
+    let pattern = args
+        .pattern
+        .ok_or_else(|| usage("--pattern is required".into()))?;
     if size.is_some() && !outs.iter().any(|(_, f)| *f == Format::Png) {
-        return Err(a.usage("--size applies to a .png output, and none is given"));
+        return Err(usage(
+            "--size applies to a .png output, and none is given".into(),
+        ));
     }
-    if strict && !report {
-        return Err(a.usage("--strict needs the quality report; drop --no-report"));
+    let report = !args.no_report;
+    if args.strict && !report {
+        return Err(usage(
+            "--strict needs the quality report; drop --no-report".into(),
+        ));
     }
-    Ok(Some(Options {
+    Ok(Options {
         surface,
         pattern,
         outs,
         size: size.unwrap_or(DEFAULT_SIZE),
         threads,
         report,
-        strict,
+        strict: args.strict,
         planes,
-    }))
+    })
 }
 
 fn parse_size(s: &str) -> Option<(u32, u32)> {
@@ -183,13 +181,17 @@ fn parse_size(s: &str) -> Option<(u32, u32)> {
 }
 
 /// Runs `tpi discretise`.
-pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
-    let Some(opts) = parse(rest)? else {
-        print!("{HELP}");
-        return Ok(());
-    };
-    // Cheap checks first: an output that can never be written fails before any work.
+pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
+    let opts = parse(args)?;
+    // Cheap checks first: an output that can never be written, or that would overwrite an
+    // input, fails before any work.
+    let pattern_path = Path::new(&opts.pattern);
+    let mut inputs = vec![Path::new(&opts.surface)];
+    if pattern_path.exists() {
+        inputs.push(pattern_path);
+    }
     for (path, _) in &opts.outs {
+        check_not_an_input(path, &inputs, "discretise")?;
         check_output_path(path)?;
     }
     let started = Instant::now();
@@ -197,6 +199,9 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
 
     progress.step("reading the surface");
     let surface: SurfaceModel = load_surface(Path::new(&opts.surface))?;
+
+    // Sampled, a few milliseconds: a folded surface gets a warning, not silence.
+    let self_intersection = crate::selfx::find(&surface, crate::selfx::DEFAULT_SAMPLES);
 
     progress.step("reading the pattern");
     let pattern = load_pattern(&opts.pattern)?;
@@ -222,6 +227,13 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
         None => (run_core(), rayon::current_num_threads()),
     };
     let result = result.map_err(|e| core_error(&e, &opts.surface, &pattern))?;
+    // Never a file with a non-finite number in it (issue 14: exit 0 with `null` vertices).
+    check_finite(&result).map_err(|problem| {
+        CliError::input(
+            &opts.surface,
+            format!("{problem}; no output written (the surface's evaluation does not stay finite at this pattern)"),
+        )
+    })?;
 
     progress.step("rendering the outputs");
     let title = format!("{} with {}", opts.surface, pattern.label);
@@ -249,6 +261,9 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
         eprintln!("  wrote {}", names.join(", "));
     }
     eprintln!("  done in {:.0} ms", started.elapsed().as_secs_f64() * 1e3);
+    if let Some(c) = &self_intersection {
+        eprintln!("{}", crate::selfx::warning(c));
+    }
     if let Some(q) = result.quality.as_ref().filter(|q| q.invalid_facets > 0) {
         eprintln!("{}", summary::invalid_warning(q));
         if opts.strict {
@@ -286,6 +301,55 @@ fn core_error(e: &TpiError, surface: &str, pattern: &PatternSource) -> CliError 
         | TpiError::CollinearPattern { .. } => CliError::core(&pattern.label, e),
         _ => CliError::core(surface, e),
     }
+}
+
+/// The first non-finite number of a result that an output would carry: a vertex, a seed's
+/// point, normal or curvatures, a number of the quality report.
+fn check_finite(result: &Discretisation) -> Result<(), String> {
+    if let Some((i, v)) = result
+        .vertices
+        .iter()
+        .enumerate()
+        .find(|(_, v)| !v.is_finite())
+    {
+        return Err(format!(
+            "vertex {i} is not finite ({}, {}, {})",
+            v.x, v.y, v.z
+        ));
+    }
+    for (i, s) in result.seeds.iter().enumerate() {
+        let numbers = [s.point.to_array(), s.normal.to_array()].concat();
+        if numbers
+            .iter()
+            .chain(&s.uv)
+            .chain(&s.curvatures)
+            .any(|x| !x.is_finite())
+        {
+            return Err(format!(
+                "pattern point {i}: surface point, normal or curvature not finite"
+            ));
+        }
+    }
+    if let Some(q) = &result.quality {
+        let numbers = [
+            ("trivalent fraction", q.trivalent_fraction),
+            ("planarity", q.max_planarity_error),
+            ("deviation", q.max_deviation),
+            ("mean deviation", q.mean_deviation),
+            ("facet area", q.min_facet_area),
+            ("facet area", q.max_facet_area),
+            ("edge length", q.min_edge_length),
+            ("edge length", q.max_edge_length),
+            ("bounding box diagonal", q.bounding_box_diagonal),
+        ];
+        if let Some((name, x)) = numbers.iter().find(|(_, x)| !x.is_finite()) {
+            return Err(format!("the quality report's {name} is not finite ({x})"));
+        }
+        if !q.all_finite {
+            return Err("the quality report found non-finite vertices".to_string());
+        }
+    }
+    Ok(())
 }
 
 fn human_size(n: usize) -> String {

@@ -9,51 +9,74 @@ use tpi_core::{
     FabricationError, PanelSide, PlaneMode, SlotPlan, ToolpathOptions, Units,
 };
 
-use crate::args::{Arg, Args};
 use crate::error::CliError;
 use crate::input::{load_pattern, load_surface};
-use crate::output::{check_output_path, read_text, write_all};
+use crate::output::{check_not_an_input, check_output_path, read_text, write_all};
 
-pub(crate) const HELP: &str = "\
-tpi fabricate: panel solids with mitred joints, cleat slots, nested sheets and toolpaths
-
-USAGE:
-    tpi fabricate --surface S.json --pattern P --thickness T [--out FILE]... [OPTIONS]
-
+/// The text after the options in `tpi fabricate --help`.
+pub(crate) const AFTER_HELP: &str = "\
 Every facet becomes a panel of thickness T: its bottom face is the facet's plane offset by T,
 neighbouring panels are cut on the bisector plane of their facets (a mitre with no gap), and
 boundary sides are square. Lengths are in the surface's model units. docs/fabrication.md.
-
-OPTIONS:
-    --surface FILE       surface file (docs/formats.md)
-    --pattern P          pattern file or generator spec (as for `tpi discretise`)
-    --thickness T        panel thickness (required; > 0, below the limit the mesh allows)
-    --side SIDE          inside (default: towards the centres of curvature) or outside
-    --slots N|FILE       N cleat slots evenly along every interior edge, or a JSON file
-                         {\"slots\": [{\"edge\": [i, j], \"at\": [t, ...]}]}
-    --slot-size LxD      slot length along the edge x depth into each panel
-                         (default 4T x 2T)
-    --sheet WxH          sheet size (default 2.5x1.25)
-    --gap G              least distance between parts and from the sheet edge (default 0.02)
-    --tool-diameter D    router tool diameter for cut.nc (default 0.006; at most the gap)
-    --units U            mm, cm, m (default), in or ft: DXF $INSUNITS and G20/G21
-    --density RHO        material density, for the mass in the summary
-    --planes MODE        facet planes: `exact` (default) or `adjusted` (tilted where exact
-                         planes cannot give a valid facet; see `tpi discretise --help`)
-    --threads N          run the core on N threads (default: one per core)
-    --out FILE           output, repeatable; the extension picks the format:
-                           .json  panels, sides, angles, flat outlines, placements, slots
-                           .obj   one closed polyhedron per panel and per cleat
-                           .svg   the nested sheets side by side
-                           .dxf   the nested sheets, ASCII DXF R12 (CUT, SLOT, ENGRAVE)
-                           .nc    G-code for a 3-axis router, one program per sheet
-                           .csv   bevels: panel, side, neighbour, length, dihedral, bevel
-    -h, --help           this help
+Outputs are written as for `tpi discretise` (checked, through temporary files renamed
+together; an output that is also an input is refused).
 
 EXAMPLES:
     tpi fabricate --surface samples/nurbs-dome.json --pattern samples/poisson-0.03.json \\
         --thickness 0.04 --slots 2 --out panels.json --out sheets.svg --out cut.nc
 ";
+
+/// The arguments of `tpi fabricate`, as given (checked in [`run`]).
+#[derive(clap::Args, Debug)]
+pub(crate) struct FabricateArgs {
+    /// Surface file (docs/formats.md) [required]
+    #[arg(long, value_name = "FILE")]
+    surface: Option<String>,
+    /// Pattern file or generator spec (as for `tpi discretise`) [required]
+    #[arg(long, value_name = "P")]
+    pattern: Option<String>,
+    /// Panel thickness (> 0, below the limit the mesh allows) [required]
+    #[arg(long, short = 't', value_name = "T", allow_hyphen_values = true)]
+    thickness: Option<String>,
+    /// inside (towards the centres of curvature) or outside [default: inside]
+    #[arg(long, value_name = "SIDE")]
+    side: Option<String>,
+    /// N cleat slots evenly along every interior edge, or a JSON file
+    /// {"slots": [{"edge": [i, j], "at": [t, ...]}]}
+    #[arg(long, value_name = "N|FILE")]
+    slots: Option<String>,
+    /// Slot length along the edge x depth into each panel [default: 4T x 2T]
+    #[arg(long, value_name = "LxD")]
+    slot_size: Option<String>,
+    /// Sheet size [default: 2.5x1.25]
+    #[arg(long, value_name = "WxH")]
+    sheet: Option<String>,
+    /// Least distance between parts and from the sheet edge [default: 0.02]
+    #[arg(long, value_name = "G", allow_hyphen_values = true)]
+    gap: Option<String>,
+    /// Router tool diameter for cut.nc, at most the gap [default: 0.006]
+    #[arg(long, value_name = "D", allow_hyphen_values = true)]
+    tool_diameter: Option<String>,
+    /// mm, cm, m, in or ft: DXF $INSUNITS and G20/G21 [default: m]
+    #[arg(long, value_name = "U")]
+    units: Option<String>,
+    /// Material density, for the mass in the summary
+    #[arg(long, value_name = "RHO", allow_hyphen_values = true)]
+    density: Option<String>,
+    /// Facet planes: `exact` or `adjusted` (tilted where exact planes cannot give a valid
+    /// facet; see `tpi discretise --help`) [default: exact]
+    #[arg(long, value_name = "MODE")]
+    planes: Option<String>,
+    /// Run the core on N threads [default: one per core]
+    #[arg(long, short = 'j', value_name = "N")]
+    threads: Option<String>,
+    /// Output, repeatable; the extension picks the format: .json (panels, sides, angles,
+    /// flat outlines, placements, slots), .obj (one closed polyhedron per panel and cleat),
+    /// .svg (the nested sheets), .dxf (ASCII DXF R12: CUT, SLOT, ENGRAVE), .nc (G-code for a
+    /// 3-axis router, one program per sheet), .csv (bevels)
+    #[arg(long, short = 'o', value_name = "FILE")]
+    out: Vec<String>,
+}
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Format {
@@ -93,16 +116,20 @@ struct Options {
     planes: PlaneMode,
 }
 
-/// A number; NaN and infinities pass, for the core to name what they break.
-fn number(a: &Args, name: &str, v: &str) -> Result<f64, CliError> {
-    v.trim()
-        .parse::<f64>()
-        .map_err(|_| a.usage(format!("--{name} {v}: expected a number")))
+fn usage(message: String) -> CliError {
+    CliError::usage(Some("fabricate"), message)
 }
 
-fn pair(a: &Args, name: &str, v: &str, example: &str) -> Result<[f64; 2], CliError> {
+/// A number; NaN and infinities pass, for the core to name what they break.
+fn number(name: &str, v: &str) -> Result<f64, CliError> {
+    v.trim()
+        .parse::<f64>()
+        .map_err(|_| usage(format!("--{name} {v}: expected a number")))
+}
+
+fn pair(name: &str, v: &str, example: &str) -> Result<[f64; 2], CliError> {
     let bad = || {
-        a.usage(format!(
+        usage(format!(
             "--{name} {v}: expected two numbers AxB, e.g. {example}"
         ))
     };
@@ -113,120 +140,99 @@ fn pair(a: &Args, name: &str, v: &str, example: &str) -> Result<[f64; 2], CliErr
     }
 }
 
-fn parse(rest: Vec<String>) -> Result<Option<Options>, CliError> {
-    let mut a = Args::new("fabricate", rest);
-    let (mut surface, mut pattern, mut outs) = (None, None, Vec::new());
-    let mut thickness = None;
+fn parse(args: FabricateArgs) -> Result<Options, CliError> {
     let mut fab = FabricateOptions::default();
     let mut tool = ToolpathOptions::default();
-    let (mut slots_arg, mut units, mut density, mut threads) = (None, Units::Metres, None, None);
-    let mut planes = PlaneMode::Exact;
-    while let Some(arg) = a.next() {
-        match arg {
-            Arg::Option(name, inline) => match name.as_str() {
-                "help" => return Ok(None),
-                "surface" => surface = Some(a.value(&name, inline)?),
-                "pattern" => pattern = Some(a.value(&name, inline)?),
-                "thickness" | "t" => {
-                    let v = a.value(&name, inline)?;
-                    thickness = Some(number(&a, &name, &v)?);
-                }
-                "side" => {
-                    let v = a.value(&name, inline)?;
-                    fab.side = match v.as_str() {
-                        "inside" => PanelSide::Inside,
-                        "outside" => PanelSide::Outside,
-                        _ => return Err(a.usage(format!("--side {v}: expected inside or outside"))),
-                    };
-                }
-                "slots" => slots_arg = Some(a.value(&name, inline)?),
-                "slot-size" => {
-                    let v = a.value(&name, inline)?;
-                    let [l, d] = pair(&a, &name, &v, "0.16x0.08")?;
-                    fab.slot_length = Some(l);
-                    fab.slot_depth = Some(d);
-                }
-                "sheet" => {
-                    let v = a.value(&name, inline)?;
-                    fab.sheet = pair(&a, &name, &v, "2.5x1.25")?;
-                }
-                "gap" => {
-                    let v = a.value(&name, inline)?;
-                    fab.gap = number(&a, &name, &v)?;
-                }
-                "tool-diameter" => {
-                    let v = a.value(&name, inline)?;
-                    tool.tool_diameter = number(&a, &name, &v)?;
-                }
-                "units" => {
-                    let v = a.value(&name, inline)?;
-                    units = Units::parse(&v).ok_or_else(|| {
-                        a.usage(format!("--units {v}: expected mm, cm, m, in or ft"))
-                    })?;
-                }
-                "density" => {
-                    let v = a.value(&name, inline)?;
-                    let x = number(&a, &name, &v)?;
-                    if !(x > 0.0 && x.is_finite()) {
-                        return Err(a.usage(format!("--density {v}: must be > 0")));
-                    }
-                    density = Some(x);
-                }
-                "planes" => {
-                    let v = a.value(&name, inline)?;
-                    planes = match v.as_str() {
-                        "exact" => PlaneMode::Exact,
-                        "adjusted" => PlaneMode::Adjusted,
-                        _ => {
-                            return Err(
-                                a.usage(format!("--planes {v}: expected `exact` or `adjusted`"))
-                            )
-                        }
-                    }
-                }
-                "threads" | "j" => {
-                    let v = a.value(&name, inline)?;
-                    match v.parse::<usize>() {
-                        Ok(n) if (1..=1024).contains(&n) => threads = Some(n),
-                        _ => {
-                            return Err(a.usage(format!(
-                                "--threads {v}: expected a whole number from 1 to 1024"
-                            )))
-                        }
-                    }
-                }
-                "out" | "o" => {
-                    let v = a.value(&name, inline)?;
-                    let path = PathBuf::from(&v);
-                    let Some(format) = Format::of(&path) else {
-                        return Err(a.usage(format!("--out {v}: unknown output format; the extension must be .json, .obj, .svg, .dxf, .nc or .csv")));
-                    };
-                    if outs.iter().any(|(p, _)| *p == path) {
-                        return Err(a.usage(format!("--out {v} is given twice")));
-                    }
-                    outs.push((path, format));
-                }
-                _ => return Err(a.unknown(&name)),
-            },
-            Arg::Positional(p) => return Err(a.usage(format!("unexpected argument `{p}`"))),
-        }
+    if let Some(v) = &args.side {
+        fab.side = match v.as_str() {
+            "inside" => PanelSide::Inside,
+            "outside" => PanelSide::Outside,
+            _ => return Err(usage(format!("--side {v}: expected inside or outside"))),
+        };
     }
-    let surface = surface.ok_or_else(|| a.usage("--surface is required"))?;
-    let pattern = pattern.ok_or_else(|| a.usage("--pattern is required"))?;
-    fab.thickness = thickness.ok_or_else(|| a.usage("--thickness is required"))?;
+    if let Some(v) = &args.slot_size {
+        let [l, d] = pair("slot-size", v, "0.16x0.08")?;
+        fab.slot_length = Some(l);
+        fab.slot_depth = Some(d);
+    }
+    if let Some(v) = &args.sheet {
+        fab.sheet = pair("sheet", v, "2.5x1.25")?;
+    }
+    if let Some(v) = &args.gap {
+        fab.gap = number("gap", v)?;
+    }
+    if let Some(v) = &args.tool_diameter {
+        tool.tool_diameter = number("tool-diameter", v)?;
+    }
+    let units = match &args.units {
+        None => Units::Metres,
+        Some(v) => Units::parse(v)
+            .ok_or_else(|| usage(format!("--units {v}: expected mm, cm, m, in or ft")))?,
+    };
+    let density = match &args.density {
+        None => None,
+        Some(v) => {
+            let x = number("density", v)?;
+            if !(x > 0.0 && x.is_finite()) {
+                return Err(usage(format!("--density {v}: must be > 0")));
+            }
+            Some(x)
+        }
+    };
+    let planes = match args.planes.as_deref() {
+        None | Some("exact") => PlaneMode::Exact,
+        Some("adjusted") => PlaneMode::Adjusted,
+        Some(v) => {
+            return Err(usage(format!(
+                "--planes {v}: expected `exact` or `adjusted`"
+            )))
+        }
+    };
+    let threads = match &args.threads {
+        None => None,
+        Some(v) => match v.parse::<usize>() {
+            Ok(n) if (1..=1024).contains(&n) => Some(n),
+            _ => {
+                return Err(usage(format!(
+                    "--threads {v}: expected a whole number from 1 to 1024"
+                )))
+            }
+        },
+    };
+    let mut outs: Vec<(PathBuf, Format)> = Vec::new();
+    for v in &args.out {
+        let path = PathBuf::from(v);
+        let Some(format) = Format::of(&path) else {
+            return Err(usage(format!("--out {v}: unknown output format; the extension must be .json, .obj, .svg, .dxf, .nc or .csv")));
+        };
+        if outs.iter().any(|(p, _)| *p == path) {
+            return Err(usage(format!("--out {v} is given twice")));
+        }
+        outs.push((path, format));
+    }
+    let surface = args
+        .surface
+        .ok_or_else(|| usage("--surface is required".into()))?;
+    let pattern = args
+        .pattern
+        .ok_or_else(|| usage("--pattern is required".into()))?;
+    let thickness = args
+        .thickness
+        .ok_or_else(|| usage("--thickness is required".into()))?;
+    fab.thickness = number("thickness", &thickness)?;
     tool.units = units;
-    Ok(Some(Options {
+    Ok(Options {
         surface,
         pattern,
         outs,
         fab,
-        slots_arg,
+        slots_arg: args.slots,
         tool,
         units,
         density,
         threads,
         planes,
-    }))
+    })
 }
 
 /// The option a core error is about, named first in the message.
@@ -250,12 +256,20 @@ fn fabrication_error(e: &FabricationError) -> CliError {
 }
 
 /// Runs `tpi fabricate`.
-pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
-    let Some(mut opts) = parse(rest)? else {
-        print!("{HELP}");
-        return Ok(());
-    };
+pub(crate) fn run(args: FabricateArgs) -> Result<(), CliError> {
+    let mut opts = parse(args)?;
+    let pattern_path = Path::new(&opts.pattern);
+    let mut inputs = vec![Path::new(&opts.surface)];
+    if pattern_path.exists() {
+        inputs.push(pattern_path);
+    }
+    if let Some(slots) = &opts.slots_arg {
+        if Path::new(slots).exists() {
+            inputs.push(Path::new(slots));
+        }
+    }
     for (path, _) in &opts.outs {
+        check_not_an_input(path, &inputs, "fabricate")?;
         check_output_path(path)?;
     }
     let started = Instant::now();

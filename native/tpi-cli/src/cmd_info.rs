@@ -6,70 +6,111 @@ use std::path::{Path, PathBuf};
 
 use tpi_core::sampled_bounding_box;
 use tpi_core::DEFAULT_FLAT_TOLERANCE;
-use tpi_core::{LocalGeometry, Surface, SurfaceModel, SurfaceSpec};
+use tpi_core::{LocalGeometry, Pattern, Surface, SurfaceModel, SurfaceSpec};
 
-use crate::args::{Arg, Args};
 use crate::error::CliError;
 use crate::input::load_surface_spec;
 
-pub(crate) const HELP: &str = "\
-tpi info: describe a surface file and its curvature
-
-USAGE:
-    tpi info S.json [--grid N]
-
+/// The text after the options in `tpi info --help`.
+pub(crate) const AFTER_HELP: &str = "\
 Prints the surface type and parameters (degrees, control point count, knots and weights
 for NURBS), the parameter domain, the bounding box, the range of the principal
 curvatures k1 <= k2 and of the Gaussian curvature K = k1 k2 over an N x N grid of
 parameters (default 41), and where K > 0 (facets convex), K < 0 (saddle: facets
-non-convex) and K ~ 0 (tangent planes nearly parallel: facet vertices ill-conditioned),
-with a map of the parameter square.
-
-OPTIONS:
-    --grid N       sample grid per side (2..=1001, default 41)
-    -h, --help     this help
+non-convex), K ~ 0 (tangent planes nearly parallel: facet vertices ill-conditioned) and
+where the surface is singular (a pole, a collapsed edge), a verdict, whether the surface
+intersects itself (sampled on a 41 x 41 grid), and a map of the parameter square. Given a
+pattern file, it says so and describes the points.
 
 EXAMPLES:
     tpi info samples/nurbs-dome.json
     tpi info samples/mixed-roof.json --grid 81
 ";
 
+/// The arguments of `tpi info`, as given (checked in [`run`]).
+#[derive(clap::Args, Debug)]
+pub(crate) struct InfoArgs {
+    /// The surface file (or a pattern file) [required]
+    #[arg(value_name = "FILE")]
+    file: Option<PathBuf>,
+    /// Sample grid per side (2..=1001) [default: 41]
+    #[arg(long, value_name = "N")]
+    grid: Option<String>,
+}
+
 /// |K| below this fraction of the largest squared principal curvature on the grid counts
 /// as K ~ 0 in the report.
 pub(crate) const NEAR_ZERO_FRACTION: f64 = 1e-2;
 
 /// Runs `tpi info`.
-pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
-    let mut a = Args::new("info", rest);
-    let (mut file, mut grid): (Option<PathBuf>, usize) = (None, 41);
-    while let Some(arg) = a.next() {
-        match arg {
-            Arg::Option(name, inline) => match name.as_str() {
-                "help" => {
-                    print!("{HELP}");
-                    return Ok(());
-                }
-                "grid" => {
-                    let v = a.value(&name, inline)?;
-                    grid = match v.parse::<usize>() {
-                        Ok(n) if (2..=1001).contains(&n) => n,
-                        _ => {
-                            return Err(a.usage(format!(
-                                "--grid {v}: expected a whole number from 2 to 1001"
-                            )))
-                        }
-                    };
-                }
-                _ => return Err(a.unknown(&name)),
-            },
-            Arg::Positional(p) if file.is_none() => file = Some(PathBuf::from(p)),
-            Arg::Positional(p) => return Err(a.usage(format!("unexpected argument `{p}`"))),
+pub(crate) fn run(args: InfoArgs) -> Result<(), CliError> {
+    let usage = |message: String| CliError::usage(Some("info"), message);
+    let grid = match &args.grid {
+        None => 41,
+        Some(v) => match v.parse::<usize>() {
+            Ok(n) if (2..=1001).contains(&n) => n,
+            _ => {
+                return Err(usage(format!(
+                    "--grid {v}: expected a whole number from 2 to 1001"
+                )))
+            }
+        },
+    };
+    let file = args.file;
+    let file = file.ok_or_else(|| usage("a surface file is required".into()))?;
+    // A pattern file is described as one (it used to fail with "missing field `type`").
+    let text = crate::output::read_text(&file)?;
+    if let Ok(serde_json::Value::Object(o)) = serde_json::from_str::<serde_json::Value>(&text) {
+        if o.contains_key("uv") && !o.contains_key("type") {
+            let name = file.display().to_string();
+            let pattern =
+                Pattern::from_json(&text, &name).map_err(|e| CliError::core(&name, &e))?;
+            print!("{}", describe_pattern(&file, &pattern));
+            return Ok(());
         }
     }
-    let file = file.ok_or_else(|| a.usage("a surface file is required"))?;
     let (spec, model) = load_surface_spec(&file)?;
     print!("{}", describe(&file, &spec, &model, grid));
     Ok(())
+}
+
+/// What `tpi info` says about a pattern file.
+fn describe_pattern(file: &Path, pattern: &Pattern) -> String {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for p in &pattern.uv {
+        for k in 0..2 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let mut s = format!(
+        "{}: pattern file (not a surface), {} points\n",
+        file.display(),
+        pattern.len()
+    );
+    if !pattern.uv.is_empty() {
+        let _ = writeln!(
+            s,
+            "  s in [{}, {}], t in [{}, {}]",
+            g(lo[0]),
+            g(hi[0]),
+            g(lo[1]),
+            g(hi[1])
+        );
+    }
+    match pattern.validate() {
+        Ok(()) => {
+            let _ = writeln!(
+                s,
+                "  valid: use it as `tpi discretise --surface SURFACE.json --pattern {}`",
+                file.display()
+            );
+        }
+        Err(e) => {
+            let _ = writeln!(s, "  not usable for discretise: {e}");
+        }
+    }
+    s
 }
 
 /// The whole report.
@@ -250,16 +291,23 @@ pub(crate) fn describe(
     if strict > 0 {
         let _ = writeln!(s, "  {strict} samples are flat by the discretiser's own test (flat-point diagnostics expected there)");
     }
-    let verdict = if positive == samples.len() {
-        "K > 0 everywhere: expect convex facets meeting three at a vertex"
-    } else if negative == samples.len() {
-        "K < 0 everywhere: expect non-convex (but simple) facets"
-    } else if zero + irregular == samples.len() {
-        "K ~ 0 everywhere: tangent plane intersection is ill-conditioned on this surface"
-    } else {
-        "mixed curvature: convex facets where K > 0, non-convex where K < 0, ill-conditioned vertices near K = 0"
-    };
-    let _ = writeln!(s, "  {verdict}");
+    let _ = writeln!(s, "  {}", verdict(positive, negative, zero, irregular));
+    match crate::selfx::find(model, crate::selfx::DEFAULT_SAMPLES) {
+        Some(c) => {
+            let _ = writeln!(
+                s,
+                "  {}",
+                crate::selfx::warning(&c).replacen("warning: ", "", 1)
+            );
+        }
+        None => {
+            let _ = writeln!(
+                s,
+                "  no self-intersection found (sampled on a {0} x {0} grid)",
+                crate::selfx::DEFAULT_SAMPLES
+            );
+        }
+    }
 
     // Map: columns along s, rows along t (t up).
     let (cols, rows) = (48usize, 16usize);
@@ -279,6 +327,46 @@ pub(crate) fn describe(
     let _ = writeln!(s, "  t=0 +{}+", "-".repeat(cols));
     let _ = writeln!(s, "      s=0{}s=1", " ".repeat(cols.saturating_sub(4)));
     s
+}
+
+/// The one-line verdict from the sample counts of each class: it names only what the
+/// numbers show (issue 14: a sphere patch with a pole was called "mixed curvature ...
+/// non-convex where K < 0" with K < 0 at 0 %).
+fn verdict(positive: usize, negative: usize, zero: usize, irregular: usize) -> String {
+    let total = positive + negative + zero + irregular;
+    if positive == total {
+        return "K > 0 everywhere: expect convex facets meeting three at a vertex".into();
+    }
+    if negative == total {
+        return "K < 0 everywhere: expect non-convex (but simple) facets".into();
+    }
+    if zero == total {
+        return "K ~ 0 everywhere: tangent plane intersection is ill-conditioned on this surface"
+            .into();
+    }
+    let head = match (positive > 0, negative > 0) {
+        (true, true) => "mixed curvature",
+        (true, false) => "K > 0 where the surface is regular and curved",
+        (false, true) => "K < 0 where the surface is regular and curved",
+        (false, false) => "no curved regular sample",
+    };
+    let mut parts: Vec<String> = Vec::new();
+    if positive > 0 {
+        parts.push("convex facets where K > 0".into());
+    }
+    if negative > 0 {
+        parts.push("non-convex (but simple) facets where K < 0".into());
+    }
+    if zero > 0 {
+        parts.push("ill-conditioned vertices near K = 0".into());
+    }
+    if irregular > 0 {
+        parts.push(format!(
+            "{irregular} singular sample{} (Su x Sv = 0: a pole or a collapsed edge, where the surface has no tangent plane)",
+            if irregular == 1 { "" } else { "s" }
+        ));
+    }
+    format!("{head}: {}", parts.join(", "))
 }
 
 /// Connected regions of the sample indices `hits` on the n x n grid, as normalised bounding

@@ -5,17 +5,12 @@ use std::path::PathBuf;
 
 use tpi_core::Generator;
 
-use crate::args::{Arg, Args};
 use crate::error::CliError;
 use crate::output::{check_output_path, write_all};
 use crate::{svg, voronoi};
 
-pub(crate) const HELP: &str = "\
-tpi pattern: generate pattern points in the unit square
-
-USAGE:
-    tpi pattern GENERATOR --out P.json [--preview P.svg]
-
+/// The text after the options in `tpi pattern --help`.
+pub(crate) const AFTER_HELP: &str = "\
 GENERATOR (deterministic: the same spec gives the same points everywhere):
     grid:NUxNV                        NU x NV cell centres
     grid:spacing=D                    square grid with spacing about D
@@ -24,11 +19,8 @@ GENERATOR (deterministic: the same spec gives the same points everywhere):
     jitter:NUxNV[:amount=A][:seed=S]  grid points moved randomly within their cells (A in [0, 1])
     random:N[:seed=S]                 N uniform random points
     poisson:R[:seed=S]                Poisson-disk points at least R apart (about 0.7/R^2 points)
-
-OPTIONS:
-    --out FILE        the pattern file ({\"uv\": [[s, t], ...]}, docs/formats.md)
-    --preview FILE    an SVG of the points and their Voronoi diagram in the unit square
-    -h, --help        this help
+At most 10000000 points (tpi_core::MAX_GENERATED_POINTS); a Poisson radius at least
+tpi_core::MIN_POISSON_RADIUS.
 
 EXAMPLES:
     tpi pattern hex:24x20 --out hex.json --preview hex.svg
@@ -36,29 +28,27 @@ EXAMPLES:
     tpi pattern poisson:0.03:seed=7 --out poisson.json --preview poisson.svg
 ";
 
+/// The arguments of `tpi pattern`, as given (checked in [`run`]).
+#[derive(clap::Args, Debug)]
+pub(crate) struct PatternArgs {
+    /// The generator spec, e.g. hex:24x20 (see GENERATOR below) [required]
+    #[arg(value_name = "GENERATOR")]
+    spec: Option<String>,
+    /// The pattern file ({"uv": [[s, t], ...]}, docs/formats.md)
+    #[arg(long, short = 'o', value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// An SVG of the points and their Voronoi diagram in the unit square
+    #[arg(long, value_name = "FILE")]
+    preview: Option<PathBuf>,
+}
+
 /// Runs `tpi pattern`.
-pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
-    let mut a = Args::new("pattern", rest);
-    let (mut spec, mut out, mut preview): (Option<String>, Option<PathBuf>, Option<PathBuf>) =
-        (None, None, None);
-    while let Some(arg) = a.next() {
-        match arg {
-            Arg::Option(name, inline) => match name.as_str() {
-                "help" => {
-                    print!("{HELP}");
-                    return Ok(());
-                }
-                "out" | "o" => out = Some(PathBuf::from(a.value(&name, inline)?)),
-                "preview" => preview = Some(PathBuf::from(a.value(&name, inline)?)),
-                _ => return Err(a.unknown(&name)),
-            },
-            Arg::Positional(p) if spec.is_none() => spec = Some(p),
-            Arg::Positional(p) => return Err(a.usage(format!("unexpected argument `{p}`"))),
-        }
-    }
-    let spec = spec.ok_or_else(|| a.usage("a GENERATOR is required, e.g. hex:24x20"))?;
+pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
+    let usage = |message: String| CliError::usage(Some("pattern"), message);
+    let PatternArgs { spec, out, preview } = args;
+    let spec = spec.ok_or_else(|| usage("a GENERATOR is required, e.g. hex:24x20".into()))?;
     if out.is_none() && preview.is_none() {
-        return Err(a.usage("--out (and/or --preview) is required"));
+        return Err(usage("--out (and/or --preview) is required".into()));
     }
     for (path, ext) in [(&out, "json"), (&preview, "svg")] {
         if let Some(p) = path {
@@ -67,7 +57,7 @@ pub(crate) fn run(rest: Vec<String>) -> Result<(), CliError> {
                 .map(|e| e.to_ascii_lowercase())
                 != Some(ext.to_string())
             {
-                return Err(a.usage(format!("{} must end in .{ext}", p.display())));
+                return Err(usage(format!("{} must end in .{ext}", p.display())));
             }
             check_output_path(p)?;
         }

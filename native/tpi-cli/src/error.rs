@@ -78,7 +78,23 @@ impl CliError {
 }
 
 impl fmt::Display for CliError {
+    /// One line, bounded: every quoted value at most [`tpi_core::QUOTE_LIMIT`] characters,
+    /// the subject (a file name or spec) too, the whole at most [`tpi_core::MESSAGE_LIMIT`].
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let line = self.unbounded_line();
+        f.write_str(&tpi_core::bound_message(&line))
+    }
+}
+
+impl CliError {
+    fn unbounded_line(&self) -> String {
+        let mut s = String::new();
+        let _ = self.write_line(&mut s);
+        s
+    }
+
+    fn write_line(&self, f: &mut String) -> fmt::Result {
+        use std::fmt::Write;
         match self {
             CliError::Usage {
                 message,
@@ -90,7 +106,11 @@ impl fmt::Display for CliError {
                 message,
                 command: None,
             } => write!(f, "tpi: error: {message} (see `tpi --help`)"),
-            CliError::Input { subject, problem } => write!(f, "tpi: error: {subject}: {problem}"),
+            CliError::Input { subject, problem } => write!(
+                f,
+                "tpi: error: {}: {problem}",
+                tpi_core::bounded(subject, tpi_core::QUOTE_LIMIT)
+            ),
             CliError::InvalidFacets { count } => {
                 write!(
                     f,

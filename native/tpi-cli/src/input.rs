@@ -43,10 +43,15 @@ pub(crate) fn load_pattern(arg: &str) -> Result<PatternSource, CliError> {
         });
     }
     match Generator::parse(arg) {
-        Ok(generator) => Ok(PatternSource {
-            pattern: generator.generate(),
-            label: generator.to_string(),
-        }),
+        // Cheap checks first: too few or collinear points are found by arithmetic on the
+        // spec, before any point is made.
+        Ok(generator) => match generator.check_discretisable() {
+            Ok(()) => Ok(PatternSource {
+                pattern: generator.generate(),
+                label: generator.to_string(),
+            }),
+            Err(e) => Err(CliError::input(generator.to_string(), e.to_string())),
+        },
         Err(e) => {
             let reason = match &e {
                 TpiError::InvalidGenerator { reason, .. } => reason.clone(),

@@ -1,5 +1,11 @@
 //! Wavefront OBJ: one `v` line per mesh vertex, one `f` n-gon per facet with 1-based indices
 //! into the shared vertices (Rhino's OBJ import reads n-gons as mesh n-gons).
+//!
+//! A face needs at least 3 distinct vertices: an open facet with fewer (flag 16 in the JSON)
+//! gets no `f` line but a comment `# facet I open: K vertices` in its place, so the `f` lines
+//! and comments together follow the facets in order (issue 14: `f 7 8` made the file invalid).
+//! Non-simple and overlapping facets are written as they are (they are valid OBJ faces) and
+//! flagged in the JSON output.
 
 use std::fmt::Write;
 
@@ -32,8 +38,18 @@ pub(crate) fn to_obj(result: &Discretisation, source: &str) -> String {
         out.push('\n');
     }
     for i in 0..result.facet_count() {
+        let facet = result.facet(i);
+        let mut distinct = facet.to_vec();
+        distinct.sort_unstable();
+        distinct.dedup();
+        if distinct.len() < 3 {
+            let n = distinct.len();
+            let noun = if n == 1 { "vertex" } else { "vertices" };
+            let _ = writeln!(out, "# facet {i} open: {n} {noun}");
+            continue;
+        }
         out.push('f');
-        for &k in result.facet(i) {
+        for &k in facet {
             out.push(' ');
             out.push_str(integers.format(u64::from(k) + 1));
         }
@@ -63,6 +79,36 @@ fn push_num(out: &mut String, buffer: &mut zmij::Buffer, x: f64) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Issue 14: an open facet (fewer than 3 distinct vertices) was written as `f 7 8`, which
+    /// is not a face. Facets 0 and 2 are triangles, facet 1 has two vertices and facet 3 one
+    /// vertex twice: only two `f` lines, each with 3 indices, and a comment for each open one.
+    #[test]
+    fn open_facets_get_no_face() {
+        let seed = tpi_core::Seed {
+            uv: [0.5, 0.5],
+            point: glam::DVec3::ZERO,
+            normal: glam::DVec3::Z,
+            curvatures: [1.0, 1.0],
+        };
+        let result = Discretisation {
+            vertices: vec![
+                glam::DVec3::X,
+                glam::DVec3::Y,
+                glam::DVec3::Z,
+                glam::DVec3::ONE,
+            ],
+            facet_offsets: vec![0, 3, 5, 8, 10],
+            facet_loops: vec![0, 1, 2, 2, 3, 1, 2, 3, 3, 3],
+            seeds: vec![seed; 4],
+            ..Discretisation::default()
+        };
+        let text = to_obj(&result, "test");
+        let faces: Vec<&str> = text.lines().filter(|l| l.starts_with("f ")).collect();
+        assert_eq!(faces, ["f 1 2 3", "f 2 3 4"]);
+        assert!(text.contains("# facet 1 open: 2 vertices\n"), "{text}");
+        assert!(text.contains("# facet 3 open: 1 vertex\n"), "{text}");
+    }
 
     /// The text is what the standard library's shortest round-trip formatting prints.
     #[test]

@@ -48,16 +48,24 @@ pub(crate) fn summary(
             );
             let _ = writeln!(
                 s,
-                "  planarity {:.1e} (max, relative to diagonal {:.4})   deviation max {:.4}  mean {:.4}",
+                "  planarity {:.1e} (max, relative to diagonal {})   deviation max {}  mean {}",
                 q.max_planarity_error,
-                q.bounding_box_diagonal,
-                q.max_deviation,
-                q.mean_deviation
+                sig(q.bounding_box_diagonal),
+                sig(q.max_deviation),
+                sig(q.mean_deviation)
             );
             let _ = writeln!(
                 s,
-                "  facet area {:.4} .. {:.4}   edge length {:.4} .. {:.4}",
-                q.min_facet_area, q.max_facet_area, q.min_edge_length, q.max_edge_length
+                "  facet area {} .. {}{}   edge length {} .. {}",
+                sig(q.min_facet_area),
+                sig(q.max_facet_area),
+                if q.min_facet_area < 0.0 {
+                    " (signed: negative for a facet wound the wrong way round, non-simple)"
+                } else {
+                    ""
+                },
+                sig(q.min_edge_length),
+                sig(q.max_edge_length)
             );
             let flags = if q.flagged_facets == 0 {
                 "none".to_string()
@@ -115,6 +123,20 @@ pub(crate) fn summary(
     s
 }
 
+/// Four significant digits, whatever the scale (issue 14: `{:.4}` printed `deviation max
+/// 0.0000` for a fine mesh): decimal for 1e-3 <= |x| < 1e5, exponent form otherwise.
+pub(crate) fn sig(x: f64) -> String {
+    let a = x.abs();
+    if x == 0.0 || !x.is_finite() {
+        format!("{x}")
+    } else if (1e-3..1e5).contains(&a) {
+        let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
 fn truncate(s: &str, n: usize) -> String {
     if s.chars().count() <= n {
         s.to_string()
@@ -142,11 +164,32 @@ fn plane_summary(result: &Discretisation) -> String {
         return "planes: adjusted mode, every facet in its exact tangent plane".into();
     }
     format!(
-        "planes: {} of {} facets tilted, tilt max {:.2} deg, median {:.2} deg; offset max {:.4}",
+        "planes: {} of {} facets tilted, tilt max {:.2} deg, median {:.2} deg; offset max {}",
         tilts.len(),
         result.plane_adjustments.len(),
         tilts[tilts.len() - 1],
         tilts[tilts.len() / 2],
-        offset
+        sig(offset)
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sig;
+
+    #[test]
+    fn four_significant_digits_at_any_scale() {
+        for (x, text) in [
+            (0.0256, "0.02560"),
+            (16.3834, "16.38"),
+            (1234.5, "1234"),
+            (0.4610, "0.4610"),
+            (3.2e-6, "3.200e-6"),
+            (-0.0012, "-0.001200"),
+            (123456.0, "1.235e5"),
+            (0.0, "0"),
+        ] {
+            assert_eq!(sig(x), text, "{x}");
+        }
+    }
 }

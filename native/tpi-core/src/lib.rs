@@ -53,7 +53,10 @@ pub use discretise::{
     discretise, validate_pattern, Discretisation, DiscretiseOptions, PlaneAdjustment, PlaneMode,
     Seed, Timings,
 };
-pub use error::{Direction, TpiError};
+pub use error::{
+    bound_message, bounded, Direction, Num, TpiError, MAX_COORDINATE, MAX_WEIGHT_RATIO,
+    MESSAGE_LIMIT, QUOTE_LIMIT,
+};
 pub use fabricate::{
     fabricate, Cleat, FabricateOptions, Fabrication, FabricationDiagnostic, FabricationError,
     Panel, PanelSide, Placement, Polyhedron, Sheet, Side, Slot, SlotPlan, ToolpathOptions, Units,

@@ -68,6 +68,12 @@
 //! ([`TpiError::NonFinite`] naming e.g. `points[12][1]`), weights ([`TpiError::WeightCount`],
 //! [`TpiError::NonFinite`] naming e.g. `weights[5]`, [`TpiError::NonPositiveWeight`]).
 //!
+//! Bounds ([`TpiError::OutOfBounds`], naming the control point and the bound): knots and
+//! control point coordinates have |x| <= [`crate::MAX_COORDINATE`] (1e15), and the largest
+//! weight is at most [`crate::MAX_WEIGHT_RATIO`] (1e6) times the smallest (equal weights of
+//! any size are fine). Beyond them evaluation overflows (a control point at 1e308 gave
+//! infinite points and NaN normals). They are checked after the finiteness checks above.
+//!
 //! Knot multiplicity follows openNURBS: in the Rhino convention no knot value may occur more than
 //! `degree` times (an interior knot of multiplicity degree + 1 would break the surface apart; an
 //! end knot repeated more often than a clamped end needs makes a control point meaningless). For
@@ -85,7 +91,7 @@
 use glam::{DVec3, DVec4};
 use serde::{Deserialize, Serialize};
 
-use crate::error::{check_finite, Direction, TpiError};
+use crate::error::{check_finite, check_magnitude, Direction, Num, TpiError, MAX_WEIGHT_RATIO};
 use crate::surface::{Domain, Interval, Surface, SurfaceDerivatives};
 use crate::tolerance::MAX_NURBS_DEGREE;
 
@@ -200,6 +206,9 @@ impl KnotVector {
             || format!("{field}[{}] - {field}[0]", given.len() - 1),
             last - first,
         )?;
+        for (index, &value) in given.iter().enumerate() {
+            check_magnitude(|| format!("{field}[{index}]"), value)?;
+        }
 
         let rhino = &given[rhino_offset..rhino_offset + rhino_len];
         let (min, max) = (rhino[degree - 1], rhino[count - 1]);
@@ -468,6 +477,13 @@ impl NurbsSurface {
         let basis_u = KnotVector::new(Direction::U, degree[0], count[0], knots_u)?;
         let basis_v = KnotVector::new(Direction::V, degree[1], count[1], knots_v)?;
 
+        let control_point = |index: usize, coordinate: usize| {
+            format!(
+                "points[{index}][{coordinate}] (control point u {}, v {})",
+                index / count[1],
+                index % count[1]
+            )
+        };
         for (index, point) in points.iter().enumerate() {
             for (coordinate, &value) in point.to_array().iter().enumerate() {
                 check_finite(|| format!("points[{index}][{coordinate}]"), value)?;
@@ -499,6 +515,41 @@ impl NurbsSurface {
         };
         // Finite points and weights can still overflow to infinity in x * w.
         check_homogeneous_finite(&homogeneous)?;
+        if let Some(weights) = weights {
+            // Both exist: the weights are non-empty (point_count >= 4) and all > 0. Only the
+            // ratio matters: equal weights of any size (even subnormal) evaluate as weights 1.
+            let (lowest, highest) = weights
+                .iter()
+                .enumerate()
+                .fold((0, 0), |(lo, hi), (k, &w)| {
+                    (
+                        if w < weights[lo] { k } else { lo },
+                        if w > weights[hi] { k } else { hi },
+                    )
+                });
+            if weights[highest] / weights[lowest] > MAX_WEIGHT_RATIO {
+                return Err(TpiError::OutOfBounds {
+                field: format!(
+                    "weights[{lowest}] (control point u {}, v {})",
+                    lowest / count[1],
+                    lowest % count[1],
+                ),
+                value: weights[lowest],
+                requirement: format!(
+                    "weights[{highest}] / weights[{lowest}] <= {} (weights[{highest}] = {})",
+                    Num(MAX_WEIGHT_RATIO),
+                    Num(weights[highest])
+                ),
+                reason: "derivatives at that control point would grow with the ratio and overflow; rescale the weights or the model".to_string(),
+            });
+            }
+        }
+        // Finite coordinates beyond MAX_COORDINATE overflow in evaluation (issue 14).
+        for (index, point) in points.iter().enumerate() {
+            for (coordinate, &value) in point.to_array().iter().enumerate() {
+                check_magnitude(|| control_point(index, coordinate), value)?;
+            }
+        }
 
         let (net_min, net_max) = points
             .iter()

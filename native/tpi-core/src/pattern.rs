@@ -38,7 +38,6 @@ use std::str::FromStr;
 use serde::{Deserialize, Serialize};
 
 use crate::error::TpiError;
-use crate::spec::parse_error;
 use crate::surface::Domain;
 use crate::tolerance::DUPLICATE_UV_TOLERANCE;
 use crate::tolerance::MIN_POISSON_RADIUS;
@@ -91,7 +90,7 @@ impl Pattern {
     /// Errors: [`TpiError::Parse`] (with line and column; `context` names the source) for
     /// malformed JSON or unknown fields, then the errors of [`Pattern::validate`].
     pub fn from_json(text: &str, context: &str) -> Result<Pattern, TpiError> {
-        let pattern: Pattern = serde_json::from_str(text).map_err(|e| parse_error(e, context))?;
+        let pattern: Pattern = crate::spec::read(text, context)?;
         pattern.validate()?;
         Ok(pattern)
     }
@@ -550,6 +549,45 @@ impl Generator {
                     Ok(())
                 }
             }
+        }
+    }
+
+    /// Whether the pattern this generator would give can be discretised at all, decided by
+    /// arithmetic on the parameters before any point is made (issue 14: `grid:1x10000000`
+    /// used to generate ten million points before they were found collinear).
+    ///
+    /// Errors: [`TpiError::TooFewPatternPoints`] when it gives fewer than 3 points,
+    /// [`TpiError::CollinearPattern`] when every point lies on one line (a square grid or an
+    /// unjittered jitter grid with one row or column, a hexagonal grid with one row), the
+    /// generator's own [`TpiError::InvalidGenerator`] when it is invalid.
+    pub fn check_discretisable(&self) -> Result<(), TpiError> {
+        self.check().map_err(|reason| TpiError::InvalidGenerator {
+            spec: self.to_string(),
+            reason,
+        })?;
+        if let Some(count) = self.expected_count() {
+            if count < 3 {
+                return Err(TpiError::TooFewPatternPoints {
+                    found: count,
+                    needed: 3,
+                });
+            }
+        }
+        let collinear = match *self {
+            Generator::Grid(size) => {
+                let (nu, nv) = size.square_counts();
+                nu == 1 || nv == 1
+            }
+            Generator::Jitter { size, amount, .. } => {
+                let (nu, nv) = size.square_counts();
+                amount == 0.0 && (nu == 1 || nv == 1)
+            }
+            Generator::Hex(size) => size.hex_counts().1 == 1,
+            Generator::Random { .. } | Generator::Poisson { .. } => false,
+        };
+        match (collinear, self.expected_count()) {
+            (true, Some(count)) => Err(TpiError::CollinearPattern { count }),
+            _ => Ok(()),
         }
     }
 

@@ -186,11 +186,10 @@ impl SurfaceSpec {
         // The blanked span is ASCII (a key, a known type name, whitespace, a comma), so the
         // bytes stay valid UTF-8; the fallback is never taken.
         let body = String::from_utf8(blanked).unwrap_or_default();
-        let err = |e: serde_json::Error| parse_error(e, context);
         Ok(match name.as_str() {
-            "nurbs" => SurfaceSpec::Nurbs(serde_json::from_str(&body).map_err(err)?),
+            "nurbs" => SurfaceSpec::Nurbs(read(&body, context)?),
             "elliptic_paraboloid" => {
-                let r: TwoCoefficients = serde_json::from_str(&body).map_err(err)?;
+                let r: TwoCoefficients = read(&body, context)?;
                 SurfaceSpec::EllipticParaboloid {
                     a: r.a,
                     b: r.b,
@@ -199,7 +198,7 @@ impl SurfaceSpec {
                 }
             }
             "hyperbolic_paraboloid" => {
-                let r: TwoCoefficients = serde_json::from_str(&body).map_err(err)?;
+                let r: TwoCoefficients = read(&body, context)?;
                 SurfaceSpec::HyperbolicParaboloid {
                     a: r.a,
                     b: r.b,
@@ -208,7 +207,7 @@ impl SurfaceSpec {
                 }
             }
             "sphere_cap" => {
-                let r: Radius = serde_json::from_str(&body).map_err(err)?;
+                let r: Radius = read(&body, context)?;
                 SurfaceSpec::SphereCap {
                     radius: r.radius,
                     x: r.x,
@@ -216,7 +215,7 @@ impl SurfaceSpec {
                 }
             }
             "cylinder" => {
-                let r: Radius = serde_json::from_str(&body).map_err(err)?;
+                let r: Radius = read(&body, context)?;
                 SurfaceSpec::Cylinder {
                     radius: r.radius,
                     x: r.x,
@@ -224,7 +223,7 @@ impl SurfaceSpec {
                 }
             }
             "ellipsoid_cap" => {
-                let r: SemiAxes = serde_json::from_str(&body).map_err(err)?;
+                let r: SemiAxes = read(&body, context)?;
                 SurfaceSpec::EllipsoidCap {
                     a: r.a,
                     b: r.b,
@@ -234,7 +233,7 @@ impl SurfaceSpec {
                 }
             }
             "egg_crate" => {
-                let r: Amplitude = serde_json::from_str(&body).map_err(err)?;
+                let r: Amplitude = read(&body, context)?;
                 SurfaceSpec::EggCrate {
                     amplitude: r.amplitude,
                     x: r.x,
@@ -242,7 +241,7 @@ impl SurfaceSpec {
                 }
             }
             "plane" => {
-                let r: PlaneRecord = serde_json::from_str(&body).map_err(err)?;
+                let r: PlaneRecord = read(&body, context)?;
                 SurfaceSpec::Plane {
                     p: r.p,
                     q: r.q,
@@ -411,6 +410,33 @@ fn json_kind(v: &serde_json::Value) -> &'static str {
     }
 }
 
+/// Reads a record from JSON text (a whole document) with the path of the offending value in
+/// the message of a wrong value (serde_path_to_error): `points[3][1]: invalid type: string
+/// "a", expected f64`, at serde_json's line and column.
+pub(crate) fn read<T: serde::de::DeserializeOwned>(
+    text: &str,
+    context: &str,
+) -> Result<T, TpiError> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    let value: T = serde_path_to_error::deserialize(&mut de).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        let named = path != "."
+            && !["unknown field", "missing field", "duplicate field"]
+                .iter()
+                .any(|kind| inner.to_string().starts_with(kind));
+        let mut error = parse_error(inner, context);
+        if let TpiError::Parse { message, .. } = &mut error {
+            if named {
+                *message = format!("{path}: {message}");
+            }
+        }
+        error
+    })?;
+    de.end().map_err(|e| parse_error(e, context))?;
+    Ok(value)
+}
+
 /// Maps a serde_json error to [`TpiError::Parse`], keeping its line and column out of the
 /// message.
 pub(crate) fn parse_error(e: serde_json::Error, context: &str) -> TpiError {
@@ -431,7 +457,8 @@ pub(crate) fn parse_error(e: serde_json::Error, context: &str) -> TpiError {
         context: context.to_string(),
         line: e.line(),
         column: e.column(),
-        message,
+        // serde_json quotes a wrong value whole (a 50 MB string gave a 50 MB message).
+        message: crate::error::bound_message(&message),
     }
 }
 

@@ -372,3 +372,24 @@ fn sampled_bounding_box_covers_the_samples() {
     let [lo, hi] = sampled_bounding_box(&s, 0);
     assert_eq!([lo.x, hi.x], [-1.0, 2.0]);
 }
+
+/// Issue 14: a wrong value names its path (serde_path_to_error), at serde_json's position.
+#[test]
+fn a_wrong_value_is_named_by_its_path() {
+    let text = "{\"type\": \"nurbs\", \"degree\": [1, 1], \"count\": [2, 2],\n \"knots_u\": [0, 1], \"knots_v\": [0, 1],\n \"points\": [[0, 0, 0], [1, 0, 0], [0, 1, \"z\"], [1, 1, 1]]}";
+    let (line, _, message) = parse_err(text);
+    assert!(
+        message.starts_with("points[2][2]: invalid type: string \"z\""),
+        "{message}"
+    );
+    assert_eq!(line, 3);
+    let e =
+        tpi_core::Pattern::from_json(r#"{"uv": [[0.1, 0.2], [0.3, true]]}"#, "p.json").unwrap_err();
+    assert!(
+        e.to_string().contains("uv[1][1]: invalid type: boolean"),
+        "{e}"
+    );
+    // Unknown and missing fields keep their own wording (the path would only repeat them).
+    let (_, _, message) = parse_err(r#"{"type": "cylinder"}"#);
+    assert!(message.starts_with("missing field `radius`"), "{message}");
+}

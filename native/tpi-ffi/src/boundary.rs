@@ -56,6 +56,10 @@ pub enum TpiStatus {
     /// The requested data was not computed (the quality report was switched off in the
     /// options).
     Unavailable = 11,
+    /// A handle argument is not a live handle of the kind the call takes: a handle of
+    /// another kind (a TpiDiscretisation passed where a TpiDiscreteSurface is expected), or
+    /// one that was already freed and still reads as freed. Nothing was read through it.
+    InvalidHandle = 12,
 }
 
 impl TpiStatus {
@@ -74,13 +78,14 @@ impl TpiStatus {
             TpiStatus::Panic => "TPI_STATUS_PANIC",
             TpiStatus::OutOfDomain => "TPI_STATUS_OUT_OF_DOMAIN",
             TpiStatus::Unavailable => "TPI_STATUS_UNAVAILABLE",
+            TpiStatus::InvalidHandle => "TPI_STATUS_INVALID_HANDLE",
         }
     }
 
     /// Every status, in numeric order.
     ///
     /// cbindgen:ignore
-    pub const ALL: [TpiStatus; 12] = [
+    pub const ALL: [TpiStatus; 13] = [
         TpiStatus::Ok,
         TpiStatus::NullPointer,
         TpiStatus::InvalidArgument,
@@ -93,6 +98,7 @@ impl TpiStatus {
         TpiStatus::Panic,
         TpiStatus::OutOfDomain,
         TpiStatus::Unavailable,
+        TpiStatus::InvalidHandle,
     ];
 
     /// The status with this number, if any.
@@ -159,6 +165,7 @@ pub fn status_of(error: &TpiError) -> TpiStatus {
     match error {
         TpiError::NonFinite { .. } => TpiStatus::NonFinite,
         TpiError::InvalidParameter { .. }
+        | TpiError::OutOfBounds { .. }
         | TpiError::EmptyDomain { .. }
         | TpiError::Parse { .. } => TpiStatus::InvalidArgument,
         TpiError::InvalidDegree { .. }
@@ -237,14 +244,17 @@ pub fn run(body: impl FnOnce() -> FfiResult) -> TpiStatus {
     match catch_unwind(AssertUnwindSafe(body)) {
         Ok(Ok(())) => TpiStatus::Ok,
         Ok(Err(error)) => {
-            set_last_error(&error.message);
+            // Bounded: an offending value is quoted with at most QUOTE_LIMIT characters.
+            set_last_error(&tpi_core::bound_message(&error.message));
             error.status
         }
         Err(payload) => {
             let message = panic_message(payload.as_ref());
             // Dropping the payload runs foreign code (its Drop); keep that inside a boundary too.
             let _ = catch_unwind(AssertUnwindSafe(move || drop(payload)));
-            set_last_error(&format!("internal error (caught panic): {message}"));
+            set_last_error(&tpi_core::bound_message(&format!(
+                "internal error (caught panic): {message}"
+            )));
             TpiStatus::Panic
         }
     }
@@ -371,10 +381,122 @@ impl<T> OutPtr<*mut T> {
         out.set(std::ptr::null_mut());
         Ok(out)
     }
+}
 
-    /// Moves `value` to the heap and hands the pointer to the caller, who owns it.
+impl<T: Handle> OutPtr<*mut T> {
+    /// Moves `value` to the heap behind its type tag and hands the pointer to the caller, who
+    /// owns it (and frees it with [`free_handle`]).
     pub fn set_boxed(&self, value: T) {
-        self.set(Box::into_raw(Box::new(value)));
+        let tagged = Box::new(Tagged { tag: T::TAG, value });
+        self.set(Box::into_raw(tagged).cast::<T>());
+    }
+}
+
+/// The opaque handle types. Every handle the library hands out points to a [`Tagged`] value:
+/// its first 8 bytes are the tag of its kind while it is alive and [`FREED_TAG`] after its
+/// `*_free` call, so that a handle of the wrong kind (or a freed one whose memory still
+/// reads as freed) is refused with [`TpiStatus::InvalidHandle`] instead of being read as
+/// something else. (A pointer that never came from this library cannot be detected.)
+pub trait Handle: Sized {
+    /// The live tag of this kind: 8 ASCII bytes, distinct per kind.
+    const TAG: u64;
+    /// The C type name, for messages.
+    const C_NAME: &'static str;
+}
+
+/// The tag a handle's memory carries after its `*_free` call ("tpi:free").
+pub const FREED_TAG: u64 = u64::from_le_bytes(*b"tpi:free");
+
+/// The live tags of every kind, for naming a wrong kind in a message.
+const KINDS: [(u64, &str); 5] = [
+    (
+        crate::surface::TpiSurface::TAG,
+        crate::surface::TpiSurface::C_NAME,
+    ),
+    (
+        crate::pattern::TpiPattern::TAG,
+        crate::pattern::TpiPattern::C_NAME,
+    ),
+    (
+        crate::discretisation::TpiDiscretisation::TAG,
+        crate::discretisation::TpiDiscretisation::C_NAME,
+    ),
+    (
+        crate::discrete_surface::TpiDiscreteSurface::TAG,
+        crate::discrete_surface::TpiDiscreteSurface::C_NAME,
+    ),
+    (
+        crate::fabrication::TpiFabrication::TAG,
+        crate::fabrication::TpiFabrication::C_NAME,
+    ),
+];
+
+/// A handle's heap block: the tag first (fixed offset 0 whatever `T`), then the value.
+#[repr(C)]
+struct Tagged<T> {
+    tag: u64,
+    value: T,
+}
+
+/// Reads the tag of a non-NULL, 8-byte aligned handle pointer and checks it against `T`'s.
+///
+/// # Safety
+/// `ptr` came from this library's `set_boxed` (of any handle kind), alive or freed.
+unsafe fn check_tag<T: Handle>(ptr: *const T, name: &str) -> FfiResult {
+    if ptr.is_null() {
+        return Err(FfiError::null(name));
+    }
+    if (ptr as usize) % align_of::<Tagged<T>>() != 0 {
+        return Err(FfiError::new(
+            TpiStatus::InvalidHandle,
+            format!("{name} ({ptr:p}) is not a {} handle: misaligned", T::C_NAME),
+        ));
+    }
+    // SAFETY: every handle block starts with its u64 tag (repr(C) `Tagged`), aligned (checked);
+    // volatile so the read is not assumed from an earlier one.
+    let tag = unsafe { ptr.cast::<u64>().read_volatile() };
+    if tag == T::TAG {
+        return Ok(());
+    }
+    let message = if tag == FREED_TAG {
+        format!("{name} is a {} handle that was already freed", T::C_NAME)
+    } else if let Some((_, other)) = KINDS.iter().find(|(t, _)| *t == tag) {
+        format!("{name} is a {other} handle, expected a {}", T::C_NAME)
+    } else {
+        format!("{name} is not a live {} handle", T::C_NAME)
+    };
+    Err(FfiError::new(TpiStatus::InvalidHandle, message))
+}
+
+/// The value behind a handle argument: [`TpiStatus::NullPointer`] for NULL,
+/// [`TpiStatus::InvalidHandle`] for a handle of another kind or a freed one.
+///
+/// # Safety
+/// `ptr` is NULL or a handle from this library (see [`check_tag`]); a live one of kind `T` is
+/// not freed during the returned lifetime.
+pub unsafe fn try_handle<'a, T: Handle>(ptr: *const T, name: &str) -> FfiResult<&'a T> {
+    // SAFETY: forwarded contract.
+    unsafe { check_tag(ptr, name) }?;
+    // SAFETY: the tag says this is a live `Tagged<T>` made by `set_boxed`.
+    Ok(unsafe { &(*ptr.cast::<Tagged<T>>()).value })
+}
+
+/// Frees a handle from `set_boxed`. NULL, a handle of another kind and a freed handle are
+/// left alone (a `*_free` call returns no status); the tag is overwritten with
+/// [`FREED_TAG`] before the memory is released.
+///
+/// # Safety
+/// `ptr` is NULL or a handle from this library; the caller gives up a live one of kind `T`.
+pub unsafe fn free_handle<T: Handle>(ptr: *mut T) {
+    // SAFETY: forwarded contract.
+    if unsafe { check_tag(ptr.cast_const(), "handle") }.is_err() {
+        return;
+    }
+    let block = ptr.cast::<Tagged<T>>();
+    // SAFETY: a live `Tagged<T>` (tag checked) owned by the caller, handed back here.
+    unsafe {
+        std::ptr::addr_of_mut!((*block).tag).write_volatile(FREED_TAG);
+        drop(Box::from_raw(block));
     }
 }
 

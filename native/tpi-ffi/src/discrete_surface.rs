@@ -17,7 +17,7 @@ use tpi_core::SurfaceModel;
 use tpi_core::{Discretisation, DiscretiseOptions, LiveSurface, TpiError};
 
 use crate::boundary::{
-    copy_out, ffi_boundary, finite, index_error, try_ref, FfiResult, OutPtr, TpiStatus,
+    copy_out, ffi_boundary, finite, index_error, try_handle, FfiResult, OutPtr, TpiStatus,
 };
 use crate::discretisation::TpiDiscretisation;
 use crate::options::{read_options, TpiOptions};
@@ -32,6 +32,11 @@ use crate::surface::TpiSurface;
 /// inside it (a recompute blocks the other calls on the same object until it is done).
 pub struct TpiDiscreteSurface {
     state: Mutex<State>,
+}
+
+impl crate::boundary::Handle for TpiDiscreteSurface {
+    const TAG: u64 = u64::from_le_bytes(*b"tpi:live");
+    const C_NAME: &'static str = "TpiDiscreteSurface";
 }
 
 struct State {
@@ -106,7 +111,7 @@ impl TpiDiscreteSurface {
 /// `ptr` is NULL or a live handle.
 unsafe fn handle<'a>(ptr: *const TpiDiscreteSurface) -> FfiResult<&'a TpiDiscreteSurface> {
     // SAFETY: forwarded contract.
-    unsafe { try_ref(ptr, "discrete_surface") }
+    unsafe { try_handle(ptr, "discrete_surface") }
 }
 
 /// Checks a new pattern point (s, t): finite and inside [0, 1]^2.
@@ -137,8 +142,8 @@ pub unsafe extern "C" fn tpi_discrete_surface_new(
     ffi_boundary! {
         // SAFETY: the caller's contract for every argument.
         let out = unsafe { OutPtr::handle(out, "out") }?;
-        let surface = unsafe { try_ref(surface, "surface") }?;
-        let pattern = unsafe { try_ref(pattern, "pattern") }?;
+        let surface = unsafe { try_handle(surface, "surface") }?;
+        let pattern = unsafe { try_handle(pattern, "pattern") }?;
         let options = unsafe { read_options(options) }?;
         let points = pattern.pattern.uv.clone();
         let mut live = LiveSurface::new(Box::new(surface.model.clone()), points.clone(), options)?;
@@ -158,10 +163,8 @@ pub unsafe extern "C" fn tpi_discrete_surface_new(
 #[no_mangle]
 pub unsafe extern "C" fn tpi_discrete_surface_free(discrete_surface: *mut TpiDiscreteSurface) {
     crate::boundary::run_infallible((), || {
-        if !discrete_surface.is_null() {
-            // SAFETY: the caller hands back ownership of a pointer from Box::into_raw.
-            drop(unsafe { Box::from_raw(discrete_surface) });
-        }
+        // SAFETY: the caller hands back ownership of a handle from this library.
+        unsafe { crate::boundary::free_handle(discrete_surface) }
     })
 }
 
@@ -310,7 +313,7 @@ pub unsafe extern "C" fn tpi_discrete_surface_set_surface(
     ffi_boundary! {
         // SAFETY: the caller's contract.
         let ds = unsafe { handle(discrete_surface.cast_const()) }?;
-        let surface = unsafe { try_ref(surface, "surface") }?;
+        let surface = unsafe { try_handle(surface, "surface") }?;
         let model = surface.model.clone();
         let mut state = ds.lock();
         state.surface = model;

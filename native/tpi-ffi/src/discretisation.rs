@@ -7,7 +7,7 @@ use std::sync::{Arc, OnceLock};
 use tpi_core::{discretise, Diagnostic, Discretisation, QualityReport};
 
 use crate::boundary::{
-    check_copy_out, copy_out, copy_out_str, ffi_boundary, flag, try_ref, FfiError, FfiResult,
+    check_copy_out, copy_out, copy_out_str, ffi_boundary, flag, try_handle, FfiError, FfiResult,
     OutPtr, TpiStatus,
 };
 use crate::options::{read_options, TpiOptions};
@@ -54,6 +54,11 @@ pub struct TpiDiscretisation {
     json_with_timings: OnceLock<String>,
     quality_json: OnceLock<String>,
     diagnostics_json: OnceLock<String>,
+}
+
+impl crate::boundary::Handle for TpiDiscretisation {
+    const TAG: u64 = u64::from_le_bytes(*b"tpi:disc");
+    const C_NAME: &'static str = "TpiDiscretisation";
 }
 
 impl TpiDiscretisation {
@@ -321,7 +326,7 @@ impl TpiQualityReport {
 /// `ptr` is NULL or a live handle.
 unsafe fn handle<'a>(ptr: *const TpiDiscretisation) -> FfiResult<&'a TpiDiscretisation> {
     // SAFETY: forwarded contract.
-    unsafe { try_ref(ptr, "discretisation") }
+    unsafe { try_handle(ptr, "discretisation") }
 }
 
 /// Copy-out of `len` elements made by `make`, which only runs when the buffer is big enough.
@@ -364,8 +369,8 @@ pub unsafe extern "C" fn tpi_discretise(
     ffi_boundary! {
         // SAFETY: the caller's contract for every argument.
         let out = unsafe { OutPtr::handle(out, "out") }?;
-        let surface = unsafe { try_ref(surface, "surface") }?;
-        let pattern = unsafe { try_ref(pattern, "pattern") }?;
+        let surface = unsafe { try_handle(surface, "surface") }?;
+        let pattern = unsafe { try_handle(pattern, "pattern") }?;
         let options = unsafe { read_options(options) }?;
         let result = discretise(&surface.model, &pattern.pattern.uv, &options)?;
         out.set_boxed(TpiDiscretisation::new(Arc::new(result)));
@@ -381,10 +386,8 @@ pub unsafe extern "C" fn tpi_discretise(
 #[no_mangle]
 pub unsafe extern "C" fn tpi_discretisation_free(discretisation: *mut TpiDiscretisation) {
     crate::boundary::run_infallible((), || {
-        if !discretisation.is_null() {
-            // SAFETY: the caller hands back ownership of a pointer from Box::into_raw.
-            drop(unsafe { Box::from_raw(discretisation) });
-        }
+        // SAFETY: the caller hands back ownership of a handle from this library.
+        unsafe { crate::boundary::free_handle(discretisation) }
     })
 }
 

@@ -11,7 +11,7 @@ use tpi_core::{
 };
 
 use crate::boundary::{
-    copy_out_str, ffi_boundary, try_ref, FfiError, FfiResult, OutPtr, TpiStatus,
+    copy_out_str, ffi_boundary, try_handle, FfiError, FfiResult, Handle, OutPtr, TpiStatus,
 };
 use crate::discretisation::TpiDiscretisation;
 
@@ -37,6 +37,11 @@ pub struct TpiFabrication {
     files: [OnceLock<String>; 5],
 }
 
+impl Handle for TpiFabrication {
+    const TAG: u64 = u64::from_le_bytes(*b"tpi:fabr");
+    const C_NAME: &'static str = "TpiFabrication";
+}
+
 fn fabrication_error(e: &FabricationError) -> FfiError {
     let status = match e {
         FabricationError::InvalidOption { value, .. } if !value.is_finite() => TpiStatus::NonFinite,
@@ -52,7 +57,7 @@ fn fabrication_error(e: &FabricationError) -> FfiError {
 /// `ptr` is NULL or a live handle.
 unsafe fn handle<'a>(ptr: *const TpiFabrication) -> FfiResult<&'a TpiFabrication> {
     // SAFETY: forwarded contract.
-    unsafe { try_ref(ptr, "fabrication") }
+    unsafe { try_handle(ptr, "fabrication") }
 }
 
 /// Builds the panels of `discretisation`: thickness `thickness` (> 0, below the limit the
@@ -84,7 +89,7 @@ pub unsafe extern "C" fn tpi_fabricate(
     ffi_boundary! {
         // SAFETY: the caller's contract for every argument.
         let out = unsafe { OutPtr::handle(out, "out") }?;
-        let d = unsafe { try_ref(discretisation, "discretisation") }?;
+        let d = unsafe { try_handle(discretisation, "discretisation") }?;
         let side = match side {
             TPI_SIDE_INSIDE => PanelSide::Inside,
             TPI_SIDE_OUTSIDE => PanelSide::Outside,
@@ -111,10 +116,8 @@ pub unsafe extern "C" fn tpi_fabricate(
 #[no_mangle]
 pub unsafe extern "C" fn tpi_fabrication_free(fabrication: *mut TpiFabrication) {
     crate::boundary::run_infallible((), || {
-        if !fabrication.is_null() {
-            // SAFETY: the caller hands back ownership of a pointer from Box::into_raw.
-            drop(unsafe { Box::from_raw(fabrication) });
-        }
+        // SAFETY: the caller hands back ownership of a handle from this library.
+        unsafe { crate::boundary::free_handle(fabrication) }
     })
 }
 

@@ -5,7 +5,7 @@ use std::ffi::c_char;
 use tpi_core::{Generator, GridSize, Pattern};
 
 use crate::boundary::{
-    copy_out, ffi_boundary, try_pairs, try_ref, try_str, FfiResult, OutPtr, TpiStatus,
+    copy_out, ffi_boundary, try_handle, try_pairs, try_str, FfiResult, OutPtr, TpiStatus,
 };
 
 /// A set of pattern points (s, t) in the normalised square [0, 1]^2, mapped linearly onto a
@@ -16,6 +16,11 @@ use crate::boundary::{
 /// several threads at once.
 pub struct TpiPattern {
     pub(crate) pattern: Pattern,
+}
+
+impl crate::boundary::Handle for TpiPattern {
+    const TAG: u64 = u64::from_le_bytes(*b"tpi:patt");
+    const C_NAME: &'static str = "TpiPattern";
 }
 
 fn create(out: *mut *mut TpiPattern, build: impl FnOnce() -> FfiResult<Pattern>) -> FfiResult {
@@ -181,10 +186,8 @@ pub unsafe extern "C" fn tpi_pattern_new_from_spec(
 #[no_mangle]
 pub unsafe extern "C" fn tpi_pattern_free(pattern: *mut TpiPattern) {
     crate::boundary::run_infallible((), || {
-        if !pattern.is_null() {
-            // SAFETY: the caller hands back ownership of a pointer from Box::into_raw.
-            drop(unsafe { Box::from_raw(pattern) });
-        }
+        // SAFETY: the caller hands back ownership of a handle from this library.
+        unsafe { crate::boundary::free_handle(pattern) }
     })
 }
 
@@ -201,7 +204,7 @@ pub unsafe extern "C" fn tpi_pattern_point_count(
 ) -> TpiStatus {
     ffi_boundary! {
         // SAFETY: the caller's contract.
-        let pattern = unsafe { try_ref(pattern, "pattern") }?;
+        let pattern = unsafe { try_handle(pattern, "pattern") }?;
         unsafe { OutPtr::new(out, "out") }?.set(pattern.pattern.len());
         Ok(())
     }
@@ -224,7 +227,7 @@ pub unsafe extern "C" fn tpi_pattern_points(
 ) -> TpiStatus {
     ffi_boundary! {
         // SAFETY: the caller's contract.
-        let pattern = unsafe { try_ref(pattern, "pattern") }?;
+        let pattern = unsafe { try_handle(pattern, "pattern") }?;
         unsafe { copy_out(pattern.pattern.uv.as_flattened(), out, capacity, needed, "out") }
     }
 }

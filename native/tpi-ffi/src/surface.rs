@@ -5,7 +5,7 @@ use tpi_core::SurfaceModel;
 use tpi_core::{AnalyticSurface, LocalGeometry, NurbsSurface, Surface, TpiError};
 
 use crate::boundary::{
-    check_copy_out, copy_out, ffi_boundary, finite, try_pairs, try_ref, try_slice, FfiError,
+    check_copy_out, copy_out, ffi_boundary, finite, try_handle, try_pairs, try_slice, FfiError,
     OutPtr, TpiStatus,
 };
 
@@ -15,6 +15,11 @@ use crate::boundary::{
 /// several threads at once.
 pub struct TpiSurface {
     pub(crate) model: SurfaceModel,
+}
+
+impl crate::boundary::Handle for TpiSurface {
+    const TAG: u64 = u64::from_le_bytes(*b"tpi:surf");
+    const C_NAME: &'static str = "TpiSurface";
 }
 
 /// The parameter domain [u_min, u_max] x [v_min, v_max] of a surface.
@@ -331,10 +336,8 @@ pub unsafe extern "C" fn tpi_surface_new_plane(
 #[no_mangle]
 pub unsafe extern "C" fn tpi_surface_free(surface: *mut TpiSurface) {
     crate::boundary::run_infallible((), || {
-        if !surface.is_null() {
-            // SAFETY: the caller hands back ownership of a pointer from Box::into_raw.
-            drop(unsafe { Box::from_raw(surface) });
-        }
+        // SAFETY: the caller hands back ownership of a handle from this library.
+        unsafe { crate::boundary::free_handle(surface) }
     })
 }
 
@@ -351,7 +354,7 @@ pub unsafe extern "C" fn tpi_surface_domain(
 ) -> TpiStatus {
     ffi_boundary! {
         // SAFETY: the caller's contract.
-        let surface = unsafe { try_ref(surface, "surface") }?;
+        let surface = unsafe { try_handle(surface, "surface") }?;
         let out = unsafe { OutPtr::new(out, "out") }?;
         let d = surface.model.domain();
         out.set(TpiDomain { u_min: d.u.min, u_max: d.u.max, v_min: d.v.min, v_max: d.v.max });
@@ -382,7 +385,7 @@ pub unsafe extern "C" fn tpi_surface_evaluate(
 ) -> TpiStatus {
     ffi_boundary! {
         // SAFETY: the caller's contract.
-        let surface = unsafe { try_ref(surface, "surface") }?;
+        let surface = unsafe { try_handle(surface, "surface") }?;
         let pairs = unsafe { try_pairs(uv, uv_len, "uv") }?;
         // Capacity first, so that a too-small buffer costs no evaluation.
         unsafe { check_copy_out(pairs.len(), out, out_capacity, std::ptr::null_mut(), "out") }?;

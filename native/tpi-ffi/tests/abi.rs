@@ -32,6 +32,7 @@ fn status_numbers_are_fixed() {
         (TpiStatus::Panic, 9, "TPI_STATUS_PANIC"),
         (TpiStatus::OutOfDomain, 10, "TPI_STATUS_OUT_OF_DOMAIN"),
         (TpiStatus::Unavailable, 11, "TPI_STATUS_UNAVAILABLE"),
+        (TpiStatus::InvalidHandle, 12, "TPI_STATUS_INVALID_HANDLE"),
     ];
     assert_eq!(
         TpiStatus::ALL.len(),
@@ -56,7 +57,7 @@ fn status_numbers_are_fixed() {
     }
     // SAFETY: as above.
     assert_eq!(
-        unsafe { CStr::from_ptr(tpi_status_name(12)) }.to_str(),
+        unsafe { CStr::from_ptr(tpi_status_name(13)) }.to_str(),
         Ok("TPI_STATUS_UNKNOWN")
     );
     // SAFETY: as above.
@@ -811,4 +812,76 @@ fn adjusted_planes_reach_the_core_and_the_planes_copy_out() {
         tpi_pattern_free(p);
         tpi_surface_free(s);
     }
+}
+
+/// The dome's NURBS call with the control points and weights given.
+fn nurbs_with(points: &[f64], weights: &[f64]) -> (TpiStatus, String) {
+    let mut surface = std::ptr::null_mut();
+    // SAFETY: every array is valid for its length; `surface` is a valid out pointer.
+    let status = unsafe {
+        tpi_surface_new_nurbs(
+            DOME_DEGREE,
+            DOME_DEGREE,
+            DOME_COUNT,
+            DOME_COUNT,
+            DOME_KNOTS.as_ptr(),
+            DOME_KNOTS.len(),
+            DOME_KNOTS.as_ptr(),
+            DOME_KNOTS.len(),
+            points.as_ptr(),
+            points.len(),
+            if weights.is_empty() {
+                std::ptr::null()
+            } else {
+                weights.as_ptr()
+            },
+            weights.len(),
+            &mut surface,
+        )
+    };
+    let message = last_error();
+    // SAFETY: NULL or our handle.
+    unsafe { tpi_surface_free(surface) };
+    (status, message)
+}
+
+/// Issue 14: a control point at 1e308 (or a weight of 5e-324 beside weights of 1) was
+/// accepted and evaluated to infinities; both are refused by name, with the bound, and the
+/// numbers print in shortest round-trip form.
+#[test]
+fn unrepresentable_nurbs_are_refused_with_the_bound() {
+    let mut points = dome_points(3.0);
+    points[3 * 5] = 1e308;
+    let (status, message) = nurbs_with(&points, &[]);
+    assert_eq!(status, TpiStatus::InvalidNurbs, "{message}");
+    assert!(
+        message.contains("points[5][0] (control point u 1, v 1) = 1e308")
+            && message.contains("1e15"),
+        "{message}"
+    );
+    let mut weights = vec![1.0; 16];
+    weights[0] = 5e-324;
+    let (status, message) = nurbs_with(&dome_points(3.0), &weights);
+    assert_eq!(status, TpiStatus::InvalidNurbs, "{message}");
+    assert!(
+        message.contains("weights[0] (control point u 0, v 0) = 5e-324"),
+        "{message}"
+    );
+    weights[0] = 1e-7;
+    let (status, message) = nurbs_with(&dome_points(3.0), &weights);
+    assert_eq!(status, TpiStatus::InvalidNurbs, "{message}");
+    assert!(message.contains("<= 1000000"), "{message}");
+}
+
+/// Issue 14: the C ABI's messages had no length limit (a long spec was quoted whole).
+#[test]
+fn messages_are_bounded() {
+    let spec = format!("grid:{}x3\0", "9".repeat(100_000));
+    let mut out = std::ptr::null_mut();
+    // SAFETY: NUL-terminated string, valid out pointer.
+    let status = unsafe { tpi_pattern_new_from_spec(spec.as_ptr().cast(), &mut out) };
+    assert_eq!(status, TpiStatus::InvalidPattern);
+    let message = last_error();
+    assert!(message.len() < 1024, "{} bytes", message.len());
+    assert!(message.contains("grid:999"), "{message}");
 }

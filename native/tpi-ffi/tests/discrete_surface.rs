@@ -337,3 +337,54 @@ fn single_edits_recomputed_one_by_one_give_the_mesh_from_scratch() {
         tpi_surface_free(surface);
     }
 }
+
+/// Issue 14: a discretisation handle passed where a discrete surface is expected (a C# host
+/// passing the wrong IntPtr) used to be read as a discrete surface's lock and hang forever.
+/// Every call refuses a handle of another kind with TPI_STATUS_INVALID_HANDLE, names both
+/// kinds, and changes nothing; a `*_free` call given the wrong kind does nothing.
+#[test]
+fn a_handle_of_another_kind_is_refused_not_read() {
+    let f = Fixture::new();
+    let mut mesh = std::ptr::null_mut();
+    // SAFETY: live handle, valid out pointer.
+    ok(unsafe { tpi_discrete_surface_mesh(f.ds, &mut mesh) });
+    let wrong_ds = mesh.cast::<TpiDiscreteSurface>();
+    // SAFETY: every pointer is a live handle of this library (of the wrong kind on purpose).
+    unsafe {
+        assert_eq!(
+            tpi_discrete_surface_move_point(wrong_ds, 0, 0.5, 0.5),
+            TpiStatus::InvalidHandle
+        );
+        let message = last_error();
+        assert!(
+            message.contains("TpiDiscretisation") && message.contains("TpiDiscreteSurface"),
+            "{message}"
+        );
+        assert_eq!(
+            tpi_discrete_surface_recompute(wrong_ds),
+            TpiStatus::InvalidHandle
+        );
+        let mut n = 0usize;
+        assert_eq!(
+            tpi_discretisation_facet_count(f.ds.cast(), &mut n),
+            TpiStatus::InvalidHandle
+        );
+        assert_eq!(
+            tpi_surface_domain(f.ds.cast(), &mut TpiDomain::default()),
+            TpiStatus::InvalidHandle
+        );
+        let mut out = std::ptr::null_mut();
+        assert_eq!(
+            tpi_discretise(f.surface, f.surface.cast(), std::ptr::null(), &mut out),
+            TpiStatus::InvalidHandle
+        );
+        assert!(out.is_null());
+        // Freeing with the wrong kind is ignored: both objects stay usable.
+        tpi_surface_free(mesh.cast());
+        tpi_pattern_free(f.ds.cast());
+        ok(tpi_discretisation_facet_count(mesh, &mut n));
+        assert_eq!(n, f.points.len());
+        tpi_discretisation_free(mesh);
+    }
+    f.check_against_scratch();
+}

@@ -34,6 +34,8 @@ namespace Tpi.Native
         OutOfDomain = 10,
         /// <summary>TPI_STATUS_UNAVAILABLE: the data was not computed (quality report switched off).</summary>
         Unavailable = 11,
+        /// <summary>TPI_STATUS_INVALID_HANDLE: a handle of another kind, or one already freed.</summary>
+        InvalidHandle = 12,
     }
 
     /// <summary>What a diagnostic is about (TpiDiagnosticKind).</summary>
