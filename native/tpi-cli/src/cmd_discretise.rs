@@ -125,26 +125,8 @@ fn parse(args: DiscretiseArgs) -> Result<Options, CliError> {
             ))
         })?),
     };
-    let threads = match &args.threads {
-        None => None,
-        Some(v) => match v.parse::<usize>() {
-            Ok(n) if (1..=1024).contains(&n) => Some(n),
-            _ => {
-                return Err(usage(format!(
-                    "--threads {v}: expected a whole number from 1 to 1024"
-                )))
-            }
-        },
-    };
-    let planes = match args.planes.as_deref() {
-        None | Some("exact") => PlaneMode::Exact,
-        Some("adjusted") => PlaneMode::Adjusted,
-        Some(v) => {
-            return Err(usage(format!(
-                "--planes {v}: expected `exact` or `adjusted`"
-            )))
-        }
-    };
+    let threads = thread_count(args.threads.as_deref(), "discretise")?;
+    let planes = plane_mode(args.planes.as_deref(), "discretise")?;
     let surface = args
         .surface
         .ok_or_else(|| usage("--surface is required".into()))?;
@@ -172,6 +154,35 @@ fn parse(args: DiscretiseArgs) -> Result<Options, CliError> {
         strict: args.strict,
         planes,
     })
+}
+
+/// `--threads N`: a whole number from 1 to 1024 (None: one thread per core).
+pub(crate) fn thread_count(
+    arg: Option<&str>,
+    command: &'static str,
+) -> Result<Option<usize>, CliError> {
+    match arg {
+        None => Ok(None),
+        Some(v) => match v.parse::<usize>() {
+            Ok(n) if (1..=1024).contains(&n) => Ok(Some(n)),
+            _ => Err(CliError::usage(
+                Some(command),
+                format!("--threads {v}: expected a whole number from 1 to 1024"),
+            )),
+        },
+    }
+}
+
+/// `--planes MODE`: `exact` (the default) or `adjusted`.
+pub(crate) fn plane_mode(arg: Option<&str>, command: &'static str) -> Result<PlaneMode, CliError> {
+    match arg {
+        None | Some("exact") => Ok(PlaneMode::Exact),
+        Some("adjusted") => Ok(PlaneMode::Adjusted),
+        Some(v) => Err(CliError::usage(
+            Some(command),
+            format!("--planes {v}: expected `exact` or `adjusted`"),
+        )),
+    }
 }
 
 fn parse_size(s: &str) -> Option<(u32, u32)> {

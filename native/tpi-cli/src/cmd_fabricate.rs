@@ -9,6 +9,7 @@ use tpi_core::{
     FabricationError, PanelSide, PlaneMode, SlotPlan, ToolpathOptions, Units,
 };
 
+use crate::cmd_discretise::{plane_mode, thread_count};
 use crate::error::CliError;
 use crate::input::{load_pattern, load_surface};
 use crate::output::{check_not_an_input, check_output_path, read_text, write_all};
@@ -179,26 +180,8 @@ fn parse(args: FabricateArgs) -> Result<Options, CliError> {
             Some(x)
         }
     };
-    let planes = match args.planes.as_deref() {
-        None | Some("exact") => PlaneMode::Exact,
-        Some("adjusted") => PlaneMode::Adjusted,
-        Some(v) => {
-            return Err(usage(format!(
-                "--planes {v}: expected `exact` or `adjusted`"
-            )))
-        }
-    };
-    let threads = match &args.threads {
-        None => None,
-        Some(v) => match v.parse::<usize>() {
-            Ok(n) if (1..=1024).contains(&n) => Some(n),
-            _ => {
-                return Err(usage(format!(
-                    "--threads {v}: expected a whole number from 1 to 1024"
-                )))
-            }
-        },
-    };
+    let planes = plane_mode(args.planes.as_deref(), "fabricate")?;
+    let threads = thread_count(args.threads.as_deref(), "fabricate")?;
     let mut outs: Vec<(PathBuf, Format)> = Vec::new();
     for v in &args.out {
         let path = PathBuf::from(v);
