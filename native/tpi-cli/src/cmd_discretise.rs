@@ -104,19 +104,12 @@ struct Options {
 
 fn parse(args: DiscretiseArgs) -> Result<Options, CliError> {
     let usage = |message: String| CliError::usage(Some("discretise"), message);
-    let mut outs: Vec<(PathBuf, Format)> = Vec::new();
-    for v in &args.out {
-        let path = PathBuf::from(v);
-        let Some(format) = Format::of(&path) else {
-            return Err(usage(format!(
-                "--out {v}: unknown output format; the extension must be .json, .obj, .svg or .png"
-            )));
-        };
-        if outs.iter().any(|(p, _)| *p == path) {
-            return Err(usage(format!("--out {v} is given twice")));
-        }
-        outs.push((path, format));
-    }
+    let outs = output_formats(
+        &args.out,
+        Format::of,
+        ".json, .obj, .svg or .png",
+        "discretise",
+    )?;
     let size = match &args.size {
         None => None,
         Some(v) => Some(parse_size(v).ok_or_else(|| {
@@ -154,6 +147,31 @@ fn parse(args: DiscretiseArgs) -> Result<Options, CliError> {
         strict: args.strict,
         planes,
     })
+}
+
+/// The `--out` files with their formats (by extension, `format_of`): each once, each of a
+/// known format (`extensions` names them in the message).
+pub(crate) fn output_formats<F>(
+    outs: &[String],
+    format_of: impl Fn(&Path) -> Option<F>,
+    extensions: &str,
+    command: &'static str,
+) -> Result<Vec<(PathBuf, F)>, CliError> {
+    let usage = |message: String| CliError::usage(Some(command), message);
+    let mut checked: Vec<(PathBuf, F)> = Vec::new();
+    for v in outs {
+        let path = PathBuf::from(v);
+        let Some(format) = format_of(&path) else {
+            return Err(usage(format!(
+                "--out {v}: unknown output format; the extension must be {extensions}"
+            )));
+        };
+        if checked.iter().any(|(p, _)| *p == path) {
+            return Err(usage(format!("--out {v} is given twice")));
+        }
+        checked.push((path, format));
+    }
+    Ok(checked)
 }
 
 /// `--threads N`: a whole number from 1 to 1024 (None: one thread per core).

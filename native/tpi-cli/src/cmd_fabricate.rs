@@ -9,7 +9,7 @@ use tpi_core::{
     FabricationError, PanelSide, PlaneMode, SlotPlan, ToolpathOptions, Units,
 };
 
-use crate::cmd_discretise::{plane_mode, thread_count};
+use crate::cmd_discretise::{output_formats, plane_mode, thread_count};
 use crate::error::CliError;
 use crate::input::{load_pattern, load_surface};
 use crate::output::{check_not_an_input, check_output_path, read_text, write_all};
@@ -182,17 +182,12 @@ fn parse(args: FabricateArgs) -> Result<Options, CliError> {
     };
     let planes = plane_mode(args.planes.as_deref(), "fabricate")?;
     let threads = thread_count(args.threads.as_deref(), "fabricate")?;
-    let mut outs: Vec<(PathBuf, Format)> = Vec::new();
-    for v in &args.out {
-        let path = PathBuf::from(v);
-        let Some(format) = Format::of(&path) else {
-            return Err(usage(format!("--out {v}: unknown output format; the extension must be .json, .obj, .svg, .dxf, .nc or .csv")));
-        };
-        if outs.iter().any(|(p, _)| *p == path) {
-            return Err(usage(format!("--out {v} is given twice")));
-        }
-        outs.push((path, format));
-    }
+    let outs = output_formats(
+        &args.out,
+        Format::of,
+        ".json, .obj, .svg, .dxf, .nc or .csv",
+        "fabricate",
+    )?;
     let surface = args
         .surface
         .ok_or_else(|| usage("--surface is required".into()))?;

@@ -394,9 +394,8 @@ impl<'a> State<'a> {
             .par_iter()
             .enumerate()
             .map(|(i, p)| {
-                p.as_ref().map_or(true, |p| {
-                    p.iter().all(|x| x.is_finite()) && simple_in_plane(p, self.planes[i].normal)
-                })
+                p.as_ref()
+                    .map_or(true, |p| simple_in_plane(p, self.planes[i].normal))
             })
             .collect();
         let (polygons_ref, simple_ref) = (&polygons, &simple);
@@ -496,14 +495,14 @@ impl<'a> State<'a> {
 
     /// Tries the star and link edges of facet i; keeps the first flip that lowers the number
     /// of invalid facets around it and returns the points whose verdicts it renewed.
-    pub(crate) fn try_repair(&mut self, i: u32, judged: usize) -> Option<Vec<u32>> {
+    fn try_repair(&mut self, i: u32, judged: usize) -> Option<Vec<u32>> {
         self.try_repair_with(i, judged, &mut |_, _| false)
     }
 
     /// [`State::try_repair`], where a flip that does not lower the count by itself is handed
-    /// to `rescue` (with the quad's points and the count to beat) before it is undone;
-    /// `rescue` returns whether it lowered the count (its changes then stay, and it has set
-    /// the verdicts), or undoes its own changes.
+    /// to `rescue` (with the quad's points; the verdicts still describe the mesh before the
+    /// flip) before it is undone; `rescue` returns whether it lowered the count (its changes
+    /// then stay, and it has set the verdicts), or undoes its own changes.
     pub(crate) fn try_repair_with(
         &mut self,
         i: u32,
