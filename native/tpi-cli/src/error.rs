@@ -109,7 +109,7 @@ impl CliError {
             CliError::Input { subject, problem } => write!(
                 f,
                 "tpi: error: {}: {problem}",
-                tpi_core::bounded(subject, tpi_core::QUOTE_LIMIT)
+                elide_middle(subject, tpi_core::QUOTE_LIMIT)
             ),
             CliError::InvalidFacets { count } => {
                 write!(
@@ -120,6 +120,22 @@ impl CliError {
             }
         }
     }
+}
+
+/// A subject (a file path, a spec, an option) of at most `limit` characters: when longer, its
+/// start and its end with `...` between and the whole length after, so that a long path still
+/// shows its file name (`/very/long/...dir/r.svg (96 characters)`).
+fn elide_middle(text: &str, limit: usize) -> std::borrow::Cow<'_, str> {
+    let count = text.chars().count();
+    if count <= limit {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let suffix = format!(" ({count} characters)");
+    let keep = limit.saturating_sub(suffix.len() + 3);
+    let head_len = keep / 3;
+    let head: String = text.chars().take(head_len).collect();
+    let tail: String = text.chars().skip(count - (keep - head_len)).collect();
+    std::borrow::Cow::Owned(format!("{head}...{tail}{suffix}"))
 }
 
 /// An I/O error as a short lower-case phrase without the "(os error N)" suffix.
@@ -142,4 +158,35 @@ pub(crate) fn describe_io(error: &io::Error) -> String {
         }
     };
     text
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_long_subject_keeps_its_start_and_its_file_name() {
+        let path = format!("/tmp/{}/unwritable/ok-surface.json/r.svg", "d".repeat(120));
+        let e = CliError::input(&path, "cannot write: not a directory");
+        let line = e.to_string();
+        assert!(line.starts_with("tpi: error: /tmp/ddd"), "{line}");
+        assert!(line.contains("ok-surface.json/r.svg ("), "{line}");
+        assert!(
+            line.contains(&format!("({} characters)", path.len())),
+            "{line}"
+        );
+        let subject = line
+            .strip_prefix("tpi: error: ")
+            .and_then(|l| l.split(": cannot write").next())
+            .unwrap();
+        assert!(
+            subject.chars().count() <= tpi_core::QUOTE_LIMIT,
+            "{subject}"
+        );
+        // Short subjects are left as they are.
+        assert_eq!(
+            CliError::input("a.json", "bad").to_string(),
+            "tpi: error: a.json: bad"
+        );
+    }
 }
