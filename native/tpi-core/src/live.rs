@@ -1405,7 +1405,7 @@ fn renumber_diagnostic(d: &mut Diagnostic, k: u32) {
         Diagnostic::OpenFacet { point, .. }
         | Diagnostic::CornerUnreachable { point, .. }
         | Diagnostic::FlatPoint { point, .. } => shift(point),
-        Diagnostic::CornerClaims { .. } => {}
+        Diagnostic::CornerClaims { .. } | Diagnostic::CoincidentPlanes { .. } => {}
     }
 }
 
