@@ -43,8 +43,8 @@ use glam::DVec3;
 use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
 use crate::discretise::{
-    plane_adjustments, run, Discretisation, DiscretiseOptions, PipelineState, PlaneMode, Seed,
-    Timings,
+    plane_adjustments, run, Discretisation, DiscretiseOptions, MeshTopology, PipelineState,
+    PlaneMode, Seed, Timings,
 };
 use crate::error::TpiError;
 use crate::facets::{accept_newton, single_triangle_vertex, FootHint, TriangleVertex, VertexKind};
@@ -1297,6 +1297,7 @@ impl State {
             diagnostics: self.diagnostics.clone(),
             plane_adjustments: adjustments,
             timings: Timings::default(),
+            topology: MeshTopology::DISC,
         };
         if options.quality_report {
             let mut diagnosed = vec![false; n];

@@ -33,6 +33,16 @@ pub const REVERSAL_CHECK_TOLERANCE: f64 = 1e-6;
 /// perpendicular bisector of their points in the plane ([`crate::planes`]).
 pub const PLANE_COINCIDENCE: f64 = 1e-10;
 
+// ---- read by closed.rs ----
+
+/// Two sides of the domain coincide (a closed direction), or one side is a single point (a
+/// pole), when their samples agree to this fraction of the samples' bounding-box diagonal.
+/// Rhino closes surfaces exactly (shared control points), so rounding is all it absorbs.
+pub const CLOSURE_TOLERANCE: f64 = 1e-9;
+
+/// Samples per side for the closure and pole tests.
+pub const LAYOUT_SAMPLES: usize = 17;
+
 // ---- read by analytic.rs ----
 
 /// Largest magnitude accepted for any analytic parameter or rectangle coordinate. Far beyond
