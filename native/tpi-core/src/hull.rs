@@ -4,15 +4,16 @@
 //! Faces are kept counter-clockwise seen from outside: for a face (a, b, c), orient3d(a, b, c,
 //! x) > 0 for every x strictly inside the hull. A point x sees the face when
 //! orient3d(a, b, c, x) <= 0. Counting a point on a face's plane as seeing it is the
-//! symbolic perturbation that pushes every point outwards, each later point further than all
-//! earlier ones: coplanar points (cocircular seeds on a sphere, a symmetric grid) all become
+//! symbolic perturbation that pushes every point outwards, each later point (in insertion order)
+//! further than all earlier ones: coplanar points (cocircular seeds on a sphere, a symmetric grid) all become
 //! vertices, and every decision agrees with every other, so the hull is a closed triangulated
 //! sphere whose vertices are every input point in convex position.
 //!
-//! Insertion of x: the faces it sees form a connected cap (found by a walk from the face its
-//! conflict list names); the cap's boundary, the horizon, is joined to x by new faces; the
-//! points that saw a removed face are given one new face they see (or, rarely, any face they
-//! see, found by a scan; or none: they are inside).
+//! Insertion of x (in Morton order of the points, so that consecutive points are near): a
+//! walk from the last new face towards the face through which the ray from a fixed interior
+//! point to x leaves the hull (orient3d against the planes through that point and each edge);
+//! x sees that face unless it is inside. The faces it sees form a connected cap; the cap's
+//! boundary, the horizon, is joined to x by new faces.
 
 /// Points needed for a hull in space (a tetrahedron).
 const HULL_MIN_POINTS: usize = 4;
@@ -24,8 +25,6 @@ struct Face {
     v: [u32; 3],
     adjacent: [u32; 3],
     alive: bool,
-    /// Uninserted points that see this face (each point is listed by one face at a time).
-    conflicts: Vec<u32>,
 }
 
 /// Why no hull could be built.
@@ -39,21 +38,19 @@ pub(crate) enum HullError {
 }
 
 /// The hull's faces (counter-clockwise seen from outside) and, per point, whether it is a
-/// vertex of the hull. Deterministic: the points are inserted in index order after the first
-/// four independent ones.
+/// vertex of the hull. Deterministic: after the first four independent points, the points
+/// are inserted along a Morton curve of their coordinates (so that each walk is short).
 pub(crate) fn convex_hull(points: &[[f64; 3]]) -> Result<(Vec<[u32; 3]>, Vec<bool>), HullError> {
     if points.len() < HULL_MIN_POINTS {
         return Err(HullError::Flat);
     }
-    let orient = |a: u32, b: u32, c: u32, x: u32| {
-        let p = |i: u32| {
-            let [x, y, z] = points[i as usize];
-            robust::Coord3D { x, y, z }
-        };
-        robust::orient3d(p(a), p(b), p(c), p(x))
+    let coord = |i: u32| {
+        let [x, y, z] = points[i as usize];
+        robust::Coord3D { x, y, z }
     };
+    let orient =
+        |a: u32, b: u32, c: u32, x: u32| robust::orient3d(coord(a), coord(b), coord(c), coord(x));
     let start = initial_tetrahedron(points, &orient).ok_or(HullError::Flat)?;
-    let mut faces: Vec<Face> = Vec::new();
     // Orient the tetrahedron: (a, b, c) counter-clockwise from outside when d is inside.
     let [a, b, c, d] = start;
     let (b, c) = if orient(a, b, c, d) > 0.0 {
@@ -61,13 +58,27 @@ pub(crate) fn convex_hull(points: &[[f64; 3]]) -> Result<(Vec<[u32; 3]>, Vec<boo
     } else {
         (c, b)
     };
+    // A point strictly inside every later hull: the walk's centre of projection.
+    let centre = {
+        let p = [a, b, c, d].map(|i| glam::DVec3::from_array(points[i as usize]));
+        let m = (p[0] + p[1] + p[2] + p[3]) * 0.25;
+        robust::Coord3D {
+            x: m.x,
+            y: m.y,
+            z: m.z,
+        }
+    };
+    // Whether the ray from the centre towards x passes on the inner side of the plane through
+    // the centre and the directed edge (u, w) of a face counter-clockwise from outside.
+    let inside_edge =
+        |u: u32, w: u32, x: u32| robust::orient3d(centre, coord(u), coord(w), coord(x)) <= 0.0;
+    let mut faces: Vec<Face> = Vec::new();
     // Faces opposite d, a, b, c; adjacency fixed up below.
     for v in [[a, b, c], [b, d, c], [c, d, a], [a, d, b]] {
         faces.push(Face {
             v,
             adjacent: [u32::MAX; 3],
             alive: true,
-            conflicts: Vec::new(),
         });
     }
     link_all(&mut faces, &[0, 1, 2, 3]);
@@ -75,25 +86,43 @@ pub(crate) fn convex_hull(points: &[[f64; 3]]) -> Result<(Vec<[u32; 3]>, Vec<boo
     for v in start {
         on_hull[v as usize] = true;
     }
-    let mut conflict_of = vec![u32::MAX; points.len()];
-    for x in 0..points.len() as u32 {
-        if on_hull[x as usize] {
-            continue;
-        }
-        if let Some(f) = (0..4u32).find(|&f| sees(&faces[f as usize], x, &orient)) {
-            faces[f as usize].conflicts.push(x);
-            conflict_of[x as usize] = f;
-        }
-    }
+    let mut order: Vec<u32> = (0..points.len() as u32)
+        .filter(|&i| !on_hull[i as usize])
+        .collect();
+    let keys = morton_keys(points);
+    order.sort_by_key(|&i| (keys[i as usize], i));
     let mut visible = Vec::new();
     let mut stack = Vec::new();
     let mut mark = vec![false; faces.len()];
-    for x in 0..points.len() as u32 {
-        if on_hull[x as usize] {
-            continue;
-        }
-        let first = conflict_of[x as usize];
-        if first == u32::MAX {
+    let mut last = 0u32;
+    for x in order {
+        // Walk towards the face the ray from the centre through x leaves the hull by.
+        let mut f = last;
+        let mut steps = 0usize;
+        let exit = loop {
+            let face = &faces[f as usize];
+            let v = face.v;
+            // Cross the first edge (from a rotating start, so the walk cannot cycle) whose
+            // plane has x on its outer side.
+            let rotate = steps % 3;
+            let crossing = (0..3)
+                .map(|k| (k + rotate) % 3)
+                .find(|&k| !inside_edge(v[k], v[(k + 1) % 3], x));
+            match crossing {
+                None => break Some(f),
+                Some(k) => f = face.adjacent[k],
+            }
+            steps += 1;
+            if f as usize >= faces.len() || steps > faces.len() {
+                break None;
+            }
+        };
+        let Some(first) = exit else {
+            return Err(HullError::Inconsistent);
+        };
+        if !sees(&faces[first as usize], x, &orient) {
+            // Inside the hull: not a vertex.
+            last = first;
             continue;
         }
         // The cap of faces x sees.
@@ -130,7 +159,6 @@ pub(crate) fn convex_hull(points: &[[f64; 3]]) -> Result<(Vec<[u32; 3]>, Vec<boo
                     v: [u, w, x],
                     adjacent: [g, u32::MAX, u32::MAX],
                     alive: true,
-                    conflicts: Vec::new(),
                 });
                 // The neighbour now looks across (w, u) at the new face.
                 let across = &mut faces[g as usize];
@@ -144,38 +172,49 @@ pub(crate) fn convex_hull(points: &[[f64; 3]]) -> Result<(Vec<[u32; 3]>, Vec<boo
         // New faces meet each other along (w, x) and (x, u).
         link_new(&mut faces, &new_faces)?;
         on_hull[x as usize] = true;
-        // The points of the removed faces look for a new face they see.
-        let mut orphans = Vec::new();
         for &f in &visible {
-            let face = &mut faces[f as usize];
-            face.alive = false;
-            orphans.append(&mut face.conflicts);
-        }
-        mark.resize(faces.len(), false);
-        for &f in &visible {
+            faces[f as usize].alive = false;
             mark[f as usize] = false;
         }
-        for q in orphans {
-            if q == x {
-                continue;
-            }
-            let found = new_faces
-                .iter()
-                .copied()
-                .find(|&f| sees(&faces[f as usize], q, &orient))
-                .or_else(|| {
-                    (0..faces.len() as u32)
-                        .find(|&f| faces[f as usize].alive && sees(&faces[f as usize], q, &orient))
-                });
-            conflict_of[q as usize] = found.unwrap_or(u32::MAX);
-            if let Some(f) = found {
-                faces[f as usize].conflicts.push(q);
-            }
-        }
+        mark.resize(faces.len(), false);
+        last = new_faces[0];
     }
     let triangles = faces.iter().filter(|f| f.alive).map(|f| f.v).collect();
-    // A point inside the hull was never inserted.
     Ok((triangles, on_hull))
+}
+
+/// Morton (Z-order) keys of the points' coordinates quantised to 2^21 steps of their box.
+fn morton_keys(points: &[[f64; 3]]) -> Vec<u64> {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    let spread = |v: u64| {
+        let mut x = v & 0x1f_ffff;
+        x = (x | x << 32) & 0x1f_0000_0000_ffff;
+        x = (x | x << 16) & 0x1f_0000_ff00_00ff;
+        x = (x | x << 8) & 0x100f_00f0_0f00_f00f;
+        x = (x | x << 4) & 0x10c3_0c30_c30c_30c3;
+        (x | x << 2) & 0x1249_2492_4924_9249
+    };
+    points
+        .iter()
+        .map(|p| {
+            let q = |k: usize| {
+                let t = if hi[k] > lo[k] {
+                    (p[k] - lo[k]) / (hi[k] - lo[k])
+                } else {
+                    0.0
+                };
+                (t * ((1u64 << 21) - 1) as f64) as u64
+            };
+            spread(q(0)) | spread(q(1)) << 1 | spread(q(2)) << 2
+        })
+        .collect()
 }
 
 fn sees(face: &Face, x: u32, orient: &impl Fn(u32, u32, u32, u32) -> f64) -> bool {
