@@ -458,8 +458,6 @@ pub(crate) fn run(
     // A closed strictly convex surface (a sphere, an ellipsoid): the envelope is a closed
     // polytope, its dual the hull of the dual points.
     let layout = closed::surface_layout(surface);
-    let closed_convex =
-        layout.is_sphere() && convex_side.iter().all(|&s| s != 0 && s == convex_side[0]);
     if layout.is_sphere() {
         let regular: Vec<bool> = if geometry.len() == uv.len() {
             geometry.iter().map(|g| g.regular).collect()
@@ -469,6 +467,17 @@ pub(crate) fn run(
         let weld = options.weld_tolerance * diagonal;
         check_closed_seeds(surface, &layout, &uv, &seeds, &regular, weld)?;
     }
+    // Where the closed surface is not convex at every seed, or its tangent planes do not
+    // bound one convex body (a dented sphere), it is discretised as an open patch (the CLI
+    // warns that the seam stays open).
+    let hull_stage = Instant::now();
+    let convex = convex_side.iter().all(|&s| s != 0 && s == convex_side[0]);
+    let envelope = if layout.is_sphere() && convex {
+        closed::envelope_triangulation(&planes).ok()
+    } else {
+        None
+    };
+    let closed_convex = envelope.is_some();
 
     // Candidates and true neighbours.
     let stage = Instant::now();
@@ -482,9 +491,12 @@ pub(crate) fn run(
     };
     let (mut triangulation, mut augmented, mut neighbours) = match (&slopes, &lifted) {
         _ if closed_convex => {
-            let triangulation = closed::envelope_triangulation(&planes)?;
-            timings.delaunay = ms(stage);
-            (triangulation, None, NeighbourStats::default())
+            timings.delaunay = ms(hull_stage);
+            (
+                envelope.unwrap_or_default(),
+                None,
+                NeighbourStats::default(),
+            )
         }
         // Convex everywhere: the envelope's own structure, computed in slope space.
         (Some(slopes), Some(lifted)) => {
