@@ -51,9 +51,9 @@ use glam::DVec3;
 use crate::pattern::SplitMix64;
 use crate::planes::Plane;
 use crate::tolerance::{
-    KICK_REPAIR_PASSES, MAX_PLANE_ADJUST_ROUNDS, MAX_PLANE_TILT_DEGREES, MAX_REACH, PLANE_KICKS,
-    PLANE_OFFSET_STEPS, PLANE_TILT_DIRECTIONS, PLANE_TILT_STEPS_DEGREES, REACH_GAIN,
-    RESCUE_TILT_STEPS_DEGREES,
+    KICK_REPAIR_PASSES, MAX_PLANE_ADJUST_ROUNDS, MAX_PLANE_TILT_DEGREES, MAX_REACH,
+    PLANE_ADJUST_BUDGET, PLANE_KICKS, PLANE_OFFSET_STEPS, PLANE_TILT_DIRECTIONS,
+    PLANE_TILT_STEPS_DEGREES, REACH_GAIN, RESCUE_TILT_STEPS_DEGREES,
 };
 use crate::triangulation::DualTriangulation;
 use crate::validity_flips::{affected_points, Journal, State};
@@ -84,7 +84,10 @@ pub(crate) fn adjust_planes(
     // A facet whose repair failed is tried again only after a kept move changed its
     // neighbourhood.
     let mut retry = vec![true; judged];
-    for _ in 0..MAX_PLANE_ADJUST_ROUNDS {
+    // A bound on the work, counted (so the result stays deterministic), not timed: where
+    // tilts cannot help (a developable surface with random seeds) the search stops there.
+    let budget = PLANE_ADJUST_BUDGET * judged;
+    'rounds: for _ in 0..MAX_PLANE_ADJUST_ROUNDS {
         let queue: Vec<u32> = (0..judged as u32)
             .filter(|&i| state.invalid[i as usize] && retry[i as usize])
             .collect();
@@ -94,6 +97,10 @@ pub(crate) fn adjust_planes(
         retry.iter_mut().for_each(|r| *r = false);
         let mut kept = 0;
         for i in queue {
+            if state.plane_changes > budget {
+                stats.tilts += kept;
+                break 'rounds;
+            }
             // A tilt can make a flip worth while and the other way round: both are tried.
             if state.invalid[i as usize]
                 && (try_tilts(&mut state, &exact, &spacing, i)
@@ -119,6 +126,9 @@ pub(crate) fn adjust_planes(
     }
     // What the greedy moves cannot repair, random restarts around it may.
     for i in 0..judged as u32 {
+        if state.plane_changes > budget {
+            break;
+        }
         if state.invalid[i as usize] && kick(&mut state, &exact, &spacing, i) {
             stats.tilts += 1;
         }

@@ -119,6 +119,9 @@ pub(crate) struct State<'a> {
     /// facet reaching farther counts as invalid (the plane adjustment pulls runaway vertices
     /// in; exact planes leave them, and the report names them).
     reach_limit: Option<Vec<f64>>,
+    /// How many planes [`State::set_plane`] replaced (tried or kept): the plane adjustment's
+    /// measure of work.
+    pub(crate) plane_changes: usize,
 }
 
 /// The old values of what a tentative sequence of changes replaced, in order.
@@ -183,6 +186,7 @@ impl<'a> State<'a> {
             overlaps: vec![Vec::new(); points],
             journal: None,
             reach_limit: None,
+            plane_changes: 0,
         };
         state.invalid = state.initial_verdicts(judged);
         state
@@ -252,6 +256,7 @@ impl<'a> State<'a> {
             journal.planes.push((j, self.planes[j as usize]));
         }
         self.planes.to_mut()[j as usize] = plane;
+        self.plane_changes += 1;
         let mut fan = Vec::new();
         self.tri.fan(j, self.incident[j as usize], &mut fan);
         for t in fan {
