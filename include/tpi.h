@@ -1274,7 +1274,7 @@ enum TpiStatus tpi_pattern_points(const struct TpiPattern *pattern, double *out,
 /**
  * Creates a NURBS surface from the arrays RhinoCommon hands over.
  *
- * - `degree_u`, `degree_v`: degrees (1 to 15).
+ * - `degree_u`, `degree_v`: degrees (1 to 11, Rhino's limit).
  * - `count_u`, `count_v`: control point counts (count > degree).
  * - `knots_u` (`knots_u_len` doubles) and `knots_v`: knot vectors in **Rhino's convention**,
  *   count + degree - 1 knots each, as `NurbsSurface.KnotsU`/`KnotsV` give them; the domain is

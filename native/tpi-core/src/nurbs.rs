@@ -445,7 +445,7 @@ impl NurbsSurface {
                 Some("the degree must be at least 1".to_string())
             } else if degree > MAX_NURBS_DEGREE {
                 Some(format!(
-                    "degrees above {MAX_NURBS_DEGREE} are not supported"
+                    "degree {degree} is above {MAX_NURBS_DEGREE}, the largest supported (Rhino's limit)"
                 ))
             } else if degree >= count {
                 Some(
