@@ -9,7 +9,8 @@ Objects, in this order:
   2. a sphere (a Brep of one face: closed in u, poles at both ends of v);
   3. a box (a polysurface of 6 faces, 12 shared edges);
   4. a plane trimmed by a circle (a Brep face with a curved outer loop);
-  5. a capped cylinder (an Extrusion: one closed wall, two trimmed caps).
+  5. a capped cylinder (an Extrusion: one closed wall, two trimmed caps);
+  6. a slab with a round hole (an Extrusion with an inner profile: caps with a hole).
 
 Usage: make_example_3dm.py [OUT.3dm]
 """
@@ -53,6 +54,14 @@ def build():
     model.Objects.AddBrep(rhino3dm.Brep.CreateTrimmedPlane(rhino3dm.Plane.WorldXY(), circle))
     cylinder = rhino3dm.Cylinder(rhino3dm.Circle(rhino3dm.Point3d(6000, 6000, 0), 500.0), 2000.0)
     model.Objects.AddExtrusion(rhino3dm.Extrusion.CreateCylinderExtrusion(cylinder, True, True))
+    outline = rhino3dm.Polyline(5)
+    for x, y in ((0, 0), (2000, 0), (2000, 1000), (0, 1000), (0, 0)):
+        outline.Add(x, y, 0)
+    slab = rhino3dm.Extrusion.Create(outline.ToNurbsCurve(), 300.0, True)
+    # The inner profile is taken in the profile plane's coordinates (the world's XY here).
+    slab.AddInnerProfile(rhino3dm.Circle(rhino3dm.Point3d(1000, 500, 0), 200.0).ToNurbsCurve())
+    slab.Translate(rhino3dm.Vector3d(8000, 0, 0))
+    model.Objects.AddExtrusion(slab)
     return model
 
 

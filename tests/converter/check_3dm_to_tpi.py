@@ -5,7 +5,7 @@ native/tpi-core/tests/converter_3dm.rs checks against tpi-core.
 Usage: check_3dm_to_tpi.py --out DIR [--seed N] [--samples N]
 
 Builds the model of samples/make_example_3dm.py (a NURBS dome, a degree 7 x 5 rational surface,
-a sphere, a box, a trimmed plane, a capped cylinder; millimetres), writes it to DIR/model.3dm,
+a sphere, a box, a trimmed plane, a capped cylinder, a slab with a hole; millimetres), writes it to DIR/model.3dm,
 converts it into DIR/plain (default options) and DIR/trims (--with-trims), then reads the .3dm
 again (independently of the converter) and, for every face in the index, evaluates the source
 geometry with rhino3dm at random parameters of the written NURBS surface's domain: bare surfaces

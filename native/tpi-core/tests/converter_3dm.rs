@@ -1,6 +1,6 @@
 //! tools/3dm_to_tpi.py (.3dm in, without Rhino): tests/converter/check_3dm_to_tpi.py builds a
 //! model with rhino3dm (a NURBS dome, a degree 7 x 5 rational surface, a sphere, a box, a plane
-//! trimmed by a circle, a capped cylinder; millimetres), converts it, and records rhino3dm's
+//! trimmed by a circle, a capped cylinder, a slab with a hole; millimetres), converts it, and records rhino3dm's
 //! points of the source geometry; the surface files are read here with tpi-core and must agree.
 //!
 //! The script runs at test time with `python3` (or the interpreter named by TPI_PYTHON); a
@@ -115,7 +115,7 @@ fn faces(index: &Value) -> &Vec<Value> {
 #[test]
 fn every_face_evaluates_like_rhino3dm() {
     let run = run();
-    assert_eq!(run.expected.faces.len(), 13);
+    assert_eq!(run.expected.faces.len(), 20);
     let mut worst = 0.0f64;
     for face in &run.expected.faces {
         let (spec, model) = model(&face.file);
@@ -207,11 +207,12 @@ fn a_box_has_twelve_shared_edges() {
         assert_ne!(start, end);
     }
     assert!(per_face.values().all(|&n| n == 4), "{per_face:?}");
-    // The cylinder's two circular edges are shared by the wall and a cap; its wall and the
-    // sphere each have one seam.
+    // The cylinder's two circular edges are shared by the wall and a cap; the slab's 4 walls
+    // share 4 vertical edges, 8 with the caps, and its hole's wall 2 circles with the caps.
+    // The sphere, the cylinder and the hole's wall each have one seam.
     let others = index["shared_edges"].as_array().unwrap().len() - 12;
-    assert_eq!(others, 2);
-    assert_eq!(index["seams"].as_array().unwrap().len(), 2);
+    assert_eq!(others, 2 + 12 + 2);
+    assert_eq!(index["seams"].as_array().unwrap().len(), 3);
 }
 
 /// Signed area of a closed polyline.
@@ -241,7 +242,7 @@ fn trims_are_the_projected_edges() {
         if plain["trimmed"] == true {
             assert_eq!(written["trim"], plain["trim"], "{file}");
             let outer = polyline(&plain["trim"]["outer"]);
-            assert!(outer.len() >= 16, "{file}");
+            assert!(outer.len() >= 4, "{file}");
             assert!(
                 area(&outer) > 0.0,
                 "{file}: outer loop not counter-clockwise"
@@ -257,20 +258,43 @@ fn trims_are_the_projected_edges() {
     // The plane trimmed by the circle of radius 800 mm around (3000, 7000, 0).
     let face = faces(&run.plain).iter().find(|f| f["object"] == 4).unwrap();
     assert_eq!(face["trimmed"], true);
-    let (_, model) = model(face["file"].as_str().unwrap());
+    let (_, plane) = model(face["file"].as_str().unwrap());
+    assert!(polyline(&face["trim"]["outer"]).len() >= 16);
     for [u, v] in polyline(&face["trim"]["outer"]) {
-        let p = model.point_at(u, v);
+        let p = plane.point_at(u, v);
         let radius = (p - DVec3::new(3000.0, 7000.0, 0.0)).length();
         assert!(
             (radius - 800.0).abs() < 1e-6,
             "({u}, {v}) -> {p}: radius {radius}"
         );
     }
-    // The caps of the cylinder are trimmed, its wall and the box faces are not.
+    // The caps of the cylinder and of the slab are trimmed, the walls and the box faces not.
     let trimmed: Vec<(u64, u64)> = faces(&run.plain)
         .iter()
         .filter(|f| f["trimmed"] == true)
         .map(|f| (f["object"].as_u64().unwrap(), f["face"].as_u64().unwrap()))
         .collect();
-    assert_eq!(trimmed, [(4, 0), (5, 1), (5, 2)]);
+    assert_eq!(trimmed, [(4, 0), (5, 1), (5, 2), (6, 5), (6, 6)]);
+    // The slab's caps: the whole rectangle as the outer loop, one hole of radius 200 mm
+    // around (9000, 500).
+    for face in faces(&run.plain)
+        .iter()
+        .filter(|f| f["object"] == 6 && f["trimmed"] == true)
+    {
+        let (_, slab) = model(face["file"].as_str().unwrap());
+        let outer = polyline(&face["trim"]["outer"]);
+        assert_eq!(outer.len(), 4);
+        let domain = slab.domain();
+        assert!((area(&outer) - domain.u.length() * domain.v.length()).abs() < 1e-6);
+        let holes = face["trim"]["holes"].as_array().unwrap();
+        assert_eq!(holes.len(), 1);
+        for [u, v] in polyline(&holes[0]) {
+            let p = slab.point_at(u, v);
+            let radius = ((p.x - 9000.0).powi(2) + (p.y - 500.0).powi(2)).sqrt();
+            assert!(
+                (radius - 200.0).abs() < 1e-6,
+                "({u}, {v}) -> {p}: radius {radius}"
+            );
+        }
+    }
 }
