@@ -91,6 +91,14 @@ fn discretise_outputs_say_the_units() {
         .unwrap()
         .contains("\n# units: unitless"));
 
+    let info = tpi(&["info", &surface]);
+    assert!(info.status.success(), "{}", stderr(&info));
+    assert!(
+        String::from_utf8_lossy(&info.stdout).contains("\n  units: mm\n"),
+        "{}",
+        String::from_utf8_lossy(&info.stdout)
+    );
+
     let bad = dome(&dir, r#", "units": "furlongs""#);
     let out = tpi(&["discretise", "--surface", &bad, "--pattern", "hex:6x6"]);
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
