@@ -194,8 +194,9 @@ def face_loops(brep, face, projector, samples, label):
                 if previous is None:
                     previous = projector.grid_start(p)
                 uv = projector.project(p, previous)
-                # The first sample of a trim can belong to the other side of a seam.
-                if poly == [] or k == 0:
+                # The first sample of a loop is also tried from a grid search (a loop's
+                # previous point says nothing about where it starts).
+                if not poly:
                     alt = projector.project(p, projector.grid_start(p))
                     if dist2(projector.point(*alt), p) < dist2(projector.point(*uv), p) - 1e-24:
                         uv = alt
@@ -318,6 +319,7 @@ def convert(path, out_dir, with_trims=False, samples=16):
                     "trim_written": trim is not None and with_trims,
                     "trim": trim,
                     "units": units,
+                    "neighbours": [],
                 }
             )
         if brep is not None:
@@ -328,6 +330,10 @@ def convert(path, out_dir, with_trims=False, samples=16):
                 entry = {"object": index, "edge": e, "uses": users, "start": ends[0], "end": ends[1]}
                 if len(distinct) >= 2:
                     shared.append(entry)
+                    for f in distinct:
+                        faces[f]["neighbours"].extend(
+                            {"face": g, "edge": e} for g in distinct if g != f
+                        )
                 elif len(users) >= 2:
                     seams.append(entry)
     index_doc = {

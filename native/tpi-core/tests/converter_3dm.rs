@@ -207,6 +207,13 @@ fn a_box_has_twelve_shared_edges() {
         assert_ne!(start, end);
     }
     assert!(per_face.values().all(|&n| n == 4), "{per_face:?}");
+    for &f in &box_faces {
+        let neighbours = faces(index)[f as usize]["neighbours"].as_array().unwrap();
+        assert_eq!(neighbours.len(), 4, "face {f}");
+        assert!(neighbours
+            .iter()
+            .all(|n| box_faces.contains(&n["face"].as_u64().unwrap())));
+    }
     // The cylinder's two circular edges are shared by the wall and a cap; the slab's 4 walls
     // share 4 vertical edges, 8 with the caps, and its hole's wall 2 circles with the caps.
     // The sphere, the cylinder and the hole's wall each have one seam.
