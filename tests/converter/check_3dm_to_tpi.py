@@ -80,7 +80,26 @@ def main():
             samples.append({"u": u, "v": v, "point": [p.X, p.Y, p.Z]})
         faces.append({"file": face["file"], "samples": samples})
 
+    # Units: one small model per unit system, converted; what the surface file says.
+    unit_cases = []
+    for name in ("Inches", "Meters", "Microns", "Yards", "None", "Parsecs"):
+        small = rhino3dm.File3dm()
+        small.Settings.ModelUnitSystem = getattr(rhino3dm.UnitSystem, name)
+        small.Objects.AddSurface(example.nurbs_surface((2, 2), (3, 3), False, lambda s, t: s * t))
+        path = os.path.join(args.out, "units-{}.3dm".format(name))
+        if not small.Write(path, 8):
+            raise SystemExit("cannot write " + path)
+        doc, _ = converter.convert(path, os.path.join(args.out, "units-" + name))
+        unit_cases.append(
+            {
+                "rhino": name,
+                "index_units": doc["units"],
+                "file": os.path.join("units-" + name, doc["faces"][0]["file"]),
+            }
+        )
+
     document = {
+        "unit_cases": unit_cases,
         "rhino3dm": rhino3dm.__version__,
         "plain_index": os.path.relpath(plain_index, args.out),
         "trims_index": os.path.relpath(trims_index, args.out),

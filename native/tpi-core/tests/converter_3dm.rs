@@ -20,9 +20,17 @@ const POINT_TOLERANCE: f64 = 1e-9;
 
 #[derive(Deserialize)]
 struct Expected {
+    unit_cases: Vec<UnitCase>,
     plain_index: String,
     trims_index: String,
     faces: Vec<ExpectedFace>,
+}
+
+#[derive(Deserialize)]
+struct UnitCase {
+    rhino: String,
+    index_units: Option<String>,
+    file: String,
 }
 
 #[derive(Deserialize)]
@@ -174,6 +182,32 @@ fn units_degrees_poles_and_closedness_are_carried() {
     let cylinder = by_object(5);
     assert_eq!(cylinder.len(), 3);
     assert_eq!(cylinder[0]["closed"], serde_json::json!([true, false]));
+}
+
+#[test]
+fn every_rhino_unit_system_tpi_knows_is_carried_and_others_are_unitless() {
+    let cases = &run().expected.unit_cases;
+    let expected = [
+        ("Inches", Some(Units::Inches)),
+        ("Meters", Some(Units::Metres)),
+        ("Microns", Some(Units::Microns)),
+        ("Yards", Some(Units::Yards)),
+        ("None", None),
+        ("Parsecs", None),
+    ];
+    assert_eq!(cases.len(), expected.len());
+    for (case, (rhino, units)) in cases.iter().zip(expected) {
+        assert_eq!(case.rhino, rhino);
+        assert_eq!(
+            case.index_units.as_deref(),
+            units.map(Units::short_name),
+            "{rhino}"
+        );
+        let text = std::fs::read_to_string(run().dir.join(&case.file)).unwrap();
+        let spec = SurfaceSpec::from_json(&text, &case.file).unwrap();
+        assert_eq!(spec.units(), units, "{rhino}");
+        assert_eq!(spec.build().unwrap().units(), units, "{rhino}");
+    }
 }
 
 #[test]
