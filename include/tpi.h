@@ -367,6 +367,11 @@ typedef enum TpiDiagnosticKind {
      * The point has (nearly) zero Gaussian curvature.
      */
     TPI_DIAGNOSTIC_KIND_FLAT_POINT = 7,
+    /**
+     * Neighbouring facets with coincident tangent planes (flat or developable) were separated
+     * by the bisector of their seeds (point is TPI_NO_POINT).
+     */
+    TPI_DIAGNOSTIC_KIND_COINCIDENT_PLANES = 8,
 } TpiDiagnosticKind;
 
 /**

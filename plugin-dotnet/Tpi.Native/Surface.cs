@@ -104,7 +104,7 @@ namespace Tpi.Native
             return Created(s, h, "tpi_surface_new_egg_crate");
         }
 
-        /// <summary>z = sqrt(r^2 - x^2) (developable: discretising it fails).</summary>
+        /// <summary>z = sqrt(r^2 - x^2) (developable: facets on one ruling are separated by the bisectors of their seeds).</summary>
         public static Surface Cylinder(double radius, double x0, double x1, double y0, double y1)
         {
             SurfaceHandle h;
@@ -112,7 +112,7 @@ namespace Tpi.Native
             return Created(s, h, "tpi_surface_new_cylinder");
         }
 
-        /// <summary>z = p x + q y + c0 (flat: discretising it fails).</summary>
+        /// <summary>z = p x + q y + c0 (flat: the facets are the Voronoi cells of their seeds).</summary>
         public static Surface Plane(double p, double q, double c0, double x0, double x1, double y0, double y1)
         {
             SurfaceHandle h;

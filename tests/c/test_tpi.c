@@ -376,8 +376,9 @@ static void test_analytic_surfaces(void) {
         {make_sphere_square, height_sphere, TPI_STATUS_OK},
         {make_ellipsoid, height_ellipsoid, TPI_STATUS_OK},
         {make_egg_crate, height_egg_crate, TPI_STATUS_OK},
-        {make_cylinder, height_cylinder, TPI_STATUS_DEGENERATE},
-        {make_plane, height_plane, TPI_STATUS_DEGENERATE},
+        /* Flat and developable: coincident planes separated by their seeds' bisectors. */
+        {make_cylinder, height_cylinder, TPI_STATUS_OK},
+        {make_plane, height_plane, TPI_STATUS_OK},
     };
     TpiPattern *pattern = NULL;
     CHECK_OK(tpi_pattern_new_hex(6, 6, &pattern));
@@ -1105,6 +1106,84 @@ static void test_units(void) {
     tpi_surface_free(plain);
 }
 
+/* A rational sphere of one face (closed in u, poles at both ends of v, as Rhino makes it):
+ * the mesh is closed. Checked here from the arrays: every directed edge of a facet loop is
+ * run backwards by exactly one other loop, and V - E + F = 2; every vertex lies on or behind
+ * every seed's tangent plane (the sphere's closed form: the plane at p is p . x = r^2). */
+static void test_closed_sphere(void) {
+    const double w = 0.70710678118654752440;
+    const double circle[9][3] = {{1, 0, 1}, {1, 1, w}, {0, 1, 1}, {-1, 1, w}, {-1, 0, 1},
+                                 {-1, -1, w}, {0, -1, 1}, {1, -1, w}, {1, 0, 1}};
+    const double meridian[5][3] = {{0, -1, 1}, {1, -1, w}, {1, 0, 1}, {1, 1, w}, {0, 1, 1}};
+    const double r = 2.5;
+    double points[9 * 5 * 3], weights[9 * 5];
+    for (int i = 0; i < 9; i++) {
+        for (int j = 0; j < 5; j++) {
+            double *p = &points[3 * (5 * i + j)];
+            p[0] = r * circle[i][0] * meridian[j][0];
+            p[1] = r * circle[i][1] * meridian[j][0];
+            p[2] = r * meridian[j][1];
+            weights[5 * i + j] = circle[i][2] * meridian[j][2];
+        }
+    }
+    const double knots_u[10] = {0, 0, 1, 1, 2, 2, 3, 3, 4, 4};
+    const double knots_v[6] = {0, 0, 1, 1, 2, 2};
+    TpiSurface *s = NULL;
+    CHECK_OK(tpi_surface_new_nurbs(2, 2, 9, 5, knots_u, 10, knots_v, 6, points, 135, weights, 45, &s));
+    TpiPattern *p = NULL;
+    CHECK_OK(tpi_pattern_new_from_spec("random:200:seed=3", &p));
+    TpiDiscretisation *d = NULL;
+    CHECK_OK(tpi_discretise(s, p, NULL, &d));
+    size_t facets = 0, vertex_count = 0, needed = 0, total = 0;
+    CHECK_OK(tpi_discretisation_facet_count(d, &facets));
+    CHECK_OK(tpi_discretisation_vertex_count(d, &vertex_count));
+    CHECK(facets == 200);
+    uint32_t *sizes = malloc(facets * sizeof *sizes);
+    CHECK_OK(tpi_discretisation_facet_sizes(d, sizes, facets, &needed));
+    for (size_t f = 0; f < facets; f++) total += sizes[f];
+    uint32_t *indices = malloc(total * sizeof *indices);
+    CHECK_OK(tpi_discretisation_facet_indices(d, indices, total, &needed));
+    double *xyz = malloc(3 * vertex_count * sizeof *xyz);
+    CHECK_OK(tpi_discretisation_vertices(d, xyz, 3 * vertex_count, &needed));
+    TpiSeed *seeds = malloc(facets * sizeof *seeds);
+    CHECK_OK(tpi_discretisation_seeds(d, seeds, facets, &needed));
+    /* Directed edges (a, b): each must meet its reverse exactly once. */
+    size_t unmatched = 0, start = 0;
+    for (size_t f = 0; f < facets; f++) {
+        for (uint32_t k = 0; k < sizes[f]; k++) {
+            uint32_t a = indices[start + k], b = indices[start + (k + 1) % sizes[f]];
+            size_t reverse = 0, other = 0;
+            for (size_t g = 0; g < facets; g++) {
+                for (uint32_t m = 0; m < sizes[g]; m++) {
+                    uint32_t c = indices[other + m], e = indices[other + (m + 1) % sizes[g]];
+                    if (c == b && e == a) reverse++;
+                }
+                other += sizes[g];
+            }
+            if (reverse != 1) unmatched++;
+        }
+        start += sizes[f];
+    }
+    CHECK(unmatched == 0);
+    CHECK((long)vertex_count - (long)(total / 2) + (long)facets == 2);
+    double worst = -1;
+    for (size_t v = 0; v < vertex_count; v++) {
+        for (size_t f = 0; f < facets; f++) {
+            const double *q = seeds[f].point, *x = &xyz[3 * v];
+            double ahead = (q[0] * x[0] + q[1] * x[1] + q[2] * x[2]) / r - r;
+            if (ahead > worst) worst = ahead;
+        }
+    }
+    CHECK(worst <= 1e-9 * r);
+    free(sizes);
+    free(indices);
+    free(xyz);
+    free(seeds);
+    tpi_discretisation_free(d);
+    tpi_pattern_free(p);
+    tpi_surface_free(s);
+}
+
 int main(void) {
     test_version_and_status_names();
     test_last_error();
@@ -1118,6 +1197,7 @@ int main(void) {
     test_dome_discretisation();
     test_options_in_use();
     test_adjusted_planes();
+    test_closed_sphere();
     test_diagnostics();
     test_discrete_surface();
     test_free_null();

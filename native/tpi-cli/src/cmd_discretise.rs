@@ -3,7 +3,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use tpi_core::{discretise, Discretisation, DiscretiseOptions, PlaneMode, SurfaceModel, TpiError};
+use tpi_core::{
+    discretise, Discretisation, DiscretiseOptions, MeshTopology, PlaneMode, SurfaceModel, TpiError,
+};
 
 use crate::error::CliError;
 use crate::input::{load_pattern, load_surface, PatternSource};
@@ -293,6 +295,13 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
     if let Some(c) = &self_intersection {
         eprintln!("{}", crate::selfx::warning(c));
     }
+    if result.topology == MeshTopology::DISC {
+        let layout = tpi_core::surface_layout(&surface);
+        if let Some(k) = (0..2).find(|&k| layout.closed[k]) {
+            let direction = ["u", "v"][k];
+            eprintln!("warning: the surface is closed in {direction}, and it was discretised as an open patch: the mesh leaves its seam open (only closed surfaces with poles that are convex at every seed give closed meshes so far)");
+        }
+    }
     if let Some(q) = result.quality.as_ref().filter(|q| q.invalid_facets > 0) {
         eprintln!("{}", summary::invalid_warning(q));
         if opts.strict {
@@ -326,6 +335,7 @@ fn core_error(e: &TpiError, surface: &str, pattern: &PatternSource) -> CliError 
     match e {
         TpiError::PatternPointOutOfRange { .. }
         | TpiError::DuplicatePatternPoint { .. }
+        | TpiError::SameSurfacePoint { .. }
         | TpiError::TooFewPatternPoints { .. }
         | TpiError::CollinearPattern { .. } => CliError::core(&pattern.label, e),
         _ => CliError::core(surface, e),

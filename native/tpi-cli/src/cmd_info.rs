@@ -176,6 +176,28 @@ pub(crate) fn describe(
         g(d.v.min),
         g(d.v.max)
     );
+    let layout = tpi_core::surface_layout(model);
+    let mut shape: Vec<String> = Vec::new();
+    for (k, name) in ["u", "v"].iter().enumerate() {
+        if layout.closed[k] {
+            shape.push(format!("closed in {name}"));
+        }
+    }
+    for (k, side) in ["u = u0", "u = u1", "v = v0", "v = v1"].iter().enumerate() {
+        if layout.poles[k] {
+            shape.push(format!("pole at {side}"));
+        }
+    }
+    if !shape.is_empty() {
+        let what = if layout.is_sphere() {
+            " (a sphere: discretised as a closed mesh where it is convex)"
+        } else if layout.closed.contains(&true) {
+            " (discretised as an open patch: its seam stays open)"
+        } else {
+            ""
+        };
+        let _ = writeln!(s, "  layout: {}{what}", shape.join(", "));
+    }
     let [lo, hi] = sampled_bounding_box(model, grid);
     let _ = writeln!(
         s,

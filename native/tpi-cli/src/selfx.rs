@@ -5,7 +5,7 @@
 //! grid's chord error. Candidate pairs come from a sweep over the triangles' x extents.
 
 use glam::DVec3;
-use tpi_core::{Surface, SurfaceModel};
+use tpi_core::{surface_layout, Surface, SurfaceModel};
 
 /// Samples per side of the default check.
 pub(crate) const DEFAULT_SAMPLES: usize = 41;
@@ -50,6 +50,24 @@ pub(crate) fn find(surface: &SurfaceModel, n: usize) -> Option<Crossing> {
             (l.min(*p), h.max(*p))
         });
     let eps = 1e-9 * (scale.1 - scale.0).length().max(f64::MIN_POSITIVE);
+    // Cells meet across the seam of a closed direction, and all cells of a row along a pole
+    // meet at the pole: neither is a crossing.
+    let layout = surface_layout(surface);
+    let cells = n - 1;
+    let near = |a: usize, b: usize, closed: bool| {
+        let d = a.abs_diff(b);
+        d <= 1 || (closed && d == cells - 1)
+    };
+    let pole_row = |i: usize, j: usize| {
+        (layout.poles[0] && i == 0)
+            || (layout.poles[1] && i == cells - 1)
+            || (layout.poles[2] && j == 0)
+            || (layout.poles[3] && j == cells - 1)
+    };
+    let neighbours = |ia: usize, ja: usize, ib: usize, jb: usize| {
+        (near(ia, ib, layout.closed[0]) && near(ja, jb, layout.closed[1]))
+            || (pole_row(ia, ja) && pole_row(ib, jb))
+    };
     for (k, &a) in order.iter().enumerate() {
         let (ia, ja, ta) = triangles[a];
         let reach = hi(&ta) + eps;
@@ -59,7 +77,7 @@ pub(crate) fn find(surface: &SurfaceModel, n: usize) -> Option<Crossing> {
                 break;
             }
             // Neighbouring cells share points: touching there is not a crossing.
-            if ia.abs_diff(ib) <= 1 && ja.abs_diff(jb) <= 1 {
+            if neighbours(ia, ja, ib, jb) {
                 continue;
             }
             if !boxes_overlap(&ta, &tb, eps) {

@@ -57,6 +57,15 @@ pub enum Diagnostic {
         /// Its Gaussian curvature.
         gaussian_curvature: f64,
     },
+    /// Neighbouring facets whose tangent planes coincide (a flat region, or one ruling of a
+    /// developable surface) were separated by the perpendicular bisector of their seeds in
+    /// that plane: their Voronoi diagram, the limit of TPI as the curvature vanishes
+    /// ([`crate::tolerance::PLANE_COINCIDENCE`]). Their facets are exact; one diagnostic per
+    /// discretisation.
+    CoincidentPlanes {
+        /// How many neighbour pairs were separated so.
+        pairs: u32,
+    },
 }
 
 impl Diagnostic {
@@ -70,7 +79,7 @@ impl Diagnostic {
             Diagnostic::OpenFacet { point, .. }
             | Diagnostic::CornerUnreachable { point, .. }
             | Diagnostic::FlatPoint { point, .. } => vec![*point],
-            Diagnostic::CornerClaims { .. } => Vec::new(),
+            Diagnostic::CornerClaims { .. } | Diagnostic::CoincidentPlanes { .. } => Vec::new(),
         }
     }
 }

@@ -18,6 +18,7 @@ use serde::ser::{SerializeMap, SerializeStruct};
 use serde::{Serialize, Serializer};
 
 use crate::adjusted_planes::{adjust_planes, tilt_and_offset};
+use crate::closed;
 use crate::diagnostics::Diagnostic;
 use crate::error::TpiError;
 use crate::facets::{
@@ -156,6 +157,36 @@ pub struct Discretisation {
     pub timings: Timings,
     /// Length units of the surface ([`Surface::units`]), `None` when unitless.
     pub units: Option<crate::units::Units>,
+    /// The topology the mesh must have: a disc, or a closed sphere on a closed surface.
+    pub topology: MeshTopology,
+}
+
+/// The topology a mesh must have ([`Discretisation::sanity_check`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub struct MeshTopology {
+    /// V - E + F.
+    pub euler: i64,
+    /// Loops of boundary edges.
+    pub boundary_loops: usize,
+}
+
+impl MeshTopology {
+    /// A disc: Euler characteristic 1, one boundary loop.
+    pub const DISC: MeshTopology = MeshTopology {
+        euler: 1,
+        boundary_loops: 1,
+    };
+    /// A closed sphere: Euler characteristic 2, no boundary.
+    pub const SPHERE: MeshTopology = MeshTopology {
+        euler: 2,
+        boundary_loops: 0,
+    };
+}
+
+impl Default for MeshTopology {
+    fn default() -> Self {
+        MeshTopology::DISC
+    }
 }
 
 impl Discretisation {
@@ -427,6 +458,21 @@ pub(crate) fn run(
     } = sample(surface, pattern, options)?;
     timings.samples = ms(start);
 
+    // A closed strictly convex surface (a sphere, an ellipsoid): the envelope is a closed
+    // polytope, its dual the hull of the dual points.
+    let layout = closed::surface_layout(surface);
+    let closed_convex =
+        layout.is_sphere() && convex_side.iter().all(|&s| s != 0 && s == convex_side[0]);
+    if layout.is_sphere() {
+        let regular: Vec<bool> = if geometry.len() == uv.len() {
+            geometry.iter().map(|g| g.regular).collect()
+        } else {
+            vec![true; uv.len()]
+        };
+        let weld = options.weld_tolerance * diagonal;
+        check_closed_seeds(surface, &layout, &uv, &seeds, &regular, weld)?;
+    }
+
     // Candidates and true neighbours.
     let stage = Instant::now();
     check_not_collinear(&plane_uv)?;
@@ -438,6 +484,11 @@ pub(crate) fn run(
         any_curvature: false,
     };
     let (mut triangulation, mut augmented, mut neighbours) = match (&slopes, &lifted) {
+        _ if closed_convex => {
+            let triangulation = closed::envelope_triangulation(&planes)?;
+            timings.delaunay = ms(stage);
+            (triangulation, None, NeighbourStats::default())
+        }
         // Convex everywhere: the envelope's own structure, computed in slope space.
         (Some(slopes), Some(lifted)) => {
             let mut triangulation = DualTriangulation::delaunay(slopes)?;
@@ -505,6 +556,13 @@ pub(crate) fn run(
     };
     let mut adjustment = None;
     let (mesh, triangulation) = match &mut augmented {
+        None if closed_convex => {
+            let identity: Vec<u32> = (0..uv.len() as u32).collect();
+            (
+                build_closed_facets(&triangulation, &planes, uv.len(), &identity, &params),
+                triangulation,
+            )
+        }
         None => (
             build_facets(
                 surface,
@@ -598,6 +656,11 @@ pub(crate) fn run(
         plane_adjustments: Vec::new(),
         timings,
         units: surface.units(),
+        topology: if closed_convex {
+            MeshTopology::SPHERE
+        } else {
+            MeshTopology::DISC
+        },
     };
     if let Some(stats) = adjustment {
         neighbours.plane_tilts = stats.tilts;
@@ -734,4 +797,45 @@ fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
         }
     }
     extent
+}
+
+/// On a closed surface with poles: no seed on a pole (its tangent plane is not defined by the
+/// parametrisation) and no two seeds on one surface point (across the seam).
+fn check_closed_seeds(
+    surface: &dyn Surface,
+    layout: &closed::SurfaceLayout,
+    uv: &[[f64; 2]],
+    seeds: &[Seed],
+    regular: &[bool],
+    tolerance: f64,
+) -> Result<(), TpiError> {
+    if let Some(i) = (0..uv.len()).find(|&i| layout.on_pole(surface, uv[i]) || !regular[i]) {
+        return Err(TpiError::InvalidParameter {
+            field: format!("pattern point {i}"),
+            value: if layout.closed[0] { uv[i][1] } else { uv[i][0] },
+            reason: "it lies on a pole of the closed surface, where the parametrisation defines no tangent plane; move it off the pole".into(),
+        });
+    }
+    let mut order: Vec<usize> = (0..seeds.len()).collect();
+    let key = |i: usize| seeds[i].point.to_array();
+    order.sort_unstable_by(|&a, &b| {
+        key(a)
+            .partial_cmp(&key(b))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    for (k, &i) in order.iter().enumerate() {
+        for &j in &order[k + 1..] {
+            if seeds[j].point.x - seeds[i].point.x > tolerance {
+                break;
+            }
+            if seeds[i].point.distance(seeds[j].point) <= tolerance {
+                return Err(TpiError::SameSurfacePoint {
+                    index: i.max(j),
+                    duplicate_of: i.min(j),
+                    place: "across the seam of the closed surface".into(),
+                });
+            }
+        }
+    }
+    Ok(())
 }

@@ -166,6 +166,18 @@ pub enum TpiError {
         /// Their distance in normalised uv.
         distance: f64,
     },
+    /// Two pattern points map to the same surface point: across the seam of a closed surface
+    /// (u = 0 and u = 1), or on a pole. Their tangent planes coincide, and on a closed
+    /// surface only one of them can have a facet.
+    #[error("pattern point {index} lies on the same surface point as pattern point {duplicate_of} ({place})")]
+    SameSurfacePoint {
+        /// The later point.
+        index: usize,
+        /// The earlier point.
+        duplicate_of: usize,
+        /// Where: "across the seam" or "on a pole".
+        place: String,
+    },
     /// Too few pattern points to form a mesh.
     #[error("the pattern has {found} points; at least {needed} are needed")]
     TooFewPatternPoints {

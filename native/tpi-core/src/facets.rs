@@ -26,7 +26,7 @@ use rayon::prelude::*;
 
 use crate::diagnostics::Diagnostic;
 use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
-use crate::planes::{intersect_three, regularised_meeting_point, Plane};
+use crate::planes::{coincident, intersect_three, meeting_point, regularised_meeting_point, Plane};
 use crate::projection::{boundary_parameter, domain_corners, foot, inside_measure};
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
@@ -1131,7 +1131,7 @@ pub(crate) fn build_closed_facets(
             let mut ids = *ids;
             ids.sort_unstable();
             let [a, b, c] = ids.map(|i| &planes[i as usize]);
-            let meeting = intersect_three(a, b, c);
+            let meeting = meeting_point(a, b, c);
             let centroid = (a.point + b.point + c.point) / 3.0;
             // Far vertices (nearly parallel planes, at parabolic lines) are kept exact: a
             // stand-in per edge would leave a hole, and the mesh must stay a disc. They are
@@ -1161,7 +1161,7 @@ pub(crate) fn build_closed_facets(
             let mut sorted = *ids;
             sorted.sort_unstable();
             let [a, b, c] = sorted.map(|i| &planes[i as usize]);
-            let meeting = intersect_three(a, b, c);
+            let meeting = meeting_point(a, b, c);
             let centroid = (a.point + b.point + c.point) / 3.0;
             let distance = meeting.point.distance(centroid);
             let longest = a
@@ -1186,6 +1186,18 @@ pub(crate) fn build_closed_facets(
             }
         })
         .collect();
+    let coincident_pairs = tri
+        .triangles
+        .iter()
+        .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
+        .filter(|&[a, b]| a < b && (b as usize) < real_count)
+        .filter(|&[a, b]| coincident(&planes[a as usize], &planes[b as usize]))
+        .count();
+    if coincident_pairs > 0 {
+        diagnostics.push(Diagnostic::CoincidentPlanes {
+            pairs: coincident_pairs as u32,
+        });
+    }
     let incident = tri.incident_triangles(source.len());
     let chunks: Vec<FacetChunk> = (0..real_count.div_ceil(FACET_CHUNK))
         .into_par_iter()

@@ -21,9 +21,9 @@
 //! the vertices of triangles with a ghost are the mesh's boundary vertices.
 
 use crate::diffgeo::LocalGeometry;
-use crate::planes::Plane;
+use crate::planes::{coincident, Plane};
 use crate::surface::{Surface, SurfaceDerivatives};
-use crate::tolerance::{GHOST_BAND, GHOST_MIN_DEPTH};
+use crate::tolerance::{DEFAULT_FLAT_TOLERANCE, GHOST_BAND, GHOST_FLAT_MIRROR, GHOST_MIN_DEPTH};
 
 /// The depth beyond the side of the ghost of a seed at distance d >= 0 inside it, for mean
 /// spacing h: the mirror distance d from h / 2 on, and d + m (1 - 2 d / h) with
@@ -101,7 +101,20 @@ pub(crate) fn augment(
         // the boundary parameter and the ghost's parameter offset from it.
         let scale_u = (u1 - u0) / extent[0];
         let scale_v = (v1 - v0) / extent[1];
-        let depth = |d: f64| ghost_depth(d, spacing);
+        // A flat seed (a plane, or a ruling of a developable surface) is mirrored exactly
+        // unless it is on its side: where its ghost's plane coincides with its own, their
+        // bisector is the side itself, and neighbouring seeds at different distances from
+        // the side would otherwise end at different depths, in steps.
+        let g = &geometry[i];
+        let largest = g.k1.abs().max(g.k2.abs());
+        let flat = (g.k1 * g.k2).abs() <= DEFAULT_FLAT_TOLERANCE * largest * largest;
+        let depth = |d: f64| {
+            if flat && d >= GHOST_FLAT_MIRROR * spacing {
+                d
+            } else {
+                ghost_depth(d, spacing)
+            }
+        };
         let dx0 = depth(x);
         let dx1 = depth(extent[0] - x);
         let dy0 = depth(y);
@@ -124,26 +137,52 @@ pub(crate) fn augment(
             out.convex_side.push(convex_side[i]);
             out.source.push(i as u32);
         };
+        let mut side_geometry: [Option<LocalGeometry>; 4] = [None; 4];
         for &s in &near {
             let (at, offset) = if s < 2 {
                 ([sides[s].2, v], [sides[s].3, 0.0])
             } else {
                 ([u, sides[s].2], [0.0, sides[s].3])
             };
-            push(sides[s].1, continued(surface, at, offset));
+            side_geometry[s] = continued(surface, at, offset);
+            push(sides[s].1, side_geometry[s]);
         }
         // Corners: across a u side and a v side at once, continued from the corner.
         for &su in near.iter().filter(|&&s| s < 2) {
             for &sv in near.iter().filter(|&&s| s >= 2) {
                 let position = [sides[su].1[0], sides[sv].1[1]];
-                push(
-                    position,
-                    continued(
-                        surface,
-                        [sides[su].2, sides[sv].2],
-                        [sides[su].3, sides[sv].3],
-                    ),
+                let mut g = continued(
+                    surface,
+                    [sides[su].2, sides[sv].2],
+                    [sides[su].3, sides[sv].3],
                 );
+                // Where the seed's plane continues unchanged across one side (a ruling of a
+                // developable surface, or a flat region, crosses it), the corner ghost lies on
+                // the ruling of the other side's ghost and takes its plane: the quadric
+                // continuation would leave the two nearly but not exactly coincident, and
+                // their vertex far away.
+                let seed_plane = &planes[i];
+                let along = |s: usize| {
+                    side_geometry[s].filter(|g| {
+                        coincident(
+                            seed_plane,
+                            &Plane {
+                                point: g.point,
+                                normal: g.normal,
+                            },
+                        )
+                    })
+                };
+                let other = match (along(su), along(sv)) {
+                    (Some(_), None) => side_geometry[sv],
+                    (None, Some(_)) => side_geometry[su],
+                    _ => None,
+                };
+                if let (Some(corner), Some(other)) = (g.as_mut(), other) {
+                    corner.normal = other.normal;
+                    corner.point -= other.normal * other.normal.dot(corner.point - other.point);
+                }
+                push(position, g);
             }
         }
     }

@@ -22,6 +22,7 @@
 mod adjusted_planes;
 mod analytic;
 pub mod benchmark;
+mod closed;
 mod diagnostics;
 mod diffgeo;
 mod discretise;
@@ -29,6 +30,7 @@ mod error;
 mod fabricate;
 mod facets;
 mod ghosts;
+mod hull;
 mod live;
 mod mesh;
 mod neighbours;
@@ -48,11 +50,12 @@ mod units;
 mod validity_flips;
 
 pub use analytic::{AnalyticKind, AnalyticSurface};
+pub use closed::{surface_layout, SurfaceLayout};
 pub use diagnostics::Diagnostic;
 pub use diffgeo::LocalGeometry;
 pub use discretise::{
-    discretise, validate_pattern, Discretisation, DiscretiseOptions, PlaneAdjustment, PlaneMode,
-    Seed, Timings,
+    discretise, validate_pattern, Discretisation, DiscretiseOptions, MeshTopology, PlaneAdjustment,
+    PlaneMode, Seed, Timings,
 };
 pub use error::{
     bound_message, bounded, Direction, Num, TpiError, MAX_COORDINATE, MAX_WEIGHT_RATIO,

@@ -43,8 +43,8 @@ use glam::DVec3;
 use crate::diagnostics::Diagnostic;
 use crate::diffgeo::LocalGeometry;
 use crate::discretise::{
-    plane_adjustments, run, Discretisation, DiscretiseOptions, PipelineState, PlaneMode, Seed,
-    Timings,
+    plane_adjustments, run, Discretisation, DiscretiseOptions, MeshTopology, PipelineState,
+    PlaneMode, Seed, Timings,
 };
 use crate::error::TpiError;
 use crate::facets::{accept_newton, single_triangle_vertex, FootHint, TriangleVertex, VertexKind};
@@ -1298,6 +1298,7 @@ impl State {
             plane_adjustments: adjustments,
             timings: Timings::default(),
             units: surface.units(),
+            topology: MeshTopology::DISC,
         };
         if options.quality_report {
             let mut diagnosed = vec![false; n];
@@ -1406,7 +1407,7 @@ fn renumber_diagnostic(d: &mut Diagnostic, k: u32) {
         Diagnostic::OpenFacet { point, .. }
         | Diagnostic::CornerUnreachable { point, .. }
         | Diagnostic::FlatPoint { point, .. } => shift(point),
-        Diagnostic::CornerClaims { .. } => {}
+        Diagnostic::CornerClaims { .. } | Diagnostic::CoincidentPlanes { .. } => {}
     }
 }
 

@@ -36,8 +36,9 @@ use crate::diffgeo::LocalGeometry;
 use crate::planes::{intersect_three, Plane};
 use crate::predicates::{orient2d, power_illegal};
 use crate::tolerance::{
-    COMPENSATION_TIE_TOLERANCE, CONVEX_METRIC_REGULARISATION, DEGENERATE_SLIVER_FACTOR,
-    ENVELOPE_FLIP_TOLERANCE, GRADIENT_MIN_COS, METRIC_REGULARISATION, SLOPE_FRAME_SAMPLES,
+    COMPENSATION_TIE_TOLERANCE, CONVEX_METRIC_REGULARISATION, DEFAULT_FLAT_TOLERANCE,
+    DEGENERATE_SLIVER_FACTOR, DEVELOPABLE_METRIC_REGULARISATION, ENVELOPE_FLIP_TOLERANCE,
+    GRADIENT_MIN_COS, METRIC_REGULARISATION, SLOPE_FRAME_SAMPLES,
 };
 
 use crate::triangulation::{orient, DualTriangulation, NO_TRIANGLE};
@@ -663,8 +664,11 @@ fn compensation_illegal(
     // Metric G = sum |k| (d.e)(d.e)^T over the four points, in the frame (e1, e2).
     let mut g = [0.0f64; 3];
     let mut largest = 0.0f64;
+    let mut developable = true;
     for point in &geo {
         largest = largest.max(point.k1.abs()).max(point.k2.abs());
+        let k = point.k1.abs().max(point.k2.abs());
+        developable &= (point.k1 * point.k2).abs() <= DEFAULT_FLAT_TOLERANCE * k * k;
         for (kappa, dir) in [(point.k1.abs(), point.d1), (point.k2.abs(), point.d2)] {
             let (x, y) = (dir.dot(e1), dir.dot(e2));
             g[0] += kappa * x * x;
@@ -676,9 +680,15 @@ fn compensation_illegal(
     if !(trace > 0.0) || !trace.is_finite() {
         g = [1.0, 0.0, 1.0];
     } else if input.any_curvature {
-        // The four points' sum of |k| d d^T plus, per point, the isotropic term.
-        g[0] += 4.0 * METRIC_REGULARISATION * largest;
-        g[2] += 4.0 * METRIC_REGULARISATION * largest;
+        // The four points' sum of |k| d d^T plus, per point, the isotropic term; a small one
+        // across a developable quad, whose planes differ only across the rulings.
+        let weight = if developable {
+            DEVELOPABLE_METRIC_REGULARISATION
+        } else {
+            METRIC_REGULARISATION
+        };
+        g[0] += 4.0 * weight * largest;
+        g[2] += 4.0 * weight * largest;
     } else {
         g[0] += CONVEX_METRIC_REGULARISATION * trace;
         g[2] += CONVEX_METRIC_REGULARISATION * trace;

@@ -15,8 +15,25 @@
 //!
 //! The three indices are always processed in ascending order so that the same vertex is
 //! computed bit-identically by every facet that shares it.
+//!
+//! **Coincident planes** (flat regions, the rulings of developable surfaces: [`coincident`])
+//! meet in no line, and TPI alone cannot separate their facets. Their limit as the curvature
+//! vanishes does: on z = e (x^2 + y^2) / 2 the tangent planes of p and q meet above the
+//! perpendicular bisector of p and q, for every e > 0. So where two of a vertex's three planes
+//! coincide, say T_i = T_j, the vertex is T_i ∩ T_k ∩ B_ij with the bisector plane
+//!
+//! ```text
+//! B_ij = {x : m . (x - (p_i + p_j) / 2) = 0},  m = d - n_i (n_i . d),  d = p_j - p_i,
+//! ```
+//!
+//! perpendicular to T_i; where all three coincide it is T_i ∩ B_ij ∩ B_ik, the circumcentre
+//! of the three points in their plane: the facets of a plane are the Voronoi cells of their
+//! seeds ([`meeting_point`]). The edge of two coincident facets lies on their bisector, in
+//! both planes, so the facets stay exactly planar and the mesh closed.
 
 use glam::DVec3;
+
+use crate::tolerance::PLANE_COINCIDENCE;
 
 /// A plane through `point` with unit `normal`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -55,6 +72,37 @@ pub(crate) fn intersect_three(a: &Plane, b: &Plane, c: &Plane) -> ThreePlanePoin
     let rhs_c = c.normal.dot(c.point - centroid);
     let point = centroid + (rhs_a * bc + rhs_b * ca + rhs_c * ab) / determinant;
     ThreePlanePoint { point, determinant }
+}
+
+/// Whether planes `a` and `b` coincide to within [`PLANE_COINCIDENCE`] (module doc).
+pub(crate) fn coincident(a: &Plane, b: &Plane) -> bool {
+    let gap = (b.point - a.point).length();
+    a.normal.cross(b.normal).length() <= PLANE_COINCIDENCE
+        && a.signed_distance(b.point).abs() <= PLANE_COINCIDENCE * gap
+        && b.signed_distance(a.point).abs() <= PLANE_COINCIDENCE * gap
+}
+
+/// The bisector plane B_ab of the points of coincident planes `a` and `b`, perpendicular to
+/// `a` (module doc); a plane with a zero normal when the two points coincide.
+pub(crate) fn bisector(a: &Plane, b: &Plane) -> Plane {
+    let d = b.point - a.point;
+    Plane {
+        point: (a.point + b.point) * 0.5,
+        normal: (d - a.normal * a.normal.dot(d)).normalize_or_zero(),
+    }
+}
+
+/// The vertex of three planes given in ascending index order, with coincident planes
+/// separated by the bisectors of their points (module doc); [`intersect_three`] when no two
+/// coincide. Every pair is tested, so the vertex does not depend on which facet asks.
+pub(crate) fn meeting_point(a: &Plane, b: &Plane, c: &Plane) -> ThreePlanePoint {
+    match (coincident(a, b), coincident(b, c), coincident(a, c)) {
+        (false, false, false) => intersect_three(a, b, c),
+        (true, false, false) => intersect_three(a, c, &bisector(a, b)),
+        (false, true, false) => intersect_three(a, b, &bisector(b, c)),
+        (false, false, true) => intersect_three(a, b, &bisector(a, c)),
+        _ => intersect_three(a, &bisector(a, b), &bisector(a, c)),
+    }
 }
 
 /// The point nearest to `anchor` that minimises the summed squared distances to the three

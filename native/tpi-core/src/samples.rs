@@ -60,7 +60,7 @@ pub(crate) fn sample(
         .iter()
         .map(|&st| domain.from_normalised(st))
         .collect();
-    let (geometry, tangents): (Vec<LocalGeometry>, Vec<[DVec3; 2]>) = uv
+    let (mut geometry, tangents): (Vec<LocalGeometry>, Vec<[DVec3; 2]>) = uv
         .par_iter()
         .map(|&[u, v]| {
             let d = surface.evaluate(u, v);
@@ -85,7 +85,7 @@ pub(crate) fn sample(
         .collect();
     let diagonal = bounding_diagonal(geometry.iter().map(|g| g.point)).max(f64::MIN_POSITIVE);
     let mut diagnostics = Vec::new();
-    let convex_side = classify_curvature(&geometry, diagonal, options, &mut diagnostics)?;
+    let convex_side = classify_curvature(&mut geometry, diagonal, options, &mut diagnostics);
     let plane_uv = scaled_parameters(pattern, &geometry, &domain);
     let seeds: Vec<Seed> = geometry
         .par_iter()
@@ -155,40 +155,32 @@ pub(crate) fn bounding_diagonal(points: impl Iterator<Item = DVec3>) -> f64 {
 }
 
 /// Per point: +1/-1 where strictly convex (the side of the centres of curvature), 0 where
-/// saddle-shaped or flat. Flat points get a diagnostic; a surface flat everywhere is an error.
+/// saddle-shaped or flat. Flat points get a diagnostic. Planar points get zero curvatures, so
+/// that rounding noise does not steer the neighbour metric: the triangulation of a flat
+/// region is then the Delaunay triangulation in the surface's own metric, and its facets the
+/// Voronoi cells of their seeds ([`crate::planes::meeting_point`]).
 fn classify_curvature(
-    geometry: &[LocalGeometry],
+    geometry: &mut [LocalGeometry],
     diagonal: f64,
     options: &DiscretiseOptions,
     diagnostics: &mut Vec<Diagnostic>,
-) -> Result<Vec<i8>, TpiError> {
-    let mut planar = 0usize;
-    let mut flat = 0usize;
+) -> Vec<i8> {
     let mut sides = Vec::with_capacity(geometry.len());
-    for (i, g) in geometry.iter().enumerate() {
+    for (i, g) in geometry.iter_mut().enumerate() {
         let (side, is_planar, is_flat) = curvature_class(g, diagonal, options);
-        planar += usize::from(is_planar);
-        flat += usize::from(is_flat);
         if is_flat {
             diagnostics.push(Diagnostic::FlatPoint {
                 point: i as u32,
                 gaussian_curvature: g.k1 * g.k2,
             });
         }
+        if is_planar {
+            g.k1 = 0.0;
+            g.k2 = 0.0;
+        }
         sides.push(side);
     }
-    if planar == geometry.len() {
-        return Err(TpiError::DegenerateSurface {
-            reason: "the surface is flat at every pattern point: all tangent planes coincide"
-                .into(),
-        });
-    }
-    if flat == geometry.len() {
-        return Err(TpiError::DegenerateSurface {
-            reason: "the Gaussian curvature is zero at every pattern point (a developable surface such as a cylinder): neighbouring tangent planes meet in parallel lines".into(),
-        });
-    }
-    Ok(sides)
+    sides
 }
 
 /// One point's class: (convex side or 0, planar, flat), see [`classify_curvature`].

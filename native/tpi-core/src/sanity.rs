@@ -80,8 +80,9 @@ pub enum SanityError {
         /// What is wrong with it.
         reason: &'static str,
     },
-    /// The mesh is not a disc.
-    #[error("not a disc: Euler characteristic {euler}, {loops} boundary loops")]
+    /// The mesh does not have its expected topology ([`crate::MeshTopology`]: a disc, or a
+    /// closed sphere on a closed surface).
+    #[error("wrong topology: Euler characteristic {euler}, {loops} boundary loops")]
     NotDisc {
         /// V - E + F (vertices counted when some facet uses them).
         euler: i64,
@@ -134,7 +135,8 @@ impl Discretisation {
         let vertices = used.iter().filter(|&&u| u).count();
         let euler = vertices as i64 - edges as i64 + facets as i64;
         let loops = boundary_loops(self.vertices.len(), &boundary);
-        if euler != 1 || loops != 1 {
+        let expected = self.topology;
+        if euler != expected.euler || loops != expected.boundary_loops {
             return Err(SanityError::NotDisc { euler, loops });
         }
         Ok(())

@@ -25,6 +25,26 @@ pub const SANITY_PLANARITY_TOLERANCE: f64 = 1e-9;
 /// the ordinary edges.
 pub const REVERSAL_CHECK_TOLERANCE: f64 = 1e-6;
 
+// ---- read by planes.rs ----
+
+/// Two tangent planes coincide (a flat region, or one ruling of a developable surface) when
+/// the sine of the angle between their normals and the distance of each point from the other
+/// plane, relative to the distance between the two points, are both at most this. Rounding
+/// of one plane's normal at different parameters is about 1e-16; curved neighbours differ by
+/// their spacing times their curvature, far more. Coincident neighbours are separated by the
+/// perpendicular bisector of their points in the plane ([`crate::planes`]).
+pub const PLANE_COINCIDENCE: f64 = 1e-10;
+
+// ---- read by closed.rs ----
+
+/// Two sides of the domain coincide (a closed direction), or one side is a single point (a
+/// pole), when their samples agree to this fraction of the samples' bounding-box diagonal.
+/// Rhino closes surfaces exactly (shared control points), so rounding is all it absorbs.
+pub const CLOSURE_TOLERANCE: f64 = 1e-9;
+
+/// Samples per side for the closure and pole tests.
+pub const LAYOUT_SAMPLES: usize = 17;
+
 // ---- read by analytic.rs ----
 
 /// Largest magnitude accepted for any analytic parameter or rectangle coordinate. Far beyond
@@ -99,12 +119,23 @@ pub const GHOST_BAND: f64 = 3.0;
 /// (or very near it) still gets a ghost apart from itself; see `ghosts::ghost_depth`.
 pub const GHOST_MIN_DEPTH: f64 = 0.25;
 
+/// A flat seed (zero Gaussian curvature) at least this many mean spacings inside its side is
+/// mirrored exactly across it (`ghosts::augment`), so that its facet ends on the side.
+pub const GHOST_FLAT_MIRROR: f64 = 0.02;
+
 // ---- read by neighbours.rs ----
 
 /// Weight of the isotropic term that keeps the compensation metric definite: each point
 /// contributes |II| + METRIC_REGULARISATION max(|k1|, |k2|) I (largest |k| over the quad), so
 /// that the metric never degenerates where one principal curvature vanishes.
 pub const METRIC_REGULARISATION: f64 = 0.05;
+
+/// The isotropic term where all four points of a quad are flat (K = 0 with one curvature
+/// left: a developable surface). Small, so that the triangulation follows the limit of TPI as
+/// the curvature along the rulings vanishes: the planes (which differ across the rulings)
+/// decide first, and only points on one ruling, whose planes coincide, are paired by their
+/// distance along it ([`crate::planes::meeting_point`]).
+pub const DEVELOPABLE_METRIC_REGULARISATION: f64 = 1e-4;
 
 /// On strictly convex surfaces off the slope-space path, the isotropic term is this fraction
 /// of the summed metric's trace (the envelope test decides after it anyway).

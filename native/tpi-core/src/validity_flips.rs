@@ -35,8 +35,7 @@ use std::borrow::Cow;
 use glam::{DVec2, DVec3};
 
 use crate::facets::reachable;
-use crate::neighbours::three_plane_vertex;
-use crate::planes::Plane;
+use crate::planes::{meeting_point, Plane};
 use crate::tolerance::{MAX_VALIDITY_ROUNDS, VALIDITY_TOLERANCE};
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
@@ -580,10 +579,14 @@ impl<'a> State<'a> {
     }
 }
 
-/// The vertex T_i ∩ T_j ∩ T_k of a triangle, NaN where it is unreachable (the facet stage
+/// The vertex T_i ∩ T_j ∩ T_k of a triangle (coincident planes separated by bisectors:
+/// [`crate::planes::meeting_point`]), NaN where it is unreachable (the facet stage
 /// cannot use it: [`crate::facets::reachable`]), which makes every facet around it invalid.
 fn triangle_vertex(planes: &[Plane], t: [u32; 3]) -> DVec3 {
-    let x = three_plane_vertex(planes, t);
+    let mut ids = t;
+    ids.sort_unstable();
+    let [a, b, c] = ids.map(|i| &planes[i as usize]);
+    let x = meeting_point(a, b, c).point;
     if reachable(x, t.map(|i| &planes[i as usize])) {
         x
     } else {

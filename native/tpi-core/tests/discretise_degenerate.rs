@@ -1,6 +1,5 @@
-//! Acceptance: degenerate patterns and flat or developable surfaces give their specific error
-//! or diagnostic (issue 3, item 6 and "Flat or developable regions and every degenerate
-//! pattern").
+//! Acceptance: degenerate patterns give their specific error, and a partly flat surface its
+//! diagnostics and the Voronoi vertices of its flat region (issue 3, item 6; issue 16, item 4).
 // NaN-safe negated comparisons are intended; index loops read better in geometry checks.
 #![allow(
     clippy::neg_cmp_op_on_partial_ord,
@@ -163,40 +162,6 @@ fn nan_and_out_of_range_points() {
     assert!(d.vertices.iter().all(|v| v.is_finite()));
 }
 
-#[test]
-fn plane_is_a_degenerate_surface() {
-    let mut rng = Rng::new(51);
-    let pattern = uniform_pattern(&mut rng, 60);
-    for s in [
-        AnalyticSurface::plane(0.0, 0.0, 0.0, [-1.0, 1.0], [-1.0, 1.0]).unwrap(),
-        AnalyticSurface::plane(0.3, -0.7, 2.0, [0.0, 5.0], [-2.0, 1.0]).unwrap(),
-    ] {
-        match discretise(&s, &pattern, &DiscretiseOptions::default()) {
-            Err(TpiError::DegenerateSurface { reason }) => assert!(!reason.is_empty()),
-            other => panic!(
-                "plane: expected DegenerateSurface, got {:?}",
-                other.map(|d| d.diagnostics.len())
-            ),
-        }
-    }
-}
-
-#[test]
-fn cylinder_is_a_degenerate_surface() {
-    let mut rng = Rng::new(52);
-    for n in [20usize, 300] {
-        let pattern = uniform_pattern(&mut rng, n);
-        let s = AnalyticSurface::cylinder(1.0, [-0.8, 0.8], [0.0, 3.0]).unwrap();
-        match discretise(&s, &pattern, &DiscretiseOptions::default()) {
-            Err(TpiError::DegenerateSurface { reason }) => assert!(!reason.is_empty()),
-            other => panic!(
-                "cylinder n={n}: expected DegenerateSurface, got {:?}",
-                other.map(|d| d.diagnostics.len())
-            ),
-        }
-    }
-}
-
 /// Bicubic 14 x 14 net, uniform clamped knots (domain [0, 11]^2): control heights
 /// 0.08 max(0, rho - 4.6)^2 with rho the index distance from the net's centre. Wherever all
 /// 4 x 4 control points of a span have height 0 the surface is exactly the plane z = 0
@@ -322,21 +287,9 @@ fn partly_flat_surface_names_its_flat_points() {
     );
 
     // Every dual triangle of three flat points has three coincident planes: its vertex is
-    // ill-conditioned and must be named by an IllConditionedVertex diagnostic.
+    // their Voronoi vertex, the circumcentre of the three seeds in the plane z = 0
+    // (planes::meeting_point), not an ill-conditioned stand-in.
     let flat_set: BTreeSet<u32> = flat_points.iter().map(|&i| i as u32).collect();
-    let ill: BTreeSet<[u32; 3]> = d
-        .diagnostics
-        .iter()
-        .filter_map(|g| {
-            if let Diagnostic::IllConditionedVertex { points, .. } = g {
-                let mut p = *points;
-                p.sort_unstable();
-                Some(p)
-            } else {
-                None
-            }
-        })
-        .collect();
     let flat_triangles: Vec<[u32; 3]> = d
         .dual_triangles
         .iter()
@@ -352,28 +305,50 @@ fn partly_flat_surface_names_its_flat_points() {
         "only {} flat triangles",
         flat_triangles.len()
     );
-    let unnamed: Vec<&[u32; 3]> = flat_triangles
+    let ill: Vec<[u32; 3]> = d
+        .diagnostics
         .iter()
-        .filter(|t| !ill.contains(*t))
+        .filter_map(|g| match g {
+            Diagnostic::IllConditionedVertex { points, .. } => Some(*points),
+            _ => None,
+        })
         .collect();
-    assert!(
-        unnamed.is_empty(),
-        "{} of {} triangles of flat points without IllConditionedVertex: {:?}",
-        unnamed.len(),
-        flat_triangles.len(),
-        &unnamed[..unnamed.len().min(5)]
-    );
-    // Every ill-conditioned vertex concerns at least one point of small curvature.
-    for p in &ill {
-        let small = p.iter().any(|&i| {
-            let [u, v] = dom.from_normalised(pattern[i as usize]);
-            let (k, h) = gaussian_and_mean(&s, u, v);
-            k <= 1e-2 * kmax(k, h).powi(2) || kmax(k, h) * diag < 1e-6
-        });
+    let mut circumcentres = 0;
+    for t in &flat_triangles {
         assert!(
-            small,
-            "IllConditionedVertex {p:?} names only clearly curved points"
+            !ill.iter().any(|p| {
+                let mut p = *p;
+                p.sort_unstable();
+                p == *t
+            }),
+            "flat triangle {t:?} got an ill-conditioned stand-in"
         );
+        let [a, b, c] = t.map(|i| d.facet(i as usize).to_vec());
+        let shared: Vec<u32> = a
+            .iter()
+            .copied()
+            .filter(|v| b.contains(v) && c.contains(v))
+            .collect();
+        let seeds = t.map(|i| d.seeds[i as usize].point);
+        for v in shared {
+            let x = d.vertices[v as usize];
+            let r = seeds.map(|p| x.distance(p));
+            let spread = r.iter().fold(0.0f64, |m, &x| m.max(x))
+                - r.iter().fold(f64::INFINITY, |m, &x| m.min(x));
+            assert!(
+                spread <= 1e-9 * diag && x.z.abs() <= 1e-9 * diag,
+                "flat triangle {t:?}: vertex {x} is not the circumcentre of {seeds:?} ({r:?})"
+            );
+            circumcentres += 1;
+        }
     }
+    assert!(
+        circumcentres > 50,
+        "only {circumcentres} flat circumcentres checked"
+    );
+    assert!(d
+        .diagnostics
+        .iter()
+        .any(|g| matches!(g, Diagnostic::CoincidentPlanes { .. })));
     println!("partly flat: {} flat spans, {} flat points, {} FlatPoint, {} IllConditionedVertex, {} flat triangles", flat_spans.len(), flat_points.len(), named_flat.len(), ill.len(), flat_triangles.len());
 }

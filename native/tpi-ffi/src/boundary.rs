@@ -184,6 +184,7 @@ pub fn status_of(error: &TpiError) -> TpiStatus {
             }
         }
         TpiError::DuplicatePatternPoint { .. }
+        | TpiError::SameSurfacePoint { .. }
         | TpiError::TooFewPatternPoints { .. }
         | TpiError::CollinearPattern { .. }
         | TpiError::InvalidGenerator { .. } => TpiStatus::InvalidPattern,

@@ -179,6 +179,9 @@ pub enum TpiDiagnosticKind {
     CornerClaims = 6,
     /// The point has (nearly) zero Gaussian curvature.
     FlatPoint = 7,
+    /// Neighbouring facets with coincident tangent planes (flat or developable) were separated
+    /// by the bisector of their seeds (point is TPI_NO_POINT).
+    CoincidentPlanes = 8,
 }
 
 impl TpiDiagnosticKind {
@@ -192,6 +195,7 @@ impl TpiDiagnosticKind {
             Diagnostic::CornerUnreachable { .. } => TpiDiagnosticKind::CornerUnreachable,
             Diagnostic::CornerClaims { .. } => TpiDiagnosticKind::CornerClaims,
             Diagnostic::FlatPoint { .. } => TpiDiagnosticKind::FlatPoint,
+            Diagnostic::CoincidentPlanes { .. } => TpiDiagnosticKind::CoincidentPlanes,
         }
     }
 }

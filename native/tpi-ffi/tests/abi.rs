@@ -82,6 +82,7 @@ fn flag_and_kind_numbers_match_the_core() {
     assert_eq!(TpiDiagnosticKind::CornerUnreachable as u32, 5);
     assert_eq!(TpiDiagnosticKind::CornerClaims as u32, 6);
     assert_eq!(TpiDiagnosticKind::FlatPoint as u32, 7);
+    assert_eq!(TpiDiagnosticKind::CoincidentPlanes as u32, 8);
 }
 
 #[test]
@@ -609,11 +610,11 @@ fn analytic_surfaces_forward_to_the_core() {
             ),
             (
                 |o| tpi_surface_new_cylinder(5.0, -3.0, 3.0, 0.0, 10.0, o),
-                TpiStatus::Degenerate,
+                TpiStatus::Ok,
             ),
             (
                 |o| tpi_surface_new_plane(0.1, 0.2, 1.0, 0.0, 1.0, 0.0, 1.0, o),
-                TpiStatus::Degenerate,
+                TpiStatus::Ok,
             ),
         ];
         for (k, (make, expected)) in cases.iter().enumerate() {

@@ -55,6 +55,8 @@ namespace Tpi.Native
         CornerClaims = 6,
         /// <summary>The point has (nearly) zero Gaussian curvature.</summary>
         FlatPoint = 7,
+        /// <summary>Neighbouring facets with coincident tangent planes were separated by the bisector of their seeds.</summary>
+        CoincidentPlanes = 8,
     }
 
     /// <summary>Per-facet flags (TPI_FACET_* bits).</summary>

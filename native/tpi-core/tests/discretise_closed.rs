@@ -1,0 +1,171 @@
+//! Acceptance (issue 16, item 2): a rational NURBS ellipsoid made of one face (closed in u,
+//! poles at both ends of v) gives a closed mesh, Euler characteristic 2, whose facets are
+//! exactly the envelope of their tangent planes, poles included.
+//!
+//! Oracles, from the ellipsoid's closed form x^2/a^2 + y^2/b^2 + z^2/c^2 = 1 (normal
+//! (x/a^2, y/b^2, z/c^2)), not from the pipeline:
+//! - every seed is on the ellipsoid, and every vertex of its facet in its tangent plane;
+//! - every mesh vertex lies on or behind every seed's tangent plane (brute force over all
+//!   pairs): the facets are faces of the intersection of the half-spaces, and since they
+//!   form a closed 2-manifold (checked from the loops: every edge in two facets, opposite
+//!   directions, V - E + F = 2, no boundary), they are all of it;
+//! - every facet is simple and convex in its plane (common::is_simple, is_convex).
+// NaN-safe negated comparisons are intended; index loops read better in geometry checks.
+#![allow(
+    clippy::neg_cmp_op_on_partial_ord,
+    clippy::needless_range_loop,
+    clippy::unnecessary_map_or
+)]
+
+mod common;
+
+use common::*;
+use glam::DVec3;
+use tpi_core::{
+    discretise, Discretisation, DiscretiseOptions, Generator, MeshTopology, NurbsSurface, TpiError,
+};
+
+/// The rational biquadratic ellipsoid with semi-axes a, b, c: a full circle in u (9 control
+/// points), a half circle from pole to pole in v (5 control points).
+fn ellipsoid(a: f64, b: f64, c: f64) -> NurbsSurface {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let circle = [
+        (1.0, 0.0, 1.0),
+        (1.0, 1.0, w),
+        (0.0, 1.0, 1.0),
+        (-1.0, 1.0, w),
+        (-1.0, 0.0, 1.0),
+        (-1.0, -1.0, w),
+        (0.0, -1.0, 1.0),
+        (1.0, -1.0, w),
+        (1.0, 0.0, 1.0),
+    ];
+    let meridian = [
+        (0.0, -1.0, 1.0),
+        (1.0, -1.0, w),
+        (1.0, 0.0, 1.0),
+        (1.0, 1.0, w),
+        (0.0, 1.0, 1.0),
+    ];
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for &(x, y, wu) in &circle {
+        for &(r, z, wv) in &meridian {
+            points.push(DVec3::new(a * x * r, b * y * r, c * z));
+            weights.push(wu * wv);
+        }
+    }
+    NurbsSurface::new(
+        [2, 2],
+        [9, 5],
+        &[0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0],
+        &[0.0, 0.0, 1.0, 1.0, 2.0, 2.0],
+        &points,
+        Some(&weights),
+    )
+    .unwrap()
+}
+
+/// Every check of the module doc.
+fn check_envelope(name: &str, d: &Discretisation, axes: [f64; 3], n: usize) {
+    let [a, b, c] = axes;
+    assert_eq!(d.facet_count(), n, "{name}: one facet per seed");
+    assert_eq!(d.topology, MeshTopology::SPHERE, "{name}");
+    d.sanity_check()
+        .unwrap_or_else(|e| panic!("{name}: sanity check: {e}"));
+    let t = topology(d);
+    assert_eq!(
+        (t.euler, t.boundary_loops),
+        (2, 0),
+        "{name}: not a closed sphere"
+    );
+    let diagonal = 2.0 * (a * a + b * b + c * c).sqrt();
+    let tolerance = 1e-9 * diagonal;
+    let planes: Vec<(DVec3, DVec3)> = d
+        .seeds
+        .iter()
+        .map(|s| {
+            let p = s.point;
+            let on = (p.x / a).powi(2) + (p.y / b).powi(2) + (p.z / c).powi(2);
+            assert!(
+                (on - 1.0).abs() < 1e-12,
+                "{name}: seed {p} off the ellipsoid"
+            );
+            (
+                p,
+                DVec3::new(p.x / (a * a), p.y / (b * b), p.z / (c * c)).normalize(),
+            )
+        })
+        .collect();
+    for i in 0..n {
+        let (p, normal) = planes[i];
+        let loop_points = facet_points(d, i);
+        for x in &loop_points {
+            assert!(
+                normal.dot(*x - p).abs() <= tolerance,
+                "{name}: facet {i} vertex {x} off its tangent plane"
+            );
+        }
+        let flat = to_2d(p, normal, &loop_points);
+        assert!(
+            is_simple(&flat) && is_convex(&flat),
+            "{name}: facet {i} not a simple convex polygon"
+        );
+    }
+    for (v, x) in d.vertices.iter().enumerate() {
+        for (i, (p, normal)) in planes.iter().enumerate() {
+            assert!(
+                normal.dot(*x - *p) <= tolerance,
+                "{name}: vertex {v} lies in front of the tangent plane of seed {i}"
+            );
+        }
+    }
+}
+
+fn generated(spec: &str) -> Vec<[f64; 2]> {
+    Generator::parse(spec).unwrap().generate().uv
+}
+
+#[test]
+fn ellipsoid_gives_the_closed_envelope() {
+    let axes = [3.0, 2.0, 1.2];
+    let surface = ellipsoid(axes[0], axes[1], axes[2]);
+    let mut rng = Rng::new(1602);
+    let cases = [
+        ("random 400", uniform_pattern(&mut rng, 400)),
+        ("jitter 300", jittered_pattern(&mut rng, 300)),
+        ("grid 16x12", generated("grid:16x12")),
+        ("hex 14x14", generated("hex:14x14")),
+    ];
+    for (name, pattern) in &cases {
+        let d = discretise(&surface, pattern, &DiscretiseOptions::default())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        check_envelope(name, &d, axes, pattern.len());
+        let quality = d.quality.as_ref().unwrap();
+        assert_eq!(quality.invalid_facets, 0, "{name}");
+        assert_eq!(quality.euler_characteristic, 2, "{name}");
+    }
+}
+
+#[test]
+fn closed_surface_seeds_on_the_seam_or_a_pole_are_named() {
+    let surface = ellipsoid(2.0, 2.0, 2.0);
+    let mut pattern = generated("grid:8x8");
+    // The seam: u = 0 and u = 1 are one curve.
+    pattern.push([0.0, 0.4]);
+    pattern.push([1.0, 0.4]);
+    match discretise(&surface, &pattern, &DiscretiseOptions::default()) {
+        Err(TpiError::SameSurfacePoint {
+            index,
+            duplicate_of,
+            ..
+        }) => assert_eq!((duplicate_of, index), (64, 65)),
+        other => panic!("seam duplicate: {:?}", other.map(|d| d.facet_count())),
+    }
+    let mut pattern = generated("grid:8x8");
+    pattern.push([0.3, 1.0]);
+    match discretise(&surface, &pattern, &DiscretiseOptions::default()) {
+        Err(TpiError::InvalidParameter { field, .. }) => assert_eq!(field, "pattern point 64"),
+        other => panic!("pole: {:?}", other.map(|d| d.facet_count())),
+    }
+}
