@@ -180,7 +180,8 @@
 #define TPI_FILE_SHEETS_SVG 2
 
 /**
- * File of `tpi_fabrication_file`: sheets.dxf (ASCII DXF R12, `$INSUNITS` metres).
+ * File of `tpi_fabrication_file`: sheets.dxf (ASCII DXF R12, `$INSUNITS` from the surface's
+ * units, `tpi_surface_with_units`; metres for a unitless surface).
  */
 #define TPI_FILE_SHEETS_DXF 3
 
@@ -210,6 +211,58 @@
  * degrees (`tpi_discretisation_planes` gives each facet's plane).
  */
 #define TPI_PLANES_ADJUSTED 1
+
+/**
+ * Units of `tpi_surface_with_units` and `tpi_surface_units`: unitless (the default of every
+ * new surface). The values are those of Rhino's `UnitSystem` (RhinoCommon and rhino3dm), so
+ * that `(int)doc.ModelUnitSystem` passes through.
+ */
+#define TPI_UNITS_NONE 0
+
+/**
+ * Microns (Rhino's `UnitSystem.Microns`).
+ */
+#define TPI_UNITS_MICRONS 1
+
+/**
+ * Millimetres (`UnitSystem.Millimeters`).
+ */
+#define TPI_UNITS_MILLIMETERS 2
+
+/**
+ * Centimetres (`UnitSystem.Centimeters`).
+ */
+#define TPI_UNITS_CENTIMETERS 3
+
+/**
+ * Metres (`UnitSystem.Meters`).
+ */
+#define TPI_UNITS_METERS 4
+
+/**
+ * Kilometres (`UnitSystem.Kilometers`).
+ */
+#define TPI_UNITS_KILOMETERS 5
+
+/**
+ * Inches (`UnitSystem.Inches`).
+ */
+#define TPI_UNITS_INCHES 8
+
+/**
+ * Feet (`UnitSystem.Feet`).
+ */
+#define TPI_UNITS_FEET 9
+
+/**
+ * Miles (`UnitSystem.Miles`).
+ */
+#define TPI_UNITS_MILES 10
+
+/**
+ * Yards (`UnitSystem.Yards`).
+ */
+#define TPI_UNITS_YARDS 19
 
 /**
  * The result of every fallible call. The numbers are part of the ABI: they are never changed
@@ -1279,7 +1332,7 @@ enum TpiStatus tpi_pattern_points(const struct TpiPattern *pattern, double *out,
 /**
  * Creates a NURBS surface from the arrays RhinoCommon hands over.
  *
- * - `degree_u`, `degree_v`: degrees (1 to 15).
+ * - `degree_u`, `degree_v`: degrees (1 to 11, Rhino's limit).
  * - `count_u`, `count_v`: control point counts (count > degree).
  * - `knots_u` (`knots_u_len` doubles) and `knots_v`: knot vectors in **Rhino's convention**,
  *   count + degree - 1 knots each, as `NurbsSurface.KnotsU`/`KnotsV` give them; the domain is
@@ -1436,6 +1489,30 @@ enum TpiStatus tpi_surface_domain(const struct TpiSurface *surface, struct TpiDo
  * `out` is NULL or valid for writing `out_capacity` samples.
  */
 enum TpiStatus tpi_surface_evaluate(const struct TpiSurface *surface, const double *uv, size_t uv_len, struct TpiSample *out, size_t out_capacity);
+
+/**
+ * Creates a copy of `surface` with the model's length units `units` (a `TPI_UNITS_*` value,
+ * Rhino's `UnitSystem` numbering; `TPI_UNITS_NONE` for unitless). Nothing is rescaled: the
+ * units are carried to the outputs (the discretisation JSON's `"units"`, the fabrication's
+ * panels.json and DXF `$INSUNITS`). Surfaces are immutable, hence a new handle; free both.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (a value that is no
+ * `TPI_UNITS_*`, the message lists them). On an error `*out` is set to NULL.
+ *
+ * # Safety
+ * `surface` is NULL or a live handle; `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_with_units(const struct TpiSurface *surface, int32_t units, struct TpiSurface **out);
+
+/**
+ * Stores the surface's units in `*out`: a `TPI_UNITS_*` value, `TPI_UNITS_NONE` when unitless.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `surface` is NULL or a live handle; `out` is NULL or valid for writing an `int32_t`.
+ */
+enum TpiStatus tpi_surface_units(const struct TpiSurface *surface, int32_t *out);
 
 #ifdef __cplusplus
 }  // extern "C"

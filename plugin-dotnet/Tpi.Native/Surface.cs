@@ -120,6 +120,31 @@ namespace Tpi.Native
             return Created(s, h, "tpi_surface_new_plane");
         }
 
+        /// <summary>
+        /// A copy of this surface with the model's length units: a value of Rhino's
+        /// <c>UnitSystem</c> (<c>(int)doc.ModelUnitSystem</c>; 0 = none, 2 = millimetres, 4 =
+        /// metres, 8 = inches, 9 = feet, ...: the <c>TPI_UNITS_*</c> of include/tpi.h). Nothing is
+        /// rescaled: the units go to the outputs (the result JSON, the fabrication's DXF). An
+        /// unsupported unit system raises a <see cref="TpiException"/> listing the supported ones.
+        /// </summary>
+        public Surface WithUnits(int rhinoUnitSystem)
+        {
+            SurfaceHandle h;
+            var s = UnsafeNativeMethods.tpi_surface_with_units(Handle, rhinoUnitSystem, out h);
+            return Created(s, h, "tpi_surface_with_units");
+        }
+
+        /// <summary>The model's length units as Rhino's <c>UnitSystem</c> value, 0 when unitless.</summary>
+        public int Units
+        {
+            get
+            {
+                int units;
+                TpiLibrary.Check(UnsafeNativeMethods.tpi_surface_units(Handle, out units), "tpi_surface_units");
+                return units;
+            }
+        }
+
         /// <summary>The parameter domain.</summary>
         public Domain Domain
         {

@@ -40,6 +40,20 @@ namespace Tpi.Tests
         }
 
         [Test]
+        public void UnitsAreRhinoUnitSystemValuesOnACopy()
+        {
+            using (var plain = TestData.Dome())
+            using (var mm = plain.WithUnits(2))
+            {
+                Assert.AreEqual(0, plain.Units, "a new surface is unitless");
+                Assert.AreEqual(2, mm.Units, "UnitSystem.Millimeters");
+                Assert.AreEqual(plain.Evaluate(0.3, 0.6).Point.Z, mm.Evaluate(0.3, 0.6).Point.Z, "nothing is rescaled");
+                var e = Assert.Throws<TpiException>(() => plain.WithUnits(6));
+                StringAssert.Contains("units 6", e.Message);
+            }
+        }
+
+        [Test]
         public void RationalNurbsWithUnitWeightsEqualsNonRational()
         {
             var weights = Enumerable.Repeat(1.0, 16).ToArray();

@@ -1064,6 +1064,48 @@ static void test_adjusted_planes(void) {
     tpi_surface_free(s);
 }
 
+/* Units (issue 16): a copy of a surface with Rhino's UnitSystem value, carried to the JSON. */
+static void test_units(void) {
+    TpiSurface *plain = dome();
+    int32_t units = -1;
+    CHECK_OK(tpi_surface_units(plain, &units));
+    CHECK(units == TPI_UNITS_NONE);
+    TpiSurface *mm = NULL;
+    CHECK_OK(tpi_surface_with_units(plain, TPI_UNITS_MILLIMETERS, &mm));
+    CHECK(mm != NULL);
+    CHECK_OK(tpi_surface_units(mm, &units));
+    CHECK(units == TPI_UNITS_MILLIMETERS && units == 2);
+    CHECK_OK(tpi_surface_units(plain, &units));
+    CHECK(units == TPI_UNITS_NONE);
+    TpiSurface *yards = NULL;
+    CHECK_OK(tpi_surface_with_units(mm, TPI_UNITS_YARDS, &yards));
+    CHECK_OK(tpi_surface_units(yards, &units));
+    CHECK(units == 19);
+    TpiSurface *bad = mm;
+    CHECK_STATUS(tpi_surface_with_units(plain, 6, &bad), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK(bad == NULL);
+    CHECK_STATUS(tpi_surface_with_units(NULL, TPI_UNITS_METERS, &bad), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_surface_units(mm, NULL), TPI_STATUS_NULL_POINTER);
+
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new_grid(6, 6, &pattern));
+    TpiDiscretisation *with = NULL, *without = NULL;
+    CHECK_OK(tpi_discretise(mm, pattern, NULL, &with));
+    CHECK_OK(tpi_discretise(plain, pattern, NULL, &without));
+    char *a = discretisation_json(with);
+    char *b = discretisation_json(without);
+    CHECK(a && strstr(a, "\"units\":\"mm\""));
+    CHECK(b && strstr(b, "\"units\":null"));
+    free(a);
+    free(b);
+    tpi_discretisation_free(with);
+    tpi_discretisation_free(without);
+    tpi_pattern_free(pattern);
+    tpi_surface_free(yards);
+    tpi_surface_free(mm);
+    tpi_surface_free(plain);
+}
+
 /* A rational sphere of one face (closed in u, poles at both ends of v, as Rhino makes it):
  * the mesh is closed. Checked here from the arrays: every directed edge of a facet loop is
  * run backwards by exactly one other loop, and V - E + F = 2; every vertex lies on or behind
@@ -1160,5 +1202,6 @@ int main(void) {
     test_discrete_surface();
     test_free_null();
     test_threads();
+    test_units();
     return finish("test_tpi");
 }

@@ -8,12 +8,16 @@ native/tpi-core/tests/nurbs_opennurbs.rs runs this script and compares tpi-core 
 
 Usage: rhino3dm_cases.py --out cases.json [--seed N] [--surfaces N] [--samples N]
 
-Surfaces: degrees 1..5 in each direction, control point counts degree+1 .. degree+6, rational
+Surfaces: --surfaces of degrees 1..5 in each direction, control point counts degree+1 .. degree+6, rational
 about half of the time (weights 0.3 .. 3), non-uniform knots with some repeated interior knots
 (multiplicity <= degree), domains that do not start at 0; most knot vectors are clamped, some
 are not (openNURBS evaluates both). The control net is a jittered, strictly monotone grid in
 x (along u) and y (along v) with a random height, then rotated and moved: Su x Sv never vanishes,
 so normals are well conditioned everywhere.
+
+Then --high-degree-surfaces of degrees 6..11 (Rhino's limit, tpi's MAX_NURBS_DEGREE), every
+degree in each direction, with degree+1 .. degree+3 control points per direction (same knots,
+weights and nets otherwise).
 
 Samples: the four domain corners, points on each of the four edges, points exactly on interior
 knots (u, v or both), and uniformly random points in the domain.
@@ -147,10 +151,17 @@ def random_net(rng, count_u, count_v):
     return points
 
 
-def make_surface(rng, index):
-    degree_u, degree_v = rng.randint(1, 5), rng.randint(1, 5)
-    count_u = rng.randint(degree_u + 1, degree_u + 6)
-    count_v = rng.randint(degree_v + 1, degree_v + 6)
+def make_surface(rng, index, degrees=None):
+    """A random surface; `degrees` (du, dv) fixes the degrees (high-degree cases), which then get
+    fewer spans (count degree+1 .. degree+3) to keep the run short."""
+    if degrees is None:
+        degree_u, degree_v = rng.randint(1, 5), rng.randint(1, 5)
+        extra_u = extra_v = 6
+    else:
+        degree_u, degree_v = degrees
+        extra_u = extra_v = 3
+    count_u = rng.randint(degree_u + 1, degree_u + extra_u)
+    count_v = rng.randint(degree_v + 1, degree_v + extra_v)
     rational = rng.random() < 0.5
     clamped = rng.random() < 0.8
     knots_u = random_knots(rng, degree_u, count_u, clamped)
@@ -228,13 +239,23 @@ def main():
     parser.add_argument("--seed", type=int, default=20240607)
     parser.add_argument("--surfaces", type=int, default=240)
     parser.add_argument("--samples", type=int, default=60)
+    parser.add_argument(
+        "--high-degree-surfaces",
+        type=int,
+        default=36,
+        help="further surfaces of degrees 6..11 (Rhino's limit), each degree in each direction",
+    )
     args = parser.parse_args()
 
     check_control_point_convention()
     rng = random.Random(args.seed)
     cases = []
-    for index in range(args.surfaces):
-        surface, rational, clamped = make_surface(rng, index)
+    # Degrees 6..11 cycle in u, and in v with another phase, so that every pair of directions
+    # sees each of them; the first high-degree case is 11 x 11.
+    high = [(11 - k % 6, 11 - (k * 5 + k // 6) % 6) for k in range(args.high_degree_surfaces)]
+    for index in range(args.surfaces + len(high)):
+        degrees = high[index - args.surfaces] if index >= args.surfaces else None
+        surface, rational, clamped = make_surface(rng, index, degrees)
         domain_u, domain_v, uv = sample_parameters(rng, surface, args.samples)
         samples = []
         for u, v in uv:

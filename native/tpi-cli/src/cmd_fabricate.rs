@@ -58,7 +58,8 @@ pub(crate) struct FabricateArgs {
     /// Router tool diameter for cut.nc, at most the gap [default: 0.006]
     #[arg(long, value_name = "D", allow_hyphen_values = true)]
     tool_diameter: Option<String>,
-    /// mm, cm, m, in or ft: DXF $INSUNITS and G20/G21 [default: m]
+    /// um, mm, cm, m, km, in, ft, yd or mi (or Rhino's names): DXF $INSUNITS and G20/G21
+    /// [default: the surface file's "units", else m]
     #[arg(long, value_name = "U")]
     units: Option<String>,
     /// Material density, for the mass in the summary
@@ -111,7 +112,8 @@ struct Options {
     fab: FabricateOptions,
     slots_arg: Option<String>,
     tool: ToolpathOptions,
-    units: Units,
+    /// `--units`, if given (else the surface file's, else metres).
+    units: Option<Units>,
     density: Option<f64>,
     threads: Option<usize>,
     planes: PlaneMode,
@@ -166,9 +168,8 @@ fn parse(args: FabricateArgs) -> Result<Options, CliError> {
         tool.tool_diameter = number("tool-diameter", v)?;
     }
     let units = match &args.units {
-        None => Units::Metres,
-        Some(v) => Units::parse(v)
-            .ok_or_else(|| usage(format!("--units {v}: expected mm, cm, m, in or ft")))?,
+        None => None,
+        Some(v) => Some(Units::from_name(v).map_err(|e| usage(format!("--units {v}: {e}")))?),
     };
     let density = match &args.density {
         None => None,
@@ -198,7 +199,6 @@ fn parse(args: FabricateArgs) -> Result<Options, CliError> {
         .thickness
         .ok_or_else(|| usage("--thickness is required".into()))?;
     fab.thickness = number("thickness", &thickness)?;
-    tool.units = units;
     Ok(Options {
         surface,
         pattern,
@@ -262,6 +262,19 @@ pub(crate) fn run(args: FabricateArgs) -> Result<(), CliError> {
         };
     }
     let surface = load_surface(Path::new(&opts.surface))?;
+    // The surface file's units, unless --units says otherwise; a contradiction is an error
+    // (tpi never rescales), and a unitless surface keeps the old default, metres.
+    let units = match (opts.units, tpi_core::Surface::units(&surface)) {
+        (Some(given), Some(file)) if given != file => {
+            return Err(usage(format!(
+                "--units {given}: the surface file {} says \"units\": \"{file}\" (tpi does not rescale; drop --units or convert the model)",
+                opts.surface
+            )))
+        }
+        (Some(u), _) | (None, Some(u)) => u,
+        (None, None) => Units::Metres,
+    };
+    opts.tool.units = units;
     let pattern = load_pattern(&opts.pattern)?;
     let run_core = || -> Result<Result<Fabrication, FabricationError>, tpi_core::TpiError> {
         let mesh = discretise(
@@ -291,7 +304,7 @@ pub(crate) fn run(args: FabricateArgs) -> Result<(), CliError> {
             Format::Json => fab.to_json().into_bytes(),
             Format::Obj => fab.to_obj().into_bytes(),
             Format::Svg => fab.sheets_svg().into_bytes(),
-            Format::Dxf => fab.sheets_dxf(opts.units).into_bytes(),
+            Format::Dxf => fab.sheets_dxf(units).into_bytes(),
             Format::Csv => fab.bevels_csv().into_bytes(),
             Format::Nc => fab
                 .gcode(&opts.tool)
@@ -302,6 +315,14 @@ pub(crate) fn run(args: FabricateArgs) -> Result<(), CliError> {
     }
     write_all(&files)?;
     eprint!("{}", summary(&fab, opts.density));
+    eprintln!(
+        "  units: {units}{}",
+        match (fab.units, opts.units) {
+            (Some(_), _) => " (from the surface file)",
+            (None, Some(_)) => " (--units; the surface file has no \"units\")",
+            (None, None) => " (default: the surface file has no \"units\")",
+        }
+    );
     if !files.is_empty() {
         let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
         eprintln!("  wrote {}", names.join(", "));

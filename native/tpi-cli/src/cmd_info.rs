@@ -122,6 +122,7 @@ pub(crate) fn describe(
 ) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "{}: {}", file.display(), spec.type_name());
+    let _ = writeln!(s, "  units: {}", crate::obj::units_text(spec.units()));
     match (spec, model) {
         (SurfaceSpec::Nurbs(_), SurfaceModel::Nurbs(n)) => {
             let [du, dv] = n.degree();

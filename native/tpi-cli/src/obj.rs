@@ -9,7 +9,15 @@
 
 use std::fmt::Write;
 
-use tpi_core::Discretisation;
+use tpi_core::{Discretisation, Units};
+
+/// The units as every output names them: `mm`, ..., or `unitless` with the reason.
+pub(crate) fn units_text(units: Option<Units>) -> String {
+    match units {
+        Some(u) => u.short_name().to_string(),
+        None => "unitless (the surface file has no \"units\")".to_string(),
+    }
+}
 
 /// The mesh as OBJ text. `source` goes into the header comment.
 pub(crate) fn to_obj(result: &Discretisation, source: &str) -> String {
@@ -20,6 +28,7 @@ pub(crate) fn to_obj(result: &Discretisation, source: &str) -> String {
         env!("CARGO_PKG_VERSION")
     );
     let _ = writeln!(out, "# {source}");
+    let _ = writeln!(out, "# units: {}", units_text(result.units));
     let _ = writeln!(
         out,
         "# {} vertices, {} facets (facet i belongs to pattern point i)",

@@ -29,6 +29,7 @@ pub(crate) fn summary(
         result.facet_count(),
         result.vertices.len()
     );
+    let _ = writeln!(s, "  units: {}", crate::obj::units_text(result.units));
     match &result.quality {
         None => {
             let _ = writeln!(s, "  quality report: off (--no-report)");

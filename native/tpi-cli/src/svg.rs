@@ -122,7 +122,7 @@ pub(crate) fn mesh_top_view(result: &Discretisation, title: &str) -> String {
         );
         y += 22.0;
     }
-    let _ = writeln!(out, "<text x=\"{lx:.1}\" y=\"{:.1}\" font-size=\"11\" fill=\"#666\">top view (x right, y up)</text>", y + 14.0);
+    let _ = writeln!(out, "<text x=\"{lx:.1}\" y=\"{:.1}\" font-size=\"11\" fill=\"#666\">top view (x right, y up; units: {})</text>", y + 14.0, tpi_core::units_label(result.units));
     out.push_str("</g>\n</svg>\n");
     out
 }

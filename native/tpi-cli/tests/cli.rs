@@ -87,6 +87,8 @@ fn assert_empty(dir: &Path) {
 #[derive(Deserialize, Debug)]
 #[serde(deny_unknown_fields)]
 struct Contract {
+    /// The surface file's units (`"mm"`, ...), `null` when unitless.
+    units: Option<String>,
     vertices: Vec<[f64; 3]>,
     facets: Vec<Facet>,
     dual_triangles: Vec<[u32; 3]>,
@@ -131,6 +133,8 @@ fn read_contract(path: &Path) -> Contract {
 }
 
 fn check_contract(c: &Contract, points: usize) {
+    // No sample surface file gives units.
+    assert_eq!(c.units, None);
     assert_eq!(c.facets.len(), points);
     for (i, f) in c.facets.iter().enumerate() {
         assert_eq!(f.seed, i);

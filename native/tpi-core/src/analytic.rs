@@ -44,6 +44,7 @@
 // `!(x > 0.0)` is deliberate in the validation: it rejects NaN as well.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
+use crate::units::Units;
 use glam::DVec3;
 
 use crate::error::{check_finite, Direction, TpiError};
@@ -141,6 +142,8 @@ pub struct Height {
 pub struct AnalyticSurface {
     kind: AnalyticKind,
     domain: Domain,
+    /// Length units of the model (the surface file's `"units"`), `None` when unitless.
+    units: Option<Units>,
 }
 
 fn invalid(field: &str, value: f64, reason: impl Into<String>) -> TpiError {
@@ -304,7 +307,14 @@ impl AnalyticSurface {
         Ok(Self {
             kind,
             domain: Domain::new(xi, yi),
+            units: None,
         })
+    }
+
+    /// The same surface with these length units (`None`: unitless); nothing is rescaled.
+    pub fn with_units(mut self, units: Option<Units>) -> Self {
+        self.units = units;
+        self
     }
 
     /// z = a x^2 + b y^2 over `x` x `y`; see [`AnalyticSurface::new`] for the errors.
@@ -465,6 +475,10 @@ impl AnalyticSurface {
 impl Surface for AnalyticSurface {
     fn domain(&self) -> Domain {
         self.domain
+    }
+
+    fn units(&self) -> Option<Units> {
+        self.units
     }
 
     fn evaluate(&self, u: f64, v: f64) -> SurfaceDerivatives {

@@ -155,6 +155,8 @@ pub struct Discretisation {
     pub plane_adjustments: Vec<PlaneAdjustment>,
     /// Stage timings.
     pub timings: Timings,
+    /// Length units of the surface ([`Surface::units`]), `None` when unitless.
+    pub units: Option<crate::units::Units>,
     /// The topology the mesh must have: a disc, or a closed sphere on a closed surface.
     pub topology: MeshTopology,
 }
@@ -274,6 +276,7 @@ impl Serialize for ContractView<'_> {
         let r = self.result;
         let mut map = serializer.serialize_map(None)?;
         let vertices: Vec<[f64; 3]> = r.vertices.iter().map(|v| v.to_array()).collect();
+        map.serialize_entry("units", &r.units)?;
         map.serialize_entry("vertices", &vertices)?;
         let facets: Vec<FacetView<'_>> = (0..r.facet_count())
             .map(|index| FacetView { result: r, index })
@@ -664,6 +667,7 @@ pub(crate) fn run(
         diagnostics,
         plane_adjustments: Vec::new(),
         timings,
+        units: surface.units(),
         topology: if closed_convex {
             MeshTopology::SPHERE
         } else {

@@ -46,6 +46,7 @@ mod spec;
 mod surface;
 pub mod tolerance;
 mod triangulation;
+mod units;
 mod validity_flips;
 
 pub use analytic::{AnalyticKind, AnalyticSurface};
@@ -78,6 +79,7 @@ pub use quality::{
 pub use sanity::SanityError;
 pub use spec::{sampled_bounding_box, SurfaceModel, SurfaceSpec};
 pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};
+pub use units::{units_label, UnknownUnits};
 // The tolerances a caller sets or checks against, also at the root.
 pub use tolerance::{
     DEFAULT_FAR_VERTEX_FACTOR, DEFAULT_FLAT_TOLERANCE, DEFAULT_PLANE_CURVATURE,

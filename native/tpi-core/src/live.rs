@@ -1297,6 +1297,7 @@ impl State {
             diagnostics: self.diagnostics.clone(),
             plane_adjustments: adjustments,
             timings: Timings::default(),
+            units: surface.units(),
             topology: MeshTopology::DISC,
         };
         if options.quality_report {

@@ -94,6 +94,7 @@ use serde::{Deserialize, Serialize};
 use crate::error::{check_finite, check_magnitude, Direction, Num, TpiError, MAX_WEIGHT_RATIO};
 use crate::surface::{Domain, Interval, Surface, SurfaceDerivatives};
 use crate::tolerance::MAX_NURBS_DEGREE;
+use crate::units::Units;
 
 /// Length of the fixed-size basis buffers: at most degree + 1 basis functions are non-zero.
 const BASIS_LEN: usize = MAX_NURBS_DEGREE + 1;
@@ -115,6 +116,9 @@ pub struct NurbsSpec {
     /// Optional weights, nu * nv, all > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub weights: Option<Vec<f64>>,
+    /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub units: Option<Units>,
 }
 
 impl NurbsSpec {
@@ -132,6 +136,7 @@ impl NurbsSpec {
                 .collect::<Vec<_>>(),
             self.weights.as_deref(),
         )
+        .map(|s| s.with_units(self.units))
     }
 }
 
@@ -414,6 +419,8 @@ pub struct NurbsSurface {
     bezier: BezierPatches,
     domain: Domain,
     net_diagonal: f64,
+    /// Length units of the model (the surface file's `"units"`), `None` when unitless.
+    units: Option<Units>,
 }
 
 impl NurbsSurface {
@@ -445,7 +452,7 @@ impl NurbsSurface {
                 Some("the degree must be at least 1".to_string())
             } else if degree > MAX_NURBS_DEGREE {
                 Some(format!(
-                    "degrees above {MAX_NURBS_DEGREE} are not supported"
+                    "degree {degree} is above {MAX_NURBS_DEGREE}, the largest supported (Rhino's limit)"
                 ))
             } else if degree >= count {
                 Some(
@@ -573,7 +580,14 @@ impl NurbsSurface {
             bezier,
             domain,
             net_diagonal,
+            units: None,
         })
+    }
+
+    /// The same surface with these length units (`None`: unitless); nothing is rescaled.
+    pub fn with_units(mut self, units: Option<Units>) -> Self {
+        self.units = units;
+        self
     }
 
     /// The record that [`NurbsSpec::build`] turns back into this surface (Rhino knot convention).
@@ -585,6 +599,7 @@ impl NurbsSurface {
             knots_v: self.knots_v().to_vec(),
             points: self.points.iter().map(|p| p.to_array()).collect(),
             weights: self.weights.clone(),
+            units: self.units,
         }
     }
 
@@ -902,6 +917,10 @@ fn check_homogeneous_finite(homogeneous: &[DVec4]) -> Result<(), TpiError> {
 impl Surface for NurbsSurface {
     fn domain(&self) -> Domain {
         self.domain
+    }
+
+    fn units(&self) -> Option<Units> {
+        self.units
     }
 
     fn evaluate(&self, u: f64, v: f64) -> SurfaceDerivatives {

@@ -25,6 +25,9 @@
 //! | `plane` | `p`, `q`, `c0`, `x`, `y` | z = p x + q y + c0 |
 //!
 //! `x` and `y` are `[min, max]` pairs giving the rectangle (the parameter domain).
+//!
+//! Every record may have `"units"` (`"mm"`, `"Millimeters"`, ..., see [`Units::from_name`]):
+//! the model's length units, carried to every output; absent, the model is unitless.
 
 use glam::DVec3;
 use serde::{Deserialize, Serialize};
@@ -33,6 +36,7 @@ use crate::analytic::{AnalyticKind, AnalyticSurface};
 use crate::error::TpiError;
 use crate::nurbs::{NurbsSpec, NurbsSurface};
 use crate::surface::{Domain, Surface, SurfaceDerivatives};
+use crate::units::Units;
 
 /// A surface record as stored in a surface file, tagged by `"type"` (snake_case).
 ///
@@ -52,6 +56,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        units: Option<Units>,
     },
     /// z = sqrt(radius^2 - x^2 - y^2), rectangle strictly inside the disc.
     SphereCap {
@@ -61,6 +68,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        units: Option<Units>,
     },
     /// z = c sqrt(1 - x^2/a^2 - y^2/b^2), rectangle strictly inside the ellipse.
     EllipsoidCap {
@@ -74,6 +84,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        units: Option<Units>,
     },
     /// z = a x^2 - b y^2, a and b non-zero with the same sign.
     HyperbolicParaboloid {
@@ -85,6 +98,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        units: Option<Units>,
     },
     /// z = amplitude sin(x) sin(y), amplitude non-zero.
     EggCrate {
@@ -94,6 +110,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        units: Option<Units>,
     },
     /// z = sqrt(radius^2 - x^2), |x| < radius.
     Cylinder {
@@ -103,6 +122,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        units: Option<Units>,
     },
     /// z = p x + q y + c0.
     Plane {
@@ -116,6 +138,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        units: Option<Units>,
     },
 }
 
@@ -195,6 +220,7 @@ impl SurfaceSpec {
                     b: r.b,
                     x: r.x,
                     y: r.y,
+                    units: r.units,
                 }
             }
             "hyperbolic_paraboloid" => {
@@ -204,6 +230,7 @@ impl SurfaceSpec {
                     b: r.b,
                     x: r.x,
                     y: r.y,
+                    units: r.units,
                 }
             }
             "sphere_cap" => {
@@ -212,6 +239,7 @@ impl SurfaceSpec {
                     radius: r.radius,
                     x: r.x,
                     y: r.y,
+                    units: r.units,
                 }
             }
             "cylinder" => {
@@ -220,6 +248,7 @@ impl SurfaceSpec {
                     radius: r.radius,
                     x: r.x,
                     y: r.y,
+                    units: r.units,
                 }
             }
             "ellipsoid_cap" => {
@@ -230,6 +259,7 @@ impl SurfaceSpec {
                     c: r.c,
                     x: r.x,
                     y: r.y,
+                    units: r.units,
                 }
             }
             "egg_crate" => {
@@ -238,6 +268,7 @@ impl SurfaceSpec {
                     amplitude: r.amplitude,
                     x: r.x,
                     y: r.y,
+                    units: r.units,
                 }
             }
             "plane" => {
@@ -248,6 +279,7 @@ impl SurfaceSpec {
                     c0: r.c0,
                     x: r.x,
                     y: r.y,
+                    units: r.units,
                 }
             }
             other => {
@@ -286,21 +318,23 @@ impl SurfaceSpec {
     fn parts(&self) -> Parts<'_> {
         let (kind, x, y) = match *self {
             SurfaceSpec::Nurbs(ref n) => return Parts::Nurbs(n),
-            SurfaceSpec::EllipticParaboloid { a, b, x, y } => {
+            SurfaceSpec::EllipticParaboloid { a, b, x, y, .. } => {
                 (AnalyticKind::EllipticParaboloid { a, b }, x, y)
             }
-            SurfaceSpec::SphereCap { radius, x, y } => (AnalyticKind::SphereCap { radius }, x, y),
-            SurfaceSpec::EllipsoidCap { a, b, c, x, y } => {
+            SurfaceSpec::SphereCap { radius, x, y, .. } => {
+                (AnalyticKind::SphereCap { radius }, x, y)
+            }
+            SurfaceSpec::EllipsoidCap { a, b, c, x, y, .. } => {
                 (AnalyticKind::EllipsoidCap { a, b, c }, x, y)
             }
-            SurfaceSpec::HyperbolicParaboloid { a, b, x, y } => {
+            SurfaceSpec::HyperbolicParaboloid { a, b, x, y, .. } => {
                 (AnalyticKind::HyperbolicParaboloid { a, b }, x, y)
             }
-            SurfaceSpec::EggCrate { amplitude, x, y } => {
-                (AnalyticKind::EggCrate { amplitude }, x, y)
-            }
-            SurfaceSpec::Cylinder { radius, x, y } => (AnalyticKind::Cylinder { radius }, x, y),
-            SurfaceSpec::Plane { p, q, c0, x, y } => (AnalyticKind::Plane { p, q, c0 }, x, y),
+            SurfaceSpec::EggCrate {
+                amplitude, x, y, ..
+            } => (AnalyticKind::EggCrate { amplitude }, x, y),
+            SurfaceSpec::Cylinder { radius, x, y, .. } => (AnalyticKind::Cylinder { radius }, x, y),
+            SurfaceSpec::Plane { p, q, c0, x, y, .. } => (AnalyticKind::Plane { p, q, c0 }, x, y),
         };
         Parts::Analytic(kind, x, y)
     }
@@ -312,27 +346,70 @@ impl SurfaceSpec {
     pub fn build(&self) -> Result<SurfaceModel, TpiError> {
         match self.parts() {
             Parts::Nurbs(n) => Ok(SurfaceModel::Nurbs(n.build()?)),
-            Parts::Analytic(kind, x, y) => {
-                Ok(SurfaceModel::Analytic(AnalyticSurface::new(kind, x, y)?))
-            }
+            Parts::Analytic(kind, x, y) => Ok(SurfaceModel::Analytic(
+                AnalyticSurface::new(kind, x, y)?.with_units(self.units()),
+            )),
+        }
+    }
+
+    /// The record's length units (`"units"`), `None` when unitless.
+    pub fn units(&self) -> Option<Units> {
+        match *self {
+            SurfaceSpec::Nurbs(ref n) => n.units,
+            SurfaceSpec::EllipticParaboloid { units, .. }
+            | SurfaceSpec::SphereCap { units, .. }
+            | SurfaceSpec::EllipsoidCap { units, .. }
+            | SurfaceSpec::HyperbolicParaboloid { units, .. }
+            | SurfaceSpec::EggCrate { units, .. }
+            | SurfaceSpec::Cylinder { units, .. }
+            | SurfaceSpec::Plane { units, .. } => units,
         }
     }
 
     /// The record of an analytic surface.
     pub fn from_analytic(surface: &AnalyticSurface) -> SurfaceSpec {
-        let (x, y) = (surface.x_range(), surface.y_range());
+        let (x, y, units) = (surface.x_range(), surface.y_range(), surface.units());
         match surface.kind() {
             AnalyticKind::EllipticParaboloid { a, b } => {
-                SurfaceSpec::EllipticParaboloid { a, b, x, y }
+                SurfaceSpec::EllipticParaboloid { a, b, x, y, units }
             }
-            AnalyticKind::SphereCap { radius } => SurfaceSpec::SphereCap { radius, x, y },
-            AnalyticKind::EllipsoidCap { a, b, c } => SurfaceSpec::EllipsoidCap { a, b, c, x, y },
+            AnalyticKind::SphereCap { radius } => SurfaceSpec::SphereCap {
+                radius,
+                x,
+                y,
+                units,
+            },
+            AnalyticKind::EllipsoidCap { a, b, c } => SurfaceSpec::EllipsoidCap {
+                a,
+                b,
+                c,
+                x,
+                y,
+                units,
+            },
             AnalyticKind::HyperbolicParaboloid { a, b } => {
-                SurfaceSpec::HyperbolicParaboloid { a, b, x, y }
+                SurfaceSpec::HyperbolicParaboloid { a, b, x, y, units }
             }
-            AnalyticKind::EggCrate { amplitude } => SurfaceSpec::EggCrate { amplitude, x, y },
-            AnalyticKind::Cylinder { radius } => SurfaceSpec::Cylinder { radius, x, y },
-            AnalyticKind::Plane { p, q, c0 } => SurfaceSpec::Plane { p, q, c0, x, y },
+            AnalyticKind::EggCrate { amplitude } => SurfaceSpec::EggCrate {
+                amplitude,
+                x,
+                y,
+                units,
+            },
+            AnalyticKind::Cylinder { radius } => SurfaceSpec::Cylinder {
+                radius,
+                x,
+                y,
+                units,
+            },
+            AnalyticKind::Plane { p, q, c0 } => SurfaceSpec::Plane {
+                p,
+                q,
+                c0,
+                x,
+                y,
+                units,
+            },
         }
     }
 }
@@ -353,6 +430,8 @@ struct TwoCoefficients {
     b: f64,
     x: [f64; 2],
     y: [f64; 2],
+    #[serde(default)]
+    units: Option<Units>,
 }
 
 #[derive(Deserialize)]
@@ -361,6 +440,8 @@ struct Radius {
     radius: f64,
     x: [f64; 2],
     y: [f64; 2],
+    #[serde(default)]
+    units: Option<Units>,
 }
 
 #[derive(Deserialize)]
@@ -371,6 +452,8 @@ struct SemiAxes {
     c: f64,
     x: [f64; 2],
     y: [f64; 2],
+    #[serde(default)]
+    units: Option<Units>,
 }
 
 #[derive(Deserialize)]
@@ -379,6 +462,8 @@ struct Amplitude {
     amplitude: f64,
     x: [f64; 2],
     y: [f64; 2],
+    #[serde(default)]
+    units: Option<Units>,
 }
 
 #[derive(Deserialize)]
@@ -389,6 +474,8 @@ struct PlaneRecord {
     c0: f64,
     x: [f64; 2],
     y: [f64; 2],
+    #[serde(default)]
+    units: Option<Units>,
 }
 
 fn type_list() -> String {
@@ -641,6 +728,13 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.point_at(u, v),
             SurfaceModel::Analytic(a) => a.point_at(u, v),
+        }
+    }
+
+    fn units(&self) -> Option<Units> {
+        match self {
+            SurfaceModel::Nurbs(n) => n.units(),
+            SurfaceModel::Analytic(a) => a.units(),
         }
     }
 }

@@ -130,4 +130,10 @@ pub trait Surface: Send + Sync {
     fn point_at(&self, u: f64, v: f64) -> DVec3 {
         self.evaluate(u, v).point
     }
+
+    /// The model's length units (the surface file's `"units"`), `None` when unitless: carried
+    /// to the discretisation and every output, never used to rescale.
+    fn units(&self) -> Option<crate::units::Units> {
+        None
+    }
 }

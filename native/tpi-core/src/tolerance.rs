@@ -8,8 +8,10 @@ pub const DUPLICATE_UV_TOLERANCE: f64 = 1e-9;
 /// treated as equal (an umbilic): the principal frame is then Su-aligned.
 pub const UMBILIC_RELATIVE_TOLERANCE: f64 = 1e-12;
 
-/// Largest NURBS degree evaluated (fixed-size buffers avoid per-call allocation).
-pub const MAX_NURBS_DEGREE: usize = 15;
+/// Largest NURBS degree accepted and evaluated: 11, Rhino's limit (openNURBS allows order 12 at
+/// most), so that every surface Rhino can make is read and none that Rhino could not. The basis
+/// buffers are fixed-size arrays of this length + 1 (no per-call allocation).
+pub const MAX_NURBS_DEGREE: usize = 11;
 
 /// [`crate::Discretisation::sanity_check`]: a facet vertex may lie this far (relative to the
 /// bounding-box diagonal of the vertices) from its seed's tangent plane. The vertices are

@@ -2,6 +2,9 @@
 //! with the PyPI package rhino3dm and records NurbsSurface.PointAt / NormalAt; the surfaces are
 //! rebuilt here from the recorded surface-file records (NurbsSpec) and must agree.
 //!
+//! Degrees 1..=11 (Rhino's limit, [`MAX_NURBS_DEGREE`]) in each direction, every pair of
+//! degrees 6..=11 among them.
+//!
 //! The script runs at test time with `python3` (or the interpreter named by TPI_PYTHON). A
 //! missing interpreter or a missing rhino3dm fails these tests; they never skip.
 
@@ -11,6 +14,7 @@ use std::sync::OnceLock;
 
 use glam::DVec3;
 use serde::Deserialize;
+use tpi_core::tolerance::MAX_NURBS_DEGREE;
 use tpi_core::{NurbsSpec, NurbsSurface, Surface};
 
 /// Points agree to this fraction of the control net's bounding-box diagonal.
@@ -113,7 +117,8 @@ fn conformance_cases_cover_the_required_range() {
         "only {} surfaces",
         file.cases.len()
     );
-    let mut degrees_seen = [[false; 6]; 2];
+    let mut degrees_seen = [[false; MAX_NURBS_DEGREE + 1]; 2];
+    let mut high_degree_pairs = std::collections::BTreeSet::new();
     let (mut rational, mut non_rational) = (0, 0);
     for case in &file.cases {
         assert!(
@@ -123,6 +128,9 @@ fn conformance_cases_cover_the_required_range() {
             case.samples.len()
         );
         let spec = &case.surface;
+        if spec.degree[0] > 5 && spec.degree[1] > 5 {
+            high_degree_pairs.insert(spec.degree);
+        }
         for direction in 0..2 {
             degrees_seen[direction][spec.degree[direction]] = true;
             let rhino_len = spec.count[direction] + spec.degree[direction] - 1;
@@ -151,10 +159,12 @@ fn conformance_cases_cover_the_required_range() {
     }
     for (direction, seen) in degrees_seen.iter().enumerate() {
         assert!(
-            seen[1..=5].iter().all(|&s| s),
+            seen[1..=MAX_NURBS_DEGREE].iter().all(|&s| s),
             "direction {direction}: degrees seen {seen:?}"
         );
     }
+    // Every pair of degrees 6..=11 (Rhino's limit).
+    assert_eq!(high_degree_pairs.len(), 36, "{high_degree_pairs:?}");
     assert!(
         rational >= 50 && non_rational >= 50,
         "{rational} rational, {non_rational} non-rational"

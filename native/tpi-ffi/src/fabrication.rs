@@ -26,7 +26,8 @@ pub const TPI_FILE_PANELS_JSON: u32 = 0;
 pub const TPI_FILE_PANELS_OBJ: u32 = 1;
 /// File of `tpi_fabrication_file`: sheets.svg.
 pub const TPI_FILE_SHEETS_SVG: u32 = 2;
-/// File of `tpi_fabrication_file`: sheets.dxf (ASCII DXF R12, `$INSUNITS` metres).
+/// File of `tpi_fabrication_file`: sheets.dxf (ASCII DXF R12, `$INSUNITS` from the surface's
+/// units, `tpi_surface_with_units`; metres for a unitless surface).
 pub const TPI_FILE_SHEETS_DXF: u32 = 3;
 /// File of `tpi_fabrication_file`: bevels.csv.
 pub const TPI_FILE_BEVELS_CSV: u32 = 4;
@@ -172,7 +173,7 @@ pub unsafe extern "C" fn tpi_fabrication_file(
             TPI_FILE_PANELS_JSON => f.fab.to_json(),
             TPI_FILE_PANELS_OBJ => f.fab.to_obj(),
             TPI_FILE_SHEETS_SVG => f.fab.sheets_svg(),
-            TPI_FILE_SHEETS_DXF => f.fab.sheets_dxf(Units::Metres),
+            TPI_FILE_SHEETS_DXF => f.fab.sheets_dxf(f.fab.units.unwrap_or(Units::Metres)),
             _ => f.fab.bevels_csv(),
         });
         unsafe { copy_out_str(text, out, capacity, needed, "out") }

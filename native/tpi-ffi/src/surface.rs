@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 use tpi_core::SurfaceModel;
-use tpi_core::{AnalyticSurface, LocalGeometry, NurbsSurface, Surface, TpiError};
+use tpi_core::{AnalyticSurface, LocalGeometry, NurbsSurface, Surface, TpiError, Units};
 
 use crate::boundary::{
     check_copy_out, copy_out, ffi_boundary, finite, try_handle, try_pairs, try_slice, FfiError,
@@ -93,7 +93,7 @@ fn analytic(result: Result<AnalyticSurface, TpiError>) -> Result<SurfaceModel, F
 
 /// Creates a NURBS surface from the arrays RhinoCommon hands over.
 ///
-/// - `degree_u`, `degree_v`: degrees (1 to 15).
+/// - `degree_u`, `degree_v`: degrees (1 to 11, Rhino's limit).
 /// - `count_u`, `count_v`: control point counts (count > degree).
 /// - `knots_u` (`knots_u_len` doubles) and `knots_v`: knot vectors in **Rhino's convention**,
 ///   count + degree - 1 knots each, as `NurbsSurface.KnotsU`/`KnotsV` give them; the domain is
@@ -401,5 +401,115 @@ pub unsafe extern "C" fn tpi_surface_evaluate(
             .collect();
         // SAFETY: the caller's contract.
         unsafe { copy_out(&samples, out, out_capacity, std::ptr::null_mut(), "out") }
+    }
+}
+
+/// Units of `tpi_surface_with_units` and `tpi_surface_units`: unitless (the default of every
+/// new surface). The values are those of Rhino's `UnitSystem` (RhinoCommon and rhino3dm), so
+/// that `(int)doc.ModelUnitSystem` passes through.
+pub const TPI_UNITS_NONE: i32 = 0;
+/// Microns (Rhino's `UnitSystem.Microns`).
+pub const TPI_UNITS_MICRONS: i32 = 1;
+/// Millimetres (`UnitSystem.Millimeters`).
+pub const TPI_UNITS_MILLIMETERS: i32 = 2;
+/// Centimetres (`UnitSystem.Centimeters`).
+pub const TPI_UNITS_CENTIMETERS: i32 = 3;
+/// Metres (`UnitSystem.Meters`).
+pub const TPI_UNITS_METERS: i32 = 4;
+/// Kilometres (`UnitSystem.Kilometers`).
+pub const TPI_UNITS_KILOMETERS: i32 = 5;
+/// Inches (`UnitSystem.Inches`).
+pub const TPI_UNITS_INCHES: i32 = 8;
+/// Feet (`UnitSystem.Feet`).
+pub const TPI_UNITS_FEET: i32 = 9;
+/// Miles (`UnitSystem.Miles`).
+pub const TPI_UNITS_MILES: i32 = 10;
+/// Yards (`UnitSystem.Yards`).
+pub const TPI_UNITS_YARDS: i32 = 19;
+
+const UNIT_CODES: [(i32, Units); 9] = [
+    (TPI_UNITS_MICRONS, Units::Microns),
+    (TPI_UNITS_MILLIMETERS, Units::Millimetres),
+    (TPI_UNITS_CENTIMETERS, Units::Centimetres),
+    (TPI_UNITS_METERS, Units::Metres),
+    (TPI_UNITS_KILOMETERS, Units::Kilometres),
+    (TPI_UNITS_INCHES, Units::Inches),
+    (TPI_UNITS_FEET, Units::Feet),
+    (TPI_UNITS_MILES, Units::Miles),
+    (TPI_UNITS_YARDS, Units::Yards),
+];
+
+fn units_from_code(code: i32) -> Result<Option<Units>, FfiError> {
+    if code == TPI_UNITS_NONE {
+        return Ok(None);
+    }
+    UNIT_CODES
+        .iter()
+        .find(|(c, _)| *c == code)
+        .map(|&(_, u)| Some(u))
+        .ok_or_else(|| {
+            FfiError::new(
+                TpiStatus::InvalidArgument,
+                format!(
+                    "units {code}: expected one of TPI_UNITS_NONE (0), {} (Rhino's UnitSystem values)",
+                    UNIT_CODES
+                        .iter()
+                        .map(|(c, u)| format!("{c} ({})", u.short_name()))
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            )
+        })
+}
+
+/// Creates a copy of `surface` with the model's length units `units` (a `TPI_UNITS_*` value,
+/// Rhino's `UnitSystem` numbering; `TPI_UNITS_NONE` for unitless). Nothing is rescaled: the
+/// units are carried to the outputs (the discretisation JSON's `"units"`, the fabrication's
+/// panels.json and DXF `$INSUNITS`). Surfaces are immutable, hence a new handle; free both.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (a value that is no
+/// `TPI_UNITS_*`, the message lists them). On an error `*out` is set to NULL.
+///
+/// # Safety
+/// `surface` is NULL or a live handle; `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_with_units(
+    surface: *const TpiSurface,
+    units: i32,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let out = unsafe { OutPtr::handle(out, "out") }?;
+        let surface = unsafe { try_handle(surface, "surface") }?;
+        let units = units_from_code(units)?;
+        let model = match surface.model.clone() {
+            SurfaceModel::Nurbs(n) => SurfaceModel::Nurbs(n.with_units(units)),
+            SurfaceModel::Analytic(a) => SurfaceModel::Analytic(a.with_units(units)),
+        };
+        out.set_boxed(TpiSurface { model });
+        Ok(())
+    }
+}
+
+/// Stores the surface's units in `*out`: a `TPI_UNITS_*` value, `TPI_UNITS_NONE` when unitless.
+///
+/// Errors: TPI_STATUS_NULL_POINTER.
+///
+/// # Safety
+/// `surface` is NULL or a live handle; `out` is NULL or valid for writing an `int32_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_units(surface: *const TpiSurface, out: *mut i32) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let surface = unsafe { try_handle(surface, "surface") }?;
+        let out = unsafe { OutPtr::new(out, "out") }?;
+        let code = surface
+            .model
+            .units()
+            .and_then(|u| UNIT_CODES.iter().find(|(_, v)| *v == u).map(|&(c, _)| c))
+            .unwrap_or(TPI_UNITS_NONE);
+        out.set(code);
+        Ok(())
     }
 }

@@ -95,6 +95,15 @@ namespace Tpi.Native.Interop
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         internal static extern void tpi_surface_free(IntPtr surface);
 
+        // enum TpiStatus tpi_surface_with_units(const struct TpiSurface *surface, int32_t units,
+        //     struct TpiSurface **out);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_surface_with_units(SurfaceHandle surface, int units, out SurfaceHandle @out);
+
+        // enum TpiStatus tpi_surface_units(const struct TpiSurface *surface, int32_t *out);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_surface_units(SurfaceHandle surface, out int @out);
+
         // enum TpiStatus tpi_surface_domain(const struct TpiSurface *surface, struct TpiDomain *out);
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         internal static extern Status tpi_surface_domain(SurfaceHandle surface, out Domain @out);

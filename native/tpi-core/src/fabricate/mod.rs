@@ -402,6 +402,9 @@ pub struct Fabrication {
     pub gap: f64,
     /// Local findings.
     pub diagnostics: Vec<FabricationDiagnostic>,
+    /// Length units of the model (the surface file's `"units"`, through the discretisation),
+    /// `None` when unitless.
+    pub units: Option<Units>,
 }
 
 /// Builds panel solids, joints, flat parts and their nesting from a discretisation.
@@ -449,6 +452,7 @@ pub fn fabricate(
         sheets,
         gap: options.gap,
         diagnostics,
+        units: mesh.units,
     })
 }
 

@@ -8,57 +8,7 @@ use serde::Serialize;
 
 use super::{Fabrication, FabricationDiagnostic, Panel, Placement, Polyhedron, Sheet, Side, Slot};
 
-/// Length units of the model, for DXF's `$INSUNITS` and G-code's G20 / G21.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Units {
-    /// Millimetres (`$INSUNITS` 4).
-    Millimetres,
-    /// Centimetres (`$INSUNITS` 5).
-    Centimetres,
-    /// Metres (`$INSUNITS` 6). Default value.
-    #[default]
-    Metres,
-    /// Inches (`$INSUNITS` 1).
-    Inches,
-    /// Feet (`$INSUNITS` 2).
-    Feet,
-}
-
-impl Units {
-    /// Parses `mm`, `cm`, `m`, `in` or `ft`.
-    pub fn parse(s: &str) -> Option<Units> {
-        Some(match s {
-            "mm" => Units::Millimetres,
-            "cm" => Units::Centimetres,
-            "m" => Units::Metres,
-            "in" => Units::Inches,
-            "ft" => Units::Feet,
-            _ => return None,
-        })
-    }
-
-    /// DXF `$INSUNITS` code.
-    pub fn insunits(self) -> u8 {
-        match self {
-            Units::Millimetres => 4,
-            Units::Centimetres => 5,
-            Units::Metres => 6,
-            Units::Inches => 1,
-            Units::Feet => 2,
-        }
-    }
-
-    /// Length of one unit in millimetres.
-    pub fn millimetres(self) -> f64 {
-        match self {
-            Units::Millimetres => 1.0,
-            Units::Centimetres => 10.0,
-            Units::Metres => 1000.0,
-            Units::Inches => 25.4,
-            Units::Feet => 304.8,
-        }
-    }
-}
+pub use crate::units::Units;
 
 #[derive(Serialize)]
 struct PanelView<'a> {
@@ -82,6 +32,7 @@ struct CleatView {
 
 #[derive(Serialize)]
 struct Document<'a> {
+    units: Option<Units>,
     thickness: f64,
     panels: Vec<PanelView<'a>>,
     cleats: Vec<CleatView>,
@@ -93,6 +44,7 @@ impl Fabrication {
     /// panels.json (the contract in docs/fabrication.md).
     pub fn to_json(&self) -> String {
         let doc = Document {
+            units: self.units,
             thickness: self.thickness,
             panels: self
                 .panels
@@ -135,6 +87,7 @@ impl Fabrication {
             self.thickness,
             self.cleats.len()
         );
+        let _ = writeln!(out, "# units: {}", crate::units::units_label(self.units));
         let mut base = 1usize;
         let mut put = |out: &mut String, name: &str, s: &Polyhedron| {
             let _ = writeln!(out, "o {name}\ng {name}");

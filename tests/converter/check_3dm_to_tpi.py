@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""Runs tools/3dm_to_tpi.py on a model built here with rhino3dm, and records what the Rust test
+native/tpi-core/tests/converter_3dm.rs checks against tpi-core.
+
+Usage: check_3dm_to_tpi.py --out DIR [--seed N] [--samples N]
+
+Builds the model of samples/make_example_3dm.py (a NURBS dome, a degree 7 x 5 rational surface,
+a sphere, a box, a trimmed plane, a capped cylinder, a slab with a hole; millimetres), writes it to DIR/model.3dm,
+converts it into DIR/plain (default options) and DIR/trims (--with-trims), then reads the .3dm
+again (independently of the converter) and, for every face in the index, evaluates the source
+geometry with rhino3dm at random parameters of the written NURBS surface's domain: bare surfaces
+with their own PointAt, Brep faces with BrepFace.PointAt at the surface parameters that
+`GetSurfaceParameterFromNurbsFormParameter` gives. Writes DIR/expected.json:
+{"index": ..., "faces": [{"file", "samples": [{"u", "v", "point"}]}], "trim_distances": ...}.
+"""
+
+import argparse
+import importlib.util
+import json
+import os
+import random
+import sys
+
+try:
+    import rhino3dm
+except ImportError:
+    sys.stderr.write(
+        "rhino3dm is not installed for this Python interpreter ({}).\n"
+        "Install it with: {} -m pip install 'rhino3dm==8.*'\n".format(sys.executable, sys.executable)
+    )
+    sys.exit(3)
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+
+
+def load(name, path):
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--out", required=True)
+    parser.add_argument("--seed", type=int, default=16)
+    parser.add_argument("--samples", type=int, default=40)
+    args = parser.parse_args()
+
+    example = load("make_example_3dm", os.path.join(ROOT, "samples", "make_example_3dm.py"))
+    converter = load("three_dm_to_tpi", os.path.join(ROOT, "tools", "3dm_to_tpi.py"))
+    os.makedirs(args.out, exist_ok=True)
+    model_path = os.path.join(args.out, "model.3dm")
+    if not example.build().Write(model_path, 8):
+        raise SystemExit("cannot write " + model_path)
+    plain, plain_index = converter.convert(model_path, os.path.join(args.out, "plain"))
+    trims, trims_index = converter.convert(model_path, os.path.join(args.out, "trims"), with_trims=True)
+
+    model = rhino3dm.File3dm.Read(model_path)
+    objects = list(model.Objects)
+    rng = random.Random(args.seed)
+    faces = []
+    for face in plain["faces"]:
+        geometry = objects[face["object"]].Geometry
+        if isinstance(geometry, rhino3dm.Extrusion):
+            geometry = geometry.ToBrep(True)
+        (u0, u1), (v0, v1) = face["domain_u"], face["domain_v"]
+        samples = []
+        for k in range(args.samples):
+            u = u0 if k == 0 else u1 if k == 1 else rng.uniform(u0, u1)
+            v = v0 if k == 0 else v1 if k == 1 else rng.uniform(v0, v1)
+            if isinstance(geometry, rhino3dm.Brep):
+                brep_face = geometry.Faces[face["face"]]
+                ok, s, t = brep_face.UnderlyingSurface().GetSurfaceParameterFromNurbsFormParameter(u, v)
+                if not ok:
+                    raise SystemExit("no surface parameter for {} at {}, {}".format(face["file"], u, v))
+                p = brep_face.PointAt(s, t)
+            else:
+                p = geometry.PointAt(u, v)
+            samples.append({"u": u, "v": v, "point": [p.X, p.Y, p.Z]})
+        faces.append({"file": face["file"], "samples": samples})
+
+    # Units: one small model per unit system, converted; what the surface file says.
+    unit_cases = []
+    for name in ("Inches", "Meters", "Microns", "Yards", "None", "Parsecs"):
+        small = rhino3dm.File3dm()
+        small.Settings.ModelUnitSystem = getattr(rhino3dm.UnitSystem, name)
+        small.Objects.AddSurface(example.nurbs_surface((2, 2), (3, 3), False, lambda s, t: s * t))
+        path = os.path.join(args.out, "units-{}.3dm".format(name))
+        if not small.Write(path, 8):
+            raise SystemExit("cannot write " + path)
+        doc, _ = converter.convert(path, os.path.join(args.out, "units-" + name))
+        unit_cases.append(
+            {
+                "rhino": name,
+                "index_units": doc["units"],
+                "file": os.path.join("units-" + name, doc["faces"][0]["file"]),
+            }
+        )
+
+    document = {
+        "unit_cases": unit_cases,
+        "rhino3dm": rhino3dm.__version__,
+        "plain_index": os.path.relpath(plain_index, args.out),
+        "trims_index": os.path.relpath(trims_index, args.out),
+        "faces": faces,
+    }
+    with open(os.path.join(args.out, "expected.json"), "w") as out:
+        json.dump(document, out)
+
+
+if __name__ == "__main__":
+    main()
