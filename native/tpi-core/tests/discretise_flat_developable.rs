@@ -59,19 +59,6 @@ fn assert_valid(name: &str, d: &Discretisation, n: usize) {
     );
 }
 
-/// The seeds of the facets around each vertex.
-fn facets_at_vertices(d: &Discretisation) -> Vec<Vec<usize>> {
-    let mut out = vec![Vec::new(); d.vertices.len()];
-    for i in 0..d.facet_count() {
-        for &v in d.facet(i) {
-            if !out[v as usize].contains(&i) {
-                out[v as usize].push(i);
-            }
-        }
-    }
-    out
-}
-
 #[test]
 fn plane_facets_are_the_voronoi_cells_of_their_seeds() {
     let mut rng = Rng::new(1601);
@@ -92,7 +79,7 @@ fn plane_facets_are_the_voronoi_cells_of_their_seeds() {
             assert_valid(&name, &d, pattern.len());
             let diagonal = seed_diagonal(&d);
             let seeds: Vec<DVec3> = d.seeds.iter().map(|s| s.point).collect();
-            let around = facets_at_vertices(&d);
+            let around = vertex_facets(&d);
             let mut checked = 0;
             for (v, x) in d.vertices.iter().enumerate() {
                 if d.vertex_kinds[v] != VertexKind::Interior || around[v].len() < 3 {
@@ -215,7 +202,7 @@ fn cylinders_and_cones_give_valid_meshes_separated_along_their_rulings() {
                     );
                 }
             }
-            let around = facets_at_vertices(&d);
+            let around = vertex_facets(&d);
             let mut bisected = 0;
             for (v, x) in d.vertices.iter().enumerate() {
                 for (a, &i) in around[v].iter().enumerate() {
