@@ -154,6 +154,27 @@ def main():
             weights.append(wu * wv)
     write("torus-band.json", biquadratic_patch(points, weights))
 
+    # Ellipsoid of one face, semi-axes 12, 8 and 5, as Rhino makes a sphere: a rational
+    # quadratic full circle in u (9 control points, closed) times a half circle from pole to
+    # pole in v (5 control points), scaled per axis (an affine image stays exact).
+    w = math.sqrt(0.5)
+    circle = [(1, 0, 1), (1, 1, w), (0, 1, 1), (-1, 1, w), (-1, 0, 1), (-1, -1, w), (0, -1, 1), (1, -1, w), (1, 0, 1)]
+    meridian = [(0, -1, 1), (1, -1, w), (1, 0, 1), (1, 1, w), (0, 1, 1)]
+    points, weights = [], []
+    for x, y, wu in circle:
+        for r, z, wv in meridian:
+            points.append([12.0 * x * r, 8.0 * y * r, 5.0 * z])
+            weights.append(wu * wv)
+    write("ellipsoid.json", {
+        "type": "nurbs",
+        "degree": [2, 2],
+        "count": [9, 5],
+        "knots_u": [0, 0, 1, 1, 2, 2, 3, 3, 4, 4],
+        "knots_v": [0, 0, 1, 1, 2, 2],
+        "points": points,
+        "weights": weights,
+    })
+
 
 if __name__ == "__main__":
     main()

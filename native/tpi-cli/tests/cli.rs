@@ -1756,3 +1756,78 @@ fn completions_and_man_page() {
     }
     fails(&["completions", "tcsh"], 2, &["tcsh"]);
 }
+
+/// A closed convex surface of one face gives a closed mesh with no warning; a surface closed
+/// in one direction without poles (a cylinder band) is an open patch, and says so.
+#[test]
+fn closed_surfaces_give_closed_meshes_or_a_seam_warning() {
+    let dir = scratch("closed");
+    for pattern in PATTERNS {
+        let out = dir.join(format!("ellipsoid-{pattern}"));
+        let run = ok(&[
+            "discretise",
+            "--surface",
+            &sample("ellipsoid.json"),
+            "--pattern",
+            &sample(pattern),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let c = read_contract(&out);
+        check_contract(&c, pattern_len(&sample(pattern)));
+        let q = c.quality.as_ref().expect("quality report");
+        assert_eq!(
+            (q.euler_characteristic, q.boundary_loops, q.invalid_facets),
+            (2, 0, 0),
+            "ellipsoid with {pattern}"
+        );
+        assert!(
+            !text(&run.stderr).contains("warning"),
+            "{}",
+            text(&run.stderr)
+        );
+    }
+    // A full cylinder: a rational quadratic circle in u, a straight line in v.
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let circle = [
+        (1.0, 0.0, 1.0),
+        (1.0, 1.0, w),
+        (0.0, 1.0, 1.0),
+        (-1.0, 1.0, w),
+        (-1.0, 0.0, 1.0),
+        (-1.0, -1.0, w),
+        (0.0, -1.0, 1.0),
+        (1.0, -1.0, w),
+        (1.0, 0.0, 1.0),
+    ];
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for (x, y, wu) in circle {
+        for z in [0.0, 4.0] {
+            points.push(format!("[{}, {}, {z}]", 3.0 * x, 3.0 * y));
+            weights.push(format!("{wu}"));
+        }
+    }
+    let band = dir.join("cylinder.json");
+    std::fs::write(
+        &band,
+        format!(
+            r#"{{"type": "nurbs", "degree": [2, 1], "count": [9, 2], "knots_u": [0, 0, 1, 1, 2, 2, 3, 3, 4, 4], "knots_v": [0, 1], "points": [{}], "weights": [{}]}}"#,
+            points.join(", "),
+            weights.join(", ")
+        ),
+    )
+    .unwrap();
+    let run = ok(&[
+        "discretise",
+        "--surface",
+        band.to_str().unwrap(),
+        "--pattern",
+        "grid:16x6",
+    ]);
+    let stderr = text(&run.stderr);
+    assert!(
+        stderr.contains("warning: the surface is closed in u") && stderr.contains("seam"),
+        "{stderr}"
+    );
+}
