@@ -21,6 +21,7 @@
 
 mod adjusted_planes;
 mod analytic;
+mod boundary;
 pub mod benchmark;
 mod diagnostics;
 mod diffgeo;
@@ -43,6 +44,7 @@ mod sanity;
 mod spec;
 mod surface;
 pub mod tolerance;
+mod trim;
 mod triangulation;
 mod validity_flips;
 
@@ -75,6 +77,7 @@ pub use quality::{
 pub use sanity::SanityError;
 pub use spec::{sampled_bounding_box, SurfaceModel, SurfaceSpec};
 pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};
+pub use trim::Trim;
 // The tolerances a caller sets or checks against, also at the root.
 pub use tolerance::{
     DEFAULT_FAR_VERTEX_FACTOR, DEFAULT_FLAT_TOLERANCE, DEFAULT_PLANE_CURVATURE,

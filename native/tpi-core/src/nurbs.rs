@@ -115,6 +115,10 @@ pub struct NurbsSpec {
     /// Optional weights, nu * nv, all > 0.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub weights: Option<Vec<f64>>,
+    /// Optional trim (see [`crate::Trim`]); checked by [`crate::SurfaceSpec::build`], not by
+    /// [`NurbsSpec::build`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trim: Option<crate::Trim>,
 }
 
 impl NurbsSpec {
@@ -585,6 +589,7 @@ impl NurbsSurface {
             knots_v: self.knots_v().to_vec(),
             points: self.points.iter().map(|p| p.to_array()).collect(),
             weights: self.weights.clone(),
+            trim: None,
         }
     }
 

@@ -33,6 +33,7 @@ use crate::analytic::{AnalyticKind, AnalyticSurface};
 use crate::error::TpiError;
 use crate::nurbs::{NurbsSpec, NurbsSurface};
 use crate::surface::{Domain, Surface, SurfaceDerivatives};
+use crate::trim::Trim;
 
 /// A surface record as stored in a surface file, tagged by `"type"` (snake_case).
 ///
@@ -52,6 +53,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = sqrt(radius^2 - x^2 - y^2), rectangle strictly inside the disc.
     SphereCap {
@@ -61,6 +65,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = c sqrt(1 - x^2/a^2 - y^2/b^2), rectangle strictly inside the ellipse.
     EllipsoidCap {
@@ -74,6 +81,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = a x^2 - b y^2, a and b non-zero with the same sign.
     HyperbolicParaboloid {
@@ -85,6 +95,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = amplitude sin(x) sin(y), amplitude non-zero.
     EggCrate {
@@ -94,6 +107,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = sqrt(radius^2 - x^2), |x| < radius.
     Cylinder {
@@ -103,6 +119,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = p x + q y + c0.
     Plane {
@@ -116,6 +135,9 @@ pub enum SurfaceSpec {
         x: [f64; 2],
         /// y range [min, max] (v domain).
         y: [f64; 2],
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
 }
 
@@ -195,6 +217,7 @@ impl SurfaceSpec {
                     b: r.b,
                     x: r.x,
                     y: r.y,
+                    trim: r.trim,
                 }
             }
             "hyperbolic_paraboloid" => {
@@ -204,6 +227,7 @@ impl SurfaceSpec {
                     b: r.b,
                     x: r.x,
                     y: r.y,
+                    trim: r.trim,
                 }
             }
             "sphere_cap" => {
@@ -212,6 +236,7 @@ impl SurfaceSpec {
                     radius: r.radius,
                     x: r.x,
                     y: r.y,
+                    trim: r.trim,
                 }
             }
             "cylinder" => {
@@ -220,6 +245,7 @@ impl SurfaceSpec {
                     radius: r.radius,
                     x: r.x,
                     y: r.y,
+                    trim: r.trim,
                 }
             }
             "ellipsoid_cap" => {
@@ -230,6 +256,7 @@ impl SurfaceSpec {
                     c: r.c,
                     x: r.x,
                     y: r.y,
+                    trim: r.trim,
                 }
             }
             "egg_crate" => {
@@ -238,6 +265,7 @@ impl SurfaceSpec {
                     amplitude: r.amplitude,
                     x: r.x,
                     y: r.y,
+                    trim: r.trim,
                 }
             }
             "plane" => {
@@ -248,6 +276,7 @@ impl SurfaceSpec {
                     c0: r.c0,
                     x: r.x,
                     y: r.y,
+                    trim: r.trim,
                 }
             }
             other => {
@@ -286,35 +315,73 @@ impl SurfaceSpec {
     fn parts(&self) -> Parts<'_> {
         let (kind, x, y) = match *self {
             SurfaceSpec::Nurbs(ref n) => return Parts::Nurbs(n),
-            SurfaceSpec::EllipticParaboloid { a, b, x, y } => {
+            SurfaceSpec::EllipticParaboloid { a, b, x, y, .. } => {
                 (AnalyticKind::EllipticParaboloid { a, b }, x, y)
             }
-            SurfaceSpec::SphereCap { radius, x, y } => (AnalyticKind::SphereCap { radius }, x, y),
-            SurfaceSpec::EllipsoidCap { a, b, c, x, y } => {
+            SurfaceSpec::SphereCap { radius, x, y, .. } => {
+                (AnalyticKind::SphereCap { radius }, x, y)
+            }
+            SurfaceSpec::EllipsoidCap { a, b, c, x, y, .. } => {
                 (AnalyticKind::EllipsoidCap { a, b, c }, x, y)
             }
-            SurfaceSpec::HyperbolicParaboloid { a, b, x, y } => {
+            SurfaceSpec::HyperbolicParaboloid { a, b, x, y, .. } => {
                 (AnalyticKind::HyperbolicParaboloid { a, b }, x, y)
             }
-            SurfaceSpec::EggCrate { amplitude, x, y } => {
+            SurfaceSpec::EggCrate { amplitude, x, y, .. } => {
                 (AnalyticKind::EggCrate { amplitude }, x, y)
             }
-            SurfaceSpec::Cylinder { radius, x, y } => (AnalyticKind::Cylinder { radius }, x, y),
-            SurfaceSpec::Plane { p, q, c0, x, y } => (AnalyticKind::Plane { p, q, c0 }, x, y),
+            SurfaceSpec::Cylinder { radius, x, y, .. } => {
+                (AnalyticKind::Cylinder { radius }, x, y)
+            }
+            SurfaceSpec::Plane { p, q, c0, x, y, .. } => (AnalyticKind::Plane { p, q, c0 }, x, y),
         };
         Parts::Analytic(kind, x, y)
+    }
+
+    /// The record's trim, if any.
+    pub fn trim(&self) -> Option<&Trim> {
+        match self {
+            SurfaceSpec::Nurbs(n) => n.trim.as_ref(),
+            SurfaceSpec::EllipticParaboloid { trim, .. }
+            | SurfaceSpec::SphereCap { trim, .. }
+            | SurfaceSpec::EllipsoidCap { trim, .. }
+            | SurfaceSpec::HyperbolicParaboloid { trim, .. }
+            | SurfaceSpec::EggCrate { trim, .. }
+            | SurfaceSpec::Cylinder { trim, .. }
+            | SurfaceSpec::Plane { trim, .. } => trim.as_ref(),
+        }
+    }
+
+    /// The record with its trim replaced.
+    pub fn with_trim(mut self, new: Option<Trim>) -> SurfaceSpec {
+        match &mut self {
+            SurfaceSpec::Nurbs(n) => n.trim = new,
+            SurfaceSpec::EllipticParaboloid { trim, .. }
+            | SurfaceSpec::SphereCap { trim, .. }
+            | SurfaceSpec::EllipsoidCap { trim, .. }
+            | SurfaceSpec::HyperbolicParaboloid { trim, .. }
+            | SurfaceSpec::EggCrate { trim, .. }
+            | SurfaceSpec::Cylinder { trim, .. }
+            | SurfaceSpec::Plane { trim, .. } => *trim = new,
+        }
+        self
     }
 
     /// Validates the record and builds the surface.
     ///
     /// Errors: the NURBS validation errors of [`NurbsSpec::build`], or the analytic ones of
-    /// [`AnalyticSurface::new`], each naming the offending field.
+    /// [`AnalyticSurface::new`], each naming the offending field; then the trim's errors
+    /// ([`Trim::validate`]) against the surface's domain.
     pub fn build(&self) -> Result<SurfaceModel, TpiError> {
-        match self.parts() {
-            Parts::Nurbs(n) => Ok(SurfaceModel::Nurbs(n.build()?)),
+        let model = match self.parts() {
+            Parts::Nurbs(n) => SurfaceModel::Nurbs(n.build()?),
             Parts::Analytic(kind, x, y) => {
-                Ok(SurfaceModel::Analytic(AnalyticSurface::new(kind, x, y)?))
+                SurfaceModel::Analytic(AnalyticSurface::new(kind, x, y)?)
             }
+        };
+        match self.trim() {
+            None => Ok(model),
+            Some(trim) => SurfaceModel::trimmed(model, trim.clone()),
         }
     }
 
@@ -322,17 +389,54 @@ impl SurfaceSpec {
     pub fn from_analytic(surface: &AnalyticSurface) -> SurfaceSpec {
         let (x, y) = (surface.x_range(), surface.y_range());
         match surface.kind() {
-            AnalyticKind::EllipticParaboloid { a, b } => {
-                SurfaceSpec::EllipticParaboloid { a, b, x, y }
-            }
-            AnalyticKind::SphereCap { radius } => SurfaceSpec::SphereCap { radius, x, y },
-            AnalyticKind::EllipsoidCap { a, b, c } => SurfaceSpec::EllipsoidCap { a, b, c, x, y },
-            AnalyticKind::HyperbolicParaboloid { a, b } => {
-                SurfaceSpec::HyperbolicParaboloid { a, b, x, y }
-            }
-            AnalyticKind::EggCrate { amplitude } => SurfaceSpec::EggCrate { amplitude, x, y },
-            AnalyticKind::Cylinder { radius } => SurfaceSpec::Cylinder { radius, x, y },
-            AnalyticKind::Plane { p, q, c0 } => SurfaceSpec::Plane { p, q, c0, x, y },
+            AnalyticKind::EllipticParaboloid { a, b } => SurfaceSpec::EllipticParaboloid {
+                a,
+                b,
+                x,
+                y,
+                trim: None,
+            },
+            AnalyticKind::SphereCap { radius } => SurfaceSpec::SphereCap {
+                radius,
+                x,
+                y,
+                trim: None,
+            },
+            AnalyticKind::EllipsoidCap { a, b, c } => SurfaceSpec::EllipsoidCap {
+                a,
+                b,
+                c,
+                x,
+                y,
+                trim: None,
+            },
+            AnalyticKind::HyperbolicParaboloid { a, b } => SurfaceSpec::HyperbolicParaboloid {
+                a,
+                b,
+                x,
+                y,
+                trim: None,
+            },
+            AnalyticKind::EggCrate { amplitude } => SurfaceSpec::EggCrate {
+                amplitude,
+                x,
+                y,
+                trim: None,
+            },
+            AnalyticKind::Cylinder { radius } => SurfaceSpec::Cylinder {
+                radius,
+                x,
+                y,
+                trim: None,
+            },
+            AnalyticKind::Plane { p, q, c0 } => SurfaceSpec::Plane {
+                p,
+                q,
+                c0,
+                x,
+                y,
+                trim: None,
+            },
         }
     }
 }
@@ -353,6 +457,8 @@ struct TwoCoefficients {
     b: f64,
     x: [f64; 2],
     y: [f64; 2],
+    #[serde(default)]
+    trim: Option<Trim>,
 }
 
 #[derive(Deserialize)]
@@ -361,6 +467,8 @@ struct Radius {
     radius: f64,
     x: [f64; 2],
     y: [f64; 2],
+    #[serde(default)]
+    trim: Option<Trim>,
 }
 
 #[derive(Deserialize)]
@@ -371,6 +479,8 @@ struct SemiAxes {
     c: f64,
     x: [f64; 2],
     y: [f64; 2],
+    #[serde(default)]
+    trim: Option<Trim>,
 }
 
 #[derive(Deserialize)]
@@ -379,6 +489,8 @@ struct Amplitude {
     amplitude: f64,
     x: [f64; 2],
     y: [f64; 2],
+    #[serde(default)]
+    trim: Option<Trim>,
 }
 
 #[derive(Deserialize)]
@@ -389,6 +501,8 @@ struct PlaneRecord {
     c0: f64,
     x: [f64; 2],
     y: [f64; 2],
+    #[serde(default)]
+    trim: Option<Trim>,
 }
 
 fn type_list() -> String {
@@ -602,6 +716,13 @@ pub enum SurfaceModel {
     Nurbs(NurbsSurface),
     /// An analytic graph surface.
     Analytic(AnalyticSurface),
+    /// A surface with a trim (never itself trimmed).
+    Trimmed {
+        /// The untrimmed surface.
+        surface: Box<SurfaceModel>,
+        /// Its trim, validated against its domain.
+        trim: Trim,
+    },
 }
 
 impl SurfaceModel {
@@ -611,6 +732,32 @@ impl SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => SurfaceSpec::Nurbs(n.to_spec()),
             SurfaceModel::Analytic(a) => SurfaceSpec::from_analytic(a),
+            SurfaceModel::Trimmed { surface, trim } => {
+                surface.to_spec().with_trim(Some(trim.clone()))
+            }
+        }
+    }
+
+    /// `surface` trimmed by `trim` (a trimmed surface's trim is replaced).
+    ///
+    /// Errors: those of [`Trim::validate`] against the surface's domain.
+    pub fn trimmed(surface: SurfaceModel, trim: Trim) -> Result<SurfaceModel, TpiError> {
+        let surface = match surface {
+            SurfaceModel::Trimmed { surface, .. } => *surface,
+            other => other,
+        };
+        trim.validate(&surface.domain())?;
+        Ok(SurfaceModel::Trimmed {
+            surface: Box::new(surface),
+            trim,
+        })
+    }
+
+    /// The surface without its trim.
+    pub fn untrimmed(&self) -> &SurfaceModel {
+        match self {
+            SurfaceModel::Trimmed { surface, .. } => surface,
+            other => other,
         }
     }
 
@@ -627,6 +774,7 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.domain(),
             SurfaceModel::Analytic(a) => a.domain(),
+            SurfaceModel::Trimmed { surface, .. } => surface.domain(),
         }
     }
 
@@ -634,6 +782,7 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.evaluate(u, v),
             SurfaceModel::Analytic(a) => a.evaluate(u, v),
+            SurfaceModel::Trimmed { surface, .. } => surface.evaluate(u, v),
         }
     }
 
@@ -641,6 +790,14 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.point_at(u, v),
             SurfaceModel::Analytic(a) => a.point_at(u, v),
+            SurfaceModel::Trimmed { surface, .. } => surface.point_at(u, v),
+        }
+    }
+
+    fn trim(&self) -> Option<&Trim> {
+        match self {
+            SurfaceModel::Trimmed { trim, .. } => Some(trim),
+            _ => None,
         }
     }
 }

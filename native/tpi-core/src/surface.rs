@@ -130,4 +130,10 @@ pub trait Surface: Send + Sync {
     fn point_at(&self, u: f64, v: f64) -> DVec3 {
         self.evaluate(u, v).point
     }
+
+    /// The trim: the part of the domain kept ([`crate::Trim`]); None (the default) keeps the
+    /// whole domain.
+    fn trim(&self) -> Option<&crate::Trim> {
+        None
+    }
 }

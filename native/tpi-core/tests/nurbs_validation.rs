@@ -22,6 +22,7 @@ fn valid_spec() -> NurbsSpec {
         knots_v: vec![-2.0, -2.0, -1.0, 0.0, 0.0],
         weights: Some((0..nu * nv).map(|k| 1.0 + 0.1 * (k % 4) as f64).collect()),
         points,
+        trim: None,
     }
 }
 

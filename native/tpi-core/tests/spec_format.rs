@@ -154,6 +154,7 @@ fn the_type_may_stand_anywhere_in_the_record() {
         radius: 2.0,
         x: [-1.0, 1.0],
         y: [0.0, 1.0],
+        trim: None,
     };
     for text in [first, middle, last, escaped] {
         assert_eq!(
