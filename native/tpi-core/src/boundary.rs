@@ -186,8 +186,8 @@ impl Loops {
 
     /// Even-odd test over all loops, in normalised parameters.
     fn contains_normalised(&self, p: [f64; 2]) -> bool {
-        self.points
-            .iter()
-            .fold(false, |inside, points| inside ^ crate::trim::in_polygon(points, p))
+        self.points.iter().fold(false, |inside, points| {
+            inside ^ crate::trim::in_polygon(points, p)
+        })
     }
 }

@@ -24,10 +24,10 @@ use std::collections::HashMap;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::boundary::{Boundary, Position};
 use crate::diagnostics::Diagnostic;
 use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
 use crate::planes::{intersect_three, regularised_meeting_point, Plane};
-use crate::boundary::{Boundary, Position};
 use crate::projection::foot;
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{

@@ -21,8 +21,8 @@
 
 mod adjusted_planes;
 mod analytic;
-mod boundary;
 pub mod benchmark;
+mod boundary;
 mod diagnostics;
 mod diffgeo;
 mod discretise;
@@ -44,8 +44,8 @@ mod sanity;
 mod spec;
 mod surface;
 pub mod tolerance;
-mod trim;
 mod triangulation;
+mod trim;
 mod validity_flips;
 
 pub use analytic::{AnalyticKind, AnalyticSurface};

@@ -9,7 +9,8 @@
 //!   signed area, no two non-adjacent edges crossing, in a right-handed frame of the plane);
 //! - an oriented 2-manifold: every edge held by one facet (boundary) or by two facets that run
 //!   it in opposite directions;
-//! - a disc: V - E + F = 1 and the boundary edges form one loop.
+//! - a disc: V - E + F = 1 and the boundary edges form one loop; on a trimmed surface a
+//!   disc with holes: V - E + F = 2 - loops.
 //!
 //! It says nothing about overlaps between facets that share no edge (the quality report's
 //! flags do); it is cheap enough to run on every result in tests and fuzzing.
@@ -134,7 +135,10 @@ impl Discretisation {
         let vertices = used.iter().filter(|&&u| u).count();
         let euler = vertices as i64 - edges as i64 + facets as i64;
         let loops = boundary_loops(self.vertices.len(), &boundary);
-        if euler != 1 || loops != 1 {
+        // On a trimmed surface each hole of the trim adds a boundary loop: a disc with holes.
+        let trimmed = !self.pattern_indices.is_empty() && loops >= 1;
+        let disc = euler == 1 && loops == 1;
+        if !(disc || trimmed && euler == 2 - loops as i64) {
             return Err(SanityError::NotDisc { euler, loops });
         }
         Ok(())

@@ -327,12 +327,10 @@ impl SurfaceSpec {
             SurfaceSpec::HyperbolicParaboloid { a, b, x, y, .. } => {
                 (AnalyticKind::HyperbolicParaboloid { a, b }, x, y)
             }
-            SurfaceSpec::EggCrate { amplitude, x, y, .. } => {
-                (AnalyticKind::EggCrate { amplitude }, x, y)
-            }
-            SurfaceSpec::Cylinder { radius, x, y, .. } => {
-                (AnalyticKind::Cylinder { radius }, x, y)
-            }
+            SurfaceSpec::EggCrate {
+                amplitude, x, y, ..
+            } => (AnalyticKind::EggCrate { amplitude }, x, y),
+            SurfaceSpec::Cylinder { radius, x, y, .. } => (AnalyticKind::Cylinder { radius }, x, y),
             SurfaceSpec::Plane { p, q, c0, x, y, .. } => (AnalyticKind::Plane { p, q, c0 }, x, y),
         };
         Parts::Analytic(kind, x, y)

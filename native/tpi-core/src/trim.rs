@@ -240,7 +240,11 @@ fn check_crossings(loops: &[Vec<[f64; 2]>], names: &[String]) -> Result<(), TpiE
                 if adjacent {
                     // Consecutive segments meet at their shared point only; they overlap
                     // when the loop turns back on itself.
-                    let (shared, p, q) = if (k + 1) % n == j { (b, a, d) } else { (a, b, c) };
+                    let (shared, p, q) = if (k + 1) % n == j {
+                        (b, a, d)
+                    } else {
+                        (a, b, c)
+                    };
                     let _ = shared;
                     let turn = orient(p, shared, q);
                     let back = (q[0] - shared[0]) * (p[0] - shared[0])
