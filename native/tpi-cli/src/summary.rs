@@ -29,6 +29,13 @@ pub(crate) fn summary(
         result.facet_count(),
         result.vertices.len()
     );
+    if !result.pattern_indices.is_empty() {
+        let _ = writeln!(
+            s,
+            "  trim: {} pattern points outside the trim left out (facets keep their pattern index as seed)",
+            result.outside_trim
+        );
+    }
     match &result.quality {
         None => {
             let _ = writeln!(s, "  quality report: off (--no-report)");
