@@ -445,8 +445,9 @@ pub(crate) fn run(
     }
     let domain = surface.domain();
     let boundary = Boundary::new(domain, Some(trim));
+    // Points on a loop are decided by the crossing rule of `Trim::contains`.
     let kept: Vec<u32> = (0..pattern.len() as u32)
-        .filter(|&i| boundary.inside_measure(domain.from_normalised(pattern[i as usize])) > 0.0)
+        .filter(|&i| trim.contains(domain.from_normalised(pattern[i as usize])))
         .collect();
     if kept.len() < 3 {
         return Err(TpiError::InvalidTrim {

@@ -803,7 +803,7 @@ fn edge_crossings(
                 }
                 (None, None) => return (Vec::new(), None),
             };
-            let reversed = end.is_none();
+            let reversed = start.is_none();
             let (first, last) = if reversed { (b, a) } else { (a, b) };
             (
                 outside_segment_crossings(ctx, first, last, lo.point, hi.point),

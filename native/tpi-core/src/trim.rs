@@ -139,17 +139,14 @@ impl Trim {
         Ok(())
     }
 
-    /// Whether (u, v) lies inside the trimmed region (even-odd over all loops; points on a
-    /// loop count as outside).
+    /// Whether (u, v) lies inside the trimmed region: the even-odd rule over all loops, by
+    /// the classic crossing test (a ray towards +u, a segment counted when exactly one end
+    /// lies above v). A point on a loop is decided by that rule too (so the left and bottom
+    /// of a loop count as inside, the right and top as outside).
     pub fn contains(&self, uv: [f64; 2]) -> bool {
-        let mut inside = false;
-        for points in self.open_loops() {
-            if on_polygon(&points, uv) {
-                return false;
-            }
-            inside ^= in_polygon(&points, uv);
-        }
-        inside
+        self.open_loops()
+            .iter()
+            .fold(false, |inside, points| inside ^ in_polygon(points, uv))
     }
 }
 
@@ -164,33 +161,21 @@ fn signed_area(points: &[[f64; 2]]) -> f64 {
     0.5 * sum
 }
 
-/// Even-odd point-in-polygon test (crossings of the ray to +u).
+/// Even-odd point-in-polygon test (crossings of the ray to +u; W. R. Franklin's form).
 pub(crate) fn in_polygon(points: &[[f64; 2]], p: [f64; 2]) -> bool {
     let n = points.len();
     let mut inside = false;
-    for k in 0..n {
-        let (a, b) = (points[k], points[(k + 1) % n]);
-        if (a[1] > p[1]) != (b[1] > p[1]) {
-            let x = a[0] + (p[1] - a[1]) / (b[1] - a[1]) * (b[0] - a[0]);
-            if p[0] < x {
-                inside = !inside;
-            }
+    let mut j = n - 1;
+    for i in 0..n {
+        let (a, b) = (points[i], points[j]);
+        if (a[1] > p[1]) != (b[1] > p[1])
+            && p[0] < (b[0] - a[0]) * (p[1] - a[1]) / (b[1] - a[1]) + a[0]
+        {
+            inside = !inside;
         }
+        j = i;
     }
     inside
-}
-
-/// Whether p lies exactly on a segment of the loop.
-fn on_polygon(points: &[[f64; 2]], p: [f64; 2]) -> bool {
-    let n = points.len();
-    (0..n).any(|k| {
-        let (a, b) = (points[k], points[(k + 1) % n]);
-        orient(a, b, p) == 0.0
-            && p[0] >= a[0].min(b[0])
-            && p[0] <= a[0].max(b[0])
-            && p[1] >= a[1].min(b[1])
-            && p[1] <= a[1].max(b[1])
-    })
 }
 
 fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {

@@ -71,7 +71,19 @@ fn surface(kind: &str, trim: &Trim) -> SurfaceModel {
 
 /// Everything the issue asks of a trimmed run; returns (Euler characteristic, loops).
 fn check(kind: &str, trim: &Trim, pattern: &[[f64; 2]]) -> (i64, usize) {
-    let model = surface(kind, trim);
+    let sign = if kind == "paraboloid" { 1.0 } else { -1.0 };
+    check_model(kind, &surface(kind, trim), trim, pattern, sign)
+}
+
+/// [`check`] on any graph surface z = f(x, y) trimmed by `trim`, convex upwards (`sign` 1)
+/// or downwards (-1).
+fn check_model(
+    kind: &str,
+    model: &SurfaceModel,
+    trim: &Trim,
+    pattern: &[[f64; 2]],
+    sign: f64,
+) -> (i64, usize) {
     let domain = model.domain();
     let loops: Vec<Vec<[f64; 2]>> = std::iter::once(trim.outer.clone())
         .chain(trim.holes.iter().cloned())
@@ -83,7 +95,25 @@ fn check(kind: &str, trim: &Trim, pattern: &[[f64; 2]]) -> (i64, usize) {
         })
         .collect();
     assert!(inside.len() < pattern.len(), "the trim leaves out no point");
-    let d = discretise(&model, pattern, &DiscretiseOptions::default()).unwrap();
+    let d = discretise(model, pattern, &DiscretiseOptions::default()).unwrap();
+    if d.facet_count() != inside.len() {
+        let got: Vec<usize> = (0..d.facet_count()).map(|f| d.pattern_index(f)).collect();
+        for &i in &inside {
+            if !got.contains(&i) {
+                let uv = domain.from_normalised(pattern[i]);
+                eprintln!(
+                    "missing {i} {:?} uv {uv:?} dist {}",
+                    pattern[i],
+                    polyline_distance(&loops, uv)
+                );
+            }
+        }
+        for &i in &got {
+            if !inside.contains(&i) {
+                eprintln!("extra {i} {:?}", pattern[i]);
+            }
+        }
+    }
     assert_eq!(
         d.facet_count(),
         inside.len(),
@@ -119,7 +149,7 @@ fn check(kind: &str, trim: &Trim, pattern: &[[f64; 2]]) -> (i64, usize) {
     let size = domain.u.length().max(domain.v.length());
     let mut on_trim = 0;
     for (v, &x) in d.vertices.iter().enumerate() {
-        let foot = closest_parameters(&model, x, 64);
+        let foot = closest_parameters(model, x, 64);
         let distance = polyline_distance(&loops, foot) / size;
         match d.vertex_kinds[v] {
             VertexKind::Boundary | VertexKind::Corner => {
@@ -166,7 +196,6 @@ fn check(kind: &str, trim: &Trim, pattern: &[[f64; 2]]) -> (i64, usize) {
             } else {
                 -seed.normal
             };
-            let sign = if kind == "paraboloid" { 1.0 } else { -1.0 };
             assert!(
                 sign * up.dot(x - seed.point) >= -1e-9 * diagonal,
                 "{kind}: interior vertex {v} is not on the envelope"
@@ -383,4 +412,45 @@ fn paths_without_trim_support_say_so() {
         Ok(_) => panic!("live editing accepted a trimmed surface"),
     }
     let _ = DVec3::ZERO;
+}
+
+#[test]
+fn nurbs_domes_trimmed_to_a_disc_with_a_hole() {
+    for (name, dome) in [("dome_a", dome_a()), ("dome_c", dome_c())] {
+        let domain = dome.domain();
+        let at = |s: f64, t: f64| domain.from_normalised([s, t]);
+        let ellipse = |c: [f64; 2], r: f64, n: usize, ccw: bool| -> Vec<[f64; 2]> {
+            circle([0.0, 0.0], 1.0, n, ccw)
+                .into_iter()
+                .map(|[x, y]| at(c[0] + r * x, c[1] + r * y))
+                .collect()
+        };
+        let trim = Trim {
+            outer: ellipse([0.5, 0.5], 0.45, 200, true),
+            holes: vec![ellipse([0.45, 0.55], 0.15, 40, false)],
+        };
+        let model = SurfaceModel::trimmed(SurfaceModel::Nurbs(dome), trim.clone()).unwrap();
+        for pattern in [random(7, 700), hex("hex:spacing=0.04")] {
+            assert_eq!(
+                check_model(name, &model, &trim, &pattern, -1.0),
+                (0, 2),
+                "{name}"
+            );
+        }
+    }
+}
+
+/// A ring narrower than two pattern spacings: facet edges run from over the hole across the
+/// ring and out past the outer loop, so a hull ray dips into the region between two outside
+/// ends. Its crossings must be ordered along the edge from its right triangle (they were
+/// reversed when the ray was on the left, giving non-simple facets).
+#[test]
+fn a_narrow_ring_keeps_its_facets_simple() {
+    let trim = Trim {
+        outer: vec![[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]],
+        holes: vec![vec![[-0.2, -0.2], [-0.2, 0.2], [0.2, 0.2], [0.2, -0.2]]],
+    };
+    for spec in ["grid:11x11", "grid:21x21", "hex:20x20"] {
+        assert_eq!(check("paraboloid", &trim, &hex(spec)), (0, 2), "{spec}");
+    }
 }
