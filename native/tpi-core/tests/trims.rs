@@ -454,3 +454,29 @@ fn a_narrow_ring_keeps_its_facets_simple() {
         assert_eq!(check("paraboloid", &trim, &hex(spec)), (0, 2), "{spec}");
     }
 }
+
+#[test]
+fn a_nurbs_surface_file_takes_a_trim_too() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../samples/nurbs-dome.json");
+    let mut value: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let trim = Trim {
+        outer: circle([5.0, 4.0], 3.5, 128, true),
+        holes: vec![circle([5.5, 3.5], 1.0, 32, false)],
+    };
+    value["trim"] = serde_json::to_value(&trim).unwrap();
+    let text = value.to_string();
+    let spec = SurfaceSpec::from_json(&text, "dome.json").unwrap();
+    assert_eq!(spec, serde_json::from_str::<SurfaceSpec>(&text).unwrap());
+    assert_eq!(spec.trim(), Some(&trim));
+    let model = spec.build().unwrap();
+    assert_eq!(model.trim(), Some(&trim));
+    assert_eq!(model.to_spec(), spec);
+    let d = discretise(&model, &random(8, 800), &DiscretiseOptions::default()).unwrap();
+    d.sanity_check().unwrap();
+    let q = d.quality.unwrap();
+    assert_eq!(
+        (q.euler_characteristic, q.boundary_loops, q.invalid_facets),
+        (0, 2, 0)
+    );
+}
