@@ -31,9 +31,9 @@ use crate::planes::{intersect_three, regularised_meeting_point, Plane};
 use crate::projection::foot;
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
-    CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE, DEFAULT_FAR_VERTEX_FACTOR,
-    NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES, RAY_DOUBLINGS, RAY_FAR_FACTOR,
-    UNREACHABLE_VERTEX_FACTOR,
+    CORNER_ON_CROSSING, CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE,
+    DEFAULT_FAR_VERTEX_FACTOR, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES, RAY_DOUBLINGS,
+    RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR,
 };
 use crate::triangulation::{DualTriangulation, Edge, Fan, NO_TRIANGLE};
 
@@ -248,7 +248,30 @@ pub(crate) fn build_facets(
         diagnostics.extend(diagnostic);
     }
     let corner_list = boundary.corners();
-    let corner_owner = corner_owners(boundary, &corner_list, &crossings);
+    let mut corner_owner = corner_owners(boundary, &corner_list, &crossings);
+    // A trim corner that a crossing sits on (a facet edge through a polyline point, common
+    // with symmetric patterns) is that crossing: as a vertex of its own it would give a
+    // zero-length edge.
+    let absorbed: Vec<bool> = if boundary.is_trim() {
+        corner_list
+            .iter()
+            .map(|&(_, corner)| {
+                crossings.iter().any(|x| {
+                    boundary
+                        .ahead(x.wall, corner)
+                        .zip(boundary.ahead(corner, x.wall))
+                        .is_some_and(|(a, b)| a.min(b) <= CORNER_ON_CROSSING)
+                })
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    for (owner, &gone) in corner_owner.iter_mut().zip(&absorbed) {
+        if gone {
+            *owner = None;
+        }
+    }
 
     // 3. Facet loops as items, in chunks of facets (one buffer per chunk, none per facet).
     let corners = corner_samples(surface, &corner_list);
@@ -283,7 +306,7 @@ pub(crate) fn build_facets(
         })
         .collect();
 
-    assemble(Assembly {
+    let mut mesh = assemble(Assembly {
         tri,
         triangle_vertices,
         chunks,
@@ -294,7 +317,13 @@ pub(crate) fn build_facets(
         ghosts_from: None,
         slopes,
         diagnostics,
-    })
+    });
+    if absorbed.contains(&true) {
+        mesh.diagnostics.retain(|d| {
+            !matches!(d, Diagnostic::CornerClaims { corner, claims: 0 } if absorbed[*corner as usize])
+        });
+    }
+    mesh
 }
 
 /// Whether the meeting point `x` of three planes lies within [`UNREACHABLE_VERTEX_FACTOR`]

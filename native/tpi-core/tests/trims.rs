@@ -480,3 +480,22 @@ fn a_nurbs_surface_file_takes_a_trim_too() {
         (0, 2, 0)
     );
 }
+
+/// A centred disc with a centred hole and symmetric patterns: facet edges run exactly
+/// through polyline points of the trim (a crossing on a corner must not add a zero-length
+/// edge), and the disc touches the domain's sides.
+#[test]
+fn symmetric_patterns_through_trim_points() {
+    let trim = Trim {
+        outer: circle([0.0, 0.0], 1.0, 256, true),
+        holes: vec![circle([0.0, 0.0], 0.3, 64, false)],
+    };
+    for spec in ["grid:30x30", "hex:spacing=0.05", "grid:31x31"] {
+        assert_eq!(check("paraboloid", &trim, &hex(spec)), (0, 2), "{spec}");
+    }
+    let trim = Trim {
+        outer: circle([0.0, 0.0], 1.0, 256, true),
+        holes: Vec::new(),
+    };
+    assert_eq!(check("sphere", &trim, &hex("grid:30x30")), (1, 1));
+}
