@@ -123,7 +123,7 @@ pub(crate) fn describe(
     let mut s = String::new();
     let _ = writeln!(s, "{}: {}", file.display(), spec.type_name());
     let _ = writeln!(s, "  units: {}", crate::obj::units_text(spec.units()));
-    match (spec, model) {
+    match (spec, model.untrimmed()) {
         (SurfaceSpec::Nurbs(_), SurfaceModel::Nurbs(n)) => {
             let [du, dv] = n.degree();
             let [nu, nv] = n.count();
@@ -159,13 +159,21 @@ pub(crate) fn describe(
                 .and_then(|v| v.as_object())
                 .map(|o| {
                     o.iter()
-                        .filter(|(k, _)| *k != "type")
+                        .filter(|(k, _)| *k != "type" && *k != "trim")
                         .map(|(k, v)| format!("{k} = {v}"))
                         .collect()
                 })
                 .unwrap_or_default();
             let _ = writeln!(s, "  {}", fields.join(", "));
         }
+    }
+    if let Some(trim) = spec.trim() {
+        let _ = writeln!(
+            s,
+            "  trim: outer loop of {} points, {} holes",
+            trim.outer.len(),
+            trim.holes.len()
+        );
     }
     let d = model.domain();
     let _ = writeln!(

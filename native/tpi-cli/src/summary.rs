@@ -30,6 +30,13 @@ pub(crate) fn summary(
         result.vertices.len()
     );
     let _ = writeln!(s, "  units: {}", crate::obj::units_text(result.units));
+    if !result.pattern_indices.is_empty() {
+        let _ = writeln!(
+            s,
+            "  trim: {} pattern points outside the trim left out (facets keep their pattern index as seed)",
+            result.outside_trim
+        );
+    }
     match &result.quality {
         None => {
             let _ = writeln!(s, "  quality report: off (--no-report)");

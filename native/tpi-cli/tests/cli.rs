@@ -1831,3 +1831,76 @@ fn closed_surfaces_give_closed_meshes_or_a_seam_warning() {
         "{stderr}"
     );
 }
+
+/// A trimmed surface file (issue 16): the points outside are left out and said so, the seeds
+/// are pattern indices, the mesh is a disc with a hole; a saddle with a trim is refused.
+#[test]
+fn a_trimmed_dome_leaves_out_the_points_outside_and_says_so() {
+    let dir = scratch("trim");
+    let circle = |c: [f64; 2], r: f64, n: usize, sign: f64| -> Vec<[f64; 2]> {
+        (0..n)
+            .map(|k| {
+                let a = sign * std::f64::consts::TAU * k as f64 / n as f64;
+                [c[0] + r * a.cos(), c[1] + r * a.sin()]
+            })
+            .collect()
+    };
+    let trim = serde_json::json!({
+        "outer": circle([0.0, 0.0], 0.9, 128, 1.0),
+        "holes": [circle([0.2, 0.1], 0.3, 48, -1.0)],
+    });
+    let dome = dir.join("dome.json");
+    let surface = serde_json::json!({
+        "type": "elliptic_paraboloid", "a": 0.4, "b": 0.25, "x": [-1, 1], "y": [-1, 1],
+        "trim": trim,
+    });
+    fs::write(&dome, surface.to_string()).unwrap();
+    let out = dir.join("out.json");
+    let run = ok(&[
+        "discretise",
+        "--surface",
+        dome.to_str().unwrap(),
+        "--pattern",
+        "random:600:seed=3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let stderr = text(&run.stderr);
+    let contract: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(&out).unwrap()).unwrap();
+    let left_out = contract["pattern_points_outside_trim"].as_u64().unwrap() as usize;
+    let facets = contract["facets"].as_array().unwrap();
+    assert_eq!(facets.len() + left_out, 600);
+    assert!(left_out > 100, "{left_out}");
+    assert!(
+        stderr.contains(&format!(
+            "{left_out} pattern points outside the trim left out"
+        )),
+        "{stderr}"
+    );
+    let seeds: Vec<u64> = facets.iter().map(|f| f["seed"].as_u64().unwrap()).collect();
+    assert!(seeds.windows(2).all(|w| w[0] < w[1]) && seeds[seeds.len() - 1] < 600);
+    assert_eq!(contract["quality"]["euler_characteristic"], 0);
+    assert_eq!(contract["quality"]["boundary_loops"], 2);
+    assert_eq!(contract["quality"]["invalid_facets"], 0);
+
+    let saddle = dir.join("saddle.json");
+    let surface = serde_json::json!({
+        "type": "hyperbolic_paraboloid", "a": 0.4, "b": 0.25, "x": [-1, 1], "y": [-1, 1],
+        "trim": {"outer": circle([0.0, 0.0], 0.9, 64, 1.0)},
+    });
+    fs::write(&saddle, surface.to_string()).unwrap();
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            saddle.to_str().unwrap(),
+            "--pattern",
+            "random:300:seed=3",
+            "--out",
+            dir.join("saddle-out.json").to_str().unwrap(),
+        ],
+        1,
+        &["trims are supported on convex surfaces only"],
+    );
+}

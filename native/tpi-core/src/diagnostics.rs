@@ -39,13 +39,15 @@ pub enum Diagnostic {
     CornerUnreachable {
         /// The pattern point.
         point: u32,
-        /// Corner index (0: (u0, v0), 1: (u1, v0), 2: (u1, v1), 3: (u0, v1)).
-        corner: u8,
+        /// Corner index (0: (u0, v0), 1: (u1, v0), 2: (u1, v1), 3: (u0, v1)); on a trimmed
+        /// surface, the index of the trim point counting the outer loop's points first,
+        /// then each hole's.
+        corner: u32,
     },
     /// A domain corner was claimed by no facet or by several.
     CornerClaims {
-        /// Corner index.
-        corner: u8,
+        /// Corner index (as in `CornerUnreachable`).
+        corner: u32,
         /// How many facets claimed it.
         claims: u32,
     },
@@ -69,6 +71,22 @@ pub enum Diagnostic {
 }
 
 impl Diagnostic {
+    /// Renames every pattern point `p` this diagnostic names to `f(p)`.
+    pub(crate) fn map_points(&mut self, f: impl Fn(u32) -> u32) {
+        match self {
+            Diagnostic::IllConditionedVertex { points, .. } => {
+                *points = points.map(&f);
+            }
+            Diagnostic::ParallelPlanes { points } | Diagnostic::BoundaryNotReached { points } => {
+                *points = points.map(&f);
+            }
+            Diagnostic::OpenFacet { point, .. }
+            | Diagnostic::CornerUnreachable { point, .. }
+            | Diagnostic::FlatPoint { point, .. } => *point = f(*point),
+            Diagnostic::CornerClaims { .. } | Diagnostic::CoincidentPlanes { .. } => {}
+        }
+    }
+
     /// The pattern points this diagnostic concerns.
     pub fn points(&self) -> Vec<u32> {
         match self {

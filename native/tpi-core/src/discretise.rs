@@ -18,6 +18,7 @@ use serde::ser::{SerializeMap, SerializeStruct};
 use serde::{Serialize, Serializer};
 
 use crate::adjusted_planes::{adjust_planes, tilt_and_offset};
+use crate::boundary::Boundary;
 use crate::closed;
 use crate::diagnostics::Diagnostic;
 use crate::error::TpiError;
@@ -140,8 +141,15 @@ pub struct Discretisation {
     pub facet_offsets: Vec<u32>,
     /// Flat facet loops (counter-clockwise seen from the normal).
     pub facet_loops: Vec<u32>,
-    /// The pattern point of each facet (facet i belongs to pattern point i).
+    /// The pattern point of each facet (facet i belongs to pattern point i, or on a trimmed
+    /// surface to pattern point `pattern_indices[i]`).
     pub seeds: Vec<Seed>,
+    /// On a trimmed surface, the pattern index of each facet's point (the points inside the
+    /// trim, in pattern order); empty otherwise (facet i belongs to pattern point i).
+    pub pattern_indices: Vec<u32>,
+    /// On a trimmed surface, how many pattern points lie outside the trim and were left out
+    /// (no facet); 0 otherwise.
+    pub outside_trim: usize,
     /// Triangles of the final dual structure (counter-clockwise in parameter space).
     pub dual_triangles: Vec<[u32; 3]>,
     /// The quality report (None when switched off).
@@ -193,6 +201,11 @@ impl Discretisation {
     /// Number of facets.
     pub fn facet_count(&self) -> usize {
         self.seeds.len()
+    }
+
+    /// The pattern index of facet i's point (i itself unless the surface is trimmed).
+    pub fn pattern_index(&self, i: usize) -> usize {
+        self.pattern_indices.get(i).map_or(i, |&p| p as usize)
     }
 
     /// The plane of facet i as (a point of it, unit normal): the seed's tangent plane, or its
@@ -248,7 +261,7 @@ impl Serialize for FacetView<'_> {
     fn serialize<S: Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
         let seed = &self.result.seeds[self.index];
         let mut s = serializer.serialize_struct("Facet", 6)?;
-        s.serialize_field("seed", &self.index)?;
+        s.serialize_field("seed", &self.result.pattern_index(self.index))?;
         s.serialize_field("uv", &seed.uv)?;
         s.serialize_field("point", &seed.point.to_array())?;
         s.serialize_field("normal", &seed.normal.to_array())?;
@@ -285,6 +298,9 @@ impl Serialize for ContractView<'_> {
         map.serialize_entry("dual_triangles", &r.dual_triangles)?;
         map.serialize_entry("quality", &r.quality)?;
         map.serialize_entry("diagnostics", &r.diagnostics)?;
+        if !r.pattern_indices.is_empty() {
+            map.serialize_entry("pattern_points_outside_trim", &r.outside_trim)?;
+        }
         if self.timings {
             map.serialize_entry("timings_ms", &r.timings)?;
         }
@@ -432,6 +448,12 @@ pub(crate) struct PipelineState {
 }
 
 /// The pipeline; with `keep` also its state.
+///
+/// On a trimmed surface ([`Surface::trim`]) the pattern points outside the trim are left out
+/// before sampling; the facets of the others end on the trim ([`crate::boundary`]), and the
+/// result names each facet's pattern index. Trims run on the convex paths only, and not with
+/// `keep` (live editing): elsewhere [`TpiError::TrimUnsupported`], never a result that
+/// ignores the trim.
 pub(crate) fn run(
     surface: &dyn Surface,
     pattern: &[[f64; 2]],
@@ -440,6 +462,56 @@ pub(crate) fn run(
 ) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let start = Instant::now();
     validate_pattern(pattern)?;
+    let Some(trim) = surface.trim() else {
+        return run_within(
+            surface,
+            pattern,
+            options,
+            keep,
+            &Boundary::Rectangle(surface.domain()),
+            start,
+        );
+    };
+    if keep {
+        return Err(TpiError::TrimUnsupported {
+            reason: "live editing does not take trimmed surfaces yet; discretise instead".into(),
+        });
+    }
+    let domain = surface.domain();
+    let boundary = Boundary::new(domain, Some(trim));
+    // Points on a loop are decided by the crossing rule of `Trim::contains`.
+    let kept: Vec<u32> = (0..pattern.len() as u32)
+        .filter(|&i| trim.contains(domain.from_normalised(pattern[i as usize])))
+        .collect();
+    if kept.len() < 3 {
+        return Err(TpiError::InvalidTrim {
+            item: "trim".into(),
+            reason: format!(
+                "only {} of the {} pattern points lie inside the trim; at least 3 are needed",
+                kept.len(),
+                pattern.len()
+            ),
+        });
+    }
+    let inside: Vec<[f64; 2]> = kept.iter().map(|&i| pattern[i as usize]).collect();
+    let (mut result, state) = run_within(surface, &inside, options, keep, &boundary, start)?;
+    for d in &mut result.diagnostics {
+        d.map_points(|p| kept[p as usize]);
+    }
+    result.outside_trim = pattern.len() - kept.len();
+    result.pattern_indices = kept;
+    Ok((result, state))
+}
+
+/// The pipeline on validated pattern points, the facets ending on `boundary`.
+fn run_within(
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    options: &DiscretiseOptions,
+    keep: bool,
+    boundary: &Boundary,
+    start: Instant,
+) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let mut timings = Timings::default();
 
     let Samples {
@@ -475,7 +547,8 @@ pub(crate) fn run(
     // warns that the seam stays open).
     let hull_stage = Instant::now();
     let convex = convex_side.iter().all(|&s| s != 0 && s == convex_side[0]);
-    let envelope = if layout.is_sphere() && convex {
+    // (A trimmed sphere is left to the clipping of the convex paths, which ends it on its trim.)
+    let envelope = if layout.is_sphere() && convex && !boundary.is_trim() {
         closed::envelope_triangulation(&planes).ok()
     } else {
         None
@@ -524,6 +597,12 @@ pub(crate) fn run(
             );
             timings.neighbours = ms(stage);
             (triangulation, None, stats)
+        }
+        // Trims are ended on their loops by the clipping of the convex paths only.
+        _ if boundary.is_trim() => {
+            return Err(TpiError::TrimUnsupported {
+                reason: "the surface is not strictly convex (on one side) at every pattern point inside the trim".into(),
+            });
         }
         // Saddles and mixed curvature: ghost seeds beyond the boundary close every real facet
         // for the validity flips.
@@ -578,6 +657,7 @@ pub(crate) fn run(
         None => (
             build_facets(
                 surface,
+                boundary,
                 &uv,
                 &tangents,
                 &planes,
@@ -661,6 +741,8 @@ pub(crate) fn run(
         facet_offsets: offsets,
         facet_loops: loops,
         seeds,
+        pattern_indices: Vec::new(),
+        outside_trim: 0,
         dual_triangles,
         quality: None,
         facet_flags: Vec::new(),

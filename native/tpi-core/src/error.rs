@@ -227,6 +227,20 @@ pub enum TpiError {
         /// Why the bound exists and what to do.
         reason: String,
     },
+    /// A surface's trim is malformed (see [`crate::Trim::validate`]).
+    #[error("{item}: {}", bound_message(reason))]
+    InvalidTrim {
+        /// The offending loop or point, e.g. `trim.holes[1]` or `trim.outer[17]`.
+        item: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// The run cannot honour the surface's trim on this path (it is never ignored).
+    #[error("trims are supported on convex surfaces only so far: {reason}")]
+    TrimUnsupported {
+        /// Why.
+        reason: String,
+    },
     /// Malformed input document (JSON syntax or structure).
     #[error(
         "{}: line {line}, column {column}: {}",

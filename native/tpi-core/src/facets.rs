@@ -24,15 +24,16 @@ use std::collections::HashMap;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use crate::boundary::{Boundary, Position};
 use crate::diagnostics::Diagnostic;
 use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
 use crate::planes::{coincident, intersect_three, meeting_point, regularised_meeting_point, Plane};
-use crate::projection::{boundary_parameter, domain_corners, foot, inside_measure};
+use crate::projection::foot;
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
-    CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE, DEFAULT_FAR_VERTEX_FACTOR,
-    NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES, RAY_DOUBLINGS, RAY_FAR_FACTOR,
-    UNREACHABLE_VERTEX_FACTOR,
+    CORNER_ON_CROSSING, CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE,
+    DEFAULT_FAR_VERTEX_FACTOR, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES, RAY_DOUBLINGS,
+    RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR,
 };
 use crate::triangulation::{DualTriangulation, Edge, Fan, NO_TRIANGLE};
 
@@ -80,7 +81,7 @@ pub(crate) enum FootHint {
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Crossing {
     pub(crate) point: DVec3,
-    wall: f64,
+    wall: Position,
     /// Leaving the domain when walking the edge in canonical direction (right to left).
     exit: bool,
     /// Whether the search ended on the boundary (|inside measure| below tolerance).
@@ -100,12 +101,14 @@ pub(crate) enum Item {
         hi: u32,
     },
     Crossing(u32),
-    Corner(u8),
+    Corner(u32),
 }
 
 struct Context<'a> {
     surface: &'a dyn Surface,
     domain: Domain,
+    /// Where facets end: the domain rectangle or the trim's loops.
+    boundary: &'a Boundary,
     planes: &'a [Plane],
     uv: &'a [[f64; 2]],
     tangents: &'a [[DVec3; 2]],
@@ -119,7 +122,7 @@ struct Context<'a> {
 impl Context<'_> {
     fn measure(&self, x: DVec3, guess: [f64; 2]) -> ([f64; 2], f64) {
         let uv = foot(self.surface, &self.domain, x, guess);
-        (uv, inside_measure(&self.domain, uv))
+        (uv, self.boundary.inside_measure(uv))
     }
 
     /// First-order foot of x seen from pattern point i: uv_i + (J^T J)^-1 J^T (x - p_i).
@@ -160,7 +163,7 @@ impl Context<'_> {
         if accept_newton(&self.domain, newton, linear, reach) {
             (newton, inside, true)
         } else {
-            (linear, inside_measure(&self.domain, linear), false)
+            (linear, self.boundary.inside_measure(linear), false)
         }
     }
 }
@@ -180,16 +183,18 @@ pub(crate) fn accept_newton(
 /// the domain whatever Newton does: the foot that `Context::measure_from` keeps lies within
 /// 2 reach + 1e-9 of `linear` (normalised), and the inside measure is 1-Lipschitz there, so
 /// a margin beyond that (with room for rounding) decides the test without projecting.
-fn surely_inside(domain: &Domain, linear: [f64; 2], reach: f64) -> bool {
+fn surely_inside(boundary: &Boundary, linear: [f64; 2], reach: f64) -> bool {
     let margin = 2.0 * reach + 1e-9;
-    inside_measure(domain, linear) > margin * (1.0 + 1e-9) + 1e-12
+    boundary.inside_measure(linear) > margin * (1.0 + 1e-9) + 1e-12
 }
 
-/// Builds the facets of all pattern points from the dual triangulation.
+/// Builds the facets of all pattern points from the dual triangulation, ending them on
+/// `boundary` (the domain rectangle, or a trim's loops).
 // The stage's inputs, each a slice of the samples; one typed input struct is still owed.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn build_facets(
     surface: &dyn Surface,
+    boundary: &Boundary,
     uv: &[[f64; 2]],
     tangents: &[[DVec3; 2]],
     planes: &[Plane],
@@ -202,6 +207,7 @@ pub(crate) fn build_facets(
     let ctx = Context {
         surface,
         domain,
+        boundary,
         planes,
         uv,
         tangents,
@@ -241,10 +247,34 @@ pub(crate) fn build_facets(
         }
         diagnostics.extend(diagnostic);
     }
-    let corner_owner = corner_owners(&crossings, &[]);
+    let corner_list = boundary.corners();
+    let mut corner_owner = corner_owners(boundary, &corner_list, &crossings);
+    // A trim corner that a crossing sits on (a facet edge through a polyline point, common
+    // with symmetric patterns) is that crossing: as a vertex of its own it would give a
+    // zero-length edge.
+    let absorbed: Vec<bool> = if boundary.is_trim() {
+        corner_list
+            .iter()
+            .map(|&(_, corner)| {
+                crossings.iter().any(|x| {
+                    boundary
+                        .ahead(x.wall, corner)
+                        .zip(boundary.ahead(corner, x.wall))
+                        .is_some_and(|(a, b)| a.min(b) <= CORNER_ON_CROSSING)
+                })
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    for (owner, &gone) in corner_owner.iter_mut().zip(&absorbed) {
+        if gone {
+            *owner = None;
+        }
+    }
 
     // 3. Facet loops as items, in chunks of facets (one buffer per chunk, none per facet).
-    let corners = corner_samples(surface, &domain);
+    let corners = corner_samples(surface, &corner_list);
     let incident = tri.incident_triangles(uv.len());
     let lookup = ItemContext {
         tri,
@@ -252,6 +282,8 @@ pub(crate) fn build_facets(
         crossing_ranges: &crossing_ranges,
         crossings: &crossings,
         corner_owner: &corner_owner,
+        corners: &corner_list,
+        boundary,
         triangle_vertices: &triangle_vertices,
     };
     let chunks: Vec<FacetChunk> = (0..uv.len().div_ceil(FACET_CHUNK))
@@ -274,7 +306,7 @@ pub(crate) fn build_facets(
         })
         .collect();
 
-    assemble(Assembly {
+    let mut mesh = assemble(Assembly {
         tri,
         triangle_vertices,
         chunks,
@@ -285,7 +317,13 @@ pub(crate) fn build_facets(
         ghosts_from: None,
         slopes,
         diagnostics,
-    })
+    });
+    if absorbed.contains(&true) {
+        mesh.diagnostics.retain(|d| {
+            !matches!(d, Diagnostic::CornerClaims { corner, claims: 0 } if absorbed[*corner as usize])
+        });
+    }
+    mesh
 }
 
 /// Whether the meeting point `x` of three planes lies within [`UNREACHABLE_VERTEX_FACTOR`]
@@ -338,7 +376,7 @@ impl PackedItems {
         let code = match item {
             Item::Triangle(t) => t,
             Item::Crossing(c) => ITEM_CROSSING | c,
-            Item::Corner(c) => ITEM_CORNER | u32::from(c),
+            Item::Corner(c) => ITEM_CORNER | c,
             Item::EdgePoint { triangle, lo, hi } => {
                 self.edge_points.push((triangle, lo, hi));
                 ITEM_EDGE_POINT | (self.edge_points.len() - 1) as u32
@@ -353,7 +391,7 @@ impl PackedItems {
         match code & !ITEM_INDEX {
             0 => Item::Triangle(index),
             ITEM_CROSSING => Item::Crossing(index),
-            ITEM_CORNER => Item::Corner(index as u8),
+            ITEM_CORNER => Item::Corner(index),
             _ => {
                 let (triangle, lo, hi) = self.edge_points[index as usize];
                 Item::EdgePoint { triangle, lo, hi }
@@ -368,7 +406,9 @@ struct ItemContext<'a> {
     incident: &'a [u32],
     crossing_ranges: &'a HashMap<(u32, u32), (u32, u32)>,
     crossings: &'a [Crossing],
-    corner_owner: &'a [Option<u32>; 4],
+    corner_owner: &'a [Option<u32>],
+    corners: &'a [([f64; 2], Position)],
+    boundary: &'a Boundary,
     triangle_vertices: &'a [TriangleVertex],
 }
 
@@ -412,7 +452,7 @@ fn near_boundary(ctx: &Context<'_>, ids: [u32; 3]) -> bool {
         .map(|k| normalised_distance(&ctx.domain, uv[k], uv[(k + 1) % 3]))
         .fold(0.0, f64::max);
     uv.iter()
-        .any(|&p| inside_measure(&ctx.domain, p) <= 2.0 * size)
+        .any(|&p| ctx.boundary.inside_measure(p) <= 2.0 * size)
 }
 
 /// Distance of two parameter pairs in normalised coordinates.
@@ -498,8 +538,8 @@ fn triangle_vertex_ordered(ctx: &Context<'_>, ids: [u32; 3], far_factor: f64) ->
         let (linear, reach) = ctx.linear_estimate(ids, meeting.point);
         let near = distance <= far_factor * longest
             || (ctx.regular && distance <= UNREACHABLE_VERTEX_FACTOR * longest);
-        if near && surely_inside(&ctx.domain, linear, reach) {
-            let inside = inside_measure(&ctx.domain, linear);
+        if near && surely_inside(ctx.boundary, linear, reach) {
+            let inside = ctx.boundary.inside_measure(linear);
             return TriangleVertex {
                 point: meeting.point,
                 foot: linear,
@@ -551,10 +591,12 @@ pub(crate) fn single_triangle_vertex(
     ids: [u32; 3],
     far_factor: f64,
 ) -> TriangleVertex {
-    // Live editing runs on the convex path only.
+    // Live editing runs on the convex path only, untrimmed.
+    let boundary = Boundary::Rectangle(surface.domain());
     let ctx = Context {
         surface,
         domain: surface.domain(),
+        boundary: &boundary,
         planes,
         uv,
         tangents,
@@ -790,7 +832,7 @@ fn edge_crossings(
                 }
                 (None, None) => return (Vec::new(), None),
             };
-            let reversed = end.is_none();
+            let reversed = start.is_none();
             let (first, last) = if reversed { (b, a) } else { (a, b) };
             (
                 outside_segment_crossings(ctx, first, last, lo.point, hi.point),
@@ -964,38 +1006,49 @@ fn refine_crossing(
     let converged = best.1.inside.abs() <= CROSSING_ACCEPTANCE;
     Crossing {
         point: best.1.point,
-        wall: boundary_parameter(&ctx.domain, best.1.guess),
+        wall: ctx.boundary.position(best.1.guess),
         exit: false,
         converged,
         foot: projected.then_some(best.1.guess),
     }
 }
 
-/// For each domain corner, the crossing that owns it: the last crossing before the corner
-/// along the boundary loop (counter-clockwise). The facet that leaves the domain there
-/// follows the boundary past the corner, so it is the one that holds it.
-fn corner_owners(crossings: &[Crossing], _offsets: &[u32]) -> [Option<u32>; 4] {
-    let mut owner = [None; 4];
-    for (corner, slot) in owner.iter_mut().enumerate() {
-        let mut best: Option<(f64, u32)> = None;
-        for (index, crossing) in crossings.iter().enumerate() {
-            let behind = (corner as f64 - crossing.wall).rem_euclid(4.0);
-            if best.map_or(true, |(b, _)| behind < b) {
-                best = Some((behind, index as u32));
+/// For each boundary corner, the crossing that owns it: the last crossing before the corner
+/// along its boundary loop (in the loop's direction, the region on the left). The facet that
+/// leaves the region there follows the boundary past the corner, so it is the one that holds
+/// it. A corner on a loop that no edge crosses has no owner.
+fn corner_owners(
+    boundary: &Boundary,
+    corners: &[([f64; 2], Position)],
+    crossings: &[Crossing],
+) -> Vec<Option<u32>> {
+    corners
+        .iter()
+        .map(|&(_, corner)| {
+            let mut best: Option<(f64, u32)> = None;
+            for (index, crossing) in crossings.iter().enumerate() {
+                let Some(behind) = boundary.ahead(crossing.wall, corner) else {
+                    continue;
+                };
+                if best.map_or(true, |(b, _)| behind < b) {
+                    best = Some((behind, index as u32));
+                }
             }
-        }
-        *slot = best.map(|b| b.1);
-    }
-    owner
+            best.map(|b| b.1)
+        })
+        .collect()
 }
 
-/// Point and normal over each domain corner.
-fn corner_samples(surface: &dyn Surface, domain: &Domain) -> [(DVec3, DVec3); 4] {
-    domain_corners(domain).map(|[u, v]| {
-        let d = surface.evaluate(u, v);
-        let geometry = crate::diffgeo::LocalGeometry::from_derivatives(&d);
-        (d.point, geometry.normal)
-    })
+/// Point and normal over each boundary corner.
+fn corner_samples(surface: &dyn Surface, corners: &[([f64; 2], Position)]) -> Vec<(DVec3, DVec3)> {
+    corners
+        .iter()
+        .map(|&([u, v], _)| {
+            let d = surface.evaluate(u, v);
+            let geometry = crate::diffgeo::LocalGeometry::from_derivatives(&d);
+            (d.point, geometry.normal)
+        })
+        .collect()
 }
 
 /// The loop of facet i as items appended to `items`, with corners inserted along the
@@ -1032,8 +1085,8 @@ fn facet_items(
         return true;
     }
     // Raw walk: crossings of each incoming edge, then the triangle's vertex if inside.
-    let mut raw: Vec<(Item, Option<(bool, f64)>)> = Vec::with_capacity(fan.len() * 2 + 4);
-    let push_edge = |j: u32, raw: &mut Vec<(Item, Option<(bool, f64)>)>| {
+    let mut raw: Vec<(Item, Option<(bool, Position)>)> = Vec::with_capacity(fan.len() * 2 + 4);
+    let push_edge = |j: u32, raw: &mut Vec<(Item, Option<(bool, Position)>)>| {
         let Some(&(first, last)) = cx.crossing_ranges.get(&(i.min(j), i.max(j))) else {
             return;
         };
@@ -1095,9 +1148,12 @@ fn facet_items(
     for (item, crossing) in raw {
         items.push(item);
         if let (Item::Crossing(c), Some((true, wall))) = (item, crossing) {
-            let mut owned: Vec<(f64, u8)> = (0..4u8)
+            let mut owned: Vec<(f64, u32)> = (0..cx.corners.len() as u32)
                 .filter(|&k| cx.corner_owner[k as usize] == Some(c))
-                .map(|k| ((f64::from(k) - wall).rem_euclid(4.0), k))
+                .filter_map(|k| {
+                    let ahead = cx.boundary.ahead(wall, cx.corners[k as usize].1)?;
+                    Some((ahead, k))
+                })
                 .collect();
             owned.sort_by(|x, y| x.0.total_cmp(&y.0));
             for x in owned {

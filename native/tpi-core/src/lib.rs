@@ -22,6 +22,7 @@
 mod adjusted_planes;
 mod analytic;
 pub mod benchmark;
+mod boundary;
 mod closed;
 mod diagnostics;
 mod diffgeo;
@@ -46,6 +47,7 @@ mod spec;
 mod surface;
 pub mod tolerance;
 mod triangulation;
+mod trim;
 mod units;
 mod validity_flips;
 
@@ -79,6 +81,7 @@ pub use quality::{
 pub use sanity::SanityError;
 pub use spec::{sampled_bounding_box, SurfaceModel, SurfaceSpec};
 pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};
+pub use trim::Trim;
 pub use units::{units_label, UnknownUnits};
 // The tolerances a caller sets or checks against, also at the root.
 pub use tolerance::{

@@ -1291,6 +1291,8 @@ impl State {
             facet_offsets,
             facet_loops,
             seeds,
+            pattern_indices: Vec::new(),
+            outside_trim: 0,
             dual_triangles: canonical.triangles,
             quality: None,
             facet_flags: Vec::new(),

@@ -95,7 +95,7 @@ pub(crate) struct Assembly<'a> {
     pub(crate) chunks: Vec<FacetChunk>,
     pub(crate) crossings: &'a [Crossing],
     /// Point and normal over each domain corner; None where no facet holds a corner.
-    pub(crate) corners: Option<&'a [(DVec3, DVec3); 4]>,
+    pub(crate) corners: Option<&'a [(DVec3, DVec3)]>,
     pub(crate) planes: &'a [Plane],
     pub(crate) params: &'a FacetParams,
     /// Points from this index on are ghosts ([`crate::ghosts`]): the vertices of their
@@ -189,7 +189,7 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
     let mut triangle_id = vec![u32::MAX; tri.len()];
     let mut crossing_id = vec![u32::MAX; crossings.len()];
     let mut edge_point_id: HashMap<(u32, u32, u32), u32> = HashMap::new();
-    let mut corner_claims = [0u32; 4];
+    let mut corner_claims = vec![0u32; corners.map_or(4, <[_]>::len)];
     let mut i = 0usize;
     for chunk in chunks {
         let mut start_item = 0usize;
@@ -319,7 +319,7 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
     for (corner, &claims) in corner_claims.iter().enumerate() {
         if corners.is_some() && claims != 1 {
             diagnostics.push(Diagnostic::CornerClaims {
-                corner: corner as u8,
+                corner: corner as u32,
                 claims,
             });
         }

@@ -119,6 +119,10 @@ pub struct NurbsSpec {
     /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub units: Option<Units>,
+    /// Optional trim (see [`crate::Trim`]); checked by [`crate::SurfaceSpec::build`], not by
+    /// [`NurbsSpec::build`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub trim: Option<crate::Trim>,
 }
 
 impl NurbsSpec {
@@ -600,6 +604,7 @@ impl NurbsSurface {
             points: self.points.iter().map(|p| p.to_array()).collect(),
             weights: self.weights.clone(),
             units: self.units,
+            trim: None,
         }
     }
 

@@ -9,7 +9,8 @@
 //!   signed area, no two non-adjacent edges crossing, in a right-handed frame of the plane);
 //! - an oriented 2-manifold: every edge held by one facet (boundary) or by two facets that run
 //!   it in opposite directions;
-//! - a disc: V - E + F = 1 and the boundary edges form one loop.
+//! - a disc: V - E + F = 1 and the boundary edges form one loop; on a trimmed surface a
+//!   disc with holes: V - E + F = 2 - loops.
 //!
 //! It says nothing about overlaps between facets that share no edge (the quality report's
 //! flags do); it is cheap enough to run on every result in tests and fuzzing.
@@ -136,7 +137,10 @@ impl Discretisation {
         let euler = vertices as i64 - edges as i64 + facets as i64;
         let loops = boundary_loops(self.vertices.len(), &boundary);
         let expected = self.topology;
-        if euler != expected.euler || loops != expected.boundary_loops {
+        // On a trimmed surface each hole of the trim adds a boundary loop: a disc with holes.
+        let trimmed = !self.pattern_indices.is_empty() && loops >= 1;
+        let as_expected = euler == expected.euler && loops == expected.boundary_loops;
+        if !(as_expected || trimmed && euler == 2 - loops as i64) {
             return Err(SanityError::NotDisc { euler, loops });
         }
         Ok(())

@@ -36,6 +36,7 @@ use crate::analytic::{AnalyticKind, AnalyticSurface};
 use crate::error::TpiError;
 use crate::nurbs::{NurbsSpec, NurbsSurface};
 use crate::surface::{Domain, Surface, SurfaceDerivatives};
+use crate::trim::Trim;
 use crate::units::Units;
 
 /// A surface record as stored in a surface file, tagged by `"type"` (snake_case).
@@ -59,6 +60,9 @@ pub enum SurfaceSpec {
         /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         units: Option<Units>,
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = sqrt(radius^2 - x^2 - y^2), rectangle strictly inside the disc.
     SphereCap {
@@ -71,6 +75,9 @@ pub enum SurfaceSpec {
         /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         units: Option<Units>,
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = c sqrt(1 - x^2/a^2 - y^2/b^2), rectangle strictly inside the ellipse.
     EllipsoidCap {
@@ -87,6 +94,9 @@ pub enum SurfaceSpec {
         /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         units: Option<Units>,
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = a x^2 - b y^2, a and b non-zero with the same sign.
     HyperbolicParaboloid {
@@ -101,6 +111,9 @@ pub enum SurfaceSpec {
         /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         units: Option<Units>,
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = amplitude sin(x) sin(y), amplitude non-zero.
     EggCrate {
@@ -113,6 +126,9 @@ pub enum SurfaceSpec {
         /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         units: Option<Units>,
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = sqrt(radius^2 - x^2), |x| < radius.
     Cylinder {
@@ -125,6 +141,9 @@ pub enum SurfaceSpec {
         /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         units: Option<Units>,
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
     /// z = p x + q y + c0.
     Plane {
@@ -141,6 +160,9 @@ pub enum SurfaceSpec {
         /// Length units (`"units"`, see [`Units::from_name`]); absent = unitless.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         units: Option<Units>,
+        /// The trim (closed loops in (u, v)); None: the whole rectangle.
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        trim: Option<Trim>,
     },
 }
 
@@ -221,6 +243,7 @@ impl SurfaceSpec {
                     x: r.x,
                     y: r.y,
                     units: r.units,
+                    trim: r.trim,
                 }
             }
             "hyperbolic_paraboloid" => {
@@ -231,6 +254,7 @@ impl SurfaceSpec {
                     x: r.x,
                     y: r.y,
                     units: r.units,
+                    trim: r.trim,
                 }
             }
             "sphere_cap" => {
@@ -240,6 +264,7 @@ impl SurfaceSpec {
                     x: r.x,
                     y: r.y,
                     units: r.units,
+                    trim: r.trim,
                 }
             }
             "cylinder" => {
@@ -249,6 +274,7 @@ impl SurfaceSpec {
                     x: r.x,
                     y: r.y,
                     units: r.units,
+                    trim: r.trim,
                 }
             }
             "ellipsoid_cap" => {
@@ -260,6 +286,7 @@ impl SurfaceSpec {
                     x: r.x,
                     y: r.y,
                     units: r.units,
+                    trim: r.trim,
                 }
             }
             "egg_crate" => {
@@ -269,6 +296,7 @@ impl SurfaceSpec {
                     x: r.x,
                     y: r.y,
                     units: r.units,
+                    trim: r.trim,
                 }
             }
             "plane" => {
@@ -280,6 +308,7 @@ impl SurfaceSpec {
                     x: r.x,
                     y: r.y,
                     units: r.units,
+                    trim: r.trim,
                 }
             }
             other => {
@@ -339,16 +368,50 @@ impl SurfaceSpec {
         Parts::Analytic(kind, x, y)
     }
 
+    /// The record's trim, if any.
+    pub fn trim(&self) -> Option<&Trim> {
+        match self {
+            SurfaceSpec::Nurbs(n) => n.trim.as_ref(),
+            SurfaceSpec::EllipticParaboloid { trim, .. }
+            | SurfaceSpec::SphereCap { trim, .. }
+            | SurfaceSpec::EllipsoidCap { trim, .. }
+            | SurfaceSpec::HyperbolicParaboloid { trim, .. }
+            | SurfaceSpec::EggCrate { trim, .. }
+            | SurfaceSpec::Cylinder { trim, .. }
+            | SurfaceSpec::Plane { trim, .. } => trim.as_ref(),
+        }
+    }
+
+    /// The record with its trim replaced.
+    pub fn with_trim(mut self, new: Option<Trim>) -> SurfaceSpec {
+        match &mut self {
+            SurfaceSpec::Nurbs(n) => n.trim = new,
+            SurfaceSpec::EllipticParaboloid { trim, .. }
+            | SurfaceSpec::SphereCap { trim, .. }
+            | SurfaceSpec::EllipsoidCap { trim, .. }
+            | SurfaceSpec::HyperbolicParaboloid { trim, .. }
+            | SurfaceSpec::EggCrate { trim, .. }
+            | SurfaceSpec::Cylinder { trim, .. }
+            | SurfaceSpec::Plane { trim, .. } => *trim = new,
+        }
+        self
+    }
+
     /// Validates the record and builds the surface.
     ///
     /// Errors: the NURBS validation errors of [`NurbsSpec::build`], or the analytic ones of
-    /// [`AnalyticSurface::new`], each naming the offending field.
+    /// [`AnalyticSurface::new`], each naming the offending field; then the trim's errors
+    /// ([`Trim::validate`]) against the surface's domain.
     pub fn build(&self) -> Result<SurfaceModel, TpiError> {
-        match self.parts() {
-            Parts::Nurbs(n) => Ok(SurfaceModel::Nurbs(n.build()?)),
-            Parts::Analytic(kind, x, y) => Ok(SurfaceModel::Analytic(
-                AnalyticSurface::new(kind, x, y)?.with_units(self.units()),
-            )),
+        let model = match self.parts() {
+            Parts::Nurbs(n) => SurfaceModel::Nurbs(n.build()?),
+            Parts::Analytic(kind, x, y) => {
+                SurfaceModel::Analytic(AnalyticSurface::new(kind, x, y)?.with_units(self.units()))
+            }
+        };
+        match self.trim() {
+            None => Ok(model),
+            Some(trim) => SurfaceModel::trimmed(model, trim.clone()),
         }
     }
 
@@ -366,18 +429,25 @@ impl SurfaceSpec {
         }
     }
 
-    /// The record of an analytic surface.
+    /// The record of an analytic surface (untrimmed).
     pub fn from_analytic(surface: &AnalyticSurface) -> SurfaceSpec {
         let (x, y, units) = (surface.x_range(), surface.y_range(), surface.units());
+        let trim = None;
         match surface.kind() {
-            AnalyticKind::EllipticParaboloid { a, b } => {
-                SurfaceSpec::EllipticParaboloid { a, b, x, y, units }
-            }
+            AnalyticKind::EllipticParaboloid { a, b } => SurfaceSpec::EllipticParaboloid {
+                a,
+                b,
+                x,
+                y,
+                units,
+                trim,
+            },
             AnalyticKind::SphereCap { radius } => SurfaceSpec::SphereCap {
                 radius,
                 x,
                 y,
                 units,
+                trim,
             },
             AnalyticKind::EllipsoidCap { a, b, c } => SurfaceSpec::EllipsoidCap {
                 a,
@@ -386,21 +456,29 @@ impl SurfaceSpec {
                 x,
                 y,
                 units,
+                trim,
             },
-            AnalyticKind::HyperbolicParaboloid { a, b } => {
-                SurfaceSpec::HyperbolicParaboloid { a, b, x, y, units }
-            }
+            AnalyticKind::HyperbolicParaboloid { a, b } => SurfaceSpec::HyperbolicParaboloid {
+                a,
+                b,
+                x,
+                y,
+                units,
+                trim,
+            },
             AnalyticKind::EggCrate { amplitude } => SurfaceSpec::EggCrate {
                 amplitude,
                 x,
                 y,
                 units,
+                trim,
             },
             AnalyticKind::Cylinder { radius } => SurfaceSpec::Cylinder {
                 radius,
                 x,
                 y,
                 units,
+                trim,
             },
             AnalyticKind::Plane { p, q, c0 } => SurfaceSpec::Plane {
                 p,
@@ -409,6 +487,7 @@ impl SurfaceSpec {
                 x,
                 y,
                 units,
+                trim,
             },
         }
     }
@@ -432,6 +511,7 @@ struct TwoCoefficients {
     y: [f64; 2],
     #[serde(default)]
     units: Option<Units>,
+    trim: Option<Trim>,
 }
 
 #[derive(Deserialize)]
@@ -442,6 +522,7 @@ struct Radius {
     y: [f64; 2],
     #[serde(default)]
     units: Option<Units>,
+    trim: Option<Trim>,
 }
 
 #[derive(Deserialize)]
@@ -454,6 +535,7 @@ struct SemiAxes {
     y: [f64; 2],
     #[serde(default)]
     units: Option<Units>,
+    trim: Option<Trim>,
 }
 
 #[derive(Deserialize)]
@@ -464,6 +546,7 @@ struct Amplitude {
     y: [f64; 2],
     #[serde(default)]
     units: Option<Units>,
+    trim: Option<Trim>,
 }
 
 #[derive(Deserialize)]
@@ -476,6 +559,7 @@ struct PlaneRecord {
     y: [f64; 2],
     #[serde(default)]
     units: Option<Units>,
+    trim: Option<Trim>,
 }
 
 fn type_list() -> String {
@@ -689,15 +773,59 @@ pub enum SurfaceModel {
     Nurbs(NurbsSurface),
     /// An analytic graph surface.
     Analytic(AnalyticSurface),
+    /// A surface with a trim (never itself trimmed).
+    Trimmed {
+        /// The untrimmed surface.
+        surface: Box<SurfaceModel>,
+        /// Its trim, validated against its domain.
+        trim: Trim,
+    },
 }
 
 impl SurfaceModel {
+    /// The same surface (and trim) with its length units replaced.
+    pub fn with_units(self, units: Option<Units>) -> SurfaceModel {
+        match self {
+            SurfaceModel::Nurbs(n) => SurfaceModel::Nurbs(n.with_units(units)),
+            SurfaceModel::Analytic(a) => SurfaceModel::Analytic(a.with_units(units)),
+            SurfaceModel::Trimmed { surface, trim } => SurfaceModel::Trimmed {
+                surface: Box::new(surface.with_units(units)),
+                trim,
+            },
+        }
+    }
     /// The record that [`SurfaceSpec::build`] turns back into this surface (NURBS knots in
     /// Rhino's convention).
     pub fn to_spec(&self) -> SurfaceSpec {
         match self {
             SurfaceModel::Nurbs(n) => SurfaceSpec::Nurbs(n.to_spec()),
             SurfaceModel::Analytic(a) => SurfaceSpec::from_analytic(a),
+            SurfaceModel::Trimmed { surface, trim } => {
+                surface.to_spec().with_trim(Some(trim.clone()))
+            }
+        }
+    }
+
+    /// `surface` trimmed by `trim` (a trimmed surface's trim is replaced).
+    ///
+    /// Errors: those of [`Trim::validate`] against the surface's domain.
+    pub fn trimmed(surface: SurfaceModel, trim: Trim) -> Result<SurfaceModel, TpiError> {
+        let surface = match surface {
+            SurfaceModel::Trimmed { surface, .. } => *surface,
+            other => other,
+        };
+        trim.validate(&surface.domain())?;
+        Ok(SurfaceModel::Trimmed {
+            surface: Box::new(surface),
+            trim,
+        })
+    }
+
+    /// The surface without its trim.
+    pub fn untrimmed(&self) -> &SurfaceModel {
+        match self {
+            SurfaceModel::Trimmed { surface, .. } => surface,
+            other => other,
         }
     }
 
@@ -714,6 +842,7 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.domain(),
             SurfaceModel::Analytic(a) => a.domain(),
+            SurfaceModel::Trimmed { surface, .. } => surface.domain(),
         }
     }
 
@@ -721,6 +850,7 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.evaluate(u, v),
             SurfaceModel::Analytic(a) => a.evaluate(u, v),
+            SurfaceModel::Trimmed { surface, .. } => surface.evaluate(u, v),
         }
     }
 
@@ -728,6 +858,14 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.point_at(u, v),
             SurfaceModel::Analytic(a) => a.point_at(u, v),
+            SurfaceModel::Trimmed { surface, .. } => surface.point_at(u, v),
+        }
+    }
+
+    fn trim(&self) -> Option<&Trim> {
+        match self {
+            SurfaceModel::Trimmed { trim, .. } => Some(trim),
+            _ => None,
         }
     }
 
@@ -735,6 +873,7 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.units(),
             SurfaceModel::Analytic(a) => a.units(),
+            SurfaceModel::Trimmed { surface, .. } => surface.units(),
         }
     }
 }

@@ -136,4 +136,10 @@ pub trait Surface: Send + Sync {
     fn units(&self) -> Option<crate::units::Units> {
         None
     }
+
+    /// The trim: the part of the domain kept ([`crate::Trim`]); None (the default) keeps the
+    /// whole domain.
+    fn trim(&self) -> Option<&crate::Trim> {
+        None
+    }
 }

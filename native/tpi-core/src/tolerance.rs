@@ -97,6 +97,10 @@ pub const CROSSING_TOLERANCE: f64 = 1e-13;
 /// A crossing search that ends farther than this from the boundary (normalised) has failed.
 pub const CROSSING_ACCEPTANCE: f64 = 1e-9;
 
+/// On a trimmed surface, a trim corner within this arclength (normalised parameters) of a
+/// boundary crossing along its loop is that crossing: no vertex of its own.
+pub const CORNER_ON_CROSSING: f64 = 1e-9;
+
 /// Doublings of the step when following a hull ray outwards.
 pub const RAY_DOUBLINGS: usize = 60;
 

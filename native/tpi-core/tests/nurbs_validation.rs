@@ -23,6 +23,7 @@ fn valid_spec() -> NurbsSpec {
         weights: Some((0..nu * nv).map(|k| 1.0 + 0.1 * (k % 4) as f64).collect()),
         points,
         units: None,
+        trim: None,
     }
 }
 

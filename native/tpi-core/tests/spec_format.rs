@@ -155,6 +155,7 @@ fn the_type_may_stand_anywhere_in_the_record() {
         x: [-1.0, 1.0],
         y: [0.0, 1.0],
         units: None,
+        trim: None,
     };
     for text in [first, middle, last, escaped] {
         assert_eq!(

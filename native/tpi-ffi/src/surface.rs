@@ -483,10 +483,7 @@ pub unsafe extern "C" fn tpi_surface_with_units(
         let out = unsafe { OutPtr::handle(out, "out") }?;
         let surface = unsafe { try_handle(surface, "surface") }?;
         let units = units_from_code(units)?;
-        let model = match surface.model.clone() {
-            SurfaceModel::Nurbs(n) => SurfaceModel::Nurbs(n.with_units(units)),
-            SurfaceModel::Analytic(a) => SurfaceModel::Analytic(a.with_units(units)),
-        };
+        let model = surface.model.clone().with_units(units);
         out.set_boxed(TpiSurface { model });
         Ok(())
     }

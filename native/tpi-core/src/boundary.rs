@@ -1,0 +1,193 @@
+//! The boundary the facet stage clips on: closed loops in parameter space.
+//!
+//! An untrimmed surface has one loop, its domain rectangle, with the four domain corners
+//! ([`crate::projection`]'s measure and parameter, unchanged). A trimmed surface
+//! ([`crate::Trim`]) has its outer loop and holes, every polyline point a corner. For both:
+//!
+//! - the **inside measure** of a parameter pair is its signed distance from the boundary in
+//!   normalised parameters, positive inside (1-Lipschitz, as `facets::surely_inside` needs);
+//! - a **position** on the boundary is (loop, arclength along the loop in its own direction,
+//!   which keeps the region on the left: counter-clockwise around the outer loop, clockwise
+//!   around holes); the rectangle's loop has length 4, corner c at c;
+//! - a **corner** is a parameter pair with its position; the facet that leaves the region
+//!   just before a corner (along its loop) holds it.
+
+use crate::projection::{boundary_parameter, domain_corners, inside_measure};
+use crate::surface::Domain;
+use crate::trim::Trim;
+
+/// A point's place on the boundary: its loop and the arclength along it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Position {
+    /// Which loop (0: the rectangle or the outer loop; 1.. the holes).
+    pub(crate) curve: u32,
+    /// Arclength from the loop's first point in its own direction (normalised parameters;
+    /// the rectangle's sides count 1 each).
+    pub(crate) along: f64,
+}
+
+/// The boundary of the region that facets are clipped to.
+pub(crate) enum Boundary {
+    /// The domain rectangle.
+    Rectangle(Domain),
+    /// A trim's loops.
+    Loops(Loops),
+}
+
+/// A trim's loops in normalised parameters.
+pub(crate) struct Loops {
+    domain: Domain,
+    /// Per loop, its points in normalised parameters.
+    points: Vec<Vec<[f64; 2]>>,
+    /// Per loop, the arclength at each point (one more entry: the loop's length).
+    arclength: Vec<Vec<f64>>,
+    /// Every point of every loop in order: (parameters in the domain, position).
+    corners: Vec<([f64; 2], Position)>,
+}
+
+impl Boundary {
+    /// The boundary of `domain`, trimmed by `trim` when given (validated before).
+    pub(crate) fn new(domain: Domain, trim: Option<&Trim>) -> Boundary {
+        let Some(trim) = trim else {
+            return Boundary::Rectangle(domain);
+        };
+        let mut loops = Loops {
+            domain,
+            points: Vec::new(),
+            arclength: Vec::new(),
+            corners: Vec::new(),
+        };
+        for (l, raw) in trim.open_loops().into_iter().enumerate() {
+            let points: Vec<[f64; 2]> = raw.iter().map(|&p| domain.to_normalised(p)).collect();
+            let n = points.len();
+            let mut arclength = Vec::with_capacity(n + 1);
+            let mut total = 0.0;
+            for k in 0..n {
+                arclength.push(total);
+                loops.corners.push((
+                    raw[k],
+                    Position {
+                        curve: l as u32,
+                        along: total,
+                    },
+                ));
+                let (a, b) = (points[k], points[(k + 1) % n]);
+                total += (b[0] - a[0]).hypot(b[1] - a[1]);
+            }
+            arclength.push(total);
+            loops.points.push(points);
+            loops.arclength.push(arclength);
+        }
+        Boundary::Loops(loops)
+    }
+
+    /// Whether this is a trim's boundary.
+    pub(crate) fn is_trim(&self) -> bool {
+        matches!(self, Boundary::Loops(_))
+    }
+
+    /// Signed normalised distance of `uv` from the boundary, positive inside.
+    pub(crate) fn inside_measure(&self, uv: [f64; 2]) -> f64 {
+        match self {
+            Boundary::Rectangle(domain) => inside_measure(domain, uv),
+            Boundary::Loops(loops) => {
+                let (distance, _) = loops.nearest(uv);
+                if loops.contains_normalised(loops.domain.to_normalised(uv)) {
+                    distance
+                } else {
+                    -distance
+                }
+            }
+        }
+    }
+
+    /// The position on the boundary nearest to `uv`.
+    pub(crate) fn position(&self, uv: [f64; 2]) -> Position {
+        match self {
+            Boundary::Rectangle(domain) => Position {
+                curve: 0,
+                along: boundary_parameter(domain, uv),
+            },
+            Boundary::Loops(loops) => loops.nearest(uv).1,
+        }
+    }
+
+    /// The corners in order: parameters in the domain and position.
+    pub(crate) fn corners(&self) -> Vec<([f64; 2], Position)> {
+        match self {
+            Boundary::Rectangle(domain) => domain_corners(domain)
+                .into_iter()
+                .enumerate()
+                .map(|(c, uv)| {
+                    (
+                        uv,
+                        Position {
+                            curve: 0,
+                            along: c as f64,
+                        },
+                    )
+                })
+                .collect(),
+            Boundary::Loops(loops) => loops.corners.clone(),
+        }
+    }
+
+    /// How far `to` lies ahead of `from` along their loop (in its direction), or None when
+    /// they lie on different loops.
+    pub(crate) fn ahead(&self, from: Position, to: Position) -> Option<f64> {
+        if from.curve != to.curve {
+            return None;
+        }
+        let length = match self {
+            Boundary::Rectangle(_) => 4.0,
+            Boundary::Loops(loops) => {
+                let a = &loops.arclength[from.curve as usize];
+                a[a.len() - 1]
+            }
+        };
+        Some((to.along - from.along).rem_euclid(length))
+    }
+}
+
+impl Loops {
+    /// Distance (normalised) of `uv` from the nearest loop point, and that point's position.
+    fn nearest(&self, uv: [f64; 2]) -> (f64, Position) {
+        let p = self.domain.to_normalised(uv);
+        let mut best = (f64::INFINITY, 0usize, 0usize, 0.0f64);
+        for (l, points) in self.points.iter().enumerate() {
+            let n = points.len();
+            for k in 0..n {
+                let (a, b) = (points[k], points[(k + 1) % n]);
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let length2 = dx * dx + dy * dy;
+                let tau = if length2 > 0.0 {
+                    (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / length2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let (x, y) = (a[0] + tau * dx - p[0], a[1] + tau * dy - p[1]);
+                let d2 = x * x + y * y;
+                if d2 < best.0 {
+                    best = (d2, l, k, tau);
+                }
+            }
+        }
+        let (d2, l, k, tau) = best;
+        let arclength = &self.arclength[l];
+        let along = arclength[k] + tau * (arclength[k + 1] - arclength[k]);
+        (
+            d2.sqrt(),
+            Position {
+                curve: l as u32,
+                along,
+            },
+        )
+    }
+
+    /// Even-odd test over all loops, in normalised parameters.
+    fn contains_normalised(&self, p: [f64; 2]) -> bool {
+        self.points.iter().fold(false, |inside, points| {
+            inside ^ crate::trim::in_polygon(points, p)
+        })
+    }
+}
