@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Converts a Rhino .3dm file to tpi surface files, without Rhino (rhino3dm from PyPI).
 
-Usage: 3dm_to_tpi.py MODEL.3dm --out DIR [--with-trims] [--samples N]
+Usage: 3dm_to_tpi.py MODEL.3dm --out DIR [--no-trims] [--samples N]
 
 Writes, into DIR:
   - one NURBS surface file per Brep face (Breps, polysurfaces, extrusions) and per bare surface
@@ -26,9 +26,8 @@ the domain, as the 2D trim does. The outer loop is made counter-clockwise, holes
 the surface's own (u, v). A face whose one loop lies on the boundary of the domain (every sample
 within 1e-9 of the domain size of a side) is untrimmed and gets no `trim`.
 
-`--with-trims` writes `"trim": {"outer": [[u, v], ...], "holes": [[[u, v], ...], ...]}` into the
-surface file of each trimmed face; without it (the default, until tpi's core reads `trim`) the
-polylines are in the index only. `closed`, `periodic` and `poles` are always in the index only
+The surface file of each trimmed face gets `"trim": {"outer": [[u, v], ...], "holes": [[[u, v],
+...], ...]}`; with `--no-trims` the polylines are in the index only (the untrimmed surfaces). `closed`, `periodic` and `poles` are always in the index only
 (tpi's surface format has no such fields).
 
 Limits: trims that cross the seam of a closed surface are projected to one side of the seam (a
@@ -184,6 +183,14 @@ def face_loops(brep, face, projector, samples, label):
     """Per loop: (kind, polyline in (u, v)), and whether any sample went off the surface."""
     loops = []
     previous = None
+    # Points closer than this (per direction, 1e-9 of the domain) are one point: edges that
+    # meet at a vertex project to the same (u, v) up to rounding.
+    (u0, u1), (v0, v1) = projector.du, projector.dv
+    tol = (1e-9 * (u1 - u0), 1e-9 * (v1 - v0))
+
+    def same(a, b):
+        return abs(a[0] - b[0]) <= tol[0] and abs(a[1] - b[1]) <= tol[1]
+
     for loop in face.Loops:
         poly = []
         for k in range(loop.TrimCount):
@@ -204,9 +211,9 @@ def face_loops(brep, face, projector, samples, label):
                 if off > 1e-6 * max(1.0, math.sqrt(dot(p, p))):
                     warn("{}: an edge point is {:.3g} from the surface".format(label, off))
                 previous = uv
-                if not poly or (abs(poly[-1][0] - uv[0]) + abs(poly[-1][1] - uv[1])) > 0:
+                if not poly or not same(poly[-1], uv):
                     poly.append([uv[0], uv[1]])
-        if len(poly) > 1 and poly[0] == poly[-1]:
+        if len(poly) > 1 and same(poly[0], poly[-1]):
             poly.pop()
         loops.append((str(loop.LoopType).split(".")[-1], poly))
     return loops
@@ -249,7 +256,7 @@ def surfaces_of(geometry):
     return None, []
 
 
-def convert(path, out_dir, with_trims=False, samples=16):
+def convert(path, out_dir, with_trims=True, samples=16):
     model = rhino3dm.File3dm.Read(path)
     if model is None:
         raise SystemExit("3dm_to_tpi: cannot read {}".format(path))
@@ -358,13 +365,13 @@ def main():
     parser.add_argument("model", help=".3dm file")
     parser.add_argument("--out", required=True, help="directory for the surface files and the index")
     parser.add_argument(
-        "--with-trims",
+        "--no-trims",
         action="store_true",
-        help="write the `trim` field into the surface files of trimmed faces (needs a tpi that reads it)",
+        help="leave the `trim` field out of the surface files (the polylines stay in the index)",
     )
     parser.add_argument("--samples", type=int, default=16, help="least samples per curved trim edge")
     args = parser.parse_args()
-    doc, index_name = convert(args.model, args.out, args.with_trims, args.samples)
+    doc, index_name = convert(args.model, args.out, not args.no_trims, args.samples)
     trimmed = sum(1 for f in doc["faces"] if f["trimmed"])
     sys.stderr.write(
         "3dm_to_tpi: {} faces ({} trimmed), {} shared edges, units {}; wrote {} and {} surface files\n".format(

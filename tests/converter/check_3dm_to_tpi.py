@@ -6,7 +6,7 @@ Usage: check_3dm_to_tpi.py --out DIR [--seed N] [--samples N]
 
 Builds the model of samples/make_example_3dm.py (a NURBS dome, a degree 7 x 5 rational surface,
 a sphere, a box, a trimmed plane, a capped cylinder, a slab with a hole; millimetres), writes it to DIR/model.3dm,
-converts it into DIR/plain (default options) and DIR/trims (--with-trims), then reads the .3dm
+converts it into DIR/plain (--no-trims) and DIR/trims (the default, with trims), then reads the .3dm
 again (independently of the converter) and, for every face in the index, evaluates the source
 geometry with rhino3dm at random parameters of the written NURBS surface's domain: bare surfaces
 with their own PointAt, Brep faces with BrepFace.PointAt at the surface parameters that
@@ -53,8 +53,8 @@ def main():
     model_path = os.path.join(args.out, "model.3dm")
     if not example.build().Write(model_path, 8):
         raise SystemExit("cannot write " + model_path)
-    plain, plain_index = converter.convert(model_path, os.path.join(args.out, "plain"))
-    trims, trims_index = converter.convert(model_path, os.path.join(args.out, "trims"), with_trims=True)
+    plain, plain_index = converter.convert(model_path, os.path.join(args.out, "plain"), with_trims=False)
+    trims, trims_index = converter.convert(model_path, os.path.join(args.out, "trims"))
 
     model = rhino3dm.File3dm.Read(model_path)
     objects = list(model.Objects)
