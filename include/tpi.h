@@ -372,6 +372,11 @@ typedef enum TpiDiagnosticKind {
      * by the bisector of their seeds (point is TPI_NO_POINT).
      */
     TPI_DIAGNOSTIC_KIND_COINCIDENT_PLANES = 8,
+    /**
+     * The surface is closed in a direction but was discretised as an open patch: its seam
+     * stays open (point is TPI_NO_POINT).
+     */
+    TPI_DIAGNOSTIC_KIND_SEAM_LEFT_OPEN = 9,
 } TpiDiagnosticKind;
 
 /**

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use tpi_core::{
-    discretise, Discretisation, DiscretiseOptions, MeshTopology, PlaneMode, SurfaceModel, TpiError,
+    discretise, Diagnostic, Discretisation, DiscretiseOptions, PlaneMode, SurfaceModel, TpiError,
 };
 
 use crate::error::CliError;
@@ -295,11 +295,10 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
     if let Some(c) = &self_intersection {
         eprintln!("{}", crate::selfx::warning(c));
     }
-    if result.topology == MeshTopology::DISC {
-        let layout = tpi_core::surface_layout(&surface);
-        if let Some(k) = (0..2).find(|&k| layout.closed[k]) {
-            let direction = ["u", "v"][k];
-            eprintln!("warning: the surface is closed in {direction}, and it was discretised as an open patch: the mesh leaves its seam open (only closed surfaces with poles that are convex at every seed give closed meshes so far)");
+    for d in &result.diagnostics {
+        if let Diagnostic::SeamLeftOpen { direction } = d {
+            let direction = if *direction == 0 { "u" } else { "v" };
+            eprintln!("warning: the surface is closed in {direction}, and it was discretised as an open patch: the mesh leaves its seam open (closed surfaces give closed meshes only where they are strictly convex at every seed and untrimmed)");
         }
     }
     if let Some(q) = result.quality.as_ref().filter(|q| q.invalid_facets > 0) {

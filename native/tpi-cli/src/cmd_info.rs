@@ -198,9 +198,11 @@ pub(crate) fn describe(
     }
     if !shape.is_empty() {
         let what = if layout.is_sphere() {
-            " (a sphere: discretised as a closed mesh where it is convex)"
+            " (a sphere: a closed mesh where it is strictly convex at every seed)"
+        } else if layout.open_sides().is_some() {
+            " (closed across its seam where it is strictly convex at every seed; elsewhere an open patch, its seam left open)"
         } else if layout.closed.contains(&true) {
-            " (discretised as an open patch: its seam stays open)"
+            " (closed both ways: an open patch, its seams left open)"
         } else {
             ""
         };

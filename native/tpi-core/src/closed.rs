@@ -49,6 +49,17 @@ impl SurfaceLayout {
             || (self.closed[1] && self.poles[0] && self.poles[1])
     }
 
+    /// Closed in exactly one direction: the sides across the other one (u0, u1, v0, v1
+    /// order) that are neither a pole nor a seam, where the surface ends. None where the
+    /// surface is not closed in exactly one direction.
+    pub fn open_sides(&self) -> Option<[bool; 4]> {
+        match self.closed {
+            [true, false] => Some([false, false, !self.poles[2], !self.poles[3]]),
+            [false, true] => Some([!self.poles[0], !self.poles[1], false, false]),
+            _ => None,
+        }
+    }
+
     /// Whether (u, v) lies on a pole side.
     pub(crate) fn on_pole(&self, surface: &dyn Surface, [u, v]: [f64; 2]) -> bool {
         let d = surface.domain();
@@ -104,8 +115,12 @@ pub fn surface_layout(surface: &dyn Surface) -> SurfaceLayout {
 
 /// The envelope's dual structure on a closed strictly convex surface (module doc): the hull
 /// faces of the dual points, counter-clockwise seen from the side the normals point to, with
-/// their adjacency. Errors name a seed that is not on the envelope.
-pub(crate) fn envelope_triangulation(planes: &[Plane]) -> Result<DualTriangulation, TpiError> {
+/// their adjacency. The first `required` planes must be on the envelope (errors name the first
+/// that is not); the others (ghosts beyond an open side) may be cut away by it.
+pub(crate) fn envelope_triangulation(
+    planes: &[Plane],
+    required: usize,
+) -> Result<DualTriangulation, TpiError> {
     let n = planes.len() as f64;
     let centre = planes.iter().map(|p| p.point).sum::<DVec3>() / n;
     let heights: Vec<f64> = planes
@@ -138,7 +153,7 @@ pub(crate) fn envelope_triangulation(planes: &[Plane]) -> Result<DualTriangulati
             }
         },
     })?;
-    if let Some(i) = on_hull.iter().position(|&h| !h) {
+    if let Some(i) = on_hull[..required].iter().position(|&h| !h) {
         return Err(TpiError::DegenerateSurface {
             reason: format!(
                 "the tangent plane of pattern point {i} lies outside the envelope of the others: the closed surface is not strictly convex there"

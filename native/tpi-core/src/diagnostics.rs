@@ -68,6 +68,14 @@ pub enum Diagnostic {
         /// How many neighbour pairs were separated so.
         pairs: u32,
     },
+    /// The surface is closed in a direction, but it was discretised as an open patch: the
+    /// mesh leaves the seam open (closed surfaces give closed meshes only where they are
+    /// strictly convex at every seed, with one normal side, and untrimmed). One diagnostic
+    /// per discretisation.
+    SeamLeftOpen {
+        /// 0: closed in u, 1: closed in v.
+        direction: u8,
+    },
 }
 
 impl Diagnostic {
@@ -83,7 +91,9 @@ impl Diagnostic {
             Diagnostic::OpenFacet { point, .. }
             | Diagnostic::CornerUnreachable { point, .. }
             | Diagnostic::FlatPoint { point, .. } => *point = f(*point),
-            Diagnostic::CornerClaims { .. } | Diagnostic::CoincidentPlanes { .. } => {}
+            Diagnostic::CornerClaims { .. }
+            | Diagnostic::CoincidentPlanes { .. }
+            | Diagnostic::SeamLeftOpen { .. } => {}
         }
     }
 
@@ -97,7 +107,9 @@ impl Diagnostic {
             Diagnostic::OpenFacet { point, .. }
             | Diagnostic::CornerUnreachable { point, .. }
             | Diagnostic::FlatPoint { point, .. } => vec![*point],
-            Diagnostic::CornerClaims { .. } | Diagnostic::CoincidentPlanes { .. } => Vec::new(),
+            Diagnostic::CornerClaims { .. }
+            | Diagnostic::CoincidentPlanes { .. }
+            | Diagnostic::SeamLeftOpen { .. } => Vec::new(),
         }
     }
 }

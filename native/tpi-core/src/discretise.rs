@@ -21,6 +21,7 @@ use crate::adjusted_planes::{adjust_planes, tilt_and_offset};
 use crate::boundary::Boundary;
 use crate::closed;
 use crate::diagnostics::Diagnostic;
+use crate::diffgeo::LocalGeometry;
 use crate::error::TpiError;
 use crate::facets::{
     build_closed_facets, build_facets, FacetParams, FootHint, TriangleVertex, VertexKind,
@@ -533,27 +534,60 @@ fn run_within(
     // A closed strictly convex surface (a sphere, an ellipsoid): the envelope is a closed
     // polytope, its dual the hull of the dual points.
     let layout = closed::surface_layout(surface);
-    if layout.is_sphere() {
+    let convex = convex_side.iter().all(|&s| s != 0 && s == convex_side[0]);
+    let closable = layout.open_sides().is_some() && convex && !boundary.is_trim();
+    if layout.poles.contains(&true) || closable {
         let regular: Vec<bool> = if geometry.len() == uv.len() {
             geometry.iter().map(|g| g.regular).collect()
         } else {
             vec![true; uv.len()]
         };
         let weld = options.weld_tolerance * diagonal;
-        check_closed_seeds(surface, &layout, &uv, &seeds, &regular, weld)?;
+        check_closed_seeds(surface, &layout, &uv, &seeds, &regular, closable, weld)?;
     }
-    // Where the closed surface is not convex at every seed, or its tangent planes do not
-    // bound one convex body (a dented sphere), it is discretised as an open patch (the CLI
-    // warns that the seam stays open).
+    // A convex surface closed in one direction: the envelope is the hull of the dual points,
+    // with ghost seeds beyond its open sides (not at its poles or its seam) that end the mesh
+    // there as on the any-curvature path. Where the closed surface is not convex at every
+    // seed, or its tangent planes do not bound one convex body (a dented sphere), it is
+    // discretised as an open patch (the CLI warns that the seam stays open). A trimmed one is
+    // left to the clipping of the convex paths, which ends it on its trim.
     let hull_stage = Instant::now();
-    let convex = convex_side.iter().all(|&s| s != 0 && s == convex_side[0]);
-    // (A trimmed sphere is left to the clipping of the convex paths, which ends it on its trim.)
-    let envelope = if layout.is_sphere() && convex && !boundary.is_trim() {
-        closed::envelope_triangulation(&planes).ok()
-    } else {
-        None
+    let mut closed_ghosts: Option<(Vec<Plane>, Vec<u32>)> = None;
+    let mut closed_topology = MeshTopology::DISC;
+    let envelope = match layout.open_sides() {
+        Some(open) if closable => {
+            let holes = open.iter().filter(|&&o| o).count();
+            closed_topology = MeshTopology {
+                euler: 2 - holes as i64,
+                boundary_loops: holes,
+            };
+            if holes == 0 {
+                closed::envelope_triangulation(&planes, planes.len()).ok()
+            } else {
+                // The slope path lets the local geometry go: the ghosts need it.
+                let full: Vec<LocalGeometry> = if geometry.len() == uv.len() {
+                    geometry.clone()
+                } else {
+                    uv.iter()
+                        .map(|&[u, v]| LocalGeometry::from_derivatives(&surface.evaluate(u, v)))
+                        .collect()
+                };
+                let extent = plane_extent(&plane_uv, pattern);
+                let ghosts = augment(surface, &uv, &plane_uv, extent, &full, &convex_side, open);
+                let envelope = closed::envelope_triangulation(&ghosts.planes, uv.len()).ok();
+                closed_ghosts = Some((ghosts.planes, ghosts.source));
+                envelope
+            }
+        }
+        _ => None,
     };
     let closed_convex = envelope.is_some();
+    if let Some(k) = (0..2)
+        .find(|&k| layout.closed[k])
+        .filter(|_| !closed_convex)
+    {
+        diagnostics.push(Diagnostic::SeamLeftOpen { direction: k as u8 });
+    }
 
     // Candidates and true neighbours.
     let stage = Instant::now();
@@ -614,8 +648,8 @@ fn run_within(
                 &plane_uv,
                 extent,
                 &geometry,
-                &planes,
                 &convex_side,
+                [true; 4],
             );
             let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
             timings.delaunay = ms(stage);
@@ -648,11 +682,17 @@ fn run_within(
     let mut adjustment = None;
     let (mesh, triangulation) = match &mut augmented {
         None if closed_convex => {
-            let identity: Vec<u32> = (0..uv.len() as u32).collect();
-            (
-                build_closed_facets(&triangulation, &planes, uv.len(), &identity, &params),
-                triangulation,
-            )
+            let (all_planes, source) = closed_ghosts
+                .take()
+                .unwrap_or_else(|| (planes.clone(), (0..uv.len() as u32).collect()));
+            let mesh = build_closed_facets(&triangulation, &all_planes, uv.len(), &source, &params);
+            // The dual structure reported is the real seeds' part.
+            let mut real = triangulation;
+            if all_planes.len() > uv.len() {
+                real.retain_points(uv.len());
+                real.canonicalise(uv.len());
+            }
+            (mesh, real)
         }
         None => (
             build_facets(
@@ -751,7 +791,7 @@ fn run_within(
         timings,
         units: surface.units(),
         topology: if closed_convex {
-            MeshTopology::SPHERE
+            closed_topology
         } else {
             MeshTopology::DISC
         },
@@ -893,22 +933,28 @@ fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
     extent
 }
 
-/// On a closed surface with poles: no seed on a pole (its tangent plane is not defined by the
-/// parametrisation) and no two seeds on one surface point (across the seam).
+/// No seed on a pole (its tangent plane is not defined by the parametrisation); on a closed
+/// surface about to be discretised as one (`closing`: convex, untrimmed) also no seed where
+/// the surface is singular and no two seeds on one surface point (across the seam).
 fn check_closed_seeds(
     surface: &dyn Surface,
     layout: &closed::SurfaceLayout,
     uv: &[[f64; 2]],
     seeds: &[Seed],
     regular: &[bool],
+    closing: bool,
     tolerance: f64,
 ) -> Result<(), TpiError> {
-    if let Some(i) = (0..uv.len()).find(|&i| layout.on_pole(surface, uv[i]) || !regular[i]) {
+    let bad = |i: usize| layout.on_pole(surface, uv[i]) || (closing && !regular[i]);
+    if let Some(i) = (0..uv.len()).find(|&i| bad(i)) {
         return Err(TpiError::InvalidParameter {
             field: format!("pattern point {i}"),
             value: if layout.closed[0] { uv[i][1] } else { uv[i][0] },
-            reason: "it lies on a pole of the closed surface, where the parametrisation defines no tangent plane; move it off the pole".into(),
+            reason: "it lies on a pole of the surface, where the parametrisation defines no tangent plane; move it off the pole".into(),
         });
+    }
+    if !closing {
+        return Ok(());
     }
     let mut order: Vec<usize> = (0..seeds.len()).collect();
     let key = |i: usize| seeds[i].point.to_array();

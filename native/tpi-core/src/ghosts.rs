@@ -69,9 +69,10 @@ fn continued(surface: &dyn Surface, at: [f64; 2], offset: [f64; 2]) -> Option<Lo
     (g.regular && g.point.is_finite() && g.normal.is_finite()).then_some(g)
 }
 
-/// The seeds with their ghosts appended (module doc). `extent` is the size of the
-/// triangulation's plane rectangle [0, extent[0]] x [0, extent[1]]; `uv` the seeds' domain
-/// parameters. Ghosts where the continued surface is not regular (a degenerate boundary,
+/// The seeds with their ghosts appended (module doc), across the sides marked in `open`
+/// (u0, u1, v0, v1; the others are seams or poles of a closed surface). `extent` is the size
+/// of the triangulation's plane rectangle [0, extent[0]] x [0, extent[1]]; `uv` the seeds'
+/// domain parameters. Ghosts where the continued surface is not regular (a degenerate boundary,
 /// such as a pole) are left out.
 pub(crate) fn augment(
     surface: &dyn Surface,
@@ -79,16 +80,20 @@ pub(crate) fn augment(
     plane_uv: &[[f64; 2]],
     extent: [f64; 2],
     geometry: &[LocalGeometry],
-    planes: &[Plane],
     convex_side: &[i8],
+    open: [bool; 4],
 ) -> Augmented {
+    let plane_of = |g: &LocalGeometry| Plane {
+        point: g.point,
+        normal: g.normal,
+    };
     let n = plane_uv.len();
     let spacing = (extent[0] * extent[1] / n as f64).sqrt();
     let band = GHOST_BAND * spacing;
     let mut out = Augmented {
         plane_uv: plane_uv.to_vec(),
         geometry: geometry.to_vec(),
-        planes: planes.to_vec(),
+        planes: geometry.iter().map(plane_of).collect(),
         convex_side: convex_side.to_vec(),
         source: (0..n as u32).collect(),
     };
@@ -125,7 +130,7 @@ pub(crate) fn augment(
             (y, [x, -dy0], v0, -dy0 * scale_v),
             (extent[1] - y, [x, extent[1] + dy1], v1, dy1 * scale_v),
         ];
-        let near: Vec<usize> = (0..4).filter(|&s| sides[s].0 < band).collect();
+        let near: Vec<usize> = (0..4).filter(|&s| open[s] && sides[s].0 < band).collect();
         let mut push = |position: [f64; 2], g: Option<LocalGeometry>| {
             let Some(g) = g else { return };
             out.plane_uv.push(position);
@@ -161,7 +166,7 @@ pub(crate) fn augment(
                 // the ruling of the other side's ghost and takes its plane: the quadric
                 // continuation would leave the two nearly but not exactly coincident, and
                 // their vertex far away.
-                let seed_plane = &planes[i];
+                let seed_plane = &plane_of(&geometry[i]);
                 let along = |s: usize| {
                     side_geometry[s].filter(|g| {
                         coincident(

@@ -1409,7 +1409,9 @@ fn renumber_diagnostic(d: &mut Diagnostic, k: u32) {
         Diagnostic::OpenFacet { point, .. }
         | Diagnostic::CornerUnreachable { point, .. }
         | Diagnostic::FlatPoint { point, .. } => shift(point),
-        Diagnostic::CornerClaims { .. } | Diagnostic::CoincidentPlanes { .. } => {}
+        Diagnostic::CornerClaims { .. }
+        | Diagnostic::CoincidentPlanes { .. }
+        | Diagnostic::SeamLeftOpen { .. } => {}
     }
 }
 

@@ -28,6 +28,27 @@ use tpi_core::{
 /// The rational biquadratic ellipsoid with semi-axes a, b, c: a full circle in u (9 control
 /// points), a half circle from pole to pole in v (5 control points).
 fn ellipsoid(a: f64, b: f64, c: f64) -> NurbsSurface {
+    zone(a, b, c, -90.0, 90.0)
+}
+
+/// The part of that ellipsoid between latitudes `from` and `to` (degrees): a full circle in u
+/// times one rational quadratic arc in v (90 degrees at most) or two (the whole meridian).
+fn zone(a: f64, b: f64, c: f64, from: f64, to: f64) -> NurbsSurface {
+    if to - from > 90.0 {
+        return whole(a, b, c);
+    }
+    let (a0, a1) = (from.to_radians(), to.to_radians());
+    let (half, mid) = (0.5 * (a1 - a0), 0.5 * (a0 + a1));
+    let meridian = [
+        (a0.cos(), a0.sin(), 1.0),
+        (mid.cos() / half.cos(), mid.sin() / half.cos(), half.cos()),
+        (a1.cos(), a1.sin(), 1.0),
+    ];
+    revolve(a, b, c, &meridian, &[0.0, 0.0, 1.0, 1.0])
+}
+
+/// The meridian (r, z, w) revolved about z by a rational quadratic full circle, scaled.
+fn revolve(a: f64, b: f64, c: f64, meridian: &[(f64, f64, f64)], knots_v: &[f64]) -> NurbsSurface {
     let w = std::f64::consts::FRAC_1_SQRT_2;
     let circle = [
         (1.0, 0.0, 1.0),
@@ -40,6 +61,28 @@ fn ellipsoid(a: f64, b: f64, c: f64) -> NurbsSurface {
         (1.0, -1.0, w),
         (1.0, 0.0, 1.0),
     ];
+    let mut points = Vec::new();
+    let mut weights = Vec::new();
+    for &(x, y, wu) in &circle {
+        for &(r, z, wv) in meridian {
+            points.push(DVec3::new(a * x * r, b * y * r, c * z));
+            weights.push(wu * wv);
+        }
+    }
+    NurbsSurface::new(
+        [2, 2],
+        [9, meridian.len()],
+        &[0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0],
+        knots_v,
+        &points,
+        Some(&weights),
+    )
+    .unwrap()
+}
+
+/// The whole ellipsoid: two arcs from pole to pole in v.
+fn whole(a: f64, b: f64, c: f64) -> NurbsSurface {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
     let meridian = [
         (0.0, -1.0, 1.0),
         (1.0, -1.0, w),
@@ -47,37 +90,27 @@ fn ellipsoid(a: f64, b: f64, c: f64) -> NurbsSurface {
         (1.0, 1.0, w),
         (0.0, 1.0, 1.0),
     ];
-    let mut points = Vec::new();
-    let mut weights = Vec::new();
-    for &(x, y, wu) in &circle {
-        for &(r, z, wv) in &meridian {
-            points.push(DVec3::new(a * x * r, b * y * r, c * z));
-            weights.push(wu * wv);
-        }
-    }
-    NurbsSurface::new(
-        [2, 2],
-        [9, 5],
-        &[0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0],
-        &[0.0, 0.0, 1.0, 1.0, 2.0, 2.0],
-        &points,
-        Some(&weights),
-    )
-    .unwrap()
+    revolve(a, b, c, &meridian, &[0.0, 0.0, 1.0, 1.0, 2.0, 2.0])
 }
 
 /// Every check of the module doc.
-fn check_envelope(name: &str, d: &Discretisation, axes: [f64; 3], n: usize) {
+fn check_envelope(
+    name: &str,
+    d: &Discretisation,
+    axes: [f64; 3],
+    n: usize,
+    expected: MeshTopology,
+) {
     let [a, b, c] = axes;
     assert_eq!(d.facet_count(), n, "{name}: one facet per seed");
-    assert_eq!(d.topology, MeshTopology::SPHERE, "{name}");
+    assert_eq!(d.topology, expected, "{name}");
     d.sanity_check()
         .unwrap_or_else(|e| panic!("{name}: sanity check: {e}"));
     let t = topology(d);
     assert_eq!(
         (t.euler, t.boundary_loops),
-        (2, 0),
-        "{name}: not a closed sphere"
+        (expected.euler, expected.boundary_loops),
+        "{name}: wrong topology"
     );
     let diagonal = 2.0 * (a * a + b * b + c * c).sqrt();
     let tolerance = 1e-9 * diagonal;
@@ -140,7 +173,7 @@ fn ellipsoid_gives_the_closed_envelope() {
     for (name, pattern) in &cases {
         let d = discretise(&surface, pattern, &DiscretiseOptions::default())
             .unwrap_or_else(|e| panic!("{name}: {e}"));
-        check_envelope(name, &d, axes, pattern.len());
+        check_envelope(name, &d, axes, pattern.len(), MeshTopology::SPHERE);
         let quality = d.quality.as_ref().unwrap();
         assert_eq!(quality.invalid_facets, 0, "{name}");
         assert_eq!(quality.euler_characteristic, 2, "{name}");
@@ -167,5 +200,48 @@ fn closed_surface_seeds_on_the_seam_or_a_pole_are_named() {
     match discretise(&surface, &pattern, &DiscretiseOptions::default()) {
         Err(TpiError::InvalidParameter { field, .. }) => assert_eq!(field, "pattern point 64"),
         other => panic!("pole: {:?}", other.map(|d| d.facet_count())),
+    }
+}
+
+/// A zone of the ellipsoid (closed in u, open at both ends of v) gives an annulus, and a dome
+/// of it (closed in u, a pole on top, open at the bottom) a disc, both with their seam closed:
+/// the same envelope checks, with ghost seeds beyond the open sides ending the mesh there (its
+/// vertices there lie on their tangent planes too, so they are also behind every seed's plane).
+#[test]
+fn ellipsoid_zones_and_domes_close_their_seams() {
+    let axes = [3.0, 2.0, 1.2];
+    let annulus = MeshTopology {
+        euler: 0,
+        boundary_loops: 2,
+    };
+    let cases = [
+        (
+            "zone",
+            zone(axes[0], axes[1], axes[2], -40.0, 45.0),
+            annulus,
+        ),
+        (
+            "dome",
+            zone(axes[0], axes[1], axes[2], 10.0, 90.0),
+            MeshTopology::DISC,
+        ),
+        (
+            "cap",
+            zone(axes[0], axes[1], axes[2], 50.0, 90.0),
+            MeshTopology::DISC,
+        ),
+    ];
+    let mut rng = Rng::new(1603);
+    for (sname, surface, expected) in &cases {
+        for (pname, pattern) in [
+            ("random 400", uniform_pattern(&mut rng, 400)),
+            ("hex 16x12", generated("hex:16x12")),
+        ] {
+            let name = format!("{sname} {pname}");
+            let d = discretise(surface, &pattern, &DiscretiseOptions::default())
+                .unwrap_or_else(|e| panic!("{name}: {e}"));
+            check_envelope(&name, &d, axes, pattern.len(), *expected);
+            assert_eq!(d.quality.as_ref().unwrap().invalid_facets, 0, "{name}");
+        }
     }
 }

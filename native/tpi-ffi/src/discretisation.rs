@@ -182,6 +182,9 @@ pub enum TpiDiagnosticKind {
     /// Neighbouring facets with coincident tangent planes (flat or developable) were separated
     /// by the bisector of their seeds (point is TPI_NO_POINT).
     CoincidentPlanes = 8,
+    /// The surface is closed in a direction but was discretised as an open patch: its seam
+    /// stays open (point is TPI_NO_POINT).
+    SeamLeftOpen = 9,
 }
 
 impl TpiDiagnosticKind {
@@ -196,6 +199,7 @@ impl TpiDiagnosticKind {
             Diagnostic::CornerClaims { .. } => TpiDiagnosticKind::CornerClaims,
             Diagnostic::FlatPoint { .. } => TpiDiagnosticKind::FlatPoint,
             Diagnostic::CoincidentPlanes { .. } => TpiDiagnosticKind::CoincidentPlanes,
+            Diagnostic::SeamLeftOpen { .. } => TpiDiagnosticKind::SeamLeftOpen,
         }
     }
 }

@@ -83,6 +83,7 @@ fn flag_and_kind_numbers_match_the_core() {
     assert_eq!(TpiDiagnosticKind::CornerClaims as u32, 6);
     assert_eq!(TpiDiagnosticKind::FlatPoint as u32, 7);
     assert_eq!(TpiDiagnosticKind::CoincidentPlanes as u32, 8);
+    assert_eq!(TpiDiagnosticKind::SeamLeftOpen as u32, 9);
 }
 
 #[test]

@@ -57,6 +57,8 @@ namespace Tpi.Native
         FlatPoint = 7,
         /// <summary>Neighbouring facets with coincident tangent planes were separated by the bisector of their seeds.</summary>
         CoincidentPlanes = 8,
+        /// <summary>The surface is closed in a direction but was discretised as an open patch: its seam stays open.</summary>
+        SeamLeftOpen = 9,
     }
 
     /// <summary>Per-facet flags (TPI_FACET_* bits).</summary>
