@@ -531,8 +531,8 @@ fn run_within(
     } = sample(surface, pattern, options)?;
     timings.samples = ms(start);
 
-    // A closed strictly convex surface (a sphere, an ellipsoid): the envelope is a closed
-    // polytope, its dual the hull of the dual points.
+    // Closed surfaces and poles (crate::closed): seeds on a pole are refused everywhere, and
+    // seeds on one surface point across the seam where the seam is to be closed.
     let layout = closed::surface_layout(surface);
     let convex = convex_side.iter().all(|&s| s != 0 && s == convex_side[0]);
     let closable = layout.open_sides().is_some() && convex && !boundary.is_trim();
