@@ -56,6 +56,23 @@ namespace Tpi.Logic
             return new SurfaceTrim(o, hs);
         }
 
+        /// <summary>
+        /// The chord tolerance for sampling trim curves in parameter space, and the tolerance of
+        /// <see cref="FromLoops"/>: 1e-5 of the larger side of the domain (parameters have no
+        /// model units, so the document's absolute tolerance does not apply to them directly).
+        /// </summary>
+        public static double SamplingTolerance(Domain domain)
+        {
+            return 1e-5 * Math.Max(Math.Abs(domain.UMax - domain.UMin), Math.Abs(domain.VMax - domain.VMin));
+        }
+
+        /// <summary>
+        /// A trim that the library refuses with a message naming <c>trim.outer</c>: what an
+        /// adapter uses when a face's trim curve cannot be sampled, so that the trim is
+        /// reported rather than silently left out.
+        /// </summary>
+        public static SurfaceTrim Unsampled() { return new SurfaceTrim(new double[0]); }
+
         /// <summary>The shoelace area of a flat u, v loop, positive counter-clockwise.</summary>
         public static double SignedArea(IList<double> loop)
         {

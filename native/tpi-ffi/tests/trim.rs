@@ -122,6 +122,18 @@ fn a_dome_trimmed_to_a_disc_keeps_the_points_inside() {
     assert_eq!(status, TpiStatus::InvalidArgument, "{}", last_error());
     assert!(ds.is_null());
     assert!(last_error().contains("trim"), "{}", last_error());
+    // ...and so does replacing a live surface's surface by a trimmed one, keeping the old one.
+    let mut live = std::ptr::null_mut();
+    // SAFETY: live handles, valid out pointer.
+    ok(unsafe { tpi_discrete_surface_new(dome, p, std::ptr::null(), &mut live) });
+    // SAFETY: live handles.
+    ok(unsafe { tpi_discrete_surface_set_surface(live, trimmed) });
+    let status = unsafe { tpi_discrete_surface_recompute(live) };
+    assert_eq!(status, TpiStatus::InvalidArgument, "{}", last_error());
+    assert!(last_error().contains("trim"), "{}", last_error());
+    assert_eq!(current_mesh(live).facet_sizes.len(), points.len());
+    // SAFETY: our handle, freed once.
+    unsafe { tpi_discrete_surface_free(live) };
 
     // SAFETY: our handles, freed once.
     unsafe {
