@@ -89,5 +89,25 @@ namespace Tpi.Tests
             var e = Assert.Throws<TpiException>(() => bad.CreateNative());
             StringAssert.Contains("trim.outer", e.Message);
         }
+
+        [Test]
+        public void LiveEditingRefusesATrimSoNoTrimmedDocumentIsEverStored()
+        {
+            // The discrete surface (the only spec that is persisted, UserDataFormat) is made
+            // through DiscreteSurfaceState, which the library refuses for a trimmed surface:
+            // a trimmed face is reported, never panelled untrimmed or stored without its trim.
+            var trim = SurfaceTrim.FromLoops(Disc(40, 0.4, false, false), null, Unit, 1e-9);
+            var e = Assert.Throws<TpiException>(() => new DiscreteSurfaceState(LogicData.Dome().WithTrim(trim), LogicData.Hex(6, 6)));
+            Assert.AreEqual(Status.InvalidArgument, e.Status);
+            StringAssert.Contains("trim", e.Message);
+            using (var state = new DiscreteSurfaceState(LogicData.Dome(), LogicData.Hex(6, 6)))
+            {
+                // A source that became trimmed: the follow step's recompute says why it cannot.
+                state.ReplaceSurface(LogicData.Dome().WithTrim(trim));
+                string error;
+                Assert.IsFalse(state.TryRecompute(out error));
+                StringAssert.Contains("trim", error);
+            }
+        }
     }
 }
