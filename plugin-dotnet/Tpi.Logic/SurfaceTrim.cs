@@ -37,7 +37,9 @@ namespace Tpi.Logic
 
         /// <summary>
         /// The trim from loops sampled in the surface's parameters (flat u, v, any orientation):
-        /// a closing point within <paramref name="tolerance"/> of the first is dropped, the
+        /// a point within <paramref name="tolerance"/> outside the domain is moved onto it, a
+        /// point within tolerance of the one before it and a closing point within tolerance of
+        /// the first are dropped, the
         /// outer loop is made counter-clockwise and the holes clockwise. Returns null (untrimmed)
         /// when there are no holes and every outer point lies within tolerance of the
         /// boundary of <paramref name="domain"/> with the loop's area that of the domain (the
@@ -47,8 +49,8 @@ namespace Tpi.Logic
         {
             if (outer == null) throw new ArgumentNullException("outer");
             if (tolerance < 0 || double.IsNaN(tolerance)) tolerance = 0;
-            var o = Open(outer, tolerance);
-            var hs = holes == null ? new List<double[]>() : holes.Where(h => h != null && h.Count > 0).Select(h => Open(h, tolerance)).ToList();
+            var o = Open(outer, domain, tolerance);
+            var hs = holes == null ? new List<double[]>() : holes.Where(h => h != null && h.Count > 0).Select(h => Open(h, domain, tolerance)).ToList();
             if (hs.Count == 0 && IsWholeDomain(o, domain, tolerance)) return null;
             if (SignedArea(o) < 0) o = Reversed(o);
             for (int k = 0; k < hs.Count; k++)
@@ -86,10 +88,21 @@ namespace Tpi.Logic
             return 0.5 * sum;
         }
 
-        static double[] Open(IList<double> loop, double tolerance)
+        // Clamps points within tolerance outside the domain onto it (a sampled edge curve may
+        // stray by rounding; the library refuses a point outside the domain), drops a point
+        // within tolerance of the one before it (curve joins) and the closing point.
+        static double[] Open(IList<double> loop, Domain domain, double tolerance)
         {
-            var points = loop.ToList();
-            if (points.Count % 2 != 0) throw new ArgumentException("a loop is u, v pairs: an even count of numbers", "loop");
+            if (loop.Count % 2 != 0) throw new ArgumentException("a loop is u, v pairs: an even count of numbers", "loop");
+            var points = new List<double>(loop.Count);
+            for (int k = 0; k < loop.Count / 2; k++)
+            {
+                double u = Clamp(loop[2 * k], domain.UMin, domain.UMax, tolerance);
+                double v = Clamp(loop[2 * k + 1], domain.VMin, domain.VMax, tolerance);
+                int n = points.Count;
+                if (n >= 2 && Math.Sqrt((u - points[n - 2]) * (u - points[n - 2]) + (v - points[n - 1]) * (v - points[n - 1])) <= tolerance) continue;
+                points.Add(u); points.Add(v);
+            }
             while (points.Count >= 4)
             {
                 int n = points.Count;
@@ -98,6 +111,13 @@ namespace Tpi.Logic
                 points.RemoveRange(n - 2, 2);
             }
             return points.ToArray();
+        }
+
+        static double Clamp(double x, double min, double max, double tolerance)
+        {
+            if (x < min && x >= min - tolerance) return min;
+            if (x > max && x <= max + tolerance) return max;
+            return x;
         }
 
         static double[] Reversed(double[] loop)

@@ -50,6 +50,16 @@ namespace Tpi.Tests
         }
 
         [Test]
+        public void FromLoopsClampsToTheDomainAndDropsRepeatedPoints()
+        {
+            // A corner a hair outside the domain, a point repeated at a curve join.
+            var loop = new double[] { -1e-12, 0.2, 0.5, 0.2, 0.5, 0.2 + 1e-13, 0.5, 0.8, 0.2, 0.8, -1e-12, 0.2 };
+            var trim = SurfaceTrim.FromLoops(loop, null, Unit, 1e-9);
+            CollectionAssert.AreEqual(new[] { 0.0, 0.2, 0.5, 0.2, 0.5, 0.8, 0.2, 0.8 }, trim.Outer.ToArray());
+            using (var dome = LogicData.Dome().WithTrim(trim).CreateNative()) Assert.IsNotNull(dome);
+        }
+
+        [Test]
         public void TheWholeDomainRectangleIsNoTrim()
         {
             var d = new Domain(2, 5, -1, 1);
