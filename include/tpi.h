@@ -1510,6 +1510,36 @@ enum TpiStatus tpi_surface_evaluate(const struct TpiSurface *surface, const doub
 enum TpiStatus tpi_surface_with_units(const struct TpiSurface *surface, int32_t units, struct TpiSurface **out);
 
 /**
+ * Creates a copy of `surface` trimmed to the region bounded by closed polylines in the
+ * surface's own (u, v) parameters (not normalised): the outer loop `outer_uv`
+ * (`outer_len` doubles, u then v per point, counter-clockwise) and `hole_count` holes,
+ * clockwise, whose points follow one another in `holes_uv` (`holes_len` doubles), hole `k`
+ * having `hole_point_counts[k]` points. The closing segment of a loop is implied; a last
+ * point equal to the first is accepted and ignored. A trimmed surface's trim is replaced.
+ * Surfaces are immutable, hence a new handle; free both.
+ *
+ * Discretising a trimmed surface leaves the pattern points outside the trim out and ends
+ * the facets on it (convex surfaces; elsewhere TPI_STATUS_INVALID_ARGUMENT, the trim is
+ * never ignored). `tpi_discrete_surface_new` refuses a trimmed surface with
+ * TPI_STATUS_INVALID_ARGUMENT. Evaluation and the domain are those of the untrimmed surface.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER (`surface`, `out`, or an array whose length is not 0);
+ * TPI_STATUS_INVALID_ARGUMENT (an odd number of doubles, hole point counts that do not add
+ * up to `holes_len / 2`, and the trim's validation: a loop with fewer than 3 points, two
+ * consecutive equal points, a point outside the domain, an outer loop that is not
+ * counter-clockwise or a hole that is not clockwise, segments that touch or cross, a hole
+ * outside the outer loop or inside another; the message names the loop and point, e.g.
+ * `trim.holes[1][4]`); TPI_STATUS_NON_FINITE (a NaN or infinite coordinate). On an error
+ * `*out` is set to NULL.
+ *
+ * # Safety
+ * `surface` is NULL or a live handle; `outer_uv` and `holes_uv` are NULL or valid for
+ * reading `outer_len` and `holes_len` doubles; `hole_point_counts` is NULL or valid for
+ * reading `hole_count` values; `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_with_trim(const struct TpiSurface *surface, const double *outer_uv, size_t outer_len, const double *holes_uv, size_t holes_len, const size_t *hole_point_counts, size_t hole_count, struct TpiSurface **out);
+
+/**
  * Stores the surface's units in `*out`: a `TPI_UNITS_*` value, `TPI_UNITS_NONE` when unitless.
  *
  * Errors: TPI_STATUS_NULL_POINTER.

@@ -99,6 +99,10 @@ namespace Tpi.GhComponents
             warnings = new List<string>();
             Surface surface = null;
             if (!DA.GetData(0, ref surface) || surface == null) return null; // Grasshopper itself warns about a missing S
+            // A trimmed surface arrives as a one-face Brep: take its face, which carries the trim.
+            Brep brep = null;
+            if (!(surface is BrepFace) && DA.GetData(0, ref brep) && brep != null && brep.Faces != null && brep.Faces.Count == 1)
+                surface = brep.Faces[0];
             var spec = GhConvert.ToSpec(surface);
             if (spec == null) { errors.Add("the surface has no NURBS form"); return null; }
             var points = new List<Point3d>();

@@ -12,8 +12,34 @@ namespace Tpi.Logic
     /// <summary>A surface description that can make a native <see cref="Surface"/>.</summary>
     public abstract class SurfaceSpec : IEquatable<SurfaceSpec>
     {
-        /// <summary>Makes the native surface (the caller disposes it). Errors are the library's <see cref="TpiException"/>s.</summary>
-        public abstract Surface CreateNative();
+        /// <summary>Makes the native surface, trimmed when <see cref="Trim"/> is set (the caller disposes it). Errors are the library's <see cref="TpiException"/>s.</summary>
+        public Surface CreateNative()
+        {
+            var surface = CreateUntrimmed();
+            if (Trim == null) return surface;
+            try { return Trim.Apply(surface); }
+            finally { surface.Dispose(); }
+        }
+
+        /// <summary>Makes the native surface without the trim.</summary>
+        protected abstract Surface CreateUntrimmed();
+
+        /// <summary>The trim in the surface's parameters, or null for the whole surface.</summary>
+        public SurfaceTrim Trim { get; private set; }
+
+        /// <summary>A copy with <paramref name="trim"/> (null: untrimmed). Transforms and control point edits keep it.</summary>
+        public SurfaceSpec WithTrim(SurfaceTrim trim)
+        {
+            var copy = (SurfaceSpec)MemberwiseClone();
+            copy.Trim = trim;
+            return copy;
+        }
+
+        /// <summary>Whether the two trims are equal (both null included).</summary>
+        protected bool SameTrim(SurfaceSpec other)
+        {
+            return Trim == null ? other.Trim == null : Trim.Equals(other.Trim);
+        }
 
         /// <summary>
         /// The surface moved by the 4x4 row-major matrix <paramref name="m"/> (as RhinoCommon's
@@ -94,11 +120,11 @@ namespace Tpi.Logic
             var points = (double[])_points.Clone();
             int k = 3 * (i * CountV + j);
             points[k] = p.X; points[k + 1] = p.Y; points[k + 2] = p.Z;
-            return new NurbsSurfaceSpec(DegreeU, DegreeV, CountU, CountV, _knotsU, _knotsV, points, _weights);
+            return (NurbsSurfaceSpec)new NurbsSurfaceSpec(DegreeU, DegreeV, CountU, CountV, _knotsU, _knotsV, points, _weights).WithTrim(Trim);
         }
 
         /// <inheritdoc/>
-        public override Surface CreateNative()
+        protected override Surface CreateUntrimmed()
         {
             return Surface.FromNurbs(DegreeU, DegreeV, CountU, CountV, _knotsU, _knotsV, _points, _weights);
         }
@@ -126,7 +152,8 @@ namespace Tpi.Logic
                 if (weights == null) weights = Enumerable.Repeat(1.0, n).ToArray();
                 for (int i = 0; i < n; i++) weights[i] *= scale[i];
             }
-            return new NurbsSurfaceSpec(DegreeU, DegreeV, CountU, CountV, _knotsU, _knotsV, points, weights);
+            // A transform moves the points, not the parameters: the trim stays.
+            return new NurbsSurfaceSpec(DegreeU, DegreeV, CountU, CountV, _knotsU, _knotsV, points, weights).WithTrim(Trim);
         }
 
         /// <inheritdoc/>
@@ -135,7 +162,7 @@ namespace Tpi.Logic
             var o = other as NurbsSurfaceSpec;
             return o != null && o.DegreeU == DegreeU && o.DegreeV == DegreeV && o.CountU == CountU && o.CountV == CountV
                 && SameArray(_knotsU, o._knotsU) && SameArray(_knotsV, o._knotsV) && SameArray(_points, o._points)
-                && SameArray(_weights, o._weights);
+                && SameArray(_weights, o._weights) && SameTrim(o);
         }
 
         /// <inheritdoc/>
@@ -197,7 +224,7 @@ namespace Tpi.Logic
         public IReadOnlyList<double> Parameters { get { return Array.AsReadOnly(_parameters); } }
 
         /// <inheritdoc/>
-        public override Surface CreateNative()
+        protected override Surface CreateUntrimmed()
         {
             var p = _parameters;
             switch (Kind)
@@ -224,7 +251,7 @@ namespace Tpi.Logic
         public override bool Equals(SurfaceSpec other)
         {
             var o = other as AnalyticSurfaceSpec;
-            return o != null && o.Kind == Kind && SameArray(_parameters, o._parameters);
+            return o != null && o.Kind == Kind && SameArray(_parameters, o._parameters) && SameTrim(o);
         }
 
         /// <inheritdoc/>

@@ -134,6 +134,33 @@ namespace Tpi.Native
             return Created(s, h, "tpi_surface_with_units");
         }
 
+        /// <summary>
+        /// A copy of this surface trimmed to closed polylines in its own (u, v) parameters (not
+        /// normalised), flat u, v per point: the outer loop counter-clockwise, the holes (may be
+        /// null) clockwise. The closing segment is implied. Discretising it leaves the pattern
+        /// points outside the trim out; a discrete surface (live editing) refuses it. Every
+        /// mistake (a clockwise outer loop, a point outside the domain, crossing loops, an odd
+        /// count) raises a <see cref="TpiException"/> naming the loop and point.
+        /// </summary>
+        public Surface WithTrim(IList<double> outerUv, IList<IList<double>> holesUv = null)
+        {
+            var outer = TpiLibrary.ArrayOrNull(outerUv);
+            var flat = new List<double>();
+            var counts = new UIntPtr[holesUv == null ? 0 : holesUv.Count];
+            for (int k = 0; k < counts.Length; k++)
+            {
+                var hole = holesUv[k] ?? new double[0];
+                // An odd hole is passed whole: the library reports the odd total or the counts.
+                counts[k] = new UIntPtr((ulong)(hole.Count / 2));
+                flat.AddRange(hole);
+            }
+            var holes = flat.ToArray();
+            SurfaceHandle h;
+            var s = UnsafeNativeMethods.tpi_surface_with_trim(Handle, outer, TpiLibrary.Length(outer),
+                holes, TpiLibrary.Length(holes), counts, TpiLibrary.Length(counts), out h);
+            return Created(s, h, "tpi_surface_with_trim");
+        }
+
         /// <summary>The model's length units as Rhino's <c>UnitSystem</c> value, 0 when unitless.</summary>
         public int Units
         {

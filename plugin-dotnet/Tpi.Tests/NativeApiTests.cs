@@ -53,6 +53,62 @@ namespace Tpi.Tests
             }
         }
 
+        static double[] Disc(int n, double r, bool clockwise)
+        {
+            var flat = new double[2 * n];
+            for (int k = 0; k < n; k++)
+            {
+                double a = 2 * Math.PI * k / n * (clockwise ? -1 : 1);
+                flat[2 * k] = 0.5 + r * Math.Cos(a);
+                flat[2 * k + 1] = 0.5 + r * Math.Sin(a);
+            }
+            return flat;
+        }
+
+        static bool InPolygon(double[] loop, double u, double v)
+        {
+            bool inside = false;
+            int n = loop.Length / 2;
+            for (int i = 0, j = n - 1; i < n; j = i++)
+            {
+                double ui = loop[2 * i], vi = loop[2 * i + 1], uj = loop[2 * j], vj = loop[2 * j + 1];
+                if ((vi > v) != (vj > v) && u < (uj - ui) * (v - vi) / (vj - vi) + ui) inside = !inside;
+            }
+            return inside;
+        }
+
+        [Test]
+        public void WithTrimKeepsThePatternPointsInside()
+        {
+            var outer = Disc(40, 0.4, false);
+            var hole = Disc(12, 0.1, true);
+            using (var dome = TestData.Dome())
+            using (var trimmed = dome.WithTrim(outer))
+            using (var holed = dome.WithTrim(outer, new List<IList<double>> { hole }))
+            using (var pattern = Pattern.Hex(9, 9))
+            {
+                var points = pattern.Points;
+                int inside = points.Count(p => InPolygon(outer, p.S, p.T));
+                int kept = points.Count(p => InPolygon(outer, p.S, p.T) && !InPolygon(hole, p.S, p.T));
+                Assert.Less(kept, inside);
+                Assert.Less(inside, points.Count);
+                using (var mesh = Discretisation.Create(trimmed, pattern)) Assert.AreEqual(inside, mesh.FacetCount);
+                using (var mesh = Discretisation.Create(holed, pattern)) Assert.AreEqual(kept, mesh.FacetCount);
+                Assert.AreEqual(dome.Evaluate(0.1, 0.1).Point.Z, trimmed.Evaluate(0.1, 0.1).Point.Z);
+
+                var e = Assert.Throws<TpiException>(() => dome.WithTrim(Disc(40, 0.4, true)));
+                Assert.AreEqual(Status.InvalidArgument, e.Status);
+                StringAssert.Contains("trim.outer", e.Message);
+                e = Assert.Throws<TpiException>(() => dome.WithTrim(outer, new List<IList<double>> { Disc(12, 0.1, false) }));
+                StringAssert.Contains("trim.holes[0]", e.Message);
+                e = Assert.Throws<TpiException>(() => dome.WithTrim(new[] { 0.1, 0.1, 0.9 }));
+                StringAssert.Contains("outer_uv", e.Message);
+                e = Assert.Throws<TpiException>(() => DiscreteSurface.Create(trimmed, pattern));
+                Assert.AreEqual(Status.InvalidArgument, e.Status);
+                StringAssert.Contains("trim", e.Message);
+            }
+        }
+
         [Test]
         public void RationalNurbsWithUnitWeightsEqualsNonRational()
         {

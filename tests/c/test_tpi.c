@@ -1106,6 +1106,100 @@ static void test_units(void) {
     tpi_surface_free(plain);
 }
 
+/* Point-in-polygon by the crossing rule (n points, u then v per point). */
+static int in_polygon(const double *loop, size_t n, double u, double v) {
+    int inside = 0;
+    for (size_t i = 0, j = n - 1; i < n; j = i++) {
+        double ui = loop[2 * i], vi = loop[2 * i + 1], uj = loop[2 * j], vj = loop[2 * j + 1];
+        if ((vi > v) != (vj > v) && u < (uj - ui) * (v - vi) / (vj - vi) + ui) inside = !inside;
+    }
+    return inside;
+}
+
+/* The dome trimmed to a disc polyline: one facet per pattern point inside the disc. */
+static void test_trim(void) {
+    enum { N = 40, GRID = 9 };
+    double outer[2 * N], clockwise[2 * N];
+    for (size_t k = 0; k < N; k++) {
+        double a = 2.0 * 3.14159265358979323846 * (double)k / N;
+        outer[2 * k] = 0.5 + 0.4 * cos(a);
+        outer[2 * k + 1] = 0.5 + 0.4 * sin(a);
+    }
+    for (size_t k = 0; k < N; k++) {
+        clockwise[2 * k] = outer[2 * (N - 1 - k)];
+        clockwise[2 * k + 1] = outer[2 * (N - 1 - k) + 1];
+    }
+    double points[2 * GRID * GRID];
+    size_t inside = 0;
+    for (size_t i = 0; i < GRID; i++) {
+        for (size_t j = 0; j < GRID; j++) {
+            double s = (i + 0.5 + 0.2 * ((double)((i * 7 + j * 3) % 5) - 2.0) / 5.0) / GRID;
+            double t = (j + 0.5 + 0.2 * ((double)((i * 3 + j * 5) % 5) - 2.0) / 5.0) / GRID;
+            points[2 * (i * GRID + j)] = s;
+            points[2 * (i * GRID + j) + 1] = t;
+            inside += (size_t)in_polygon(outer, N, s, t);
+        }
+    }
+    CHECK(inside > 10 && inside < GRID * GRID);
+
+    TpiSurface *surface = dome();
+    TpiSurface *trimmed = NULL;
+    CHECK_OK(tpi_surface_with_trim(surface, outer, 2 * N, NULL, 0, NULL, 0, &trimmed));
+    CHECK(trimmed != NULL);
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new(points, 2 * GRID * GRID, &pattern));
+    TpiDiscretisation *d = NULL;
+    CHECK_OK(tpi_discretise(trimmed, pattern, NULL, &d));
+    size_t facets = 0;
+    CHECK_OK(tpi_discretisation_facet_count(d, &facets));
+    CHECK(facets == inside);
+    tpi_discretisation_free(d);
+
+    /* Domain and evaluation are the untrimmed surface's. */
+    TpiDomain domain;
+    CHECK_OK(tpi_surface_domain(trimmed, &domain));
+    CHECK(domain.u_min == 0.0 && domain.u_max == 1.0);
+    double uv[2] = {0.05, 0.05};
+    TpiSample a, b;
+    CHECK_OK(tpi_surface_evaluate(surface, uv, 2, &a, 1));
+    CHECK_OK(tpi_surface_evaluate(trimmed, uv, 2, &b, 1));
+    CHECK(memcmp(&a, &b, sizeof a) == 0);
+
+    /* Live editing refuses a trim. */
+    TpiDiscreteSurface *ds = (TpiDiscreteSurface *)1;
+    CHECK_STATUS(tpi_discrete_surface_new(trimmed, pattern, NULL, &ds), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK(ds == NULL);
+
+    /* Errors, each naming the item. */
+    char message[512];
+    TpiSurface *bad = trimmed;
+    CHECK_STATUS(tpi_surface_with_trim(surface, clockwise, 2 * N, NULL, 0, NULL, 0, &bad),
+                 TPI_STATUS_INVALID_ARGUMENT);
+    CHECK(bad == NULL);
+    tpi_last_error_message(message, sizeof message, NULL);
+    CHECK(strstr(message, "trim.outer") && strstr(message, "counter-clockwise"));
+    CHECK_STATUS(tpi_surface_with_trim(surface, outer, 2 * N - 1, NULL, 0, NULL, 0, &bad),
+                 TPI_STATUS_INVALID_ARGUMENT);
+    CHECK_STATUS(tpi_surface_with_trim(surface, NULL, 2 * N, NULL, 0, NULL, 0, &bad),
+                 TPI_STATUS_NULL_POINTER);
+    size_t count = 5;
+    CHECK_STATUS(tpi_surface_with_trim(surface, outer, 2 * N, clockwise, 12, &count, 1, &bad),
+                 TPI_STATUS_INVALID_ARGUMENT);
+    tpi_last_error_message(message, sizeof message, NULL);
+    CHECK(strstr(message, "hole_point_counts") != NULL);
+    double nan_outer[2 * N];
+    memcpy(nan_outer, outer, sizeof outer);
+    nan_outer[3] = NAN;
+    CHECK_STATUS(tpi_surface_with_trim(surface, nan_outer, 2 * N, NULL, 0, NULL, 0, &bad),
+                 TPI_STATUS_NON_FINITE);
+    CHECK_STATUS(tpi_surface_with_trim(NULL, outer, 2 * N, NULL, 0, NULL, 0, &bad),
+                 TPI_STATUS_NULL_POINTER);
+
+    tpi_pattern_free(pattern);
+    tpi_surface_free(trimmed);
+    tpi_surface_free(surface);
+}
+
 /* A rational sphere of one face (closed in u, poles at both ends of v, as Rhino makes it):
  * the mesh is closed. Checked here from the arrays: every directed edge of a facet loop is
  * run backwards by exactly one other loop, and V - E + F = 2; every vertex lies on or behind
@@ -1203,5 +1297,6 @@ int main(void) {
     test_free_null();
     test_threads();
     test_units();
+    test_trim();
     return finish("test_tpi");
 }

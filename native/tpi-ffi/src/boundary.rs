@@ -189,6 +189,11 @@ pub fn status_of(error: &TpiError) -> TpiStatus {
         | TpiError::CollinearPattern { .. }
         | TpiError::InvalidGenerator { .. } => TpiStatus::InvalidPattern,
         TpiError::DegenerateSurface { .. } => TpiStatus::Degenerate,
+        // A malformed trim is invalid input; a trim that a path (live editing, a non-convex
+        // surface) cannot honour is refused as such, never ignored.
+        TpiError::InvalidTrim { .. } | TpiError::TrimUnsupported { .. } => {
+            TpiStatus::InvalidArgument
+        }
         // The core's error is non-exhaustive; a variant added later is reported as invalid
         // input until it gets its own code.
         _ => TpiStatus::InvalidArgument,

@@ -2,7 +2,7 @@
 
 use glam::DVec3;
 use tpi_core::SurfaceModel;
-use tpi_core::{AnalyticSurface, LocalGeometry, NurbsSurface, Surface, TpiError, Units};
+use tpi_core::{AnalyticSurface, LocalGeometry, NurbsSurface, Surface, TpiError, Trim, Units};
 
 use crate::boundary::{
     check_copy_out, copy_out, ffi_boundary, finite, try_handle, try_pairs, try_slice, FfiError,
@@ -484,6 +484,76 @@ pub unsafe extern "C" fn tpi_surface_with_units(
         let surface = unsafe { try_handle(surface, "surface") }?;
         let units = units_from_code(units)?;
         let model = surface.model.clone().with_units(units);
+        out.set_boxed(TpiSurface { model });
+        Ok(())
+    }
+}
+
+/// Creates a copy of `surface` trimmed to the region bounded by closed polylines in the
+/// surface's own (u, v) parameters (not normalised): the outer loop `outer_uv`
+/// (`outer_len` doubles, u then v per point, counter-clockwise) and `hole_count` holes,
+/// clockwise, whose points follow one another in `holes_uv` (`holes_len` doubles), hole `k`
+/// having `hole_point_counts[k]` points. The closing segment of a loop is implied; a last
+/// point equal to the first is accepted and ignored. A trimmed surface's trim is replaced.
+/// Surfaces are immutable, hence a new handle; free both.
+///
+/// Discretising a trimmed surface leaves the pattern points outside the trim out and ends
+/// the facets on it (convex surfaces; elsewhere TPI_STATUS_INVALID_ARGUMENT, the trim is
+/// never ignored). `tpi_discrete_surface_new` refuses a trimmed surface with
+/// TPI_STATUS_INVALID_ARGUMENT. Evaluation and the domain are those of the untrimmed surface.
+///
+/// Errors: TPI_STATUS_NULL_POINTER (`surface`, `out`, or an array whose length is not 0);
+/// TPI_STATUS_INVALID_ARGUMENT (an odd number of doubles, hole point counts that do not add
+/// up to `holes_len / 2`, and the trim's validation: a loop with fewer than 3 points, two
+/// consecutive equal points, a point outside the domain, an outer loop that is not
+/// counter-clockwise or a hole that is not clockwise, segments that touch or cross, a hole
+/// outside the outer loop or inside another; the message names the loop and point, e.g.
+/// `trim.holes[1][4]`); TPI_STATUS_NON_FINITE (a NaN or infinite coordinate). On an error
+/// `*out` is set to NULL.
+///
+/// # Safety
+/// `surface` is NULL or a live handle; `outer_uv` and `holes_uv` are NULL or valid for
+/// reading `outer_len` and `holes_len` doubles; `hole_point_counts` is NULL or valid for
+/// reading `hole_count` values; `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn tpi_surface_with_trim(
+    surface: *const TpiSurface,
+    outer_uv: *const f64,
+    outer_len: usize,
+    holes_uv: *const f64,
+    holes_len: usize,
+    hole_point_counts: *const usize,
+    hole_count: usize,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract for every argument.
+        let out = unsafe { OutPtr::handle(out, "out") }?;
+        let surface = unsafe { try_handle(surface, "surface") }?;
+        let outer = unsafe { try_pairs(outer_uv, outer_len, "outer_uv") }?;
+        let hole_points = unsafe { try_pairs(holes_uv, holes_len, "holes_uv") }?;
+        let counts = unsafe { try_slice(hole_point_counts, hole_count, "hole_point_counts") }?;
+        let total = counts.iter().try_fold(0usize, |sum, &c| sum.checked_add(c));
+        if total != Some(hole_points.len()) {
+            return Err(FfiError::invalid(format!(
+                "hole_point_counts add up to {}, but holes_uv holds {} points ({holes_len} doubles)",
+                total.map_or_else(|| "more than SIZE_MAX".to_string(), |t| t.to_string()),
+                hole_points.len()
+            )));
+        }
+        let mut holes = Vec::with_capacity(counts.len());
+        let mut rest = hole_points;
+        for &count in counts {
+            // The counts add up to the number of points, so every split succeeds.
+            let (hole, tail) = rest
+                .split_at_checked(count)
+                .ok_or_else(|| FfiError::invalid("hole_point_counts overrun holes_uv"))?;
+            holes.push(hole.to_vec());
+            rest = tail;
+        }
+        let trim = Trim { outer: outer.to_vec(), holes };
+        let model = SurfaceModel::trimmed(surface.model.clone(), trim)?;
         out.set_boxed(TpiSurface { model });
         Ok(())
     }

@@ -100,6 +100,13 @@ namespace Tpi.Native.Interop
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         internal static extern Status tpi_surface_with_units(SurfaceHandle surface, int units, out SurfaceHandle @out);
 
+        // enum TpiStatus tpi_surface_with_trim(const struct TpiSurface *surface, const double *outer_uv,
+        //     size_t outer_len, const double *holes_uv, size_t holes_len,
+        //     const size_t *hole_point_counts, size_t hole_count, struct TpiSurface **out);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_surface_with_trim(SurfaceHandle surface, double[] outerUv, UIntPtr outerLen,
+            double[] holesUv, UIntPtr holesLen, UIntPtr[] holePointCounts, UIntPtr holeCount, out SurfaceHandle @out);
+
         // enum TpiStatus tpi_surface_units(const struct TpiSurface *surface, int32_t *out);
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         internal static extern Status tpi_surface_units(SurfaceHandle surface, out int @out);

@@ -359,11 +359,16 @@ namespace Rhino.Geometry
         public Point3d Location { get { return new Point3d(); } set { } }
     }
 
-    public class Curve : GeometryBase { }
+    public class Curve : GeometryBase
+    {
+        public PolylineCurve ToPolyline(double tolerance, double angleTolerance, double minimumLength, double maximumLength) { return null; }
+    }
 
     public class PolylineCurve : Curve
     {
         public PolylineCurve(IEnumerable<Point3d> points) { }
+        public int PointCount { get { return 0; } }
+        public Point3d Point(int index) { return new Point3d(); }
     }
 
     public class Polyline : List<Point3d>
@@ -381,7 +386,18 @@ namespace Rhino.Geometry
 
     public class SurfaceProxy : Surface { }
 
-    public class BrepFace : SurfaceProxy { }
+    public class BrepFace : SurfaceProxy
+    {
+        public Collections.BrepLoopList Loops { get { return null; } }
+    }
+
+    public enum BrepLoopType { Unknown = 0, Outer = 1, Inner = 2, Slit = 3, CurveOnSurface = 4, PointOnSurface = 5 }
+
+    public class BrepLoop : GeometryBase
+    {
+        public BrepLoopType LoopType { get { return BrepLoopType.Unknown; } }
+        public Curve To2dCurve() { return null; }
+    }
 
     public class Brep : GeometryBase
     {
@@ -426,6 +442,12 @@ namespace Rhino.Runtime
 
 namespace Rhino.Geometry.Collections
 {
+    public class BrepLoopList
+    {
+        public int Count { get { return 0; } }
+        public BrepLoop this[int index] { get { return null; } }
+    }
+
     public class BrepFaceList
     {
         public int Count { get { return 0; } }
