@@ -1,5 +1,7 @@
-//! Closed surfaces with poles: a sphere or ellipsoid made of one face, closed in one
-//! parameter direction with a pole at each end of the other.
+//! Closed surfaces: a face closed in one parameter direction (its two sides across it are one
+//! seam), each side across the other direction a pole or open. A sphere or ellipsoid made of
+//! one face has poles at both ends; a zone has two open sides; a dome of revolution one pole
+//! and one open side.
 //!
 //! **Layout.** A direction is closed when the surface's two sides across it coincide,
 //! S(u0, v) = S(u1, v) for every v (sampled at [`LAYOUT_SAMPLES`] parameters, to
@@ -21,7 +23,12 @@
 //! order, are the vertices of facet i. The hull is computed with exact orientation tests
 //! ([`crate::hull`]), so the neighbours are exactly the envelope's; four or more planes
 //! through one point give hull faces on one plane and one mesh vertex (welded by the mesh
-//! stage). The mesh is a closed sphere: Euler characteristic 2, no boundary.
+//! stage). With poles at both ends the mesh is a closed sphere: Euler characteristic 2, no
+//! boundary. With open sides, the ghost seeds beyond them ([`crate::ghosts`], the surface
+//! continued by its Taylor expansion) add their dual points to the hull, the real facets end
+//! on their planes, and the mesh has one boundary loop per open side (Euler characteristic
+//! 2 - loops); a ghost the envelope cuts away just has no face. The seam needs nothing: the
+//! hull does not see the parametrisation.
 
 use glam::DVec3;
 
