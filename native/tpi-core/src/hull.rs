@@ -177,7 +177,7 @@ pub(crate) fn convex_hull(points: &[[f64; 3]]) -> Result<(Vec<[u32; 3]>, Vec<boo
             mark[f as usize] = false;
         }
         mark.resize(faces.len(), false);
-        last = new_faces[0];
+        last = *new_faces.first().ok_or(HullError::Inconsistent)?;
     }
     let triangles = faces.iter().filter(|f| f.alive).map(|f| f.v).collect();
     Ok((triangles, on_hull))
