@@ -161,11 +161,7 @@ pub fn floor(surface: &dyn Surface, pattern: &[[f64; 2]]) -> Result<FloorTimings
         .par_iter()
         .map(|&st| {
             let [u, v] = domain.from_normalised(st);
-            let g = LocalGeometry::from_derivatives(&surface.evaluate(u, v));
-            Plane {
-                point: g.point,
-                normal: g.normal,
-            }
+            LocalGeometry::from_derivatives(&surface.evaluate(u, v)).tangent_plane()
         })
         .collect();
     t.samples = ms(start);

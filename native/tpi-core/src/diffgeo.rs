@@ -19,6 +19,7 @@
 
 use glam::DVec3;
 
+use crate::planes::Plane;
 use crate::surface::SurfaceDerivatives;
 use crate::tolerance::UMBILIC_RELATIVE_TOLERANCE;
 
@@ -47,6 +48,14 @@ pub struct LocalGeometry {
 }
 
 impl LocalGeometry {
+    /// The tangent plane at the point.
+    pub(crate) fn tangent_plane(&self) -> Plane {
+        Plane {
+            point: self.point,
+            normal: self.normal,
+        }
+    }
+
     /// Gaussian curvature k1 k2.
     pub fn gaussian(&self) -> f64 {
         self.k1 * self.k2

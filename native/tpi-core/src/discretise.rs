@@ -565,15 +565,18 @@ fn run_within(
                 closed::envelope_triangulation(&planes, planes.len()).ok()
             } else {
                 // The slope path lets the local geometry go: the ghosts need it.
-                let full: Vec<LocalGeometry> = if geometry.len() == uv.len() {
-                    geometry.clone()
+                let recomputed: Vec<LocalGeometry>;
+                let full: &[LocalGeometry] = if geometry.len() == uv.len() {
+                    &geometry
                 } else {
-                    uv.iter()
+                    recomputed = uv
+                        .iter()
                         .map(|&[u, v]| LocalGeometry::from_derivatives(&surface.evaluate(u, v)))
-                        .collect()
+                        .collect();
+                    &recomputed
                 };
                 let extent = plane_extent(&plane_uv, pattern);
-                let ghosts = augment(surface, &uv, &plane_uv, extent, &full, &convex_side, open);
+                let ghosts = augment(surface, &uv, &plane_uv, extent, full, &convex_side, open);
                 let envelope = closed::envelope_triangulation(&ghosts.planes, uv.len()).ok();
                 closed_ghosts = Some((ghosts.planes, ghosts.source));
                 envelope

@@ -83,17 +83,13 @@ pub(crate) fn augment(
     convex_side: &[i8],
     open: [bool; 4],
 ) -> Augmented {
-    let plane_of = |g: &LocalGeometry| Plane {
-        point: g.point,
-        normal: g.normal,
-    };
     let n = plane_uv.len();
     let spacing = (extent[0] * extent[1] / n as f64).sqrt();
     let band = GHOST_BAND * spacing;
     let mut out = Augmented {
         plane_uv: plane_uv.to_vec(),
         geometry: geometry.to_vec(),
-        planes: geometry.iter().map(plane_of).collect(),
+        planes: geometry.iter().map(LocalGeometry::tangent_plane).collect(),
         convex_side: convex_side.to_vec(),
         source: (0..n as u32).collect(),
     };
@@ -134,10 +130,7 @@ pub(crate) fn augment(
         let mut push = |position: [f64; 2], g: Option<LocalGeometry>| {
             let Some(g) = g else { return };
             out.plane_uv.push(position);
-            out.planes.push(Plane {
-                point: g.point,
-                normal: g.normal,
-            });
+            out.planes.push(g.tangent_plane());
             out.geometry.push(g);
             out.convex_side.push(convex_side[i]);
             out.source.push(i as u32);
@@ -166,17 +159,9 @@ pub(crate) fn augment(
                 // the ruling of the other side's ghost and takes its plane: the quadric
                 // continuation would leave the two nearly but not exactly coincident, and
                 // their vertex far away.
-                let seed_plane = &plane_of(&geometry[i]);
+                let seed_plane = &geometry[i].tangent_plane();
                 let along = |s: usize| {
-                    side_geometry[s].filter(|g| {
-                        coincident(
-                            seed_plane,
-                            &Plane {
-                                point: g.point,
-                                normal: g.normal,
-                            },
-                        )
-                    })
+                    side_geometry[s].filter(|g| coincident(seed_plane, &g.tangent_plane()))
                 };
                 let other = match (along(su), along(sv)) {
                     (Some(_), None) => side_geometry[sv],

@@ -76,13 +76,7 @@ pub(crate) fn sample(
             value: f64::NAN,
         });
     }
-    let planes: Vec<Plane> = geometry
-        .iter()
-        .map(|g| Plane {
-            point: g.point,
-            normal: g.normal,
-        })
-        .collect();
+    let planes: Vec<Plane> = geometry.iter().map(LocalGeometry::tangent_plane).collect();
     let diagonal = bounding_diagonal(geometry.iter().map(|g| g.point)).max(f64::MIN_POSITIVE);
     let mut diagnostics = Vec::new();
     let convex_side = classify_curvature(&mut geometry, diagonal, options, &mut diagnostics);
