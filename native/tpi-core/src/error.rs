@@ -241,6 +241,15 @@ pub enum TpiError {
         /// Why.
         reason: String,
     },
+    /// A polysurface's faces cannot be laid out as one surface (see
+    /// [`crate::Polysurface::new`]).
+    #[error("{item}: {}", bound_message(reason))]
+    InvalidPolysurface {
+        /// The offending face, e.g. `faces[3]`, or `faces` for the whole layout.
+        item: String,
+        /// What is wrong and what is supported.
+        reason: String,
+    },
     /// Malformed input document (JSON syntax or structure).
     #[error(
         "{}: line {line}, column {column}: {}",

@@ -38,6 +38,7 @@ mod neighbours;
 mod nurbs;
 mod pattern;
 mod planes;
+mod polysurface;
 mod predicates;
 mod projection;
 mod quality;
@@ -74,6 +75,7 @@ pub use nurbs::{NurbsSpec, NurbsSurface};
 pub use pattern::{
     Generator, GridSize, Pattern, SplitMix64, DEFAULT_JITTER_AMOUNT, MAX_GENERATED_POINTS,
 };
+pub use polysurface::{Polysurface, MAX_POLYSURFACE_FACES};
 pub use quality::{
     QualityReport, FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
     INVALID_FLAGS,

@@ -35,6 +35,7 @@ use serde::{Deserialize, Serialize};
 use crate::analytic::{AnalyticKind, AnalyticSurface};
 use crate::error::TpiError;
 use crate::nurbs::{NurbsSpec, NurbsSurface};
+use crate::polysurface::Polysurface;
 use crate::surface::{Domain, Surface, SurfaceDerivatives};
 use crate::trim::Trim;
 use crate::units::Units;
@@ -163,6 +164,16 @@ pub enum SurfaceSpec {
         /// The trim (closed loops in (u, v)); None: the whole rectangle.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         trim: Option<Trim>,
+    },
+    /// Several untrimmed faces joined along whole sides, discretised as one shell
+    /// ([`crate::Polysurface`]): rows and columns of four-sided faces, found from the geometry.
+    Polysurface {
+        /// The faces, each a record of any other type, without `"trim"` or `"units"` of its own
+        /// differing from the polysurface's.
+        faces: Vec<SurfaceSpec>,
+        /// Length units of every face (`"units"`); absent = unitless (or the faces' own).
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        units: Option<Units>,
     },
 }
 
@@ -299,6 +310,13 @@ impl SurfaceSpec {
                     trim: r.trim,
                 }
             }
+            "polysurface" => {
+                let r: PolysurfaceRecord = read(&body, context)?;
+                SurfaceSpec::Polysurface {
+                    faces: r.faces,
+                    units: r.units,
+                }
+            }
             "plane" => {
                 let r: PlaneRecord = read(&body, context)?;
                 SurfaceSpec::Plane {
@@ -324,7 +342,7 @@ impl SurfaceSpec {
     }
 
     /// Every `"type"` tag, in the order of the enum.
-    pub const TYPE_NAMES: [&'static str; 8] = [
+    pub const TYPE_NAMES: [&'static str; 9] = [
         "nurbs",
         "elliptic_paraboloid",
         "sphere_cap",
@@ -333,12 +351,14 @@ impl SurfaceSpec {
         "egg_crate",
         "cylinder",
         "plane",
+        "polysurface",
     ];
 
     /// The `"type"` tag of this record.
     pub fn type_name(&self) -> &'static str {
         match self.parts() {
             Parts::Nurbs(_) => "nurbs",
+            Parts::Polysurface(..) => "polysurface",
             Parts::Analytic(kind, _, _) => kind.type_name(),
         }
     }
@@ -347,6 +367,9 @@ impl SurfaceSpec {
     fn parts(&self) -> Parts<'_> {
         let (kind, x, y) = match *self {
             SurfaceSpec::Nurbs(ref n) => return Parts::Nurbs(n),
+            SurfaceSpec::Polysurface { ref faces, units } => {
+                return Parts::Polysurface(faces, units)
+            }
             SurfaceSpec::EllipticParaboloid { a, b, x, y, .. } => {
                 (AnalyticKind::EllipticParaboloid { a, b }, x, y)
             }
@@ -372,6 +395,7 @@ impl SurfaceSpec {
     pub fn trim(&self) -> Option<&Trim> {
         match self {
             SurfaceSpec::Nurbs(n) => n.trim.as_ref(),
+            SurfaceSpec::Polysurface { .. } => None,
             SurfaceSpec::EllipticParaboloid { trim, .. }
             | SurfaceSpec::SphereCap { trim, .. }
             | SurfaceSpec::EllipsoidCap { trim, .. }
@@ -382,10 +406,11 @@ impl SurfaceSpec {
         }
     }
 
-    /// The record with its trim replaced.
+    /// The record with its trim replaced (a polysurface has none of its own: unchanged).
     pub fn with_trim(mut self, new: Option<Trim>) -> SurfaceSpec {
         match &mut self {
             SurfaceSpec::Nurbs(n) => n.trim = new,
+            SurfaceSpec::Polysurface { .. } => {}
             SurfaceSpec::EllipticParaboloid { trim, .. }
             | SurfaceSpec::SphereCap { trim, .. }
             | SurfaceSpec::EllipsoidCap { trim, .. }
@@ -405,6 +430,21 @@ impl SurfaceSpec {
     pub fn build(&self) -> Result<SurfaceModel, TpiError> {
         let model = match self.parts() {
             Parts::Nurbs(n) => SurfaceModel::Nurbs(n.build()?),
+            Parts::Polysurface(faces, units) => {
+                let mut built = Vec::with_capacity(faces.len());
+                for (k, face) in faces.iter().enumerate() {
+                    let face = face.build().map_err(|e| TpiError::InvalidPolysurface {
+                        item: format!("faces[{k}]"),
+                        reason: e.to_string(),
+                    })?;
+                    // The polysurface's units, when given, are every face's.
+                    built.push(match units {
+                        Some(_) => face.with_units(units),
+                        None => face,
+                    });
+                }
+                SurfaceModel::Polysurface(Box::new(Polysurface::new(built)?))
+            }
             Parts::Analytic(kind, x, y) => {
                 SurfaceModel::Analytic(AnalyticSurface::new(kind, x, y)?.with_units(self.units()))
             }
@@ -419,6 +459,9 @@ impl SurfaceSpec {
     pub fn units(&self) -> Option<Units> {
         match *self {
             SurfaceSpec::Nurbs(ref n) => n.units,
+            SurfaceSpec::Polysurface { ref faces, units } => {
+                units.or_else(|| faces.first().and_then(SurfaceSpec::units))
+            }
             SurfaceSpec::EllipticParaboloid { units, .. }
             | SurfaceSpec::SphereCap { units, .. }
             | SurfaceSpec::EllipsoidCap { units, .. }
@@ -496,12 +539,21 @@ impl SurfaceSpec {
 /// A record seen as NURBS or as analytic kind plus rectangle.
 enum Parts<'a> {
     Nurbs(&'a NurbsSpec),
+    Polysurface(&'a [SurfaceSpec], Option<Units>),
     Analytic(AnalyticKind, [f64; 2], [f64; 2]),
 }
 
 /// The analytic records as read by [`SurfaceSpec::from_json`], one struct per field set;
 /// the field names must stay those of the [`SurfaceSpec`] variants (a test reads every type
 /// both ways).
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct PolysurfaceRecord {
+    faces: Vec<SurfaceSpec>,
+    #[serde(default)]
+    units: Option<Units>,
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct TwoCoefficients {
@@ -773,6 +825,8 @@ pub enum SurfaceModel {
     Nurbs(NurbsSurface),
     /// An analytic graph surface.
     Analytic(AnalyticSurface),
+    /// Faces laid out as one surface.
+    Polysurface(Box<Polysurface>),
     /// A surface with a trim (never itself trimmed).
     Trimmed {
         /// The untrimmed surface.
@@ -788,6 +842,9 @@ impl SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => SurfaceModel::Nurbs(n.with_units(units)),
             SurfaceModel::Analytic(a) => SurfaceModel::Analytic(a.with_units(units)),
+            SurfaceModel::Polysurface(p) => {
+                SurfaceModel::Polysurface(Box::new(p.with_units(units)))
+            }
             SurfaceModel::Trimmed { surface, trim } => SurfaceModel::Trimmed {
                 surface: Box::new(surface.with_units(units)),
                 trim,
@@ -800,6 +857,10 @@ impl SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => SurfaceSpec::Nurbs(n.to_spec()),
             SurfaceModel::Analytic(a) => SurfaceSpec::from_analytic(a),
+            SurfaceModel::Polysurface(p) => SurfaceSpec::Polysurface {
+                faces: p.faces().iter().map(SurfaceModel::to_spec).collect(),
+                units: p.units(),
+            },
             SurfaceModel::Trimmed { surface, trim } => {
                 surface.to_spec().with_trim(Some(trim.clone()))
             }
@@ -842,6 +903,7 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.domain(),
             SurfaceModel::Analytic(a) => a.domain(),
+            SurfaceModel::Polysurface(p) => p.domain(),
             SurfaceModel::Trimmed { surface, .. } => surface.domain(),
         }
     }
@@ -850,6 +912,7 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.evaluate(u, v),
             SurfaceModel::Analytic(a) => a.evaluate(u, v),
+            SurfaceModel::Polysurface(p) => p.evaluate(u, v),
             SurfaceModel::Trimmed { surface, .. } => surface.evaluate(u, v),
         }
     }
@@ -858,6 +921,7 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.point_at(u, v),
             SurfaceModel::Analytic(a) => a.point_at(u, v),
+            SurfaceModel::Polysurface(p) => p.point_at(u, v),
             SurfaceModel::Trimmed { surface, .. } => surface.point_at(u, v),
         }
     }
@@ -873,6 +937,7 @@ impl Surface for SurfaceModel {
         match self {
             SurfaceModel::Nurbs(n) => n.units(),
             SurfaceModel::Analytic(a) => a.units(),
+            SurfaceModel::Polysurface(p) => p.units(),
             SurfaceModel::Trimmed { surface, .. } => surface.units(),
         }
     }

@@ -45,6 +45,18 @@ pub const CLOSURE_TOLERANCE: f64 = 1e-9;
 /// Samples per side for the closure and pole tests.
 pub const LAYOUT_SAMPLES: usize = 17;
 
+// ---- read by polysurface.rs ----
+
+/// Two faces of a polysurface share a side when their points at the same parameter along it
+/// agree to this fraction of the bounding-box diagonal of all faces (at [`EDGE_MATCH_SAMPLES`]
+/// parameters). Rhino joins faces to the model's absolute tolerance, typically 1e-3 mm on
+/// models metres across, about 1e-7 of the size; this allows ten times more.
+pub const EDGE_MATCH_TOLERANCE: f64 = 1e-6;
+
+/// Samples per side when comparing the sides of two faces, and for the faces' mid-line
+/// lengths that set the columns' widths.
+pub const EDGE_MATCH_SAMPLES: usize = 9;
+
 // ---- read by analytic.rs ----
 
 /// Largest magnitude accepted for any analytic parameter or rectangle coordinate. Far beyond
