@@ -175,6 +175,27 @@ def main():
         "weights": weights,
     })
 
+    # A polysurface: a vault with a ridge along x = 0, made of four bicubic faces (two each
+    # side of the ridge, split again at y = 0), listed out of order and the right-hand faces
+    # with u and v swapped, as a model's faces come. Convex everywhere, creased at the ridge.
+    def vault(x, y):
+        return 3.5 * (1 - (y / 9.0) ** 2) - 0.03 * x * x - 0.25 * abs(x)
+
+    knots = [0, 0, 0, 1, 2, 3, 3, 3]
+
+    def quarter(x_range, y_range, swap=False):
+        face = graph_nurbs(knots, knots, 3, x_range, y_range, vault)
+        if swap:
+            n = len(knots) - 3 + 1
+            face["points"] = [face["points"][i * n + j] for j in range(n) for i in range(n)]
+        return face
+
+    with open(os.path.join(HERE, "ridge-vault.json"), "w") as f:
+        faces = [quarter([0, 8], [0, 6], True), quarter([-8, 0], [-6, 0]), quarter([-8, 0], [0, 6]), quarter([0, 8], [-6, 0], True)]
+        f.write('{\n  "type": "polysurface",\n  "faces": [\n')
+        f.write(",\n".join("    " + json.dumps(face, separators=(", ", ": ")) for face in faces))
+        f.write("\n  ]\n}\n")
+
 
 if __name__ == "__main__":
     main()

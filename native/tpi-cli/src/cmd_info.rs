@@ -152,6 +152,23 @@ pub(crate) fn describe(
                 );
             }
         }
+        (_, SurfaceModel::Polysurface(p)) => {
+            let (columns, rows) = p.grid();
+            let _ = writeln!(
+                s,
+                "  {} faces laid out as {columns} column(s) x {rows} row(s) (u across the columns, v up the rows)",
+                p.faces().len()
+            );
+            let _ = writeln!(s, "  column edges in u: {}", list(p.column_edges()));
+            let _ = writeln!(s, "  row edges in v: {}", list(p.row_edges()));
+            for row in (0..rows).rev() {
+                let cells: Vec<String> = (0..columns)
+                    .filter_map(|column| p.face_of_cell(column, row))
+                    .map(|face| format!("faces[{face}] {}", p.faces()[face].to_spec().type_name()))
+                    .collect();
+                let _ = writeln!(s, "  row {row}: {}", cells.join(" | "));
+            }
+        }
         _ => {
             let params = serde_json::to_value(spec).ok();
             let fields: Vec<String> = params

@@ -245,7 +245,7 @@ fn png_size(path: &Path) -> (u32, u32) {
 
 // ---- the samples ----
 
-const SURFACES: [(&str, bool); 8] = [
+const SURFACES: [(&str, bool); 9] = [
     ("paraboloid.json", true),
     ("anisotropic-dome.json", true),
     ("nurbs-dome.json", true),
@@ -254,6 +254,7 @@ const SURFACES: [(&str, bool); 8] = [
     ("saddle.json", false),
     ("torus-band.json", false),
     ("mixed-roof.json", false),
+    ("ridge-vault.json", true),
 ];
 
 /// The samples with K < 0 everywhere.

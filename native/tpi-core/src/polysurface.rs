@@ -310,6 +310,17 @@ impl Polysurface {
         (self.columns, self.rows)
     }
 
+    /// Column boundaries in u: `columns + 1` increasing values from 0 (a column is as wide as
+    /// its faces' mean length across it).
+    pub fn column_edges(&self) -> &[f64] {
+        &self.column_edges
+    }
+
+    /// Row boundaries in v: `rows + 1` increasing values from 0.
+    pub fn row_edges(&self) -> &[f64] {
+        &self.row_edges
+    }
+
     /// Which face covers (A, B) (clamped into the domain), and its own parameters there.
     pub fn face_at(&self, a: f64, b: f64) -> (usize, [f64; 2]) {
         let (cell, (u, v)) = self.locate(a, b);

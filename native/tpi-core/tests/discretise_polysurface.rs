@@ -375,3 +375,28 @@ fn polysurface_record_reads_builds_and_writes_back() {
     let extra = text.replace("\"units\": \"mm\"", "\"edges\": []");
     assert!(SurfaceSpec::from_json(&extra, "two.json").is_err());
 }
+
+#[test]
+fn live_edits_on_a_polysurface_equal_fresh_runs() {
+    let surface = creased_roof();
+    let mut rng = Rng::new(77);
+    let pattern = uniform_pattern(&mut rng, 400);
+    let options = DiscretiseOptions::default();
+    let mut live =
+        tpi_core::LiveSurface::new(Box::new(surface.clone()), pattern.clone(), options.clone())
+            .unwrap();
+    let mut points = pattern;
+    for edit in 0..40 {
+        let i = (rng.next_u64() % points.len() as u64) as usize;
+        // Across the crease and the smooth seam too: anywhere in the unit square.
+        let to = [rng.range(0.001, 0.999), rng.range(0.001, 0.999)];
+        live.move_point(i, to).unwrap();
+        points[i] = to;
+        let fresh = discretise(&surface, &points, &options).unwrap();
+        assert_eq!(
+            live.discretisation().to_json(false),
+            fresh.to_json(false),
+            "edit {edit}: live result differs from a fresh run"
+        );
+    }
+}
