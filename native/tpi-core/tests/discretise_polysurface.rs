@@ -383,8 +383,7 @@ fn live_edits_on_a_polysurface_equal_fresh_runs() {
     let pattern = uniform_pattern(&mut rng, 400);
     let options = DiscretiseOptions::default();
     let mut live =
-        tpi_core::LiveSurface::new(Box::new(surface.clone()), pattern.clone(), options.clone())
-            .unwrap();
+        tpi_core::LiveSurface::new(Box::new(surface.clone()), pattern.clone(), options).unwrap();
     let mut points = pattern;
     for edit in 0..40 {
         let i = (rng.next_u64() % points.len() as u64) as usize;
