@@ -324,11 +324,90 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
             });
         }
     }
+    drop_coincident_crossings(&mut mesh, params.weld_distance);
     mesh.diagnostics = diagnostics;
     mesh.welded = welded;
     mesh.triangle_vertices = triangle_vertices;
     mesh.assembly_ms = assembly.elapsed().as_secs_f64() * 1e3;
     mesh
+}
+
+/// Step 6: a boundary crossing or corner vertex that only one facet uses and that lies within
+/// the weld distance of its neighbour in that facet's loop is dropped (a facet edge reaching
+/// the boundary, or a corner's normal line meeting the facet, exactly at a vertex where three
+/// planes meet): kept, it would be an edge of zero length that turns the facet non-simple.
+/// Vertices are renumbered in order; nothing changes when none is found.
+fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
+    let is_crossing = |mesh: &FacetMesh, v: u32| match mesh.vertex_kinds[v as usize] {
+        VertexKind::Corner => true,
+        VertexKind::Boundary => mesh.vertex_source[v as usize] == u32::MAX,
+        VertexKind::Interior => false,
+    };
+    let mut uses = vec![0u32; mesh.vertices.len()];
+    for &v in &mesh.loops {
+        uses[v as usize] += 1;
+    }
+    let mut drop = vec![false; mesh.vertices.len()];
+    let mut any = false;
+    for f in 0..mesh.offsets.len() - 1 {
+        let lp = &mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize];
+        let n = lp.len();
+        if n <= 3 {
+            continue;
+        }
+        for k in 0..n {
+            let v = lp[k];
+            if !is_crossing(mesh, v) || uses[v as usize] != 1 {
+                continue;
+            }
+            let near = |w: u32| {
+                !drop[w as usize]
+                    && mesh.vertices[v as usize].distance(mesh.vertices[w as usize]) <= weld
+            };
+            if near(lp[(k + 1) % n]) || near(lp[(k + n - 1) % n]) {
+                drop[v as usize] = true;
+                any = true;
+            }
+        }
+    }
+    if !any {
+        return;
+    }
+    let mut renumber = vec![u32::MAX; mesh.vertices.len()];
+    let mut next = 0u32;
+    for (v, slot) in renumber.iter_mut().enumerate() {
+        if !drop[v] {
+            *slot = next;
+            next += 1;
+        }
+    }
+    let keep = |v: usize| !drop[v];
+    retain_indexed(&mut mesh.vertices, &drop);
+    retain_indexed(&mut mesh.vertex_kinds, &drop);
+    retain_indexed(&mut mesh.feet, &drop);
+    retain_indexed(&mut mesh.vertex_source, &drop);
+    let mut loops = Vec::with_capacity(mesh.loops.len());
+    let mut offsets = Vec::with_capacity(mesh.offsets.len());
+    offsets.push(0);
+    for f in 0..mesh.offsets.len() - 1 {
+        for &v in &mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize] {
+            if keep(v as usize) {
+                loops.push(renumber[v as usize]);
+            }
+        }
+        offsets.push(loops.len() as u32);
+    }
+    mesh.loops = loops;
+    mesh.offsets = offsets;
+}
+
+/// Removes the items whose index is marked in `drop`, keeping the order.
+fn retain_indexed<T>(values: &mut Vec<T>, drop: &[bool]) {
+    let mut index = 0;
+    values.retain(|_| {
+        index += 1;
+        !drop[index - 1]
+    });
 }
 
 fn push_vertex(
