@@ -26,6 +26,7 @@ EXAMPLES:
     tpi pattern hex:24x20 --out hex.json --preview hex.svg
     tpi pattern random:1000:seed=7 --out random.json
     tpi pattern poisson:0.03:seed=7 --out poisson.json --preview poisson.svg
+    tpi pattern random:1000 --surface samples/nurbs-dome.json --relax 20 --out even.json
 ";
 
 /// The arguments of `tpi pattern`, as given (checked in [`run`]).
@@ -40,12 +41,44 @@ pub(crate) struct PatternArgs {
     /// An SVG of the points and their Voronoi diagram in the unit square
     #[arg(long, value_name = "FILE")]
     preview: Option<PathBuf>,
+    /// The surface the pattern is for (with --relax)
+    #[arg(long, value_name = "FILE")]
+    surface: Option<PathBuf>,
+    /// Relax the points by N Lloyd iterations on the surface (areas measured on the surface,
+    /// not in parameters), so that the panels come out even in size [requires --surface]
+    #[arg(long, value_name = "N")]
+    relax: Option<String>,
 }
 
 /// Runs `tpi pattern`.
 pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
     let usage = |message: String| CliError::usage(Some("pattern"), message);
-    let PatternArgs { spec, out, preview } = args;
+    let PatternArgs {
+        spec,
+        out,
+        preview,
+        surface,
+        relax,
+    } = args;
+    let relax = match (&relax, &surface) {
+        (None, None) => None,
+        (Some(_), None) => return Err(usage("--relax needs --surface FILE".into())),
+        (None, Some(_)) => return Err(usage("--surface is for --relax N".into())),
+        (Some(n), Some(path)) => {
+            let iterations = n
+                .parse::<usize>()
+                .ok()
+                .filter(|&k| k <= tpi_core::MAX_RELAX_ITERATIONS)
+                .ok_or_else(|| {
+                    usage(format!(
+                        "--relax {}: expected a whole number from 0 to {}",
+                        tpi_core::bounded(n, tpi_core::QUOTE_LIMIT),
+                        tpi_core::MAX_RELAX_ITERATIONS
+                    ))
+                })?;
+            Some((iterations, path.clone()))
+        }
+    };
     let spec = spec.ok_or_else(|| usage("a GENERATOR is required, e.g. hex:24x20".into()))?;
     if out.is_none() && preview.is_none() {
         return Err(usage("--out (and/or --preview) is required".into()));
@@ -68,10 +101,25 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
         }
         other => CliError::input(&spec, other.to_string()),
     })?;
-    let pattern = generator.generate();
+    let mut pattern = generator.generate();
     pattern
         .validate()
         .map_err(|e| CliError::input(&spec, e.to_string()))?;
+    let mut described = generator.to_string();
+    if let Some((iterations, path)) = relax {
+        let surface = crate::input::load_surface(&path)?;
+        pattern.uv = tpi_core::relax(
+            &surface,
+            &pattern.uv,
+            iterations,
+            &tpi_core::DiscretiseOptions::default(),
+        )
+        .map_err(|e| CliError::input(path.display(), e.to_string()))?;
+        described = format!(
+            "{described} relaxed {iterations} times on {}",
+            path.display()
+        );
+    }
 
     let mut files = Vec::new();
     if let Some(p) = &out {
@@ -81,14 +129,14 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
         let cells = voronoi::cells(&pattern.uv);
         files.push((
             p.clone(),
-            svg::pattern_preview(&pattern.uv, &cells, &format!("tpi pattern {generator}"))
+            svg::pattern_preview(&pattern.uv, &cells, &format!("tpi pattern {described}"))
                 .into_bytes(),
         ));
     }
     write_all(&files)?;
     let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
     eprintln!(
-        "tpi: {generator}: {} points -> {}",
+        "tpi: {described}: {} points -> {}",
         pattern.len(),
         names.join(", ")
     );

@@ -738,6 +738,104 @@ fn sample_patterns_are_what_tpi_pattern_writes() {
 }
 
 #[test]
+fn pattern_relax_evens_the_facets_on_the_surface() {
+    let dir = scratch("relax");
+    let raw = dir.join("raw.json");
+    let even = dir.join("even.json");
+    let dome = sample("nurbs-dome.json");
+    ok(&[
+        "pattern",
+        "random:300:seed=2",
+        "--out",
+        raw.to_str().unwrap(),
+    ]);
+    let run = ok(&[
+        "pattern",
+        "random:300:seed=2",
+        "--surface",
+        &dome,
+        "--relax",
+        "15",
+        "--out",
+        even.to_str().unwrap(),
+    ]);
+    assert!(
+        text(&run.stderr).contains("relaxed 15 times"),
+        "{}",
+        text(&run.stderr)
+    );
+    assert_eq!(pattern_len(even.to_str().unwrap()), 300);
+    // Facet areas from the discretisations' own vertices: far more even after relaxing.
+    let spread = |pattern: &Path| {
+        let out = dir.join("mesh.json");
+        ok(&[
+            "discretise",
+            "--surface",
+            &dome,
+            "--pattern",
+            pattern.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let c = read_contract(&out);
+        assert_eq!(
+            c.quality.as_ref().expect("quality report").invalid_facets,
+            0
+        );
+        // Newell's vector area of each facet's loop.
+        let areas: Vec<f64> = c
+            .facets
+            .iter()
+            .map(|f| {
+                let p: Vec<[f64; 3]> = f.vertices.iter().map(|&v| c.vertices[v as usize]).collect();
+                let mut n = [0.0f64; 3];
+                for k in 0..p.len() {
+                    let (a, b) = (p[k], p[(k + 1) % p.len()]);
+                    n[0] += a[1] * b[2] - a[2] * b[1];
+                    n[1] += a[2] * b[0] - a[0] * b[2];
+                    n[2] += a[0] * b[1] - a[1] * b[0];
+                }
+                0.5 * (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt()
+            })
+            .collect();
+        let max = areas.iter().cloned().fold(0.0, f64::max);
+        let min = areas.iter().cloned().fold(f64::INFINITY, f64::min);
+        max / min
+    };
+    let (before, after) = (spread(&raw), spread(&even));
+    assert!(
+        after < 2.0 && after * 5.0 < before,
+        "largest / smallest facet area {before} -> {after}"
+    );
+    fails(
+        &[
+            "pattern",
+            "random:30",
+            "--relax",
+            "5",
+            "--out",
+            even.to_str().unwrap(),
+        ],
+        2,
+        &["--relax needs --surface"],
+    );
+    fails(
+        &[
+            "pattern",
+            "random:30",
+            "--surface",
+            &dome,
+            "--relax",
+            "many",
+            "--out",
+            even.to_str().unwrap(),
+        ],
+        2,
+        &["--relax many", "whole number"],
+    );
+}
+
+#[test]
 fn info_reports_curvature_regions() {
     let para = text(&ok(&["info", &sample("paraboloid.json")]).stdout);
     assert!(

@@ -42,6 +42,7 @@ mod polysurface;
 mod predicates;
 mod projection;
 mod quality;
+mod relax;
 mod samples;
 mod sanity;
 mod spec;
@@ -80,6 +81,7 @@ pub use quality::{
     QualityReport, FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
     INVALID_FLAGS,
 };
+pub use relax::{relax, MAX_RELAX_ITERATIONS};
 pub use sanity::SanityError;
 pub use spec::{sampled_bounding_box, SurfaceModel, SurfaceSpec};
 pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};

@@ -1,0 +1,241 @@
+//! Pattern relaxation: Lloyd iterations of a centroidal tessellation measured on the surface,
+//! so that panels come out even in size whatever the parametrisation.
+//!
+//! One iteration discretises the surface with the current points and moves each point to the
+//! foot on the surface of its facet's centroid. The facet is the point's cell on the surface
+//! (its tangent plane cut by its neighbours', ending on the boundary wall), so its centroid
+//! is the centroid of the cell as the surface measures it, not as the parameters do:
+//!
+//! ```text
+//! c_i = sum_k A_k g_k / sum_k A_k   over the triangles (m, x_k, x_k+1) of facet i's fan
+//!       around its vertex mean m, A_k their areas, g_k their centroids;
+//! (u_i, v_i) <- foot of c_i on the surface (Newton from the seed), clamped into the domain.
+//! ```
+//!
+//! A point keeps its place when its facet is flagged invalid (its centroid would mean
+//! nothing), when the centroid is not finite, or when the move would land within
+//! [`DUPLICATE_UV_TOLERANCE`] of a point already moved. Lloyd's iteration lowers the
+//! tessellation energy sum_i integral |x - p_i|^2 at every step and converges to a centroidal
+//! Voronoi tessellation, whose cells have nearly equal areas under a uniform density.
+
+use glam::DVec3;
+
+use crate::discretise::{discretise, DiscretiseOptions};
+use crate::error::TpiError;
+use crate::projection::foot;
+use crate::quality::INVALID_FLAGS;
+use crate::surface::Surface;
+use crate::tolerance::DUPLICATE_UV_TOLERANCE;
+
+/// Most relaxation iterations accepted in one call.
+pub const MAX_RELAX_ITERATIONS: usize = 1000;
+
+/// `pattern` (normalised, as [`crate::discretise`]) after `iterations` Lloyd iterations on
+/// `surface` (see the module doc); `options` are those of each discretisation (the quality
+/// report is switched on, its flags decide which points move).
+///
+/// Errors: [`TpiError::InvalidParameter`] for more than [`MAX_RELAX_ITERATIONS`]; those of
+/// [`crate::discretise`] for the pattern and the surface.
+pub fn relax(
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    iterations: usize,
+    options: &DiscretiseOptions,
+) -> Result<Vec<[f64; 2]>, TpiError> {
+    if iterations > MAX_RELAX_ITERATIONS {
+        return Err(TpiError::InvalidParameter {
+            field: "iterations".into(),
+            value: iterations as f64,
+            reason: format!("at most {MAX_RELAX_ITERATIONS} relaxation iterations"),
+        });
+    }
+    let options = DiscretiseOptions {
+        quality_report: true,
+        ..*options
+    };
+    let domain = surface.domain();
+    if iterations == 0 {
+        return Ok(pattern.to_vec());
+    }
+    // On a seam or a pole a point would be refused (or be one with its image): keep clear.
+    let layout = crate::closed::surface_layout(surface);
+    let margin = |k: usize| {
+        let sides = [layout.poles[2 * k], layout.poles[2 * k + 1]];
+        if layout.closed[k] || sides.contains(&true) {
+            SEAM_MARGIN
+        } else {
+            0.0
+        }
+    };
+    let (margin_s, margin_t) = (margin(0), margin(1));
+    let mut points = spread_by_area(surface, pattern);
+    for _ in 0..iterations {
+        let d = discretise(surface, &points, &options)?;
+        let mut moved: Vec<Option<[f64; 2]>> = vec![None; points.len()];
+        for i in 0..d.facet_count() {
+            if d.facet_flags
+                .get(i)
+                .is_some_and(|&f| f & INVALID_FLAGS != 0)
+            {
+                continue;
+            }
+            let corners: Vec<DVec3> = d.facet(i).iter().map(|&v| d.vertices[v as usize]).collect();
+            let Some(centroid) = polygon_centroid(&corners) else {
+                continue;
+            };
+            let target = foot(surface, &domain, centroid, d.seeds[i].uv);
+            let seed = d.seeds[i].uv;
+            // Over-relaxed: a step past the centroid, which Lloyd's iteration otherwise
+            // approaches slowly where the density has far to travel.
+            let uv = [
+                seed[0] + OVER_RELAXATION * (target[0] - seed[0]),
+                seed[1] + OVER_RELAXATION * (target[1] - seed[1]),
+            ];
+            let [s, t] = domain.to_normalised(uv);
+            if s.is_finite() && t.is_finite() {
+                moved[d.pattern_index(i)] = Some([
+                    s.clamp(margin_s, 1.0 - margin_s),
+                    t.clamp(margin_t, 1.0 - margin_t),
+                ]);
+            }
+        }
+        // Moves in pattern order; one landing on a point already placed is not made.
+        let mut placed: Vec<[f64; 2]> = Vec::with_capacity(points.len());
+        let mut grid = std::collections::HashMap::new();
+        let cell = |p: [f64; 2]| {
+            let scale = 1.0 / (4.0 * DUPLICATE_UV_TOLERANCE).max(1e-6);
+            ((p[0] * scale) as i64, (p[1] * scale) as i64)
+        };
+        for (&old, new) in points.iter().zip(&moved) {
+            let candidate = new.unwrap_or(old);
+            let (ci, cj) = cell(candidate);
+            let clash = (ci - 1..=ci + 1).any(|a| {
+                (cj - 1..=cj + 1).any(|b| {
+                    grid.get(&(a, b)).is_some_and(|others: &Vec<usize>| {
+                        others.iter().any(|&o| {
+                            let q: [f64; 2] = placed[o];
+                            (q[0] - candidate[0]).abs() <= DUPLICATE_UV_TOLERANCE
+                                && (q[1] - candidate[1]).abs() <= DUPLICATE_UV_TOLERANCE
+                        })
+                    })
+                })
+            });
+            let chosen = if clash { old } else { candidate };
+            grid.entry(cell(chosen))
+                .or_insert_with(Vec::new)
+                .push(placed.len());
+            placed.push(chosen);
+        }
+        points = placed;
+    }
+    Ok(points)
+}
+
+/// Over-relaxation factor of each Lloyd step (1 is plain Lloyd; below 2 the iteration still
+/// lowers the energy for small steps).
+const OVER_RELAXATION: f64 = 1.9;
+
+/// Normalised distance kept from a seam or a pole (where a seed is refused or doubled).
+const SEAM_MARGIN: f64 = 1e-6;
+
+/// Cells per side of the grid on which [`spread_by_area`] measures the surface's area.
+const AREA_GRID: usize = 64;
+
+/// The points moved so that their density follows the surface's area at every scale coarser
+/// than their spacing, keeping their order: sorted by s, the point of rank r goes to the
+/// area quantile (r + 1/2) / n of the marginal in s; then, in strips of about sqrt(n)
+/// consecutive points, sorted by t, to the quantiles of the area in t over the strip. The area
+/// density |Su x Sv| is measured on a grid of [`AREA_GRID`]^2 cells. Lloyd's iteration evens
+/// fine scales quickly but coarse ones only over many steps; this does them at once.
+fn spread_by_area(surface: &dyn Surface, pattern: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let domain = surface.domain();
+    let g = AREA_GRID;
+    let h = 1.0 / g as f64;
+    // density[i][j]: area element at the centre of cell (i, j).
+    let density: Vec<Vec<f64>> = (0..g)
+        .map(|i| {
+            (0..g)
+                .map(|j| {
+                    let [u, v] =
+                        domain.from_normalised([(i as f64 + 0.5) * h, (j as f64 + 0.5) * h]);
+                    let d = surface.evaluate(u, v);
+                    let a = d.su.cross(d.sv).length();
+                    if a.is_finite() {
+                        a
+                    } else {
+                        0.0
+                    }
+                })
+                .collect()
+        })
+        .collect();
+    let column: Vec<f64> = density.iter().map(|c| c.iter().sum()).collect();
+    let total: f64 = column.iter().sum();
+    let n = pattern.len();
+    if !(total > 0.0 && total.is_finite()) || n < 4 {
+        return pattern.to_vec();
+    }
+    // Inverse of the piecewise-linear CDF over g cells of width h with the given masses.
+    let invert = |masses: &[f64], q: f64| -> f64 {
+        let sum: f64 = masses.iter().sum();
+        if !(sum > 0.0) {
+            return q;
+        }
+        let mut target = q.clamp(0.0, 1.0) * sum;
+        for (k, &m) in masses.iter().enumerate() {
+            if target <= m || k + 1 == masses.len() {
+                let f = if m > 0.0 {
+                    (target / m).clamp(0.0, 1.0)
+                } else {
+                    0.5
+                };
+                return (k as f64 + f) * h;
+            }
+            target -= m;
+        }
+        1.0
+    };
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&a, &b| pattern[a][0].total_cmp(&pattern[b][0]).then(a.cmp(&b)));
+    let mut out = pattern.to_vec();
+    for (rank, &k) in order.iter().enumerate() {
+        out[k][0] = invert(&column, (rank as f64 + 0.5) / n as f64);
+    }
+    let strips = ((n as f64).sqrt().round() as usize).max(1);
+    for strip in 0..strips {
+        let members = &order[strip * n / strips..(strip + 1) * n / strips];
+        if members.is_empty() {
+            continue;
+        }
+        let lo = ((out[members[0]][0] / h) as usize).min(g - 1);
+        let hi = ((out[members[members.len() - 1]][0] / h) as usize).min(g - 1);
+        let masses: Vec<f64> = (0..g)
+            .map(|j| (lo..=hi).map(|i| density[i][j]).sum())
+            .collect();
+        let mut by_t = members.to_vec();
+        by_t.sort_by(|&a, &b| pattern[a][1].total_cmp(&pattern[b][1]).then(a.cmp(&b)));
+        for (rank, &k) in by_t.iter().enumerate() {
+            out[k][1] = invert(&masses, (rank as f64 + 0.5) / by_t.len() as f64);
+        }
+    }
+    out
+}
+
+/// The area-weighted centroid of a planar polygon (fan around the vertex mean); None when it
+/// has no area or is not finite.
+fn polygon_centroid(corners: &[DVec3]) -> Option<DVec3> {
+    if corners.len() < 3 {
+        return None;
+    }
+    let mean = corners.iter().copied().sum::<DVec3>() / corners.len() as f64;
+    let mut area = 0.0;
+    let mut weighted = DVec3::ZERO;
+    for k in 0..corners.len() {
+        let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
+        let w = 0.5 * (a - mean).cross(b - mean).length();
+        area += w;
+        weighted += w * (mean + a + b) / 3.0;
+    }
+    let c = weighted / area;
+    (area > 0.0 && c.is_finite()).then_some(c)
+}
