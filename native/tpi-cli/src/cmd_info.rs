@@ -152,6 +152,33 @@ pub(crate) fn describe(
                 );
             }
         }
+        (SurfaceSpec::Polysurface { faces, .. }, SurfaceModel::Polysurface(p)) => {
+            let mut kinds: Vec<(&str, usize)> = Vec::new();
+            for face in faces {
+                match kinds.iter_mut().find(|(name, _)| *name == face.type_name()) {
+                    Some((_, n)) => *n += 1,
+                    None => kinds.push((face.type_name(), 1)),
+                }
+            }
+            let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
+            let (columns, rows) = p.grid();
+            let _ = writeln!(
+                s,
+                "  {} faces ({}), laid out from their shared sides as {columns} columns x {rows} \
+                 rows; faces by cell, top row first:",
+                faces.len(),
+                kinds.join(", ")
+            );
+            for row in (0..rows).rev() {
+                let cells: Vec<String> = (0..columns)
+                    .map(|column| match p.face_of_cell(column, row) {
+                        Some(face) => format!("faces[{face}]"),
+                        None => "-".to_string(),
+                    })
+                    .collect();
+                let _ = writeln!(s, "    {}", cells.join(" "));
+            }
+        }
         _ => {
             let params = serde_json::to_value(spec).ok();
             let fields: Vec<String> = params
