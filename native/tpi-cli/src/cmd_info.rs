@@ -14,13 +14,14 @@ use crate::input::load_surface_spec;
 /// The text after the options in `tpi info --help`.
 pub(crate) const AFTER_HELP: &str = "\
 Prints the surface type and parameters (degrees, control point count, knots and weights
-for NURBS), the parameter domain, the bounding box, the range of the principal
-curvatures k1 <= k2 and of the Gaussian curvature K = k1 k2 over an N x N grid of
-parameters (default 41), and where K > 0 (facets convex), K < 0 (saddle: facets
-non-convex), K ~ 0 (tangent planes nearly parallel: facet vertices ill-conditioned) and
-where the surface is singular (a pole, a collapsed edge), a verdict, whether the surface
-intersects itself (sampled on a 41 x 41 grid), and a map of the parameter square. Given a
-pattern file, it says so and describes the points.
+for NURBS; the faces and their layout, the face in each cell, for a polysurface), the
+parameter domain, the bounding box, the range of the principal curvatures k1 <= k2 and of
+the Gaussian curvature K = k1 k2 over an N x N grid of parameters (default 41), and
+where K > 0 (facets convex), K < 0 (saddle: facets non-convex), K ~ 0 (tangent planes
+nearly parallel: facet vertices ill-conditioned) and where the surface is singular (a
+pole, a collapsed edge), a verdict, whether the surface intersects itself (sampled on a
+41 x 41 grid), and a map of the parameter square. Given a pattern file, it says so and
+describes the points.
 
 EXAMPLES:
     tpi info samples/nurbs-dome.json
