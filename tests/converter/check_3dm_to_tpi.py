@@ -22,7 +22,9 @@ converted into DIR/poly (the default) and DIR/poly-off (`--no-polysurfaces`):
      parameters come in various orientations (rhino3dm cannot join surfaces into a Brep, and
      its other multi-face Breps are closed or trimmed);
   1. a box (six untrimmed planar faces: a polysurface file tpi refuses, not a rectangle);
-  2. a capped cylinder (trimmed caps: no polysurface file).
+  2. a capped cylinder (trimmed caps: no polysurface file);
+  3. an extrusion of the open polyline STRIP_PROFILE by STRIP_HEIGHT, uncapped: three planar
+     wall faces (`Extrusion.ToBrep(True)` splits the kinks), a strip of faces.
 """
 
 import argparse
@@ -48,6 +50,10 @@ ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
 HYPAR_SCALE = 2000.0
 HYPAR_X, HYPAR_Y = 1500.0, 1000.0
 HYPAR_QUADS = (3, 2)
+
+# The extruded strip of the polysurface model: an open polyline in z = 0, extruded along z.
+STRIP_PROFILE = [(0.0, 0.0), (1000.0, 0.0), (1500.0, 800.0), (1500.0, 2000.0)]
+STRIP_HEIGHT = 500.0
 
 
 def hypar_brep():
@@ -80,6 +86,10 @@ def polysurface_model():
     model.Objects.AddBrep(rhino3dm.Brep.CreateFromBox(box))
     cylinder = rhino3dm.Cylinder(rhino3dm.Circle(rhino3dm.Point3d(6000, 6000, 0), 500.0), 2000.0)
     model.Objects.AddExtrusion(rhino3dm.Extrusion.CreateCylinderExtrusion(cylinder, True, True))
+    profile = rhino3dm.Polyline(len(STRIP_PROFILE))
+    for x, y in STRIP_PROFILE:
+        profile.Add(x, y, 0.0)
+    model.Objects.AddExtrusion(rhino3dm.Extrusion.Create(profile.ToNurbsCurve(), STRIP_HEIGHT, False))
     return model
 
 
@@ -158,6 +168,7 @@ def main():
         "poly_index": os.path.relpath(poly_index, args.out),
         "poly_off_index": os.path.relpath(poly_off_index, args.out),
         "hypar": {"scale": HYPAR_SCALE, "x": HYPAR_X, "y": HYPAR_Y, "quads": list(HYPAR_QUADS)},
+        "strip": {"profile": [list(p) for p in STRIP_PROFILE], "height": STRIP_HEIGHT},
         "unit_cases": unit_cases,
         "rhino3dm": rhino3dm.__version__,
         "plain_index": os.path.relpath(plain_index, args.out),

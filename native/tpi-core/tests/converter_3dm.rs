@@ -5,7 +5,7 @@
 //!
 //! Polysurfaces: the script also builds and converts a model of Breps with several faces (a
 //! hyperbolic paraboloid z = x y / S as six bilinear faces from a quad mesh, a box, a capped
-//! cylinder). The polysurface file of the paraboloid is discretised and checked against the
+//! cylinder, an extruded polyline). The polysurface file of the paraboloid is discretised and checked against the
 //! closed form (seeds on z = x y / S, facet vertices on the closed-form tangent plane of their
 //! seed) and for one disc (Euler characteristic and boundary loops counted from the output
 //! JSON's facet loops); its adjacency against the faces' centres; the box is refused with the
@@ -33,6 +33,7 @@ struct Expected {
     poly_index: String,
     poly_off_index: String,
     hypar: Hypar,
+    strip: Strip,
     unit_cases: Vec<UnitCase>,
     plain_index: String,
     trims_index: String,
@@ -46,6 +47,13 @@ struct Hypar {
     x: f64,
     y: f64,
     quads: [usize; 2],
+}
+
+/// The open polyline `profile` (in z = 0) extruded by `height` along z.
+#[derive(Deserialize)]
+struct Strip {
+    profile: Vec<[f64; 2]>,
+    height: f64,
 }
 
 #[derive(Deserialize)]
@@ -394,16 +402,17 @@ fn breps_of_untrimmed_faces_become_polysurface_files_and_trimmed_ones_do_not() {
         .iter()
         .map(|p| p["object"].as_u64().unwrap())
         .collect();
-    assert_eq!(objects, [0, 1, 2]);
+    assert_eq!(objects, [0, 1, 2, 3]);
     let index_faces = faces(&run.poly);
-    for record in &records[..2] {
+    for record in [&records[0], &records[1], &records[3]] {
         let file = record["file"].as_str().expect("a polysurface file");
         assert!(record["not_written"].is_null(), "{record}");
         let text: Value = serde_json::from_str(&poly_text(file)).unwrap();
         assert_eq!(text["type"], "polysurface");
         assert_eq!(text["units"], "mm");
         let listed = text["faces"].as_array().unwrap();
-        assert_eq!(listed.len(), 6, "{file}");
+        let expected = if record["object"] == 3 { 3 } else { 6 };
+        assert_eq!(listed.len(), expected, "{file}");
         // Each face is its own surface file, untrimmed, in the Brep's order.
         for (k, face) in listed.iter().enumerate() {
             let g = record["faces"][k].as_u64().unwrap() as usize;
@@ -435,7 +444,7 @@ fn breps_of_untrimmed_faces_become_polysurface_files_and_trimmed_ones_do_not() {
     assert!(reason.contains("trim"), "{reason}");
     // --no-polysurfaces: the same records, no files.
     let off = polysurface_records(&run.poly_off);
-    assert_eq!(off.len(), 3);
+    assert_eq!(off.len(), 4);
     for record in off {
         assert!(record["file"].is_null(), "{record}");
     }
@@ -678,6 +687,65 @@ fn hyperbolic_paraboloid_polysurface_discretises_on_its_tangent_planes() {
         "seeds per face {per_quad:?}"
     );
     println!("seeds per face {per_quad:?}, worst vertex off its plane {worst:e} of the size");
+}
+
+/// The extruded polyline: its three wall faces laid out as a strip, in the profile's order,
+/// the strip as long as the profile (the columns' widths are the faces' lengths) and as high
+/// as the extrusion.
+#[test]
+fn an_extruded_polyline_is_a_strip_as_long_as_its_profile() {
+    let strip = &run().expected.strip;
+    let file = polysurface_record(3)["file"].as_str().unwrap();
+    let model = SurfaceSpec::from_json(&poly_text(file), file)
+        .and_then(|s| s.build())
+        .unwrap_or_else(|e| panic!("{file}: {e}"));
+    let SurfaceModel::Polysurface(layout) = &model else {
+        panic!("{file}: not a polysurface")
+    };
+    let segments = strip.profile.len() - 1;
+    let length: f64 = strip
+        .profile
+        .windows(2)
+        .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+        .sum();
+    let (columns, rows) = layout.grid();
+    let d = model.domain();
+    let (along, across, cells): (f64, f64, Vec<usize>) = if rows == 1 {
+        assert_eq!(columns, segments);
+        let cells = (0..columns).map(|i| layout.face_of_cell(i, 0).unwrap());
+        (d.u.length(), d.v.length(), cells.collect())
+    } else {
+        assert_eq!((columns, rows), (1, segments));
+        let cells = (0..rows).map(|j| layout.face_of_cell(0, j).unwrap());
+        (d.v.length(), d.u.length(), cells.collect())
+    };
+    assert!(
+        (along - length).abs() < 1e-9 * length,
+        "{along} vs {length}"
+    );
+    assert!(
+        (across - strip.height).abs() < 1e-9 * strip.height,
+        "{across}"
+    );
+    // Cell k holds the wall of segment k (or of segment n - 1 - k: a strip read backwards).
+    let faces = polysurface_faces(file);
+    let segment_of = |face: usize| {
+        let f = &faces[face];
+        let dom = f.domain();
+        let c = f.point_at(dom.u.lerp(0.5), dom.v.lerp(0.5));
+        assert!((c.z - 0.5 * strip.height).abs() < 1e-9 * strip.height);
+        (0..segments)
+            .find(|&k| {
+                let (a, b) = (strip.profile[k], strip.profile[k + 1]);
+                let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+                (c.x - mid[0]).hypot(c.y - mid[1]) < 1e-6 * length
+            })
+            .unwrap_or_else(|| panic!("face {face}: centre {c} on no segment's wall"))
+    };
+    let order: Vec<usize> = cells.iter().map(|&f| segment_of(f)).collect();
+    let forward: Vec<usize> = (0..segments).collect();
+    let backward: Vec<usize> = (0..segments).rev().collect();
+    assert!(order == forward || order == backward, "{order:?}");
 }
 
 #[test]
