@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Converts a Rhino .3dm file to tpi surface files, without Rhino (rhino3dm from PyPI).
 
-Usage: 3dm_to_tpi.py MODEL.3dm --out DIR [--no-trims] [--samples N]
+Usage: 3dm_to_tpi.py MODEL.3dm --out DIR [--no-trims] [--no-polysurfaces] [--samples N]
 
 Writes, into DIR:
   - one NURBS surface file per Brep face (Breps, polysurfaces, extrusions) and per bare surface
@@ -13,7 +13,16 @@ Writes, into DIR:
     closedness, periodicity, singular sides = poles, whether it is trimmed, its trim polylines,
     units, orientation) and the polysurface adjacency: for every Brep edge, the faces and trims
     that use it and the edge's 3D end points; an edge shared by two faces is listed under
-    `shared_edges`, an edge used twice by one face is a seam.
+    `shared_edges`, an edge used twice by one face is a seam; and one record per Brep of two or
+    more faces under `polysurfaces` (below);
+  - STEM_oOBJECT_polysurface.json, for every Brep of two or more faces whose faces are all
+    untrimmed (each face's one loop runs along its domain's boundary) and all written:
+    `{"type": "polysurface", "faces": [...], "units": ...}`, the faces' records as in their own
+    files, in the Brep's face order. tpi lays such faces out as rows and columns when they share
+    whole sides (docs/formats.md) and says which face does not fit otherwise. A Brep with a
+    trimmed face gets no polysurface file (the format has no trims on polysurface faces yet):
+    its index record says why and names the trimmed faces. `--no-polysurfaces` writes none
+    (the index records remain, `file` null).
 
 Trims. rhino3dm 8 exposes a face's loops (`BrepFace.Loops`, `BrepLoop.Trims`, each trim with
 `EdgeIndex` and `IsReversed`) but not the trims' 2D parameter-space curves (no
@@ -256,7 +265,42 @@ def surfaces_of(geometry):
     return None, []
 
 
-def convert(path, out_dir, with_trims=True, samples=16):
+def polysurface_entry(index, obj, brep, written, faces, shared_edges):
+    """The index record of one Brep of two or more faces (see the module doc).
+
+    `written`: (face index in the Brep, index into `faces`) of the faces that have a surface
+    file. The faces of the polysurface are listed in the Brep's order; `adjacency` gives, per
+    edge shared by two of its faces, their positions in that list."""
+    position = {global_index: k for k, (_, global_index) in enumerate(written)}
+    adjacency = []
+    for entry in shared_edges:
+        users = sorted({u["face"] for u in entry["uses"]})
+        if all(u in position for u in users):
+            adjacency.append(
+                {"edge": entry["edge"], "faces": [position[u] for u in users], "start": entry["start"], "end": entry["end"]}
+            )
+    missing = sorted(set(range(len(brep.Faces))) - {face for face, _ in written})
+    trimmed = [faces[g]["file"] for _, g in written if faces[g]["trimmed"]]
+    reasons = []
+    if missing:
+        reasons.append("faces {} have no surface file (see the warnings)".format(missing))
+    if trimmed:
+        reasons.append(
+            "trimmed faces ({}): a polysurface's faces cannot carry trims yet".format(", ".join(trimmed))
+        )
+    return {
+        "object": index,
+        "object_id": str(obj.Attributes.Id),
+        "object_name": obj.Attributes.Name or "",
+        "file": None,
+        "faces": [g for _, g in written],
+        "face_files": [faces[g]["file"] for _, g in written],
+        "adjacency": adjacency,
+        "not_written": "; ".join(reasons) or None,
+    }
+
+
+def convert(path, out_dir, with_trims=True, samples=16, polysurfaces=True):
     model = rhino3dm.File3dm.Read(path)
     if model is None:
         raise SystemExit("3dm_to_tpi: cannot read {}".format(path))
@@ -266,10 +310,12 @@ def convert(path, out_dir, with_trims=True, samples=16):
         warn("model units {}: not one tpi knows, the surfaces are written unitless".format(rhino_units))
     stem = os.path.splitext(os.path.basename(path))[0]
     os.makedirs(out_dir, exist_ok=True)
-    faces, shared, seams = [], [], []
+    faces, shared, seams, polys = [], [], [], []
     for index, obj in enumerate(model.Objects):
         brep, items = surfaces_of(obj.Geometry)
         edge_users = {}
+        # (face index in the Brep, index into `faces`, the record written) per written face.
+        written = []
         for face_index, face in items:
             label = "object {} face {}".format(index, face_index)
             if brep is not None:
@@ -301,6 +347,7 @@ def convert(path, out_dir, with_trims=True, samples=16):
                     warn("{}: trimmed face of a closed surface; trims across its seam are approximate".format(label))
             if trim is not None and with_trims:
                 record["trim"] = trim
+            written.append((face_index, len(faces), record))
             name = "{}_o{}_f{}.json".format(stem, index, face_index)
             with open(os.path.join(out_dir, name), "w") as out:
                 json.dump(record, out)
@@ -329,6 +376,7 @@ def convert(path, out_dir, with_trims=True, samples=16):
                     "neighbours": [],
                 }
             )
+        first_shared = len(shared)
         if brep is not None:
             for e, users in sorted(edge_users.items()):
                 edge = brep.Edges[e]
@@ -343,6 +391,24 @@ def convert(path, out_dir, with_trims=True, samples=16):
                         )
                 elif len(users) >= 2:
                     seams.append(entry)
+            if len(brep.Faces) >= 2:
+                entry = polysurface_entry(
+                    index, obj, brep, [(f, g) for f, g, _ in written], faces, shared[first_shared:]
+                )
+                if entry["not_written"] is None and not polysurfaces:
+                    entry["not_written"] = "--no-polysurfaces"
+                if entry["not_written"] is None:
+                    name = "{}_o{}_polysurface.json".format(stem, index)
+                    record = {"type": "polysurface", "faces": [r for _, _, r in written]}
+                    if units:
+                        record["units"] = units
+                    with open(os.path.join(out_dir, name), "w") as out:
+                        json.dump(record, out)
+                        out.write("\n")
+                    entry["file"] = name
+                elif polysurfaces:
+                    warn("object {}: no polysurface file: {}".format(index, entry["not_written"]))
+                polys.append(entry)
     index_doc = {
         "source": os.path.basename(path),
         "generator": "tools/3dm_to_tpi.py, rhino3dm " + rhino3dm.__version__,
@@ -352,6 +418,8 @@ def convert(path, out_dir, with_trims=True, samples=16):
         "faces": faces,
         "shared_edges": shared,
         "seams": seams,
+        "polysurfaces_written": polysurfaces,
+        "polysurfaces": polys,
     }
     index_name = os.path.join(out_dir, stem + "_index.json")
     with open(index_name, "w") as out:
@@ -369,18 +437,27 @@ def main():
         action="store_true",
         help="leave the `trim` field out of the surface files (the polylines stay in the index)",
     )
+    parser.add_argument(
+        "--no-polysurfaces",
+        action="store_true",
+        help="write no polysurface files (the Breps' records stay in the index)",
+    )
     parser.add_argument("--samples", type=int, default=16, help="least samples per curved trim edge")
     args = parser.parse_args()
-    doc, index_name = convert(args.model, args.out, not args.no_trims, args.samples)
+    doc, index_name = convert(args.model, args.out, not args.no_trims, args.samples, not args.no_polysurfaces)
     trimmed = sum(1 for f in doc["faces"] if f["trimmed"])
+    polysurface_files = sum(1 for p in doc["polysurfaces"] if p["file"])
     sys.stderr.write(
-        "3dm_to_tpi: {} faces ({} trimmed), {} shared edges, units {}; wrote {} and {} surface files\n".format(
+        "3dm_to_tpi: {} faces ({} trimmed), {} shared edges, units {}; wrote {}, {} surface files "
+        "and {} polysurface files (of {} Breps with several faces)\n".format(
             len(doc["faces"]),
             trimmed,
             len(doc["shared_edges"]),
             doc["units"] or "none (unitless)",
             index_name,
             len(doc["faces"]),
+            polysurface_files,
+            len(doc["polysurfaces"]),
         )
     )
 

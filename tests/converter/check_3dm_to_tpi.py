@@ -12,6 +12,19 @@ geometry with rhino3dm at random parameters of the written NURBS surface's domai
 with their own PointAt, Brep faces with BrepFace.PointAt at the surface parameters that
 `GetSurfaceParameterFromNurbsFormParameter` gives. Writes DIR/expected.json:
 {"index": ..., "faces": [{"file", "samples": [{"u", "v", "point"}]}], "trim_distances": ...}.
+
+Polysurfaces: a second model, DIR/polysurfaces.3dm (millimetres), of Breps with several faces,
+converted into DIR/poly (the default) and DIR/poly-off (`--no-polysurfaces`):
+  0. a hyperbolic paraboloid z = x y / HYPAR_SCALE over [-1500, 1500] x [-1000, 1000] mm as
+     `Brep.CreateFromMesh` of a 3 x 2 quad mesh with its vertices on it: six bilinear faces
+     (exactly pieces of the same surface) sharing whole sides; the mesh quads start at
+     different corners and every other one runs the other way round, so that the faces'
+     parameters come in various orientations (rhino3dm cannot join surfaces into a Brep, and
+     its other multi-face Breps are closed or trimmed);
+  1. a box (six untrimmed planar faces: a polysurface file tpi refuses, not a rectangle);
+  2. a capped cylinder (trimmed caps: no polysurface file);
+  3. an extrusion of the open polyline STRIP_PROFILE by STRIP_HEIGHT, uncapped: three planar
+     wall faces (`Extrusion.ToBrep(True)` splits the kinks), a strip of faces.
 """
 
 import argparse
@@ -31,6 +44,53 @@ except ImportError:
     sys.exit(3)
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+
+# The hyperbolic paraboloid of the polysurface model: z = x y / HYPAR_SCALE over
+# [-HYPAR_X, HYPAR_X] x [-HYPAR_Y, HYPAR_Y], HYPAR_QUADS quads (in x, in y).
+HYPAR_SCALE = 2000.0
+HYPAR_X, HYPAR_Y = 1500.0, 1000.0
+HYPAR_QUADS = (3, 2)
+
+# The extruded strip of the polysurface model: an open polyline in z = 0, extruded along z.
+STRIP_PROFILE = [(0.0, 0.0), (1000.0, 0.0), (1500.0, 800.0), (1500.0, 2000.0)]
+STRIP_HEIGHT = 500.0
+
+
+def hypar_brep():
+    """Bilinear faces of z = x y / HYPAR_SCALE (see the module doc)."""
+    n, m = HYPAR_QUADS
+    mesh = rhino3dm.Mesh()
+    for i in range(n + 1):
+        for j in range(m + 1):
+            x, y = -HYPAR_X + 2 * HYPAR_X * i / n, -HYPAR_Y + 2 * HYPAR_Y * j / m
+            mesh.Vertices.Add(x, y, x * y / HYPAR_SCALE)
+    for k in range(n * m):
+        i, j = divmod(k, m)
+        a = i * (m + 1) + j
+        quad = [a, a + m + 1, a + m + 2, a + 1]
+        quad = quad[k % 4 :] + quad[: k % 4]
+        if k % 2:
+            quad.reverse()
+        mesh.Faces.AddFace(*quad)
+    brep = rhino3dm.Brep.CreateFromMesh(mesh, True)
+    if brep is None or len(brep.Faces) != n * m:
+        raise SystemExit("rhino3dm made no Brep of {} faces from the mesh".format(n * m))
+    return brep
+
+
+def polysurface_model():
+    model = rhino3dm.File3dm()
+    model.Settings.ModelUnitSystem = rhino3dm.UnitSystem.Millimeters
+    model.Objects.AddBrep(hypar_brep())
+    box = rhino3dm.Box(rhino3dm.BoundingBox(0, 6000, 0, 1000, 8000, 1500))
+    model.Objects.AddBrep(rhino3dm.Brep.CreateFromBox(box))
+    cylinder = rhino3dm.Cylinder(rhino3dm.Circle(rhino3dm.Point3d(6000, 6000, 0), 500.0), 2000.0)
+    model.Objects.AddExtrusion(rhino3dm.Extrusion.CreateCylinderExtrusion(cylinder, True, True))
+    profile = rhino3dm.Polyline(len(STRIP_PROFILE))
+    for x, y in STRIP_PROFILE:
+        profile.Add(x, y, 0.0)
+    model.Objects.AddExtrusion(rhino3dm.Extrusion.Create(profile.ToNurbsCurve(), STRIP_HEIGHT, False))
+    return model
 
 
 def load(name, path):
@@ -98,7 +158,17 @@ def main():
             }
         )
 
+    poly_path = os.path.join(args.out, "polysurfaces.3dm")
+    if not polysurface_model().Write(poly_path, 8):
+        raise SystemExit("cannot write " + poly_path)
+    _, poly_index = converter.convert(poly_path, os.path.join(args.out, "poly"))
+    _, poly_off_index = converter.convert(poly_path, os.path.join(args.out, "poly-off"), polysurfaces=False)
+
     document = {
+        "poly_index": os.path.relpath(poly_index, args.out),
+        "poly_off_index": os.path.relpath(poly_off_index, args.out),
+        "hypar": {"scale": HYPAR_SCALE, "x": HYPAR_X, "y": HYPAR_Y, "quads": list(HYPAR_QUADS)},
+        "strip": {"profile": [list(p) for p in STRIP_PROFILE], "height": STRIP_HEIGHT},
         "unit_cases": unit_cases,
         "rhino3dm": rhino3dm.__version__,
         "plain_index": os.path.relpath(plain_index, args.out),

@@ -14,13 +14,14 @@ use crate::input::load_surface_spec;
 /// The text after the options in `tpi info --help`.
 pub(crate) const AFTER_HELP: &str = "\
 Prints the surface type and parameters (degrees, control point count, knots and weights
-for NURBS), the parameter domain, the bounding box, the range of the principal
-curvatures k1 <= k2 and of the Gaussian curvature K = k1 k2 over an N x N grid of
-parameters (default 41), and where K > 0 (facets convex), K < 0 (saddle: facets
-non-convex), K ~ 0 (tangent planes nearly parallel: facet vertices ill-conditioned) and
-where the surface is singular (a pole, a collapsed edge), a verdict, whether the surface
-intersects itself (sampled on a 41 x 41 grid), and a map of the parameter square. Given a
-pattern file, it says so and describes the points.
+for NURBS; the faces and their layout, the face in each cell, for a polysurface), the
+parameter domain, the bounding box, the range of the principal curvatures k1 <= k2 and of
+the Gaussian curvature K = k1 k2 over an N x N grid of parameters (default 41), and
+where K > 0 (facets convex), K < 0 (saddle: facets non-convex), K ~ 0 (tangent planes
+nearly parallel: facet vertices ill-conditioned) and where the surface is singular (a
+pole, a collapsed edge), a verdict, whether the surface intersects itself (sampled on a
+41 x 41 grid), and a map of the parameter square. Given a pattern file, it says so and
+describes the points.
 
 EXAMPLES:
     tpi info samples/nurbs-dome.json
@@ -152,22 +153,34 @@ pub(crate) fn describe(
                 );
             }
         }
-        (_, SurfaceModel::Polysurface(p)) => {
+        (SurfaceSpec::Polysurface { faces, .. }, SurfaceModel::Polysurface(p)) => {
+            let mut kinds: Vec<(&str, usize)> = Vec::new();
+            for face in faces {
+                match kinds.iter_mut().find(|(name, _)| *name == face.type_name()) {
+                    Some((_, n)) => *n += 1,
+                    None => kinds.push((face.type_name(), 1)),
+                }
+            }
+            let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
             let (columns, rows) = p.grid();
             let _ = writeln!(
                 s,
-                "  {} faces laid out as {columns} column(s) x {rows} row(s) (u across the columns, v up the rows)",
-                p.faces().len()
+                "  {} faces ({}), laid out from their shared sides as {columns} columns x {rows} \
+                 rows; faces by cell, top row first:",
+                faces.len(),
+                kinds.join(", ")
             );
-            let _ = writeln!(s, "  column edges in u: {}", list(p.column_edges()));
-            let _ = writeln!(s, "  row edges in v: {}", list(p.row_edges()));
             for row in (0..rows).rev() {
                 let cells: Vec<String> = (0..columns)
-                    .filter_map(|column| p.face_of_cell(column, row))
-                    .map(|face| format!("faces[{face}] {}", p.faces()[face].to_spec().type_name()))
+                    .map(|column| match p.face_of_cell(column, row) {
+                        Some(face) => format!("faces[{face}]"),
+                        None => "-".to_string(),
+                    })
                     .collect();
-                let _ = writeln!(s, "  row {row}: {}", cells.join(" | "));
+                let _ = writeln!(s, "    {}", cells.join(" "));
             }
+            let _ = writeln!(s, "  column edges in u: {}", list(p.column_edges()));
+            let _ = writeln!(s, "  row edges in v: {}", list(p.row_edges()));
         }
         _ => {
             let params = serde_json::to_value(spec).ok();

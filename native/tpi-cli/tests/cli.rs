@@ -2003,3 +2003,46 @@ fn a_trimmed_dome_leaves_out_the_points_outside_and_says_so() {
         &["trims are supported on convex surfaces only"],
     );
 }
+
+/// `tpi info` on a polysurface names its layout (which face sits in which cell) instead of
+/// printing the faces' records; a layout that is not a rectangle is a one-line error.
+#[test]
+fn info_reports_a_polysurface_layout_and_discretise_refuses_an_l_shape() {
+    let dir = scratch("polysurface");
+    // The hyperbolic paraboloid z = 0.5 x^2 - 0.5 y^2 over [-1, 1]^2 as two faces, the right
+    // half given first: its left neighbour is faces[1].
+    let half = |x0: f64, x1: f64, y0: f64, y1: f64| {
+        serde_json::json!({"type": "hyperbolic_paraboloid", "a": 0.5, "b": 0.5,
+                           "x": [x0, x1], "y": [y0, y1]})
+    };
+    let two = serde_json::json!({"type": "polysurface", "units": "m",
+        "faces": [half(0.0, 1.0, -1.0, 1.0), half(-1.0, 0.0, -1.0, 1.0)]});
+    let path = dir.join("two.json");
+    fs::write(&path, two.to_string()).unwrap();
+    let path = path.to_string_lossy().into_owned();
+    let out = text(&ok(&["info", &path]).stdout);
+    assert!(out.contains(": polysurface\n"), "{out}");
+    assert!(
+        out.contains(
+            "2 faces (2 hyperbolic_paraboloid), laid out from their shared sides as 2 columns x 1 rows"
+        ),
+        "{out}"
+    );
+    assert!(out.contains("\n    faces[1] faces[0]\n"), "{out}");
+    assert!(!out.contains("faces = "), "{out}");
+    // Three squares in an L: three cells of a 2 x 2 grid.
+    let l_shape = serde_json::json!({"type": "polysurface",
+        "faces": [half(0.0, 1.0, 0.0, 1.0), half(1.0, 2.0, 0.0, 1.0), half(0.0, 1.0, 1.0, 2.0)]});
+    let path = dir.join("l.json");
+    fs::write(&path, l_shape.to_string()).unwrap();
+    discretise_fails(
+        &dir,
+        path.to_str().unwrap(),
+        "hex:10x10",
+        1,
+        &[
+            "faces",
+            "do not fill a rectangle of rows and columns (2 x 2 cells",
+        ],
+    );
+}

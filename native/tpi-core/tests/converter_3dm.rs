@@ -3,6 +3,14 @@
 //! trimmed by a circle, a capped cylinder, a slab with a hole; millimetres), converts it, and records rhino3dm's
 //! points of the source geometry; the surface files are read here with tpi-core and must agree.
 //!
+//! Polysurfaces: the script also builds and converts a model of Breps with several faces (a
+//! hyperbolic paraboloid z = x y / S as six bilinear faces from a quad mesh, a box, a capped
+//! cylinder, an extruded polyline). The polysurface file of the paraboloid is discretised and checked against the
+//! closed form (seeds on z = x y / S, facet vertices on the closed-form tangent plane of their
+//! seed) and for one disc (Euler characteristic and boundary loops counted from the output
+//! JSON's facet loops); its adjacency against the faces' centres; the box is refused with the
+//! typed layout error.
+//!
 //! The script runs at test time with `python3` (or the interpreter named by TPI_PYTHON); a
 //! missing interpreter or rhino3dm fails these tests, they never skip.
 
@@ -13,17 +21,39 @@ use std::sync::OnceLock;
 use glam::DVec3;
 use serde::Deserialize;
 use serde_json::Value;
-use tpi_core::{Surface, SurfaceModel, SurfaceSpec, Units};
+use tpi_core::{
+    discretise, DiscretiseOptions, Generator, Surface, SurfaceModel, SurfaceSpec, TpiError, Units,
+};
 
 /// Points agree to this fraction of the control net's bounding-box diagonal.
 const POINT_TOLERANCE: f64 = 1e-9;
 
 #[derive(Deserialize)]
 struct Expected {
+    poly_index: String,
+    poly_off_index: String,
+    hypar: Hypar,
+    strip: Strip,
     unit_cases: Vec<UnitCase>,
     plain_index: String,
     trims_index: String,
     faces: Vec<ExpectedFace>,
+}
+
+/// z = x y / scale over [-x, x] x [-y, y], `quads` mesh quads in x and in y.
+#[derive(Deserialize)]
+struct Hypar {
+    scale: f64,
+    x: f64,
+    y: f64,
+    quads: [usize; 2],
+}
+
+/// The open polyline `profile` (in z = 0) extruded by `height` along z.
+#[derive(Deserialize)]
+struct Strip {
+    profile: Vec<[f64; 2]>,
+    height: f64,
 }
 
 #[derive(Deserialize)]
@@ -51,6 +81,8 @@ struct Run {
     expected: Expected,
     plain: Value,
     trims: Value,
+    poly: Value,
+    poly_off: Value,
 }
 
 fn run() -> &'static Run {
@@ -94,11 +126,16 @@ fn convert() -> Result<Run, String> {
         serde_json::from_str(&read("expected.json")?).map_err(|e| format!("expected.json: {e}"))?;
     let plain = serde_json::from_str(&read(&expected.plain_index)?).map_err(|e| e.to_string())?;
     let trims = serde_json::from_str(&read(&expected.trims_index)?).map_err(|e| e.to_string())?;
+    let poly = serde_json::from_str(&read(&expected.poly_index)?).map_err(|e| e.to_string())?;
+    let poly_off =
+        serde_json::from_str(&read(&expected.poly_off_index)?).map_err(|e| e.to_string())?;
     Ok(Run {
         dir,
         expected,
         plain,
         trims,
+        poly,
+        poly_off,
     })
 }
 
@@ -337,5 +374,393 @@ fn trims_are_the_projected_edges() {
                 "({u}, {v}) -> {p}: radius {radius}"
             );
         }
+    }
+}
+
+fn polysurface_records(index: &Value) -> &Vec<Value> {
+    index["polysurfaces"].as_array().expect("polysurfaces")
+}
+
+fn polysurface_record(object: u64) -> &'static Value {
+    polysurface_records(&run().poly)
+        .iter()
+        .find(|p| p["object"] == object)
+        .unwrap_or_else(|| panic!("no polysurface record for object {object}"))
+}
+
+/// The text of a file the polysurface conversion wrote.
+fn poly_text(file: &str) -> String {
+    surface_text("poly", file)
+}
+
+#[test]
+fn breps_of_untrimmed_faces_become_polysurface_files_and_trimmed_ones_do_not() {
+    let run = run();
+    let records = polysurface_records(&run.poly);
+    // The three Breps have several faces; nothing else is listed.
+    let objects: Vec<u64> = records
+        .iter()
+        .map(|p| p["object"].as_u64().unwrap())
+        .collect();
+    assert_eq!(objects, [0, 1, 2, 3]);
+    let index_faces = faces(&run.poly);
+    for record in [&records[0], &records[1], &records[3]] {
+        let file = record["file"].as_str().expect("a polysurface file");
+        assert!(record["not_written"].is_null(), "{record}");
+        let text: Value = serde_json::from_str(&poly_text(file)).unwrap();
+        assert_eq!(text["type"], "polysurface");
+        assert_eq!(text["units"], "mm");
+        let listed = text["faces"].as_array().unwrap();
+        let expected = if record["object"] == 3 { 3 } else { 6 };
+        assert_eq!(listed.len(), expected, "{file}");
+        // Each face is its own surface file, untrimmed, in the Brep's order.
+        for (k, face) in listed.iter().enumerate() {
+            let g = record["faces"][k].as_u64().unwrap() as usize;
+            let entry = &index_faces[g];
+            assert_eq!(entry["object"], record["object"]);
+            assert_eq!(entry["face"], k as u64);
+            assert_eq!(entry["trimmed"], false);
+            let own: Value =
+                serde_json::from_str(&poly_text(entry["file"].as_str().unwrap())).unwrap();
+            assert_eq!(face, &own, "{file} faces[{k}]");
+            assert!(face.get("trim").is_none());
+        }
+        // tpi reads the file (the layout may still refuse it: the box, below).
+        SurfaceSpec::from_json(&poly_text(file), file).unwrap();
+    }
+    // The capped cylinder: its caps are trimmed, so no file, and the record says which.
+    let cylinder = &records[2];
+    assert!(cylinder["file"].is_null());
+    let reason = cylinder["not_written"].as_str().unwrap();
+    let trimmed: Vec<&str> = index_faces
+        .iter()
+        .filter(|f| f["object"] == 2 && f["trimmed"] == true)
+        .map(|f| f["file"].as_str().unwrap())
+        .collect();
+    assert_eq!(trimmed.len(), 2);
+    for file in trimmed {
+        assert!(reason.contains(file), "{reason}");
+    }
+    assert!(reason.contains("trim"), "{reason}");
+    // --no-polysurfaces: the same records, no files.
+    let off = polysurface_records(&run.poly_off);
+    assert_eq!(off.len(), 4);
+    for record in off {
+        assert!(record["file"].is_null(), "{record}");
+    }
+    assert_eq!(off[0]["not_written"], "--no-polysurfaces");
+    assert_eq!(off[2]["not_written"], cylinder["not_written"]);
+    assert_eq!(off[0]["adjacency"], records[0]["adjacency"]);
+    let written: Vec<String> = std::fs::read_dir(run.dir.join("poly-off"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| name.ends_with("_polysurface.json"))
+        .collect();
+    assert!(written.is_empty(), "{written:?}");
+}
+
+/// The faces of a polysurface file, each built on its own.
+fn polysurface_faces(file: &str) -> Vec<SurfaceModel> {
+    let text: Value = serde_json::from_str(&poly_text(file)).unwrap();
+    text["faces"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| {
+            SurfaceSpec::from_json(&f.to_string(), file)
+                .and_then(|s| s.build())
+                .unwrap()
+        })
+        .collect()
+}
+
+fn corners(face: &SurfaceModel) -> Vec<DVec3> {
+    let d = face.domain();
+    [
+        (d.u.min, d.v.min),
+        (d.u.max, d.v.min),
+        (d.u.max, d.v.max),
+        (d.u.min, d.v.max),
+    ]
+    .iter()
+    .map(|&(u, v)| face.point_at(u, v))
+    .collect()
+}
+
+/// The adjacency pairs of a record, as (smaller, larger) positions in its faces.
+fn adjacency(record: &Value) -> Vec<(usize, usize, DVec3, DVec3)> {
+    let point = |v: &Value| DVec3::from_array(serde_json::from_value(v.clone()).unwrap());
+    record["adjacency"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|a| {
+            let pair: [usize; 2] = serde_json::from_value(a["faces"].clone()).unwrap();
+            assert_ne!(pair[0], pair[1]);
+            (
+                pair[0].min(pair[1]),
+                pair[0].max(pair[1]),
+                point(&a["start"]),
+                point(&a["end"]),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn polysurface_adjacency_is_the_faces_shared_sides() {
+    let hypar = &run().expected.hypar;
+    let record = polysurface_record(0);
+    let faces = polysurface_faces(record["file"].as_str().unwrap());
+    let [nx, ny] = hypar.quads;
+    assert_eq!(faces.len(), nx * ny);
+    // Independently of the Brep's topology: two quads of the mesh are neighbours when their
+    // centres are one quad apart in x or in y (the faces are pieces of one graph over xy).
+    let (step_x, step_y) = (2.0 * hypar.x / nx as f64, 2.0 * hypar.y / ny as f64);
+    let centre = |f: &SurfaceModel| {
+        let d = f.domain();
+        f.point_at(d.u.lerp(0.5), d.v.lerp(0.5))
+    };
+    let mut expected = Vec::new();
+    for a in 0..faces.len() {
+        for b in a + 1..faces.len() {
+            let (p, q) = (centre(&faces[a]), centre(&faces[b]));
+            let (dx, dy) = ((p.x - q.x).abs(), (p.y - q.y).abs());
+            if ((dx - step_x).abs() < 1e-6 && dy < 1e-6)
+                || ((dy - step_y).abs() < 1e-6 && dx < 1e-6)
+            {
+                expected.push((a, b));
+            }
+        }
+    }
+    assert_eq!(expected.len(), (nx - 1) * ny + nx * (ny - 1));
+    let pairs = adjacency(record);
+    let mut found: Vec<(usize, usize)> = pairs.iter().map(|&(a, b, _, _)| (a, b)).collect();
+    found.sort_unstable();
+    assert_eq!(found, expected);
+    // Each shared edge runs between two corners of both its faces: a whole side.
+    for &(a, b, start, end) in &pairs {
+        for f in [a, b] {
+            for p in [start, end] {
+                assert!(
+                    corners(&faces[f]).iter().any(|c| c.distance(p) < 1e-9),
+                    "faces[{f}]: edge end {p} is not a corner"
+                );
+            }
+        }
+    }
+    // The box: 12 edges, each face next to 4 others, never its opposite.
+    let pairs = adjacency(polysurface_record(1));
+    assert_eq!(pairs.len(), 12);
+    let mut count = [0; 6];
+    for &(a, b, _, _) in &pairs {
+        count[a] += 1;
+        count[b] += 1;
+    }
+    assert_eq!(count, [4; 6]);
+}
+
+/// V - E + F and the number of boundary loops of facet loops (each a list of vertex
+/// indices), counted from the loops alone.
+fn euler_and_boundary_loops(loops: &[Vec<usize>]) -> (i64, usize) {
+    use std::collections::{BTreeMap, BTreeSet};
+    let mut edges: BTreeMap<(usize, usize), usize> = BTreeMap::new();
+    let mut vertices = BTreeSet::new();
+    for facet in loops {
+        for k in 0..facet.len() {
+            let (a, b) = (facet[k], facet[(k + 1) % facet.len()]);
+            vertices.insert(a);
+            *edges.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+        }
+    }
+    assert!(
+        edges.values().all(|&n| n <= 2),
+        "an edge used by more than two facets"
+    );
+    let euler = vertices.len() as i64 - edges.len() as i64 + loops.len() as i64;
+    // Boundary loops: connected components of the edges used once.
+    let boundary: Vec<(usize, usize)> = edges
+        .iter()
+        .filter(|(_, &n)| n == 1)
+        .map(|(&e, _)| e)
+        .collect();
+    let mut parent: BTreeMap<usize, usize> = BTreeMap::new();
+    fn root(parent: &mut BTreeMap<usize, usize>, x: usize) -> usize {
+        let p = *parent.entry(x).or_insert(x);
+        if p == x {
+            x
+        } else {
+            let r = root(parent, p);
+            parent.insert(x, r);
+            r
+        }
+    }
+    for &(a, b) in &boundary {
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        parent.insert(ra, rb);
+    }
+    let ends: BTreeSet<usize> = boundary.iter().flat_map(|&(a, b)| [a, b]).collect();
+    let loops_count = ends
+        .iter()
+        .map(|&v| root(&mut parent, v))
+        .collect::<BTreeSet<_>>()
+        .len();
+    (euler, loops_count)
+}
+
+#[test]
+fn hyperbolic_paraboloid_polysurface_discretises_on_its_tangent_planes() {
+    let hypar = &run().expected.hypar;
+    let file = polysurface_record(0)["file"].as_str().unwrap();
+    let spec = SurfaceSpec::from_json(&poly_text(file), file).unwrap();
+    let model = spec
+        .build()
+        .unwrap_or_else(|e| panic!("{file}: tpi refuses the polysurface: {e}"));
+    let SurfaceModel::Polysurface(layout) = &model else {
+        panic!("{file}: not a polysurface")
+    };
+    let [nx, ny] = hypar.quads;
+    let (columns, rows) = layout.grid();
+    assert!(
+        (columns, rows) == (nx, ny) || (columns, rows) == (ny, nx),
+        "{columns} x {rows}"
+    );
+    assert_eq!(model.units(), Some(Units::Millimetres));
+    let pattern = Generator::parse("hex:20x20").unwrap().generate();
+    let result = discretise(&model, &pattern.uv, &DiscretiseOptions::default())
+        .unwrap_or_else(|e| panic!("{file}: {e}"));
+    // What `tpi discretise --out result.json` writes, read back as JSON.
+    let output: Value = serde_json::from_str(&result.to_json(false)).unwrap();
+    assert_eq!(output["units"], "mm");
+    let vertices: Vec<DVec3> = output["vertices"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|v| DVec3::from_array(serde_json::from_value(v.clone()).unwrap()))
+        .collect();
+    let facets = output["facets"].as_array().unwrap();
+    assert_eq!(facets.len(), 400);
+    let loops: Vec<Vec<usize>> = facets
+        .iter()
+        .map(|f| serde_json::from_value(f["vertices"].clone()).unwrap())
+        .collect();
+    assert_eq!(euler_and_boundary_loops(&loops), (1, 1), "not one disc");
+    // The closed form: z = x y / S, normal along (-y / S, -x / S, 1).
+    let size = (2.0 * hypar.x).hypot(2.0 * hypar.y);
+    let mut per_quad = vec![0usize; nx * ny];
+    let mut up = None;
+    let mut worst = 0.0f64;
+    for (i, facet) in facets.iter().enumerate() {
+        let point: [f64; 3] = serde_json::from_value(facet["point"].clone()).unwrap();
+        let p = DVec3::from_array(point);
+        assert!(
+            (p.z - p.x * p.y / hypar.scale).abs() < 1e-9 * size,
+            "facet {i}: seed {p} off the paraboloid"
+        );
+        let n = DVec3::new(-p.y / hypar.scale, -p.x / hypar.scale, 1.0).normalize();
+        let given = DVec3::from_array(serde_json::from_value(facet["normal"].clone()).unwrap());
+        assert!(
+            n.cross(given).length() < 1e-9,
+            "facet {i}: normal {given}, closed form {n}"
+        );
+        // One orientation over all faces.
+        let sign = given.dot(n) > 0.0;
+        assert_eq!(*up.get_or_insert(sign), sign, "facet {i}: normal flipped");
+        for &v in &loops[i] {
+            let off = (vertices[v] - p).dot(n).abs();
+            worst = worst.max(off / size);
+            assert!(
+                off < 1e-9 * size,
+                "facet {i}: vertex {v} {off} off the seed's tangent plane"
+            );
+        }
+        let qx = (((p.x + hypar.x) / (2.0 * hypar.x) * nx as f64) as usize).min(nx - 1);
+        let qy = (((p.y + hypar.y) / (2.0 * hypar.y) * ny as f64) as usize).min(ny - 1);
+        per_quad[qx * ny + qy] += 1;
+    }
+    // The pattern spreads over the faces (equal quads: about equally).
+    let fair = 400.0 / (nx * ny) as f64;
+    assert!(
+        per_quad
+            .iter()
+            .all(|&n| n as f64 > 0.7 * fair && (n as f64) < 1.3 * fair),
+        "seeds per face {per_quad:?}"
+    );
+    println!("seeds per face {per_quad:?}, worst vertex off its plane {worst:e} of the size");
+}
+
+/// The extruded polyline: its three wall faces laid out as a strip, in the profile's order,
+/// the strip as long as the profile (the columns' widths are the faces' lengths) and as high
+/// as the extrusion.
+#[test]
+fn an_extruded_polyline_is_a_strip_as_long_as_its_profile() {
+    let strip = &run().expected.strip;
+    let file = polysurface_record(3)["file"].as_str().unwrap();
+    let model = SurfaceSpec::from_json(&poly_text(file), file)
+        .and_then(|s| s.build())
+        .unwrap_or_else(|e| panic!("{file}: {e}"));
+    let SurfaceModel::Polysurface(layout) = &model else {
+        panic!("{file}: not a polysurface")
+    };
+    let segments = strip.profile.len() - 1;
+    let length: f64 = strip
+        .profile
+        .windows(2)
+        .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
+        .sum();
+    let (columns, rows) = layout.grid();
+    let d = model.domain();
+    let (along, across, cells): (f64, f64, Vec<usize>) = if rows == 1 {
+        assert_eq!(columns, segments);
+        let cells = (0..columns).map(|i| layout.face_of_cell(i, 0).unwrap());
+        (d.u.length(), d.v.length(), cells.collect())
+    } else {
+        assert_eq!((columns, rows), (1, segments));
+        let cells = (0..rows).map(|j| layout.face_of_cell(0, j).unwrap());
+        (d.v.length(), d.u.length(), cells.collect())
+    };
+    assert!(
+        (along - length).abs() < 1e-9 * length,
+        "{along} vs {length}"
+    );
+    assert!(
+        (across - strip.height).abs() < 1e-9 * strip.height,
+        "{across}"
+    );
+    // Cell k holds the wall of segment k (or of segment n - 1 - k: a strip read backwards).
+    let faces = polysurface_faces(file);
+    let segment_of = |face: usize| {
+        let f = &faces[face];
+        let dom = f.domain();
+        let c = f.point_at(dom.u.lerp(0.5), dom.v.lerp(0.5));
+        assert!((c.z - 0.5 * strip.height).abs() < 1e-9 * strip.height);
+        (0..segments)
+            .find(|&k| {
+                let (a, b) = (strip.profile[k], strip.profile[k + 1]);
+                let mid = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+                (c.x - mid[0]).hypot(c.y - mid[1]) < 1e-6 * length
+            })
+            .unwrap_or_else(|| panic!("face {face}: centre {c} on no segment's wall"))
+    };
+    let order: Vec<usize> = cells.iter().map(|&f| segment_of(f)).collect();
+    let forward: Vec<usize> = (0..segments).collect();
+    let backward: Vec<usize> = (0..segments).rev().collect();
+    assert!(order == forward || order == backward, "{order:?}");
+}
+
+#[test]
+fn a_closed_box_is_refused_naming_the_layout() {
+    let file = polysurface_record(1)["file"].as_str().unwrap();
+    let spec = SurfaceSpec::from_json(&poly_text(file), file).unwrap();
+    match spec.build() {
+        Err(TpiError::InvalidPolysurface { item, reason }) => {
+            assert_eq!(item, "faces");
+            assert!(
+                reason.contains("do not fill a rectangle of rows and columns"),
+                "{reason}"
+            );
+        }
+        Err(other) => panic!("{file}: expected InvalidPolysurface, got {other}"),
+        Ok(_) => panic!("{file}: a closed box laid out as rows and columns"),
     }
 }
