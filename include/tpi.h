@@ -377,6 +377,11 @@ typedef enum TpiDiagnosticKind {
      * stays open (point is TPI_NO_POINT).
      */
     TPI_DIAGNOSTIC_KIND_SEAM_LEFT_OPEN = 9,
+    /**
+     * The mesh's Euler characteristic or boundary loops are not those expected (a gap or a
+     * double cover between facets; point is TPI_NO_POINT).
+     */
+    TPI_DIAGNOSTIC_KIND_UNEXPECTED_TOPOLOGY = 10,
 } TpiDiagnosticKind;
 
 /**

@@ -295,10 +295,23 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
     if let Some(c) = &self_intersection {
         eprintln!("{}", crate::selfx::warning(c));
     }
+    let mut topology = None;
     for d in &result.diagnostics {
-        if let Diagnostic::SeamLeftOpen { direction } = d {
-            let direction = if *direction == 0 { "u" } else { "v" };
-            eprintln!("warning: the surface is closed in {direction}, and it was discretised as an open patch: the mesh leaves its seam open (closed surfaces give closed meshes only where they are strictly convex at every seed and untrimmed)");
+        match *d {
+            Diagnostic::SeamLeftOpen { direction } => {
+                let direction = if direction == 0 { "u" } else { "v" };
+                eprintln!("warning: the surface is closed in {direction}, and it was discretised as an open patch: the mesh leaves its seam open (closed surfaces give closed meshes only where they are strictly convex at every seed and untrimmed)");
+            }
+            Diagnostic::UnexpectedTopology {
+                euler,
+                boundary_loops,
+                expected_euler,
+                expected_loops,
+            } => {
+                eprintln!("warning: the mesh has Euler characteristic {euler} and {boundary_loops} boundary loop(s), where {expected_euler} and {expected_loops} were expected: its facets leave a gap or overlap where no single facet shows it");
+                topology = Some((euler, boundary_loops));
+            }
+            _ => {}
         }
     }
     if let Some(q) = result.quality.as_ref().filter(|q| q.invalid_facets > 0) {
@@ -308,6 +321,9 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
                 count: q.invalid_facets,
             });
         }
+    }
+    if let (Some((euler, loops)), true) = (topology, opts.strict) {
+        return Err(CliError::UnexpectedTopology { euler, loops });
     }
     Ok(())
 }

@@ -29,6 +29,14 @@ pub(crate) enum CliError {
         /// How many facets are open, non-simple or overlapping.
         count: usize,
     },
+    /// `--strict` and the mesh is not the disc, annulus or sphere expected (the outputs were
+    /// written). Exit code 3.
+    UnexpectedTopology {
+        /// Euler characteristic found.
+        euler: i64,
+        /// Boundary loops found.
+        loops: u32,
+    },
 }
 
 impl CliError {
@@ -72,7 +80,7 @@ impl CliError {
         match self {
             CliError::Usage { .. } => 2,
             CliError::Input { .. } => 1,
-            CliError::InvalidFacets { .. } => 3,
+            CliError::InvalidFacets { .. } | CliError::UnexpectedTopology { .. } => 3,
         }
     }
 }
@@ -110,6 +118,10 @@ impl CliError {
                 f,
                 "tpi: error: {}: {problem}",
                 elide_middle(subject, tpi_core::QUOTE_LIMIT)
+            ),
+            CliError::UnexpectedTopology { euler, loops } => write!(
+                f,
+                "tpi: error: the mesh has Euler characteristic {euler} and {loops} boundary loop(s), not those expected (--strict)"
             ),
             CliError::InvalidFacets { count } => {
                 write!(

@@ -76,6 +76,20 @@ pub enum Diagnostic {
         /// 0: closed in u, 1: closed in v.
         direction: u8,
     },
+    /// The mesh is not the surface the run expected (a disc, an annulus, a sphere, a trimmed
+    /// disc with its holes): its facets leave a gap, or cover a part twice, that no single
+    /// facet shows. Named so that a mesh of valid facets with such a defect is never taken for
+    /// a valid mesh. One diagnostic per discretisation.
+    UnexpectedTopology {
+        /// Euler characteristic V - E + F of the mesh.
+        euler: i64,
+        /// Boundary loops of the mesh.
+        boundary_loops: u32,
+        /// The Euler characteristic expected.
+        expected_euler: i64,
+        /// The boundary loops expected.
+        expected_loops: u32,
+    },
 }
 
 impl Diagnostic {
@@ -93,7 +107,8 @@ impl Diagnostic {
             | Diagnostic::FlatPoint { point, .. } => *point = f(*point),
             Diagnostic::CornerClaims { .. }
             | Diagnostic::CoincidentPlanes { .. }
-            | Diagnostic::SeamLeftOpen { .. } => {}
+            | Diagnostic::SeamLeftOpen { .. }
+            | Diagnostic::UnexpectedTopology { .. } => {}
         }
     }
 
@@ -109,7 +124,8 @@ impl Diagnostic {
             | Diagnostic::FlatPoint { point, .. } => vec![*point],
             Diagnostic::CornerClaims { .. }
             | Diagnostic::CoincidentPlanes { .. }
-            | Diagnostic::SeamLeftOpen { .. } => Vec::new(),
+            | Diagnostic::SeamLeftOpen { .. }
+            | Diagnostic::UnexpectedTopology { .. } => Vec::new(),
         }
     }
 }

@@ -448,6 +448,29 @@ pub(crate) struct PipelineState {
     pub(crate) bbox: (DVec3, DVec3),
 }
 
+/// Adds [`Diagnostic::UnexpectedTopology`] when the report's Euler characteristic and
+/// boundary loops are not those of `result.topology` (on a trimmed surface: a disc with as
+/// many holes as extra loops, Euler characteristic 2 - loops), as
+/// [`Discretisation::sanity_check`] judges them.
+pub(crate) fn note_topology(result: &mut Discretisation, trimmed: bool) {
+    let Some(q) = result.quality.as_mut() else {
+        return;
+    };
+    let expected = result.topology;
+    let (euler, loops) = (q.euler_characteristic, q.boundary_loops);
+    let as_expected = (euler == expected.euler && loops == expected.boundary_loops)
+        || (trimmed && loops >= 1 && euler == 2 - loops as i64);
+    if !as_expected {
+        result.diagnostics.push(Diagnostic::UnexpectedTopology {
+            euler,
+            boundary_loops: loops as u32,
+            expected_euler: expected.euler,
+            expected_loops: expected.boundary_loops as u32,
+        });
+        q.diagnostic_count += 1;
+    }
+}
+
 /// The pipeline; with `keep` also its state.
 ///
 /// On a trimmed surface ([`Surface::trim`]) the pattern points outside the trim are left out
@@ -848,6 +871,7 @@ fn run_within(
         });
         result.quality = Some(quality);
         result.facet_flags = flags;
+        note_topology(&mut result, boundary.is_trim());
         result.timings.report = ms(stage);
     }
     result.timings.total = ms(start);

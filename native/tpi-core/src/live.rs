@@ -1325,6 +1325,7 @@ impl State {
             });
             result.quality = Some(quality);
             result.facet_flags = flags;
+            crate::discretise::note_topology(&mut result, false);
         }
         result
     }
@@ -1411,7 +1412,8 @@ fn renumber_diagnostic(d: &mut Diagnostic, k: u32) {
         | Diagnostic::FlatPoint { point, .. } => shift(point),
         Diagnostic::CornerClaims { .. }
         | Diagnostic::CoincidentPlanes { .. }
-        | Diagnostic::SeamLeftOpen { .. } => {}
+        | Diagnostic::SeamLeftOpen { .. }
+        | Diagnostic::UnexpectedTopology { .. } => {}
     }
 }
 

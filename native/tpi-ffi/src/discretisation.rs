@@ -185,6 +185,9 @@ pub enum TpiDiagnosticKind {
     /// The surface is closed in a direction but was discretised as an open patch: its seam
     /// stays open (point is TPI_NO_POINT).
     SeamLeftOpen = 9,
+    /// The mesh's Euler characteristic or boundary loops are not those expected (a gap or a
+    /// double cover between facets; point is TPI_NO_POINT).
+    UnexpectedTopology = 10,
 }
 
 impl TpiDiagnosticKind {
@@ -200,6 +203,7 @@ impl TpiDiagnosticKind {
             Diagnostic::FlatPoint { .. } => TpiDiagnosticKind::FlatPoint,
             Diagnostic::CoincidentPlanes { .. } => TpiDiagnosticKind::CoincidentPlanes,
             Diagnostic::SeamLeftOpen { .. } => TpiDiagnosticKind::SeamLeftOpen,
+            Diagnostic::UnexpectedTopology { .. } => TpiDiagnosticKind::UnexpectedTopology,
         }
     }
 }

@@ -59,6 +59,8 @@ namespace Tpi.Native
         CoincidentPlanes = 8,
         /// <summary>The surface is closed in a direction but was discretised as an open patch: its seam stays open.</summary>
         SeamLeftOpen = 9,
+        /// <summary>The mesh's Euler characteristic or boundary loops are not those expected: a gap or a double cover between facets.</summary>
+        UnexpectedTopology = 10,
     }
 
     /// <summary>Per-facet flags (TPI_FACET_* bits).</summary>
