@@ -1545,6 +1545,34 @@ enum TpiStatus tpi_surface_with_units(const struct TpiSurface *surface, int32_t 
 enum TpiStatus tpi_surface_with_trim(const struct TpiSurface *surface, const double *outer_uv, size_t outer_len, const double *holes_uv, size_t holes_len, const size_t *hole_point_counts, size_t hole_count, struct TpiSurface **out);
 
 /**
+ * Creates a polysurface: several untrimmed four-sided faces that share whole sides, joined
+ * as one surface. The faces are laid out as rows and columns of a rectangle, found from the
+ * geometry (two faces share a side when their points along it agree to a small fraction of
+ * the size), so they may come in any order and orientation; a ring of faces closes the
+ * surface in that direction. The polysurface's domain is [0, sum of column widths] x
+ * [0, sum of row heights] (widths and heights are the faces' mid-line lengths), so a pattern
+ * in [0, 1]^2 spreads over the faces by length; its tangent planes are the faces' own, and
+ * the facets of neighbouring faces meet along common edges.
+ *
+ * `faces` is an array of `count` surface handles, which are **borrowed**: the new handle
+ * holds its own copy of each, so the caller still frees every face (and may do so right
+ * away). The faces' units must agree; the polysurface carries them.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER (`faces` with `count > 0`, a NULL element, named as
+ * `faces[k]`, or `out`); TPI_STATUS_INVALID_HANDLE (an element that is not a live
+ * surface handle); TPI_STATUS_INVALID_ARGUMENT (`count` 0 or more than 1000; a face that is
+ * trimmed or itself a polysurface; faces whose units differ; a face that shares no whole side
+ * with the others; faces that do not fill a rectangle of rows and columns; the message names
+ * the face, e.g. `faces[1]: shares no whole side ...`, or `faces` for the layout as a whole).
+ * On an error `*out` is set to NULL.
+ *
+ * # Safety
+ * `faces` is NULL or valid for reading `count` pointers, each NULL or a surface handle from
+ * this library that stays alive during the call; `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_surface_new_polysurface(const struct TpiSurface *const *faces, size_t count, struct TpiSurface **out);
+
+/**
  * Stores the surface's units in `*out`: a `TPI_UNITS_*` value, `TPI_UNITS_NONE` when unitless.
  *
  * Errors: TPI_STATUS_NULL_POINTER.

@@ -38,6 +38,22 @@ namespace Tpi.Plugin
         }
 
         /// <summary>
+        /// The surface of a whole Brep: its only face (with the face's trim), or all its faces
+        /// joined as one polysurface, each face as its untrimmed NURBS surface. A face trimmed
+        /// beyond its natural boundary in a Brep of several faces is not dropped silently: the
+        /// result is null and <paramref name="error"/> says that trimmed faces are not supported
+        /// in a polysurface yet (PolysurfaceSpec.FromFaces decides, Rhino-free).
+        /// </summary>
+        public static SurfaceSpec FromBrep(Brep brep, out string error)
+        {
+            error = null;
+            if (brep == null || brep.Faces == null) { error = "the object is not a surface or polysurface"; return null; }
+            var faces = new List<SurfaceSpec>(brep.Faces.Count);
+            for (int k = 0; k < brep.Faces.Count; k++) faces.Add(ToSpec(brep.Faces[k]));
+            return PolysurfaceSpec.FromFaces(faces, out error);
+        }
+
+        /// <summary>
         /// The trim of a Brep face (its outer and inner loops' 2D curves sampled into polylines
         /// in the face's parameters), or null for a plain surface or a face that is its whole
         /// domain. The geometry (orientation, closing point, "whole domain") is SurfaceTrim's.

@@ -14,7 +14,7 @@ using PatternPoint = Tpi.Native.PatternPoint;
 
 namespace Tpi.GhComponents
 {
-    /// <summary>"TPI Discretise": surface + points or uv -> planar panels, planes, n-gon mesh, quality report.</summary>
+    /// <summary>"TPI Discretise": surface or polysurface + points or uv -> planar panels, planes, n-gon mesh, quality report.</summary>
     public sealed class DiscretiseComponent : GH_TaskCapableComponent<DiscretiseOutput>
     {
         /// <summary>Made by Grasshopper.</summary>
@@ -35,7 +35,9 @@ namespace Tpi.GhComponents
         /// <inheritdoc/>
         protected override void RegisterInputParams(GH_InputParamManager pManager)
         {
-            pManager.AddSurfaceParameter("Surface", "S", "The surface to panel.", GH_ParamAccess.item);
+            // A Brep parameter (surfaces convert to it): a polysurface's faces are joined as one
+            // surface. Name, nickname and position are the old surface parameter's.
+            pManager.AddBrepParameter("Surface", "S", "The surface or polysurface to panel (a polysurface's untrimmed four-sided faces sharing whole sides are joined as one surface).", GH_ParamAccess.item);
             pManager.AddPointParameter("Points", "P", "Pattern points in space (pulled to the surface).", GH_ParamAccess.list);
             pManager.AddPointParameter("UV", "UV", "Pattern points as normalised (s, t, 0) in [0, 1]^2 (used when P is empty).", GH_ParamAccess.list);
             pManager.AddBooleanParameter("Envelope", "E", "Verify and repair neighbours against the envelope of tangent planes (K > 0).", GH_ParamAccess.item, true);
@@ -97,14 +99,24 @@ namespace Tpi.GhComponents
         {
             errors = new List<string>();
             warnings = new List<string>();
-            Surface surface = null;
-            if (!DA.GetData(0, ref surface) || surface == null) return null; // Grasshopper itself warns about a missing S
-            // A trimmed surface arrives as a one-face Brep: take its face, which carries the trim.
             Brep brep = null;
-            if (!(surface is BrepFace) && DA.GetData(0, ref brep) && brep != null && brep.Faces != null && brep.Faces.Count == 1)
-                surface = brep.Faces[0];
-            var spec = GhConvert.ToSpec(surface);
-            if (spec == null) { errors.Add("the surface has no NURBS form"); return null; }
+            if (!DA.GetData(0, ref brep) || brep == null) return null; // Grasshopper itself warns about a missing S
+            if (brep.Faces == null || brep.Faces.Count == 0) { errors.Add("the Brep has no faces"); return null; }
+            // One face: that face, with its trim. Several: all joined, each face untrimmed (a
+            // trimmed face is refused with a reason, never dropped).
+            Surface surface = brep.Faces.Count == 1 ? brep.Faces[0] : null;
+            SurfaceSpec spec;
+            if (surface != null)
+            {
+                spec = GhConvert.ToSpec(surface);
+                if (spec == null) { errors.Add("the surface has no NURBS form"); return null; }
+            }
+            else
+            {
+                string error;
+                spec = Tpi.Plugin.SurfaceSpecs.FromBrep(brep, out error);
+                if (spec == null) { errors.Add(error); return null; }
+            }
             var points = new List<Point3d>();
             DA.GetDataList(1, points);
             var uv = new List<Point3d>();
@@ -114,6 +126,11 @@ namespace Tpi.GhComponents
             var options = Tpi.Native.DiscretisationOptions.Default();
             options.EnvelopeRepair = envelope;
             var input = new DiscretiseInput { Surface = spec, Options = options };
+            if (points.Count > 0 && surface == null)
+            {
+                errors.Add("pattern points in space (P) cannot be pulled to a polysurface yet: give normalised uv (UV)");
+                return null;
+            }
             if (points.Count > 0)
             {
                 input.Points = GhConvert.ClosestParameters(surface, points, warnings);

@@ -2,7 +2,9 @@
 // surface it follows. A surface picked on a polysurface is one of its faces: the discrete
 // surface stores the face index (UserDataFormat 2) and follows that face while the polysurface
 // still has it. Face indices are Rhino's; an edit that renumbers faces without changing their
-// count cannot be detected here (the person with Rhino should check the common edits).
+// count cannot be detected here (the person with Rhino should check the common edits). A
+// discrete surface made from a whole polysurface (a PolysurfaceSpec) follows the whole object,
+// whatever its faces become (the watcher joins them again, or says why it cannot).
 using System;
 
 namespace Tpi.Logic
@@ -27,6 +29,8 @@ namespace Tpi.Logic
         public bool Follow { get; internal set; }
         /// <summary>The face to take (-1: the object's only surface).</summary>
         public int FaceIndex { get; internal set; }
+        /// <summary>True: take the whole object (all its faces joined); <see cref="FaceIndex"/> is -1.</summary>
+        public bool WholeObject { get; internal set; }
         /// <summary>Why it does not follow (null when it follows or follows nothing).</summary>
         public string Message { get; internal set; }
     }
@@ -43,6 +47,12 @@ namespace Tpi.Logic
             if (document == null) throw new ArgumentNullException("document");
             if (document.SourceSurfaceId == Guid.Empty) return new FollowDecision { FaceIndex = -1 };
             int face = document.SourceFaceIndex;
+            if (document.Surface is PolysurfaceSpec)
+            {
+                if (shape == SourceShape.Missing) return Refuse("its source object is not in this document; it keeps its own surface");
+                if (shape == SourceShape.Other) return Refuse("its source object is no longer a surface");
+                return new FollowDecision { Follow = true, FaceIndex = -1, WholeObject = true };
+            }
             switch (shape)
             {
                 case SourceShape.Missing:

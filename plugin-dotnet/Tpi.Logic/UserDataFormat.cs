@@ -5,10 +5,11 @@
 //   magic      4 bytes  "TPDS"
 //   version    uint16   FormatVersion (readers reject a newer major format with a clear message)
 //   flags      uint16   0
-//   surface    byte kind: 1 = NURBS, 2 = analytic
+//   surface    byte kind: 1 = NURBS, 2 = analytic, 3 = polysurface (format 3 and later)
 //     NURBS:    int32 degreeU, degreeV, countU, countV; array knotsU; array knotsV;
 //               array points (3 per control point, u-major, Euclidean); byte rational; [array weights]
 //     analytic: int32 kind; array parameters
+//     polysurface: int32 face count, then each face as a surface of kind 1 or 2
 //   pattern    array s0, t0, s1, t1, ...
 //   options    int32 byte length L, then L bytes: byte envelopeRepair, byte qualityReport,
 //              double farVertexFactor, weldTolerance, flatTolerance (later versions append; a
@@ -24,7 +25,8 @@
 //
 // Versions: 1 (TPI 0.1, commit 9e2b174; Tpi.Tests/Fixtures/discrete-surface-v1.bin is such a
 // blob) has no follow block: it reads as source face -1 and the identity source transform.
-// 2 adds the follow block. A reader rejects a newer version than its own (FormatException
+// 2 adds the follow block. 3 adds polysurfaces (kind 3; a discrete surface made from a whole
+// Brep of several faces, source face -1 then meaning the whole object). A reader rejects a newer version than its own (FormatException
 // naming both), so an older plug-in never follows a source with a transform it cannot see.
 using System;
 using System.IO;
@@ -37,13 +39,14 @@ namespace Tpi.Logic
     public static class UserDataFormat
     {
         /// <summary>The format version written.</summary>
-        public const ushort FormatVersion = 2;
+        public const ushort FormatVersion = 3;
         /// <summary>The oldest format version read (and migrated on read).</summary>
         public const ushort OldestReadableVersion = 1;
         static readonly byte[] Magic = { (byte)'T', (byte)'P', (byte)'D', (byte)'S' };
         const int MaxArray = 1 << 27;
         const int OptionsV1Length = 2 + 3 * 8;
         const int FollowV2Length = 16 * 8 + 4;
+        const int MaxFaces = 1000;
 
         /// <summary>The bytes of <paramref name="document"/>.</summary>
         public static byte[] Write(DiscreteSurfaceDocument document)
@@ -57,23 +60,14 @@ namespace Tpi.Logic
                     w.Write(Magic);
                     w.Write(FormatVersion);
                     w.Write((ushort)0);
-                    var nurbs = document.Surface as NurbsSurfaceSpec;
-                    var analytic = document.Surface as AnalyticSurfaceSpec;
-                    if (nurbs != null)
+                    var polysurface = document.Surface as PolysurfaceSpec;
+                    if (polysurface != null)
                     {
-                        w.Write((byte)1);
-                        w.Write(nurbs.DegreeU); w.Write(nurbs.DegreeV); w.Write(nurbs.CountU); w.Write(nurbs.CountV);
-                        WriteArray(w, nurbs.KnotsU); WriteArray(w, nurbs.KnotsV); WriteArray(w, nurbs.Points);
-                        w.Write((byte)(nurbs.IsRational ? 1 : 0));
-                        if (nurbs.IsRational) WriteArray(w, nurbs.Weights);
+                        w.Write((byte)3);
+                        w.Write(polysurface.Faces.Count);
+                        foreach (var face in polysurface.Faces) WriteSurface(w, face);
                     }
-                    else if (analytic != null)
-                    {
-                        w.Write((byte)2);
-                        w.Write((int)analytic.Kind);
-                        WriteArray(w, analytic.Parameters);
-                    }
-                    else throw new ArgumentException("unknown surface type " + document.Surface.GetType().Name, "document");
+                    else WriteSurface(w, document.Surface);
                     w.Write(document.Points.Count * 2);
                     foreach (var p in document.Points) { w.Write(p.S); w.Write(p.T); }
                     var o = document.Options ?? DiscretisationOptions.Default();
@@ -131,21 +125,15 @@ namespace Tpi.Logic
                     r.ReadUInt16();
                     var document = new DiscreteSurfaceDocument();
                     byte kind = r.ReadByte();
-                    if (kind == 1)
+                    if (kind == 3 && version >= 3)
                     {
-                        int du = r.ReadInt32(), dv = r.ReadInt32(), cu = r.ReadInt32(), cv = r.ReadInt32();
-                        var ku = ReadArray(r); var kv = ReadArray(r); var points = ReadArray(r);
-                        var weights = r.ReadByte() != 0 ? ReadArray(r) : null;
-                        document.Surface = new NurbsSurfaceSpec(du, dv, cu, cv, ku, kv, points, weights);
+                        int count = r.ReadInt32();
+                        if (count < 1 || count > MaxFaces) throw new FormatException("bad polysurface face count " + count);
+                        var faces = new SurfaceSpec[count];
+                        for (int k = 0; k < count; k++) faces[k] = ReadSurface(r, r.ReadByte());
+                        document.Surface = new PolysurfaceSpec(faces);
                     }
-                    else if (kind == 2)
-                    {
-                        var analyticKind = (AnalyticKind)r.ReadInt32();
-                        var parameters = ReadArray(r);
-                        try { document.Surface = new AnalyticSurfaceSpec(analyticKind, parameters); }
-                        catch (ArgumentException e) { throw new FormatException("bad analytic surface: " + e.Message); }
-                    }
-                    else throw new FormatException("unknown surface kind " + kind);
+                    else document.Surface = ReadSurface(r, kind);
                     var st = ReadArray(r);
                     if (st.Length % 2 != 0) throw new FormatException("odd number of pattern coordinates");
                     for (int i = 0; i < st.Length; i += 2) document.Points.Add(new PatternPoint(st[i], st[i + 1]));
@@ -187,6 +175,48 @@ namespace Tpi.Logic
             {
                 throw new FormatException("discrete surface data is truncated");
             }
+        }
+
+        /// <summary>A NURBS or analytic surface: its kind byte and its record.</summary>
+        static void WriteSurface(BinaryWriter w, SurfaceSpec surface)
+        {
+            var nurbs = surface as NurbsSurfaceSpec;
+            var analytic = surface as AnalyticSurfaceSpec;
+            if (nurbs != null)
+            {
+                w.Write((byte)1);
+                w.Write(nurbs.DegreeU); w.Write(nurbs.DegreeV); w.Write(nurbs.CountU); w.Write(nurbs.CountV);
+                WriteArray(w, nurbs.KnotsU); WriteArray(w, nurbs.KnotsV); WriteArray(w, nurbs.Points);
+                w.Write((byte)(nurbs.IsRational ? 1 : 0));
+                if (nurbs.IsRational) WriteArray(w, nurbs.Weights);
+            }
+            else if (analytic != null)
+            {
+                w.Write((byte)2);
+                w.Write((int)analytic.Kind);
+                WriteArray(w, analytic.Parameters);
+            }
+            else throw new ArgumentException("unknown surface type " + surface.GetType().Name, "document");
+        }
+
+        /// <summary>The record of a NURBS (kind 1) or analytic (kind 2) surface.</summary>
+        static SurfaceSpec ReadSurface(BinaryReader r, byte kind)
+        {
+            if (kind == 1)
+            {
+                int du = r.ReadInt32(), dv = r.ReadInt32(), cu = r.ReadInt32(), cv = r.ReadInt32();
+                var ku = ReadArray(r); var kv = ReadArray(r); var points = ReadArray(r);
+                var weights = r.ReadByte() != 0 ? ReadArray(r) : null;
+                return new NurbsSurfaceSpec(du, dv, cu, cv, ku, kv, points, weights);
+            }
+            if (kind == 2)
+            {
+                var analyticKind = (AnalyticKind)r.ReadInt32();
+                var parameters = ReadArray(r);
+                try { return new AnalyticSurfaceSpec(analyticKind, parameters); }
+                catch (ArgumentException e) { throw new FormatException("bad analytic surface: " + e.Message); }
+            }
+            throw new FormatException("unknown surface kind " + kind);
         }
 
         static void WriteArray(BinaryWriter w, System.Collections.Generic.IReadOnlyList<double> values)

@@ -161,6 +161,44 @@ namespace Tpi.Native
             return Created(s, h, "tpi_surface_with_trim");
         }
 
+        /// <summary>
+        /// A polysurface: <paramref name="faces"/> (untrimmed four-sided faces that share whole
+        /// sides, in any order and orientation, e.g. the faces of a Brep) joined into one surface
+        /// whose tangent planes are the faces' own. The faces are borrowed: the polysurface holds
+        /// its own copies, dispose the faces as usual. Its domain is [0, W] x [0, H] (sums of the
+        /// faces' mid-line lengths), so a normalised pattern spreads over the faces by length.
+        /// Faces that cannot be joined (trimmed, apart, not a rectangle of rows and columns, units
+        /// that differ) raise a <see cref="TpiException"/> naming the face (<c>faces[1]: ...</c>);
+        /// a null list or a null element raise it too, naming the argument; a disposed face raises
+        /// <see cref="ObjectDisposedException"/>.
+        /// </summary>
+        public static Surface Join(IReadOnlyList<Surface> faces)
+        {
+            int count = faces == null ? 0 : faces.Count;
+            var raw = faces == null ? null : new IntPtr[count];
+            var added = new List<SurfaceHandle>(count);
+            try
+            {
+                for (int k = 0; k < count; k++)
+                {
+                    var face = faces[k];
+                    if (face == null) continue; // NULL: the library names faces[k]
+                    // Throws ObjectDisposedException for a disposed face, as every other call.
+                    bool ok = false;
+                    face.Handle.DangerousAddRef(ref ok);
+                    if (ok) { added.Add(face.Handle); raw[k] = face.Handle.DangerousGetHandle(); }
+                }
+                SurfaceHandle h;
+                // A null list with count 0 reaches the library as NULL, 0: "faces: ... found 0".
+                var s = UnsafeNativeMethods.tpi_surface_new_polysurface(raw, TpiLibrary.Size(count), out h);
+                return Created(s, h, "tpi_surface_new_polysurface");
+            }
+            finally
+            {
+                foreach (var handle in added) handle.DangerousRelease();
+            }
+        }
+
         /// <summary>The model's length units as Rhino's <c>UnitSystem</c> value, 0 when unitless.</summary>
         public int Units
         {

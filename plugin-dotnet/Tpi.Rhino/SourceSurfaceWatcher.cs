@@ -195,8 +195,19 @@ namespace Tpi.RhinoPlugIn
                     if (decision.Message != null) RhinoApp.WriteLine("TPI: discrete surface {0} does not follow: {1}.", obj.Id, decision.Message);
                     continue;
                 }
-                Surface surface = decision.FaceIndex >= 0 && brep != null ? brep.Faces[decision.FaceIndex] : source.Surface();
-                var spec = RhinoConvert.ToSpec(surface);
+                SurfaceSpec spec;
+                if (decision.WholeObject)
+                {
+                    // Made from a whole polysurface: its faces joined again.
+                    string error;
+                    spec = Tpi.Plugin.SurfaceSpecs.FromBrep(brep, out error);
+                    if (spec == null) { RhinoApp.WriteLine("TPI: discrete surface {0} does not follow: {1}", obj.Id, error); continue; }
+                }
+                else
+                {
+                    Surface surface = decision.FaceIndex >= 0 && brep != null ? brep.Faces[decision.FaceIndex] : source.Surface();
+                    spec = RhinoConvert.ToSpec(surface);
+                }
                 if (spec == null) { RhinoApp.WriteLine("TPI: discrete surface {0} does not follow: its source has no NURBS form.", obj.Id); continue; }
                 try
                 {

@@ -1278,6 +1278,168 @@ static void test_closed_sphere(void) {
     tpi_surface_free(s);
 }
 
+/* Facet loops of a discretisation: sizes, indices (concatenated) and vertices (x, y, z). */
+typedef struct {
+    size_t facets, vertices, total;
+    uint32_t *sizes, *indices;
+    double *xyz;
+} Loops;
+
+static Loops read_loops(const TpiDiscretisation *d) {
+    Loops m;
+    size_t needed = 0;
+    memset(&m, 0, sizeof m);
+    CHECK_OK(tpi_discretisation_facet_count(d, &m.facets));
+    CHECK_OK(tpi_discretisation_vertex_count(d, &m.vertices));
+    m.sizes = malloc(m.facets * sizeof *m.sizes);
+    CHECK_OK(tpi_discretisation_facet_sizes(d, m.sizes, m.facets, &needed));
+    for (size_t f = 0; f < m.facets; f++) m.total += m.sizes[f];
+    m.indices = malloc(m.total * sizeof *m.indices);
+    CHECK_OK(tpi_discretisation_facet_indices(d, m.indices, m.total, &needed));
+    m.xyz = malloc(3 * m.vertices * sizeof *m.xyz);
+    CHECK_OK(tpi_discretisation_vertices(d, m.xyz, 3 * m.vertices, &needed));
+    return m;
+}
+
+static void free_loops(Loops *m) {
+    free(m->sizes);
+    free(m->indices);
+    free(m->xyz);
+}
+
+/* Two halves of the saddle z = 0.4 x^2 - 0.4 y^2 (x in [-1, 0] and [0, 1], y in [-1, 1]),
+ * given right half first, joined into one polysurface: its mesh is the single face's over
+ * [-1, 1]^2 facet by facet, vertex by vertex; from the facet loops alone it is a disc
+ * (V - E + F = 1, every inner edge run once each way, the boundary edges one closed loop).
+ * Then every refused input, named. */
+static void test_polysurface(void) {
+    TpiSurface *left = NULL, *right = NULL, *single = NULL, *joined = NULL;
+    CHECK_OK(tpi_surface_new_hyperbolic_paraboloid(0.4, 0.4, -1, 0, -1, 1, &left));
+    CHECK_OK(tpi_surface_new_hyperbolic_paraboloid(0.4, 0.4, 0, 1, -1, 1, &right));
+    CHECK_OK(tpi_surface_new_hyperbolic_paraboloid(0.4, 0.4, -1, 1, -1, 1, &single));
+    const TpiSurface *faces[2] = {right, left};
+    CHECK_OK(tpi_surface_new_polysurface(faces, 2, &joined));
+    CHECK(joined != NULL);
+
+    /* Hostile input, while the faces are alive. */
+    char message[512];
+    TpiSurface *bad = (TpiSurface *)1;
+    CHECK_STATUS(tpi_surface_new_polysurface(NULL, 2, &bad), TPI_STATUS_NULL_POINTER);
+    CHECK(bad == NULL);
+    CHECK(last_error_contains("faces is NULL"));
+    bad = (TpiSurface *)1;
+    CHECK_STATUS(tpi_surface_new_polysurface(faces, 0, &bad), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK(bad == NULL);
+    CHECK(last_error_contains("faces: "));
+    const TpiSurface *with_null[2] = {left, NULL};
+    CHECK_STATUS(tpi_surface_new_polysurface(with_null, 2, &bad), TPI_STATUS_NULL_POINTER);
+    CHECK(last_error_contains("faces[1] is NULL"));
+    CHECK_STATUS(tpi_surface_new_polysurface(faces, 2, NULL), TPI_STATUS_NULL_POINTER);
+    TpiSurface *apart = NULL;
+    CHECK_OK(tpi_surface_new_hyperbolic_paraboloid(0.4, 0.4, 2, 3, -1, 1, &apart));
+    const TpiSurface *separate[2] = {left, apart};
+    bad = (TpiSurface *)1;
+    CHECK_STATUS(tpi_surface_new_polysurface(separate, 2, &bad), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK(bad == NULL);
+    tpi_last_error_message(message, sizeof message, NULL);
+    CHECK(strncmp(message, "faces[1]: ", 10) == 0 && strstr(message, "shares no whole side"));
+    const TpiSurface *nested[2] = {joined, apart};
+    CHECK_STATUS(tpi_surface_new_polysurface(nested, 2, &bad), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK(last_error_contains("faces[0]: "));
+    tpi_surface_free(apart);
+
+    /* The faces are borrowed: the polysurface outlives them. */
+    tpi_surface_free(left);
+    tpi_surface_free(right);
+
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new_from_spec("hex:12x14", &pattern));
+    TpiDiscretisation *d1 = NULL, *d2 = NULL;
+    CHECK_OK(tpi_discretise(single, pattern, NULL, &d1));
+    CHECK_OK(tpi_discretise(joined, pattern, NULL, &d2));
+    Loops a = read_loops(d1), b = read_loops(d2);
+    CHECK(a.facets > 100 && a.facets == b.facets && a.total == b.total);
+    if (a.facets == b.facets && a.total == b.total) {
+        double worst = 0;
+        size_t start = 0, sizes_differ = 0;
+        for (size_t f = 0; f < a.facets; f++) {
+            if (a.sizes[f] != b.sizes[f]) {
+                sizes_differ++;
+                break;
+            }
+            for (uint32_t k = 0; k < a.sizes[f]; k++) {
+                const double *p = &a.xyz[3 * a.indices[start + k]];
+                const double *q = &b.xyz[3 * b.indices[start + k]];
+                double dist = sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                   (p[2] - q[2]) * (p[2] - q[2]));
+                if (dist > worst) worst = dist;
+            }
+            start += a.sizes[f];
+        }
+        CHECK(sizes_differ == 0);
+        CHECK(worst <= 1e-9);
+    }
+
+    /* Topology from the joined mesh's loops alone. */
+    size_t start = 0, inner = 0, boundary = 0, doubled = 0;
+    uint32_t *next = malloc(b.vertices * sizeof *next);
+    unsigned char *used = calloc(b.vertices, 1);
+    for (size_t v = 0; v < b.vertices; v++) next[v] = UINT32_MAX;
+    for (size_t f = 0; f < b.facets; f++) {
+        for (uint32_t k = 0; k < b.sizes[f]; k++) {
+            uint32_t u = b.indices[start + k], w = b.indices[start + (k + 1) % b.sizes[f]];
+            used[u] = 1;
+            size_t reverse = 0, same = 0, other = 0;
+            for (size_t g = 0; g < b.facets; g++) {
+                for (uint32_t m = 0; m < b.sizes[g]; m++) {
+                    uint32_t c = b.indices[other + m], e = b.indices[other + (m + 1) % b.sizes[g]];
+                    if (c == w && e == u) reverse++;
+                    if (c == u && e == w) same++;
+                }
+                other += b.sizes[g];
+            }
+            if (same != 1 || reverse > 1) doubled++;
+            if (reverse == 1) {
+                inner++;
+            } else {
+                boundary++;
+                if (next[u] != UINT32_MAX) doubled++;
+                next[u] = w;
+            }
+        }
+        start += b.sizes[f];
+    }
+    size_t vertex_used = 0;
+    for (size_t v = 0; v < b.vertices; v++) vertex_used += used[v];
+    CHECK(doubled == 0 && inner % 2 == 0 && boundary >= 4);
+    CHECK(vertex_used == b.vertices);
+    size_t edges = inner / 2 + boundary;
+    CHECK((long)b.vertices - (long)edges + (long)b.facets == 1);
+    /* Follow the boundary from one of its edges: one loop runs through all of them. */
+    size_t loop_length = 0;
+    uint32_t first = UINT32_MAX;
+    for (size_t v = 0; v < b.vertices && first == UINT32_MAX; v++) {
+        if (next[v] != UINT32_MAX) first = (uint32_t)v;
+    }
+    if (first != UINT32_MAX) {
+        uint32_t v = first;
+        do {
+            v = next[v];
+            loop_length++;
+        } while (v != UINT32_MAX && v != first && loop_length <= boundary);
+    }
+    CHECK(loop_length == boundary);
+    free(next);
+    free(used);
+    free_loops(&a);
+    free_loops(&b);
+    tpi_discretisation_free(d1);
+    tpi_discretisation_free(d2);
+    tpi_pattern_free(pattern);
+    tpi_surface_free(joined);
+    tpi_surface_free(single);
+}
+
 int main(void) {
     test_version_and_status_names();
     test_last_error();
@@ -1298,5 +1460,6 @@ int main(void) {
     test_threads();
     test_units();
     test_trim();
+    test_polysurface();
     return finish("test_tpi");
 }

@@ -194,6 +194,9 @@ pub fn status_of(error: &TpiError) -> TpiStatus {
         TpiError::InvalidTrim { .. } | TpiError::TrimUnsupported { .. } => {
             TpiStatus::InvalidArgument
         }
+        // Faces that cannot be joined (trimmed, nested, apart, not a rectangle) are invalid
+        // input, the message naming the face.
+        TpiError::InvalidPolysurface { .. } => TpiStatus::InvalidArgument,
         // The core's error is non-exhaustive; a variant added later is reported as invalid
         // input until it gets its own code.
         _ => TpiStatus::InvalidArgument,

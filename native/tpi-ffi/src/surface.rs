@@ -2,7 +2,9 @@
 
 use glam::DVec3;
 use tpi_core::SurfaceModel;
-use tpi_core::{AnalyticSurface, LocalGeometry, NurbsSurface, Surface, TpiError, Trim, Units};
+use tpi_core::{
+    AnalyticSurface, LocalGeometry, NurbsSurface, Polysurface, Surface, TpiError, Trim, Units,
+};
 
 use crate::boundary::{
     check_copy_out, copy_out, ffi_boundary, finite, try_handle, try_pairs, try_slice, FfiError,
@@ -556,6 +558,51 @@ pub unsafe extern "C" fn tpi_surface_with_trim(
         let model = SurfaceModel::trimmed(surface.model.clone(), trim)?;
         out.set_boxed(TpiSurface { model });
         Ok(())
+    }
+}
+
+/// Creates a polysurface: several untrimmed four-sided faces that share whole sides, joined
+/// as one surface. The faces are laid out as rows and columns of a rectangle, found from the
+/// geometry (two faces share a side when their points along it agree to a small fraction of
+/// the size), so they may come in any order and orientation; a ring of faces closes the
+/// surface in that direction. The polysurface's domain is [0, sum of column widths] x
+/// [0, sum of row heights] (widths and heights are the faces' mid-line lengths), so a pattern
+/// in [0, 1]^2 spreads over the faces by length; its tangent planes are the faces' own, and
+/// the facets of neighbouring faces meet along common edges.
+///
+/// `faces` is an array of `count` surface handles, which are **borrowed**: the new handle
+/// holds its own copy of each, so the caller still frees every face (and may do so right
+/// away). The faces' units must agree; the polysurface carries them.
+///
+/// Errors: TPI_STATUS_NULL_POINTER (`faces` with `count > 0`, a NULL element, named as
+/// `faces[k]`, or `out`); TPI_STATUS_INVALID_HANDLE (an element that is not a live
+/// surface handle); TPI_STATUS_INVALID_ARGUMENT (`count` 0 or more than 1000; a face that is
+/// trimmed or itself a polysurface; faces whose units differ; a face that shares no whole side
+/// with the others; faces that do not fill a rectangle of rows and columns; the message names
+/// the face, e.g. `faces[1]: shares no whole side ...`, or `faces` for the layout as a whole).
+/// On an error `*out` is set to NULL.
+///
+/// # Safety
+/// `faces` is NULL or valid for reading `count` pointers, each NULL or a surface handle from
+/// this library that stays alive during the call; `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_surface_new_polysurface(
+    faces: *const *const TpiSurface,
+    count: usize,
+    out: *mut *mut TpiSurface,
+) -> TpiStatus {
+    ffi_boundary! {
+        create(out, || {
+            // SAFETY: the caller's contract for the array.
+            let handles = unsafe { try_slice(faces, count, "faces") }?;
+            let mut models = Vec::with_capacity(handles.len());
+            for (k, &face) in handles.iter().enumerate() {
+                // SAFETY: the caller's contract for each element.
+                let face = unsafe { try_handle(face, &format!("faces[{k}]")) }?;
+                models.push(face.model.clone());
+            }
+            Ok(SurfaceModel::Polysurface(Box::new(Polysurface::new(models)?)))
+        })
     }
 }
 

@@ -107,6 +107,13 @@ namespace Tpi.Native.Interop
         internal static extern Status tpi_surface_with_trim(SurfaceHandle surface, double[] outerUv, UIntPtr outerLen,
             double[] holesUv, UIntPtr holesLen, UIntPtr[] holePointCounts, UIntPtr holeCount, out SurfaceHandle @out);
 
+        // enum TpiStatus tpi_surface_new_polysurface(const struct TpiSurface *const *faces, size_t count,
+        //     struct TpiSurface **out);
+        // The faces go as raw handle values (SafeHandle[] does not marshal): the caller keeps
+        // each SafeHandle alive and AddRef'd for the call (Surface.Join).
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_surface_new_polysurface(IntPtr[] faces, UIntPtr count, out SurfaceHandle @out);
+
         // enum TpiStatus tpi_surface_units(const struct TpiSurface *surface, int32_t *out);
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         internal static extern Status tpi_surface_units(SurfaceHandle surface, out int @out);

@@ -13,7 +13,11 @@ using PatternPoint = Tpi.Native.PatternPoint;
 
 namespace Tpi.RhinoPlugIn
 {
-    /// <summary>TpiDiscreteSurface: pick a surface, choose a generator or existing points, get a live discrete surface.</summary>
+    /// <summary>
+    /// TpiDiscreteSurface: pick a surface or a polysurface (its faces joined as one surface; one
+    /// face of it with Ctrl+Shift), choose a generator or existing points, get a live discrete
+    /// surface.
+    /// </summary>
     public sealed class TpiDiscreteSurfaceCommand : Command
     {
         /// <inheritdoc/>
@@ -23,11 +27,27 @@ namespace Tpi.RhinoPlugIn
         protected override Result RunCommand(RhinoDoc doc, RunMode mode)
         {
             ObjRef surfaceRef;
-            var rc = RhinoGet.GetOneObject("Select a surface to discretise", false, ObjectType.Surface, out surfaceRef);
+            var rc = RhinoGet.GetOneObject("Select a surface or polysurface to discretise", false,
+                ObjectType.Surface | ObjectType.Brep, out surfaceRef);
             if (rc != Result.Success) return rc;
-            var surface = surfaceRef.Surface();
-            var spec = RhinoConvert.ToSpec(surface);
-            if (spec == null) { RhinoApp.WriteLine("TPI: the surface has no NURBS form."); return Result.Failure; }
+            // A face picked on a polysurface (Ctrl+Shift) is that face; a whole polysurface is
+            // all its faces joined (PolysurfaceSpec.FromFaces refuses trimmed faces with a reason).
+            bool pickedFace = surfaceRef.GeometryComponentIndex.ComponentIndexType == ComponentIndexType.BrepFace;
+            var brep = pickedFace ? null : surfaceRef.Brep();
+            bool wholePolysurface = brep != null && brep.Faces != null && brep.Faces.Count > 1;
+            var surface = wholePolysurface ? null : surfaceRef.Surface();
+            SurfaceSpec spec;
+            if (wholePolysurface)
+            {
+                string error;
+                spec = Tpi.Plugin.SurfaceSpecs.FromBrep(brep, out error);
+                if (spec == null) { RhinoApp.WriteLine("TPI: " + error); return Result.Failure; }
+            }
+            else
+            {
+                spec = RhinoConvert.ToSpec(surface);
+                if (spec == null) { RhinoApp.WriteLine("TPI: the surface has no NURBS form."); return Result.Failure; }
+            }
 
             var generator = new PatternGenerator();
             bool existingPoints;
@@ -36,6 +56,11 @@ namespace Tpi.RhinoPlugIn
 
             List<PatternPoint> points;
             string generatorSpec = string.Empty;
+            if (existingPoints && wholePolysurface)
+            {
+                RhinoApp.WriteLine("TPI: points in space cannot be placed on a polysurface yet: use a generator, or pick one face (Ctrl+Shift).");
+                return Result.Failure;
+            }
             if (existingPoints)
             {
                 ObjRef[] pointRefs;

@@ -40,6 +40,11 @@ namespace Tpi.RhinoPlugIn
             // replace below makes it a discrete surface object.
             var document = DiscreteSurfaceObject.StoredDocumentOf(objRef.Object());
             if (document == null) { RhinoApp.WriteLine("TPI: the object's discrete surface data cannot be read."); return Result.Failure; }
+            if (document.Surface is PolysurfaceSpec)
+            {
+                RhinoApp.WriteLine("TPI: the pattern of a discrete surface made from a polysurface cannot be edited by hand yet (its points are placed on one face's surface); run TpiDiscreteSurface again with another generator.");
+                return Result.Failure;
+            }
             var spec = document.Surface as NurbsSurfaceSpec;
             if (spec == null) { RhinoApp.WriteLine("TPI: only NURBS-based discrete surfaces can be edited."); return Result.Failure; }
             var surface = RhinoConvert.ToNurbsSurface(spec);

@@ -70,6 +70,7 @@ namespace Grasshopper.Kernel
         {
             public IGH_Param this[int index] { get { return null; } }
             public int AddSurfaceParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
+            public int AddBrepParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
             public int AddPointParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
             public int AddBooleanParameter(string name, string nickname, string description, GH_ParamAccess access, bool @default) { return 0; }
             public int AddTextParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
