@@ -49,18 +49,7 @@ fn zone(a: f64, b: f64, c: f64, from: f64, to: f64) -> NurbsSurface {
 
 /// The meridian (r, z, w) revolved about z by a rational quadratic full circle, scaled.
 fn revolve(a: f64, b: f64, c: f64, meridian: &[(f64, f64, f64)], knots_v: &[f64]) -> NurbsSurface {
-    let w = std::f64::consts::FRAC_1_SQRT_2;
-    let circle = [
-        (1.0, 0.0, 1.0),
-        (1.0, 1.0, w),
-        (0.0, 1.0, 1.0),
-        (-1.0, 1.0, w),
-        (-1.0, 0.0, 1.0),
-        (-1.0, -1.0, w),
-        (0.0, -1.0, 1.0),
-        (1.0, -1.0, w),
-        (1.0, 0.0, 1.0),
-    ];
+    let circle = rational_circle();
     let mut points = Vec::new();
     let mut weights = Vec::new();
     for &(x, y, wu) in &circle {

@@ -226,16 +226,7 @@ fn uneven_faces_spread_a_pattern_by_length_and_stay_valid() {
 /// (from angle `start`, in quarter turns), a half meridian from pole to pole in v.
 fn half_ellipsoid(axes: [f64; 3], start: usize) -> SurfaceModel {
     let w = std::f64::consts::FRAC_1_SQRT_2;
-    let circle = [
-        (1.0, 0.0, 1.0),
-        (1.0, 1.0, w),
-        (0.0, 1.0, 1.0),
-        (-1.0, 1.0, w),
-        (-1.0, 0.0, 1.0),
-        (-1.0, -1.0, w),
-        (0.0, -1.0, 1.0),
-        (1.0, -1.0, w),
-    ];
+    let circle = rational_circle();
     let meridian = [
         (0.0, -1.0, 1.0),
         (1.0, -1.0, w),

@@ -909,3 +909,20 @@ pub fn dome_c() -> NurbsSurface {
         Some(&w),
     )
 }
+
+/// The rational quadratic full circle of radius 1 about z, as (x, y, weight) control points:
+/// four 90-degree arcs, the first point repeated at the end (knots 0 0 1 1 2 2 3 3 4 4).
+pub fn rational_circle() -> [(f64, f64, f64); 9] {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    [
+        (1.0, 0.0, 1.0),
+        (1.0, 1.0, w),
+        (0.0, 1.0, 1.0),
+        (-1.0, 1.0, w),
+        (-1.0, 0.0, 1.0),
+        (-1.0, -1.0, w),
+        (0.0, -1.0, 1.0),
+        (1.0, -1.0, w),
+        (1.0, 0.0, 1.0),
+    ]
+}
