@@ -1,6 +1,9 @@
 //! Flat parts on sheets: a bottom-left fill of the parts' convex hulls (see [`nest`]).
 
+use std::collections::HashMap;
+
 use glam::DVec2;
+use rayon::prelude::*;
 use serde::Serialize;
 
 use super::{polygon_area, FabricationDiagnostic, FabricationError, Panel, Sheet};
@@ -108,6 +111,58 @@ struct Placed {
 struct OpenSheet {
     placed: Vec<Placed>,
     used: f64,
+    /// Placed parts by grid cell (cells as large as the largest part plus the gap, so that
+    /// a part's bounds, widened by the gap, meet at most 2 x 2 cells): the feasibility test
+    /// reads only the parts in the cells a candidate's bounds meet, which are all the parts
+    /// its bounds can come within the gap of.
+    cells: HashMap<(i64, i64), Vec<usize>>,
+}
+
+impl OpenSheet {
+    fn new() -> OpenSheet {
+        OpenSheet {
+            placed: Vec::new(),
+            used: 0.0,
+            cells: HashMap::new(),
+        }
+    }
+
+    fn cell_range(lo: DVec2, hi: DVec2, cell: f64) -> ((i64, i64), (i64, i64)) {
+        let index = |x: f64| (x / cell).floor() as i64;
+        ((index(lo.x), index(lo.y)), (index(hi.x), index(hi.y)))
+    }
+
+    fn insert(&mut self, part: Placed, cell: f64) {
+        let ((i0, j0), (i1, j1)) = Self::cell_range(part.lo, part.hi, cell);
+        let index = self.placed.len();
+        for i in i0..=i1 {
+            for j in j0..=j1 {
+                self.cells.entry((i, j)).or_default().push(index);
+            }
+        }
+        self.placed.push(part);
+    }
+
+    /// Whether every placed part whose bounds could come within `gap` of [lo, hi] passes
+    /// `clear` (each may be asked more than once).
+    fn all_near(
+        &self,
+        lo: DVec2,
+        hi: DVec2,
+        gap: f64,
+        cell: f64,
+        clear: impl Fn(&Placed) -> bool,
+    ) -> bool {
+        let ((i0, j0), (i1, j1)) =
+            Self::cell_range(lo - DVec2::splat(gap), hi + DVec2::splat(gap), cell);
+        (i0..=i1).all(|i| {
+            (j0..=j1).all(|j| {
+                self.cells
+                    .get(&(i, j))
+                    .is_none_or(|parts| parts.iter().all(|&k| clear(&self.placed[k])))
+            })
+        })
+    }
 }
 
 /// How many of the most recently opened sheets a part may still go to.
@@ -170,6 +225,21 @@ pub(super) fn nest(
         parts.push((q, hull, angle, area));
     }
     parts.sort_by(|a, b| b.3.total_cmp(&a.3).then(a.0.cmp(&b.0)));
+    // A part's bounds in any turn are at most its hull's diameter, at most the diagonal of its
+    // unturned bounds.
+    let cell = parts
+        .iter()
+        .map(|(_, hull, _, _)| {
+            let (lo, hi) = bounds(hull);
+            (hi - lo).length()
+        })
+        .fold(0.0, f64::max)
+        + gap;
+    let cell = if cell.is_finite() && cell > 0.0 {
+        cell
+    } else {
+        1.0
+    };
     let mut sheets: Vec<OpenSheet> = Vec::new();
     for (q, hull, base, area) in parts {
         let turns: Vec<(f64, Vec<DVec2>, DVec2, DVec2)> = (0..4)
@@ -186,69 +256,81 @@ pub(super) fn nest(
             if open.used + area > w_sheet * h_sheet {
                 continue;
             }
-            for (angle, r, lo, hi) in &turns {
-                let size = *hi - *lo;
-                let feasible = |at: DVec2| -> bool {
-                    if at.x < gap - 1e-12
-                        || at.y < gap - 1e-12
-                        || at.x + size.x > w_sheet - gap
-                        || at.y + size.y > h_sheet - gap
-                    {
-                        return false;
-                    }
-                    let shift = at - *lo;
-                    let (plo, phi) = (at, at + size);
-                    open.placed.iter().all(|o| {
-                        o.lo.x >= phi.x + gap
-                            || o.hi.x + gap <= plo.x
-                            || o.lo.y >= phi.y + gap
-                            || o.hi.y + gap <= plo.y
-                            || separated(
-                                &r.iter().map(|&x| x + shift).collect::<Vec<_>>(),
-                                &o.hull,
-                                gap,
-                            )
-                    })
-                };
-                let mut candidates = vec![DVec2::splat(gap)];
-                for o in &open.placed {
-                    candidates.push(DVec2::new(o.hi.x + gap, o.lo.y));
-                    candidates.push(DVec2::new(o.lo.x, o.hi.y + gap));
-                    candidates.push(DVec2::new(o.hi.x + gap, gap));
-                    candidates.push(DVec2::new(gap, o.hi.y + gap));
-                }
-                // The two lowest feasible candidates (then leftmost) are dropped.
-                let mut feasible_corners: Vec<DVec2> =
-                    candidates.into_iter().filter(|&c| feasible(c)).collect();
-                feasible_corners.sort_by(|a, b| a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x)));
-                feasible_corners.truncate(2);
-                for c in feasible_corners {
-                    // Drop down, then left, then down again (bisection to 1e-4 of the gap).
-                    let mut at = c;
-                    for axis in [1usize, 0, 1] {
-                        let mut lo_v = gap;
-                        let mut hi_v = at[axis];
-                        let mut probe = at;
-                        probe[axis] = lo_v;
-                        if feasible(probe) {
-                            at = probe;
-                            continue;
+            // The four turns are tried in parallel; each keeps its first best place, and the
+            // turns are then compared in order, as one loop over them would.
+            let per_turn: Vec<Option<(f64, DVec2, f64)>> = turns
+                .par_iter()
+                .map(|(angle, r, lo, hi)| {
+                    let mut best: Option<(f64, DVec2, f64)> = None;
+                    let size = *hi - *lo;
+                    let feasible = |at: DVec2| -> bool {
+                        if at.x < gap - 1e-12
+                            || at.y < gap - 1e-12
+                            || at.x + size.x > w_sheet - gap
+                            || at.y + size.y > h_sheet - gap
+                        {
+                            return false;
                         }
-                        while hi_v - lo_v > 1e-4 * gap.max(1e-9) {
-                            let mid = (lo_v + hi_v) / 2.0;
-                            probe[axis] = mid;
+                        let shift = at - *lo;
+                        let (plo, phi) = (at, at + size);
+                        open.all_near(plo, phi, gap, cell, |o| {
+                            o.lo.x >= phi.x + gap
+                                || o.hi.x + gap <= plo.x
+                                || o.lo.y >= phi.y + gap
+                                || o.hi.y + gap <= plo.y
+                                || separated(
+                                    &r.iter().map(|&x| x + shift).collect::<Vec<_>>(),
+                                    &o.hull,
+                                    gap,
+                                )
+                        })
+                    };
+                    let mut candidates = vec![DVec2::splat(gap)];
+                    for o in &open.placed {
+                        candidates.push(DVec2::new(o.hi.x + gap, o.lo.y));
+                        candidates.push(DVec2::new(o.lo.x, o.hi.y + gap));
+                        candidates.push(DVec2::new(o.hi.x + gap, gap));
+                        candidates.push(DVec2::new(gap, o.hi.y + gap));
+                    }
+                    // The two lowest feasible candidates (then leftmost) are dropped.
+                    let mut feasible_corners: Vec<DVec2> =
+                        candidates.into_iter().filter(|&c| feasible(c)).collect();
+                    feasible_corners.sort_by(|a, b| a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x)));
+                    feasible_corners.truncate(2);
+                    for c in feasible_corners {
+                        // Drop down, then left, then down again (bisection to 1e-4 of the gap).
+                        let mut at = c;
+                        for axis in [1usize, 0, 1] {
+                            let mut lo_v = gap;
+                            let mut hi_v = at[axis];
+                            let mut probe = at;
+                            probe[axis] = lo_v;
                             if feasible(probe) {
-                                hi_v = mid;
-                            } else {
-                                lo_v = mid;
+                                at = probe;
+                                continue;
                             }
+                            while hi_v - lo_v > 1e-4 * gap.max(1e-9) {
+                                let mid = (lo_v + hi_v) / 2.0;
+                                probe[axis] = mid;
+                                if feasible(probe) {
+                                    hi_v = mid;
+                                } else {
+                                    lo_v = mid;
+                                }
+                            }
+                            at[axis] = hi_v;
                         }
-                        at[axis] = hi_v;
+                        let score = at.y * 4.0 * w_sheet + at.x + (at.y + size.y) * w_sheet;
+                        if best.map_or(true, |(_, _, sc)| score < sc) {
+                            best = Some((*angle, at - *lo, score));
+                        }
                     }
-                    let score = at.y * 4.0 * w_sheet + at.x + (at.y + size.y) * w_sheet;
-                    if chosen.map_or(true, |(cs, _, _, sc)| s < cs || (s == cs && score < sc)) {
-                        chosen = Some((s, *angle, at - *lo, score));
-                    }
+                    best
+                })
+                .collect();
+            for (angle, shift, score) in per_turn.into_iter().flatten() {
+                if chosen.map_or(true, |(_, _, _, sc)| score < sc) {
+                    chosen = Some((s, angle, shift, score));
                 }
             }
             if chosen.is_some() {
@@ -258,10 +340,7 @@ pub(super) fn nest(
         let (s, angle, shift) = match chosen {
             Some((s, angle, shift, _)) => (s, angle, shift),
             None => {
-                sheets.push(OpenSheet {
-                    placed: Vec::new(),
-                    used: 0.0,
-                });
+                sheets.push(OpenSheet::new());
                 let (angle, _, lo, hi) = &turns[0];
                 let (angle, lo) =
                     if hi.x - lo.x + 2.0 * gap <= w_sheet && hi.y - lo.y + 2.0 * gap <= h_sheet {
@@ -274,11 +353,14 @@ pub(super) fn nest(
         };
         let placed: Vec<DVec2> = hull.iter().map(|&x| rotate(x, angle) + shift).collect();
         let (lo, hi) = bounds(&placed);
-        sheets[s].placed.push(Placed {
-            hull: placed,
-            lo,
-            hi,
-        });
+        sheets[s].insert(
+            Placed {
+                hull: placed,
+                lo,
+                hi,
+            },
+            cell,
+        );
         sheets[s].used += polygon_area(&panels[q].cut_outline).abs();
         panels[q].placement = Placement {
             sheet: s,
