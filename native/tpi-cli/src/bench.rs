@@ -9,7 +9,10 @@ use std::time::Instant;
 use serde::Serialize;
 use tpi_core::benchmark::{floor, nurbs_dome, paraboloid, random_pattern, saddle, FloorTimings};
 use tpi_core::SplitMix64;
-use tpi_core::{discretise, DiscretiseOptions, LiveSurface, Surface, Timings};
+use tpi_core::{
+    discretise, fabricate, DiscretiseOptions, FabricateOptions, LiveSurface, SlotPlan, Surface,
+    Timings, ToolpathOptions,
+};
 
 use crate::error::CliError;
 use crate::output::{check_output_path, write_all};
@@ -35,6 +38,7 @@ EXAMPLES:
     tpi bench --sizes 1000 --threads 1 --repeat 101
     tpi bench --sizes 1000,1000000 --repeat 1 --edits 1001 --surfaces nurbs
     tpi bench --sizes 1000,10000,100000,1000000 --json --plot docs/performance-scaling.svg
+    tpi bench --sizes 10000 --surfaces nurbs --fabricate --repeat 1
 ";
 
 /// The arguments of `tpi bench`, as given (checked in [`parse`]).
@@ -64,6 +68,11 @@ pub(crate) struct BenchArgs {
     /// one text write of the result) in the same process and print the pipeline's ratio to it
     #[arg(long)]
     floor: bool,
+    /// Also time fabrication (tpi_core::fabricate: panel solids with 2 cleat slots per edge,
+    /// flat parts, nesting on 2.5 x 1.25 sheets, and every output: JSON, OBJ, SVG, DXF,
+    /// G-code, bevels) of each size's mesh
+    #[arg(long)]
+    fabricate: bool,
     /// Print JSON instead of the table
     #[arg(long)]
     json: bool,
@@ -85,6 +94,7 @@ struct Config {
     plot: Option<PathBuf>,
     edits: usize,
     floor: bool,
+    fabricate: bool,
 }
 
 /// One surface and size: the medians.
@@ -112,6 +122,23 @@ pub(crate) struct Row {
     /// The pipeline's median total over the floor's median compute, with --floor.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub floor_ratio: Option<f64>,
+    /// Fabrication of the mesh, with --fabricate.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fabrication: Option<FabricationRow>,
+}
+
+/// Fabrication of one surface and size (see `--fabricate`).
+#[derive(Clone, Debug, Serialize)]
+pub(crate) struct FabricationRow {
+    /// Panel thickness used: 1e-3 of the mesh's diagonal, or half the largest the mesh
+    /// allows where that is less.
+    pub thickness: f64,
+    /// Sheets the parts were nested on.
+    pub sheets: usize,
+    /// Median time of the fabrication (solids, flat parts, nesting), milliseconds.
+    pub median_fabricate_ms: f64,
+    /// Median time of writing every output to memory, milliseconds.
+    pub median_outputs_ms: f64,
 }
 
 /// Live editing on one surface and size.
@@ -187,6 +214,7 @@ fn parse(args: BenchArgs) -> Result<Config, CliError> {
         plot: None,
         edits: 0,
         floor: args.floor,
+        fabricate: args.fabricate,
     };
     if let Some(v) = &args.sizes {
         config.sizes = v
@@ -306,6 +334,17 @@ fn measure(config: &Config) -> Result<Report, CliError> {
             } else {
                 None
             };
+            let fabrication = if config.fabricate {
+                Some(fabrication_timings(
+                    surface.as_ref(),
+                    &pattern,
+                    &options,
+                    name,
+                    config.repeat,
+                )?)
+            } else {
+                None
+            };
             results.push(Row {
                 surface: name,
                 points: n,
@@ -322,6 +361,7 @@ fn measure(config: &Config) -> Result<Report, CliError> {
                     .filter(|f| f.compute > 0.0)
                     .map(|f| median_ms.total / f.compute),
                 floor_ms,
+                fabrication,
             });
         }
     }
@@ -348,6 +388,61 @@ fn run_once(
     let facets = result.facet_count();
     drop(result);
     Ok((timings, facets))
+}
+
+/// Times fabrication of the mesh of `pattern` on `surface` (see `--fabricate`), `repeat`
+/// times, medians.
+fn fabrication_timings(
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    options: &DiscretiseOptions,
+    name: &str,
+    repeat: usize,
+) -> Result<FabricationRow, CliError> {
+    let mesh = discretise(surface, pattern, options).map_err(|e| CliError::core(name, &e))?;
+    let fail = |e: &tpi_core::FabricationError| CliError::input(name, e.to_string());
+    let (lo, hi) = mesh.vertices.iter().fold(
+        (glam::DVec3::INFINITY, glam::DVec3::NEG_INFINITY),
+        |(lo, hi), v| (lo.min(*v), hi.max(*v)),
+    );
+    let mut fab_options = FabricateOptions {
+        thickness: 1e-3 * (hi - lo).length(),
+        slots: SlotPlan::Even(2),
+        gap: 0.01,
+        ..FabricateOptions::default()
+    };
+    if let Err(tpi_core::FabricationError::ThicknessTooLarge { max, .. }) =
+        fabricate(&mesh, &fab_options)
+    {
+        fab_options.thickness = 0.5 * max;
+    }
+    let tool = ToolpathOptions {
+        tool_diameter: 0.006,
+        ..ToolpathOptions::default()
+    };
+    let (mut build, mut write) = (Vec::new(), Vec::new());
+    let mut sheets = 0;
+    for _ in 0..repeat.max(1) {
+        let start = Instant::now();
+        let fab = fabricate(&mesh, &fab_options).map_err(|e| fail(&e))?;
+        build.push(start.elapsed().as_secs_f64() * 1e3);
+        let start = Instant::now();
+        let bytes = fab.to_json().len()
+            + fab.to_obj().len()
+            + fab.sheets_svg().len()
+            + fab.sheets_dxf(tpi_core::Units::Metres).len()
+            + fab.bevels_csv().len()
+            + fab.gcode(&tool).map_err(|e| fail(&e))?.len();
+        write.push(start.elapsed().as_secs_f64() * 1e3);
+        std::hint::black_box(bytes);
+        sheets = fab.sheets.len();
+    }
+    Ok(FabricationRow {
+        thickness: fab_options.thickness,
+        sheets,
+        median_fabricate_ms: median(build),
+        median_outputs_ms: median(write),
+    })
 }
 
 /// Times `count` live drags (see the help) on a live surface of `pattern`.
@@ -533,6 +628,32 @@ pub(crate) fn table(report: &Report) -> String {
                     r.median_ms.total,
                     f.write,
                     ratio
+                );
+            }
+        }
+    }
+    if report.results.iter().any(|r| r.fabrication.is_some()) {
+        let _ = writeln!(
+            s,
+            "fabrication (solids, 2 slots per edge, flat parts, nesting; then every output written to memory):"
+        );
+        let _ = writeln!(
+            s,
+            "{:<10} {:>8} {:>10} {:>7} {:>10} {:>10} {:>10}",
+            "surface", "panels", "thickness", "sheets", "fabricate", "outputs", "total"
+        );
+        for r in &report.results {
+            if let Some(f) = &r.fabrication {
+                let _ = writeln!(
+                    s,
+                    "{:<10} {:>8} {:>10.3e} {:>7} {:>10.1} {:>10.1} {:>10.1}",
+                    r.surface,
+                    r.facets,
+                    f.thickness,
+                    f.sheets,
+                    f.median_fabricate_ms,
+                    f.median_outputs_ms,
+                    r.median_ms.total + f.median_fabricate_ms + f.median_outputs_ms
                 );
             }
         }
