@@ -159,7 +159,7 @@ impl OpenSheet {
             (j0..=j1).all(|j| {
                 self.cells
                     .get(&(i, j))
-                    .is_none_or(|parts| parts.iter().all(|&k| clear(&self.placed[k])))
+                    .map_or(true, |parts| parts.iter().all(|&k| clear(&self.placed[k])))
             })
         })
     }
