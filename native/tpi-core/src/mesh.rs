@@ -332,47 +332,86 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
     mesh
 }
 
-/// Step 6: a boundary crossing or corner vertex that only one facet uses and that lies within
-/// the weld distance of its neighbour in that facet's loop is dropped (a facet edge reaching
-/// the boundary, or a corner's normal line meeting the facet, exactly at a vertex where three
-/// planes meet): kept, it would be an edge of zero length that turns the facet non-simple.
-/// Vertices are renumbered in order; nothing changes when none is found.
+/// Step 6: a boundary crossing or corner vertex v that lies within the weld distance of a
+/// neighbour w in its loop, and has w beside it in the loop of every facet that holds it, is
+/// merged into w (a facet edge reaching the boundary, or a corner's normal line meeting a
+/// facet, exactly at a vertex where three planes meet): kept, the zero-length edge v-w would
+/// turn the facets non-simple. A merge that would leave a facet fewer than three vertices is
+/// not made. Vertices are renumbered in order; nothing changes when no such pair is found.
 fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
     let is_crossing = |mesh: &FacetMesh, v: u32| match mesh.vertex_kinds[v as usize] {
         VertexKind::Corner => true,
         VertexKind::Boundary => mesh.vertex_source[v as usize] == u32::MAX,
         VertexKind::Interior => false,
     };
-    let mut uses = vec![0u32; mesh.vertices.len()];
-    for &v in &mesh.loops {
-        uses[v as usize] += 1;
-    }
-    let mut drop = vec![false; mesh.vertices.len()];
-    let mut any = false;
-    for f in 0..mesh.offsets.len() - 1 {
+    let facets = mesh.offsets.len() - 1;
+    let loop_of = |mesh: &FacetMesh, f: usize| {
+        mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize].to_vec()
+    };
+    // Candidate pairs (v, w), in loop order (read in place: this runs on every mesh).
+    let mut candidates: Vec<(u32, u32)> = Vec::new();
+    for f in 0..facets {
         let lp = &mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize];
         let n = lp.len();
-        if n <= 3 {
-            continue;
-        }
         for k in 0..n {
             let v = lp[k];
-            if !is_crossing(mesh, v) || uses[v as usize] != 1 {
+            if !is_crossing(mesh, v) {
                 continue;
             }
-            let near = |w: u32| {
-                !drop[w as usize]
-                    && mesh.vertices[v as usize].distance(mesh.vertices[w as usize]) <= weld
-            };
-            if near(lp[(k + 1) % n]) || near(lp[(k + n - 1) % n]) {
-                drop[v as usize] = true;
-                any = true;
+            for w in [lp[(k + 1) % n], lp[(k + n - 1) % n]] {
+                if w != v && mesh.vertices[v as usize].distance(mesh.vertices[w as usize]) <= weld {
+                    candidates.push((v, w));
+                }
             }
+        }
+    }
+    if candidates.is_empty() {
+        return;
+    }
+    let mut holders: HashMap<u32, Vec<usize>> = HashMap::new();
+    for &(v, _) in &candidates {
+        holders.entry(v).or_default();
+    }
+    for f in 0..facets {
+        for v in loop_of(mesh, f) {
+            if let Some(list) = holders.get_mut(&v) {
+                list.push(f);
+            }
+        }
+    }
+    let mut merged: Vec<u32> = (0..mesh.vertices.len() as u32).collect();
+    let mut any = false;
+    for (v, w) in candidates {
+        if merged[v as usize] != v || merged[w as usize] != w {
+            continue;
+        }
+        let facets_of_v = &holders[&v];
+        let beside = |lp: &[u32]| {
+            let n = lp.len();
+            (0..n).any(|k| lp[k] == v && (lp[(k + 1) % n] == w || lp[(k + n - 1) % n] == w))
+        };
+        // Every facet holding v holds w beside it, and keeps three vertices without v.
+        let ok = facets_of_v.iter().all(|&f| {
+            let lp = loop_of(mesh, f);
+            let distinct = lp
+                .iter()
+                .map(|&x| merged[x as usize])
+                .filter(|&x| x != v)
+                .collect::<std::collections::BTreeSet<u32>>()
+                .len();
+            beside(&lp) && distinct >= 3
+        });
+        if ok {
+            merged[v as usize] = w;
+            any = true;
         }
     }
     if !any {
         return;
     }
+    let drop: Vec<bool> = (0..mesh.vertices.len())
+        .map(|v| merged[v] != v as u32)
+        .collect();
     let mut renumber = vec![u32::MAX; mesh.vertices.len()];
     let mut next = 0u32;
     for (v, slot) in renumber.iter_mut().enumerate() {
@@ -381,7 +420,6 @@ fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
             next += 1;
         }
     }
-    let keep = |v: usize| !drop[v];
     retain_indexed(&mut mesh.vertices, &drop);
     retain_indexed(&mut mesh.vertex_kinds, &drop);
     retain_indexed(&mut mesh.feet, &drop);
@@ -389,11 +427,16 @@ fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
     let mut loops = Vec::with_capacity(mesh.loops.len());
     let mut offsets = Vec::with_capacity(mesh.offsets.len());
     offsets.push(0);
-    for f in 0..mesh.offsets.len() - 1 {
+    for f in 0..facets {
+        let start = loops.len();
         for &v in &mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize] {
-            if keep(v as usize) {
-                loops.push(renumber[v as usize]);
+            let id = renumber[merged[v as usize] as usize];
+            if loops.len() == start || loops[loops.len() - 1] != id {
+                loops.push(id);
             }
+        }
+        while loops.len() > start + 1 && loops[start] == loops[loops.len() - 1] {
+            loops.pop();
         }
         offsets.push(loops.len() as u32);
     }

@@ -88,3 +88,42 @@ fn fuzz_five_points_on_an_anisotropic_paraboloid_name_their_broken_topology() {
         q.boundary_loops
     );
 }
+
+/// Found by `fuzz/fuzz_targets/discretise.rs` (2026-11-25): six points on the paraboloid
+/// z = -(65 x^2 + y^2) / 16 (curvature ratio 65). A boundary crossing shared by two facets
+/// coincided exactly with their three-plane vertex: a zero-length edge in both loops, which
+/// `sanity_check` called crossing while the report counted 0 invalid. The mesh stage now
+/// merges such a crossing into the vertex beside it in every loop that holds it.
+#[test]
+fn fuzz_six_points_on_a_very_anisotropic_paraboloid_have_no_zero_length_edge() {
+    let surface: SurfaceModel = AnalyticSurface::new(
+        AnalyticKind::EllipticParaboloid {
+            a: -65.0 / 16.0,
+            b: -1.0 / 16.0,
+        },
+        [-1.0, 1.0],
+        [-1.0, 1.0],
+    )
+    .unwrap()
+    .into();
+    let f = |k: f64| k / 65535.0;
+    let uv = [
+        [f(16.0), f(447.0)],
+        [f(65280.0), f(4.0)],
+        [f(65347.0), f(65471.0)],
+        [f(63999.0), f(4134.0)],
+        [f(2560.0), f(57089.0)],
+        [0.0, 0.0],
+    ];
+    let result = discretise(&surface, &uv, &DiscretiseOptions::default()).unwrap();
+    assert_eq!(result.quality.as_ref().unwrap().invalid_facets, 0);
+    result.sanity_check().unwrap();
+    for i in 0..result.facet_count() {
+        let lp = result.facet(i);
+        for k in 0..lp.len() {
+            let (a, b) = (lp[k], lp[(k + 1) % lp.len()]);
+            let length = result.vertices[a as usize].distance(result.vertices[b as usize]);
+            assert!(length > 1e-12, "facet {i}: edge {a}-{b} of length {length}");
+        }
+    }
+}
