@@ -43,9 +43,9 @@ namespace Tpi.Logic
         public FabricationSettings Clone() { return (FabricationSettings)MemberwiseClone(); }
 
         /// <summary>
-        /// Metres per model unit for Rhino's <c>UnitSystem</c> values (0 none, 1 microns,
-        /// 2 mm, 3 cm, 4 m, 5 km, 8 inches, 9 feet, 10 miles, 12 dm, 15 yards); NaN for others
-        /// and for "none" (the model then has no scale).
+        /// Metres per model unit for Rhino's <c>UnitSystem</c> values (1 microns, 2 mm, 3 cm,
+        /// 4 m, 5 km, 6 microinches, 7 mils, 8 inches, 9 feet, 10 miles, 12 angstroms,
+        /// 13 nm, 14 dm, 15 dam, 16 hm, 19 yards); NaN for none (0), custom units and others.
         /// </summary>
         public static double MetresPerUnit(int rhinoUnitSystem)
         {
@@ -56,12 +56,32 @@ namespace Tpi.Logic
                 case 3: return 1e-2;
                 case 4: return 1.0;
                 case 5: return 1e3;
+                case 6: return 2.54e-8;
+                case 7: return 2.54e-5;
                 case 8: return 0.0254;
                 case 9: return 0.3048;
                 case 10: return 1609.344;
-                case 12: return 0.1;
-                case 15: return 0.9144;
+                case 12: return 1e-10;
+                case 13: return 1e-9;
+                case 14: return 0.1;
+                case 15: return 10.0;
+                case 16: return 100.0;
+                case 19: return 0.9144;
                 default: return double.NaN;
+            }
+        }
+
+        /// <summary>
+        /// True for the unit systems the library writes to its files (the <c>TPI_UNITS_*</c> of
+        /// include/tpi.h: mm, cm, m, km, microns, inches, feet, miles, yards); others are
+        /// fabricated unitless.
+        /// </summary>
+        public static bool LibraryKnowsUnits(int rhinoUnitSystem)
+        {
+            switch (rhinoUnitSystem)
+            {
+                case 1: case 2: case 3: case 4: case 5: case 8: case 9: case 10: case 19: return true;
+                default: return false;
             }
         }
 
@@ -545,7 +565,7 @@ namespace Tpi.Logic
             try
             {
                 using (var plain = source.Surface.CreateNative())
-                using (var surface = rhinoUnitSystem > 0 ? plain.WithUnits(rhinoUnitSystem) : null)
+                using (var surface = FabricationSettings.LibraryKnowsUnits(rhinoUnitSystem) ? plain.WithUnits(rhinoUnitSystem) : null)
                 using (var pattern = Pattern.FromPoints(source.Points))
                 using (var mesh = Discretisation.Create(surface ?? plain, pattern, source.Options))
                 using (var fab = Fabrication.Create(mesh, settings.Thickness, settings.Side, (uint)settings.SlotsPerEdge,

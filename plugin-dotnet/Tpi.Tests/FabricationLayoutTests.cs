@@ -208,6 +208,12 @@ namespace Tpi.Tests
             Assert.AreEqual(1250, mm.SheetHeight, 1e-9);
             var inches = FabricationSettings.Defaults(null, 8);
             Assert.AreEqual(0.04 / 0.0254, inches.Thickness, 1e-12);
+            Assert.AreEqual(0.02 / 0.9144, FabricationSettings.Defaults(null, 19).Gap, 1e-12, "19 is Rhino's yards");
+            Assert.AreEqual(0.4, FabricationSettings.Defaults(null, 14).Thickness, 1e-12, "14 is Rhino's decimetres");
+            Assert.AreEqual(0.04, FabricationSettings.Defaults(null, 0).Thickness, 1e-15, "unitless: as metres");
+            // Units the library does not write (decimetres) still fabricate, unitless.
+            var dm = FabricationRun.Run(mesh, Settings(), 14);
+            Assert.IsTrue(dm.Success, string.Join("; ", dm.Errors));
 
             // This dome is 2 units wide: in millimetres 40 mm panels would be far too thick and
             // the sheets far too small for its parts; the defaults scale to the mesh and work.
