@@ -615,6 +615,31 @@ namespace Tpi.Logic
             return result;
         }
 
+        /// <summary>
+        /// "TPI Fabricate": the inputs given (null: not connected) over the defaults for the mesh
+        /// and the model's units; <paramref name="side"/> 0 inside, 1 outside. Problems are
+        /// reported in the result, never thrown.
+        /// </summary>
+        public static FabricationResult ForComponent(MeshData mesh, int rhinoUnitSystem, double? thickness, int side, int slotsPerEdge,
+            double? sheetWidth, double? sheetHeight, double? gap, double? toolDiameter, out FabricationSettings used)
+        {
+            used = FabricationSettings.Defaults(mesh, rhinoUnitSystem);
+            if (thickness.HasValue) used.Thickness = thickness.Value;
+            used.SlotsPerEdge = slotsPerEdge;
+            if (sheetWidth.HasValue) used.SheetWidth = sheetWidth.Value;
+            if (sheetHeight.HasValue) used.SheetHeight = sheetHeight.Value;
+            if (gap.HasValue) used.Gap = gap.Value;
+            if (toolDiameter.HasValue) used.ToolDiameter = toolDiameter.Value;
+            if (side == 0 || side == 1) used.Side = side == 0 ? PanelSide.Inside : PanelSide.Outside;
+            else
+            {
+                var rejected = new FabricationResult();
+                rejected.Errors.Add("the side must be 0 (inside) or 1 (outside), got " + side);
+                return rejected;
+            }
+            return Run(mesh, used, rhinoUnitSystem);
+        }
+
         /// <summary>Writes the six files into <paramref name="folder"/> (created if missing); returns their paths.</summary>
         public static List<string> WriteFiles(FabricationResult result, string folder)
         {

@@ -288,6 +288,32 @@ namespace Tpi.Tests
         }
 
         [Test]
+        public void ComponentInputsOverrideTheDefaults()
+        {
+            var mesh = DomeMesh();
+            FabricationSettings used;
+            var byDefault = FabricationRun.ForComponent(mesh, 2, null, 0, 0, null, null, null, null, out used);
+            Assert.IsTrue(byDefault.Success, string.Join("; ", byDefault.Errors));
+            Assert.AreEqual(FabricationSettings.Defaults(mesh, 2).Thickness, used.Thickness);
+            Assert.AreEqual(used.Thickness, byDefault.Layout.Thickness, 1e-15, "the thickness used is the one in panels.json");
+
+            var given = FabricationRun.ForComponent(mesh, 4, 0.02, 1, 1, 2.0, 1.2, 0.01, 0.004, out used);
+            Assert.IsTrue(given.Success, string.Join("; ", given.Errors));
+            Assert.AreEqual(0.02, given.Layout.Thickness, 1e-15);
+            Assert.AreEqual(PanelSide.Outside, used.Side);
+            Assert.IsTrue(given.Layout.Sheets.All(q => q.Width == 2.0 && q.Height == 1.2));
+            Assert.Greater(given.Layout.CleatSolids.Count, 0);
+            // Outside on a dome: the panels widen towards the bottom (negative bevels), inside they narrow.
+            Assert.Less(given.Layout.Panels.SelectMany(p => p.BevelsDeg).Min(), 0);
+            Assert.GreaterOrEqual(byDefault.Layout.Panels.SelectMany(p => p.BevelsDeg).Min(), -1e-9);
+
+            var badSide = FabricationRun.ForComponent(mesh, 4, null, 2, 0, null, null, null, null, out used);
+            StringAssert.Contains("0 (inside) or 1 (outside)", badSide.Errors.Single());
+            var badSlots = FabricationRun.ForComponent(mesh, 4, null, 0, -1, null, null, null, null, out used);
+            StringAssert.Contains("slots per edge", badSlots.Errors.Single());
+        }
+
+        [Test]
         public void FilesAreWrittenWithTheirContents()
         {
             var result = FabricationRun.Run(DomeMesh(4), Settings(1), 4);
