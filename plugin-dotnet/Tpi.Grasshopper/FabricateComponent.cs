@@ -46,7 +46,7 @@ namespace Tpi.GhComponents
         {
             pManager.AddMeshParameter("Panels", "P", "One closed mesh per panel (notches cut), in seed order.", GH_ParamAccess.list);
             pManager.AddMeshParameter("Cleats", "C", "One closed mesh per cleat.", GH_ParamAccess.list);
-            pManager.AddCurveParameter("Outlines", "O", "Each panel's top outline laid flat and placed on its sheet, in seed order.", GH_ParamAccess.list);
+            pManager.AddCurveParameter("Outlines", "O", "Each panel's cut outline (the top outline, widened where the panel widens towards its bottom) placed on its sheet, in seed order.", GH_ParamAccess.list);
             pManager.AddIntegerParameter("Sheet", "K", "The sheet of each outline.", GH_ParamAccess.list);
             pManager.AddCurveParameter("Slots", "SL", "The slot notches, placed on the sheets.", GH_ParamAccess.list);
             pManager.AddCurveParameter("Sheets", "SH", "The sheet rectangles, side by side beside the model.", GH_ParamAccess.list);
@@ -54,6 +54,7 @@ namespace Tpi.GhComponents
             pManager.AddTextParameter("G-code", "NC", "G-code for a 3-axis router, in sheet coordinates.", GH_ParamAccess.item);
             pManager.AddTextParameter("DXF", "DXF", "The sheets as ASCII DXF R12 (layers SHEET, CUT, BOTTOM, SLOT, ENGRAVE).", GH_ParamAccess.item);
             pManager.AddTextParameter("Bevels", "B", "bevels.csv: panel, side, neighbour, length, dihedral, bevel.", GH_ParamAccess.item);
+            pManager.AddCurveParameter("Labels", "L", "Panel and neighbour numbers as single strokes for engraving, on the sheets.", GH_ParamAccess.list);
         }
 
         /// <inheritdoc/>
@@ -82,7 +83,7 @@ namespace Tpi.GhComponents
             double z = layout.Panels.SelectMany(p => p.Top.Concat(p.Bottom)).Min(v => v.Z);
             DA.SetDataList(0, layout.PanelSolids.Select(GhConvert.ToMesh));
             DA.SetDataList(1, layout.CleatSolids.Select(GhConvert.ToMesh));
-            DA.SetDataList(2, layout.Panels.Select(p => GhConvert.ToCurve(FabricationLayout.PlacedOutline(p, layout.SheetOrigin(p.Sheet)), z)));
+            DA.SetDataList(2, layout.CutOutlines.Select(c => GhConvert.ToCurve(layout.ToModel(c, true), z)));
             DA.SetDataList(3, layout.Panels.Select(p => p.Sheet));
             DA.SetDataList(4, layout.Panels.SelectMany(p => FabricationLayout.PlacedSlots(p, layout.SheetOrigin(p.Sheet))).Select(s => GhConvert.ToCurve(s, z)));
             DA.SetDataList(5, Enumerable.Range(0, layout.Sheets.Count).Select(k => GhConvert.ToCurve(layout.SheetRectangle(k, layout.SheetOrigin(k)), z)));
@@ -90,6 +91,7 @@ namespace Tpi.GhComponents
             DA.SetData(7, result.GCode);
             DA.SetData(8, result.SheetsDxf);
             DA.SetData(9, result.BevelsCsv);
+            DA.SetDataList(10, layout.LabelStrokes.Select(l => GhConvert.ToCurve(layout.ToModel(l, false), z)));
         }
 
         /// <summary>A number input, or null when nothing is connected.</summary>

@@ -184,6 +184,58 @@ namespace Tpi.Logic
         }
     }
 
+    /// <summary>A POLYLINE of an ASCII DXF R12 drawing (its VERTEX points, x and y).</summary>
+    public sealed class DxfPolyline
+    {
+        /// <summary>Layer name (code 8).</summary>
+        public string Layer { get; set; }
+        /// <summary>Closed (flag 1 of code 70).</summary>
+        public bool Closed { get; set; }
+        /// <summary>The vertices.</summary>
+        public Point2[] Points { get; set; }
+
+        /// <summary>The POLYLINE entities of <paramref name="dxf"/> in file order; FormatException on a malformed one.</summary>
+        public static List<DxfPolyline> Parse(string dxf)
+        {
+            var lines = (dxf ?? string.Empty).Replace("\r", string.Empty).Split('\n');
+            var result = new List<DxfPolyline>();
+            DxfPolyline current = null;
+            List<Point2> points = null;
+            bool inVertex = false;
+            double x = 0;
+            for (int i = 0; i + 1 < lines.Length; i += 2)
+            {
+                var code = lines[i].Trim();
+                var value = lines[i + 1].Trim();
+                if (code == "0")
+                {
+                    if (value == "POLYLINE") { current = new DxfPolyline(); points = new List<Point2>(); inVertex = false; }
+                    else if (value == "VERTEX")
+                    {
+                        if (current == null) throw new FormatException("DXF: VERTEX outside a POLYLINE at line " + (i + 1));
+                        inVertex = true;
+                    }
+                    else if (value == "SEQEND" && current != null)
+                    {
+                        current.Points = points.ToArray();
+                        result.Add(current);
+                        current = null;
+                        inVertex = false;
+                    }
+                    else inVertex = false;
+                    continue;
+                }
+                if (current == null) continue;
+                if (code == "8" && !inVertex) current.Layer = value;
+                else if (code == "70" && !inVertex) current.Closed = (int.Parse(value, CultureInfo.InvariantCulture) & 1) != 0;
+                else if (code == "10" && inVertex) x = double.Parse(value, NumberStyles.Float, CultureInfo.InvariantCulture);
+                else if (code == "20" && inVertex) points.Add(new Point2(x, double.Parse(value, NumberStyles.Float, CultureInfo.InvariantCulture)));
+            }
+            if (current != null) throw new FormatException("DXF: a POLYLINE without SEQEND");
+            return result;
+        }
+    }
+
     /// <summary>One panel as panels.json gives it.</summary>
     public sealed class FabricatedPanel
     {
@@ -247,11 +299,45 @@ namespace Tpi.Logic
         /// <summary>The cleat solids (cleat_A_B_Q), from panels.obj.</summary>
         public List<PolyhedronData> CleatSolids { get; private set; }
 
+        /// <summary>
+        /// Each panel's cut outline (what the router follows: the top outline, widened where the
+        /// panel widens towards its bottom), in seed order, in the sheets' drawing coordinates
+        /// (sheets.dxf layer CUT: sheet k starts at x = 1.1 times the widths before it, y = 0);
+        /// empty when no DXF was given.
+        /// </summary>
+        public List<Point2[]> CutOutlines { get; private set; }
+        /// <summary>The engraved labels (panel and neighbour numbers as single strokes, layer ENGRAVE), drawing coordinates.</summary>
+        public List<Point2[]> LabelStrokes { get; private set; }
+
+        /// <summary>
+        /// Where the sheets' drawing (sheets.dxf, sheets.svg) lies in the model: its sheet k
+        /// starts at <see cref="SheetOrigin(int)"/>, so a drawing point p is at p + this. The
+        /// drawing spaces its sheets as <see cref="SheetOrigin(int, double, double)"/> does.
+        /// </summary>
+        public Point2 DrawingOrigin() { return Sheets.Count == 0 ? new Point2(0, 0) : SheetOrigin(0); }
+
+        /// <summary>A drawing loop moved to the model by <see cref="DrawingOrigin"/>, closed when <paramref name="close"/>.</summary>
+        public Point2[] ToModel(Point2[] drawing, bool close)
+        {
+            var o = DrawingOrigin();
+            var moved = drawing.Select(p => new Point2(p.X + o.X, p.Y + o.Y));
+            return close ? Closed(moved) : moved.ToArray();
+        }
+
         /// <summary>Mean utilisation of the sheets (0 without sheets).</summary>
         public double MeanUtilisation { get { return Sheets.Count == 0 ? 0 : Sheets.Average(s => s.Utilisation); } }
 
         /// <summary>Reads panels.json and panels.obj (docs/fabrication.md); FormatException when they do not fit the contract.</summary>
         public static FabricationLayout Parse(string panelsJson, string panelsObj)
+        {
+            return Parse(panelsJson, panelsObj, null);
+        }
+
+        /// <summary>
+        /// Reads panels.json, panels.obj and sheets.dxf (its CUT polylines, one per panel in seed
+        /// order, and ENGRAVE strokes); FormatException when they do not fit the contract.
+        /// </summary>
+        public static FabricationLayout Parse(string panelsJson, string panelsObj, string sheetsDxf)
         {
             var root = JsonText.Parse(panelsJson) as Dictionary<string, object>;
             if (root == null) throw new FormatException("panels.json is not an object");
@@ -298,6 +384,11 @@ namespace Tpi.Logic
             var solids = ParseObj(panelsObj ?? string.Empty);
             layout.PanelSolids = solids.Where(s => s.Name.StartsWith("panel_", StringComparison.Ordinal)).ToList();
             layout.CleatSolids = solids.Where(s => s.Name.StartsWith("cleat_", StringComparison.Ordinal)).ToList();
+            var drawing = sheetsDxf == null ? new List<DxfPolyline>() : DxfPolyline.Parse(sheetsDxf);
+            layout.CutOutlines = drawing.Where(d => d.Layer == "CUT").Select(d => d.Points).ToList();
+            layout.LabelStrokes = drawing.Where(d => d.Layer == "ENGRAVE").Select(d => d.Points).ToList();
+            if (sheetsDxf != null && layout.CutOutlines.Count != layout.Panels.Count)
+                throw new FormatException("sheets.dxf has " + layout.CutOutlines.Count + " cut outlines for " + layout.Panels.Count + " panels");
             return layout;
         }
 
@@ -579,7 +670,7 @@ namespace Tpi.Logic
                     result.BevelsCsv = fab.File(FabricationFile.BevelsCsv);
                     result.GCode = fab.GCode(settings.ToolDiameter);
                 }
-                result.Layout = FabricationLayout.Parse(result.PanelsJson, result.PanelsObj);
+                result.Layout = FabricationLayout.Parse(result.PanelsJson, result.PanelsObj, result.SheetsDxf);
             }
             catch (TpiException e)
             {

@@ -127,6 +127,92 @@ namespace Tpi.Tests
             Assert.AreEqual(slots / 2, layout.CleatSolids.Count, "one cleat fills the two notches of a slot");
         }
 
+        static double ShoelaceArea(IList<Point2> loop)
+        {
+            double a = 0;
+            for (int k = 0; k < loop.Count; k++) a += loop[k].X * loop[(k + 1) % loop.Count].Y - loop[(k + 1) % loop.Count].X * loop[k].Y;
+            return 0.5 * a;
+        }
+
+        static double DistanceToSegment(Point2 p, Point2 a, Point2 b)
+        {
+            double dx = b.X - a.X, dy = b.Y - a.Y;
+            double t = Math.Max(0, Math.Min(1, ((p.X - a.X) * dx + (p.Y - a.Y) * dy) / (dx * dx + dy * dy)));
+            return Dist(p, new Point2(a.X + t * dx, a.Y + t * dy));
+        }
+
+        /// <summary>Inside the polygon by the crossing rule, or within tol of its boundary.</summary>
+        static bool InsideOrOn(Point2 p, IList<Point2> loop, double tol)
+        {
+            bool inside = false;
+            for (int k = 0; k < loop.Count; k++)
+            {
+                Point2 a = loop[k], b = loop[(k + 1) % loop.Count];
+                if (DistanceToSegment(p, a, b) <= tol) return true;
+                if ((a.Y > p.Y) != (b.Y > p.Y) && p.X < a.X + (p.Y - a.Y) * (b.X - a.X) / (b.Y - a.Y)) inside = !inside;
+            }
+            return inside;
+        }
+
+        [Test]
+        public void CutOutlinesFromTheDxfAreTheTopOutlinesInsideAndContainThemOutside()
+        {
+            var inside = FabricationRun.Run(DomeMesh(), Settings(), 4).Layout;
+            Assert.AreEqual(inside.Panels.Count, inside.CutOutlines.Count, "one CUT polyline per panel");
+            Assert.Greater(inside.LabelStrokes.Count, inside.Panels.Count, "panel and neighbour numbers");
+            foreach (var panel in inside.Panels)
+            {
+                // On the concave side no panel widens towards its bottom: the cut outline, moved from
+                // the drawing to the model, is the top outline placed on its sheet.
+                var cut = inside.ToModel(inside.CutOutlines[panel.Seed], false);
+                var top = FabricationLayout.PlacedOutline(panel, inside.SheetOrigin(panel.Sheet)).Take(panel.Flat.Length).ToArray();
+                Assert.AreEqual(top.Length, cut.Length, "panel " + panel.Seed);
+                foreach (var c in cut) Assert.Less(top.Min(t => Dist(t, c)), 1e-9, "panel " + panel.Seed + ": cut vertex off the top outline");
+                foreach (var t in top) Assert.Less(cut.Min(c => Dist(t, c)), 1e-9, "panel " + panel.Seed + ": top vertex missing from the cut");
+            }
+
+            var outside = FabricationRun.Run(DomeMesh(), Settings(0, PanelSide.Outside), 4).Layout;
+            int wider = 0;
+            foreach (var panel in outside.Panels)
+            {
+                var cut = outside.ToModel(outside.CutOutlines[panel.Seed], false);
+                var top = FabricationLayout.PlacedOutline(panel, outside.SheetOrigin(panel.Sheet)).Take(panel.Flat.Length).ToArray();
+                foreach (var t in top) Assert.IsTrue(InsideOrOn(t, cut, 1e-9), "panel " + panel.Seed + ": top vertex outside the cut outline");
+                double cutArea = Math.Abs(ShoelaceArea(cut)), topArea = Math.Abs(ShoelaceArea(top));
+                Assert.GreaterOrEqual(cutArea, topArea - 1e-12, "panel " + panel.Seed);
+                if (cutArea > topArea * (1 + 1e-6)) wider++;
+                // The cut outline keeps the gap from its sheet's edges too.
+                var r = outside.SheetRectangle(panel.Sheet, outside.SheetOrigin(panel.Sheet));
+                foreach (var c in cut)
+                {
+                    Assert.GreaterOrEqual(c.X, r[0].X + 0.02 - 1e-9);
+                    Assert.LessOrEqual(c.X, r[1].X - 0.02 + 1e-9);
+                    Assert.GreaterOrEqual(c.Y, r[0].Y + 0.02 - 1e-9);
+                    Assert.LessOrEqual(c.Y, r[2].Y - 0.02 + 1e-9);
+                }
+            }
+            Assert.Greater(wider, 0, "on the convex side of a dome panels widen towards the bottom");
+            Assert.AreEqual(outside.CutOutlines[0].Length + 1, outside.ToModel(outside.CutOutlines[0], true).Length);
+        }
+
+        [Test]
+        public void DxfPolylinesAreReadByLayerAndMalformedOnesRefused()
+        {
+            var dxf = "0\nSECTION\n2\nENTITIES\n0\nPOLYLINE\n8\nCUT\n66\n1\n70\n1\n10\n0.0\n20\n0.0\n30\n0.0\n"
+                + "0\nVERTEX\n8\nCUT\n10\n1.5\n20\n2\n30\n0.0\n0\nVERTEX\n8\nCUT\n10\n3\n20\n-4e-1\n30\n0.0\n0\nSEQEND\n8\nCUT\n"
+                + "0\nPOLYLINE\n8\nSLOT\n66\n1\n70\n0\n0\nVERTEX\n8\nSLOT\n10\n7\n20\n8\n0\nSEQEND\n0\nENDSEC\n0\nEOF\n";
+            var read = DxfPolyline.Parse(dxf.Replace("\n", "\r\n"));
+            Assert.AreEqual(2, read.Count);
+            Assert.AreEqual("CUT", read[0].Layer);
+            Assert.IsTrue(read[0].Closed);
+            Assert.AreEqual(2, read[0].Points.Length, "the POLYLINE's own 10/20 codes are not a vertex");
+            Assert.AreEqual(1.5, read[0].Points[0].X);
+            Assert.AreEqual(-0.4, read[0].Points[1].Y);
+            Assert.AreEqual("SLOT", read[1].Layer);
+            Assert.IsFalse(read[1].Closed);
+            Assert.Throws<FormatException>(() => DxfPolyline.Parse("0\nPOLYLINE\n8\nCUT\n0\nVERTEX\n10\n1\n20\n2\n"), "no SEQEND");
+        }
+
         [Test]
         public void SolidsAreClosedAndHoldThePrismatoidVolume()
         {

@@ -111,13 +111,17 @@ namespace Tpi.RhinoPlugIn
                         new ObjectAttributes { LayerIndex = sheetLayer, Name = "sheet_" + (k + 1) });
                     foreach (var panel in layout.Panels.Where(p => p.Sheet == k))
                     {
-                        doc.Objects.AddPolyline(RhinoConvert.ToPoints(FabricationLayout.PlacedOutline(panel, origin), z),
+                        // The cut outline (the router's, from sheets.dxf), not only the top face's.
+                        doc.Objects.AddPolyline(RhinoConvert.ToPoints(layout.ToModel(layout.CutOutlines[panel.Seed], true), z),
                             new ObjectAttributes { LayerIndex = sheetLayer, Name = "panel_" + panel.Seed });
                         foreach (var slot in FabricationLayout.PlacedSlots(panel, origin))
                             doc.Objects.AddPolyline(RhinoConvert.ToPoints(slot, z),
                                 new ObjectAttributes { LayerIndex = sheetLayer, Name = "slot_" + panel.Seed });
                     }
                 }
+                foreach (var stroke in layout.LabelStrokes)
+                    doc.Objects.AddPolyline(RhinoConvert.ToPoints(layout.ToModel(stroke, false), z),
+                        new ObjectAttributes { LayerIndex = sheetLayer, Name = "label" });
             }
             finally
             {
