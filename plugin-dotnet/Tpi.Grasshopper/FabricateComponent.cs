@@ -80,7 +80,7 @@ namespace Tpi.GhComponents
             var layout = result.Layout;
             Message = layout.Panels.Count + " panels, " + layout.Sheets.Count + " sheets";
             AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, result.Summary());
-            double z = layout.Panels.SelectMany(p => p.Top.Concat(p.Bottom)).Min(v => v.Z);
+            double z = layout.LowestZ();
             DA.SetDataList(0, layout.PanelSolids.Select(GhConvert.ToMesh));
             DA.SetDataList(1, layout.CleatSolids.Select(GhConvert.ToMesh));
             DA.SetDataList(2, layout.CutOutlines.Select(c => GhConvert.ToCurve(layout.ToModel(c, true), z)));

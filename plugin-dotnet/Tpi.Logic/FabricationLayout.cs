@@ -462,6 +462,15 @@ namespace Tpi.Logic
             return SheetOrigin(sheet, maxX, minY);
         }
 
+        /// <summary>The height of the panels' lowest point (0 without panels): where the sheets are drawn.</summary>
+        public double LowestZ()
+        {
+            double z = double.PositiveInfinity;
+            foreach (var p in Panels)
+                foreach (var v in p.Top.Concat(p.Bottom)) z = Math.Min(z, v.Z);
+            return double.IsInfinity(z) ? 0 : z;
+        }
+
         /// <summary>Sheet k's rectangle as a closed loop (5 points, first repeated) in sheet coordinates moved by <paramref name="origin"/>.</summary>
         public Point2[] SheetRectangle(int sheet, Point2 origin)
         {

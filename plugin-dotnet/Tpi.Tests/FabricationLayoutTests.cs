@@ -52,6 +52,7 @@ namespace Tpi.Tests
             var layout = result.Layout;
             Assert.AreEqual(mesh.FacetCount, layout.Panels.Count, "one panel per facet");
             Assert.AreEqual(mesh.FacetCount, layout.PanelSolids.Count, "one solid per facet");
+            Assert.AreEqual(layout.PanelSolids.SelectMany(q => q.Vertices).Min(v => v.Z), layout.LowestZ(), 1e-12, "the solids' lowest point");
             Assert.IsEmpty(layout.CleatSolids, "no slots asked, no cleats");
             for (int i = 0; i < layout.Panels.Count; i++)
             {

@@ -103,7 +103,7 @@ namespace Tpi.RhinoPlugIn
                 foreach (var solid in layout.PanelSolids.Concat(layout.CleatSolids))
                     doc.Objects.AddMesh(RhinoConvert.ToMesh(solid), new ObjectAttributes { LayerIndex = panelLayer, Name = solid.Name });
                 // The sheets lie beside the model, at the height of its lowest point.
-                double z = layout.Panels.SelectMany(p => p.Top.Concat(p.Bottom)).Min(v => v.Z);
+                double z = layout.LowestZ();
                 for (int k = 0; k < layout.Sheets.Count; k++)
                 {
                     var origin = layout.SheetOrigin(k);
