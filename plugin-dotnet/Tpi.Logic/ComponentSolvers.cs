@@ -148,6 +148,7 @@ namespace Tpi.Logic
                     using (var mesh = Discretisation.Create(surface, pattern, input.Options))
                     {
                         var data = MeshData.From(mesh);
+                        data.Source = new DiscreteSurfaceDocument { Surface = input.Surface, Points = points, Options = input.Options };
                         output.Points = points.ToArray();
                         output.Mesh = data;
                         output.Polylines = MeshConversion.FacetPolylines(data);

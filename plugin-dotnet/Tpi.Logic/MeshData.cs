@@ -35,6 +35,12 @@ namespace Tpi.Logic
         /// <summary>Diagnostics as JSON text.</summary>
         public string DiagnosticsJson { get; private set; }
 
+        /// <summary>
+        /// What this mesh was computed from (surface, normalised points, options), so a later
+        /// stage (fabrication) can recompute the native discretisation; null when unknown.
+        /// </summary>
+        public DiscreteSurfaceDocument Source { get; internal set; }
+
         /// <summary>Number of facets.</summary>
         public int FacetCount { get { return FacetSizes.Length; } }
 

@@ -4,7 +4,7 @@
     python3 plugin-dotnet/tools/make_icons.py
 
 discretise.png: three planar hexagonal panels; pattern.png: pattern points in a hex grid;
-quality.png: a panel with bars. Drawn with anti-aliasing by 4x4 supersampling.
+quality.png: a panel with bars; fabricate.png: flat hexagonal parts nested on a sheet. Drawn with anti-aliasing by 4x4 supersampling.
 """
 import math
 import os
@@ -122,9 +122,18 @@ def quality():
     return render(shapes)
 
 
+def fabricate():
+    sheet = [(1.5, 4.5), (22.5, 4.5), (22.5, 19.5), (1.5, 19.5)]
+    shapes = [("fill", sheet, (245, 235, 215, 255)), ("outline", sheet, DARK)]
+    for cx, cy in [(7.0, 9.2), (16.5, 9.2), (11.75, 15.0)]:
+        h = hexagon(cx, cy, 3.8)
+        shapes += [("fill", h, LIGHT), ("outline", h, ORANGE)]
+    return render(shapes)
+
+
 if __name__ == "__main__":
     out = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "Tpi.Grasshopper", "Icons")
     os.makedirs(out, exist_ok=True)
-    for name, make in [("discretise", discretise), ("pattern", pattern), ("quality", quality)]:
+    for name, make in [("discretise", discretise), ("pattern", pattern), ("quality", quality), ("fabricate", fabricate)]:
         png(os.path.join(out, name + ".png"), make())
         print("wrote", os.path.join(out, name + ".png"))

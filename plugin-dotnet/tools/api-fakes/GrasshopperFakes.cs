@@ -77,6 +77,7 @@ namespace Grasshopper.Kernel
             public int AddTextParameter(string name, string nickname, string description, GH_ParamAccess access, string @default) { return 0; }
             public int AddIntegerParameter(string name, string nickname, string description, GH_ParamAccess access, int @default) { return 0; }
             public int AddNumberParameter(string name, string nickname, string description, GH_ParamAccess access, double @default) { return 0; }
+            public int AddNumberParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
             public int AddGenericParameter(string name, string nickname, string description, GH_ParamAccess access) { return 0; }
         }
 

@@ -11,8 +11,13 @@ using System.Drawing;
 
 namespace Rhino
 {
+    public enum UnitSystem { Microns = 1, Millimeters = 2, Centimeters = 3, Meters = 4, Kilometers = 5, Inches = 8, Feet = 9, Miles = 10, Yards = 19 }
+
     public class RhinoDoc
     {
+        public static RhinoDoc ActiveDoc { get { return null; } }
+        public UnitSystem ModelUnitSystem { get; set; }
+        public DocObjects.Tables.LayerTable Layers { get { return null; } }
         public static event EventHandler<DocObjects.RhinoReplaceObjectEventArgs> ReplaceRhinoObject;
         public static event EventHandler<DocumentOpenEventArgs> BeginOpenDocument;
         public static event EventHandler<DocumentOpenEventArgs> EndOpenDocument;
@@ -106,6 +111,18 @@ namespace Rhino.DocObjects
         public virtual string ShortDescription(bool plural) { return null; }
     }
 
+    public class Layer
+    {
+        public int Index { get { return 0; } }
+    }
+
+    public class ObjectAttributes
+    {
+        public ObjectAttributes() { }
+        public int LayerIndex { get; set; }
+        public string Name { get; set; }
+    }
+
     public class MeshObject : RhinoObject
     {
         public Geometry.Mesh MeshGeometry { get { return null; } }
@@ -153,7 +170,15 @@ namespace Rhino.DocObjects.Tables
         public Guid AddPoint(Geometry.Point3d point) { return Guid.Empty; }
         public Guid AddPolyline(IEnumerable<Geometry.Point3d> points) { return Guid.Empty; }
         public Guid AddMesh(Geometry.Mesh mesh) { return Guid.Empty; }
+        public Guid AddPolyline(IEnumerable<Geometry.Point3d> points, ObjectAttributes attributes) { return Guid.Empty; }
+        public Guid AddMesh(Geometry.Mesh mesh, ObjectAttributes attributes) { return Guid.Empty; }
         public IEnumerable<RhinoObject> GetObjectList(ObjectEnumeratorSettings settings) { return null; }
+    }
+
+    public class LayerTable
+    {
+        public int Add(string layerName, Color layerColor) { return 0; }
+        public Layer FindName(string layerName) { return null; }
     }
 
     public class ViewTable
@@ -195,6 +220,7 @@ namespace Rhino.Input
     public static class RhinoGet
     {
         public static Commands.Result GetOneObject(string prompt, bool acceptNothing, DocObjects.ObjectType filter, out DocObjects.ObjRef rhObject) { rhObject = null; return 0; }
+        public static Commands.Result GetString(string prompt, bool acceptNothing, ref string outputString) { return 0; }
         public static Commands.Result GetMultipleObjects(string prompt, bool acceptNothing, DocObjects.ObjectType filter, out DocObjects.ObjRef[] rhObjects) { rhObjects = null; return 0; }
     }
 }
@@ -225,6 +251,7 @@ namespace Rhino.Input.Custom
     {
         public void SetCommandPrompt(string prompt) { }
         public void AcceptNothing(bool enable) { }
+        public void ClearCommandOptions() { }
         public int AddOption(string englishOption) { return 0; }
         public int AddOptionList(string englishOptionName, IEnumerable<string> listValues, int listCurrentIndex) { return 0; }
         public int AddOptionInteger(string englishName, ref OptionInteger intValue) { return 0; }
