@@ -41,9 +41,12 @@ namespace Tpi.GhComponents
             pManager.AddPointParameter("Points", "P", "Pattern points in space (pulled to the surface).", GH_ParamAccess.list);
             pManager.AddPointParameter("UV", "UV", "Pattern points as normalised (s, t, 0) in [0, 1]^2 (used when P is empty).", GH_ParamAccess.list);
             pManager.AddBooleanParameter("Envelope", "E", "Verify and repair neighbours against the envelope of tangent planes (K > 0).", GH_ParamAccess.item, true);
+            // Last, so that the wires of files made before it keep their places.
+            pManager.AddBooleanParameter("Adjusted", "A", "Adjusted planes: tilt the planes of the few facets that exact tangent planes cannot make valid (at most 5 degrees, each through its seed; saddles and mixed curvature). Off: every facet in its exact tangent plane.", GH_ParamAccess.item, false);
             pManager[1].Optional = true;
             pManager[2].Optional = true;
             pManager[3].Optional = true;
+            pManager[4].Optional = true;
         }
 
         /// <inheritdoc/>
@@ -123,8 +126,11 @@ namespace Tpi.GhComponents
             DA.GetDataList(2, uv);
             bool envelope = true;
             DA.GetData(3, ref envelope);
+            bool adjusted = false;
+            DA.GetData(4, ref adjusted);
             var options = Tpi.Native.DiscretisationOptions.Default();
             options.EnvelopeRepair = envelope;
+            options.Planes = adjusted ? Tpi.Native.PlaneMode.Adjusted : Tpi.Native.PlaneMode.Exact;
             var input = new DiscretiseInput { Surface = spec, Options = options };
             if (points.Count > 0 && surface == null)
             {

@@ -9,11 +9,14 @@
 //     NURBS:    int32 degreeU, degreeV, countU, countV; array knotsU; array knotsV;
 //               array points (3 per control point, u-major, Euclidean); byte rational; [array weights]
 //     analytic: int32 kind; array parameters
+//     (format 3 and later, after a NURBS or analytic record) trim: byte 0 (none) or 1, then
+//               array outer (u, v per point), int32 hole count, each hole an array
 //     polysurface: int32 face count, then each face as a surface of kind 1 or 2
 //   pattern    array s0, t0, s1, t1, ...
 //   options    int32 byte length L, then L bytes: byte envelopeRepair, byte qualityReport,
-//              double farVertexFactor, weldTolerance, flatTolerance (later versions append; a
-//              reader skips what it does not know and gives missing fields their defaults)
+//              double farVertexFactor, weldTolerance, flatTolerance, (format 3) byte planes
+//              (0 exact, 1 adjusted) (later versions append; a reader skips what it does not
+//              know and gives missing fields their defaults)
 //   generator  int32 byte length, UTF-8
 //   source     16 bytes Guid
 //   follow     (format 2 and later) int32 byte length L, then L bytes: 16 doubles source
@@ -26,10 +29,12 @@
 // Versions: 1 (TPI 0.1, commit 9e2b174; Tpi.Tests/Fixtures/discrete-surface-v1.bin is such a
 // blob) has no follow block: it reads as source face -1 and the identity source transform.
 // 2 adds the follow block. 3 adds polysurfaces (kind 3; a discrete surface made from a whole
-// Brep of several faces, source face -1 then meaning the whole object). A reader rejects a newer version than its own (FormatException
+// Brep of several faces, source face -1 then meaning the whole object), each surface's trim and
+// the plane mode, so that a trimmed or adjusted discrete surface reopens as it was saved. A reader rejects a newer version than its own (FormatException
 // naming both), so an older plug-in never follows a source with a transform it cannot see.
 using System;
 using System.IO;
+using System.Linq;
 using System.Text;
 using Tpi.Native;
 
@@ -45,8 +50,10 @@ namespace Tpi.Logic
         static readonly byte[] Magic = { (byte)'T', (byte)'P', (byte)'D', (byte)'S' };
         const int MaxArray = 1 << 27;
         const int OptionsV1Length = 2 + 3 * 8;
+        const int OptionsV3Length = OptionsV1Length + 1;
         const int FollowV2Length = 16 * 8 + 4;
         const int MaxFaces = 1000;
+        const int MaxHoles = 1 << 20;
 
         /// <summary>The bytes of <paramref name="document"/>.</summary>
         public static byte[] Write(DiscreteSurfaceDocument document)
@@ -71,10 +78,11 @@ namespace Tpi.Logic
                     w.Write(document.Points.Count * 2);
                     foreach (var p in document.Points) { w.Write(p.S); w.Write(p.T); }
                     var o = document.Options ?? DiscretisationOptions.Default();
-                    w.Write(OptionsV1Length);
+                    w.Write(OptionsV3Length);
                     w.Write((byte)(o.EnvelopeRepair ? 1 : 0));
                     w.Write((byte)(o.QualityReport ? 1 : 0));
                     w.Write(o.FarVertexFactor); w.Write(o.WeldTolerance); w.Write(o.FlatTolerance);
+                    w.Write((byte)(o.Planes == PlaneMode.Adjusted ? 1 : 0));
                     var generator = Encoding.UTF8.GetBytes(document.Generator ?? string.Empty);
                     w.Write(generator.Length); w.Write(generator);
                     w.Write(document.SourceSurfaceId.ToByteArray());
@@ -130,10 +138,10 @@ namespace Tpi.Logic
                         int count = r.ReadInt32();
                         if (count < 1 || count > MaxFaces) throw new FormatException("bad polysurface face count " + count);
                         var faces = new SurfaceSpec[count];
-                        for (int k = 0; k < count; k++) faces[k] = ReadSurface(r, r.ReadByte());
+                        for (int k = 0; k < count; k++) faces[k] = ReadSurface(r, r.ReadByte(), version);
                         document.Surface = new PolysurfaceSpec(faces);
                     }
-                    else document.Surface = ReadSurface(r, kind);
+                    else document.Surface = ReadSurface(r, kind, version);
                     var st = ReadArray(r);
                     if (st.Length % 2 != 0) throw new FormatException("odd number of pattern coordinates");
                     for (int i = 0; i < st.Length; i += 2) document.Points.Add(new PatternPoint(st[i], st[i + 1]));
@@ -147,7 +155,15 @@ namespace Tpi.Logic
                         WeldTolerance = r.ReadDouble(),
                         FlatTolerance = r.ReadDouble(),
                     };
-                    Exact(r, optionsLength - OptionsV1Length); // fields of later versions
+                    int known = OptionsV1Length;
+                    if (version >= 3 && optionsLength >= OptionsV3Length)
+                    {
+                        byte planes = r.ReadByte();
+                        if (planes > 1) throw new FormatException("bad plane mode " + planes);
+                        options.Planes = planes == 1 ? PlaneMode.Adjusted : PlaneMode.Exact;
+                        known = OptionsV3Length;
+                    }
+                    Exact(r, optionsLength - known); // fields of later versions
                     document.Options = options;
                     int generatorLength = r.ReadInt32();
                     if (generatorLength < 0 || generatorLength > 65536) throw new FormatException("bad generator length " + generatorLength);
@@ -197,10 +213,34 @@ namespace Tpi.Logic
                 WriteArray(w, analytic.Parameters);
             }
             else throw new ArgumentException("unknown surface type " + surface.GetType().Name, "document");
+            var trim = surface.Trim;
+            w.Write((byte)(trim == null ? 0 : 1));
+            if (trim != null)
+            {
+                WriteArray(w, trim.Outer);
+                w.Write(trim.Holes.Count);
+                foreach (var hole in trim.Holes) WriteArray(w, hole);
+            }
         }
 
-        /// <summary>The record of a NURBS (kind 1) or analytic (kind 2) surface.</summary>
-        static SurfaceSpec ReadSurface(BinaryReader r, byte kind)
+        /// <summary>The record of a NURBS (kind 1) or analytic (kind 2) surface, with its trim from format 3 on.</summary>
+        static SurfaceSpec ReadSurface(BinaryReader r, byte kind, ushort version)
+        {
+            var surface = ReadUntrimmed(r, kind);
+            if (version < 3) return surface;
+            byte hasTrim = r.ReadByte();
+            if (hasTrim == 0) return surface;
+            if (hasTrim != 1) throw new FormatException("bad trim flag " + hasTrim);
+            var outer = ReadArray(r);
+            int holeCount = r.ReadInt32();
+            if (holeCount < 0 || holeCount > MaxHoles) throw new FormatException("bad trim hole count " + holeCount);
+            var holes = new double[holeCount][];
+            for (int k = 0; k < holeCount; k++) holes[k] = ReadArray(r);
+            if (outer.Length % 2 != 0 || holes.Any(h => h.Length % 2 != 0)) throw new FormatException("odd number of trim coordinates");
+            return surface.WithTrim(new SurfaceTrim(outer, holes));
+        }
+
+        static SurfaceSpec ReadUntrimmed(BinaryReader r, byte kind)
         {
             if (kind == 1)
             {

@@ -86,6 +86,30 @@ namespace Tpi.Tests
         }
 
         [Test]
+        public void CurrentFormatKeepsTheTrimAndThePlaneMode()
+        {
+            var v1 = UserDataFormat.Read(Fixtures.Load("discrete-surface-v1.bin"));
+            // A square hole in the middle of the dome's (u, v) domain [0, 1]^2.
+            var trim = new SurfaceTrim(new[] { 0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0 },
+                new[] { new[] { 0.4, 0.4, 0.4, 0.6, 0.6, 0.6, 0.6, 0.4 } });
+            v1.Surface = v1.Surface.WithTrim(trim);
+            v1.Options = new DiscretisationOptions { Planes = PlaneMode.Adjusted, QualityReport = true, FarVertexFactor = 8, WeldTolerance = 1e-10, FlatTolerance = 1e-6 };
+            var bytes = UserDataFormat.Write(v1);
+            ushort version;
+            var back = UserDataFormat.Read(bytes, out version);
+            Assert.AreEqual(UserDataFormat.FormatVersion, version);
+            Assert.IsNotNull(back.Surface.Trim, "the trim was lost");
+            Assert.IsTrue(trim.Equals(back.Surface.Trim), "the trim changed");
+            Assert.IsTrue(back.Surface.Equals(v1.Surface));
+            Assert.AreEqual(PlaneMode.Adjusted, back.Options.Planes, "the plane mode was lost");
+            // Untrimmed and exact stay so.
+            var plain = UserDataFormat.Read(Fixtures.Load("discrete-surface-v1.bin"));
+            var again = UserDataFormat.Read(UserDataFormat.Write(plain));
+            Assert.IsNull(again.Surface.Trim);
+            Assert.AreEqual(PlaneMode.Exact, again.Options.Planes);
+        }
+
+        [Test]
         public void CurrentFormatKeepsTransformAndFace()
         {
             var v1 = UserDataFormat.Read(Fixtures.Load("discrete-surface-v1.bin"));

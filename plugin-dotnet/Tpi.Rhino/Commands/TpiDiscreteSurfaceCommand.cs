@@ -54,6 +54,21 @@ namespace Tpi.RhinoPlugIn
             rc = CommandOptions.GetGenerator("Pattern", generator, true, out existingPoints);
             if (rc != Result.Success) return rc;
 
+            // Exact tangent planes, or adjusted ones where exact planes cannot make a facet valid.
+            var adjusted = new OptionToggle(false, "Exact", "Adjusted");
+            while (true)
+            {
+                var get = new GetOption();
+                get.SetCommandPrompt("Facet planes (Enter accepts)");
+                get.AcceptNothing(true);
+                get.AddOptionToggle("Planes", ref adjusted);
+                var result = get.Get();
+                if (result == GetResult.Nothing) break;
+                if (result != GetResult.Option) return get.CommandResult();
+            }
+            var options = Tpi.Native.DiscretisationOptions.Default();
+            options.Planes = adjusted.CurrentValue ? Tpi.Native.PlaneMode.Adjusted : Tpi.Native.PlaneMode.Exact;
+
             List<PatternPoint> points;
             string generatorSpec = string.Empty;
             if (existingPoints && wholePolysurface)
@@ -95,7 +110,7 @@ namespace Tpi.RhinoPlugIn
                 {
                     Surface = spec,
                     Points = points,
-                    Options = Tpi.Native.DiscretisationOptions.Default(),
+                    Options = options,
                     Generator = generatorSpec,
                     SourceSurfaceId = surfaceRef.ObjectId,
                     // A face picked on a polysurface: the watcher follows that face.

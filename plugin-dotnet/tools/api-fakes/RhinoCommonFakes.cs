@@ -241,6 +241,12 @@ namespace Rhino.Input.Custom
         public int CurrentValue { get; set; }
     }
 
+    public class OptionToggle
+    {
+        public OptionToggle(bool initialValue, string offValue, string onValue) { }
+        public bool CurrentValue { get; set; }
+    }
+
     public class OptionDouble
     {
         public OptionDouble(double initialValue, double lowerLimit, double upperLimit) { }
@@ -256,6 +262,7 @@ namespace Rhino.Input.Custom
         public int AddOptionList(string englishOptionName, IEnumerable<string> listValues, int listCurrentIndex) { return 0; }
         public int AddOptionInteger(string englishName, ref OptionInteger intValue) { return 0; }
         public int AddOptionDouble(string englishName, ref OptionDouble numberValue) { return 0; }
+        public int AddOptionToggle(string englishName, ref OptionToggle toggleValue) { return 0; }
         public CommandLineOption Option() { return null; }
         public Commands.Result CommandResult() { return 0; }
         public Geometry.Point3d Point() { return new Geometry.Point3d(); }
