@@ -461,7 +461,8 @@ fn facet_shape_into(
             if a == 0 && b == n - 1 {
                 continue;
             }
-            if segments_cross(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n]) {
+            // The same test as `sanity_check`: touching counts, so the two never disagree.
+            if crate::sanity::crosses(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n]) {
                 simple = false;
                 break 'outer;
             }
@@ -477,16 +478,6 @@ fn facet_shape_into(
         simple,
         convex,
     }
-}
-
-/// Whether the closed segments ab and cd intersect (touching included).
-fn segments_cross(a: DVec2, b: DVec2, c: DVec2, d: DVec2) -> bool {
-    let d1 = (b - a).perp_dot(c - a);
-    let d2 = (b - a).perp_dot(d - a);
-    let d3 = (d - c).perp_dot(a - c);
-    let d4 = (d - c).perp_dot(b - c);
-    ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
-        && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
 }
 
 /// The points of facet f's loop.

@@ -200,8 +200,9 @@ fn check_facet(
 }
 
 /// Whether the closed segments pq and rs share a point (they are non-adjacent edges of one
-/// loop, so any contact makes the loop non-simple).
-fn crosses(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
+/// loop, so any contact makes the loop non-simple). The quality report's simplicity test uses
+/// it too.
+pub(crate) fn crosses(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
     let side = |a: DVec2, b: DVec2, c: DVec2| (b - a).perp_dot(c - a);
     let (d1, d2) = (side(p, q, r), side(p, q, s));
     let (d3, d4) = (side(r, s, p), side(r, s, q));

@@ -127,3 +127,32 @@ fn fuzz_six_points_on_a_very_anisotropic_paraboloid_have_no_zero_length_edge() {
         }
     }
 }
+
+/// Found by `fuzz/fuzz_targets/discretise.rs` (2026-11-25): three points on a strongly warped
+/// bicubic Bezier patch. A facet whose loop touches itself (a vertex exactly on a
+/// non-adjacent edge) was simple for the quality report (proper crossings only) and not for
+/// `sanity_check` (any contact). The report now uses the same test: the facet is counted
+/// invalid, and a result the report finds valid passes `sanity_check`.
+#[test]
+fn fuzz_three_points_on_a_warped_bezier_patch_report_and_sanity_agree() {
+    let heights = [
+        -25.0, -25.0, -25.0, -25.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 2.0, 1.0, -1.0, -117.0,
+        -92.0,
+    ];
+    let points: Vec<glam::DVec3> = (0..16)
+        .map(|k| glam::DVec3::new((k / 4) as f64, (k % 4) as f64, heights[k] / 32.0))
+        .collect();
+    let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    let surface: SurfaceModel =
+        tpi_core::NurbsSurface::new([3, 3], [4, 4], &knots, &knots, &points, None)
+            .unwrap()
+            .into();
+    let uv = [[0.0, 32.0 / 65535.0], [1.0, 27424.0 / 65535.0], [0.0, 0.0]];
+    let result = discretise(&surface, &uv, &DiscretiseOptions::default()).unwrap();
+    let invalid = result.quality.as_ref().unwrap().invalid_facets;
+    assert_eq!(
+        invalid == 0,
+        result.sanity_check().is_ok(),
+        "{invalid} invalid"
+    );
+}
