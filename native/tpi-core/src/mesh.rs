@@ -13,6 +13,10 @@
 //!    loop first), so the output does not depend on the threads.
 //! 3. **Loops.** Consecutive repeats (welded vertices) are dropped; a loop of fewer than three
 //!    vertices is an open facet, diagnosed.
+//! 4. **Coincident boundary vertices.** A boundary crossing or corner vertex within the weld
+//!    distance of the vertex beside it in every loop that holds it is merged into that vertex
+//!    (a facet edge meeting the boundary exactly at a three-plane vertex), so that no
+//!    zero-length edge turns facets non-simple.
 
 use std::collections::HashMap;
 
@@ -332,7 +336,7 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
     mesh
 }
 
-/// Step 6: a boundary crossing or corner vertex v that lies within the weld distance of a
+/// Step 4 of the module doc: a boundary crossing or corner vertex v that lies within the weld distance of a
 /// neighbour w in its loop, and has w beside it in the loop of every facet that holds it, is
 /// merged into w (a facet edge reaching the boundary, or a corner's normal line meeting a
 /// facet, exactly at a vertex where three planes meet): kept, the zero-length edge v-w would
