@@ -168,10 +168,11 @@ pub enum SurfaceSpec {
     /// Several untrimmed faces joined along whole sides, discretised as one shell
     /// ([`crate::Polysurface`]): rows and columns of four-sided faces, found from the geometry.
     Polysurface {
-        /// The faces, each a record of any other type, without `"trim"` or `"units"` of its own
-        /// differing from the polysurface's.
+        /// The faces, each a record of any other type, untrimmed; without a polysurface
+        /// `"units"`, the faces' own units must agree.
         faces: Vec<SurfaceSpec>,
-        /// Length units of every face (`"units"`); absent = unitless (or the faces' own).
+        /// Length units of every face (`"units"`): when given, they replace the faces' own;
+        /// absent, the faces' own (all equal) or unitless.
         #[serde(default, skip_serializing_if = "Option::is_none")]
         units: Option<Units>,
     },
