@@ -91,12 +91,12 @@ FAKES=$PLUGIN/tools/api-fakes
 # shellcheck disable=SC2046
 "${MCS[@]}" -warnaserror -target:library -d:NETFRAMEWORK -out:"$BUILD_DIR/fakes/Tpi.Rhino.dll" \
     -r:"$BUILD_DIR/fakes/RhinoCommon.dll" -r:"$BUILD_DIR/Tpi.Native.dll" -r:"$BUILD_DIR/Tpi.Logic.dll" -r:System.Drawing.dll \
-    $(sources "$PLUGIN/Tpi.Rhino") "$PLUGIN/Shared/NativeLoader.cs" "$PLUGIN/Shared/SurfaceSpecs.cs" || fail "type check of Tpi.Rhino against the API fakes failed"
+    $(sources "$PLUGIN/Tpi.Rhino") "$PLUGIN/Shared/NativeLoader.cs" "$PLUGIN/Shared/SurfaceSpecs.cs" "$PLUGIN/Shared/SolidMeshes.cs" || fail "type check of Tpi.Rhino against the API fakes failed"
 # shellcheck disable=SC2046
 "${MCS[@]}" -warnaserror -target:library -d:NETFRAMEWORK -out:"$BUILD_DIR/fakes/Tpi.Grasshopper.dll" \
     -r:"$BUILD_DIR/fakes/RhinoCommon.dll" -r:"$BUILD_DIR/fakes/Grasshopper.dll" -r:"$BUILD_DIR/Tpi.Native.dll" \
     -r:"$BUILD_DIR/Tpi.Logic.dll" -r:System.Drawing.dll \
-    $(sources "$PLUGIN/Tpi.Grasshopper") "$PLUGIN/Shared/NativeLoader.cs" "$PLUGIN/Shared/SurfaceSpecs.cs" || fail "type check of Tpi.Grasshopper against the API fakes failed"
+    $(sources "$PLUGIN/Tpi.Grasshopper") "$PLUGIN/Shared/NativeLoader.cs" "$PLUGIN/Shared/SurfaceSpecs.cs" "$PLUGIN/Shared/SolidMeshes.cs" || fail "type check of Tpi.Grasshopper against the API fakes failed"
 echo "adapters type-checked against the API fakes (plugin-dotnet/tools/api-fakes)"
 # The API the compiled adapters use (read from their metadata) and every member of the fakes,
 # checked against the official typed stubs (pip: rhino-stubs-typed, grasshopper-stubs-typed);

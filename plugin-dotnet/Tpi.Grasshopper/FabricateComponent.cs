@@ -81,8 +81,8 @@ namespace Tpi.GhComponents
             Message = layout.Panels.Count + " panels, " + layout.Sheets.Count + " sheets";
             AddRuntimeMessage(GH_RuntimeMessageLevel.Remark, result.Summary());
             double z = layout.LowestZ();
-            DA.SetDataList(0, layout.PanelSolids.Select(GhConvert.ToMesh));
-            DA.SetDataList(1, layout.CleatSolids.Select(GhConvert.ToMesh));
+            DA.SetDataList(0, layout.PanelSolids.Select(Tpi.Plugin.SolidMeshes.ToMesh));
+            DA.SetDataList(1, layout.CleatSolids.Select(Tpi.Plugin.SolidMeshes.ToMesh));
             DA.SetDataList(2, layout.CutOutlines.Select(c => GhConvert.ToCurve(layout.ToModel(c, true), z)));
             DA.SetDataList(3, layout.Panels.Select(p => p.Sheet));
             DA.SetDataList(4, layout.Panels.SelectMany(p => FabricationLayout.PlacedSlots(p, layout.SheetOrigin(p.Sheet))).Select(s => GhConvert.ToCurve(s, z)));

@@ -36,24 +36,6 @@ namespace Tpi.GhComponents
             return mesh;
         }
 
-        /// <summary>A closed polyhedron (a fabricated panel or cleat) as a mesh: each planar face ear-clipped into triangles and kept as one n-gon.</summary>
-        public static Mesh ToMesh(PolyhedronData solid)
-        {
-            var mesh = new Mesh();
-            mesh.Vertices.UseDoublePrecisionVertices = true;
-            foreach (var v in solid.Vertices) mesh.Vertices.Add(v.X, v.Y, v.Z);
-            foreach (var face in solid.Faces)
-            {
-                var triangles = FabricationLayout.Triangulate(solid.Vertices, face);
-                var faceIndices = new List<int>();
-                for (int t = 0; t < triangles.Length; t += 3)
-                    faceIndices.Add(mesh.Faces.AddFace(triangles[t], triangles[t + 1], triangles[t + 2]));
-                if (faceIndices.Count > 0) mesh.Ngons.AddNgon(MeshNgon.Create(face, faceIndices));
-            }
-            mesh.Normals.ComputeNormals();
-            return mesh;
-        }
-
         /// <summary>A flat closed loop at height <paramref name="z"/> as a polyline curve.</summary>
         public static PolylineCurve ToCurve(Point2[] loop, double z)
         {

@@ -101,7 +101,7 @@ namespace Tpi.RhinoPlugIn
                 int panelLayer = LayerIndex(doc, PanelLayer, Color.Peru);
                 int sheetLayer = LayerIndex(doc, SheetLayer, Color.Firebrick);
                 foreach (var solid in layout.PanelSolids.Concat(layout.CleatSolids))
-                    doc.Objects.AddMesh(RhinoConvert.ToMesh(solid), new ObjectAttributes { LayerIndex = panelLayer, Name = solid.Name });
+                    doc.Objects.AddMesh(Tpi.Plugin.SolidMeshes.ToMesh(solid), new ObjectAttributes { LayerIndex = panelLayer, Name = solid.Name });
                 // The sheets lie beside the model, at the height of its lowest point.
                 double z = layout.LowestZ();
                 for (int k = 0; k < layout.Sheets.Count; k++)
