@@ -434,7 +434,12 @@ fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
     for f in 0..facets {
         let start = loops.len();
         for &v in &mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize] {
-            let id = renumber[merged[v as usize] as usize];
+            // A vertex merged into one merged in turn goes to the end of the chain.
+            let mut target = v;
+            while merged[target as usize] != target {
+                target = merged[target as usize];
+            }
+            let id = renumber[target as usize];
             if loops.len() == start || loops[loops.len() - 1] != id {
                 loops.push(id);
             }
