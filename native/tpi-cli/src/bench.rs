@@ -416,8 +416,9 @@ fn fabrication_timings(
     {
         fab_options.thickness = 0.5 * max;
     }
+    // A router bit no wider than the panel (the slots are 4 x 2 thicknesses) nor the gap.
     let tool = ToolpathOptions {
-        tool_diameter: 0.006,
+        tool_diameter: fab_options.thickness.min(0.006).min(fab_options.gap),
         ..ToolpathOptions::default()
     };
     let (mut build, mut write) = (Vec::new(), Vec::new());
