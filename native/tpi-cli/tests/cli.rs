@@ -2,43 +2,14 @@
 //! is written and read back independently, bad input fails with one clear line and leaves no
 //! file behind, and the progress line stays off when stderr is not a terminal.
 
+mod common;
+
 use std::fs;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-use std::sync::atomic::{AtomicUsize, Ordering};
 
+use common::{sample, samples, scratch, text, tpi, TPI};
 use serde::Deserialize;
-
-const TPI: &str = env!("CARGO_BIN_EXE_tpi");
-
-fn samples() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../samples")
-}
-
-fn sample(name: &str) -> String {
-    samples().join(name).to_string_lossy().into_owned()
-}
-
-/// A fresh empty scratch directory for one test.
-fn scratch(name: &str) -> PathBuf {
-    static N: AtomicUsize = AtomicUsize::new(0);
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!(
-        "tpi-e2e-{}-{}-{name}",
-        std::process::id(),
-        N.fetch_add(1, Ordering::Relaxed)
-    ));
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn tpi(args: &[&str]) -> Output {
-    Command::new(TPI).args(args).output().expect("run tpi")
-}
-
-fn text(bytes: &[u8]) -> String {
-    String::from_utf8_lossy(bytes).into_owned()
-}
 
 fn ok(args: &[&str]) -> Output {
     let out = tpi(args);

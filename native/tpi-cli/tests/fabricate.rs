@@ -1,35 +1,11 @@
 //! End-to-end tests of `tpi fabricate`: every output is written and reads back, and a bad
 //! thickness fails with one line naming it and leaves no file behind.
 
+mod common;
+
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-const TPI: &str = env!("CARGO_BIN_EXE_tpi");
-
-fn sample(name: &str) -> String {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../samples")
-        .join(name)
-        .to_string_lossy()
-        .into_owned()
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("tpi-fabricate-{}-{name}", std::process::id()));
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn tpi(args: &[&str]) -> Output {
-    Command::new(TPI).args(args).output().expect("run tpi")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{sample, scratch, stderr, tpi};
 
 #[test]
 fn every_output_is_written_and_reads_back() {

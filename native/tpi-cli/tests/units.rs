@@ -2,27 +2,12 @@
 //! summary, the SVG, and `tpi fabricate`'s panels.json, panels.obj and DXF `$INSUNITS`;
 //! `--units` contradicting the surface file is a usage error.
 
+mod common;
+
 use std::fs;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
-const TPI: &str = env!("CARGO_BIN_EXE_tpi");
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join(format!("tpi-units-{}-{name}", std::process::id()));
-    let _ = fs::remove_dir_all(&dir);
-    fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn tpi(args: &[&str]) -> Output {
-    Command::new(TPI).args(args).output().expect("run tpi")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use common::{scratch, stderr, tpi};
 
 fn dome(dir: &Path, units: &str) -> String {
     let path = dir.join(format!("dome{}.json", units.len()));
