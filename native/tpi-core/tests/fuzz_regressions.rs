@@ -4,6 +4,22 @@
 
 use tpi_core::{discretise, AnalyticKind, AnalyticSurface, DiscretiseOptions, SurfaceModel};
 
+/// z = a x^2 + b y^2 over [-1, 1]^2, as the `discretise` target builds it.
+fn paraboloid(a: f64, b: f64) -> SurfaceModel {
+    AnalyticSurface::new(
+        AnalyticKind::EllipticParaboloid { a, b },
+        [-1.0, 1.0],
+        [-1.0, 1.0],
+    )
+    .unwrap()
+    .into()
+}
+
+/// A fuzzed 16-bit coordinate as the `discretise` target reads it: k / 65535.
+fn fraction(k: f64) -> f64 {
+    k / 65535.0
+}
+
 /// Found by `fuzz/fuzz_targets/discretise.rs`: three pattern points, two of them domain
 /// corners, on the elliptic paraboloids z = a (x^2 + y^2), a = -4.8125 and a = 1.4375, over
 /// [-1, 1]^2. The quality report counted 0 invalid facets, yet `sanity_check` found a facet
@@ -12,21 +28,18 @@ use tpi_core::{discretise, AnalyticKind, AnalyticSurface, DiscretiseOptions, Sur
 /// neighbour in its only facet's loop is dropped).
 #[test]
 fn fuzz_three_points_on_a_steep_paraboloid_report_and_sanity_agree() {
-    let f = |k: f64| k / 65535.0;
     for (a, uv) in [
         (
             -77.0 / 16.0,
-            [[1.0, 1.0], [f(57343.0), f(63711.0)], [0.0, 0.0]],
+            [
+                [1.0, 1.0],
+                [fraction(57343.0), fraction(63711.0)],
+                [0.0, 0.0],
+            ],
         ),
-        (23.0 / 16.0, [[f(23.0), 1.0], [1.0, 1.0], [0.0, 0.0]]),
+        (23.0 / 16.0, [[fraction(23.0), 1.0], [1.0, 1.0], [0.0, 0.0]]),
     ] {
-        let surface: SurfaceModel = AnalyticSurface::new(
-            AnalyticKind::EllipticParaboloid { a, b: a },
-            [-1.0, 1.0],
-            [-1.0, 1.0],
-        )
-        .unwrap()
-        .into();
+        let surface = paraboloid(a, a);
         let result = discretise(&surface, &uv, &DiscretiseOptions::default()).unwrap();
         let invalid = result.quality.as_ref().unwrap().invalid_facets;
         let sane = result.sanity_check();
@@ -46,23 +59,13 @@ fn fuzz_three_points_on_a_steep_paraboloid_report_and_sanity_agree() {
 /// (`sanity_check` refuses it too).
 #[test]
 fn fuzz_five_points_on_an_anisotropic_paraboloid_name_their_broken_topology() {
-    let surface: SurfaceModel = AnalyticSurface::new(
-        AnalyticKind::EllipticParaboloid {
-            a: 2.0 / 16.0,
-            b: 35.0 / 16.0,
-        },
-        [-1.0, 1.0],
-        [-1.0, 1.0],
-    )
-    .unwrap()
-    .into();
-    let f = |k: f64| k / 65535.0;
+    let surface = paraboloid(2.0 / 16.0, 35.0 / 16.0);
     let uv = [
-        [f(65481.0), f(11822.0)],
-        [f(8995.0), f(51711.0)],
-        [f(65282.0), f(65535.0)],
+        [fraction(65481.0), fraction(11822.0)],
+        [fraction(8995.0), fraction(51711.0)],
+        [fraction(65282.0), fraction(65535.0)],
         [1.0, 1.0],
-        [f(255.0), 0.0],
+        [fraction(255.0), 0.0],
     ];
     let result = discretise(&surface, &uv, &DiscretiseOptions::default()).unwrap();
     let q = result.quality.as_ref().unwrap();
@@ -96,23 +99,13 @@ fn fuzz_five_points_on_an_anisotropic_paraboloid_name_their_broken_topology() {
 /// merges such a crossing into the vertex beside it in every loop that holds it.
 #[test]
 fn fuzz_six_points_on_a_very_anisotropic_paraboloid_have_no_zero_length_edge() {
-    let surface: SurfaceModel = AnalyticSurface::new(
-        AnalyticKind::EllipticParaboloid {
-            a: -65.0 / 16.0,
-            b: -1.0 / 16.0,
-        },
-        [-1.0, 1.0],
-        [-1.0, 1.0],
-    )
-    .unwrap()
-    .into();
-    let f = |k: f64| k / 65535.0;
+    let surface = paraboloid(-65.0 / 16.0, -1.0 / 16.0);
     let uv = [
-        [f(16.0), f(447.0)],
-        [f(65280.0), f(4.0)],
-        [f(65347.0), f(65471.0)],
-        [f(63999.0), f(4134.0)],
-        [f(2560.0), f(57089.0)],
+        [fraction(16.0), fraction(447.0)],
+        [fraction(65280.0), fraction(4.0)],
+        [fraction(65347.0), fraction(65471.0)],
+        [fraction(63999.0), fraction(4134.0)],
+        [fraction(2560.0), fraction(57089.0)],
         [0.0, 0.0],
     ];
     let result = discretise(&surface, &uv, &DiscretiseOptions::default()).unwrap();
