@@ -273,13 +273,17 @@ pub(super) fn nest(
                         }
                         let shift = at - *lo;
                         let (plo, phi) = (at, at + size);
+                        // The hull moved to `at`, made once, and only if a part comes near.
+                        let moved = std::cell::OnceCell::new();
                         open.all_near(plo, phi, gap, cell, |o| {
                             o.lo.x >= phi.x + gap
                                 || o.hi.x + gap <= plo.x
                                 || o.lo.y >= phi.y + gap
                                 || o.hi.y + gap <= plo.y
                                 || separated(
-                                    &r.iter().map(|&x| x + shift).collect::<Vec<_>>(),
+                                    moved.get_or_init(|| {
+                                        r.iter().map(|&x| x + shift).collect::<Vec<_>>()
+                                    }),
                                     &o.hull,
                                     gap,
                                 )
