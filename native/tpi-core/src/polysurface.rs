@@ -404,6 +404,9 @@ impl Surface for Polysurface {
 struct FaceGeometry {
     faces: Vec<SurfaceModel>,
     tolerance: f64,
+    /// Per face, its four sides sampled once, each along its own parameter increasing:
+    /// s = 0 and s = 1 (along t), t = 0 and t = 1 (along s). Every placement reads them.
+    sides: Vec<[Vec<DVec3>; 4]>,
 }
 
 impl FaceGeometry {
@@ -419,9 +422,31 @@ impl FaceGeometry {
                 face.point_at(d.u.lerp(s), d.v.lerp(t))
             })
         }));
+        let at = |k: usize| k as f64 / (n - 1) as f64;
+        let sides = faces
+            .iter()
+            .map(|face| {
+                let d = face.domain();
+                let side = |st: &dyn Fn(f64) -> (f64, f64)| -> Vec<DVec3> {
+                    (0..n)
+                        .map(|k| {
+                            let (s, t) = st(at(k));
+                            face.point_at(d.u.lerp(s), d.v.lerp(t))
+                        })
+                        .collect()
+                };
+                [
+                    side(&|x| (0.0, x)),
+                    side(&|x| (1.0, x)),
+                    side(&|x| (x, 0.0)),
+                    side(&|x| (x, 1.0)),
+                ]
+            })
+            .collect();
         FaceGeometry {
             faces,
             tolerance: EDGE_MATCH_TOLERANCE * diagonal,
+            sides,
         }
     }
 
@@ -431,15 +456,24 @@ impl FaceGeometry {
         self.faces[face].point_at(d.u.lerp(s), d.v.lerp(t))
     }
 
-    /// The samples of one cell side of a placed face.
+    /// The samples of one cell side of a placed face, in the cell side's direction: the face
+    /// side it maps to (the face coordinate that stays 0 or 1 along it), forwards or reversed.
     fn side(&self, face: usize, orientation: Orientation, side: CellSide) -> Vec<DVec3> {
-        let n = EDGE_MATCH_SAMPLES;
-        (0..n)
-            .map(|k| {
-                let (a, b) = side.at(k as f64 / (n - 1) as f64);
-                self.point(face, orientation, a, b)
-            })
-            .collect()
+        let (a0, b0) = side.at(0.0);
+        let (a1, b1) = side.at(1.0);
+        let (s0, t0) = orientation.face_st(a0, b0);
+        let (s1, t1) = orientation.face_st(a1, b1);
+        let (index, forward) = if s0 == s1 {
+            (usize::from(s0 != 0.0), t1 > t0)
+        } else {
+            (2 + usize::from(t0 != 0.0), s1 > s0)
+        };
+        let samples = &self.sides[face][index];
+        if forward {
+            samples.clone()
+        } else {
+            samples.iter().rev().copied().collect()
+        }
     }
 
     fn same(&self, p: &[DVec3], q: &[DVec3]) -> bool {
@@ -567,6 +601,28 @@ fn lay_out(geometry: &FaceGeometry) -> Result<Placement, TpiError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn precomputed_sides_match_the_face_evaluated_along_each_cell_side() {
+        let face = crate::analytic::AnalyticSurface::new(
+            crate::analytic::AnalyticKind::EllipticParaboloid { a: 0.3, b: 0.7 },
+            [-1.0, 2.0],
+            [0.5, 1.5],
+        )
+        .unwrap();
+        let geometry = FaceGeometry::new(vec![SurfaceModel::Analytic(face)]);
+        let n = EDGE_MATCH_SAMPLES;
+        for o in Orientation::all() {
+            for side in CellSide::ALL {
+                let samples = geometry.side(0, o, side);
+                for (k, x) in samples.iter().enumerate() {
+                    let (a, b) = side.at(k as f64 / (n - 1) as f64);
+                    let direct = geometry.point(0, o, a, b);
+                    assert!(x.distance(direct) < 1e-12, "{o:?} {side:?} sample {k}");
+                }
+            }
+        }
+    }
 
     #[test]
     fn orientation_jacobian_matches_its_map() {
