@@ -102,9 +102,12 @@ pub fn relax(
         // Moves in pattern order; one landing on a point already placed is not made.
         let mut placed: Vec<[f64; 2]> = Vec::with_capacity(points.len());
         let mut grid = std::collections::HashMap::new();
+        // Cells one tolerance wide: a clash lies in the 3 x 3 cells around a point.
         let cell = |p: [f64; 2]| {
-            let scale = 1.0 / (4.0 * DUPLICATE_UV_TOLERANCE).max(1e-6);
-            ((p[0] * scale) as i64, (p[1] * scale) as i64)
+            (
+                (p[0] / DUPLICATE_UV_TOLERANCE).floor() as i64,
+                (p[1] / DUPLICATE_UV_TOLERANCE).floor() as i64,
+            )
         };
         for (&old, new) in points.iter().zip(&moved) {
             let candidate = new.unwrap_or(old);
