@@ -38,7 +38,7 @@ use crate::planes::Plane;
 use crate::samples::bounding_diagonal;
 use crate::surface::Surface;
 use crate::tolerance::{CLOSURE_TOLERANCE, LAYOUT_SAMPLES};
-use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
+use crate::triangulation::DualTriangulation;
 
 /// Which sides of a surface's domain meet or collapse ([`surface_layout`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -150,16 +150,17 @@ pub(crate) fn envelope_triangulation(
         .zip(&heights)
         .map(|(p, &h)| (p.normal / h).to_array())
         .collect();
-    let (mut triangles, on_hull) = convex_hull(&dual).map_err(|e| TpiError::DegenerateSurface {
-        reason: match e {
-            HullError::Flat => {
-                "the tangent planes of the closed surface do not enclose a volume".into()
-            }
-            HullError::Inconsistent => {
-                "the envelope of the tangent planes could not be built".into()
-            }
-        },
-    })?;
+    let (mut triangles, mut neighbours, on_hull) =
+        convex_hull(&dual).map_err(|e| TpiError::DegenerateSurface {
+            reason: match e {
+                HullError::Flat => {
+                    "the tangent planes of the closed surface do not enclose a volume".into()
+                }
+                HullError::Inconsistent => {
+                    "the envelope of the tangent planes could not be built".into()
+                }
+            },
+        })?;
     if let Some(i) = on_hull[..required].iter().position(|&h| !h) {
         return Err(TpiError::DegenerateSurface {
             reason: format!(
@@ -169,34 +170,25 @@ pub(crate) fn envelope_triangulation(
     }
     // Hull faces run counter-clockwise seen from outside; facets run counter-clockwise seen
     // from their normals, which point inwards when the heights are negative.
+    // Swapping vertices 1 and 2 swaps the edges opposite them.
     if !outward {
-        for t in &mut triangles {
+        for (t, nb) in triangles.iter_mut().zip(&mut neighbours) {
             t.swap(1, 2);
+            nb.swap(1, 2);
         }
     }
-    triangles.sort_unstable();
-    Ok(with_adjacency(triangles))
-}
-
-/// The triangulation with its neighbour table (the triangle across the edge opposite each
-/// vertex) from shared directed edges.
-fn with_adjacency(triangles: Vec<[u32; 3]>) -> DualTriangulation {
-    let mut edges: Vec<(u32, u32, u32, usize)> = Vec::with_capacity(3 * triangles.len());
-    for (t, tri) in triangles.iter().enumerate() {
-        for k in 0..3 {
-            // Edge opposite vertex k runs from tri[k + 1] to tri[k + 2].
-            edges.push((tri[(k + 1) % 3], tri[(k + 2) % 3], t as u32, k));
-        }
+    // Sorted by their vertices (each triangle is one key), the hull's neighbours renumbered.
+    let mut order: Vec<u32> = (0..triangles.len() as u32).collect();
+    order.sort_unstable_by_key(|&t| triangles[t as usize]);
+    let mut new_index = vec![0u32; order.len()];
+    for (k, &t) in order.iter().enumerate() {
+        new_index[t as usize] = k as u32;
     }
-    edges.sort_unstable();
-    let mut neighbours = vec![[NO_TRIANGLE; 3]; triangles.len()];
-    for &(a, b, t, k) in &edges {
-        if let Ok(j) = edges.binary_search_by(|e| (e.0, e.1).cmp(&(b, a))) {
-            neighbours[t as usize][k] = edges[j].2;
-        }
-    }
-    DualTriangulation {
-        triangles,
-        neighbours,
-    }
+    Ok(DualTriangulation {
+        triangles: order.iter().map(|&t| triangles[t as usize]).collect(),
+        neighbours: order
+            .iter()
+            .map(|&t| neighbours[t as usize].map(|x| new_index[x as usize]))
+            .collect(),
+    })
 }

@@ -37,10 +37,15 @@ pub(crate) enum HullError {
     Inconsistent,
 }
 
-/// The hull's faces (counter-clockwise seen from outside) and, per point, whether it is a
-/// vertex of the hull. Deterministic: after the first four independent points, the points
-/// are inserted along a Morton curve of their coordinates (so that each walk is short).
-pub(crate) fn convex_hull(points: &[[f64; 3]]) -> Result<(Vec<[u32; 3]>, Vec<bool>), HullError> {
+/// The hull's faces (counter-clockwise seen from outside), per face the face across the edge
+/// opposite each of its vertices (as [`crate::triangulation::DualTriangulation`] keeps its
+/// neighbours), and, per point, whether it is a vertex of the hull. Deterministic: after the
+/// first four independent points, the points are inserted along a Morton curve of their
+/// coordinates (so that each walk is short).
+pub(crate) type Hull = (Vec<[u32; 3]>, Vec<[u32; 3]>, Vec<bool>);
+
+/// See [`Hull`].
+pub(crate) fn convex_hull(points: &[[f64; 3]]) -> Result<Hull, HullError> {
     if points.len() < HULL_MIN_POINTS {
         return Err(HullError::Flat);
     }
@@ -179,8 +184,29 @@ pub(crate) fn convex_hull(points: &[[f64; 3]]) -> Result<(Vec<[u32; 3]>, Vec<boo
         mark.resize(faces.len(), false);
         last = *new_faces.first().ok_or(HullError::Inconsistent)?;
     }
-    let triangles = faces.iter().filter(|f| f.alive).map(|f| f.v).collect();
-    Ok((triangles, on_hull))
+    // The live faces renumbered; a face's edge (k + 1, k + 2) is the one opposite vertex k.
+    let mut index = vec![u32::MAX; faces.len()];
+    let mut next = 0u32;
+    for (f, face) in faces.iter().enumerate() {
+        if face.alive {
+            index[f] = next;
+            next += 1;
+        }
+    }
+    let live = faces.iter().filter(|f| f.alive);
+    let triangles = live.clone().map(|f| f.v).collect();
+    let neighbours = live
+        .map(|f| {
+            let across = |k: usize| index.get(f.adjacent[k] as usize).copied();
+            match (across(1), across(2), across(0)) {
+                (Some(a), Some(b), Some(c)) if [a, b, c].iter().all(|&x| x != u32::MAX) => {
+                    Ok([a, b, c])
+                }
+                _ => Err(HullError::Inconsistent),
+            }
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((triangles, neighbours, on_hull))
 }
 
 /// Morton (Z-order) keys of the points' coordinates quantised to 2^21 steps of their box.
@@ -280,7 +306,18 @@ mod tests {
 
     /// Brute force: every hull face has all points on its inner side or on its plane.
     fn check(points: &[[f64; 3]]) -> (usize, usize) {
-        let (faces, on_hull) = convex_hull(points).unwrap();
+        let (faces, neighbours, on_hull) = convex_hull(points).unwrap();
+        // Each neighbour holds the edge opposite vertex k, the other way round.
+        for (f, face) in faces.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (face[(k + 1) % 3], face[(k + 2) % 3]);
+                let g = faces[neighbours[f][k] as usize];
+                assert!(
+                    (0..3).any(|j| g[j] == b && g[(j + 1) % 3] == a),
+                    "face {f} edge {k}"
+                );
+            }
+        }
         let p = |i: u32| {
             let [x, y, z] = points[i as usize];
             robust::Coord3D { x, y, z }
@@ -346,7 +383,7 @@ mod tests {
             [0.0, 0.0, 1.0],
             [0.1, 0.1, 0.1],
         ];
-        let (_, on_hull) = convex_hull(&points).unwrap();
+        let (_, _, on_hull) = convex_hull(&points).unwrap();
         assert_eq!(on_hull, vec![true, true, true, true, false]);
         points.truncate(3);
         points.push([1.0, 1.0, 0.0]);
