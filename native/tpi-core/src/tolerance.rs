@@ -247,6 +247,20 @@ pub const PLANE_ADJUST_BUDGET: usize = 1000;
 /// Rounds of validity flips at most (each round visits every invalid facet once).
 pub const MAX_VALIDITY_ROUNDS: usize = 8;
 
+/// Passes of single-flip repairs around a detour flip of the validity repair (a flip kept
+/// only together with the repairs it allows): [`crate::validity_flips`].
+pub const DETOUR_REPAIR_PASSES: usize = 3;
+
+/// Detour flips the validity repair may try: this many per judged point plus
+/// [`DETOUR_BUDGET_FLOOR`] (counted, so the result stays deterministic). Hex, grid and
+/// Poisson-disk patterns on saddles seldom need more; uniform random points, where many
+/// facets cannot be repaired with exact planes, stop here.
+pub const DETOUR_BUDGET: f64 = 0.1;
+
+/// Detour flips every run may try whatever its size (small patterns have few facets to
+/// spread the search over).
+pub const DETOUR_BUDGET_FLOOR: usize = 100;
+
 /// Relative tolerance of the local validity tests: orientations smaller than this times the
 /// squared size of the polygons count as collinear, distances smaller than this times the
 /// size as zero (rounding of the three-plane vertices is far below it).

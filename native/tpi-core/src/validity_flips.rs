@@ -24,8 +24,20 @@
 //! invalid facets among those the flip can change (the quad's four points and their
 //! neighbours) are counted before and after, and the flip is kept only if the count drops.
 //! Every kept flip lowers the number of invalid facets, so the loop ends; it is bounded by
-//! [`MAX_VALIDITY_ROUNDS`] rounds in any case. Facets on the hull (open fans) are built with
-//! the boundary later ([`crate::facets`]); they are not judged here.
+//! [`MAX_VALIDITY_ROUNDS`] rounds in any case.
+//!
+//! Single flips that must each pay get stuck where a facet needs two: on saddles with
+//! irregular patterns (Poisson-disk, jittered) most of the facets they leave are of that
+//! kind. So then, for each facet i still invalid, a *detour*: one star or link edge of i is
+//! flipped although that alone does not pay, the invalid facets around it get
+//! [`DETOUR_REPAIR_PASSES`] passes of single-flip repairs, and the whole sequence is kept if
+//! it leaves fewer invalid facets than before, or undone (a journal of the flips and
+//! verdicts). Rounds until no detour is kept; the detours tried are counted against
+//! [`DETOUR_BUDGET`] per point plus [`DETOUR_BUDGET_FLOOR`], so uniform random points (many
+//! facets no flip sequence repairs with exact planes) cost a bounded amount.
+//!
+//! Facets on the hull (open fans) are built with the boundary later ([`crate::facets`]);
+//! they are not judged here.
 
 // NaN-safe negated comparisons are intended: a NaN area or length must fail the test.
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
@@ -36,7 +48,10 @@ use glam::{DVec2, DVec3};
 
 use crate::facets::reachable;
 use crate::planes::{meeting_point, Plane};
-use crate::tolerance::{MAX_VALIDITY_ROUNDS, VALIDITY_TOLERANCE};
+use crate::tolerance::{
+    DETOUR_BUDGET, DETOUR_BUDGET_FLOOR, DETOUR_REPAIR_PASSES, MAX_VALIDITY_ROUNDS,
+    VALIDITY_TOLERANCE,
+};
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
 /// What the validity flips did.
@@ -88,6 +103,26 @@ pub(crate) fn validity_flips(
             break;
         }
     }
+    // What single flips cannot repair, a detour through a flip that does not pay may.
+    // Counted, not timed (the result stays deterministic): uniform random points leave many
+    // facets no flip sequence repairs, and the search stops there.
+    let budget = (DETOUR_BUDGET * n as f64).ceil() as usize + DETOUR_BUDGET_FLOOR;
+    'detours: for _ in 0..MAX_VALIDITY_ROUNDS {
+        let mut kept = 0;
+        for i in 0..n as u32 {
+            if state.detours >= budget {
+                stats.flips += kept;
+                break 'detours;
+            }
+            if state.invalid[i as usize] && state.try_detour(i, n) {
+                kept += 1;
+            }
+        }
+        stats.flips += kept;
+        if kept == 0 {
+            break;
+        }
+    }
     stats.unresolved = state.invalid.iter().filter(|&&x| x).count();
     stats
 }
@@ -122,13 +157,24 @@ pub(crate) struct State<'a> {
     /// How many planes [`State::set_plane`] replaced (tried or kept): the plane adjustment's
     /// measure of work.
     pub(crate) plane_changes: usize,
+    /// Detour flips tried ([`State::try_detour`]): the measure of their work.
+    detours: usize,
 }
 
 /// The old values of what a tentative sequence of changes replaced, in order.
 #[derive(Default)]
 pub(crate) struct Journal {
-    planes: Vec<(u32, Plane)>,
+    /// Planes replaced and flips made, in order (undone in reverse).
+    changes: Vec<Change>,
     verdicts: Vec<(u32, bool)>,
+}
+
+/// One logged change of the triangulation or the planes.
+enum Change {
+    /// Point j's plane was replaced; this is the old one.
+    Plane(u32, Plane),
+    /// A flip made this edge (its points): undone by flipping it back.
+    Flip(u32, u32),
 }
 
 impl Journal {
@@ -187,6 +233,7 @@ impl<'a> State<'a> {
             journal: None,
             reach_limit: None,
             plane_changes: 0,
+            detours: 0,
         };
         state.invalid = state.initial_verdicts(judged);
         state
@@ -227,8 +274,17 @@ impl<'a> State<'a> {
         for &(x, old) in journal.verdicts.iter().rev() {
             self.invalid[x as usize] = old;
         }
-        for &(j, old) in journal.planes.iter().rev() {
-            self.set_plane(j, old);
+        for change in journal.changes.iter().rev() {
+            match *change {
+                Change::Plane(j, old) => self.set_plane(j, old),
+                Change::Flip(c, d) => {
+                    // Flipped back by its points: triangle labels and rotations need not be
+                    // those the flip left once later flips were undone.
+                    if let Some((t, k)) = find_edge(self.tri, &self.incident, c, d) {
+                        self.flip(t as u32, k);
+                    }
+                }
+            }
         }
     }
 
@@ -253,7 +309,9 @@ impl<'a> State<'a> {
     /// Replaces the plane of point j and renews the vertices of the triangles around it.
     pub(crate) fn set_plane(&mut self, j: u32, plane: Plane) {
         if let Some(journal) = &mut self.journal {
-            journal.planes.push((j, self.planes[j as usize]));
+            journal
+                .changes
+                .push(Change::Plane(j, self.planes[j as usize]));
         }
         self.planes.to_mut()[j as usize] = plane;
         self.plane_changes += 1;
@@ -322,8 +380,12 @@ impl<'a> State<'a> {
     /// Flips triangle t's edge opposite k and brings the caches up to date; returns the two
     /// triangles holding the new diagonal (the first at position 1 of the second).
     fn flip(&mut self, t: u32, k: usize) -> (u32, u32) {
-        debug_assert!(self.journal.is_none(), "flips are not journaled");
         let (t1, t2) = self.tri.flip(t, k);
+        if let Some(journal) = &mut self.journal {
+            // The new diagonal is the edge opposite position 1 of t1 = [c, a, d].
+            let [c, _, d] = self.tri.triangles[t1 as usize];
+            journal.changes.push(Change::Flip(c, d));
+        }
         for t in [t1, t2] {
             self.vertex[t as usize] = triangle_vertex(&self.planes, self.tri.triangles[t as usize]);
             for v in self.tri.triangles[t as usize] {
@@ -497,6 +559,86 @@ impl<'a> State<'a> {
         false
     }
 
+    /// The edges a repair of interior facet i tries, as point pairs: its star edges, then its
+    /// link edges; None where its fan does not close.
+    fn repair_candidates(&self, i: u32) -> Option<Vec<(u32, u32)>> {
+        let mut fan = Vec::new();
+        if self.tri.fan(i, self.incident[i as usize], &mut fan) != Fan::Closed {
+            return None;
+        }
+        let mut candidates: Vec<(u32, u32)> = Vec::new();
+        for &t in &fan {
+            let v = self.tri.triangles[t as usize];
+            let k = v.iter().position(|&x| x == i).unwrap_or(0);
+            let (j, m) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+            candidates.push((i, j));
+            candidates.push((j, m));
+        }
+        Some(candidates)
+    }
+
+    /// Where no single flip repairs facet i: a star or link edge of i flipped although it
+    /// does not pay by itself, then single-flip repairs of the invalid facets around it
+    /// ([`DETOUR_REPAIR_PASSES`] passes); the whole is kept when it leaves fewer invalid
+    /// facets than before, and undone otherwise.
+    fn try_detour(&mut self, i: u32, judged: usize) -> bool {
+        let Some(candidates) = self.repair_candidates(i) else {
+            return false;
+        };
+        for (a, b) in candidates {
+            let Some((t, k)) = find_edge(self.tri, &self.incident, a, b) else {
+                continue;
+            };
+            let quad = quad_points(self.tri, t, k);
+            let [c, _, _, d] = quad;
+            if c == d || has_edge(self.tri, &self.incident, c, d) {
+                continue;
+            }
+            self.detours += 1;
+            self.journal = Some(Journal::default());
+            self.flip(t as u32, k);
+            if quad.iter().any(|&x| x as usize >= judged)
+                && !quad.iter().all(|&x| self.one_ghost_arc(x))
+            {
+                self.undo();
+                continue;
+            }
+            let mut region = affected_points(self.tri, &self.incident, &quad);
+            region.retain(|&x| (x as usize) < judged);
+            let mut targets = Vec::new();
+            for &x in &region {
+                let v = self.facet_invalid(x);
+                if v != self.invalid[x as usize] {
+                    self.set_verdict(x, v);
+                }
+                if v {
+                    targets.push(x);
+                }
+            }
+            for _ in 0..DETOUR_REPAIR_PASSES {
+                let mut any = false;
+                for &x in &targets {
+                    if self.invalid[x as usize] && self.try_repair(x, judged).is_some() {
+                        any = true;
+                    }
+                }
+                if !any {
+                    break;
+                }
+            }
+            let gain = self
+                .journal
+                .as_ref()
+                .map_or(0, |journal| journal.invalid_gain(&self.invalid));
+            if gain < 0 {
+                self.journal = None;
+                return true;
+            }
+            self.undo();
+        }
+        false
+    }
+
     /// Tries the star and link edges of facet i; keeps the first flip that lowers the number
     /// of invalid facets around it and returns the points whose verdicts it renewed.
     fn try_repair(&mut self, i: u32, judged: usize) -> Option<Vec<u32>> {
@@ -513,20 +655,7 @@ impl<'a> State<'a> {
         judged: usize,
         rescue: &mut dyn FnMut(&mut Self, [u32; 4]) -> bool,
     ) -> Option<Vec<u32>> {
-        let mut fan = Vec::new();
-        if self.tri.fan(i, self.incident[i as usize], &mut fan) != Fan::Closed {
-            return None;
-        }
-        // Candidate edges as (a, b) point pairs: star edges, then link edges.
-        let mut candidates: Vec<(u32, u32)> = Vec::new();
-        for &t in &fan {
-            let v = self.tri.triangles[t as usize];
-            let k = v.iter().position(|&x| x == i).unwrap_or(0);
-            let (j, m) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-            candidates.push((i, j));
-            candidates.push((j, m));
-        }
-        for (a, b) in candidates {
+        for (a, b) in self.repair_candidates(i)? {
             let Some((t, k)) = find_edge(self.tri, &self.incident, a, b) else {
                 continue;
             };
@@ -570,7 +699,7 @@ impl<'a> State<'a> {
             }
             if count < before {
                 for (&x, v) in affected.iter().zip(verdicts) {
-                    self.invalid[x as usize] = v;
+                    self.set_verdict(x, v);
                 }
                 return Some(affected);
             }

@@ -377,24 +377,115 @@ fn saddles_give_valid_meshes_with_exact_planes() {
             c.surface, c.pattern
         );
         let invalid = v.invalid_facets().len();
-        if c.pattern.starts_with("poisson") {
-            // Known gap: a Poisson pattern can leave a facet or two at the boundary invalid.
-            assert!(
-                invalid <= 2 && invalid == c.invalid_at_boundary,
-                "{} / {}: invalid facets {v:?}",
-                c.surface,
-                c.pattern
-            );
-        } else {
-            assert_eq!(
-                invalid, 0,
-                "{} / {}: invalid facets {v:?}",
-                c.surface, c.pattern
-            );
-            // Valid by the independent check: the crate's structural check agrees.
-            assert_eq!(c.sanity, Ok(()), "{} / {}", c.surface, c.pattern);
+        assert_eq!(
+            invalid, 0,
+            "{} / {}: invalid facets {v:?}",
+            c.surface, c.pattern
+        );
+        // Valid by the independent check: the crate's structural check agrees.
+        assert_eq!(c.sanity, Ok(()), "{} / {}", c.surface, c.pattern);
+    }
+}
+
+/// A bicubic graph z(x, y) over [-hx, hx] x [-hy, hy] (control points lifted at their
+/// Greville abscissae, so the NURBS is close to the function, not equal to it).
+fn graph_net(hx: f64, hy: f64, z: impl Fn(f64, f64) -> f64) -> NurbsSurface {
+    let knots = [
+        0.0, 0.0, 0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0, 1.0, 1.0,
+    ];
+    lifted_net(
+        [3, 3],
+        &knots,
+        &knots,
+        |s, t| (-hx + 2.0 * hx * s, -hy + 2.0 * hy * t),
+        |x, y, _, _| z(x, y),
+        None,
+    )
+}
+
+/// Saddles unlike the ones the code was tuned on, with irregular patterns: Scherk's minimal
+/// surface, a one-sheet hyperboloid seen as a graph, and a steep twisted hyperbolic
+/// paraboloid whose curvature varies a hundredfold; Poisson-disk patterns of several seeds
+/// and hex patterns at odd rotations and offsets. Every mesh is a disc with every invalid
+/// facet flagged, and (known gap) at most one facet in a thousand of the whole family is
+/// invalid with exact planes (3 of 26,000 today; before the detour flips of
+/// `validity_flips`, 36 facets in 11 of the 24 meshes were).
+#[test]
+fn unseen_saddles_with_irregular_patterns() {
+    let surfaces: Vec<(&'static str, NurbsSurface)> = vec![
+        (
+            "scherk",
+            graph_net(1.2, 1.8, |x, y| {
+                let s = 1.1 / 1.8;
+                ((s * y).cos() / (s * x).cos()).ln() / s
+            }),
+        ),
+        (
+            "hyperboloid",
+            graph_net(1.7, 1.5, |x, y| {
+                (1.0 + (x / 1.7 * 1.5).powi(2) - (y / 1.5 * 0.7).powi(2)).sqrt() * 1.5
+            }),
+        ),
+        (
+            "steep-hypar",
+            graph_net(2.7, 1.2, |x, y| 0.76 * x * x - 0.96 * y * y - 0.34 * x * y),
+        ),
+    ];
+    let mut rng = Rng::new(31);
+    let mut total_facets = 0;
+    let mut total_invalid = 0;
+    let mut table = Vec::new();
+    for (name, surface) in &surfaces {
+        assert!(
+            max_gaussian(surface) < 0.0,
+            "{name} is not a saddle everywhere"
+        );
+        let mut cases: Vec<(String, Vec<[f64; 2]>)> = Vec::new();
+        for n in [300usize, 2000] {
+            for _ in 0..2 {
+                let seed = rng.next_u64();
+                let r = (0.7 / n as f64).sqrt();
+                cases.push((
+                    format!("poisson{n}#{seed:x}"),
+                    Generator::Poisson { radius: r, seed }.generate().uv,
+                ));
+            }
+            for _ in 0..2 {
+                let degrees = rng.range(0.0, 180.0);
+                let offset = [rng.f64(), rng.f64()];
+                cases.push((
+                    format!("hex{n}@{degrees:.0}"),
+                    offset_hex(n, degrees, offset),
+                ));
+            }
+        }
+        for (pattern_name, pattern) in &cases {
+            let c = run(name, surface, pattern_name, pattern);
+            assert!(c.validity.is_disc(), "{name} / {pattern_name}: not a disc");
+            assert_eq!(c.flagged_missing, 0, "{name} / {pattern_name}: unflagged");
+            total_facets += c.points;
+            total_invalid += c.validity.invalid_facets().len();
+            table.push(c);
         }
     }
+    report(&table);
+    assert!(
+        total_invalid * 1000 <= total_facets,
+        "{total_invalid} invalid facets of {total_facets}"
+    );
+}
+
+/// [`rotated_hex`] with the lattice shifted by `offset` (in lattice spacings).
+fn offset_hex(n: usize, degrees: f64, offset: [f64; 2]) -> Vec<[f64; 2]> {
+    let shift = [offset[0] - 0.25, offset[1] - 0.2];
+    let h = (2.0 / (3f64.sqrt() * n as f64)).sqrt();
+    let (s, c) = degrees.to_radians().sin_cos();
+    let (dx, dy) = (shift[0] * h, shift[1] * h);
+    rotated_hex(n, degrees)
+        .into_iter()
+        .map(|[u, v]| [u + c * dx - s * dy, v + s * dx + c * dy])
+        .filter(|p| p.iter().all(|x| (0.0..=1.0).contains(x)))
+        .collect()
 }
 
 /// The hyperbolic paraboloid turned by 45 degrees has its rulings (asymptotic lines) along
