@@ -577,6 +577,17 @@ impl<'a> State<'a> {
         Some(candidates)
     }
 
+    /// The interior edge (a, b) as (triangle, opposite position, quad points (c, a, b, d))
+    /// where it can be flipped. A flip is a topological move: the structure stays a
+    /// triangulated disc whatever the quad's shape in the plane (facet loops follow
+    /// adjacency, not positions), unless the new diagonal (c, d) exists already.
+    fn flippable(&self, a: u32, b: u32) -> Option<(usize, usize, [u32; 4])> {
+        let (t, k) = find_edge(self.tri, &self.incident, a, b)?;
+        let quad = quad_points(self.tri, t, k);
+        let [c, _, _, d] = quad;
+        (c != d && !has_edge(self.tri, &self.incident, c, d)).then_some((t, k, quad))
+    }
+
     /// Where no single flip repairs facet i: a star or link edge of i flipped although it
     /// does not pay by itself, then single-flip repairs of the invalid facets around it
     /// ([`DETOUR_REPAIR_PASSES`] passes); the whole is kept when it leaves fewer invalid
@@ -586,14 +597,9 @@ impl<'a> State<'a> {
             return false;
         };
         for (a, b) in candidates {
-            let Some((t, k)) = find_edge(self.tri, &self.incident, a, b) else {
+            let Some((t, k, quad)) = self.flippable(a, b) else {
                 continue;
             };
-            let quad = quad_points(self.tri, t, k);
-            let [c, _, _, d] = quad;
-            if c == d || has_edge(self.tri, &self.incident, c, d) {
-                continue;
-            }
             self.detours += 1;
             self.journal = Some(Journal::default());
             self.flip(t as u32, k);
@@ -656,17 +662,9 @@ impl<'a> State<'a> {
         rescue: &mut dyn FnMut(&mut Self, [u32; 4]) -> bool,
     ) -> Option<Vec<u32>> {
         for (a, b) in self.repair_candidates(i)? {
-            let Some((t, k)) = find_edge(self.tri, &self.incident, a, b) else {
+            let Some((t, k, quad)) = self.flippable(a, b) else {
                 continue;
             };
-            let quad = quad_points(self.tri, t, k);
-            let [c, _, _, d] = quad;
-            // A flip is a topological move: the structure stays a triangulated disc whatever
-            // the quad's shape in the plane (facet loops follow adjacency, not positions),
-            // unless the new diagonal exists already.
-            if c == d || has_edge(self.tri, &self.incident, c, d) {
-                continue;
-            }
             let touches_ghost = quad.iter().any(|&x| x as usize >= judged);
             let mut affected = affected_points(self.tri, &self.incident, &quad);
             affected.retain(|&x| (x as usize) < judged);
