@@ -7,7 +7,9 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use serde::Serialize;
-use tpi_core::benchmark::{floor, nurbs_dome, paraboloid, random_pattern, saddle, FloorTimings};
+use tpi_core::benchmark::{
+    floor, nurbs_dome, paraboloid, poisson_pattern, random_pattern, saddle, FloorTimings,
+};
 use tpi_core::SplitMix64;
 use tpi_core::{
     discretise, fabricate, DiscretiseOptions, FabricateOptions, LiveSurface, SlotPlan, Surface,
@@ -18,9 +20,10 @@ use crate::error::CliError;
 use crate::output::{check_output_path, write_all};
 
 pub(crate) const AFTER_HELP: &str = "\
-Discretises N uniform random pattern points (SplitMix64, seed 7 + N) on (a) the paraboloid
-of revolution z = -0.08 (x^2 + y^2) over [-5, 5]^2 and (b) a bicubic NURBS dome with
-12 x 12 control points and non-uniform knots, R times each, and prints the median time of
+Discretises N uniform random pattern points (SplitMix64, seed 7 + N; with --pattern poisson
+about N Poisson-disk points) on (a) the paraboloid of revolution z = -0.08 (x^2 + y^2) over
+[-5, 5]^2, (b) a bicubic NURBS dome with 12 x 12 control points and non-uniform knots and
+(c) a bicubic NURBS saddle (K < 0 everywhere), R times each, and prints the median time of
 every stage in milliseconds: samples (evaluation and curvature, pattern validation),
 Delaunay, neighbours (curvature compensation / envelope), facets (vertices and boundary),
 mesh (assembly), report (quality report) and total, with facets per second, the threads
@@ -36,6 +39,7 @@ apart from the edits).
 EXAMPLES:
     tpi bench
     tpi bench --sizes 1000 --threads 1 --repeat 101
+    tpi bench --sizes 10000 --surfaces paraboloid,saddle --pattern poisson
     tpi bench --sizes 1000,1000000 --repeat 1 --edits 1001 --surfaces nurbs
     tpi bench --sizes 1000,10000,100000,1000000 --json --plot docs/performance-scaling.svg
     tpi bench --sizes 10000 --surfaces nurbs --fabricate --repeat 1
@@ -51,6 +55,10 @@ pub(crate) struct BenchArgs {
     /// any-curvature path) [default: all three]
     #[arg(long, value_name = "LIST")]
     surfaces: Option<String>,
+    /// random (uniform, SplitMix64, seed 7 + N) or poisson (Poisson-disk, radius
+    /// sqrt(0.7 / N): about N points, evenly spaced) [default: random]
+    #[arg(long, value_name = "KIND")]
+    pattern: Option<String>,
     /// Rayon threads [default: all cores]
     #[arg(long, value_name = "T")]
     threads: Option<String>,
@@ -87,6 +95,7 @@ const SURFACES: [&str; 3] = ["paraboloid", "nurbs", "saddle"];
 struct Config {
     sizes: Vec<usize>,
     surfaces: Vec<&'static str>,
+    poisson: bool,
     threads: Option<usize>,
     repeat: usize,
     report: bool,
@@ -165,6 +174,8 @@ pub(crate) struct Report {
     pub repeat: usize,
     /// Whether the quality report was on.
     pub quality_report: bool,
+    /// The pattern kind: "random" or "poisson".
+    pub pattern: &'static str,
     /// One row per surface and size.
     pub results: Vec<Row>,
 }
@@ -207,6 +218,7 @@ fn parse(args: BenchArgs) -> Result<Config, CliError> {
     let mut config = Config {
         sizes: vec![1_000, 10_000, 100_000, 1_000_000],
         surfaces: SURFACES.to_vec(),
+        poisson: false,
         threads: None,
         repeat: 3,
         report: !args.no_report,
@@ -242,6 +254,17 @@ fn parse(args: BenchArgs) -> Result<Config, CliError> {
                     })
             })
             .collect::<Result<_, _>>()?;
+    }
+    if let Some(v) = &args.pattern {
+        config.poisson = match v.trim() {
+            "random" => false,
+            "poisson" => true,
+            _ => {
+                return Err(usage(format!(
+                    "--pattern {v}: the patterns are random and poisson"
+                )))
+            }
+        };
     }
     if let Some(v) = &args.threads {
         config.threads = match v.parse::<usize>() {
@@ -298,7 +321,11 @@ fn measure(config: &Config) -> Result<Report, CliError> {
             _ => Box::new(nurbs_dome()),
         };
         for &n in &config.sizes {
-            let pattern = random_pattern(n);
+            let pattern = if config.poisson {
+                poisson_pattern(n)
+            } else {
+                random_pattern(n)
+            };
             reset_peak_memory();
             // One unmeasured run warms caches and the allocator on the smaller sizes.
             if n <= 100_000 {
@@ -347,7 +374,7 @@ fn measure(config: &Config) -> Result<Report, CliError> {
             };
             results.push(Row {
                 surface: name,
-                points: n,
+                points: pattern.len(),
                 facets,
                 facets_per_second: if median_ms.total > 0.0 {
                     facets as f64 / (median_ms.total * 1e-3)
@@ -370,6 +397,7 @@ fn measure(config: &Config) -> Result<Report, CliError> {
         threads: rayon::current_num_threads(),
         repeat: config.repeat,
         quality_report: config.report,
+        pattern: if config.poisson { "poisson" } else { "random" },
         results,
     })
 }
@@ -567,7 +595,8 @@ pub(crate) fn table(report: &Report) -> String {
     let mut s = String::new();
     let _ = writeln!(
         s,
-        "tpi bench: median of {} run{}, {} thread{}, quality report {} (times in ms)",
+        "tpi bench: {} pattern, median of {} run{}, {} thread{}, quality report {} (times in ms)",
+        report.pattern,
         report.repeat,
         if report.repeat == 1 { "" } else { "s" },
         report.threads,

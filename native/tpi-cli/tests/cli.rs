@@ -1282,7 +1282,7 @@ fn bench_prints_the_table_and_json_and_plot() {
     let lines: Vec<&str> = table.lines().collect();
     assert_eq!(lines.len(), 5, "{table}");
     assert!(
-        lines[0].starts_with("tpi bench: median of 3 runs"),
+        lines[0].starts_with("tpi bench: random pattern, median of 3 runs"),
         "{table}"
     );
     let header: Vec<&str> = lines[1].split_whitespace().collect();
@@ -1337,6 +1337,7 @@ fn bench_prints_the_table_and_json_and_plot() {
     assert_eq!(json["threads"], 1);
     assert_eq!(json["repeat"], 1);
     assert_eq!(json["quality_report"], false);
+    assert_eq!(json["pattern"], "random");
     let results = json["results"].as_array().expect("results");
     assert_eq!(results.len(), 2);
     for (r, n) in results.iter().zip([300, 1000]) {
@@ -1366,6 +1367,34 @@ fn bench_prints_the_table_and_json_and_plot() {
         svg.starts_with("<svg") && svg.trim_end().ends_with("</svg>") && svg.contains("polyline"),
         "{svg}"
     );
+
+    // --pattern poisson: the documented generator (radius sqrt(0.7 / N), seed 7 + N), as
+    // `tpi pattern` makes it, about N points.
+    let out = ok(&[
+        "bench",
+        "--sizes",
+        "2000",
+        "--surfaces",
+        "saddle",
+        "--pattern",
+        "poisson",
+        "--repeat",
+        "1",
+        "--json",
+    ]);
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!(json["pattern"], "poisson");
+    let points = json["results"][0]["points"].as_u64().expect("points");
+    let spec = format!("poisson:{}:seed=2007", (0.7f64 / 2000.0).sqrt());
+    let pattern = dir.join("poisson.json").to_string_lossy().into_owned();
+    ok(&["pattern", &spec, "--out", &pattern]);
+    let generated: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(&pattern).expect("pattern")).expect("JSON");
+    let count = generated["uv"].as_array().expect("uv").len() as u64;
+    assert_eq!(points, count, "{spec}");
+    assert!((1600..=2400).contains(&count), "{count} points for 2000");
+    assert_eq!(json["results"][0]["facets"], count);
+    fs::remove_file(&pattern).unwrap();
 
     // --floor: the floor's stages and the ratio, consistent with each other (never timings).
     let out = ok(&[
@@ -1423,6 +1452,7 @@ fn bench_prints_the_table_and_json_and_plot() {
 
     fails(&["bench", "--sizes", "2"], 2, &["--sizes"]);
     fails(&["bench", "--surfaces", "torus"], 2, &["--surfaces"]);
+    fails(&["bench", "--pattern", "hex"], 2, &["--pattern"]);
     fails(&["bench", "--repeat", "0"], 2, &["--repeat"]);
     fails(
         &["bench", "--plot", &dir.join("x.png").to_string_lossy()],

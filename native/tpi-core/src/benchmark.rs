@@ -9,6 +9,9 @@
 //!   samples/saddle.json): the any-curvature path (ghosts, |II| flips, validity flips).
 //! - [`random_pattern`]: n uniform random points in the unit square (SplitMix64, fixed seed per
 //!   n), the same generator as `tpi pattern random:N:seed=S`.
+//! - [`poisson_pattern`]: about n Poisson-disk points in the unit square (radius
+//!   sqrt(0.7 / n), fixed seed per n), the same generator as `tpi pattern poisson:R:seed=S`:
+//!   the even spacing designers draw, where uniform random points hold close pairs.
 //! - [`floor`]: what any TPI discretisation of the same input cannot avoid, timed stage by
 //!   stage: surface evaluation with curvature at every point, one triangulation of the
 //!   points' slopes (of their parameters where the slope frame does not apply), one
@@ -124,6 +127,21 @@ pub fn saddle() -> NurbsSurface {
 pub fn random_pattern(n: usize) -> Vec<[f64; 2]> {
     Generator::Random {
         count: n.max(1),
+        seed: 7 + n as u64,
+    }
+    .generate()
+    .uv
+}
+
+/// About `n` Poisson-disk points in [0, 1]^2 (Bridson's sampling gives about 0.7 / R^2 points
+/// for radius R, so R = sqrt(0.7 / n)), deterministic for a given `n`: the pattern of
+/// `tpi pattern poisson:R:seed=S` with S = 7 + n.
+pub fn poisson_pattern(n: usize) -> Vec<[f64; 2]> {
+    let radius = (0.7 / n.max(1) as f64)
+        .sqrt()
+        .max(crate::tolerance::MIN_POISSON_RADIUS);
+    Generator::Poisson {
+        radius,
         seed: 7 + n as u64,
     }
     .generate()
