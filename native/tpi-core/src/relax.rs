@@ -13,8 +13,9 @@
 //! ```
 //!
 //! A point keeps its place when its facet is flagged invalid (its centroid would mean
-//! nothing), when the centroid is not finite, or when the move would land within
-//! [`DUPLICATE_UV_TOLERANCE`] of a point already moved. Lloyd's iteration lowers the
+//! nothing) or when the centroid is not finite. The points stay distinct: those that stay
+//! are placed first, and a move that would land within [`DUPLICATE_UV_TOLERANCE`] of a
+//! point already placed stops short of it ([`place_moves`]). Lloyd's iteration lowers the
 //! tessellation energy sum_i integral |x - p_i|^2 at every step and converges to a centroidal
 //! Voronoi tessellation, whose cells have nearly equal areas under a uniform density.
 
@@ -99,40 +100,102 @@ pub fn relax(
                 ]);
             }
         }
-        // Moves in pattern order; one landing on a point already placed is not made.
-        let mut placed: Vec<[f64; 2]> = Vec::with_capacity(points.len());
-        let mut grid = std::collections::HashMap::new();
-        // Cells one tolerance wide: a clash lies in the 3 x 3 cells around a point.
-        let cell = |p: [f64; 2]| {
-            (
-                (p[0] / DUPLICATE_UV_TOLERANCE).floor() as i64,
-                (p[1] / DUPLICATE_UV_TOLERANCE).floor() as i64,
-            )
-        };
-        for (&old, new) in points.iter().zip(&moved) {
-            let candidate = new.unwrap_or(old);
-            let (ci, cj) = cell(candidate);
-            let clash = (ci - 1..=ci + 1).any(|a| {
-                (cj - 1..=cj + 1).any(|b| {
-                    grid.get(&(a, b)).is_some_and(|others: &Vec<usize>| {
-                        others.iter().any(|&o| {
-                            let q: [f64; 2] = placed[o];
-                            (q[0] - candidate[0]).abs() <= DUPLICATE_UV_TOLERANCE
-                                && (q[1] - candidate[1]).abs() <= DUPLICATE_UV_TOLERANCE
-                        })
-                    })
-                })
-            });
-            let chosen = if clash { old } else { candidate };
-            grid.entry(cell(chosen))
-                .or_insert_with(Vec::new)
-                .push(placed.len());
-            placed.push(chosen);
-        }
-        points = placed;
+        points = place_moves(&points, &moved);
     }
     Ok(points)
 }
+
+/// The points after one iteration's moves (`moved[i]`: where point i goes, None where it
+/// stays), all distinct beyond [`DUPLICATE_UV_TOLERANCE`] as the distinct `points` were:
+/// the points that stay are placed first (their places are distinct), then the moves in
+/// pattern order. A move landing on a point already placed goes as far towards its target
+/// as it can without (the whole way, else back home, else half, a quarter or three quarters
+/// of the way), and where even its home is taken (two points clamped onto one corner or
+/// side) it steps towards the middle of the domain by [`INWARD_STEP`] at a time.
+fn place_moves(points: &[[f64; 2]], moved: &[Option<[f64; 2]>]) -> Vec<[f64; 2]> {
+    let mut placed = PlacedPoints::default();
+    for (&old, new) in points.iter().zip(moved) {
+        if new.is_none() {
+            placed.insert(old);
+        }
+    }
+    let mut result = points.to_vec();
+    for ((&old, new), out) in points.iter().zip(moved).zip(result.iter_mut()) {
+        let Some(target) = *new else {
+            continue;
+        };
+        let along = [1.0, 0.0, 0.5, 0.25, 0.75].into_iter().map(|f| {
+            [
+                old[0] + f * (target[0] - old[0]),
+                old[1] + f * (target[1] - old[1]),
+            ]
+        });
+        let inward = (1..=INWARD_TRIES).map(|k| {
+            let step = k as f64 * INWARD_STEP;
+            [
+                target[0] + step * (0.5 - target[0]),
+                target[1] + step * (0.5 - target[1]),
+            ]
+        });
+        // Every try taken needs 21 placed points within micro-units of these places; then
+        // the point stays home, and a clash there is named by the next discretisation.
+        let chosen = along
+            .chain(inward)
+            .find(|&p| !placed.clashes(p))
+            .unwrap_or(old);
+        placed.insert(chosen);
+        *out = chosen;
+    }
+    result
+}
+
+/// Points placed so far, hashed on a grid of cells one [`DUPLICATE_UV_TOLERANCE`] wide (a
+/// clash lies in the 3 x 3 cells around a point).
+#[derive(Default)]
+struct PlacedPoints {
+    points: Vec<[f64; 2]>,
+    grid: std::collections::HashMap<(i64, i64), Vec<usize>>,
+}
+
+impl PlacedPoints {
+    fn cell(p: [f64; 2]) -> (i64, i64) {
+        (
+            (p[0] / DUPLICATE_UV_TOLERANCE).floor() as i64,
+            (p[1] / DUPLICATE_UV_TOLERANCE).floor() as i64,
+        )
+    }
+
+    fn insert(&mut self, p: [f64; 2]) {
+        self.grid
+            .entry(Self::cell(p))
+            .or_default()
+            .push(self.points.len());
+        self.points.push(p);
+    }
+
+    /// Whether p lies within the tolerance of a placed point (in both coordinates).
+    fn clashes(&self, p: [f64; 2]) -> bool {
+        let (ci, cj) = Self::cell(p);
+        (ci - 1..=ci + 1).any(|a| {
+            (cj - 1..=cj + 1).any(|b| {
+                self.grid.get(&(a, b)).is_some_and(|others| {
+                    others.iter().any(|&o| {
+                        let q = self.points[o];
+                        (q[0] - p[0]).abs() <= DUPLICATE_UV_TOLERANCE
+                            && (q[1] - p[1]).abs() <= DUPLICATE_UV_TOLERANCE
+                    })
+                })
+            })
+        })
+    }
+}
+
+/// Fraction of the way to the domain's middle by which a move whose target and home are
+/// both taken (two points clamped onto one corner or side) is stepped inwards, per try.
+const INWARD_STEP: f64 = 1e-6;
+
+/// Inward steps tried before the point stays home.
+const INWARD_TRIES: usize = 16;
 
 /// Over-relaxation factor of each Lloyd step (1 is plain Lloyd; below 2 the iteration still
 /// lowers the energy for small steps).
@@ -241,4 +304,55 @@ fn polygon_centroid(corners: &[DVec3]) -> Option<DVec3> {
     }
     let c = weighted / area;
     (area > 0.0 && c.is_finite()).then_some(c)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn distinct(points: &[[f64; 2]]) -> bool {
+        points.iter().enumerate().all(|(i, p)| {
+            points[..i].iter().all(|q| {
+                (p[0] - q[0]).abs() > DUPLICATE_UV_TOLERANCE
+                    || (p[1] - q[1]).abs() > DUPLICATE_UV_TOLERANCE
+            })
+        })
+    }
+
+    #[test]
+    fn free_moves_are_made() {
+        let points = [[0.2, 0.2], [0.8, 0.8], [0.5, 0.1]];
+        let moved = [Some([0.3, 0.25]), None, Some([0.6, 0.1])];
+        assert_eq!(
+            place_moves(&points, &moved),
+            vec![[0.3, 0.25], [0.8, 0.8], [0.6, 0.1]]
+        );
+    }
+
+    #[test]
+    fn a_move_onto_a_point_that_stays_stops_short() {
+        // Point 0 moves (first in pattern order) exactly onto point 1, which stays.
+        let points = [[0.2, 0.2], [0.4, 0.4]];
+        let moved = [Some([0.4, 0.4]), None];
+        let placed = place_moves(&points, &moved);
+        assert!(distinct(&placed), "{placed:?}");
+        assert_eq!(
+            placed[1],
+            [0.4, 0.4],
+            "the point that stays keeps its place"
+        );
+    }
+
+    #[test]
+    fn moves_clamped_onto_one_corner_stay_distinct() {
+        // Point 2 sits on the corner and moves onto it; 0 and 1 are clamped onto it too, and
+        // 1's home is where 0 was sent first.
+        let points = [[0.001, 0.002], [0.0, 0.0], [0.003, 0.0]];
+        let moved = [Some([0.0, 0.0]), Some([0.0, 0.0]), Some([0.0, 0.0])];
+        let placed = place_moves(&points, &moved);
+        assert!(distinct(&placed), "{placed:?}");
+        assert!(placed
+            .iter()
+            .all(|p| (0.0..=1.0).contains(&p[0]) && (0.0..=1.0).contains(&p[1])));
+    }
 }
