@@ -9,8 +9,10 @@
 #   3. the .NET binding and the Rhino-free plugin logic with Mono against the real native
 #      library, the API check of the Rhino/Grasshopper adapters against the RhinoCommon and
 #      Grasshopper typed stubs, the pack.sh tests and actionlint on the release workflow
-#      (tests/run_dotnet_tests.sh).
-# Each of 2 and 3 ends with its own line "N passed, N failed".
+#      (tests/run_dotnet_tests.sh);
+#   4. the four cargo-fuzz targets, built with the nightly toolchain and run from a fixed
+#      seed for a fixed number of inputs each, about 30 s per target (tests/run_fuzz.sh).
+# Each of 2, 3 and 4 ends with its own line "N passed, N failed".
 # Installs what it needs when missing, so it also works on a fresh machine.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -40,3 +42,4 @@ cargo clippy --workspace --all-targets --locked -- -D warnings
 cargo test --workspace --locked
 bash tests/run_c_tests.sh
 bash tests/run_dotnet_tests.sh
+bash tests/run_fuzz.sh
