@@ -33,9 +33,10 @@
 //! - a move is kept when it leaves fewer invalid facets around it, or as many but less
 //!   tangled (crossing edge pairs), or as tangled with their runaway vertices pulled back
 //!   ([`REACH_GAIN`]); rounds until nothing is kept, at most [`MAX_PLANE_ADJUST_ROUNDS`];
-//! - then, around each facet still invalid, random restarts ([`PLANE_KICKS`]), kept only when
-//!   they leave fewer invalid facets, undone otherwise (seeded by the facet's index, so the
-//!   result is deterministic).
+//! - then, around each facet still invalid, random restarts ([`PLANE_KICKS`]): random tilts
+//!   followed by greedy tilts and flips, kept only when they leave fewer invalid facets,
+//!   undone otherwise (seeded by the facet's index, so the result is deterministic); passes
+//!   over the facets still invalid while one is kept, at most [`KICK_ROUNDS`].
 //!
 //! With adjusted planes a facet whose vertices lie farther than [`MAX_REACH`] local spacings
 //! from its seed also counts as invalid, so that runaway vertices at parabolic lines are
@@ -51,7 +52,7 @@ use glam::DVec3;
 use crate::pattern::SplitMix64;
 use crate::planes::Plane;
 use crate::tolerance::{
-    KICK_REPAIR_PASSES, MAX_PLANE_ADJUST_ROUNDS, MAX_PLANE_TILT_DEGREES, MAX_REACH,
+    KICK_REPAIR_PASSES, KICK_ROUNDS, MAX_PLANE_ADJUST_ROUNDS, MAX_PLANE_TILT_DEGREES, MAX_REACH,
     PLANE_ADJUST_BUDGET, PLANE_KICKS, PLANE_OFFSET_STEPS, PLANE_TILT_DIRECTIONS,
     PLANE_TILT_STEPS_DEGREES, REACH_GAIN, RESCUE_TILT_STEPS_DEGREES,
 };
@@ -124,13 +125,21 @@ pub(crate) fn adjust_planes(
             break;
         }
     }
-    // What the greedy moves cannot repair, random restarts around it may.
-    for i in 0..judged as u32 {
-        if state.plane_changes > budget {
-            break;
+    // What the greedy moves cannot repair, random restarts around it may; a kept restart
+    // changes the neighbourhood of others, so the pass repeats while one is kept.
+    'kicks: for _ in 0..KICK_ROUNDS {
+        let mut kept = false;
+        for i in 0..judged as u32 {
+            if state.plane_changes > budget {
+                break 'kicks;
+            }
+            if state.invalid[i as usize] && kick(&mut state, &exact, &spacing, i) {
+                stats.tilts += 1;
+                kept = true;
+            }
         }
-        if state.invalid[i as usize] && kick(&mut state, &exact, &spacing, i) {
-            stats.tilts += 1;
+        if !kept {
+            break;
         }
     }
     stats.unresolved = state.invalid.iter().filter(|&&x| x).count();
@@ -375,8 +384,9 @@ fn commit(state: &mut State<'_>, verdicts: Vec<(u32, bool)>) {
 
 /// Iterated local search around facet i, which the greedy moves left invalid: up to
 /// [`PLANE_KICKS`] times, tilt one to three planes of i and its neighbours at random (within
-/// [`MAX_PLANE_TILT_DEGREES`]), let the greedy tilts repair what that broke, and keep the
-/// whole when it leaves fewer invalid facets than before; otherwise undo it.
+/// [`MAX_PLANE_TILT_DEGREES`]), let the greedy moves (tilts, then flips with rescue tilts)
+/// repair what that broke, and keep the whole when it leaves fewer invalid facets than
+/// before; otherwise undo it (the journal logs flips as well as planes).
 fn kick(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32) -> bool {
     let mut rng = SplitMix64::new(0x7469_6c74 ^ u64::from(i));
     for _ in 0..PLANE_KICKS {
@@ -401,7 +411,14 @@ fn kick(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32) -> bool
             let mut any = false;
             for &x in &points {
                 if state.invalid[x as usize] {
-                    any |= try_tilts(state, exact, spacing, x);
+                    // Flips too, as in the greedy rounds: a kick can make one pay.
+                    let judged = state.invalid.len();
+                    any |= try_tilts(state, exact, spacing, x)
+                        || state
+                            .try_repair_with(x, judged, &mut |state, quad| {
+                                rescue_flip(state, exact, spacing, quad)
+                            })
+                            .is_some();
                 }
             }
             if !any {

@@ -231,6 +231,10 @@ pub const PLANE_KICKS: usize = 24;
 /// Passes of greedy tilts after each random restart.
 pub const KICK_REPAIR_PASSES: usize = 4;
 
+/// Passes of random restarts over the facets still invalid at most (another pass only when
+/// the last kept one: a kept restart changes the neighbourhood of others).
+pub const KICK_ROUNDS: usize = 4;
+
 /// Rounds of plane adjustment at most (each round visits every invalid facet once).
 pub const MAX_PLANE_ADJUST_ROUNDS: usize = 40;
 
