@@ -68,7 +68,7 @@ pub enum PlaneMode {
     /// Exact tangent planes, except where they cannot give a valid facet on a surface that is
     /// not convex everywhere: there a few planes are tilted, by at most
     /// [`crate::tolerance::MAX_PLANE_TILT_DEGREES`], through their seeds
-    /// ([`crate::adjusted_planes`]). Convex surfaces are unaffected (their exact planes are
+    /// (`adjusted_planes.rs`). Convex surfaces are unaffected (their exact planes are
     /// always valid).
     Adjusted,
 }

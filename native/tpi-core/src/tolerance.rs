@@ -32,7 +32,7 @@ pub const REVERSAL_CHECK_TOLERANCE: f64 = 1e-6;
 /// plane, relative to the distance between the two points, are both at most this. Rounding
 /// of one plane's normal at different parameters is about 1e-16; curved neighbours differ by
 /// their spacing times their curvature, far more. Coincident neighbours are separated by the
-/// perpendicular bisector of their points in the plane ([`crate::planes`]).
+/// perpendicular bisector of their points in the plane (`planes.rs`).
 pub const PLANE_COINCIDENCE: f64 = 1e-10;
 
 // ---- read by closed.rs ----
@@ -150,7 +150,7 @@ pub const METRIC_REGULARISATION: f64 = 0.05;
 /// left: a developable surface). Small, so that the triangulation follows the limit of TPI as
 /// the curvature along the rulings vanishes: the planes (which differ across the rulings)
 /// decide first, and only points on one ruling, whose planes coincide, are paired by their
-/// distance along it ([`crate::planes::meeting_point`]).
+/// distance along it (`planes::meeting_point`).
 pub const DEVELOPABLE_METRIC_REGULARISATION: f64 = 1e-4;
 
 /// On strictly convex surfaces off the slope-space path, the isotropic term is this fraction
@@ -252,7 +252,7 @@ pub const PLANE_ADJUST_BUDGET: usize = 1000;
 pub const MAX_VALIDITY_ROUNDS: usize = 8;
 
 /// Passes of single-flip repairs around a detour flip of the validity repair (a flip kept
-/// only together with the repairs it allows): [`crate::validity_flips`].
+/// only together with the repairs it allows): `validity_flips.rs`.
 pub const DETOUR_REPAIR_PASSES: usize = 3;
 
 /// Detour flips the validity repair may try: this many per judged point plus
