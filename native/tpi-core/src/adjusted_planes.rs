@@ -53,8 +53,8 @@ use crate::pattern::SplitMix64;
 use crate::planes::Plane;
 use crate::tolerance::{
     KICK_REPAIR_PASSES, KICK_ROUNDS, MAX_PLANE_ADJUST_ROUNDS, MAX_PLANE_TILT_DEGREES, MAX_REACH,
-    PLANE_ADJUST_BUDGET, PLANE_KICKS, PLANE_OFFSET_STEPS, PLANE_TILT_DIRECTIONS,
-    PLANE_TILT_STEPS_DEGREES, REACH_GAIN, RESCUE_TILT_STEPS_DEGREES,
+    PLANE_ADJUST_BUDGET, PLANE_ADJUST_BUDGET_PER_INVALID, PLANE_KICKS, PLANE_OFFSET_STEPS,
+    PLANE_TILT_DIRECTIONS, PLANE_TILT_STEPS_DEGREES, REACH_GAIN, RESCUE_TILT_STEPS_DEGREES,
 };
 use crate::triangulation::DualTriangulation;
 use crate::validity_flips::{affected_points, Journal, State};
@@ -87,7 +87,8 @@ pub(crate) fn adjust_planes(
     let mut retry = vec![true; judged];
     // A bound on the work, counted (so the result stays deterministic), not timed: where
     // tilts cannot help (a developable surface with random seeds) the search stops there.
-    let budget = PLANE_ADJUST_BUDGET * judged;
+    let budget = (PLANE_ADJUST_BUDGET * judged)
+        .min(PLANE_ADJUST_BUDGET_PER_INVALID * state.invalid.iter().filter(|&&x| x).count());
     'rounds: for _ in 0..MAX_PLANE_ADJUST_ROUNDS {
         let queue: Vec<u32> = (0..judged as u32)
             .filter(|&i| state.invalid[i as usize] && retry[i as usize])
@@ -133,7 +134,7 @@ pub(crate) fn adjust_planes(
             if state.plane_changes > budget {
                 break 'kicks;
             }
-            if state.invalid[i as usize] && kick(&mut state, &exact, &spacing, i) {
+            if state.invalid[i as usize] && kick(&mut state, &exact, &spacing, i, budget) {
                 stats.tilts += 1;
                 kept = true;
             }
@@ -387,9 +388,12 @@ fn commit(state: &mut State<'_>, verdicts: Vec<(u32, bool)>) {
 /// [`MAX_PLANE_TILT_DEGREES`]), let the greedy moves (tilts, then flips with rescue tilts)
 /// repair what that broke, and keep the whole when it leaves fewer invalid facets than
 /// before; otherwise undo it (the journal logs flips as well as planes).
-fn kick(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32) -> bool {
+fn kick(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32, budget: usize) -> bool {
     let mut rng = SplitMix64::new(0x7469_6c74 ^ u64::from(i));
     for _ in 0..PLANE_KICKS {
+        if state.plane_changes > budget {
+            return false;
+        }
         let ring = polygons_of_plane(state, i);
         state.journal = Some(Journal::default());
         for _ in 0..1 + rng.below(3) {
@@ -408,6 +412,10 @@ fn kick(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32) -> bool
             .collect();
         commit(state, verdicts);
         for _ in 0..KICK_REPAIR_PASSES {
+            // Past the budget the restart is judged as it stands.
+            if state.plane_changes > budget {
+                break;
+            }
             let mut any = false;
             for &x in &points {
                 if state.invalid[x as usize] {
