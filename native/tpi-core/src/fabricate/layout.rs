@@ -111,7 +111,7 @@ struct Placed {
 struct OpenSheet {
     placed: Vec<Placed>,
     /// Candidate corners for the next part's bounds: next to and above the placed parts,
-    /// less those inside a placed part's hull (module doc of [`nest`]).
+    /// less those inside a placed part's hull (see [`nest`]).
     corners: Vec<DVec2>,
     used: f64,
     /// Parts in a row that found no place on this sheet (from [`SHEET_PATIENCE`] on it is
@@ -214,9 +214,8 @@ const SHEET_PATIENCE: usize = 32;
 /// hull, dropped for good), tried from the lowest up to the second that is feasible, then
 /// drops as far down and left as it goes; the lowest (then leftmost) feasible place wins,
 /// else a new sheet. A sheet on which [`SHEET_PATIENCE`] parts in a row found no place is
-/// not tried again. Parts are kept
-/// apart by their convex hulls (a separating edge normal with a gap of at least `gap`), and
-/// `gap` from the sheet's edges.
+/// not tried again. Parts are kept apart by their convex hulls (a separating edge normal
+/// with a gap of at least `gap`), and `gap` from the sheet's edges.
 pub(super) fn nest(
     panels: &mut [Panel],
     sheet: [f64; 2],
@@ -269,7 +268,8 @@ pub(super) fn nest(
     // Cells as large as a typical part (the median diagonal of the parts' bounds, which
     // bounds the part in any turn) plus the gap: a query then reads a few parts per cell. A
     // part is filed in every cell its bounds meet, so the queries find every part whatever
-    // the cell size; one much larger than the cell is only filed more often.
+    // the cell size; one much larger than the cell is only filed more often, and no part
+    // spans more than about 64 cells a side.
     let cell = {
         let mut diagonals: Vec<f64> = parts
             .iter()
@@ -279,7 +279,9 @@ pub(super) fn nest(
             })
             .collect();
         diagonals.sort_by(f64::total_cmp);
-        diagonals.get(diagonals.len() / 2).copied().unwrap_or(0.0) + gap
+        let median = diagonals.get(diagonals.len() / 2).copied().unwrap_or(0.0);
+        let largest = diagonals.last().copied().unwrap_or(0.0);
+        median.max(largest / 64.0) + gap
     };
     let cell = if cell.is_finite() && cell > 0.0 {
         cell
