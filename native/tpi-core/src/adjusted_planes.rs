@@ -85,8 +85,9 @@ pub(crate) fn adjust_planes(
     // A facet whose repair failed is tried again only after a kept move changed its
     // neighbourhood.
     let mut retry = vec![true; judged];
-    // A bound on the work, counted (so the result stays deterministic), not timed: where
-    // tilts cannot help (a developable surface with random seeds) the search stops there.
+    // A bound on the work, counted (so the result stays deterministic), not timed, per
+    // judged facet and per facet invalid now, whichever is lower: where tilts cannot help (a
+    // nearly developable surface) the search stops there.
     let budget = (PLANE_ADJUST_BUDGET * judged)
         .min(PLANE_ADJUST_BUDGET_PER_INVALID * state.invalid.iter().filter(|&&x| x).count());
     'rounds: for _ in 0..MAX_PLANE_ADJUST_ROUNDS {
