@@ -308,7 +308,15 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
                 expected_euler,
                 expected_loops,
             } => {
-                eprintln!("warning: the mesh has Euler characteristic {euler} and {boundary_loops} boundary loop(s), where {expected_euler} and {expected_loops} were expected: its facets leave a gap or overlap where no single facet shows it");
+                let invalid = result.quality.as_ref().map_or(0, |q| q.invalid_facets);
+                eprintln!(
+                    "{}",
+                    summary::topology_warning(
+                        (euler, boundary_loops),
+                        (expected_euler, expected_loops),
+                        invalid
+                    )
+                );
                 topology = Some((euler, boundary_loops));
             }
             _ => {}

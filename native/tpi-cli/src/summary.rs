@@ -15,6 +15,21 @@ pub(crate) fn invalid_warning(q: &tpi_core::QualityReport) -> String {
     )
 }
 
+/// The warning printed on stderr when the mesh's Euler characteristic and boundary loops
+/// are not those expected; `invalid` facets flagged (an open one counts its one edge twice)
+/// may account for it, and the line then says so.
+pub(crate) fn topology_warning(
+    (euler, loops): (i64, u32),
+    (expected_euler, expected_loops): (i64, u32),
+    invalid: usize,
+) -> String {
+    let place = match invalid {
+        0 => "where no single facet shows it".to_string(),
+        n => format!("at or next to the {n} invalid facets flagged"),
+    };
+    format!("warning: the mesh has Euler characteristic {euler} and {loops} boundary loop(s), where {expected_euler} and {expected_loops} were expected: its facets leave a gap or overlap {place}")
+}
+
 /// The summary text (several lines, each ending in a newline).
 pub(crate) fn summary(
     result: &Discretisation,
@@ -183,7 +198,22 @@ fn plane_summary(result: &Discretisation) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::sig;
+    use super::{sig, topology_warning};
+
+    #[test]
+    fn the_topology_warning_points_at_the_invalid_facets_where_there_are_some() {
+        let alone = topology_warning((2, 2), (1, 1), 0);
+        assert!(
+            alone.starts_with("warning: the mesh has Euler characteristic 2 and 2 boundary loop(s), where 1 and 1 were expected")
+                && alone.ends_with("where no single facet shows it"),
+            "{alone}"
+        );
+        let with = topology_warning((2, 1), (1, 1), 46);
+        assert!(
+            with.ends_with("at or next to the 46 invalid facets flagged"),
+            "{with}"
+        );
+    }
 
     #[test]
     fn four_significant_digits_at_any_scale() {
