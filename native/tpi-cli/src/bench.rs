@@ -92,10 +92,13 @@ pub(crate) struct BenchArgs {
 /// The benchmark's surfaces by name.
 const SURFACES: [&str; 3] = ["paraboloid", "nurbs", "saddle"];
 
+/// The benchmark's pattern kinds by name (the first is the default).
+const PATTERNS: [&str; 2] = ["random", "poisson"];
+
 struct Config {
     sizes: Vec<usize>,
     surfaces: Vec<&'static str>,
-    poisson: bool,
+    pattern: &'static str,
     threads: Option<usize>,
     repeat: usize,
     report: bool,
@@ -218,7 +221,7 @@ fn parse(args: BenchArgs) -> Result<Config, CliError> {
     let mut config = Config {
         sizes: vec![1_000, 10_000, 100_000, 1_000_000],
         surfaces: SURFACES.to_vec(),
-        poisson: false,
+        pattern: PATTERNS[0],
         threads: None,
         repeat: 3,
         report: !args.no_report,
@@ -256,15 +259,15 @@ fn parse(args: BenchArgs) -> Result<Config, CliError> {
             .collect::<Result<_, _>>()?;
     }
     if let Some(v) = &args.pattern {
-        config.poisson = match v.trim() {
-            "random" => false,
-            "poisson" => true,
-            _ => {
-                return Err(usage(format!(
+        config.pattern = PATTERNS
+            .iter()
+            .find(|&&known| known == v.trim())
+            .copied()
+            .ok_or_else(|| {
+                usage(format!(
                     "--pattern {v}: the patterns are random and poisson"
-                )))
-            }
-        };
+                ))
+            })?;
     }
     if let Some(v) = &args.threads {
         config.threads = match v.parse::<usize>() {
@@ -321,10 +324,9 @@ fn measure(config: &Config) -> Result<Report, CliError> {
             _ => Box::new(nurbs_dome()),
         };
         for &n in &config.sizes {
-            let pattern = if config.poisson {
-                poisson_pattern(n)
-            } else {
-                random_pattern(n)
+            let pattern = match config.pattern {
+                "poisson" => poisson_pattern(n),
+                _ => random_pattern(n),
             };
             reset_peak_memory();
             // One unmeasured run warms caches and the allocator on the smaller sizes.
@@ -397,7 +399,7 @@ fn measure(config: &Config) -> Result<Report, CliError> {
         threads: rayon::current_num_threads(),
         repeat: config.repeat,
         quality_report: config.report,
-        pattern: if config.poisson { "poisson" } else { "random" },
+        pattern: config.pattern,
         results,
     })
 }
