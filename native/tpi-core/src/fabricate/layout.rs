@@ -111,7 +111,7 @@ struct Placed {
 struct OpenSheet {
     placed: Vec<Placed>,
     /// Candidate corners for the next part's bounds: next to and above the placed parts,
-    /// less those inside a placed part's hull (see [`nest`]).
+    /// less those inside a placed part's hull (see [`nest`]), lowest (then leftmost) first.
     corners: Vec<DVec2>,
     used: f64,
     /// Parts in a row that found no place on this sheet (from [`SHEET_PATIENCE`] on it is
@@ -151,8 +151,9 @@ impl OpenSheet {
             DVec2::new(gap, hi.y + gap),
         ] {
             let free = self.all_near(c, c, 0.0, cell, |o| !strictly_inside(c, &o.hull));
-            if free && !self.corners.contains(&c) {
-                self.corners.push(c);
+            let lowest_first = |a: &DVec2| a.y.total_cmp(&c.y).then(a.x.total_cmp(&c.x));
+            if let (true, Err(at)) = (free, self.corners.binary_search_by(lowest_first)) {
+                self.corners.insert(at, c);
             }
         }
         let ((i0, j0), (i1, j1)) = Self::cell_range(part.lo, part.hi, cell);
@@ -338,12 +339,12 @@ pub(super) fn nest(
                                 )
                         })
                     };
-                    let mut candidates = open.corners.clone();
-                    // The two lowest feasible candidates (then leftmost) are dropped: sorted
-                    // first, so that the search stops at the second feasible one.
-                    candidates.sort_by(|a, b| a.y.total_cmp(&b.y).then(a.x.total_cmp(&b.x)));
-                    let feasible_corners: Vec<DVec2> = candidates
-                        .into_iter()
+                    // The two lowest feasible candidates (then leftmost) are dropped: the
+                    // corners are kept in that order, so the search stops at the second.
+                    let feasible_corners: Vec<DVec2> = open
+                        .corners
+                        .iter()
+                        .copied()
                         .filter(|&c| feasible(c))
                         .take(2)
                         .collect();
