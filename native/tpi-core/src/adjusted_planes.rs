@@ -104,15 +104,7 @@ pub(crate) fn adjust_planes(
                 stats.tilts += kept;
                 break 'rounds;
             }
-            // A tilt can make a flip worth while and the other way round: both are tried.
-            if state.invalid[i as usize]
-                && (try_tilts(&mut state, &exact, &spacing, i)
-                    || state
-                        .try_repair_with(i, judged, &mut |state, quad| {
-                            rescue_flip(state, &exact, &spacing, quad)
-                        })
-                        .is_some())
-            {
+            if state.invalid[i as usize] && try_move(&mut state, &exact, &spacing, i) {
                 kept += 1;
                 // A move on a plane of i's ring renews verdicts up to three rings from i.
                 let near = polygons_of_plane(&state, i);
@@ -186,6 +178,19 @@ pub(crate) fn tilted(exact: &Plane, degrees: f64, phi: f64) -> Plane {
         point: exact.point,
         normal: (exact.normal * c + direction * s).normalize(),
     }
+}
+
+/// One greedy move for invalid facet i: a tilt ([`try_tilts`]), else a flip of its star or
+/// link edges with rescue tilts ([`rescue_flip`]); a tilt can make a flip worth while and
+/// the other way round, so both are tried. Whether one was kept.
+fn try_move(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32) -> bool {
+    let judged = state.invalid.len();
+    try_tilts(state, exact, spacing, i)
+        || state
+            .try_repair_with(i, judged, &mut |state, quad| {
+                rescue_flip(state, exact, spacing, quad)
+            })
+            .is_some()
 }
 
 /// Tries tilts of the planes of facet i and its neighbours, smallest first; keeps the first
@@ -420,14 +425,7 @@ fn kick(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32, budget:
             let mut any = false;
             for &x in &points {
                 if state.invalid[x as usize] {
-                    // Flips too, as in the greedy rounds: a kick can make one pay.
-                    let judged = state.invalid.len();
-                    any |= try_tilts(state, exact, spacing, x)
-                        || state
-                            .try_repair_with(x, judged, &mut |state, quad| {
-                                rescue_flip(state, exact, spacing, quad)
-                            })
-                            .is_some();
+                    any |= try_move(state, exact, spacing, x);
                 }
             }
             if !any {
