@@ -382,6 +382,12 @@ typedef enum TpiDiagnosticKind {
      * double cover between facets; point is TPI_NO_POINT).
      */
     TPI_DIAGNOSTIC_KIND_UNEXPECTED_TOPOLOGY = 10,
+    /**
+     * The surface is developable with its rulings along parameter lines (a cylinder, a cone,
+     * an extrusion): its facets are strips between the lines where the tangent planes of
+     * neighbouring rulings meet (point is TPI_NO_POINT).
+     */
+    TPI_DIAGNOSTIC_KIND_RULING_STRIPS = 11,
 } TpiDiagnosticKind;
 
 /**
@@ -1439,8 +1445,9 @@ enum TpiStatus tpi_surface_new_egg_crate(double amplitude, double x0, double x1,
 
 /**
  * Creates the cylinder z = sqrt(r^2 - x^2) over [x0, x1] x [y0, y1] with |x| < r. Its
- * Gaussian curvature is 0 everywhere, so discretising it fails with TPI_STATUS_DEGENERATE;
- * it is here for sampling and for tests.
+ * Gaussian curvature is 0 everywhere and its rulings run along y: it is discretised as
+ * strips between the lines where the tangent planes of neighbouring rulings meet
+ * (TPI_DIAGNOSTIC_KIND_RULING_STRIPS).
  *
  * On success `*out` is a new handle, else NULL. Errors as
  * `tpi_surface_new_elliptic_paraboloid`.
@@ -1451,8 +1458,9 @@ enum TpiStatus tpi_surface_new_egg_crate(double amplitude, double x0, double x1,
 enum TpiStatus tpi_surface_new_cylinder(double radius, double x0, double x1, double y0, double y1, struct TpiSurface **out);
 
 /**
- * Creates the plane z = p x + q y + c0 over [x0, x1] x [y0, y1]. Discretising it fails with
- * TPI_STATUS_DEGENERATE; it is here for sampling and for tests.
+ * Creates the plane z = p x + q y + c0 over [x0, x1] x [y0, y1]. Its tangent planes all
+ * coincide, so its facets are the Voronoi cells of their seeds in the plane
+ * (TPI_DIAGNOSTIC_KIND_COINCIDENT_PLANES).
  *
  * On success `*out` is a new handle, else NULL. Errors as
  * `tpi_surface_new_elliptic_paraboloid`.

@@ -734,7 +734,7 @@ static void test_diagnostics(void) {
         uint32_t previous = 0;
         for (size_t k = 0; k < entries_len; k++) {
             CHECK(entries[k].kind >= TPI_DIAGNOSTIC_KIND_ILL_CONDITIONED_VERTEX);
-            CHECK(entries[k].kind <= TPI_DIAGNOSTIC_KIND_UNEXPECTED_TOPOLOGY);
+            CHECK(entries[k].kind <= TPI_DIAGNOSTIC_KIND_RULING_STRIPS);
             CHECK(entries[k].diagnostic < count && entries[k].diagnostic >= previous);
             previous = entries[k].diagnostic;
             if (entries[k].point != TPI_NO_POINT) {
@@ -1206,6 +1206,59 @@ static void test_trim(void) {
  * the mesh is closed. Checked here from the arrays: every directed edge of a facet loop is
  * run backwards by exactly one other loop, and V - E + F = 2; every vertex lies on or behind
  * every seed's tangent plane (the sphere's closed form: the plane at p is p . x = r^2). */
+/* A cylinder with random points: the planes of three rulings meet at infinity, so the facets
+ * are strips, one per seed, and each strip's neighbours are the seeds with the next smaller
+ * and larger x (the order of the rulings); every vertex lies on an end line, y = y0 or y1. */
+static void test_ruling_strips(void) {
+    TpiSurface *s = NULL;
+    CHECK_OK(tpi_surface_new_cylinder(1.0, -0.8, 0.8, 0.0, 3.0, &s));
+    TpiPattern *p = NULL;
+    CHECK_OK(tpi_pattern_new_random(150, 11, &p));
+    TpiDiscretisation *d = NULL;
+    CHECK_OK(tpi_discretise(s, p, NULL, &d));
+    size_t facets = 0, vertex_count = 0, needed = 0, pairs_len = 0, count = 0, entries_len = 0;
+    CHECK_OK(tpi_discretisation_facet_count(d, &facets));
+    CHECK_OK(tpi_discretisation_vertex_count(d, &vertex_count));
+    CHECK(facets == 150);
+    double *xyz = malloc(3 * vertex_count * sizeof *xyz);
+    CHECK_OK(tpi_discretisation_vertices(d, xyz, 3 * vertex_count, &needed));
+    for (size_t v = 0; v < vertex_count; v++) {
+        double y = xyz[3 * v + 1];
+        CHECK(fabs(y) < 1e-9 || fabs(y - 3.0) < 1e-9);
+    }
+    TpiSeed *seeds = malloc(facets * sizeof *seeds);
+    CHECK_OK(tpi_discretisation_seeds(d, seeds, facets, &needed));
+    CHECK_STATUS(tpi_discretisation_neighbour_pairs(d, NULL, 0, &pairs_len), TPI_STATUS_BUFFER_TOO_SMALL);
+    CHECK(pairs_len == 2 * (facets - 1));
+    uint32_t *pairs = malloc(pairs_len * sizeof *pairs);
+    CHECK_OK(tpi_discretisation_neighbour_pairs(d, pairs, pairs_len, &needed));
+    for (size_t k = 0; k < pairs_len / 2; k++) {
+        double a = seeds[pairs[2 * k]].point[0], b = seeds[pairs[2 * k + 1]].point[0];
+        double lo = a < b ? a : b, hi = a < b ? b : a;
+        /* No seed's ruling lies strictly between two neighbours'. */
+        for (size_t f = 0; f < facets; f++) CHECK(!(seeds[f].point[0] > lo && seeds[f].point[0] < hi));
+    }
+    CHECK_OK(tpi_discretisation_diagnostic_count(d, &count));
+    CHECK_STATUS(tpi_discretisation_diagnostic_entries(d, NULL, 0, &entries_len), TPI_STATUS_BUFFER_TOO_SMALL);
+    TpiDiagnosticEntry *entries = malloc(entries_len * sizeof *entries);
+    CHECK_OK(tpi_discretisation_diagnostic_entries(d, entries, entries_len, &needed));
+    size_t strips = 0;
+    for (size_t k = 0; k < entries_len; k++) strips += entries[k].kind == TPI_DIAGNOSTIC_KIND_RULING_STRIPS;
+    CHECK(strips == 1);
+    TpiQualityReport q;
+    memset(&q, 0, sizeof q);
+    q.struct_size = sizeof q;
+    CHECK_OK(tpi_discretisation_quality(d, &q));
+    CHECK(q.invalid_facets == 0);
+    free(entries);
+    free(pairs);
+    free(seeds);
+    free(xyz);
+    tpi_discretisation_free(d);
+    tpi_pattern_free(p);
+    tpi_surface_free(s);
+}
+
 static void test_closed_sphere(void) {
     const double w = 0.70710678118654752440;
     const double circle[9][3] = {{1, 0, 1}, {1, 1, w}, {0, 1, 1}, {-1, 1, w}, {-1, 0, 1},
@@ -1456,6 +1509,7 @@ int main(void) {
     test_options_in_use();
     test_adjusted_planes();
     test_closed_sphere();
+    test_ruling_strips();
     test_diagnostics();
     test_discrete_surface();
     test_free_null();

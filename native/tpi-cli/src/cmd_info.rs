@@ -238,6 +238,18 @@ pub(crate) fn describe(
         };
         let _ = writeln!(s, "  layout: {}{what}", shape.join(", "));
     }
+    if let Some(along) = tpi_core::ruling_direction(model) {
+        let (name, across) = if along == 0 { ("u", "v") } else { ("v", "u") };
+        let closed = if layout.closed[1 - along] {
+            format!(", closed in {across}: an annulus")
+        } else {
+            String::new()
+        };
+        let _ = writeln!(
+            s,
+            "  rulings: developable, straight along {name}: facets are strips between the lines where neighbouring rulings' tangent planes meet{closed}"
+        );
+    }
     let [lo, hi] = sampled_bounding_box(model, grid);
     let _ = writeln!(
         s,
@@ -404,7 +416,7 @@ fn verdict(positive: usize, negative: usize, zero: usize, irregular: usize) -> S
         return "K < 0 everywhere: expect non-convex (but simple) facets".into();
     }
     if zero == total {
-        return "K ~ 0 everywhere: tangent plane intersection is ill-conditioned on this surface"
+        return "K ~ 0 everywhere: flat or developable; where tangent planes coincide, facets are separated by their seeds' bisectors, and along straight parameter lines they are strips (see rulings)"
             .into();
     }
     let head = match (positive > 0, negative > 0) {

@@ -1857,8 +1857,9 @@ fn completions_and_man_page() {
     fails(&["completions", "tcsh"], 2, &["tcsh"]);
 }
 
-/// A closed convex surface of one face gives a closed mesh with no warning; a surface closed
-/// in one direction without poles (a cylinder band) is an open patch, and says so.
+/// A closed convex surface of one face gives a closed mesh with no warning, and so does a
+/// cylinder closed around its axis (an annulus of strips); a surface closed in one direction
+/// that is neither (a vase with a waist) is an open patch, and says so.
 #[test]
 fn closed_surfaces_give_closed_meshes_or_a_seam_warning() {
     let dir = scratch("closed");
@@ -1887,41 +1888,74 @@ fn closed_surfaces_give_closed_meshes_or_a_seam_warning() {
             text(&run.stderr)
         );
     }
-    // A full cylinder: a rational quadratic circle in u, a straight line in v.
-    let w = std::f64::consts::FRAC_1_SQRT_2;
-    let circle = [
-        (1.0, 0.0, 1.0),
-        (1.0, 1.0, w),
-        (0.0, 1.0, 1.0),
-        (-1.0, 1.0, w),
-        (-1.0, 0.0, 1.0),
-        (-1.0, -1.0, w),
-        (0.0, -1.0, 1.0),
-        (1.0, -1.0, w),
-        (1.0, 0.0, 1.0),
-    ];
-    let mut points = Vec::new();
-    let mut weights = Vec::new();
-    for (x, y, wu) in circle {
-        for z in [0.0, 4.0] {
-            points.push(format!("[{}, {}, {z}]", 3.0 * x, 3.0 * y));
-            weights.push(format!("{wu}"));
+    // Surfaces of revolution closed in u: a rational quadratic circle in u swept through the
+    // radii `radii` at the heights `heights` (a straight line in v: a cylinder; a waist: a
+    // saddle-shaped vase).
+    let revolution = |name: &str, radii: &[f64], heights: &[f64]| {
+        let w = std::f64::consts::FRAC_1_SQRT_2;
+        let circle = [
+            (1.0, 0.0, 1.0),
+            (1.0, 1.0, w),
+            (0.0, 1.0, 1.0),
+            (-1.0, 1.0, w),
+            (-1.0, 0.0, 1.0),
+            (-1.0, -1.0, w),
+            (0.0, -1.0, 1.0),
+            (1.0, -1.0, w),
+            (1.0, 0.0, 1.0),
+        ];
+        let mut points = Vec::new();
+        let mut weights = Vec::new();
+        for (x, y, wu) in circle {
+            for (r, z) in radii.iter().zip(heights) {
+                points.push(format!("[{}, {}, {z}]", r * x, r * y));
+                weights.push(format!("{wu}"));
+            }
         }
-    }
-    let band = dir.join("cylinder.json");
-    std::fs::write(
-        &band,
-        format!(
-            r#"{{"type": "nurbs", "degree": [2, 1], "count": [9, 2], "knots_u": [0, 0, 1, 1, 2, 2, 3, 3, 4, 4], "knots_v": [0, 1], "points": [{}], "weights": [{}]}}"#,
-            points.join(", "),
-            weights.join(", ")
-        ),
-    )
-    .unwrap();
+        let rows = radii.len();
+        let knots_v = if rows == 2 { "[0, 1]" } else { "[0, 0, 1, 1]" };
+        let path = dir.join(name);
+        std::fs::write(
+            &path,
+            format!(
+                r#"{{"type": "nurbs", "degree": [2, {}], "count": [9, {rows}], "knots_u": [0, 0, 1, 1, 2, 2, 3, 3, 4, 4], "knots_v": {knots_v}, "points": [{}], "weights": [{}]}}"#,
+                rows - 1,
+                points.join(", "),
+                weights.join(", ")
+            ),
+        )
+        .unwrap();
+        path
+    };
+    // A cylinder closed around its axis: strips closing up into an annulus, no warning.
+    let cylinder = revolution("cylinder.json", &[3.0, 3.0], &[0.0, 4.0]);
+    let out = dir.join("cylinder-out.json");
     let run = ok(&[
         "discretise",
         "--surface",
-        band.to_str().unwrap(),
+        cylinder.to_str().unwrap(),
+        "--pattern",
+        "random:200:seed=2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let q = read_contract(&out).quality.expect("quality report");
+    assert_eq!(
+        (q.euler_characteristic, q.boundary_loops, q.invalid_facets),
+        (0, 2, 0),
+        "cylinder"
+    );
+    assert!(
+        !text(&run.stderr).contains("warning"),
+        "{}",
+        text(&run.stderr)
+    );
+    // A vase with a waist (K < 0 there): an open patch, and it says so.
+    let vase = revolution("vase.json", &[3.0, 1.0, 3.0], &[0.0, 2.0, 4.0]);
+    let run = ok(&[
+        "discretise",
+        "--surface",
+        vase.to_str().unwrap(),
         "--pattern",
         "grid:16x6",
     ]);
@@ -2046,4 +2080,50 @@ fn info_reports_a_polysurface_layout_and_discretise_refuses_an_l_shape() {
             "do not fill a rectangle of rows and columns (2 x 2 cells",
         ],
     );
+}
+
+/// Issue 16: a cylinder is no longer rejected: `tpi info` names its rulings, and random points
+/// give one strip per seed with no invalid facet, ending on both end lines (y = 0 and 3).
+#[test]
+fn a_cylinder_with_random_points_gives_strips() {
+    let dir = scratch("cylinder");
+    let surface = dir.join("cylinder.json");
+    fs::write(
+        &surface,
+        r#"{"type": "cylinder", "radius": 1, "x": [-0.8, 0.8], "y": [0, 3]}"#,
+    )
+    .unwrap();
+    let s = surface.to_str().unwrap();
+    let info = text(&ok(&["info", s]).stdout);
+    assert!(
+        info.contains("rulings: developable, straight along v"),
+        "{info}"
+    );
+    let out = dir.join("strips.json");
+    let run = ok(&[
+        "discretise",
+        "--surface",
+        s,
+        "--pattern",
+        "random:300:seed=4",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let err = text(&run.stderr);
+    assert!(err.contains("validity: 0 invalid facets"), "{err}");
+    let json: serde_json::Value = serde_json::from_str(&fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(json["facets"].as_array().unwrap().len(), 300);
+    assert!(
+        json["diagnostics"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|d| d["kind"] == "ruling_strips"),
+        "{}",
+        json["diagnostics"]
+    );
+    for v in json["vertices"].as_array().unwrap() {
+        let y = v[1].as_f64().unwrap();
+        assert!(y.abs() < 1e-9 || (y - 3.0).abs() < 1e-9, "vertex {v}");
+    }
 }

@@ -76,6 +76,17 @@ pub enum Diagnostic {
         /// 0: closed in u, 1: closed in v.
         direction: u8,
     },
+    /// The surface is developable with its rulings along parameter lines (a cylinder, a cone,
+    /// an extrusion): tangent planes of three different rulings never meet near it, so its
+    /// facets are strips between the lines where the planes of neighbouring rulings meet,
+    /// shared by the seeds of one ruling along their bisectors ([`crate::tolerance::RULING_TOLERANCE`]).
+    /// One diagnostic per discretisation.
+    RulingStrips {
+        /// The parameter along the rulings (0: u, 1: v).
+        direction: u8,
+        /// Closed across the rulings: the strips close up into an annulus.
+        closed: bool,
+    },
     /// The mesh is not the surface the run expected (a disc, an annulus, a sphere, a trimmed
     /// disc with its holes): its facets leave a gap, or cover a part twice, that no single
     /// facet shows. Named so that a mesh of valid facets with such a defect is never taken for
@@ -108,6 +119,7 @@ impl Diagnostic {
             Diagnostic::CornerClaims { .. }
             | Diagnostic::CoincidentPlanes { .. }
             | Diagnostic::SeamLeftOpen { .. }
+            | Diagnostic::RulingStrips { .. }
             | Diagnostic::UnexpectedTopology { .. } => {}
         }
     }
@@ -125,6 +137,7 @@ impl Diagnostic {
             Diagnostic::CornerClaims { .. }
             | Diagnostic::CoincidentPlanes { .. }
             | Diagnostic::SeamLeftOpen { .. }
+            | Diagnostic::RulingStrips { .. }
             | Diagnostic::UnexpectedTopology { .. } => Vec::new(),
         }
     }

@@ -32,6 +32,7 @@ use crate::neighbours::{decide, decide_convex, NeighbourInput, NeighbourStats, S
 use crate::pattern::validate_uv;
 use crate::planes::Plane;
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
+use crate::rulings;
 use crate::samples::{bounding_box, sample, Samples};
 use crate::surface::Surface;
 use crate::tolerance::{
@@ -154,6 +155,10 @@ pub struct Discretisation {
     pub outside_trim: usize,
     /// Triangles of the final dual structure (counter-clockwise in parameter space).
     pub dual_triangles: Vec<[u32; 3]>,
+    /// On the strips of a developable surface ([`Diagnostic::RulingStrips`]), whose dual
+    /// triangles nearly all have a ghost, every neighbour pair (i < j, sorted), so that
+    /// [`Discretisation::neighbour_pairs`] holds them all; empty on the other paths.
+    pub ghost_neighbours: Vec<[u32; 2]>,
     /// The quality report (None when switched off).
     pub quality: Option<QualityReport>,
     /// Per-facet flags (see `quality::FLAG_*`), empty when the report is off.
@@ -232,6 +237,7 @@ impl Discretisation {
             .iter()
             .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
             .map(|[a, b]| [a.min(b), a.max(b)])
+            .chain(self.ghost_neighbours.iter().copied())
             .collect();
         pairs.sort_unstable();
         pairs.dedup();
@@ -609,9 +615,48 @@ fn run_within(
         _ => None,
     };
     let closed_convex = envelope.is_some();
+    // A developable surface with rulings along parameter lines (crate::rulings): strips, and
+    // an annulus where it is closed across its rulings.
+    // With adjusted planes, an inflected cross-section is left to the plane adjustment of the
+    // general path, which can tilt the planes there.
+    let adjustable = options.planes == PlaneMode::Adjusted
+        && rulings::inflected(seeds.iter().map(|s| s.curvatures));
+    let strips = match rulings::find_rulings(surface) {
+        Some(r) if !closed_convex && !boundary.is_trim() && !adjustable => {
+            let closed = layout.closed[1 - r.along];
+            if closed {
+                let weld = options.weld_tolerance * diagonal;
+                let regular = vec![true; uv.len()];
+                check_closed_seeds(surface, &layout, &uv, &seeds, &regular, true, weld)?;
+            }
+            rulings::strip_structure(surface, r, &uv, &planes, closed)
+                .map(|(triangulation, planes, source)| (r, closed, triangulation, planes, source))
+        }
+        _ => None,
+    };
+    let strips_closed = strips.as_ref().is_some_and(|s| s.1);
+    let strip_dual = strips.is_some();
+    let ghost_dual = closed_convex || strip_dual;
+    let mut ghost_neighbours = Vec::new();
+    let strip_triangulation = strips.map(|(r, closed, triangulation, all_planes, source)| {
+        if closed {
+            closed_topology = MeshTopology {
+                euler: 0,
+                boundary_loops: 2,
+            };
+        }
+        // Their zero curvature is what the strips are built for, not a defect to flag.
+        diagnostics.retain(|d| !matches!(d, Diagnostic::FlatPoint { .. }));
+        diagnostics.push(Diagnostic::RulingStrips {
+            direction: r.along as u8,
+            closed,
+        });
+        closed_ghosts = Some((all_planes, source));
+        triangulation
+    });
     if let Some(k) = (0..2)
         .find(|&k| layout.closed[k])
-        .filter(|_| !closed_convex)
+        .filter(|_| !closed_convex && !strips_closed)
     {
         diagnostics.push(Diagnostic::SeamLeftOpen { direction: k as u8 });
     }
@@ -627,10 +672,10 @@ fn run_within(
         any_curvature: false,
     };
     let (mut triangulation, mut augmented, mut neighbours) = match (&slopes, &lifted) {
-        _ if closed_convex => {
+        _ if ghost_dual => {
             timings.delaunay = ms(hull_stage);
             (
-                envelope.unwrap_or_default(),
+                strip_triangulation.or(envelope).unwrap_or_default(),
                 None,
                 NeighbourStats::default(),
             )
@@ -710,11 +755,14 @@ fn run_within(
     // The plane adjustment decides planes and flips edges: its time counts as neighbours'.
     let mut adjust_ms = 0.0;
     let (mesh, triangulation) = match &mut augmented {
-        None if closed_convex => {
+        None if ghost_dual => {
             let (all_planes, source) = closed_ghosts
                 .take()
                 .unwrap_or_else(|| (planes.clone(), (0..uv.len() as u32).collect()));
             let mesh = build_closed_facets(&triangulation, &all_planes, uv.len(), &source, &params);
+            if strip_dual {
+                ghost_neighbours = real_pairs(&triangulation, uv.len());
+            }
             // The dual structure reported is the real seeds' part.
             let mut real = triangulation;
             if all_planes.len() > uv.len() {
@@ -765,6 +813,7 @@ fn run_within(
     drop(augmented);
     diagnostics.extend(mesh.diagnostics.iter().cloned());
     if !mesh.vertices.is_empty()
+        && !strip_dual
         && mesh
             .diagnostics
             .iter()
@@ -816,13 +865,14 @@ fn run_within(
         pattern_indices: Vec::new(),
         outside_trim: 0,
         dual_triangles,
+        ghost_neighbours,
         quality: None,
         facet_flags: Vec::new(),
         diagnostics,
         plane_adjustments: Vec::new(),
         timings,
         units: surface.units(),
-        topology: if closed_convex {
+        topology: if ghost_dual {
             closed_topology
         } else {
             MeshTopology::DISC
@@ -964,6 +1014,20 @@ fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
         }
     }
     extent
+}
+
+/// The edges of `tri` between two real points (`< real_count`), as sorted pairs i < j.
+fn real_pairs(tri: &DualTriangulation, real_count: usize) -> Vec<[u32; 2]> {
+    let mut pairs: Vec<[u32; 2]> = tri
+        .triangles
+        .iter()
+        .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
+        .filter(|&[a, b]| (a as usize) < real_count && (b as usize) < real_count)
+        .map(|[a, b]| [a.min(b), a.max(b)])
+        .collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs
 }
 
 /// No seed on a pole (its tangent plane is not defined by the parametrisation); on a closed

@@ -43,6 +43,7 @@ mod predicates;
 mod projection;
 mod quality;
 mod relax;
+mod rulings;
 mod samples;
 mod sanity;
 mod spec;
@@ -82,6 +83,7 @@ pub use quality::{
     INVALID_FLAGS,
 };
 pub use relax::{relax, MAX_RELAX_ITERATIONS};
+pub use rulings::ruling_direction;
 pub use sanity::SanityError;
 pub use spec::{sampled_bounding_box, SurfaceModel, SurfaceSpec};
 pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};

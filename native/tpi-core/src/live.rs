@@ -1294,6 +1294,7 @@ impl State {
             pattern_indices: Vec::new(),
             outside_trim: 0,
             dual_triangles: canonical.triangles,
+            ghost_neighbours: Vec::new(),
             quality: None,
             facet_flags: Vec::new(),
             diagnostics: self.diagnostics.clone(),
@@ -1413,6 +1414,7 @@ fn renumber_diagnostic(d: &mut Diagnostic, k: u32) {
         Diagnostic::CornerClaims { .. }
         | Diagnostic::CoincidentPlanes { .. }
         | Diagnostic::SeamLeftOpen { .. }
+        | Diagnostic::RulingStrips { .. }
         | Diagnostic::UnexpectedTopology { .. } => {}
     }
 }

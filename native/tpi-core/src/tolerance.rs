@@ -45,6 +45,14 @@ pub const CLOSURE_TOLERANCE: f64 = 1e-9;
 /// Samples per side for the closure and pole tests.
 pub const LAYOUT_SAMPLES: usize = 17;
 
+// ---- read by rulings.rs ----
+
+/// A surface's parameter lines are its rulings when, at the layout samples, the normals along
+/// each line agree (sine of their angle) and its points lie on one straight line (relative to
+/// the samples' bounding-box diagonal) to this. Rounding of exact cylinders and cones is about
+/// 1e-15; a surface curved along the lines by 1e-9 of its size is not developable there.
+pub const RULING_TOLERANCE: f64 = 1e-9;
+
 // ---- read by polysurface.rs ----
 
 /// Two faces of a polysurface share a side when their points at the same parameter along it

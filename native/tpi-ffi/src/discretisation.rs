@@ -188,6 +188,10 @@ pub enum TpiDiagnosticKind {
     /// The mesh's Euler characteristic or boundary loops are not those expected (a gap or a
     /// double cover between facets; point is TPI_NO_POINT).
     UnexpectedTopology = 10,
+    /// The surface is developable with its rulings along parameter lines (a cylinder, a cone,
+    /// an extrusion): its facets are strips between the lines where the tangent planes of
+    /// neighbouring rulings meet (point is TPI_NO_POINT).
+    RulingStrips = 11,
 }
 
 impl TpiDiagnosticKind {
@@ -204,6 +208,7 @@ impl TpiDiagnosticKind {
             Diagnostic::CoincidentPlanes { .. } => TpiDiagnosticKind::CoincidentPlanes,
             Diagnostic::SeamLeftOpen { .. } => TpiDiagnosticKind::SeamLeftOpen,
             Diagnostic::UnexpectedTopology { .. } => TpiDiagnosticKind::UnexpectedTopology,
+            Diagnostic::RulingStrips { .. } => TpiDiagnosticKind::RulingStrips,
         }
     }
 }

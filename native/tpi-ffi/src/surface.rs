@@ -285,8 +285,9 @@ pub unsafe extern "C" fn tpi_surface_new_egg_crate(
 }
 
 /// Creates the cylinder z = sqrt(r^2 - x^2) over [x0, x1] x [y0, y1] with |x| < r. Its
-/// Gaussian curvature is 0 everywhere, so discretising it fails with TPI_STATUS_DEGENERATE;
-/// it is here for sampling and for tests.
+/// Gaussian curvature is 0 everywhere and its rulings run along y: it is discretised as
+/// strips between the lines where the tangent planes of neighbouring rulings meet
+/// (TPI_DIAGNOSTIC_KIND_RULING_STRIPS).
 ///
 /// On success `*out` is a new handle, else NULL. Errors as
 /// `tpi_surface_new_elliptic_paraboloid`.
@@ -305,8 +306,9 @@ pub unsafe extern "C" fn tpi_surface_new_cylinder(
     ffi_boundary! { create(out, || analytic(AnalyticSurface::cylinder(radius, [x0, x1], [y0, y1]))) }
 }
 
-/// Creates the plane z = p x + q y + c0 over [x0, x1] x [y0, y1]. Discretising it fails with
-/// TPI_STATUS_DEGENERATE; it is here for sampling and for tests.
+/// Creates the plane z = p x + q y + c0 over [x0, x1] x [y0, y1]. Its tangent planes all
+/// coincide, so its facets are the Voronoi cells of their seeds in the plane
+/// (TPI_DIAGNOSTIC_KIND_COINCIDENT_PLANES).
 ///
 /// On success `*out` is a new handle, else NULL. Errors as
 /// `tpi_surface_new_elliptic_paraboloid`.

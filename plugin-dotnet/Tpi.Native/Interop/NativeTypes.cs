@@ -61,6 +61,8 @@ namespace Tpi.Native
         SeamLeftOpen = 9,
         /// <summary>The mesh's Euler characteristic or boundary loops are not those expected: a gap or a double cover between facets.</summary>
         UnexpectedTopology = 10,
+        /// <summary>The surface is developable with its rulings along parameter lines: its facets are strips between the lines where the tangent planes of neighbouring rulings meet.</summary>
+        RulingStrips = 11,
     }
 
     /// <summary>Per-facet flags (TPI_FACET_* bits).</summary>
