@@ -26,11 +26,12 @@ use crate::error::TpiError;
 use crate::facets::{
     build_closed_facets, build_facets, FacetParams, FootHint, TriangleVertex, VertexKind,
 };
+use crate::flat;
 use crate::ghosts::augment;
 use crate::mesh::{FacetMesh, SlopeView};
 use crate::neighbours::{decide, decide_convex, NeighbourInput, NeighbourStats, SlopeFrame};
 use crate::pattern::validate_uv;
-use crate::planes::Plane;
+use crate::planes::{coincident, Plane};
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
 use crate::rulings;
 use crate::samples::{bounding_box, sample, Samples};
@@ -494,14 +495,24 @@ pub(crate) fn run(
     let start = Instant::now();
     validate_pattern(pattern)?;
     let Some(trim) = surface.trim() else {
-        return run_within(
-            surface,
-            pattern,
-            options,
-            keep,
-            &Boundary::Rectangle(surface.domain()),
-            start,
-        );
+        let rectangle = Boundary::Rectangle(surface.domain());
+        let strips = run_within(surface, pattern, options, keep, &rectangle, start, true)?;
+        // With adjusted planes, strips left invalid (next to an inflection of a developable
+        // surface's cross-section, crate::rulings) are weighed against the general path,
+        // which tilts the planes there; the one with fewer invalid facets is kept.
+        let invalid = |r: &Discretisation| r.quality.as_ref().map_or(0, |q| q.invalid_facets);
+        let ruled = strips
+            .0
+            .diagnostics
+            .iter()
+            .any(|d| matches!(d, Diagnostic::RulingStrips { .. }));
+        if options.planes == PlaneMode::Adjusted && ruled && invalid(&strips.0) > 0 {
+            let general = run_within(surface, pattern, options, keep, &rectangle, start, false)?;
+            if invalid(&general.0) < invalid(&strips.0) {
+                return Ok(general);
+            }
+        }
+        return Ok(strips);
     };
     if keep {
         return Err(TpiError::TrimUnsupported {
@@ -525,7 +536,7 @@ pub(crate) fn run(
         });
     }
     let inside: Vec<[f64; 2]> = kept.iter().map(|&i| pattern[i as usize]).collect();
-    let (mut result, state) = run_within(surface, &inside, options, keep, &boundary, start)?;
+    let (mut result, state) = run_within(surface, &inside, options, keep, &boundary, start, false)?;
     for d in &mut result.diagnostics {
         d.map_points(|p| kept[p as usize]);
     }
@@ -534,7 +545,9 @@ pub(crate) fn run(
     Ok((result, state))
 }
 
-/// The pipeline on validated pattern points, the facets ending on `boundary`.
+/// The pipeline on validated pattern points, the facets ending on `boundary`; `allow_strips`
+/// lets a developable surface with rulings along parameter lines take the strips
+/// (crate::rulings).
 fn run_within(
     surface: &dyn Surface,
     pattern: &[[f64; 2]],
@@ -542,6 +555,7 @@ fn run_within(
     keep: bool,
     boundary: &Boundary,
     start: Instant,
+    allow_strips: bool,
 ) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let mut timings = Timings::default();
 
@@ -617,12 +631,8 @@ fn run_within(
     let closed_convex = envelope.is_some();
     // A developable surface with rulings along parameter lines (crate::rulings): strips, and
     // an annulus where it is closed across its rulings.
-    // With adjusted planes, an inflected cross-section is left to the plane adjustment of the
-    // general path, which can tilt the planes there.
-    let adjustable = options.planes == PlaneMode::Adjusted
-        && rulings::inflected(seeds.iter().map(|s| s.curvatures));
-    let strips = match rulings::find_rulings(surface) {
-        Some(r) if !closed_convex && !boundary.is_trim() && !adjustable => {
+    let strips = match rulings::find_rulings(surface).filter(|_| allow_strips) {
+        Some(r) if !closed_convex && !boundary.is_trim() => {
             let closed = layout.closed[1 - r.along];
             if closed {
                 let weld = options.weld_tolerance * diagonal;
@@ -663,6 +673,7 @@ fn run_within(
 
     // Candidates and true neighbours.
     let stage = Instant::now();
+    let flat = planes.iter().all(|p| coincident(&planes[0], p));
     check_not_collinear(&plane_uv)?;
     let input = NeighbourInput {
         plane_uv: &plane_uv,
@@ -704,10 +715,23 @@ fn run_within(
             timings.neighbours = ms(stage);
             (triangulation, None, stats)
         }
+        // A flat surface: the Voronoi cells of the seeds in its plane (crate::flat), clipped
+        // on the boundary (or the trim) as on the convex paths.
+        _ if flat => {
+            let triangulation = flat::voronoi_dual(&planes)?;
+            timings.delaunay = ms(stage);
+            // Zero curvature is what this path is for, not a defect to flag; every neighbour
+            // pair is separated by its bisector.
+            diagnostics.retain(|d| !matches!(d, Diagnostic::FlatPoint { .. }));
+            diagnostics.push(Diagnostic::CoincidentPlanes {
+                pairs: real_pairs(&triangulation, planes.len()).len() as u32,
+            });
+            (triangulation, None, NeighbourStats::default())
+        }
         // Trims are ended on their loops by the clipping of the convex paths only.
         _ if boundary.is_trim() => {
             return Err(TpiError::TrimUnsupported {
-                reason: "the surface is not strictly convex (on one side) at every pattern point inside the trim".into(),
+                reason: "the surface is neither flat nor strictly convex (on one side) at every pattern point inside the trim".into(),
             });
         }
         // Saddles and mixed curvature: ghost seeds beyond the boundary close every real facet
@@ -1016,7 +1040,8 @@ fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
     extent
 }
 
-/// The edges of `tri` between two real points (`< real_count`), as sorted pairs i < j.
+/// The edges of `tri` between two real points (`< real_count`), as sorted pairs i < j
+/// (every edge where all points are real).
 fn real_pairs(tri: &DualTriangulation, real_count: usize) -> Vec<[u32; 2]> {
     let mut pairs: Vec<[u32; 2]> = tri
         .triangles

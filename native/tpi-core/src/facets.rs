@@ -27,7 +27,7 @@ use rayon::prelude::*;
 use crate::boundary::{Boundary, Position};
 use crate::diagnostics::Diagnostic;
 use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
-use crate::planes::{coincident, intersect_three, meeting_point, regularised_meeting_point, Plane};
+use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane};
 use crate::projection::foot;
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
@@ -526,7 +526,8 @@ fn triangle_vertex(ctx: &Context<'_>, mut ids: [u32; 3], far_factor: f64) -> Tri
 /// [`triangle_vertex`] of the points `ids` taken in the given (canonical) order.
 fn triangle_vertex_ordered(ctx: &Context<'_>, ids: [u32; 3], far_factor: f64) -> TriangleVertex {
     let [a, b, c] = ids.map(|i| &ctx.planes[i as usize]);
-    let meeting = intersect_three(a, b, c);
+    // Coincident planes (a flat surface) meet on their seeds' bisectors.
+    let meeting = meeting_point(a, b, c);
     let centroid = (a.point + b.point + c.point) / 3.0;
     let longest = a
         .point
@@ -610,7 +611,7 @@ pub(crate) fn single_triangle_vertex(
 fn ill_conditioned(ctx: &Context<'_>, mut ids: [u32; 3], _vertex: &TriangleVertex) -> Diagnostic {
     ids.sort_unstable();
     let [a, b, c] = ids.map(|i| &ctx.planes[i as usize]);
-    let meeting = intersect_three(a, b, c);
+    let meeting = meeting_point(a, b, c);
     let centroid = (a.point + b.point + c.point) / 3.0;
     let distance = meeting.point.distance(centroid);
     let distance = if distance.is_finite() {
@@ -691,7 +692,13 @@ fn edge_crossings(
     if inside(&start) && inside(&end) {
         return (Vec::new(), None);
     }
-    let Some(line) = lo.normal.cross(hi.normal).try_normalize() else {
+    // The edge of two coincident facets is their seeds' bisector in their plane.
+    let along = if coincident(lo, hi) {
+        lo.normal.cross(hi.point - lo.point)
+    } else {
+        lo.normal.cross(hi.normal)
+    };
+    let Some(line) = along.try_normalize() else {
         return (
             Vec::new(),
             Some(Diagnostic::ParallelPlanes {

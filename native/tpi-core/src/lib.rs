@@ -30,6 +30,7 @@ mod discretise;
 mod error;
 mod fabricate;
 mod facets;
+mod flat;
 mod ghosts;
 mod hull;
 mod live;

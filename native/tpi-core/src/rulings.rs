@@ -128,18 +128,6 @@ pub fn ruling_direction(surface: &dyn Surface) -> Option<usize> {
     find_rulings(surface).map(|r| r.along)
 }
 
-/// Whether the seeds' curvature across the rulings changes sign (an inflection of the
-/// cross-section, as on an S-shaped extrusion), judged by the sign of the principal
-/// curvatures' sum at each seed relative to one normal orientation. Next to an inflection the
-/// planes of neighbouring rulings meet far from the surface, possibly in reverse order, and
-/// their strips can turn non-simple: the exact answer there is ill-posed.
-pub(crate) fn inflected(curvatures: impl Iterator<Item = [f64; 2]>) -> bool {
-    let sums: Vec<f64> = curvatures.map(|[k1, k2]| k1 + k2).collect();
-    let largest = sums.iter().fold(0.0f64, |m, s| m.max(s.abs()));
-    let floor = RULING_TOLERANCE * largest;
-    sums.iter().any(|&s| s > floor) && sums.iter().any(|&s| s < -floor)
-}
-
 /// The strips' dual structure (module doc) over the real seeds `0..uv.len()` followed by the
 /// ghosts, with every point's plane and its real seed. `closed`: the surface is closed across
 /// its rulings. None where the strips cannot be built (fewer than three rulings on a closed

@@ -499,3 +499,137 @@ fn symmetric_patterns_through_trim_points() {
     };
     assert_eq!(check("sphere", &trim, &hex("grid:30x30")), (1, 1));
 }
+
+/// A plane as a bicubic NURBS surface over [-1, 1]^2 whose parametrisation is far from
+/// affine (control points crowded towards one corner), lying in z = 0.3 x - 0.7 y + 2.
+fn warped_plane(trim: &Trim) -> SurfaceModel {
+    let mut points = Vec::new();
+    for i in 0..4 {
+        for j in 0..4 {
+            let (s, t) = (i as f64 / 3.0, j as f64 / 3.0);
+            let (x, y) = (-1.0 + 2.0 * s * s, -1.0 + 2.0 * t.powf(1.5));
+            points.push(serde_json::json!([x, y, 0.3 * x - 0.7 * y + 2.0]));
+        }
+    }
+    let value = serde_json::json!({"type": "nurbs", "degree": [3, 3], "count": [4, 4],
+        "knots_u": [-1, -1, -1, 1, 1, 1], "knots_v": [-1, -1, -1, 1, 1, 1], "points": points,
+        "trim": trim});
+    SurfaceSpec::from_json(&value.to_string(), "plane")
+        .unwrap()
+        .build()
+        .unwrap()
+}
+
+/// Issue 16, items 1 and 4: a trimmed plane (most real walls) is discretised instead of
+/// refused. Its facets are the Voronoi cells of the points inside the trim, clipped on it.
+/// Oracles computed here: which points lie inside (even-odd rule), every interior vertex
+/// equidistant from the seeds of its facets with no kept seed closer (brute force), every
+/// boundary vertex's closest surface point on a trim loop, the topology of a disc with its
+/// holes, and the independent validity checks (simple facets, no overlaps).
+#[test]
+fn planes_trimmed_to_a_disc_with_a_hole_are_clipped_voronoi_cells() {
+    let trims = [("disc", disc()), ("disc with a hole", disc_with_hole())];
+    let mut rng = Rng::new(1606);
+    let patterns = [
+        ("random:500", uniform_pattern(&mut rng, 500)),
+        ("jitter:400", jittered_pattern(&mut rng, 400)),
+        ("hex:20x20", hex("hex:20x20")),
+        ("grid:17x17", hex("grid:17x17")),
+    ];
+    for (tname, trim) in &trims {
+        let analytic = {
+            let mut value: serde_json::Value = serde_json::from_str(
+                r#"{"type": "plane", "p": 0.3, "q": -0.7, "c0": 2, "x": [-1, 1], "y": [-1, 1]}"#,
+            )
+            .unwrap();
+            value["trim"] = serde_json::to_value(trim).unwrap();
+            SurfaceSpec::from_json(&value.to_string(), "plane")
+                .unwrap()
+                .build()
+                .unwrap()
+        };
+        let warped = warped_plane(trim);
+        for (sname, model) in [("plane", &analytic), ("warped plane", &warped)] {
+            for (pname, pattern) in &patterns {
+                let name = format!("{sname} trimmed to a {tname}, {pname}");
+                let domain = model.domain();
+                let loops: Vec<Vec<[f64; 2]>> = std::iter::once(trim.outer.clone())
+                    .chain(trim.holes.iter().cloned())
+                    .collect();
+                let inside: Vec<usize> = (0..pattern.len())
+                    .filter(|&i| {
+                        let uv = domain.from_normalised(pattern[i]);
+                        loops.iter().filter(|l| in_polygon(l, uv)).count() % 2 == 1
+                    })
+                    .collect();
+                let d = discretise(model, pattern, &DiscretiseOptions::default())
+                    .unwrap_or_else(|e| panic!("{name}: {e}"));
+                assert_eq!(
+                    d.facet_count(),
+                    inside.len(),
+                    "{name}: one facet per point inside"
+                );
+                for (f, &p) in inside.iter().enumerate() {
+                    assert_eq!(d.pattern_index(f), p, "{name}: facet {f}'s pattern point");
+                }
+                let v = validity::check(&d);
+                let expected = (1 - trim.holes.len() as i64, 1 + trim.holes.len());
+                assert!(
+                    v.invalid_facets().is_empty()
+                        && (v.euler, v.boundary_loops) == expected
+                        && v.topology_problems == 0,
+                    "{name}: invalid facets {:?}, Euler {}, boundary loops {}, topology problems {}",
+                    v.invalid_facets(),
+                    v.euler,
+                    v.boundary_loops,
+                    v.topology_problems
+                );
+                d.sanity_check()
+                    .unwrap_or_else(|e| panic!("{name}: sanity check: {e}"));
+                let diagonal = seed_diagonal(&d);
+                let seeds: Vec<DVec3> = d.seeds.iter().map(|s| s.point).collect();
+                let around = vertex_facets(&d);
+                let size = domain.u.length().max(domain.v.length());
+                let (mut interior, mut on_trim) = (0, 0);
+                for (k, &x) in d.vertices.iter().enumerate() {
+                    let z = 0.3 * x.x - 0.7 * x.y + 2.0;
+                    assert!(
+                        (x.z - z).abs() <= 1e-9 * diagonal,
+                        "{name}: vertex {k} off the plane"
+                    );
+                    if d.vertex_kinds[k] != VertexKind::Interior {
+                        let foot = closest_parameters(model, x, 64);
+                        let distance = polyline_distance(&loops, foot) / size;
+                        assert!(
+                            distance <= 1e-6,
+                            "{name}: boundary vertex {k} has its foot {foot:?} {distance:e} off the trim"
+                        );
+                        on_trim += 1;
+                        continue;
+                    }
+                    let r: Vec<f64> = around[k].iter().map(|&f| x.distance(seeds[f])).collect();
+                    let (lo, hi) = r
+                        .iter()
+                        .fold((f64::INFINITY, 0.0f64), |(a, b), &r| (a.min(r), b.max(r)));
+                    assert!(
+                        hi - lo <= 1e-9 * diagonal,
+                        "{name}: vertex {k} is not equidistant from its seeds: {r:?}"
+                    );
+                    let nearest = seeds
+                        .iter()
+                        .map(|p| x.distance(*p))
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(
+                        nearest >= lo - 1e-9 * diagonal,
+                        "{name}: a seed is closer ({nearest}) to vertex {k} than its own ({lo})"
+                    );
+                    interior += 1;
+                }
+                assert!(
+                    interior > inside.len() && on_trim > 0,
+                    "{name}: {interior} interior and {on_trim} boundary vertices"
+                );
+            }
+        }
+    }
+}
