@@ -42,7 +42,7 @@ use crate::diffgeo::LocalGeometry;
 use crate::planes::{bisector, coincident, intersect_three, Plane};
 use crate::samples::bounding_diagonal;
 use crate::surface::Surface;
-use crate::tolerance::{LAYOUT_SAMPLES, RULING_TOLERANCE};
+use crate::tolerance::{LAYOUT_SAMPLES, RULING_TOLERANCE, STRIP_END_MIN_DEPTH};
 use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
 
 /// The parameter lines of a developable surface that are its rulings.
@@ -188,15 +188,23 @@ pub(crate) fn strip_structure(
     for g in &groups {
         let (first, last) = (g[0], g[g.len() - 1]);
         let s = uv[first as usize][across];
+        let bottom_end = point(surface, rulings.at(s, t_min));
+        let top_end = point(surface, rulings.at(s, t_max));
+        let ruling = top_end - bottom_end;
         let bottom = end_ghost(
             surface,
             rulings.at(s, t_min),
             across,
             planes[first as usize],
+            -ruling,
         )?;
-        let top = end_ghost(surface, rulings.at(s, t_max), across, planes[last as usize])?;
-        let bottom_end = point(surface, rulings.at(s, t_min));
-        let top_end = point(surface, rulings.at(s, t_max));
+        let top = end_ghost(
+            surface,
+            rulings.at(s, t_max),
+            across,
+            planes[last as usize],
+            ruling,
+        )?;
         let mut chain = vec![push(bottom, first)];
         chain.extend_from_slice(g);
         chain.push(push(top, last));
@@ -247,16 +255,31 @@ fn point(surface: &dyn Surface, [u, v]: [f64; 2]) -> DVec3 {
 }
 
 /// The ghost of the end seed with plane `plane` across the wall at the ruling's end `at`
-/// (module doc), on the same plane. None where the end curve has no tangent (a pole).
-fn end_ghost(surface: &dyn Surface, at: [f64; 2], across: usize, plane: Plane) -> Option<Plane> {
+/// (module doc), on the same plane; `outwards` points along the ruling out of the surface
+/// there. A seed on the end, or closer to it than [`STRIP_END_MIN_DEPTH`] of the scale
+/// |E| + |ruling|, gets its ghost that depth beyond the wall, so that the two stay coincident
+/// planes to [`crate::tolerance::PLANE_COINCIDENCE`] despite the rounding of their points and
+/// their bisector is defined. None where the end curve has no tangent (a pole).
+fn end_ghost(
+    surface: &dyn Surface,
+    at: [f64; 2],
+    across: usize,
+    plane: Plane,
+    outwards: DVec3,
+) -> Option<Plane> {
     let d = surface.evaluate(at[0], at[1]);
     let tangent = if across == 0 { d.su } else { d.sv };
-    let w = plane.normal.cross(tangent).normalize_or_zero();
+    let mut w = plane.normal.cross(tangent).normalize_or_zero();
     if w == DVec3::ZERO || !w.is_finite() {
         return None;
     }
+    if w.dot(outwards) < 0.0 {
+        w = -w;
+    }
     let p = plane.point;
-    let point = p - w * (2.0 * (p - d.point).dot(w));
+    let scale = d.point.length() + outwards.length();
+    let depth = (d.point - p).dot(w).max(STRIP_END_MIN_DEPTH * scale);
+    let point = p + w * (2.0 * depth);
     point.is_finite().then_some(Plane {
         point,
         normal: plane.normal,

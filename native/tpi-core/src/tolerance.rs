@@ -53,6 +53,13 @@ pub const LAYOUT_SAMPLES: usize = 17;
 /// 1e-15; a surface curved along the lines by 1e-9 of its size is not developable there.
 pub const RULING_TOLERANCE: f64 = 1e-9;
 
+/// A seed on the end of its ruling, or closer to it than this fraction of the scale
+/// |end point| + |ruling length|, gets its end ghost that far beyond the end wall: nearer, the
+/// rounding of the two points (about 1e-16 of their magnitude) would exceed
+/// [`PLANE_COINCIDENCE`] of their distance and their planes would no longer count as one.
+/// Its strip then ends at most this far beyond the wall.
+pub const STRIP_END_MIN_DEPTH: f64 = 1e-6;
+
 // ---- read by polysurface.rs ----
 
 /// Two faces of a polysurface share a side when their points at the same parameter along it
