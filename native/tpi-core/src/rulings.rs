@@ -131,8 +131,8 @@ pub fn ruling_direction(surface: &dyn Surface) -> Option<usize> {
 /// The strips' dual structure (module doc) over the real seeds `0..uv.len()` followed by the
 /// ghosts, with every point's plane and its real seed. `closed`: the surface is closed across
 /// its rulings. None where the strips cannot be built (fewer than three rulings on a closed
-/// surface, a degenerate end, a ruling whose seeds' bisectors fail); the caller then takes
-/// the general path.
+/// surface, seeds of several rulings on one plane, a degenerate end, a ruling whose seeds'
+/// bisectors fail); the caller then takes the general path.
 pub(crate) fn strip_structure(
     surface: &dyn Surface,
     rulings: Rulings,
@@ -169,6 +169,17 @@ pub(crate) fn strip_structure(
         }
     }
     if closed && groups.len() < 3 {
+        return None;
+    }
+    // One plane across several rulings is a flat region (a polysurface of planar faces): its
+    // seeds need their Voronoi diagram, not a chain.
+    let span = (s_max - s_min).abs();
+    let one_ruling = |g: &Vec<u32>| {
+        let s0 = uv[g[0] as usize][across];
+        g.iter()
+            .all(|&i| (uv[i as usize][across] - s0).abs() <= RULING_TOLERANCE * span)
+    };
+    if !groups.iter().all(one_ruling) {
         return None;
     }
     for g in &mut groups {

@@ -462,3 +462,56 @@ fn random_points_on_cylinders_and_cones_give_exact_strips() {
         }
     }
 }
+
+/// A gable roof of two planar faces (a polysurface) has straight parameter lines of constant
+/// normal along its ridge, like a cylinder, but the seeds of one face share a plane across
+/// many of those lines: a flat region needs the Voronoi diagram of its seeds, not the strips
+/// of one ruling. It must not take the strips: every facet's vertices lie in its face's plane,
+/// and the mesh is a disc with at most a handful of invalid (flagged) facets, at the ridge.
+#[test]
+fn a_polysurface_of_planar_faces_is_not_taken_for_rulings() {
+    let face = |p: [[f64; 3]; 4]| {
+        serde_json::json!({"type": "nurbs", "degree": [1, 1], "count": [2, 2],
+            "knots_u": [0, 1], "knots_v": [0, 1], "points": [p[0], p[1], p[2], p[3]]})
+    };
+    let gable = serde_json::json!({"type": "polysurface", "faces": [
+        face([[0.0, -2.0, 0.0], [0.0, 0.0, 1.0], [4.0, -2.0, 0.0], [4.0, 0.0, 1.0]]),
+        face([[0.0, 0.0, 1.0], [0.0, 2.0, 0.0], [4.0, 0.0, 1.0], [4.0, 2.0, 0.0]]),
+    ]});
+    let model = tpi_core::SurfaceSpec::from_json(&gable.to_string(), "gable")
+        .unwrap()
+        .build()
+        .unwrap();
+    let mut rng = Rng::new(1617);
+    let pattern = uniform_pattern(&mut rng, 300);
+    let d = discretise(&model, &pattern, &DiscretiseOptions::default()).unwrap();
+    assert!(
+        !d.diagnostics
+            .iter()
+            .any(|g| matches!(g, Diagnostic::RulingStrips { .. })),
+        "a flat polysurface taken for rulings"
+    );
+    assert_eq!(d.facet_count(), 300);
+    let v = validity::check(&d);
+    assert!(
+        v.is_disc() && v.invalid_facets().len() <= 10,
+        "invalid facets {:?}, Euler {}, boundary loops {}",
+        v.invalid_facets(),
+        v.euler,
+        v.boundary_loops
+    );
+    let diagonal = seed_diagonal(&d);
+    // The plane of face y < 0 (normal (0, -1, 2) / sqrt 5) or y > 0 ((0, 1, 2) / sqrt 5).
+    for i in 0..d.facet_count() {
+        let side = d.seeds[i].point.y.signum();
+        let normal = DVec3::new(0.0, side, 2.0).normalize();
+        for &k in d.facet(i) {
+            let x = d.vertices[k as usize];
+            let gap = normal.dot(x - DVec3::new(0.0, 0.0, 1.0)).abs();
+            assert!(
+                gap <= 1e-9 * diagonal,
+                "vertex {k} of facet {i} is {gap} off its face"
+            );
+        }
+    }
+}
