@@ -1857,9 +1857,9 @@ fn completions_and_man_page() {
     fails(&["completions", "tcsh"], 2, &["tcsh"]);
 }
 
-/// A closed convex surface of one face gives a closed mesh with no warning, and so does a
-/// cylinder closed around its axis (an annulus of strips); a surface closed in one direction
-/// that is neither (a vase with a waist) is an open patch, and says so.
+/// A closed convex surface of one face gives a closed mesh with no warning, and so do a
+/// cylinder closed around its axis (an annulus of strips) and a vase with a waist (an
+/// annulus, its seam folded); a torus, closed both ways, is an open patch, and says so.
 #[test]
 fn closed_surfaces_give_closed_meshes_or_a_seam_warning() {
     let dir = scratch("closed");
@@ -1950,12 +1950,65 @@ fn closed_surfaces_give_closed_meshes_or_a_seam_warning() {
         "{}",
         text(&run.stderr)
     );
-    // A vase with a waist (K < 0 there): an open patch, and it says so.
+    // A vase with a waist (K < 0 there), closed around its axis: the seam closes too.
     let vase = revolution("vase.json", &[3.0, 1.0, 3.0], &[0.0, 2.0, 4.0]);
+    let out = dir.join("vase-out.json");
     let run = ok(&[
         "discretise",
         "--surface",
         vase.to_str().unwrap(),
+        "--pattern",
+        "poisson:0.05:seed=3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let q = read_contract(&out).quality.expect("quality report");
+    assert_eq!(
+        (q.euler_characteristic, q.boundary_loops, q.invalid_facets),
+        (0, 2, 0),
+        "vase"
+    );
+    assert!(
+        !text(&run.stderr).contains("warning"),
+        "{}",
+        text(&run.stderr)
+    );
+    // A torus, closed both ways: an open patch, and it says so.
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let square = [
+        (1.0, 0.0, 1.0),
+        (1.0, 1.0, w),
+        (0.0, 1.0, 1.0),
+        (-1.0, 1.0, w),
+        (-1.0, 0.0, 1.0),
+        (-1.0, -1.0, w),
+        (0.0, -1.0, 1.0),
+        (1.0, -1.0, w),
+        (1.0, 0.0, 1.0),
+    ];
+    let (mut points, mut weights) = (Vec::new(), Vec::new());
+    for (a, b, wi) in square {
+        for (x, z, wj) in square {
+            let radius = 3.0 + x;
+            points.push(format!("[{}, {}, {z}]", radius * a, radius * b));
+            weights.push(format!("{}", wi * wj));
+        }
+    }
+    let torus = dir.join("torus.json");
+    let knots = "[0, 0, 1, 1, 2, 2, 3, 3, 4, 4]";
+    std::fs::write(
+        &torus,
+        format!(
+            r#"{{"type": "nurbs", "degree": [2, 2], "count": [9, 9], "knots_u": {knots}, "knots_v": {knots}, "points": [{}], "weights": [{}]}}"#,
+            points.join(", "),
+            weights.join(", ")
+        ),
+    )
+    .unwrap();
+    let run = ok(&[
+        "discretise",
+        "--surface",
+        torus.to_str().unwrap(),
         "--pattern",
         "grid:16x6",
     ]);

@@ -31,6 +31,7 @@ use crate::ghosts::augment;
 use crate::mesh::{FacetMesh, SlopeView};
 use crate::neighbours::{decide, decide_convex, NeighbourInput, NeighbourStats, SlopeFrame};
 use crate::pattern::validate_uv;
+use crate::periodic;
 use crate::planes::{coincident, Plane};
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
 use crate::rulings;
@@ -38,9 +39,10 @@ use crate::samples::{bounding_box, sample, Samples};
 use crate::surface::Surface;
 use crate::tolerance::{
     COLLINEAR_TOLERANCE, DEFAULT_FAR_VERTEX_FACTOR, DEFAULT_FLAT_TOLERANCE, DEFAULT_WELD_TOLERANCE,
-    REVERSAL_CHECK_TOLERANCE,
+    PERIODIC_BAND, REVERSAL_CHECK_TOLERANCE,
 };
 use crate::triangulation::{orient, DualTriangulation};
+use crate::validity_flips::validity_flips;
 
 /// Options of [`discretise`]. `Default` gives the documented defaults.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -664,12 +666,7 @@ fn run_within(
         closed_ghosts = Some((all_planes, source));
         triangulation
     });
-    if let Some(k) = (0..2)
-        .find(|&k| layout.closed[k])
-        .filter(|_| !closed_convex && !strips_closed)
-    {
-        diagnostics.push(Diagnostic::SeamLeftOpen { direction: k as u8 });
-    }
+    let mut seam_closed = false;
 
     // Candidates and true neighbours.
     let stage = Instant::now();
@@ -738,35 +735,121 @@ fn run_within(
         // for the validity flips.
         _ => {
             let extent = plane_extent(&plane_uv, pattern);
-            let augmented = augment(
-                surface,
-                &uv,
-                &plane_uv,
-                extent,
-                &geometry,
-                &convex_side,
-                [true; 4],
-            );
-            let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
-            timings.delaunay = ms(stage);
-            let stage = Instant::now();
-            let augmented_input = NeighbourInput {
-                plane_uv: &augmented.plane_uv,
-                geometry: &augmented.geometry,
-                planes: &augmented.planes,
-                convex_side: &augmented.convex_side,
-                any_curvature: true,
+            // Closed one way with open sides across it (crate::periodic): the seam closed
+            // where the structure folds into an annulus, else left open as on an open patch.
+            let seam = layout
+                .open_sides()
+                .filter(|open| !boundary.is_trim() && open.iter().filter(|&&o| o).count() == 2);
+            if seam.is_some() {
+                let weld = options.weld_tolerance * diagonal;
+                let regular = vec![true; uv.len()];
+                check_closed_seeds(surface, &layout, &uv, &seeds, &regular, true, weld)?;
+            }
+            let folded = match seam {
+                Some(open) => {
+                    let direction = usize::from(layout.closed[1]);
+                    let spacing = (extent[0] * extent[1] / uv.len() as f64).sqrt();
+                    let period = extent[direction];
+                    let band = (PERIODIC_BAND * spacing).min(0.5 * period);
+                    let copies = periodic::with_copies(&uv, &plane_uv, direction, period, band);
+                    let geometry_x = periodic::extended(&geometry, &copies.copy_of);
+                    let convex_x = periodic::extended(&convex_side, &copies.copy_of);
+                    let augmented = augment(
+                        surface,
+                        &copies.uv,
+                        &copies.plane_uv,
+                        extent,
+                        &geometry_x,
+                        &convex_x,
+                        open,
+                    );
+                    let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
+                    let seed_of = |x: u32| {
+                        let s = augmented.source[x as usize] as usize;
+                        if s < uv.len() {
+                            s as u32
+                        } else {
+                            copies.copy_of[s - uv.len()]
+                        }
+                    };
+                    let identity = |x: u32| {
+                        let point = augmented.planes[x as usize].point.to_array();
+                        (seed_of(x), point.map(f64::to_bits))
+                    };
+                    periodic::canonical_ties(&mut triangulation, &augmented.plane_uv, &identity);
+                    let input = NeighbourInput {
+                        plane_uv: &augmented.plane_uv,
+                        geometry: &augmented.geometry,
+                        planes: &augmented.planes,
+                        convex_side: &augmented.convex_side,
+                        any_curvature: true,
+                    };
+                    // No facet judged yet: the validity flips, greedy in facet order, would
+                    // decide the two sides of the seam differently; they run on the fold.
+                    let mut stats = decide(&mut triangulation, &input, options.envelope_repair, 0);
+                    periodic::fold(
+                        &triangulation,
+                        &augmented,
+                        uv.len(),
+                        &copies.copy_of,
+                        direction,
+                        [period, band],
+                    )
+                    .map(|(mut folded, points)| {
+                        let again =
+                            validity_flips(&mut folded, &points.plane_uv, &points.planes, uv.len());
+                        stats.validity_flips += again.flips;
+                        stats.validity_unresolved = again.unresolved;
+                        (folded, points, stats)
+                    })
+                }
+                None => None,
             };
-            let stats = decide(
-                &mut triangulation,
-                &augmented_input,
-                options.envelope_repair,
-                plane_uv.len(),
-            );
-            timings.neighbours = ms(stage);
-            (triangulation, Some(augmented), stats)
+            if let Some((triangulation, points, stats)) = folded {
+                closed_topology = MeshTopology {
+                    euler: 0,
+                    boundary_loops: 2,
+                };
+                seam_closed = true;
+                timings.delaunay = ms(stage);
+                (triangulation, Some(points), stats)
+            } else {
+                let augmented = augment(
+                    surface,
+                    &uv,
+                    &plane_uv,
+                    extent,
+                    &geometry,
+                    &convex_side,
+                    [true; 4],
+                );
+                let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
+                timings.delaunay = ms(stage);
+                let stage = Instant::now();
+                let augmented_input = NeighbourInput {
+                    plane_uv: &augmented.plane_uv,
+                    geometry: &augmented.geometry,
+                    planes: &augmented.planes,
+                    convex_side: &augmented.convex_side,
+                    any_curvature: true,
+                };
+                let stats = decide(
+                    &mut triangulation,
+                    &augmented_input,
+                    options.envelope_repair,
+                    plane_uv.len(),
+                );
+                timings.neighbours = ms(stage);
+                (triangulation, Some(augmented), stats)
+            }
         }
     };
+    if let Some(k) = (0..2)
+        .find(|&k| layout.closed[k])
+        .filter(|_| !closed_convex && !strips_closed && !seam_closed)
+    {
+        diagnostics.push(Diagnostic::SeamLeftOpen { direction: k as u8 });
+    }
 
     // Facets and mesh.
     let stage = Instant::now();
@@ -896,7 +979,7 @@ fn run_within(
         plane_adjustments: Vec::new(),
         timings,
         units: surface.units(),
-        topology: if ghost_dual {
+        topology: if ghost_dual || seam_closed {
             closed_topology
         } else {
             MeshTopology::DISC

@@ -38,6 +38,7 @@ mod mesh;
 mod neighbours;
 mod nurbs;
 mod pattern;
+mod periodic;
 mod planes;
 mod polysurface;
 mod predicates;

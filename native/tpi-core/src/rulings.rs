@@ -34,8 +34,6 @@
 //! Every triangle has two points of one chain and one of its neighbour, so every vertex is a
 //! crossing of a bisector with L: finite and exact.
 
-use std::collections::HashMap;
-
 use glam::DVec3;
 
 use crate::diffgeo::LocalGeometry;
@@ -43,7 +41,7 @@ use crate::planes::{bisector, coincident, intersect_three, Plane};
 use crate::samples::bounding_diagonal;
 use crate::surface::Surface;
 use crate::tolerance::{LAYOUT_SAMPLES, RULING_TOLERANCE, STRIP_END_MIN_DEPTH};
-use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
+use crate::triangulation::DualTriangulation;
 
 /// The parameter lines of a developable surface that are its rulings.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -257,7 +255,7 @@ pub(crate) fn strip_structure(
             t.swap(1, 2);
         }
     }
-    let triangulation = with_adjacency(triangles)?;
+    let triangulation = DualTriangulation::from_triangles(triangles)?;
     Some((triangulation, all_planes, source))
 }
 
@@ -350,33 +348,4 @@ fn zip(
         }
     }
     Some(())
-}
-
-/// The triangulation of counter-clockwise `triangles` with its adjacency; None when a directed
-/// edge is used twice (not a manifold).
-fn with_adjacency(triangles: Vec<[u32; 3]>) -> Option<DualTriangulation> {
-    let mut edges: HashMap<(u32, u32), u32> = HashMap::with_capacity(3 * triangles.len());
-    for (t, tri) in triangles.iter().enumerate() {
-        for k in 0..3 {
-            if edges.insert((tri[k], tri[(k + 1) % 3]), t as u32).is_some() {
-                return None;
-            }
-        }
-    }
-    let neighbours = triangles
-        .iter()
-        .map(|tri| {
-            // Across the edge opposite vertex k, (v(k+1), v(k+2)), run the other way.
-            [0, 1, 2].map(|k| {
-                edges
-                    .get(&(tri[(k + 2) % 3], tri[(k + 1) % 3]))
-                    .copied()
-                    .unwrap_or(NO_TRIANGLE)
-            })
-        })
-        .collect();
-    Some(DualTriangulation {
-        triangles,
-        neighbours,
-    })
 }

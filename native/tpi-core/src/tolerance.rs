@@ -45,6 +45,25 @@ pub const CLOSURE_TOLERANCE: f64 = 1e-9;
 /// Samples per side for the closure and pole tests.
 pub const LAYOUT_SAMPLES: usize = 17;
 
+// ---- read by periodic.rs (through discretise.rs) ----
+
+/// Seeds within this many mean spacings of a seam get copies across it, so that the
+/// structure decided around the seam is the same on both sides before it is folded
+/// (`periodic.rs`); at most half the period.
+pub const PERIODIC_BAND: f64 = 6.0;
+
+/// Cut positions tried on either side of the seam when folding the periodic structure
+/// (`periodic.rs`), spread over half the band.
+pub const PERIODIC_CUTS: usize = 8;
+
+/// Four points around an edge count as cocircular when their in-circle determinant is at most
+/// this times the quad's size to the fourth power (its scale): mirrored ghosts make exact and
+/// rounded ties, broken the same way on both sides of the seam (`periodic.rs`).
+pub const PERIODIC_TIE: f64 = 1e-10;
+
+/// Rounds of the tie breaking over all edges (each round flips only ties).
+pub const PERIODIC_TIE_ROUNDS: usize = 8;
+
 // ---- read by rulings.rs ----
 
 /// A surface's parameter lines are its rulings when, at the layout samples, the normals along

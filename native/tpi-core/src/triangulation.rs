@@ -13,6 +13,8 @@
 //! `neighbours[t][k]`, the triangle across the edge opposite vertex k, i.e. across
 //! (v(k+1), v(k+2)); [`NO_TRIANGLE`] on the convex hull.
 
+use std::collections::HashMap;
+
 use spade::{DelaunayTriangulation, HasPosition, Point2, Triangulation as _};
 
 use crate::error::TpiError;
@@ -99,6 +101,36 @@ impl DualTriangulation {
             neighbours.push(across);
         }
         Ok(Self {
+            triangles,
+            neighbours,
+        })
+    }
+
+    /// The triangulation of counter-clockwise `triangles` (built by other means than
+    /// [`DualTriangulation::delaunay`]) with its adjacency; None when a directed edge is used
+    /// twice (not a manifold with one orientation).
+    pub(crate) fn from_triangles(triangles: Vec<[u32; 3]>) -> Option<Self> {
+        let mut edges: HashMap<(u32, u32), u32> = HashMap::with_capacity(3 * triangles.len());
+        for (t, tri) in triangles.iter().enumerate() {
+            for k in 0..3 {
+                if edges.insert((tri[k], tri[(k + 1) % 3]), t as u32).is_some() {
+                    return None;
+                }
+            }
+        }
+        let neighbours = triangles
+            .iter()
+            .map(|tri| {
+                // Across the edge opposite vertex k, (v(k+1), v(k+2)), run the other way.
+                [0, 1, 2].map(|k| {
+                    edges
+                        .get(&(tri[(k + 2) % 3], tri[(k + 1) % 3]))
+                        .copied()
+                        .unwrap_or(NO_TRIANGLE)
+                })
+            })
+            .collect();
+        Some(Self {
             triangles,
             neighbours,
         })

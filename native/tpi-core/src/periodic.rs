@@ -1,0 +1,243 @@
+//! Surfaces closed in one direction that are not convex (a vase with a waist, a cup, a band
+//! with saddles): the general path's dual structure made periodic, so that the seam closes.
+//!
+//! With the seam in parameter direction k and period P in the triangulation's plane (the
+//! plane coordinates are the normalised pattern scaled per axis, so P is that axis's extent),
+//! every seed within a band of width b of either seam side gets a *copy* shifted by +P or -P
+//! across it: the same surface point and tangent plane, only its plane coordinate moved. The
+//! seeds, their copies and the ghosts beyond the open sides are triangulated and decided as
+//! one open patch; around the seam, away from the band's outer edges, the structure is then
+//! the same on both sides. It is *folded*: of every triangle and its shifted twin exactly one
+//! has its centroid's coordinate c_k in a fundamental domain [x, x + P), and those triangles,
+//! with copies renamed to their seeds (and ghosts of copies to the seeds' own ghosts), are a
+//! triangulation of the annulus. The flips are local but not unique, so the two sides can
+//! differ in small patches; where they differ at the cut x, the fold leaves an edge used
+//! twice or a seed's fan open. The cut is tried at the seam and at positions on either side
+//! of it within the band; where none folds, the caller keeps the open patch.
+//!
+//! The validity flips then run once more on the folded structure (they are combinatorial:
+//! they read only the planes), where the seam is an ordinary part of it.
+
+use std::collections::HashMap;
+
+use crate::ghosts::Augmented;
+use crate::planes::Plane;
+use crate::predicates::orient2d;
+use crate::tolerance::{PERIODIC_CUTS, PERIODIC_TIE, PERIODIC_TIE_ROUNDS};
+use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
+
+/// The seeds with their copies across the seam.
+pub(crate) struct WithCopies {
+    /// Domain parameters (copies: those of their seed).
+    pub(crate) uv: Vec<[f64; 2]>,
+    /// Triangulation-plane coordinates (copies shifted by the period).
+    pub(crate) plane_uv: Vec<[f64; 2]>,
+    /// Per copy (point `seeds + c`), its seed.
+    pub(crate) copy_of: Vec<u32>,
+}
+
+/// Copies of the seeds within `band` of either seam side (module doc), appended after them.
+pub(crate) fn with_copies(
+    uv: &[[f64; 2]],
+    plane_uv: &[[f64; 2]],
+    direction: usize,
+    period: f64,
+    band: f64,
+) -> WithCopies {
+    let mut out = WithCopies {
+        uv: uv.to_vec(),
+        plane_uv: plane_uv.to_vec(),
+        copy_of: Vec::new(),
+    };
+    for (i, p) in plane_uv.iter().enumerate() {
+        for shift in [period, -period] {
+            let moved = p[direction] + shift;
+            if moved >= -band && moved <= period + band {
+                let mut q = *p;
+                q[direction] = moved;
+                out.uv.push(uv[i]);
+                out.plane_uv.push(q);
+                out.copy_of.push(i as u32);
+            }
+        }
+    }
+    out
+}
+
+/// `values` of the seeds followed by those of their copies (`copy_of`: each copy's seed).
+pub(crate) fn extended<T: Copy>(values: &[T], copy_of: &[u32]) -> Vec<T> {
+    values
+        .iter()
+        .copied()
+        .chain(copy_of.iter().map(|&i| values[i as usize]))
+        .collect()
+}
+
+/// The folded structure (module doc) of `tri`, built over `augmented` (the `seeds`, then their
+/// copies `copy_of`, then ghosts), and the points it uses: the seeds followed by their own
+/// ghosts. None where the fold is not a triangulation of the annulus.
+pub(crate) fn fold(
+    tri: &DualTriangulation,
+    augmented: &Augmented,
+    seeds: usize,
+    copy_of: &[u32],
+    direction: usize,
+    [period, band]: [f64; 2],
+) -> Option<(DualTriangulation, Augmented)> {
+    let with_copies = seeds + copy_of.len();
+    let key = |plane: &Plane| {
+        (
+            plane.point.to_array().map(f64::to_bits),
+            plane.normal.to_array().map(f64::to_bits),
+        )
+    };
+    // The seeds' own ghosts keep their order after the seeds; a copy's ghost is the ghost of
+    // its seed with the same plane (the same surface point, so the same continued surface).
+    let mut rename: Vec<u32> = (0..seeds as u32).collect();
+    rename.extend(copy_of.iter().copied());
+    let mut own_ghosts: HashMap<(u32, _), u32> = HashMap::new();
+    let mut kept: Vec<usize> = (0..seeds).collect();
+    for g in with_copies..augmented.planes.len() {
+        let source = augmented.source[g];
+        if (source as usize) < seeds {
+            let index = kept.len() as u32;
+            own_ghosts.insert((source, key(&augmented.planes[g])), index);
+            kept.push(g);
+        }
+    }
+    rename.resize(augmented.planes.len(), u32::MAX);
+    for g in with_copies..augmented.planes.len() {
+        let source = augmented.source[g] as usize;
+        rename[g] = if source < seeds {
+            own_ghosts[&(source as u32, key(&augmented.planes[g]))]
+        } else {
+            let seed = copy_of[source - seeds];
+            *own_ghosts.get(&(seed, key(&augmented.planes[g])))?
+        };
+    }
+    // The first cut, of those tried from the seam outwards, where the two sides agree.
+    let folded = cuts(band, period).into_iter().find_map(|cut| {
+        let triangles: Vec<[u32; 3]> = tri
+            .triangles
+            .iter()
+            .filter(|t| {
+                let centre = t
+                    .iter()
+                    .map(|&v| augmented.plane_uv[v as usize][direction])
+                    .sum::<f64>()
+                    / 3.0;
+                (cut..cut + period).contains(&centre)
+            })
+            .map(|t| t.map(|v| rename[v as usize]))
+            // Triangles of ghosts alone are no facet's: slivers along the outer hull, whose
+            // near-ties may fall either way.
+            .filter(|t| t.iter().any(|&v| (v as usize) < seeds))
+            .collect();
+        let folded = DualTriangulation::from_triangles(triangles)?;
+        // Only ghosts may end the structure: an open edge at a seed is a gap at the seam.
+        let gap = folded
+            .triangles
+            .iter()
+            .zip(&folded.neighbours)
+            .any(|(t, nb)| {
+                (0..3).any(|k| {
+                    nb[k] == NO_TRIANGLE
+                        && ((t[(k + 1) % 3] as usize) < seeds || (t[(k + 2) % 3] as usize) < seeds)
+                })
+            });
+        (!gap).then_some(folded)
+    })?;
+    let points = Augmented {
+        plane_uv: kept.iter().map(|&i| augmented.plane_uv[i]).collect(),
+        geometry: kept.iter().map(|&i| augmented.geometry[i]).collect(),
+        planes: kept.iter().map(|&i| augmented.planes[i]).collect(),
+        convex_side: kept.iter().map(|&i| augmented.convex_side[i]).collect(),
+        source: kept.iter().map(|&i| augmented.source[i]).collect(),
+    };
+    Some((folded, points))
+}
+
+/// Where the fundamental domain [cut, cut + P) may start: the seam, then
+/// [`PERIODIC_CUTS`] positions on either side of it, out to half the copies' band.
+fn cuts(band: f64, period: f64) -> Vec<f64> {
+    let step = 0.5 * band.min(0.5 * period) / PERIODIC_CUTS as f64;
+    let mut at = vec![0.0];
+    for k in 1..=PERIODIC_CUTS {
+        at.extend([k as f64 * step, -(k as f64) * step]);
+    }
+    at
+}
+
+/// Breaks the Delaunay ties of `tri` over the points at `positions` the same way on both sides
+/// of the seam: a ghost mirrored across an open side makes an isosceles trapezoid with another
+/// seed and its ghost, four cocircular points whose diagonal the triangulator picks by its
+/// own order, which differs between a seed and its copy. Wherever the quad around an edge is
+/// strictly convex and cocircular to [`PERIODIC_TIE`] of its size to the fourth power, the
+/// diagonal kept is the one whose endpoints' `identity` (a point's seed and plane, the same
+/// for a copy) is smaller.
+pub(crate) fn canonical_ties<K: Ord + Copy>(
+    tri: &mut DualTriangulation,
+    positions: &[[f64; 2]],
+    identity: &dyn Fn(u32) -> K,
+) {
+    let pair = |x: u32, y: u32| {
+        let (a, b) = (identity(x), identity(y));
+        if a <= b {
+            (a, b)
+        } else {
+            (b, a)
+        }
+    };
+    for _ in 0..PERIODIC_TIE_ROUNDS {
+        let mut flipped = false;
+        for t in 0..tri.triangles.len() {
+            for k in 0..3 {
+                let other = tri.neighbours[t][k];
+                if other == NO_TRIANGLE {
+                    continue;
+                }
+                let tr = tri.triangles[t];
+                let (c, a, b) = (tr[k], tr[(k + 1) % 3], tr[(k + 2) % 3]);
+                let Some(d) = tri.triangles[other as usize]
+                    .into_iter()
+                    .find(|&x| x != a && x != b)
+                else {
+                    continue;
+                };
+                let p = |x: u32| positions[x as usize];
+                if !(orient2d(p(c), p(a), p(d)) > 0.0 && orient2d(p(c), p(d), p(b)) > 0.0) {
+                    continue;
+                }
+                let size = [a, b, d]
+                    .iter()
+                    .map(|&x| (p(x)[0] - p(c)[0]).hypot(p(x)[1] - p(c)[1]))
+                    .fold(0.0f64, f64::max);
+                let circle = robust::incircle(
+                    robust::Coord {
+                        x: p(a)[0],
+                        y: p(a)[1],
+                    },
+                    robust::Coord {
+                        x: p(b)[0],
+                        y: p(b)[1],
+                    },
+                    robust::Coord {
+                        x: p(c)[0],
+                        y: p(c)[1],
+                    },
+                    robust::Coord {
+                        x: p(d)[0],
+                        y: p(d)[1],
+                    },
+                );
+                if circle.abs() <= PERIODIC_TIE * size.powi(4) && pair(c, d) < pair(a, b) {
+                    tri.flip(t as u32, k);
+                    flipped = true;
+                }
+            }
+        }
+        if !flipped {
+            return;
+        }
+    }
+}
