@@ -39,10 +39,9 @@ use crate::samples::{bounding_box, sample, Samples};
 use crate::surface::Surface;
 use crate::tolerance::{
     COLLINEAR_TOLERANCE, DEFAULT_FAR_VERTEX_FACTOR, DEFAULT_FLAT_TOLERANCE, DEFAULT_WELD_TOLERANCE,
-    PERIODIC_BAND, REVERSAL_CHECK_TOLERANCE,
+    REVERSAL_CHECK_TOLERANCE,
 };
 use crate::triangulation::{orient, DualTriangulation};
-use crate::validity_flips::validity_flips;
 
 /// Options of [`discretise`]. `Default` gives the documented defaults.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -631,15 +630,19 @@ fn run_within(
         _ => None,
     };
     let closed_convex = envelope.is_some();
+    // Seeds of a seam about to be closed: no two on one surface point across it.
+    let check_seam = |uv: &[[f64; 2]], seeds: &[Seed]| {
+        let weld = options.weld_tolerance * diagonal;
+        let regular = vec![true; uv.len()];
+        check_closed_seeds(surface, &layout, uv, seeds, &regular, true, weld)
+    };
     // A developable surface with rulings along parameter lines (crate::rulings): strips, and
     // an annulus where it is closed across its rulings.
     let strips = match rulings::find_rulings(surface).filter(|_| allow_strips) {
         Some(r) if !closed_convex && !boundary.is_trim() => {
             let closed = layout.closed[1 - r.along];
             if closed {
-                let weld = options.weld_tolerance * diagonal;
-                let regular = vec![true; uv.len()];
-                check_closed_seeds(surface, &layout, &uv, &seeds, &regular, true, weld)?;
+                check_seam(&uv, &seeds)?;
             }
             rulings::strip_structure(surface, r, &uv, &planes, closed)
                 .map(|(triangulation, planes, source)| (r, closed, triangulation, planes, source))
@@ -741,68 +744,22 @@ fn run_within(
                 .open_sides()
                 .filter(|open| !boundary.is_trim() && open.iter().filter(|&&o| o).count() == 2);
             if seam.is_some() {
-                let weld = options.weld_tolerance * diagonal;
-                let regular = vec![true; uv.len()];
-                check_closed_seeds(surface, &layout, &uv, &seeds, &regular, true, weld)?;
+                check_seam(&uv, &seeds)?;
             }
             let folded = match seam {
-                Some(open) => {
-                    let direction = usize::from(layout.closed[1]);
-                    let spacing = (extent[0] * extent[1] / uv.len() as f64).sqrt();
-                    let period = extent[direction];
-                    let band = (PERIODIC_BAND * spacing).min(0.5 * period);
-                    let copies = periodic::with_copies(&uv, &plane_uv, direction, period, band);
-                    let geometry_x = periodic::extended(&geometry, &copies.copy_of);
-                    let convex_x = periodic::extended(&convex_side, &copies.copy_of);
-                    let augmented = augment(
-                        surface,
-                        &copies.uv,
-                        &copies.plane_uv,
-                        extent,
-                        &geometry_x,
-                        &convex_x,
-                        open,
-                    );
-                    let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
-                    let seed_of = |x: u32| {
-                        let s = augmented.source[x as usize] as usize;
-                        if s < uv.len() {
-                            s as u32
-                        } else {
-                            copies.copy_of[s - uv.len()]
-                        }
-                    };
-                    let identity = |x: u32| {
-                        let point = augmented.planes[x as usize].point.to_array();
-                        (seed_of(x), point.map(f64::to_bits))
-                    };
-                    periodic::canonical_ties(&mut triangulation, &augmented.plane_uv, &identity);
-                    let input = NeighbourInput {
-                        plane_uv: &augmented.plane_uv,
-                        geometry: &augmented.geometry,
-                        planes: &augmented.planes,
-                        convex_side: &augmented.convex_side,
-                        any_curvature: true,
-                    };
-                    // No facet judged yet: the validity flips, greedy in facet order, would
-                    // decide the two sides of the seam differently; they run on the fold.
-                    let mut stats = decide(&mut triangulation, &input, options.envelope_repair, 0);
-                    periodic::fold(
-                        &triangulation,
-                        &augmented,
-                        uv.len(),
-                        &copies.copy_of,
-                        direction,
-                        [period, band],
-                    )
-                    .map(|(mut folded, points)| {
-                        let again =
-                            validity_flips(&mut folded, &points.plane_uv, &points.planes, uv.len());
-                        stats.validity_flips += again.flips;
-                        stats.validity_unresolved = again.unresolved;
-                        (folded, points, stats)
-                    })
-                }
+                Some(open) => periodic::decide_folded(
+                    surface,
+                    &periodic::Points {
+                        uv: &uv,
+                        plane_uv: &plane_uv,
+                        geometry: &geometry,
+                        convex_side: &convex_side,
+                    },
+                    extent,
+                    open,
+                    usize::from(layout.closed[1]),
+                    options.envelope_repair,
+                )?,
                 None => None,
             };
             if let Some((triangulation, points, stats)) = folded {
@@ -811,7 +768,8 @@ fn run_within(
                     boundary_loops: 2,
                 };
                 seam_closed = true;
-                timings.delaunay = ms(stage);
+                // Triangulation, decision and fold are one step here.
+                timings.neighbours = ms(stage);
                 (triangulation, Some(points), stats)
             } else {
                 let augmented = augment(

@@ -20,14 +20,97 @@
 
 use std::collections::HashMap;
 
-use crate::ghosts::Augmented;
+use crate::diffgeo::LocalGeometry;
+use crate::error::TpiError;
+use crate::ghosts::{augment, Augmented};
+use crate::neighbours::{decide, NeighbourInput, NeighbourStats};
 use crate::planes::Plane;
 use crate::predicates::orient2d;
-use crate::tolerance::{PERIODIC_CUTS, PERIODIC_TIE, PERIODIC_TIE_ROUNDS};
+use crate::surface::Surface;
+use crate::tolerance::{PERIODIC_BAND, PERIODIC_CUTS, PERIODIC_TIE, PERIODIC_TIE_ROUNDS};
 use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
+use crate::validity_flips::validity_flips;
+
+/// The seeds as the general path holds them.
+pub(crate) struct Points<'a> {
+    /// Domain parameters.
+    pub(crate) uv: &'a [[f64; 2]],
+    /// Triangulation-plane coordinates.
+    pub(crate) plane_uv: &'a [[f64; 2]],
+    /// Local geometry.
+    pub(crate) geometry: &'a [LocalGeometry],
+    /// Convex side per seed.
+    pub(crate) convex_side: &'a [i8],
+}
+
+/// The general path's neighbour decision on a surface closed in parameter `direction` whose
+/// sides across it (`open`) end the surface (module doc): the folded structure over the seeds
+/// and their ghosts, with what decided it; None where it does not fold. `extent` is the size
+/// of the triangulation plane's rectangle (its `direction` side is the period).
+pub(crate) fn decide_folded(
+    surface: &dyn Surface,
+    seeds: &Points<'_>,
+    extent: [f64; 2],
+    open: [bool; 4],
+    direction: usize,
+    envelope_repair: bool,
+) -> Result<Option<(DualTriangulation, Augmented, NeighbourStats)>, TpiError> {
+    let n = seeds.uv.len();
+    let spacing = (extent[0] * extent[1] / n as f64).sqrt();
+    let period = extent[direction];
+    let band = (PERIODIC_BAND * spacing).min(0.5 * period);
+    let copies = with_copies(seeds.uv, seeds.plane_uv, direction, period, band);
+    let augmented = augment(
+        surface,
+        &copies.uv,
+        &copies.plane_uv,
+        extent,
+        &extended(seeds.geometry, &copies.copy_of),
+        &extended(seeds.convex_side, &copies.copy_of),
+        open,
+    );
+    let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
+    let seed_of = |x: u32| {
+        let s = augmented.source[x as usize] as usize;
+        if s < n {
+            s as u32
+        } else {
+            copies.copy_of[s - n]
+        }
+    };
+    let identity = |x: u32| {
+        let point = augmented.planes[x as usize].point.to_array();
+        (seed_of(x), point.map(f64::to_bits))
+    };
+    canonical_ties(&mut triangulation, &augmented.plane_uv, &identity);
+    let input = NeighbourInput {
+        plane_uv: &augmented.plane_uv,
+        geometry: &augmented.geometry,
+        planes: &augmented.planes,
+        convex_side: &augmented.convex_side,
+        any_curvature: true,
+    };
+    // No facet judged yet: the validity flips, greedy in facet order, would decide the two
+    // sides of the seam differently; they run on the fold.
+    let mut stats = decide(&mut triangulation, &input, envelope_repair, 0);
+    Ok(fold(
+        &triangulation,
+        &augmented,
+        n,
+        &copies.copy_of,
+        direction,
+        [period, band],
+    )
+    .map(|(mut folded, points)| {
+        let again = validity_flips(&mut folded, &points.plane_uv, &points.planes, n);
+        stats.validity_flips += again.flips;
+        stats.validity_unresolved = again.unresolved;
+        (folded, points, stats)
+    }))
+}
 
 /// The seeds with their copies across the seam.
-pub(crate) struct WithCopies {
+struct WithCopies {
     /// Domain parameters (copies: those of their seed).
     pub(crate) uv: Vec<[f64; 2]>,
     /// Triangulation-plane coordinates (copies shifted by the period).
@@ -37,7 +120,7 @@ pub(crate) struct WithCopies {
 }
 
 /// Copies of the seeds within `band` of either seam side (module doc), appended after them.
-pub(crate) fn with_copies(
+fn with_copies(
     uv: &[[f64; 2]],
     plane_uv: &[[f64; 2]],
     direction: usize,
@@ -65,7 +148,7 @@ pub(crate) fn with_copies(
 }
 
 /// `values` of the seeds followed by those of their copies (`copy_of`: each copy's seed).
-pub(crate) fn extended<T: Copy>(values: &[T], copy_of: &[u32]) -> Vec<T> {
+fn extended<T: Copy>(values: &[T], copy_of: &[u32]) -> Vec<T> {
     values
         .iter()
         .copied()
@@ -76,7 +159,7 @@ pub(crate) fn extended<T: Copy>(values: &[T], copy_of: &[u32]) -> Vec<T> {
 /// The folded structure (module doc) of `tri`, built over `augmented` (the `seeds`, then their
 /// copies `copy_of`, then ghosts), and the points it uses: the seeds followed by their own
 /// ghosts. None where the fold is not a triangulation of the annulus.
-pub(crate) fn fold(
+fn fold(
     tri: &DualTriangulation,
     augmented: &Augmented,
     seeds: usize,
@@ -175,7 +258,7 @@ fn cuts(band: f64, period: f64) -> Vec<f64> {
 /// strictly convex and cocircular to [`PERIODIC_TIE`] of its size to the fourth power, the
 /// diagonal kept is the one whose endpoints' `identity` (a point's seed and plane, the same
 /// for a copy) is smaller.
-pub(crate) fn canonical_ties<K: Ord + Copy>(
+fn canonical_ties<K: Ord + Copy>(
     tri: &mut DualTriangulation,
     positions: &[[f64; 2]],
     identity: &dyn Fn(u32) -> K,
