@@ -2071,24 +2071,53 @@ fn a_trimmed_dome_leaves_out_the_points_outside_and_says_so() {
     assert_eq!(contract["quality"]["boundary_loops"], 2);
     assert_eq!(contract["quality"]["invalid_facets"], 0);
 
+    // A trimmed saddle ends near its trim (a disc, every facet valid with adjusted planes);
+    // a trimmed cylinder is refused, its trim never ignored.
     let saddle = dir.join("saddle.json");
     let surface = serde_json::json!({
         "type": "hyperbolic_paraboloid", "a": 0.4, "b": 0.25, "x": [-1, 1], "y": [-1, 1],
         "trim": {"outer": circle([0.0, 0.0], 0.9, 64, 1.0)},
     });
     fs::write(&saddle, surface.to_string()).unwrap();
+    let out = dir.join("saddle-out.json");
+    ok(&[
+        "discretise",
+        "--surface",
+        saddle.to_str().unwrap(),
+        "--pattern",
+        "random:300:seed=3",
+        "--planes",
+        "adjusted",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let contract: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(contract["quality"]["euler_characteristic"], 1);
+    assert_eq!(contract["quality"]["boundary_loops"], 1);
+    assert_eq!(contract["quality"]["invalid_facets"], 0);
+    assert!(contract["pattern_points_outside_trim"].as_u64().unwrap() > 0);
+    let cylinder = dir.join("cylinder.json");
+    let surface = serde_json::json!({
+        "type": "cylinder", "radius": 1.5, "x": [-1, 1], "y": [-1, 1],
+        "trim": {"outer": circle([0.0, 0.0], 0.9, 64, 1.0)},
+    });
+    fs::write(&cylinder, surface.to_string()).unwrap();
     fails(
         &[
             "discretise",
             "--surface",
-            saddle.to_str().unwrap(),
+            cylinder.to_str().unwrap(),
             "--pattern",
             "random:300:seed=3",
             "--out",
-            dir.join("saddle-out.json").to_str().unwrap(),
+            dir.join("cylinder-out.json").to_str().unwrap(),
         ],
         1,
-        &["trims are supported on convex surfaces only"],
+        &[
+            "cannot be discretised with its trim",
+            "strips are not clipped",
+        ],
     );
 }
 

@@ -81,6 +81,15 @@ impl Boundary {
         Boundary::Loops(loops)
     }
 
+    /// The trim's loops in normalised parameters, each in its own direction (region on the
+    /// left); none for the rectangle.
+    pub(crate) fn loops(&self) -> &[Vec<[f64; 2]>] {
+        match self {
+            Boundary::Rectangle(_) => &[],
+            Boundary::Loops(loops) => &loops.points,
+        }
+    }
+
     /// Whether this is a trim's boundary.
     pub(crate) fn is_trim(&self) -> bool {
         matches!(self, Boundary::Loops(_))

@@ -27,7 +27,7 @@ use crate::facets::{
     build_closed_facets, build_facets, FacetParams, FootHint, TriangleVertex, VertexKind,
 };
 use crate::flat;
-use crate::ghosts::augment;
+use crate::ghosts::{augment, augment_within_trim};
 use crate::mesh::{FacetMesh, SlopeView};
 use crate::neighbours::{decide, decide_convex, NeighbourInput, NeighbourStats, SlopeFrame};
 use crate::pattern::validate_uv;
@@ -728,14 +728,15 @@ fn run_within(
             });
             (triangulation, None, NeighbourStats::default())
         }
-        // Trims are ended on their loops by the clipping of the convex paths only.
-        _ if boundary.is_trim() => {
+        // A trimmed cylinder, cone or extrusion: its exact facets are strips, which no trim
+        // clips yet; the ghosts' triangulation would give no valid mesh.
+        _ if boundary.is_trim() && rulings::find_rulings(surface).is_some() => {
             return Err(TpiError::TrimUnsupported {
-                reason: "the surface is neither flat nor strictly convex (on one side) at every pattern point inside the trim".into(),
+                reason: "the surface is developable (a cylinder, cone or extrusion: its facets are strips along its rulings), and strips are not clipped on a trim yet".into(),
             });
         }
-        // Saddles and mixed curvature: ghost seeds beyond the boundary close every real facet
-        // for the validity flips.
+        // Saddles and mixed curvature: ghost seeds beyond the boundary (or the trim) close
+        // every real facet for the validity flips.
         _ => {
             let extent = plane_extent(&plane_uv, pattern);
             // Closed one way with open sides across it (crate::periodic): the seam closed
@@ -772,15 +773,26 @@ fn run_within(
                 timings.neighbours = ms(stage);
                 (triangulation, Some(points), stats)
             } else {
-                let augmented = augment(
-                    surface,
-                    &uv,
-                    &plane_uv,
-                    extent,
-                    &geometry,
-                    &convex_side,
-                    [true; 4],
-                );
+                let augmented = if boundary.is_trim() {
+                    augment_within_trim(
+                        surface,
+                        &plane_uv,
+                        extent,
+                        &geometry,
+                        &convex_side,
+                        boundary,
+                    )
+                } else {
+                    augment(
+                        surface,
+                        &uv,
+                        &plane_uv,
+                        extent,
+                        &geometry,
+                        &convex_side,
+                        [true; 4],
+                    )
+                };
                 let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
                 timings.delaunay = ms(stage);
                 let stage = Instant::now();

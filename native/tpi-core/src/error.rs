@@ -236,7 +236,9 @@ pub enum TpiError {
         reason: String,
     },
     /// The run cannot honour the surface's trim on this path (it is never ignored).
-    #[error("trims are supported on convex surfaces only so far: {reason}")]
+    #[error(
+        "this trimmed surface cannot be discretised with its trim (it is never ignored): {reason}"
+    )]
     TrimUnsupported {
         /// Why.
         reason: String,

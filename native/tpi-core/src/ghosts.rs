@@ -20,6 +20,7 @@
 //! part in every flip and let the validity flips judge boundary facets as closed polygons;
 //! the vertices of triangles with a ghost are the mesh's boundary vertices.
 
+use crate::boundary::Boundary;
 use crate::diffgeo::LocalGeometry;
 use crate::planes::{coincident, Plane};
 use crate::surface::{Surface, SurfaceDerivatives};
@@ -51,6 +52,17 @@ pub(crate) struct Augmented {
     pub(crate) convex_side: Vec<i8>,
     /// The real seed of every point (itself for real seeds).
     pub(crate) source: Vec<u32>,
+}
+
+/// The seeds alone, their tangent planes from their local geometry.
+fn seeds_only(plane_uv: &[[f64; 2]], geometry: &[LocalGeometry], convex_side: &[i8]) -> Augmented {
+    Augmented {
+        plane_uv: plane_uv.to_vec(),
+        geometry: geometry.to_vec(),
+        planes: geometry.iter().map(LocalGeometry::tangent_plane).collect(),
+        convex_side: convex_side.to_vec(),
+        source: (0..plane_uv.len() as u32).collect(),
+    }
 }
 
 /// The local geometry at domain parameters `at + offset` of the surface continued beyond its
@@ -86,13 +98,7 @@ pub(crate) fn augment(
     let n = plane_uv.len();
     let spacing = (extent[0] * extent[1] / n as f64).sqrt();
     let band = GHOST_BAND * spacing;
-    let mut out = Augmented {
-        plane_uv: plane_uv.to_vec(),
-        geometry: geometry.to_vec(),
-        planes: geometry.iter().map(LocalGeometry::tangent_plane).collect(),
-        convex_side: convex_side.to_vec(),
-        source: (0..n as u32).collect(),
-    };
+    let mut out = seeds_only(plane_uv, geometry, convex_side);
     let domain = surface.domain();
     let (u0, u1, v0, v1) = (domain.u.min, domain.u.max, domain.v.min, domain.v.max);
     for i in 0..n {
@@ -173,6 +179,87 @@ pub(crate) fn augment(
                     corner.point -= other.normal * other.normal.dot(corner.point - other.point);
                 }
                 push(position, g);
+            }
+        }
+    }
+    out
+}
+
+/// The seeds with ghosts across the loops of a trim (`boundary`), for surfaces the convex
+/// paths do not clip (saddles, mixed and curved developable ones): a seed within
+/// [`GHOST_BAND`] spacings of a loop segment gets a ghost mirrored across it in the
+/// triangulation's plane (at most the two nearest segments, as at a corner of the
+/// rectangle), at depth [`ghost_depth`] beyond it, with the tangent plane of the surface
+/// continued from the segment's nearest point, as [`augment`] does across a side. A ghost that
+/// would land inside the trimmed region (across a segment next to a reflex corner) is left
+/// out. The facets then end near the trim, on the ghosts' planes, not exactly on its wall.
+pub(crate) fn augment_within_trim(
+    surface: &dyn Surface,
+    plane_uv: &[[f64; 2]],
+    extent: [f64; 2],
+    geometry: &[LocalGeometry],
+    convex_side: &[i8],
+    boundary: &Boundary,
+) -> Augmented {
+    let n = plane_uv.len();
+    let spacing = (extent[0] * extent[1] / n as f64).sqrt();
+    let band = GHOST_BAND * spacing;
+    let mut out = seeds_only(plane_uv, geometry, convex_side);
+    let domain = surface.domain();
+    let to_domain = |q: [f64; 2]| domain.from_normalised([q[0] / extent[0], q[1] / extent[1]]);
+    let loops: Vec<Vec<[f64; 2]>> = boundary
+        .loops()
+        .iter()
+        .map(|l| {
+            l.iter()
+                .map(|p| [p[0] * extent[0], p[1] * extent[1]])
+                .collect()
+        })
+        .collect();
+    for i in 0..n {
+        let p = plane_uv[i];
+        // (distance, foot on the segment, unit outward normal) of the segments within reach.
+        let mut near: Vec<(f64, [f64; 2], [f64; 2])> = Vec::new();
+        for points in &loops {
+            for k in 0..points.len() {
+                let (a, b) = (points[k], points[(k + 1) % points.len()]);
+                let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+                let length = dx.hypot(dy);
+                if !(length > 0.0) {
+                    continue;
+                }
+                let tau =
+                    (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / (length * length)).clamp(0.0, 1.0);
+                let foot = [a[0] + tau * dx, a[1] + tau * dy];
+                let distance = (p[0] - foot[0]).hypot(p[1] - foot[1]);
+                if distance < band {
+                    // The region lies on the left of every loop: outwards is to the right.
+                    near.push((distance, foot, [dy / length, -dx / length]));
+                }
+            }
+        }
+        near.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let g = &geometry[i];
+        let largest = g.k1.abs().max(g.k2.abs());
+        let flat = (g.k1 * g.k2).abs() <= DEFAULT_FLAT_TOLERANCE * largest * largest;
+        for &(d, foot, outward) in near.iter().take(2) {
+            let depth = if flat && d >= GHOST_FLAT_MIRROR * spacing {
+                d
+            } else {
+                ghost_depth(d, spacing)
+            };
+            let position = [foot[0] + outward[0] * depth, foot[1] + outward[1] * depth];
+            if boundary.inside_measure(to_domain(position)) > 0.0 {
+                continue;
+            }
+            let (at, beyond) = (to_domain(foot), to_domain(position));
+            let offset = [beyond[0] - at[0], beyond[1] - at[1]];
+            if let Some(ghost) = continued(surface, at, offset) {
+                out.plane_uv.push(position);
+                out.planes.push(ghost.tangent_plane());
+                out.geometry.push(ghost);
+                out.convex_side.push(convex_side[i]);
+                out.source.push(i as u32);
             }
         }
     }

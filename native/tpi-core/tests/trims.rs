@@ -12,8 +12,8 @@ mod common;
 use common::*;
 use glam::DVec3;
 use tpi_core::{
-    discretise, DiscretiseOptions, Generator, LiveSurface, Surface, SurfaceModel, SurfaceSpec,
-    TpiError, Trim, VertexKind,
+    discretise, DiscretiseOptions, Generator, LiveSurface, PlaneMode, Surface, SurfaceModel,
+    SurfaceSpec, TpiError, Trim, VertexKind,
 };
 
 /// A circle of `n` points, counter-clockwise (or clockwise).
@@ -392,8 +392,8 @@ fn a_trim_round_trips_through_the_surface_file() {
 
 #[test]
 fn paths_without_trim_support_say_so() {
-    let saddle = SurfaceSpec::from_json(
-        r#"{"type": "hyperbolic_paraboloid", "a": 0.5, "b": 0.3, "x": [-1, 1], "y": [-1, 1],
+    let cylinder = SurfaceSpec::from_json(
+        r#"{"type": "cylinder", "radius": 1.5, "x": [-1, 1], "y": [-1, 1],
             "trim": {"outer": [[-0.8, -0.8], [0.8, -0.8], [0.8, 0.8], [-0.8, 0.8]]}}"#,
         "s",
     )
@@ -401,7 +401,7 @@ fn paths_without_trim_support_say_so() {
     .build()
     .unwrap();
     let pattern = random(6, 200);
-    match discretise(&saddle, &pattern, &DiscretiseOptions::default()) {
+    match discretise(&cylinder, &pattern, &DiscretiseOptions::default()) {
         Err(TpiError::TrimUnsupported { .. }) => {}
         other => panic!("{:?}", other.map(|d| d.facet_count())),
     }
@@ -629,6 +629,125 @@ fn planes_trimmed_to_a_disc_with_a_hole_are_clipped_voronoi_cells() {
                     interior > inside.len() && on_trim > 0,
                     "{name}: {interior} interior and {on_trim} boundary vertices"
                 );
+            }
+        }
+    }
+}
+
+/// Issue 16, item 1, beyond convex surfaces: a saddle and an egg crate of mixed curvature
+/// (adjusted planes, which uniform random patterns need on such surfaces) trimmed to a disc
+/// with a hole and to a square with a square hole. The facets end near the trim on ghosts mirrored across its loops. Oracles
+/// computed here: which points lie inside (even-odd rule), the topology of a disc with its
+/// hole, the independent validity checks, every vertex in its facet's plane, every boundary
+/// vertex's closest surface point within three mean pattern spacings of a trim loop (the
+/// untrimmed mesh would reach half the domain beyond), every interior vertex's inside the
+/// region or within that of it.
+#[test]
+fn saddles_and_mixed_surfaces_trimmed_to_a_disc_with_a_hole() {
+    let square = Trim {
+        outer: vec![[-0.8, -0.8], [0.8, -0.8], [0.8, 0.8], [-0.8, 0.8]],
+        holes: vec![vec![[-0.3, -0.3], [-0.3, 0.3], [0.3, 0.3], [0.3, -0.3]]],
+    };
+    let trims = [
+        ("disc with a hole", disc_with_hole()),
+        ("square with a hole", square),
+    ];
+    let cases = [
+        (
+            "saddle",
+            r#"{"type": "hyperbolic_paraboloid", "a": 0.5, "b": 0.3, "x": [-1, 1], "y": [-1, 1]}"#,
+            PlaneMode::Adjusted,
+            1,
+        ),
+        (
+            "egg crate",
+            r#"{"type": "egg_crate", "amplitude": 0.3, "x": [-1, 1], "y": [-1, 1]}"#,
+            PlaneMode::Adjusted,
+            2,
+        ),
+    ];
+    let mut rng = Rng::new(1616);
+    let patterns = [
+        ("random:500", uniform_pattern(&mut rng, 500)),
+        ("hex:24x24", hex("hex:24x24")),
+        ("poisson:0.04", hex("poisson:0.04:seed=2")),
+    ];
+    for (sname, text, planes, allowed) in cases {
+        for (tname, trim) in &trims {
+            let mut value: serde_json::Value = serde_json::from_str(text).unwrap();
+            value["trim"] = serde_json::to_value(trim).unwrap();
+            let model = SurfaceSpec::from_json(&value.to_string(), sname)
+                .unwrap()
+                .build()
+                .unwrap();
+            let loops: Vec<Vec<[f64; 2]>> = std::iter::once(trim.outer.clone())
+                .chain(trim.holes.iter().cloned())
+                .collect();
+            let domain = model.domain();
+            let size = domain.u.length().max(domain.v.length());
+            for (pname, pattern) in &patterns {
+                let name = format!("{sname} trimmed to a {tname}, {pname}");
+                let inside: Vec<usize> = (0..pattern.len())
+                    .filter(|&i| {
+                        let uv = domain.from_normalised(pattern[i]);
+                        loops.iter().filter(|l| in_polygon(l, uv)).count() % 2 == 1
+                    })
+                    .collect();
+                let options = DiscretiseOptions {
+                    planes,
+                    ..DiscretiseOptions::default()
+                };
+                let d =
+                    discretise(&model, pattern, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
+                assert_eq!(
+                    d.facet_count(),
+                    inside.len(),
+                    "{name}: one facet per point inside"
+                );
+                for (f, &p) in inside.iter().enumerate() {
+                    assert_eq!(d.pattern_index(f), p, "{name}: facet {f}'s pattern point");
+                }
+                let v = validity::check(&d);
+                assert!(
+                    v.invalid_facets().len() <= allowed
+                        && (v.euler, v.boundary_loops) == (0, 2)
+                        && v.topology_problems == 0,
+                    "{name}: invalid facets {:?}, Euler {}, boundary loops {}, topology problems {}",
+                    v.invalid_facets(),
+                    v.euler,
+                    v.boundary_loops,
+                    v.topology_problems
+                );
+                let diagonal = seed_diagonal(&d);
+                // The reach allowed for a facet that ends on a ghost's plane instead of the
+                // trim's wall: three mean spacings (the gaps of a uniform random pattern).
+                let reach = 3.0 * size / (pattern.len() as f64).sqrt();
+                for f in 0..d.facet_count() {
+                    let (point, normal) = d.facet_plane(f);
+                    for &k in d.facet(f) {
+                        let x = d.vertices[k as usize];
+                        assert!(
+                            normal.dot(x - point).abs() <= 1e-9 * diagonal,
+                            "{name}: vertex {k} off facet {f}'s plane"
+                        );
+                    }
+                }
+                for (k, &x) in d.vertices.iter().enumerate() {
+                    let foot = closest_parameters(&model, x, 64);
+                    let distance = polyline_distance(&loops, foot);
+                    let inside = loops.iter().filter(|l| in_polygon(l, foot)).count() % 2 == 1;
+                    if d.vertex_kinds[k] == VertexKind::Interior {
+                        assert!(
+                            inside || distance <= reach,
+                            "{name}: interior vertex {k} lies {distance} outside the trim"
+                        );
+                    } else {
+                        assert!(
+                            distance <= reach,
+                            "{name}: boundary vertex {k} lies {distance} from the trim"
+                        );
+                    }
+                }
             }
         }
     }
