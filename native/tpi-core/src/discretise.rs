@@ -638,7 +638,14 @@ fn run_within(
     };
     // A developable surface with rulings along parameter lines (crate::rulings): strips, and
     // an annulus where it is closed across its rulings.
-    let strips = match rulings::find_rulings(surface).filter(|_| allow_strips) {
+    // Rulings are sampled only where every seed is flat (K ~ 0): elsewhere they cannot be.
+    let flat_seeds = seeds.iter().all(|s| {
+        let [k1, k2] = s.curvatures;
+        let largest = k1.abs().max(k2.abs());
+        (k1 * k2).abs() <= DEFAULT_FLAT_TOLERANCE * largest * largest
+    });
+    let rulings = flat_seeds.then(|| rulings::find_rulings(surface)).flatten();
+    let strips = match rulings.filter(|_| allow_strips) {
         Some(r) if !closed_convex && !boundary.is_trim() => {
             let closed = layout.closed[1 - r.along];
             if closed {
@@ -730,7 +737,7 @@ fn run_within(
         }
         // A trimmed cylinder, cone or extrusion: its exact facets are strips, which no trim
         // clips yet; the ghosts' triangulation would give no valid mesh.
-        _ if boundary.is_trim() && rulings::find_rulings(surface).is_some() => {
+        _ if boundary.is_trim() && rulings.is_some() => {
             return Err(TpiError::TrimUnsupported {
                 reason: "the surface is developable (a cylinder, cone or extrusion: its facets are strips along its rulings), and strips are not clipped on a trim yet".into(),
             });
