@@ -192,7 +192,7 @@ fn fold(
     for g in with_copies..augmented.planes.len() {
         let source = augmented.source[g] as usize;
         rename[g] = if source < seeds {
-            own_ghosts[&(source as u32, key(&augmented.planes[g]))]
+            *own_ghosts.get(&(source as u32, key(&augmented.planes[g])))?
         } else {
             let seed = copy_of[source - seeds];
             *own_ghosts.get(&(seed, key(&augmented.planes[g])))?
