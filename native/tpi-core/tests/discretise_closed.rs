@@ -240,19 +240,8 @@ fn ellipsoid_zones_and_domes_close_their_seams() {
 /// radius r_j at height z_j for each (r_j, z_j) of a quadratic (or, with five rows, cubic)
 /// B-spline profile.
 fn vase(profile: &[(f64, f64)], transposed: bool) -> NurbsSurface {
-    let w = std::f64::consts::FRAC_1_SQRT_2;
-    let circle = [
-        (1.0, 0.0, 1.0),
-        (1.0, 1.0, w),
-        (0.0, 1.0, 1.0),
-        (-1.0, 1.0, w),
-        (-1.0, 0.0, 1.0),
-        (-1.0, -1.0, w),
-        (0.0, -1.0, 1.0),
-        (1.0, -1.0, w),
-        (1.0, 0.0, 1.0),
-    ];
-    let circle_knots = [0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0];
+    let circle = RATIONAL_CIRCLE;
+    let circle_knots = RATIONAL_CIRCLE_KNOTS;
     let (degree, profile_knots): (usize, Vec<f64>) = if profile.len() == 3 {
         (2, vec![0.0, 0.0, 1.0, 1.0])
     } else {

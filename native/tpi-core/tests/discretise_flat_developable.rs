@@ -233,20 +233,9 @@ fn cylinders_and_cones_give_valid_meshes_separated_along_their_rulings() {
 /// of radius r1 at z = h; with `transposed`, the same surface with u and v exchanged (rulings
 /// along u).
 fn closed_cone(r0: f64, r1: f64, h: f64, transposed: bool) -> NurbsSurface {
-    let w = std::f64::consts::FRAC_1_SQRT_2;
-    let circle = [
-        (1.0, 0.0, 1.0),
-        (1.0, 1.0, w),
-        (0.0, 1.0, 1.0),
-        (-1.0, 1.0, w),
-        (-1.0, 0.0, 1.0),
-        (-1.0, -1.0, w),
-        (0.0, -1.0, 1.0),
-        (1.0, -1.0, w),
-        (1.0, 0.0, 1.0),
-    ];
+    let circle = RATIONAL_CIRCLE;
     let at = |(x, y, _): (f64, f64, f64), r: f64, z: f64| DVec3::new(r * x, r * y, z);
-    let circle_knots = [0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0];
+    let circle_knots = RATIONAL_CIRCLE_KNOTS;
     let (mut points, mut weights) = (Vec::new(), Vec::new());
     if transposed {
         for (r, z) in [(r0, 0.0), (r1, h)] {

@@ -56,6 +56,27 @@ fn polyline_distance(loops: &[Vec<[f64; 2]>], p: [f64; 2]) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// The trim's loops, outer first.
+fn loops_of(trim: &Trim) -> Vec<Vec<[f64; 2]>> {
+    std::iter::once(trim.outer.clone())
+        .chain(trim.holes.iter().cloned())
+        .collect()
+}
+
+/// The pattern points inside the loops by the even-odd rule, in pattern order.
+fn points_inside(
+    domain: &tpi_core::Domain,
+    loops: &[Vec<[f64; 2]>],
+    pattern: &[[f64; 2]],
+) -> Vec<usize> {
+    (0..pattern.len())
+        .filter(|&i| {
+            let uv = domain.from_normalised(pattern[i]);
+            loops.iter().filter(|l| in_polygon(l, uv)).count() % 2 == 1
+        })
+        .collect()
+}
+
 fn surface(kind: &str, trim: &Trim) -> SurfaceModel {
     let text = match kind {
         "paraboloid" => {
@@ -85,15 +106,8 @@ fn check_model(
     sign: f64,
 ) -> (i64, usize) {
     let domain = model.domain();
-    let loops: Vec<Vec<[f64; 2]>> = std::iter::once(trim.outer.clone())
-        .chain(trim.holes.iter().cloned())
-        .collect();
-    let inside: Vec<usize> = (0..pattern.len())
-        .filter(|&i| {
-            let uv = domain.from_normalised(pattern[i]);
-            loops.iter().filter(|l| in_polygon(l, uv)).count() % 2 == 1
-        })
-        .collect();
+    let loops = loops_of(trim);
+    let inside = points_inside(&domain, &loops, pattern);
     assert!(inside.len() < pattern.len(), "the trim leaves out no point");
     let d = discretise(model, pattern, &DiscretiseOptions::default()).unwrap();
     if d.facet_count() != inside.len() {
@@ -553,15 +567,8 @@ fn planes_trimmed_to_a_disc_with_a_hole_are_clipped_voronoi_cells() {
             for (pname, pattern) in &patterns {
                 let name = format!("{sname} trimmed to a {tname}, {pname}");
                 let domain = model.domain();
-                let loops: Vec<Vec<[f64; 2]>> = std::iter::once(trim.outer.clone())
-                    .chain(trim.holes.iter().cloned())
-                    .collect();
-                let inside: Vec<usize> = (0..pattern.len())
-                    .filter(|&i| {
-                        let uv = domain.from_normalised(pattern[i]);
-                        loops.iter().filter(|l| in_polygon(l, uv)).count() % 2 == 1
-                    })
-                    .collect();
+                let loops = loops_of(trim);
+                let inside = points_inside(&domain, &loops, pattern);
                 let d = discretise(model, pattern, &DiscretiseOptions::default())
                     .unwrap_or_else(|e| panic!("{name}: {e}"));
                 assert_eq!(
@@ -636,8 +643,8 @@ fn planes_trimmed_to_a_disc_with_a_hole_are_clipped_voronoi_cells() {
 
 /// Issue 16, item 1, beyond convex surfaces: a saddle and an egg crate of mixed curvature
 /// (adjusted planes, which uniform random patterns need on such surfaces) trimmed to a disc
-/// with a hole and to a square with a square hole. The facets end near the trim on ghosts mirrored across its loops. Oracles
-/// computed here: which points lie inside (even-odd rule), the topology of a disc with its
+/// with a hole and to a square with a square hole. The facets end near the trim on ghosts
+/// mirrored across its loops. Oracles computed here: which points lie inside (even-odd rule), the topology of a disc with its
 /// hole, the independent validity checks, every vertex in its facet's plane, every boundary
 /// vertex's closest surface point within three mean pattern spacings of a trim loop (the
 /// untrimmed mesh would reach half the domain beyond), every interior vertex's inside the
@@ -680,19 +687,12 @@ fn saddles_and_mixed_surfaces_trimmed_to_a_disc_with_a_hole() {
                 .unwrap()
                 .build()
                 .unwrap();
-            let loops: Vec<Vec<[f64; 2]>> = std::iter::once(trim.outer.clone())
-                .chain(trim.holes.iter().cloned())
-                .collect();
+            let loops = loops_of(trim);
             let domain = model.domain();
             let size = domain.u.length().max(domain.v.length());
             for (pname, pattern) in &patterns {
                 let name = format!("{sname} trimmed to a {tname}, {pname}");
-                let inside: Vec<usize> = (0..pattern.len())
-                    .filter(|&i| {
-                        let uv = domain.from_normalised(pattern[i]);
-                        loops.iter().filter(|l| in_polygon(l, uv)).count() % 2 == 1
-                    })
-                    .collect();
+                let inside = points_inside(&domain, &loops, pattern);
                 let options = DiscretiseOptions {
                     planes,
                     ..DiscretiseOptions::default()

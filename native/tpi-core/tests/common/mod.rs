@@ -926,3 +926,23 @@ pub fn rational_circle() -> [(f64, f64, f64); 9] {
         (1.0, 0.0, 1.0),
     ]
 }
+
+/// The unit circle as a rational quadratic NURBS curve: nine control points (x, y, weight) on
+/// the square around it, the corners weighted 1/sqrt 2.
+pub const RATIONAL_CIRCLE: [(f64, f64, f64); 9] = {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    [
+        (1.0, 0.0, 1.0),
+        (1.0, 1.0, w),
+        (0.0, 1.0, 1.0),
+        (-1.0, 1.0, w),
+        (-1.0, 0.0, 1.0),
+        (-1.0, -1.0, w),
+        (0.0, -1.0, 1.0),
+        (1.0, -1.0, w),
+        (1.0, 0.0, 1.0),
+    ]
+};
+
+/// The knots of [`RATIONAL_CIRCLE`] (Rhino's convention: no extra end knots).
+pub const RATIONAL_CIRCLE_KNOTS: [f64; 10] = [0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0];
