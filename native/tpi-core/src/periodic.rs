@@ -188,15 +188,14 @@ fn fold(
             kept.push(g);
         }
     }
-    rename.resize(augmented.planes.len(), u32::MAX);
     for g in with_copies..augmented.planes.len() {
         let source = augmented.source[g] as usize;
-        rename[g] = if source < seeds {
-            *own_ghosts.get(&(source as u32, key(&augmented.planes[g])))?
+        let seed = if source < seeds {
+            source as u32
         } else {
-            let seed = copy_of[source - seeds];
-            *own_ghosts.get(&(seed, key(&augmented.planes[g])))?
+            copy_of[source - seeds]
         };
+        rename.push(*own_ghosts.get(&(seed, key(&augmented.planes[g])))?);
     }
     // The first cut, of those tried from the seam outwards, where the two sides agree.
     let folded = cuts(band, period).into_iter().find_map(|cut| {

@@ -292,7 +292,7 @@ fn cylinder_and_plane_edits_equal_fresh_runs() {
         random_edits(
             name,
             &surface,
-            Box::new(surface.clone()),
+            Box::new(surface),
             150,
             30,
             16,
