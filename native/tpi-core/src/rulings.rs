@@ -174,8 +174,12 @@ pub(crate) fn strip_structure(
     let span = (s_max - s_min).abs();
     let one_ruling = |g: &Vec<u32>| {
         let s0 = uv[g[0] as usize][across];
-        g.iter()
-            .all(|&i| (uv[i as usize][across] - s0).abs() <= RULING_TOLERANCE * span)
+        g.iter().all(|&i| {
+            let gap = (uv[i as usize][across] - s0).abs();
+            // Across the seam of a closed surface, s0 and s0 + span are one ruling.
+            let gap = if closed { gap.min(span - gap) } else { gap };
+            gap <= RULING_TOLERANCE * span
+        })
     };
     if !groups.iter().all(one_ruling) {
         return None;
@@ -218,7 +222,7 @@ pub(crate) fn strip_structure(
         chain.extend_from_slice(g);
         chain.push(push(top, last));
         chains.push(chain);
-        directions.push(top_end - bottom_end);
+        directions.push(ruling);
     }
     if !closed {
         // The side rulings' walls close the first and the last strip.
@@ -259,6 +263,7 @@ pub(crate) fn strip_structure(
     Some((triangulation, all_planes, source))
 }
 
+/// S(u, v).
 fn point(surface: &dyn Surface, [u, v]: [f64; 2]) -> DVec3 {
     surface.point_at(u, v)
 }

@@ -303,7 +303,8 @@ fn random_points_on_cylinders_and_cones_give_exact_strips() {
     ];
     let mut rng = Rng::new(1616);
     for (sname, s, closed, height, along_v) in surfaces {
-        // Seeds on the ends of their rulings, and on the side rulings of an open patch.
+        // Seeds on the ends of their rulings, and on the side rulings of an open patch or the
+        // seam of a closed one.
         let mut on_boundary = uniform_pattern(&mut rng, 100);
         for k in 0..9 {
             let a = (k as f64 + 0.37) / 9.0;
@@ -312,6 +313,9 @@ fn random_points_on_cylinders_and_cones_give_exact_strips() {
             on_boundary.extend([at(a, 0.0), at(a, 1.0)]);
             if !closed {
                 on_boundary.extend([at(0.0, a), at(1.0, a)]);
+            } else {
+                // The seam's ruling, reached from either side of the domain.
+                on_boundary.push(at(if k % 2 == 0 { 0.0 } else { 1.0 }, a));
             }
         }
         if !closed {
@@ -363,6 +367,11 @@ fn random_points_on_cylinders_and_cones_give_exact_strips() {
                 (domain.u.min, domain.u.max)
             };
             let around = vertex_facets(&d);
+            // One ruling: the same angle around the axis (either side of a seam).
+            let same_ruling = |f: usize, g: usize| {
+                let turn = (angle(f) - angle(g)).rem_euclid(std::f64::consts::TAU);
+                turn.min(std::f64::consts::TAU - turn) <= 1e-12
+            };
             let seed_on_end = |i: usize| {
                 let t = d.seeds[i].uv[if along_v { 1 } else { 0 }];
                 t == t0 || t == t1
@@ -399,7 +408,7 @@ fn random_points_on_cylinders_and_cones_give_exact_strips() {
                     let bisecting = around[k as usize].iter().any(|&f| {
                         around[k as usize].iter().any(|&g| {
                             f < g
-                                && ruling_parameter(f) == ruling_parameter(g)
+                                && same_ruling(f, g)
                                 && (x.distance(d.seeds[f].point) - x.distance(d.seeds[g].point))
                                     .abs()
                                     <= tolerance
