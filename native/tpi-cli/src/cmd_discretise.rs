@@ -300,7 +300,7 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
         match *d {
             Diagnostic::SeamLeftOpen { direction } => {
                 let direction = if direction == 0 { "u" } else { "v" };
-                eprintln!("warning: the surface is closed in {direction}, and it was discretised as an open patch: the mesh leaves its seam open (closed surfaces give closed meshes only where they are strictly convex at every seed and untrimmed)");
+                eprintln!("warning: the surface is closed in {direction}, and it was discretised as an open patch: the mesh leaves its seam open (a trimmed surface, one closed both ways, or a structure that did not close across its seam)");
             }
             Diagnostic::UnexpectedTopology {
                 euler,

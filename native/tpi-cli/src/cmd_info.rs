@@ -228,14 +228,14 @@ pub(crate) fn describe(
     }
     if !shape.is_empty() {
         let what = if layout.is_sphere() {
-            " (a sphere: a closed mesh where it is strictly convex at every seed)"
+            " (a sphere: a closed mesh, or discretise warns where it could not close it)"
         } else if layout
             .open_sides()
             .is_some_and(|open| open.iter().filter(|&&o| o).count() == 2)
         {
             " (an annulus: its seam is closed, or discretise warns where it could not be)"
         } else if layout.open_sides().is_some() {
-            " (a pole and an open side: a disc where it is strictly convex at every seed; elsewhere an open patch, its seam left open)"
+            " (a pole and an open side: a disc, its seam closed, or discretise warns where it could not be)"
         } else if layout.closed.contains(&true) {
             " (closed both ways: an open patch, its seams left open)"
         } else {

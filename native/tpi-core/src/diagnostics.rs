@@ -69,9 +69,8 @@ pub enum Diagnostic {
         pairs: u32,
     },
     /// The surface is closed in a direction, but it was discretised as an open patch: the
-    /// mesh leaves the seam open (closed surfaces give closed meshes only where they are
-    /// strictly convex at every seed, with one normal side, and untrimmed). One diagnostic
-    /// per discretisation.
+    /// mesh leaves the seam open (a trimmed surface, one closed both ways, or a structure that
+    /// did not fold across its seam: `crate::periodic`). One diagnostic per discretisation.
     SeamLeftOpen {
         /// 0: closed in u, 1: closed in v.
         direction: u8,

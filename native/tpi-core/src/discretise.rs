@@ -748,9 +748,7 @@ fn run_within(
             let extent = plane_extent(&plane_uv, pattern);
             // Closed one way with open sides across it (crate::periodic): the seam closed
             // where the structure folds into an annulus, else left open as on an open patch.
-            let seam = layout
-                .open_sides()
-                .filter(|open| !boundary.is_trim() && open.iter().filter(|&&o| o).count() == 2);
+            let seam = layout.open_sides().filter(|_| !boundary.is_trim());
             if seam.is_some() {
                 check_seam(&uv, &seeds)?;
             }
@@ -771,9 +769,11 @@ fn run_within(
                 None => None,
             };
             if let Some((triangulation, points, stats)) = folded {
+                // Every open side is a boundary loop; poles are closed over.
+                let open = seam.map_or(0, |o| o.iter().filter(|&&o| o).count());
                 closed_topology = MeshTopology {
-                    euler: 0,
-                    boundary_loops: 2,
+                    euler: 2 - open as i64,
+                    boundary_loops: open,
                 };
                 seam_closed = true;
                 // Triangulation, decision and fold are one step here.

@@ -1,5 +1,6 @@
 //! Surfaces closed in one direction that are not convex (a vase with a waist, a cup, a band
-//! with saddles): the general path's dual structure made periodic, so that the seam closes.
+//! with saddles, a mug with poles): the general path's dual structure made periodic, so that
+//! the seam closes.
 //!
 //! With the seam in parameter direction k and period P in the triangulation's plane (the
 //! plane coordinates are the normalised pattern scaled per axis, so P is that axis's extent),
@@ -14,6 +15,12 @@
 //! differ in small patches; where they differ at the cut x, the fold leaves an edge used
 //! twice or a seed's fan open. The cut is tried at the seam and at positions on either side
 //! of it within the band; where none folds, the caller keeps the open patch.
+//!
+//! At a pole (a side collapsed to a point) there are no ghosts: stand-ins mirrored across it in
+//! the plane keep the triangulation there local, and leave with their triangles before the
+//! fold; the seeds nearest the pole then end the folded structure in a ring of seed-to-seed
+//! edges, which is capped by the triangles of that polygon (ear clipping in the plane of the
+//! ring's mean normal). Two poles give a closed surface, a pole and an open side a disc.
 //!
 //! The validity flips then run once more on the folded structure (they are combinatorial:
 //! they read only the planes), where the seam is an ordinary part of it.
@@ -56,11 +63,14 @@ pub(crate) fn decide_folded(
     envelope_repair: bool,
 ) -> Result<Option<(DualTriangulation, Augmented, NeighbourStats)>, TpiError> {
     let n = seeds.uv.len();
+    // The sides across the seam that are not open are poles.
+    let across = if direction == 0 { [2, 3] } else { [0, 1] };
+    let poles = across.iter().filter(|&&s| !open[s]).count();
     let spacing = (extent[0] * extent[1] / n as f64).sqrt();
     let period = extent[direction];
     let band = (PERIODIC_BAND * spacing).min(0.5 * period);
     let copies = with_copies(seeds.uv, seeds.plane_uv, direction, period, band);
-    let augmented = augment(
+    let mut augmented = augment(
         surface,
         &copies.uv,
         &copies.plane_uv,
@@ -69,6 +79,27 @@ pub(crate) fn decide_folded(
         &extended(seeds.convex_side, &copies.copy_of),
         open,
     );
+    // Across a pole, stand-ins mirrored in the plane keep the triangulation there as local as
+    // anywhere else (else its hull joins far seeds); they are no facets' and leave the
+    // structure before its pole is capped.
+    let pole_from = augmented.planes.len();
+    let with_copies = copies.plane_uv.len();
+    for s in across.into_iter().filter(|&s| !open[s]) {
+        let k = 1 - direction;
+        let side = if s % 2 == 0 { 0.0 } else { extent[k] };
+        for i in 0..with_copies {
+            let p = augmented.plane_uv[i];
+            if (p[k] - side).abs() < band {
+                let mut q = p;
+                q[k] = 2.0 * side - p[k];
+                augmented.plane_uv.push(q);
+                augmented.geometry.push(augmented.geometry[i]);
+                augmented.planes.push(augmented.planes[i]);
+                augmented.convex_side.push(augmented.convex_side[i]);
+                augmented.source.push(i as u32);
+            }
+        }
+    }
     let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
     let seed_of = |x: u32| {
         let s = augmented.source[x as usize] as usize;
@@ -100,6 +131,7 @@ pub(crate) fn decide_folded(
         &copies.copy_of,
         direction,
         [period, band],
+        (poles, pole_from),
     )
     .map(|(mut folded, points)| {
         let again = validity_flips(&mut folded, &points.plane_uv, &points.planes, n);
@@ -166,6 +198,7 @@ fn fold(
     copy_of: &[u32],
     direction: usize,
     [period, band]: [f64; 2],
+    (poles, pole_from): (usize, usize),
 ) -> Option<(DualTriangulation, Augmented)> {
     let with_copies = seeds + copy_of.len();
     let key = |plane: &Plane| {
@@ -180,7 +213,7 @@ fn fold(
     rename.extend(copy_of.iter().copied());
     let mut own_ghosts: HashMap<(u32, _), u32> = HashMap::new();
     let mut kept: Vec<usize> = (0..seeds).collect();
-    for g in with_copies..augmented.planes.len() {
+    for g in with_copies..pole_from {
         let source = augmented.source[g];
         if (source as usize) < seeds {
             let index = kept.len() as u32;
@@ -188,7 +221,7 @@ fn fold(
             kept.push(g);
         }
     }
-    for g in with_copies..augmented.planes.len() {
+    for g in with_copies..pole_from {
         let source = augmented.source[g] as usize;
         let seed = if source < seeds {
             source as u32
@@ -202,6 +235,8 @@ fn fold(
         let triangles: Vec<[u32; 3]> = tri
             .triangles
             .iter()
+            // The stand-ins across poles leave with their triangles.
+            .filter(|t| t.iter().all(|&v| (v as usize) < pole_from))
             .filter(|t| {
                 let centre = t
                     .iter()
@@ -215,7 +250,10 @@ fn fold(
             // near-ties may fall either way.
             .filter(|t| t.iter().any(|&v| (v as usize) < seeds))
             .collect();
-        let folded = DualTriangulation::from_triangles(triangles)?;
+        let mut folded = DualTriangulation::from_triangles(triangles)?;
+        if poles > 0 {
+            folded = cap_poles(folded, &augmented.planes[..seeds], poles)?;
+        }
         // Only ghosts may end the structure: an open edge at a seed is a gap at the seam.
         let gap = folded
             .triangles
@@ -322,4 +360,115 @@ fn canonical_ties<K: Ord + Copy>(
             return;
         }
     }
+}
+
+/// Closes the folded structure at its poles: without ghosts there, the seeds nearest each pole
+/// end it in a cycle of seed-to-seed edges, which is capped by the triangles of that polygon
+/// (ear clipping in the plane of the cycle's mean normal). None unless there are exactly
+/// `poles` such cycles, each a simple polygon in that plane.
+fn cap_poles(
+    folded: DualTriangulation,
+    planes: &[Plane],
+    poles: usize,
+) -> Option<DualTriangulation> {
+    let seeds = planes.len();
+    let mut next: HashMap<u32, u32> = HashMap::new();
+    for (t, nb) in folded.triangles.iter().zip(&folded.neighbours) {
+        for k in 0..3 {
+            let (a, b) = (t[(k + 1) % 3], t[(k + 2) % 3]);
+            if nb[k] == NO_TRIANGLE
+                && (a as usize) < seeds
+                && (b as usize) < seeds
+                && next.insert(a, b).is_some()
+            {
+                return None;
+            }
+        }
+    }
+    let mut starts: Vec<u32> = next.keys().copied().collect();
+    starts.sort_unstable();
+    let mut seen = std::collections::HashSet::new();
+    let mut cycles = Vec::new();
+    for start in starts {
+        if seen.contains(&start) {
+            continue;
+        }
+        let mut cycle = Vec::new();
+        let mut x = start;
+        loop {
+            if !seen.insert(x) {
+                return None;
+            }
+            cycle.push(x);
+            x = *next.get(&x)?;
+            if x == start {
+                break;
+            }
+        }
+        cycles.push(cycle);
+    }
+    if cycles.len() != poles {
+        return None;
+    }
+    let mut triangles = folded.triangles;
+    for cycle in &cycles {
+        // The cap runs each boundary edge the other way.
+        let ring: Vec<u32> = cycle.iter().rev().copied().collect();
+        triangles.extend(ear_clipping(&ring, planes)?);
+    }
+    DualTriangulation::from_triangles(triangles)
+}
+
+/// Triangles of the polygon `ring` (seed indices, in the order the triangles must keep), its
+/// points projected into the plane of their mean normal; None where it is not simple there.
+fn ear_clipping(ring: &[u32], planes: &[Plane]) -> Option<Vec<[u32; 3]>> {
+    if ring.len() < 3 {
+        return None;
+    }
+    let normal = ring
+        .iter()
+        .map(|&i| planes[i as usize].normal)
+        .sum::<glam::DVec3>()
+        .try_normalize()?;
+    let e1 = normal.any_orthonormal_vector();
+    let e2 = normal.cross(e1);
+    let mut at: HashMap<u32, [f64; 2]> = HashMap::new();
+    for &i in ring {
+        let p = planes[i as usize].point;
+        at.insert(i, [p.dot(e1), p.dot(e2)]);
+    }
+    let area: f64 = (0..ring.len())
+        .map(|k| {
+            let (a, b) = (at[&ring[k]], at[&ring[(k + 1) % ring.len()]]);
+            a[0] * b[1] - a[1] * b[0]
+        })
+        .sum();
+    if !(area != 0.0 && area.is_finite()) {
+        return None;
+    }
+    let sign = area.signum();
+    let turn = |a: u32, b: u32, c: u32| sign * orient2d(at[&a], at[&b], at[&c]);
+    let mut polygon = ring.to_vec();
+    let mut triangles = Vec::with_capacity(ring.len() - 2);
+    while polygon.len() > 3 {
+        let m = polygon.len();
+        let ear = (0..m).find(|&k| {
+            let (a, b, c) = (polygon[(k + m - 1) % m], polygon[k], polygon[(k + 1) % m]);
+            turn(a, b, c) > 0.0
+                && polygon.iter().all(|&x| {
+                    x == a
+                        || x == b
+                        || x == c
+                        || !(turn(a, b, x) >= 0.0 && turn(b, c, x) >= 0.0 && turn(c, a, x) >= 0.0)
+                })
+        })?;
+        triangles.push([
+            polygon[(ear + m - 1) % m],
+            polygon[ear],
+            polygon[(ear + 1) % m],
+        ]);
+        polygon.remove(ear);
+    }
+    triangles.push([polygon[0], polygon[1], polygon[2]]);
+    Some(triangles)
 }
