@@ -98,11 +98,28 @@ pub(crate) fn bisector(a: &Plane, b: &Plane) -> Plane {
 pub(crate) fn meeting_point(a: &Plane, b: &Plane, c: &Plane) -> ThreePlanePoint {
     match (coincident(a, b), coincident(b, c), coincident(a, c)) {
         (false, false, false) => intersect_three(a, b, c),
-        (true, false, false) => intersect_three(a, c, &bisector(a, b)),
-        (false, true, false) => intersect_three(a, b, &bisector(b, c)),
-        (false, false, true) => intersect_three(a, b, &bisector(a, c)),
+        (true, false, false) => on_bisector(a, c, &bisector(a, b)),
+        (false, true, false) => on_bisector(a, b, &bisector(b, c)),
+        (false, false, true) => on_bisector(a, b, &bisector(a, c)),
         _ => intersect_three(a, &bisector(a, b), &bisector(a, c)),
     }
+}
+
+/// T_p ∩ T_q ∩ B for a bisector B, moved along the line T_p ∩ T_q onto B exactly. Where T_p
+/// and T_q are nearly parallel (neighbouring rulings of a developable surface) the solve
+/// is off by about the rounding over their angle in every direction; along their line only B
+/// decides, so that step leaves the point on both planes and puts it on B to rounding (the
+/// ends of strips, on their walls, would otherwise wobble along the line).
+fn on_bisector(p: &Plane, q: &Plane, bisector: &Plane) -> ThreePlanePoint {
+    let mut meeting = intersect_three(p, q, bisector);
+    let along = p.normal.cross(q.normal);
+    let slope = bisector.normal.dot(along);
+    let step = bisector.signed_distance(meeting.point) / slope;
+    let moved = meeting.point - along * step;
+    if slope.abs() > PLANE_COINCIDENCE * along.length() && moved.is_finite() {
+        meeting.point = moved;
+    }
+    meeting
 }
 
 /// The point nearest to `anchor` that minimises the summed squared distances to the three

@@ -26,8 +26,10 @@
 //! bisector crossing L at a position alpha_i along L (direction n_A x n_B, oriented along the
 //! rulings), likewise beta_j for B; merged in order of position, each crossing adds one
 //! triangle, (a_i, b_j, a_i+1) or (a_i, b_j, b_j+1), whose vertex T_A ∩ T_B ∩ bisector is that
-//! crossing. Beyond the first and the last ruling of an open surface a *side ghost* takes the
-//! wall of the side ruling as its plane (the plane through the side ruling containing its
+//! crossing. The positions compared are those of the two candidate triangles' vertices as the
+//! facet stage computes them, so rounding cannot reverse a facet's vertices along L. Beyond
+//! the first and the last ruling of an open surface a *side ghost* takes the wall of the side
+//! ruling as its plane (the plane through the side ruling containing its
 //! normal, which is constant along it), so the outermost facets end exactly on that wall. On a
 //! surface closed across its rulings the last chain is zipped to the first: an annulus.
 //!
@@ -37,7 +39,7 @@
 use glam::DVec3;
 
 use crate::diffgeo::LocalGeometry;
-use crate::planes::{bisector, coincident, intersect_three, Plane};
+use crate::planes::{coincident, meeting_point, Plane};
 use crate::samples::bounding_diagonal;
 use crate::surface::Surface;
 use crate::tolerance::{LAYOUT_SAMPLES, RULING_TOLERANCE, STRIP_END_MIN_DEPTH};
@@ -327,24 +329,27 @@ fn zip(
     if direction.dot(ruling) < 0.0 {
         direction = -direction;
     }
-    // Where the bisector of each consecutive pair of a chain crosses the line, along it.
-    let crossings = |chain: &[u32], other: &Plane| -> Option<Vec<f64>> {
-        chain
-            .windows(2)
-            .map(|w| {
-                let (x, y) = (planes[w[0] as usize], planes[w[1] as usize]);
-                let at = intersect_three(&x, other, &bisector(&x, &y)).point;
-                let position = direction.dot(at);
-                position.is_finite().then_some(position)
-            })
-            .collect()
+    // Where a candidate triangle's vertex lies along the line: computed exactly as the facet
+    // stage computes it (points in ascending order), so that every facet's vertices follow
+    // the line in the order the triangles were taken, even where two crossings differ only
+    // by rounding (nearly parallel planes of close rulings).
+    let position = |mut ids: [u32; 3]| {
+        ids.sort_unstable();
+        let [x, y, z] = ids.map(|k| &planes[k as usize]);
+        let at = direction.dot(meeting_point(x, y, z).point);
+        at.is_finite().then_some(at)
     };
-    let alpha = crossings(a, &plane_b)?;
-    let beta = crossings(b, &plane_a)?;
     let (mut i, mut j) = (0, 0);
-    while i < alpha.len() || j < beta.len() {
-        // Ties go to the chain before (the same rule everywhere).
-        if j == beta.len() || (i < alpha.len() && alpha[i] <= beta[j]) {
+    while i + 1 < a.len() || j + 1 < b.len() {
+        let take_a = if j + 1 == b.len() {
+            true
+        } else if i + 1 == a.len() {
+            false
+        } else {
+            // Ties go to the chain before (the same rule everywhere).
+            position([a[i], b[j], a[i + 1]])? <= position([a[i], b[j], b[j + 1]])?
+        };
+        if take_a {
             triangles.push([a[i], b[j], a[i + 1]]);
             i += 1;
         } else {
