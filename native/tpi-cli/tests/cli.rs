@@ -1891,19 +1891,21 @@ fn closed_surfaces_give_closed_meshes_or_a_seam_warning() {
     // Surfaces of revolution closed in u: a rational quadratic circle in u swept through the
     // radii `radii` at the heights `heights` (a straight line in v: a cylinder; a waist: a
     // saddle-shaped vase).
+    // The unit circle as a rational quadratic NURBS curve: (x, y, weight) of its nine
+    // control points.
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let circle = [
+        (1.0, 0.0, 1.0),
+        (1.0, 1.0, w),
+        (0.0, 1.0, 1.0),
+        (-1.0, 1.0, w),
+        (-1.0, 0.0, 1.0),
+        (-1.0, -1.0, w),
+        (0.0, -1.0, 1.0),
+        (1.0, -1.0, w),
+        (1.0, 0.0, 1.0),
+    ];
     let revolution = |name: &str, radii: &[f64], heights: &[f64]| {
-        let w = std::f64::consts::FRAC_1_SQRT_2;
-        let circle = [
-            (1.0, 0.0, 1.0),
-            (1.0, 1.0, w),
-            (0.0, 1.0, 1.0),
-            (-1.0, 1.0, w),
-            (-1.0, 0.0, 1.0),
-            (-1.0, -1.0, w),
-            (0.0, -1.0, 1.0),
-            (1.0, -1.0, w),
-            (1.0, 0.0, 1.0),
-        ];
         let mut points = Vec::new();
         let mut weights = Vec::new();
         for (x, y, wu) in circle {
@@ -1927,68 +1929,42 @@ fn closed_surfaces_give_closed_meshes_or_a_seam_warning() {
         .unwrap();
         path
     };
-    // A cylinder closed around its axis: strips closing up into an annulus, no warning.
-    let cylinder = revolution("cylinder.json", &[3.0, 3.0], &[0.0, 4.0]);
-    let out = dir.join("cylinder-out.json");
-    let run = ok(&[
-        "discretise",
-        "--surface",
-        cylinder.to_str().unwrap(),
-        "--pattern",
+    // A closed surface with two open ends with `pattern`: a valid annulus, and no warning.
+    let annulus = |surface: &Path, pattern: &str| {
+        let out = surface.with_extension("out.json");
+        let run = ok(&[
+            "discretise",
+            "--surface",
+            surface.to_str().unwrap(),
+            "--pattern",
+            pattern,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let q = read_contract(&out).quality.expect("quality report");
+        assert_eq!(
+            (q.euler_characteristic, q.boundary_loops, q.invalid_facets),
+            (0, 2, 0),
+            "{}",
+            surface.display()
+        );
+        let stderr = text(&run.stderr);
+        assert!(!stderr.contains("warning"), "{stderr}");
+    };
+    // A cylinder closed around its axis: strips closing up into an annulus.
+    annulus(
+        &revolution("cylinder.json", &[3.0, 3.0], &[0.0, 4.0]),
         "random:200:seed=2",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let q = read_contract(&out).quality.expect("quality report");
-    assert_eq!(
-        (q.euler_characteristic, q.boundary_loops, q.invalid_facets),
-        (0, 2, 0),
-        "cylinder"
-    );
-    assert!(
-        !text(&run.stderr).contains("warning"),
-        "{}",
-        text(&run.stderr)
     );
     // A vase with a waist (K < 0 there), closed around its axis: the seam closes too.
-    let vase = revolution("vase.json", &[3.0, 1.0, 3.0], &[0.0, 2.0, 4.0]);
-    let out = dir.join("vase-out.json");
-    let run = ok(&[
-        "discretise",
-        "--surface",
-        vase.to_str().unwrap(),
-        "--pattern",
+    annulus(
+        &revolution("vase.json", &[3.0, 1.0, 3.0], &[0.0, 2.0, 4.0]),
         "poisson:0.05:seed=3",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    let q = read_contract(&out).quality.expect("quality report");
-    assert_eq!(
-        (q.euler_characteristic, q.boundary_loops, q.invalid_facets),
-        (0, 2, 0),
-        "vase"
-    );
-    assert!(
-        !text(&run.stderr).contains("warning"),
-        "{}",
-        text(&run.stderr)
     );
     // A torus, closed both ways: an open patch, and it says so.
-    let w = std::f64::consts::FRAC_1_SQRT_2;
-    let square = [
-        (1.0, 0.0, 1.0),
-        (1.0, 1.0, w),
-        (0.0, 1.0, 1.0),
-        (-1.0, 1.0, w),
-        (-1.0, 0.0, 1.0),
-        (-1.0, -1.0, w),
-        (0.0, -1.0, 1.0),
-        (1.0, -1.0, w),
-        (1.0, 0.0, 1.0),
-    ];
     let (mut points, mut weights) = (Vec::new(), Vec::new());
-    for (a, b, wi) in square {
-        for (x, z, wj) in square {
+    for (a, b, wi) in circle {
+        for (x, z, wj) in circle {
             let radius = 3.0 + x;
             points.push(format!("[{}, {}, {z}]", radius * a, radius * b));
             weights.push(format!("{}", wi * wj));

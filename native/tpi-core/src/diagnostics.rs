@@ -78,8 +78,8 @@ pub enum Diagnostic {
     /// The surface is developable with its rulings along parameter lines (a cylinder, a cone,
     /// an extrusion): tangent planes of three different rulings never meet near it, so its
     /// facets are strips between the lines where the planes of neighbouring rulings meet,
-    /// shared by the seeds of one ruling along their bisectors ([`crate::tolerance::RULING_TOLERANCE`]).
-    /// One diagnostic per discretisation.
+    /// shared by the seeds of one ruling along their bisectors
+    /// ([`crate::tolerance::RULING_TOLERANCE`]). One diagnostic per discretisation.
     RulingStrips {
         /// The parameter along the rulings (0: u, 1: v).
         direction: u8,

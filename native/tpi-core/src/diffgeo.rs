@@ -21,7 +21,15 @@ use glam::DVec3;
 
 use crate::planes::Plane;
 use crate::surface::SurfaceDerivatives;
-use crate::tolerance::UMBILIC_RELATIVE_TOLERANCE;
+use crate::tolerance::{DEFAULT_FLAT_TOLERANCE, UMBILIC_RELATIVE_TOLERANCE};
+
+/// Whether principal curvatures k1, k2 make a flat point (a plane, or a ruling of a
+/// developable surface): |k1 k2| <= [`DEFAULT_FLAT_TOLERANCE`] max(|k1|, |k2|)^2, so K ~ 0
+/// relative to the larger curvature (true where both vanish).
+pub(crate) fn flat_curvatures(k1: f64, k2: f64) -> bool {
+    let largest = k1.abs().max(k2.abs());
+    (k1 * k2).abs() <= DEFAULT_FLAT_TOLERANCE * largest * largest
+}
 
 /// Curvature data at one surface point.
 #[derive(Clone, Copy, Debug, PartialEq)]

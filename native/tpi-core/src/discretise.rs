@@ -21,7 +21,7 @@ use crate::adjusted_planes::{adjust_planes, tilt_and_offset};
 use crate::boundary::Boundary;
 use crate::closed;
 use crate::diagnostics::Diagnostic;
-use crate::diffgeo::LocalGeometry;
+use crate::diffgeo::{flat_curvatures, LocalGeometry};
 use crate::error::TpiError;
 use crate::facets::{
     build_closed_facets, build_facets, FacetParams, FootHint, TriangleVertex, VertexKind,
@@ -41,7 +41,7 @@ use crate::tolerance::{
     COLLINEAR_TOLERANCE, DEFAULT_FAR_VERTEX_FACTOR, DEFAULT_FLAT_TOLERANCE, DEFAULT_WELD_TOLERANCE,
     REVERSAL_CHECK_TOLERANCE,
 };
-use crate::triangulation::{orient, DualTriangulation};
+use crate::triangulation::{orient, sorted_pairs, triangle_edges, DualTriangulation};
 
 /// Options of [`discretise`]. `Default` gives the documented defaults.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -234,16 +234,9 @@ impl Discretisation {
 
     /// The symmetric neighbour pairs (i < j) of the dual structure, sorted.
     pub fn neighbour_pairs(&self) -> Vec<[u32; 2]> {
-        let mut pairs: Vec<[u32; 2]> = self
-            .dual_triangles
-            .iter()
-            .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
-            .map(|[a, b]| [a.min(b), a.max(b)])
-            .chain(self.ghost_neighbours.iter().copied())
-            .collect();
-        pairs.sort_unstable();
-        pairs.dedup();
-        pairs
+        sorted_pairs(
+            triangle_edges(&self.dual_triangles).chain(self.ghost_neighbours.iter().copied()),
+        )
     }
 
     /// The result in the output contract as JSON text; `timings` false leaves out
@@ -639,11 +632,9 @@ fn run_within(
     // A developable surface with rulings along parameter lines (crate::rulings): strips, and
     // an annulus where it is closed across its rulings.
     // Rulings are sampled only where every seed is flat (K ~ 0): elsewhere they cannot be.
-    let flat_seeds = seeds.iter().all(|s| {
-        let [k1, k2] = s.curvatures;
-        let largest = k1.abs().max(k2.abs());
-        (k1 * k2).abs() <= DEFAULT_FLAT_TOLERANCE * largest * largest
-    });
+    let flat_seeds = seeds
+        .iter()
+        .all(|s| flat_curvatures(s.curvatures[0], s.curvatures[1]));
     let rulings = flat_seeds.then(|| rulings::find_rulings(surface)).flatten();
     let strips = match rulings.filter(|_| allow_strips) {
         Some(r) if !closed_convex && !boundary.is_trim() => {
@@ -1103,16 +1094,10 @@ fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
 /// The edges of `tri` between two real points (`< real_count`), as sorted pairs i < j
 /// (every edge where all points are real).
 fn real_pairs(tri: &DualTriangulation, real_count: usize) -> Vec<[u32; 2]> {
-    let mut pairs: Vec<[u32; 2]> = tri
-        .triangles
-        .iter()
-        .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
-        .filter(|&[a, b]| (a as usize) < real_count && (b as usize) < real_count)
-        .map(|[a, b]| [a.min(b), a.max(b)])
-        .collect();
-    pairs.sort_unstable();
-    pairs.dedup();
-    pairs
+    sorted_pairs(
+        triangle_edges(&tri.triangles)
+            .filter(|&[a, b]| (a as usize) < real_count && (b as usize) < real_count),
+    )
 }
 
 /// No seed on a pole (its tangent plane is not defined by the parametrisation); on a closed

@@ -35,7 +35,7 @@ use crate::tolerance::{
     DEFAULT_FAR_VERTEX_FACTOR, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES, RAY_DOUBLINGS,
     RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR,
 };
-use crate::triangulation::{DualTriangulation, Edge, Fan, NO_TRIANGLE};
+use crate::triangulation::{triangle_edges, DualTriangulation, Edge, Fan, NO_TRIANGLE};
 
 /// What a mesh vertex is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -1249,10 +1249,7 @@ pub(crate) fn build_closed_facets(
             }
         })
         .collect();
-    let coincident_pairs = tri
-        .triangles
-        .iter()
-        .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
+    let coincident_pairs = triangle_edges(&tri.triangles)
         .filter(|&[a, b]| a < b && (b as usize) < real_count)
         .filter(|&[a, b]| coincident(&planes[a as usize], &planes[b as usize]))
         .count();

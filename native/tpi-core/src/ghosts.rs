@@ -21,10 +21,10 @@
 //! the vertices of triangles with a ghost are the mesh's boundary vertices.
 
 use crate::boundary::Boundary;
-use crate::diffgeo::LocalGeometry;
+use crate::diffgeo::{flat_curvatures, LocalGeometry};
 use crate::planes::{coincident, Plane};
 use crate::surface::{Surface, SurfaceDerivatives};
-use crate::tolerance::{DEFAULT_FLAT_TOLERANCE, GHOST_BAND, GHOST_FLAT_MIRROR, GHOST_MIN_DEPTH};
+use crate::tolerance::{GHOST_BAND, GHOST_FLAT_MIRROR, GHOST_MIN_DEPTH};
 
 /// The depth beyond the side of the ghost of a seed at distance d >= 0 inside it, for mean
 /// spacing h: the mirror distance d from h / 2 on, and d + m (1 - 2 d / h) with
@@ -37,6 +37,19 @@ fn ghost_depth(d: f64, h: f64) -> f64 {
         d
     } else {
         d + m * (1.0 - 2.0 * d / h)
+    }
+}
+
+/// The depth beyond the boundary of the ghost of a seed at distance d inside it: a flat seed
+/// (a plane, or a ruling of a developable surface) is mirrored exactly, unless it is on its
+/// side, since where its ghost's plane coincides with its own their bisector is the side
+/// itself and neighbouring seeds at different distances would otherwise end at different
+/// depths, in steps; any other seed at [`ghost_depth`].
+fn mirror_depth(flat: bool, d: f64, spacing: f64) -> f64 {
+    if flat && d >= GHOST_FLAT_MIRROR * spacing {
+        d
+    } else {
+        ghost_depth(d, spacing)
     }
 }
 
@@ -108,20 +121,8 @@ pub(crate) fn augment(
         // the boundary parameter and the ghost's parameter offset from it.
         let scale_u = (u1 - u0) / extent[0];
         let scale_v = (v1 - v0) / extent[1];
-        // A flat seed (a plane, or a ruling of a developable surface) is mirrored exactly
-        // unless it is on its side: where its ghost's plane coincides with its own, their
-        // bisector is the side itself, and neighbouring seeds at different distances from
-        // the side would otherwise end at different depths, in steps.
-        let g = &geometry[i];
-        let largest = g.k1.abs().max(g.k2.abs());
-        let flat = (g.k1 * g.k2).abs() <= DEFAULT_FLAT_TOLERANCE * largest * largest;
-        let depth = |d: f64| {
-            if flat && d >= GHOST_FLAT_MIRROR * spacing {
-                d
-            } else {
-                ghost_depth(d, spacing)
-            }
-        };
+        let flat = flat_curvatures(geometry[i].k1, geometry[i].k2);
+        let depth = |d: f64| mirror_depth(flat, d, spacing);
         let dx0 = depth(x);
         let dx1 = depth(extent[0] - x);
         let dy0 = depth(y);
@@ -239,15 +240,9 @@ pub(crate) fn augment_within_trim(
             }
         }
         near.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let g = &geometry[i];
-        let largest = g.k1.abs().max(g.k2.abs());
-        let flat = (g.k1 * g.k2).abs() <= DEFAULT_FLAT_TOLERANCE * largest * largest;
+        let flat = flat_curvatures(geometry[i].k1, geometry[i].k2);
         for &(d, foot, outward) in near.iter().take(2) {
-            let depth = if flat && d >= GHOST_FLAT_MIRROR * spacing {
-                d
-            } else {
-                ghost_depth(d, spacing)
-            };
+            let depth = mirror_depth(flat, d, spacing);
             let position = [foot[0] + outward[0] * depth, foot[1] + outward[1] * depth];
             if boundary.inside_measure(to_domain(position)) > 0.0 {
                 continue;

@@ -32,13 +32,13 @@
 
 use glam::DVec3;
 
-use crate::diffgeo::LocalGeometry;
+use crate::diffgeo::{flat_curvatures, LocalGeometry};
 use crate::planes::{intersect_three, Plane};
 use crate::predicates::{orient2d, power_illegal};
 use crate::tolerance::{
-    COMPENSATION_TIE_TOLERANCE, CONVEX_METRIC_REGULARISATION, DEFAULT_FLAT_TOLERANCE,
-    DEGENERATE_SLIVER_FACTOR, DEVELOPABLE_METRIC_REGULARISATION, ENVELOPE_FLIP_TOLERANCE,
-    GRADIENT_MIN_COS, METRIC_REGULARISATION, SLOPE_FRAME_SAMPLES,
+    COMPENSATION_TIE_TOLERANCE, CONVEX_METRIC_REGULARISATION, DEGENERATE_SLIVER_FACTOR,
+    DEVELOPABLE_METRIC_REGULARISATION, ENVELOPE_FLIP_TOLERANCE, GRADIENT_MIN_COS,
+    METRIC_REGULARISATION, SLOPE_FRAME_SAMPLES,
 };
 
 use crate::triangulation::{orient, DualTriangulation, NO_TRIANGLE};
@@ -667,8 +667,7 @@ fn compensation_illegal(
     let mut developable = true;
     for point in &geo {
         largest = largest.max(point.k1.abs()).max(point.k2.abs());
-        let k = point.k1.abs().max(point.k2.abs());
-        developable &= (point.k1 * point.k2).abs() <= DEFAULT_FLAT_TOLERANCE * k * k;
+        developable &= flat_curvatures(point.k1, point.k2);
         for (kappa, dir) in [(point.k1.abs(), point.d1), (point.k2.abs(), point.d2)] {
             let (x, y) = (dir.dot(e1), dir.dot(e2));
             g[0] += kappa * x * x;

@@ -35,6 +35,21 @@ impl HasPosition for Site {
     }
 }
 
+/// The three edges of each triangle, in its own direction.
+pub(crate) fn triangle_edges(triangles: &[[u32; 3]]) -> impl Iterator<Item = [u32; 2]> + '_ {
+    triangles
+        .iter()
+        .flat_map(|t| [[t[0], t[1]], [t[1], t[2]], [t[2], t[0]]])
+}
+
+/// `edges` as undirected pairs i < j, sorted, each once.
+pub(crate) fn sorted_pairs(edges: impl Iterator<Item = [u32; 2]>) -> Vec<[u32; 2]> {
+    let mut pairs: Vec<[u32; 2]> = edges.map(|[a, b]| [a.min(b), a.max(b)]).collect();
+    pairs.sort_unstable();
+    pairs.dedup();
+    pairs
+}
+
 /// A triangulation of points 0..n with counter-clockwise triangles and adjacency.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub(crate) struct DualTriangulation {

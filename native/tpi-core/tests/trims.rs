@@ -77,6 +77,21 @@ fn points_inside(
         .collect()
 }
 
+/// The surface of the surface file `record` (JSON) with `trim` added, read as a file is.
+fn trimmed(record: serde_json::Value, trim: &Trim) -> SurfaceModel {
+    let mut value = record;
+    value["trim"] = serde_json::to_value(trim).unwrap();
+    SurfaceSpec::from_json(&value.to_string(), "surface")
+        .unwrap()
+        .build()
+        .unwrap()
+}
+
+/// [`trimmed`] of a surface file's text.
+fn trimmed_text(text: &str, trim: &Trim) -> SurfaceModel {
+    trimmed(serde_json::from_str(text).unwrap(), trim)
+}
+
 fn surface(kind: &str, trim: &Trim) -> SurfaceModel {
     let text = match kind {
         "paraboloid" => {
@@ -84,10 +99,7 @@ fn surface(kind: &str, trim: &Trim) -> SurfaceModel {
         }
         _ => r#"{"type": "sphere_cap", "radius": 2.5, "x": [-1, 1], "y": [-1, 1]}"#,
     };
-    let mut value: serde_json::Value = serde_json::from_str(text).unwrap();
-    value["trim"] = serde_json::to_value(trim).unwrap();
-    let spec = SurfaceSpec::from_json(&value.to_string(), "surface").unwrap();
-    spec.build().unwrap()
+    trimmed_text(text, trim)
 }
 
 /// Everything the issue asks of a trimmed run; returns (Euler characteristic, loops).
@@ -525,13 +537,9 @@ fn warped_plane(trim: &Trim) -> SurfaceModel {
             points.push(serde_json::json!([x, y, 0.3 * x - 0.7 * y + 2.0]));
         }
     }
-    let value = serde_json::json!({"type": "nurbs", "degree": [3, 3], "count": [4, 4],
-        "knots_u": [-1, -1, -1, 1, 1, 1], "knots_v": [-1, -1, -1, 1, 1, 1], "points": points,
-        "trim": trim});
-    SurfaceSpec::from_json(&value.to_string(), "plane")
-        .unwrap()
-        .build()
-        .unwrap()
+    let record = serde_json::json!({"type": "nurbs", "degree": [3, 3], "count": [4, 4],
+        "knots_u": [-1, -1, -1, 1, 1, 1], "knots_v": [-1, -1, -1, 1, 1, 1], "points": points});
+    trimmed(record, trim)
 }
 
 /// Issue 16, items 1 and 4: a trimmed plane (most real walls) is discretised instead of
@@ -551,17 +559,10 @@ fn planes_trimmed_to_a_disc_with_a_hole_are_clipped_voronoi_cells() {
         ("grid:17x17", hex("grid:17x17")),
     ];
     for (tname, trim) in &trims {
-        let analytic = {
-            let mut value: serde_json::Value = serde_json::from_str(
-                r#"{"type": "plane", "p": 0.3, "q": -0.7, "c0": 2, "x": [-1, 1], "y": [-1, 1]}"#,
-            )
-            .unwrap();
-            value["trim"] = serde_json::to_value(trim).unwrap();
-            SurfaceSpec::from_json(&value.to_string(), "plane")
-                .unwrap()
-                .build()
-                .unwrap()
-        };
+        let analytic = trimmed_text(
+            r#"{"type": "plane", "p": 0.3, "q": -0.7, "c0": 2, "x": [-1, 1], "y": [-1, 1]}"#,
+            trim,
+        );
         let warped = warped_plane(trim);
         for (sname, model) in [("plane", &analytic), ("warped plane", &warped)] {
             for (pname, pattern) in &patterns {
@@ -644,11 +645,11 @@ fn planes_trimmed_to_a_disc_with_a_hole_are_clipped_voronoi_cells() {
 /// Issue 16, item 1, beyond convex surfaces: a saddle and an egg crate of mixed curvature
 /// (adjusted planes, which uniform random patterns need on such surfaces) trimmed to a disc
 /// with a hole and to a square with a square hole. The facets end near the trim on ghosts
-/// mirrored across its loops. Oracles computed here: which points lie inside (even-odd rule), the topology of a disc with its
-/// hole, the independent validity checks, every vertex in its facet's plane, every boundary
-/// vertex's closest surface point within three mean pattern spacings of a trim loop (the
-/// untrimmed mesh would reach half the domain beyond), every interior vertex's inside the
-/// region or within that of it.
+/// mirrored across its loops. Oracles computed here: which points lie inside (even-odd
+/// rule), the topology of a disc with its hole, the independent validity checks, every
+/// vertex in its facet's plane, every boundary vertex's closest surface point within three
+/// mean pattern spacings of a trim loop (the untrimmed mesh would reach half the domain
+/// beyond), every interior vertex's inside the region or within that of it.
 #[test]
 fn saddles_and_mixed_surfaces_trimmed_to_a_disc_with_a_hole() {
     let square = Trim {
@@ -681,12 +682,7 @@ fn saddles_and_mixed_surfaces_trimmed_to_a_disc_with_a_hole() {
     ];
     for (sname, text, planes, allowed) in cases {
         for (tname, trim) in &trims {
-            let mut value: serde_json::Value = serde_json::from_str(text).unwrap();
-            value["trim"] = serde_json::to_value(trim).unwrap();
-            let model = SurfaceSpec::from_json(&value.to_string(), sname)
-                .unwrap()
-                .build()
-                .unwrap();
+            let model = trimmed_text(text, trim);
             let loops = loops_of(trim);
             let domain = model.domain();
             let size = domain.u.length().max(domain.v.length());
