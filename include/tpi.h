@@ -388,6 +388,11 @@ typedef enum TpiDiagnosticKind {
      * neighbouring rulings meet (point is TPI_NO_POINT).
      */
     TPI_DIAGNOSTIC_KIND_RULING_STRIPS = 11,
+    /**
+     * The trim cuts the point's facet (a long strip) into several parts: it keeps the part
+     * around its seed, the others are left out as gaps beside the trim.
+     */
+    TPI_DIAGNOSTIC_KIND_FACET_PARTS_LEFT_OUT = 12,
 } TpiDiagnosticKind;
 
 /**

@@ -734,7 +734,7 @@ static void test_diagnostics(void) {
         uint32_t previous = 0;
         for (size_t k = 0; k < entries_len; k++) {
             CHECK(entries[k].kind >= TPI_DIAGNOSTIC_KIND_ILL_CONDITIONED_VERTEX);
-            CHECK(entries[k].kind <= TPI_DIAGNOSTIC_KIND_RULING_STRIPS);
+            CHECK(entries[k].kind <= TPI_DIAGNOSTIC_KIND_FACET_PARTS_LEFT_OUT);
             CHECK(entries[k].diagnostic < count && entries[k].diagnostic >= previous);
             previous = entries[k].diagnostic;
             if (entries[k].point != TPI_NO_POINT) {

@@ -296,6 +296,14 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
         eprintln!("{}", crate::selfx::warning(c));
     }
     let mut topology = None;
+    let cut = result
+        .diagnostics
+        .iter()
+        .filter(|d| matches!(d, Diagnostic::FacetPartsLeftOut { .. }))
+        .count();
+    if cut > 0 {
+        eprintln!("warning: the trim cuts {cut} strip facet(s) into several parts (a hole or notch across the rulings): each keeps the part around its seed, and the other parts are left out as gaps beside the trim (facet_parts_left_out in the JSON)");
+    }
     for d in &result.diagnostics {
         match *d {
             Diagnostic::SeamLeftOpen { direction } => {

@@ -2048,7 +2048,7 @@ fn a_trimmed_dome_leaves_out_the_points_outside_and_says_so() {
     assert_eq!(contract["quality"]["invalid_facets"], 0);
 
     // A trimmed saddle ends near its trim (a disc, every facet valid with adjusted planes);
-    // a trimmed cylinder is refused, its trim never ignored.
+    // a trimmed cylinder gives its strips clipped on the trim (a disc, every facet valid).
     let saddle = dir.join("saddle.json");
     let surface = serde_json::json!({
         "type": "hyperbolic_paraboloid", "a": 0.4, "b": 0.25, "x": [-1, 1], "y": [-1, 1],
@@ -2079,22 +2079,26 @@ fn a_trimmed_dome_leaves_out_the_points_outside_and_says_so() {
         "trim": {"outer": circle([0.0, 0.0], 0.9, 64, 1.0)},
     });
     fs::write(&cylinder, surface.to_string()).unwrap();
-    fails(
-        &[
-            "discretise",
-            "--surface",
-            cylinder.to_str().unwrap(),
-            "--pattern",
-            "random:300:seed=3",
-            "--out",
-            dir.join("cylinder-out.json").to_str().unwrap(),
-        ],
-        1,
-        &[
-            "cannot be discretised with its trim",
-            "strips are not clipped",
-        ],
-    );
+    let out = dir.join("cylinder-out.json");
+    ok(&[
+        "discretise",
+        "--surface",
+        cylinder.to_str().unwrap(),
+        "--pattern",
+        "random:300:seed=3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let contract: serde_json::Value =
+        serde_json::from_str(&fs::read_to_string(&out).unwrap()).unwrap();
+    assert_eq!(contract["quality"]["euler_characteristic"], 1);
+    assert_eq!(contract["quality"]["boundary_loops"], 1);
+    assert_eq!(contract["quality"]["invalid_facets"], 0);
+    assert!(contract["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .any(|d| d["kind"] == "ruling_strips"));
 }
 
 /// `tpi info` on a polysurface names its layout (which face sits in which cell) instead of

@@ -141,6 +141,45 @@ impl Boundary {
         }
     }
 
+    /// The fractions tau in (0, 1), ascending, at which the parameter segment from `a` to `b`
+    /// (a + tau (b - a)) crosses a boundary loop, in normalised parameters.
+    pub(crate) fn segment_crossings(&self, a: [f64; 2], b: [f64; 2]) -> Vec<f64> {
+        let (domain, rectangle);
+        let loops: &[Vec<[f64; 2]>] = match self {
+            Boundary::Rectangle(d) => {
+                domain = *d;
+                rectangle = [vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]];
+                &rectangle
+            }
+            Boundary::Loops(loops) => {
+                domain = loops.domain;
+                &loops.points
+            }
+        };
+        let (p, q) = (domain.to_normalised(a), domain.to_normalised(b));
+        let d = [q[0] - p[0], q[1] - p[1]];
+        let mut found = Vec::new();
+        for points in loops {
+            let n = points.len();
+            for k in 0..n {
+                let (c, e) = (points[k], points[(k + 1) % n]);
+                let f = [e[0] - c[0], e[1] - c[1]];
+                let denominator = d[0] * f[1] - d[1] * f[0];
+                if denominator == 0.0 {
+                    continue;
+                }
+                let w = [c[0] - p[0], c[1] - p[1]];
+                let tau = (w[0] * f[1] - w[1] * f[0]) / denominator;
+                let sigma = (w[0] * d[1] - w[1] * d[0]) / denominator;
+                if tau > 0.0 && tau < 1.0 && (0.0..=1.0).contains(&sigma) {
+                    found.push(tau);
+                }
+            }
+        }
+        found.sort_by(f64::total_cmp);
+        found
+    }
+
     /// How far `to` lies ahead of `from` along their loop (in its direction), or None when
     /// they lie on different loops.
     pub(crate) fn ahead(&self, from: Position, to: Position) -> Option<f64> {

@@ -86,6 +86,16 @@ pub enum Diagnostic {
         /// Closed across the rulings: the strips close up into an annulus.
         closed: bool,
     },
+    /// The trim cuts this point's facet into several parts (a long strip of a developable
+    /// surface across a hole or a notch of the trim): the facet keeps the part around its
+    /// seed, and the other parts, which no other facet's plane can cover, are left out of
+    /// the mesh as gaps beside the trim.
+    FacetPartsLeftOut {
+        /// The pattern point.
+        point: u32,
+        /// How many parts the trim cut the facet into (at least 2).
+        parts: u32,
+    },
     /// The mesh is not the surface the run expected (a disc, an annulus, a sphere, a trimmed
     /// disc with its holes): its facets leave a gap, or cover a part twice, that no single
     /// facet shows. Named so that a mesh of valid facets with such a defect is never taken for
@@ -114,7 +124,8 @@ impl Diagnostic {
             }
             Diagnostic::OpenFacet { point, .. }
             | Diagnostic::CornerUnreachable { point, .. }
-            | Diagnostic::FlatPoint { point, .. } => *point = f(*point),
+            | Diagnostic::FlatPoint { point, .. }
+            | Diagnostic::FacetPartsLeftOut { point, .. } => *point = f(*point),
             Diagnostic::CornerClaims { .. }
             | Diagnostic::CoincidentPlanes { .. }
             | Diagnostic::SeamLeftOpen { .. }
@@ -132,7 +143,8 @@ impl Diagnostic {
             }
             Diagnostic::OpenFacet { point, .. }
             | Diagnostic::CornerUnreachable { point, .. }
-            | Diagnostic::FlatPoint { point, .. } => vec![*point],
+            | Diagnostic::FlatPoint { point, .. }
+            | Diagnostic::FacetPartsLeftOut { point, .. } => vec![*point],
             Diagnostic::CornerClaims { .. }
             | Diagnostic::CoincidentPlanes { .. }
             | Diagnostic::SeamLeftOpen { .. }

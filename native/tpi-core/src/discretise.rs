@@ -24,7 +24,8 @@ use crate::diagnostics::Diagnostic;
 use crate::diffgeo::{flat_curvatures, LocalGeometry};
 use crate::error::TpiError;
 use crate::facets::{
-    build_closed_facets, build_facets, FacetParams, FootHint, TriangleVertex, VertexKind,
+    build_closed_facets, build_facets, build_ghost_clipped_facets, FacetParams, FootHint,
+    TriangleVertex, VertexKind,
 };
 use crate::flat;
 use crate::ghosts::{augment, augment_within_trim};
@@ -39,7 +40,7 @@ use crate::samples::{bounding_box, sample, Samples};
 use crate::surface::Surface;
 use crate::tolerance::{
     COLLINEAR_TOLERANCE, DEFAULT_FAR_VERTEX_FACTOR, DEFAULT_FLAT_TOLERANCE, DEFAULT_WELD_TOLERANCE,
-    REVERSAL_CHECK_TOLERANCE,
+    REVERSAL_CHECK_TOLERANCE, STRIP_TRIM_MARGIN,
 };
 use crate::triangulation::{orient, sorted_pairs, triangle_edges, DualTriangulation};
 
@@ -477,9 +478,9 @@ pub(crate) fn note_topology(result: &mut Discretisation, trimmed: bool) {
 ///
 /// On a trimmed surface ([`Surface::trim`]) the pattern points outside the trim are left out
 /// before sampling; the facets of the others end on the trim ([`crate::boundary`]), and the
-/// result names each facet's pattern index. Trims run on the convex paths only, and not with
-/// `keep` (live editing): elsewhere [`TpiError::TrimUnsupported`], never a result that
-/// ignores the trim.
+/// result names each facet's pattern index. Trims are not taken with `keep` (live editing),
+/// nor on a developable surface whose strips cannot be built: there
+/// [`TpiError::TrimUnsupported`], never a result that ignores the trim.
 pub(crate) fn run(
     surface: &dyn Surface,
     pattern: &[[f64; 2]],
@@ -530,7 +531,7 @@ pub(crate) fn run(
         });
     }
     let inside: Vec<[f64; 2]> = kept.iter().map(|&i| pattern[i as usize]).collect();
-    let (mut result, state) = run_within(surface, &inside, options, keep, &boundary, start, false)?;
+    let (mut result, state) = run_within(surface, &inside, options, keep, &boundary, start, true)?;
     for d in &mut result.diagnostics {
         d.map_points(|p| kept[p as usize]);
     }
@@ -636,13 +637,21 @@ fn run_within(
         .iter()
         .all(|s| flat_curvatures(s.curvatures[0], s.curvatures[1]));
     let rulings = flat_seeds.then(|| rulings::find_rulings(surface)).flatten();
+    // Trimmed, they are the strips of the seeds inside, with walls beyond the domain, clipped
+    // on the trim by the facet stage.
+    let trimmed = boundary.is_trim();
     let strips = match rulings.filter(|_| allow_strips) {
-        Some(r) if !closed_convex && !boundary.is_trim() => {
+        Some(r) if !closed_convex => {
             let closed = layout.closed[1 - r.along];
-            if closed {
+            if closed && !trimmed {
                 check_seam(&uv, &seeds)?;
             }
-            rulings::strip_structure(surface, r, &uv, &planes, closed)
+            let margin = if trimmed {
+                STRIP_TRIM_MARGIN * diagonal
+            } else {
+                0.0
+            };
+            rulings::strip_structure(surface, r, &uv, &planes, closed, margin)
                 .map(|(triangulation, planes, source)| (r, closed, triangulation, planes, source))
         }
         _ => None,
@@ -652,7 +661,7 @@ fn run_within(
     let ghost_dual = closed_convex || strip_dual;
     let mut ghost_neighbours = Vec::new();
     let strip_triangulation = strips.map(|(r, closed, triangulation, all_planes, source)| {
-        if closed {
+        if closed && !trimmed {
             closed_topology = MeshTopology {
                 euler: 0,
                 boundary_loops: 2,
@@ -726,11 +735,11 @@ fn run_within(
             });
             (triangulation, None, NeighbourStats::default())
         }
-        // A trimmed cylinder, cone or extrusion: its exact facets are strips, which no trim
-        // clips yet; the ghosts' triangulation would give no valid mesh.
+        // A trimmed cylinder, cone or extrusion whose strips could not be built (seeds of
+        // several rulings on one plane): the ghosts' triangulation would give no valid mesh.
         _ if boundary.is_trim() && rulings.is_some() => {
             return Err(TpiError::TrimUnsupported {
-                reason: "the surface is developable (a cylinder, cone or extrusion: its facets are strips along its rulings), and strips are not clipped on a trim yet".into(),
+                reason: "the surface is developable (a cylinder, cone or extrusion: its facets are strips along its rulings), and these seeds give no strips (several rulings share one tangent plane)".into(),
             });
         }
         // Saddles and mixed curvature: ghost seeds beyond the boundary (or the trim) close
@@ -834,7 +843,20 @@ fn run_within(
             let (all_planes, source) = closed_ghosts
                 .take()
                 .unwrap_or_else(|| (planes.clone(), (0..uv.len() as u32).collect()));
-            let mesh = build_closed_facets(&triangulation, &all_planes, uv.len(), &source, &params);
+            let mesh = if trimmed {
+                build_ghost_clipped_facets(
+                    surface,
+                    boundary,
+                    &uv,
+                    &tangents,
+                    &all_planes,
+                    &source,
+                    &triangulation,
+                    &params,
+                )
+            } else {
+                build_closed_facets(&triangulation, &all_planes, uv.len(), &source, &params)
+            };
             if strip_dual {
                 ghost_neighbours = real_pairs(&triangulation, uv.len());
             }

@@ -88,6 +88,8 @@ pub(crate) struct Crossing {
     converged: bool,
     /// The Newton foot of `point`, when the search computed it.
     pub(crate) foot: Option<[f64; 2]>,
+    /// The foot of `point` as the search last estimated it (for in-polygon tests).
+    uv: [f64; 2],
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -117,6 +119,10 @@ struct Context<'a> {
     /// every vertex is on the envelope, so a far one (a sliver of nearly collinear slopes) is
     /// believed up to [`UNREACHABLE_VERTEX_FACTOR`] instead of replaced by a stand-in.
     regular: bool,
+    /// Facet edges may be long against the boundary's features (strips): every edge is
+    /// searched for crossings where its feet's segment crosses a loop, not only edges with
+    /// an outside end.
+    long_edges: bool,
 }
 
 impl Context<'_> {
@@ -203,39 +209,102 @@ pub(crate) fn build_facets(
     params: &FacetParams,
     slopes: Option<SlopeView<'_>>,
 ) -> FacetMesh {
-    let domain = surface.domain();
     let ctx = Context {
         surface,
-        domain,
+        domain: surface.domain(),
         boundary,
         planes,
         uv,
         tangents,
         convex_side,
         regular: slopes.is_some(),
+        long_edges: false,
     };
+    clip_facets(&ctx, uv.len(), tri, params, slopes)
+}
+
+/// The facets of the real seeds `0..uv.len()` of a triangulation closed by ghosts beyond the
+/// domain (the strips of a trimmed developable surface, [`crate::rulings`]), each its closed
+/// fan clipped on `boundary` as in [`build_facets`]. `planes` and `source` (the real seed of
+/// every point) cover the ghosts too. Every vertex is a crossing of a bisector with the line
+/// of two planes, exact however far from its points, so none is replaced by a stand-in.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn build_ghost_clipped_facets(
+    surface: &dyn Surface,
+    boundary: &Boundary,
+    uv: &[[f64; 2]],
+    tangents: &[[DVec3; 2]],
+    planes: &[Plane],
+    source: &[u32],
+    tri: &DualTriangulation,
+    params: &FacetParams,
+) -> FacetMesh {
+    let real_count = uv.len();
+    let mut all_uv = uv.to_vec();
+    let mut all_tangents = tangents.to_vec();
+    let convex_side = vec![0i8; planes.len()];
+    let mut ctx = Context {
+        surface,
+        domain: surface.domain(),
+        boundary,
+        planes,
+        uv,
+        tangents,
+        convex_side: &convex_side,
+        regular: true,
+        long_edges: true,
+    };
+    // A ghost's parameters are the first-order foot of its point seen from its seed: only a
+    // start for the projections of the vertices around it.
+    for (g, plane) in planes.iter().enumerate().skip(real_count) {
+        let seed = source[g];
+        all_uv.push(ctx.linear_foot(seed, plane.point));
+        all_tangents.push(tangents[seed as usize]);
+    }
+    ctx.uv = &all_uv;
+    ctx.tangents = &all_tangents;
+    clip_facets(&ctx, real_count, tri, params, None)
+}
+
+/// The facets of the points `0..real_count` of `tri`, ending on `ctx.boundary` (module doc);
+/// points from `real_count` on are ghosts, which get no facet and no crossings of their own.
+fn clip_facets(
+    ctx: &Context<'_>,
+    real_count: usize,
+    tri: &DualTriangulation,
+    params: &FacetParams,
+    slopes: Option<SlopeView<'_>>,
+) -> FacetMesh {
+    let (surface, boundary, planes) = (ctx.surface, ctx.boundary, ctx.planes);
     let mut diagnostics = Vec::new();
 
     // 1. Triangle vertices, their conditioning and whether they lie inside.
     let triangle_vertices: Vec<TriangleVertex> = tri
         .triangles
         .par_iter()
-        .map(|&ids| triangle_vertex(&ctx, ids, params.far_vertex_factor))
+        .map(|&ids| triangle_vertex(ctx, ids, params.far_vertex_factor))
         .collect();
     diagnostics.extend(
         triangle_vertices
             .iter()
             .zip(&tri.triangles)
             .filter(|(v, _)| !v.exact)
-            .map(|(v, &ids)| ill_conditioned(&ctx, ids, v)),
+            .map(|(v, &ids)| ill_conditioned(ctx, ids, v)),
     );
 
     // 2. Boundary crossings, only on the edges where they can be: a hull edge, or an edge
     // with an outside vertex at either end (in the order of `DualTriangulation::edges`).
-    let edges: Vec<Edge> = crossing_edges(tri, &triangle_vertices);
+    let mut edges: Vec<Edge> = crossing_edges(tri, &triangle_vertices, ctx.long_edges);
+    edges.retain(|e| (e.lo as usize) < real_count);
     let per_edge: Vec<(Vec<Crossing>, Option<Diagnostic>)> = edges
         .par_iter()
-        .map(|edge| edge_crossings(&ctx, tri, edge, &triangle_vertices))
+        .map(|edge| {
+            if ctx.long_edges {
+                (long_edge_crossings(ctx, edge, &triangle_vertices), None)
+            } else {
+                edge_crossings(ctx, tri, edge, &triangle_vertices)
+            }
+        })
         .collect();
     let mut crossing_ranges: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(edges.len());
     let mut crossings = Vec::new();
@@ -275,7 +344,12 @@ pub(crate) fn build_facets(
 
     // 3. Facet loops as items, in chunks of facets (one buffer per chunk, none per facet).
     let corners = corner_samples(surface, &corner_list);
-    let incident = tri.incident_triangles(uv.len());
+    let incident = tri.incident_triangles(ctx.uv.len());
+    let next = if ctx.long_edges {
+        next_crossings(&crossings)
+    } else {
+        Vec::new()
+    };
     let lookup = ItemContext {
         tri,
         incident: &incident,
@@ -285,13 +359,14 @@ pub(crate) fn build_facets(
         corners: &corner_list,
         boundary,
         triangle_vertices: &triangle_vertices,
+        long_edges: ctx.long_edges.then_some((next.as_slice(), ctx.uv)),
     };
-    let chunks: Vec<FacetChunk> = (0..uv.len().div_ceil(FACET_CHUNK))
+    let chunks: Vec<FacetChunk> = (0..real_count.div_ceil(FACET_CHUNK))
         .into_par_iter()
         .map(|c| {
             let mut chunk = FacetChunk::default();
             let mut fan = Vec::new();
-            for i in c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(uv.len()) {
+            for i in c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(real_count) {
                 let simple = facet_items(
                     i as u32,
                     &lookup,
@@ -410,11 +485,41 @@ struct ItemContext<'a> {
     corners: &'a [([f64; 2], Position)],
     boundary: &'a Boundary,
     triangle_vertices: &'a [TriangleVertex],
+    /// With long edges ([`Context::long_edges`]): per crossing, the next crossing along its
+    /// boundary loop, and the seeds' parameters (a facet cut in several parts by the
+    /// boundary keeps the part around its seed).
+    long_edges: Option<(&'a [u32], &'a [[f64; 2]])>,
+}
+
+/// Per crossing, the next crossing along its loop (in the loop's direction), itself where
+/// it is alone on its loop.
+fn next_crossings(crossings: &[Crossing]) -> Vec<u32> {
+    let mut order: Vec<u32> = (0..crossings.len() as u32).collect();
+    order.sort_by(|&a, &b| {
+        let (a, b) = (crossings[a as usize].wall, crossings[b as usize].wall);
+        a.curve.cmp(&b.curve).then(a.along.total_cmp(&b.along))
+    });
+    let mut next = vec![0u32; crossings.len()];
+    let mut start = 0;
+    while start < order.len() {
+        let curve = crossings[order[start] as usize].wall.curve;
+        let end = start
+            + order[start..]
+                .iter()
+                .take_while(|&&c| crossings[c as usize].wall.curve == curve)
+                .count();
+        for k in start..end {
+            next[order[k] as usize] = order[if k + 1 < end { k + 1 } else { start }];
+        }
+        start = end;
+    }
+    next
 }
 
 /// The edges that can hold boundary crossings, in the order of [`DualTriangulation::edges`]:
-/// hull edges, and edges with an outside (or stand-in) vertex at either end.
-fn crossing_edges(tri: &DualTriangulation, tv: &[TriangleVertex]) -> Vec<Edge> {
+/// hull edges, and edges with an outside (or stand-in) vertex at either end; with `all`,
+/// every edge.
+fn crossing_edges(tri: &DualTriangulation, tv: &[TriangleVertex], all: bool) -> Vec<Edge> {
     let mut edges = Vec::new();
     for t in 0..tri.len() {
         for k in 0..3 {
@@ -423,7 +528,7 @@ fn crossing_edges(tri: &DualTriangulation, tv: &[TriangleVertex]) -> Vec<Edge> {
                 continue;
             }
             let inside = |x: usize| tv[x].inside > 0.0;
-            if other != NO_TRIANGLE && inside(t) && inside(other as usize) {
+            if !all && other != NO_TRIANGLE && inside(t) && inside(other as usize) {
                 continue;
             }
             let vertices = tri.triangles[t];
@@ -603,6 +708,7 @@ pub(crate) fn single_triangle_vertex(
         tangents,
         convex_side,
         regular: true,
+        long_edges: false,
     };
     triangle_vertex_ordered(&ctx, ids, far_factor)
 }
@@ -849,6 +955,69 @@ fn edge_crossings(
     }
 }
 
+/// Crossings of an edge of a closed structure whose segment may cross the boundary several
+/// times (a strip over a hole or a notch of a trim), in canonical order (right to left):
+/// the segment is sampled once between each two consecutive points where the segment of its
+/// ends' feet crosses a boundary loop in parameter space, and each change of side between
+/// samples is refined on the segment itself.
+fn long_edge_crossings(
+    ctx: &Context<'_>,
+    edge: &Edge,
+    triangle_vertices: &[TriangleVertex],
+) -> Vec<Crossing> {
+    if edge.right == NO_TRIANGLE || edge.left == NO_TRIANGLE {
+        return Vec::new();
+    }
+    let end_of = |t: u32| {
+        let v = &triangle_vertices[t as usize];
+        let (guess, inside) = v.measured_foot(ctx);
+        SegmentEnd {
+            point: v.point,
+            guess,
+            inside,
+        }
+    };
+    let (start, end) = (end_of(edge.right), end_of(edge.left));
+    if !(start.point.is_finite() && end.point.is_finite()) {
+        return Vec::new();
+    }
+    let chord = end.point - start.point;
+    let length = chord.length();
+    let Some(direction) = chord.try_normalize() else {
+        return Vec::new();
+    };
+    let mut cuts = vec![0.0];
+    cuts.extend(ctx.boundary.segment_crossings(start.guess, end.guess));
+    cuts.push(1.0);
+    let mut samples = vec![(0.0, start)];
+    for k in 1..cuts.len().saturating_sub(2) {
+        let tau = 0.5 * (cuts[k] + cuts[k + 1]);
+        let point = start.point + chord * tau;
+        let (guess, inside) = ctx.measure(point, lerp2(start.guess, end.guess, tau));
+        samples.push((
+            length * tau,
+            SegmentEnd {
+                point,
+                guess,
+                inside,
+            },
+        ));
+    }
+    samples.push((length, end));
+    let mut found = Vec::new();
+    for pair in samples.windows(2) {
+        let (previous, current) = (pair[0], pair[1]);
+        if (previous.1.inside > 0.0) != (current.1.inside > 0.0) {
+            let crossing = refine_crossing(ctx, previous, current, start.point, direction);
+            found.push(Crossing {
+                exit: previous.1.inside > 0.0,
+                ..crossing
+            });
+        }
+    }
+    found
+}
+
 /// Crossings of a segment whose two ends are outside the domain, in order from `start`.
 /// The segment is sampled uniformly and at the feet of the two points' perpendiculars (where
 /// their facets are), and a stretch counts as inside only where it runs close to the surface
@@ -1017,6 +1186,7 @@ fn refine_crossing(
         exit: false,
         converged,
         foot: projected.then_some(best.1.guess),
+        uv: best.1.guess,
     }
 }
 
@@ -1152,6 +1322,24 @@ fn facet_items(
             },
         ));
     }
+    if let Some((next, seed_uv)) = cx.long_edges {
+        if raw.iter().any(|r| r.1.is_some()) {
+            let (loop_items, parts) = seed_part(cx, &raw, next, seed_uv[i as usize]);
+            for item in loop_items {
+                items.push(item);
+            }
+            if parts > 1 {
+                diagnostics.push((
+                    i,
+                    Diagnostic::FacetPartsLeftOut {
+                        point: i,
+                        parts: parts as u32,
+                    },
+                ));
+            }
+            return false;
+        }
+    }
     for (item, crossing) in raw {
         items.push(item);
         if let (Item::Crossing(c), Some((true, wall))) = (item, crossing) {
@@ -1169,6 +1357,79 @@ fn facet_items(
         }
     }
     false
+}
+
+/// The part of facet i's loop around its seed, where the boundary cuts the facet in several
+/// parts (a long strip across a hole of a trim), and the number of parts. The parts are
+/// traced as in Weiler and Atherton's clipping: from an exit crossing the loop follows the
+/// boundary, picking up the corners it passes, to the next crossing along the boundary,
+/// which is an entry of the same facet, and goes on along the facet from there.
+fn seed_part(
+    cx: &ItemContext<'_>,
+    raw: &[(Item, Option<(bool, Position)>)],
+    next: &[u32],
+    seed: [f64; 2],
+) -> (Vec<Item>, usize) {
+    let position: HashMap<u32, usize> = raw
+        .iter()
+        .enumerate()
+        .filter_map(|(k, r)| match r.0 {
+            Item::Crossing(c) => Some((c, k)),
+            _ => None,
+        })
+        .collect();
+    let uv_of = |item: Item| match item {
+        Item::Triangle(t) | Item::EdgePoint { triangle: t, .. } => {
+            cx.triangle_vertices[t as usize].foot
+        }
+        Item::Crossing(c) => cx.crossings[c as usize].uv,
+        Item::Corner(c) => cx.corners[c as usize].0,
+    };
+    let mut visited = vec![false; raw.len()];
+    let mut parts: Vec<Vec<Item>> = Vec::new();
+    // Every part holds an inside vertex or an entry crossing: start from those.
+    for start in 0..raw.len() {
+        if visited[start] || matches!(raw[start].1, Some((true, _))) {
+            continue;
+        }
+        let mut part = Vec::new();
+        let mut k = start;
+        while !visited[k] {
+            visited[k] = true;
+            let (item, crossing) = raw[k];
+            part.push(item);
+            let Item::Crossing(c) = item else {
+                k = (k + 1) % raw.len();
+                continue;
+            };
+            let Some((true, wall)) = crossing else {
+                k = (k + 1) % raw.len();
+                continue;
+            };
+            let entry = next[c as usize];
+            let mut owned: Vec<(f64, u32)> = (0..cx.corners.len() as u32)
+                .filter(|&q| cx.corner_owner[q as usize] == Some(c))
+                .filter_map(|q| Some((cx.boundary.ahead(wall, cx.corners[q as usize].1)?, q)))
+                .collect();
+            owned.sort_by(|x, y| x.0.total_cmp(&y.0));
+            part.extend(owned.into_iter().map(|x| Item::Corner(x.1)));
+            k = match position.get(&entry) {
+                Some(&e) if matches!(raw[e].1, Some((false, _))) => e,
+                _ => (k + 1) % raw.len(),
+            };
+        }
+        parts.push(part);
+    }
+    let count = parts.len();
+    if count == 0 {
+        return (raw.iter().map(|r| r.0).collect(), 1);
+    }
+    let around_seed = parts.iter().position(|part| {
+        let polygon: Vec<[f64; 2]> = part.iter().map(|&item| uv_of(item)).collect();
+        crate::trim::in_polygon(&polygon, seed)
+    });
+    let chosen = around_seed.unwrap_or(0);
+    (parts.swap_remove(chosen), count)
 }
 
 /// The facets of the points `0..real_count` of a triangulation whose points from

@@ -1410,7 +1410,8 @@ fn renumber_diagnostic(d: &mut Diagnostic, k: u32) {
         }
         Diagnostic::OpenFacet { point, .. }
         | Diagnostic::CornerUnreachable { point, .. }
-        | Diagnostic::FlatPoint { point, .. } => shift(point),
+        | Diagnostic::FlatPoint { point, .. }
+        | Diagnostic::FacetPartsLeftOut { point, .. } => shift(point),
         Diagnostic::CornerClaims { .. }
         | Diagnostic::CoincidentPlanes { .. }
         | Diagnostic::SeamLeftOpen { .. }

@@ -35,6 +35,13 @@
 //!
 //! Every triangle has two points of one chain and one of its neighbour, so every vertex is a
 //! crossing of a bisector with L: finite and exact.
+//!
+//! **Trimmed.** On a trimmed surface the strips are those of the seeds inside the trim, with
+//! the end and side walls moved a margin beyond the domain (`margin` of
+//! [`strip_structure`]), so that every vertex on a wall lies clearly outside any trim; the
+//! facet stage then clips each strip on the trim's wall ([`crate::facets`]). Strips are
+//! defined by their seeds alone, so the clipped strips are the strips of the trimmed region,
+//! as a Voronoi diagram clipped on a boundary is.
 
 use glam::DVec3;
 
@@ -132,13 +139,15 @@ pub fn ruling_direction(surface: &dyn Surface) -> Option<usize> {
 /// ghosts, with every point's plane and its real seed. `closed`: the surface is closed across
 /// its rulings. None where the strips cannot be built (fewer than three rulings on a closed
 /// surface, seeds of several rulings on one plane, a degenerate end, a ruling whose seeds'
-/// bisectors fail); the caller then takes the general path.
+/// bisectors fail); the caller then takes the general path. `margin` (a length, 0 for the
+/// walls themselves) moves the end and side walls that far beyond the domain (module doc).
 pub(crate) fn strip_structure(
     surface: &dyn Surface,
     rulings: Rulings,
     uv: &[[f64; 2]],
     planes: &[Plane],
     closed: bool,
+    margin: f64,
 ) -> Option<(DualTriangulation, Vec<Plane>, Vec<u32>)> {
     let domain = surface.domain();
     let (across, along) = (1 - rulings.along, rulings.along);
@@ -212,6 +221,7 @@ pub(crate) fn strip_structure(
             across,
             planes[first as usize],
             -ruling,
+            margin,
         )?;
         let top = end_ghost(
             surface,
@@ -219,6 +229,7 @@ pub(crate) fn strip_structure(
             across,
             planes[last as usize],
             ruling,
+            margin,
         )?;
         let mut chain = vec![push(bottom, first)];
         chain.extend_from_slice(g);
@@ -230,8 +241,9 @@ pub(crate) fn strip_structure(
         // The side rulings' walls close the first and the last strip.
         let first = groups[0][0];
         let last = groups[groups.len() - 1][0];
-        let low = side_wall(surface, rulings, s_min, [t_min, t_max])?;
-        let high = side_wall(surface, rulings, s_max, [t_min, t_max])?;
+        let middle = 0.5 * (s_min + s_max);
+        let low = side_wall(surface, rulings, [s_min, middle], [t_min, t_max], margin)?;
+        let high = side_wall(surface, rulings, [s_max, middle], [t_min, t_max], margin)?;
         chains.insert(0, vec![push(low, first)]);
         directions.insert(0, directions[0]);
         chains.push(vec![push(high, last)]);
@@ -275,13 +287,15 @@ fn point(surface: &dyn Surface, [u, v]: [f64; 2]) -> DVec3 {
 /// there. A seed on the end, or closer to it than [`STRIP_END_MIN_DEPTH`] of the scale
 /// |E| + |ruling|, gets its ghost that depth beyond the wall, so that the two stay coincident
 /// planes to [`crate::tolerance::PLANE_COINCIDENCE`] despite the rounding of their points and
-/// their bisector is defined. None where the end curve has no tangent (a pole).
+/// their bisector is defined; the wall itself moves `margin` outwards. None where the end
+/// curve has no tangent (a pole).
 fn end_ghost(
     surface: &dyn Surface,
     at: [f64; 2],
     across: usize,
     plane: Plane,
     outwards: DVec3,
+    margin: f64,
 ) -> Option<Plane> {
     let d = surface.evaluate(at[0], at[1]);
     let tangent = if across == 0 { d.su } else { d.sv };
@@ -294,7 +308,7 @@ fn end_ghost(
     }
     let p = plane.point;
     let scale = d.point.length() + outwards.length();
-    let depth = (d.point - p).dot(w).max(STRIP_END_MIN_DEPTH * scale);
+    let depth = (d.point - p).dot(w).max(STRIP_END_MIN_DEPTH * scale) + margin;
     let point = p + w * (2.0 * depth);
     point.is_finite().then_some(Plane {
         point,
@@ -302,17 +316,25 @@ fn end_ghost(
     })
 }
 
-/// The wall of the side ruling at `s`: the plane through it that contains its normal.
-fn side_wall(surface: &dyn Surface, rulings: Rulings, s: f64, t: [f64; 2]) -> Option<Plane> {
+/// The wall of the side ruling at `s`, the plane through it that contains its normal, moved
+/// `margin` away from the ruling at `inner` (across the surface).
+fn side_wall(
+    surface: &dyn Surface,
+    rulings: Rulings,
+    [s, inner]: [f64; 2],
+    t: [f64; 2],
+    margin: f64,
+) -> Option<Plane> {
     let start = point(surface, rulings.at(s, t[0]));
     let end = point(surface, rulings.at(s, t[1]));
     let middle = rulings.at(s, 0.5 * (t[0] + t[1]));
     let normal = LocalGeometry::from_derivatives(&surface.evaluate(middle[0], middle[1])).normal;
-    let w = normal.cross(end - start).normalize_or_zero();
-    (w != DVec3::ZERO && w.is_finite() && start.is_finite()).then_some(Plane {
-        point: start,
-        normal: w,
-    })
+    let mut w = normal.cross(end - start).normalize_or_zero();
+    if w.dot(point(surface, rulings.at(inner, t[0])) - start) > 0.0 {
+        w = -w;
+    }
+    let point = start + w * margin;
+    (w != DVec3::ZERO && w.is_finite() && point.is_finite()).then_some(Plane { point, normal: w })
 }
 
 /// Zips chain `a` (the ruling before) and chain `b` along their planes' line (module doc),

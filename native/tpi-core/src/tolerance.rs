@@ -79,6 +79,12 @@ pub const RULING_TOLERANCE: f64 = 1e-9;
 /// Its strip then ends at most this far beyond the wall.
 pub const STRIP_END_MIN_DEPTH: f64 = 1e-6;
 
+/// On a trimmed developable surface the strips' end and side walls move this fraction of the
+/// surface's bounding diagonal beyond the domain, so that every vertex on a wall lies
+/// clearly outside the trim (whose loops may run along the domain's edges) and the facet
+/// stage clips each strip on the trim's wall instead.
+pub const STRIP_TRIM_MARGIN: f64 = 0.02;
+
 // ---- read by polysurface.rs ----
 
 /// Two faces of a polysurface share a side when their points at the same parameter along it

@@ -12,8 +12,8 @@ mod common;
 use common::*;
 use glam::DVec3;
 use tpi_core::{
-    discretise, DiscretiseOptions, Generator, LiveSurface, PlaneMode, Surface, SurfaceModel,
-    SurfaceSpec, TpiError, Trim, VertexKind,
+    discretise, Diagnostic, Discretisation, DiscretiseOptions, Generator, LiveSurface, PlaneMode,
+    Surface, SurfaceModel, SurfaceSpec, TpiError, Trim, VertexKind,
 };
 
 /// A circle of `n` points, counter-clockwise (or clockwise).
@@ -417,27 +417,233 @@ fn a_trim_round_trips_through_the_surface_file() {
 }
 
 #[test]
-fn paths_without_trim_support_say_so() {
-    let cylinder = SurfaceSpec::from_json(
-        r#"{"type": "cylinder", "radius": 1.5, "x": [-1, 1], "y": [-1, 1],
-            "trim": {"outer": [[-0.8, -0.8], [0.8, -0.8], [0.8, 0.8], [-0.8, 0.8]]}}"#,
-        "s",
-    )
-    .unwrap()
-    .build()
-    .unwrap();
-    let pattern = random(6, 200);
-    match discretise(&cylinder, &pattern, &DiscretiseOptions::default()) {
-        Err(TpiError::TrimUnsupported { .. }) => {}
-        other => panic!("{:?}", other.map(|d| d.facet_count())),
-    }
+fn live_editing_of_a_trimmed_surface_says_it_is_not_supported() {
     let dome = surface("paraboloid", &disc());
-    match LiveSurface::new(Box::new(dome), pattern, DiscretiseOptions::default()) {
+    match LiveSurface::new(Box::new(dome), random(6, 200), DiscretiseOptions::default()) {
         Err(TpiError::TrimUnsupported { .. }) => {}
         Err(e) => panic!("{e:?}"),
         Ok(_) => panic!("live editing accepted a trimmed surface"),
     }
-    let _ = DVec3::ZERO;
+}
+
+/// A rational quadratic cone patch as a surface file: a quarter circle of radius 2 at z = 0
+/// (u) joined by straight rulings (v) to a quarter circle of radius 0.8 at z = 1.5.
+fn cone_record() -> serde_json::Value {
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    serde_json::json!({"type": "nurbs", "degree": [2, 1], "count": [3, 2],
+        "knots_u": [0, 0, 1, 1], "knots_v": [0, 1],
+        "points": [[2, 0, 0], [0.8, 0, 1.5], [2, 2, 0], [0.8, 0.8, 1.5], [0, 2, 0], [0, 0.8, 1.5]],
+        "weights": [1, 1, w, w, 1, 1]})
+}
+
+/// The exact tangent plane of a developable surface with rulings along v, along the ruling
+/// through u: the plane through the ruling's ends S(u, v0), S(u, v1) and the tangent of the
+/// end curve.
+fn ruling_plane(s: &dyn Surface, u: f64) -> (DVec3, DVec3) {
+    let domain = s.domain();
+    let a = s.evaluate(u, domain.v.min);
+    let b = s.evaluate(u, domain.v.max);
+    (a.point, a.su.cross(b.point - a.point).normalize())
+}
+
+/// The trimmed strips' oracles; returns the facets the run says it cut, and the run.
+fn check_trimmed_strips(
+    name: &str,
+    model: &SurfaceModel,
+    trim: &Trim,
+    pattern: &[[f64; 2]],
+) -> (Vec<u32>, Discretisation) {
+    let domain = model.domain();
+    let loops = loops_of(trim);
+    let inside = points_inside(&domain, &loops, pattern);
+    let d = discretise(model, pattern, &DiscretiseOptions::default())
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert_eq!(
+        d.facet_count(),
+        inside.len(),
+        "{name}: one facet per point inside"
+    );
+    for (f, &p) in inside.iter().enumerate() {
+        assert_eq!(d.pattern_index(f), p, "{name}: facet {f}'s pattern point");
+    }
+    assert!(
+        d.diagnostics
+            .iter()
+            .any(|g| matches!(g, Diagnostic::RulingStrips { .. })),
+        "{name}: not strips: {:?}",
+        d.diagnostics
+    );
+    let v = validity::check(&d);
+    assert!(
+        v.invalid_facets().is_empty(),
+        "{name}: invalid facets {:?}",
+        v.invalid_facets()
+    );
+    // Every vertex of a facet lies in the exact plane along its seed's ruling.
+    let diagonal = seed_diagonal(&d);
+    for f in 0..d.facet_count() {
+        let (p, n) = ruling_plane(model, d.seeds[f].uv[0]);
+        for x in facet_points(&d, f) {
+            assert!(
+                n.dot(x - p).abs() <= 1e-9 * diagonal,
+                "{name}: facet {f} leaves its ruling's plane by {:e}",
+                n.dot(x - p)
+            );
+        }
+    }
+    // Boundary vertices lie over the trim, interior ones inside it.
+    let size = domain.u.length().max(domain.v.length());
+    for (k, &x) in d.vertices.iter().enumerate() {
+        let foot = closest_parameters(model, x, 64);
+        match d.vertex_kinds[k] {
+            VertexKind::Boundary | VertexKind::Corner => {
+                let off = polyline_distance(&loops, foot) / size;
+                assert!(
+                    off <= 1e-6,
+                    "{name}: boundary vertex {k} is {off:e} off the trim"
+                );
+            }
+            VertexKind::Interior => {
+                let inside = loops.iter().filter(|l| in_polygon(l, foot)).count() % 2 == 1;
+                assert!(inside, "{name}: interior vertex {k} lies outside the trim");
+            }
+        }
+    }
+    let cut: Vec<u32> = d
+        .diagnostics
+        .iter()
+        .filter_map(|g| match g {
+            Diagnostic::FacetPartsLeftOut { point, parts } => {
+                assert!(*parts >= 2);
+                Some(*point)
+            }
+            _ => None,
+        })
+        .collect();
+    if cut.is_empty() {
+        assert!(
+            (v.euler, v.boundary_loops) == (1 - trim.holes.len() as i64, 1 + trim.holes.len())
+                && v.topology_problems == 0,
+            "{name}: Euler {}, boundary loops {}, topology problems {}",
+            v.euler,
+            v.boundary_loops,
+            v.topology_problems
+        );
+        d.sanity_check()
+            .unwrap_or_else(|e| panic!("{name}: sanity check: {e}"));
+    }
+    (cut, d)
+}
+
+/// Issue 16, items 1 and 4: a trimmed cylinder or cone (a barrel vault with a curved edge)
+/// is discretised instead of refused. Its facets are the strips of the points inside the
+/// trim, clipped on it: every vertex in the exact plane along its seed's ruling (closed
+/// form), every boundary vertex over the trim, a disc (Euler characteristic 1, one boundary
+/// loop) by the independent checks, for a convex trim and for one with a notch cut in from
+/// the rulings' end.
+#[test]
+fn trimmed_cylinders_and_cones_are_their_strips_clipped_on_the_trim() {
+    let cylinder = r#"{"type": "cylinder", "radius": 1.5, "x": [-1, 1], "y": [-1, 1]}"#;
+    let notch = |domain: tpi_core::Domain| {
+        let at = |s: f64, t: f64| domain.from_normalised([s, t]);
+        Trim {
+            outer: vec![
+                at(0.0, 0.0),
+                at(1.0, 0.0),
+                at(1.0, 1.0),
+                at(0.62, 1.0),
+                at(0.55, 0.45),
+                at(0.4, 0.5),
+                at(0.35, 1.0),
+                at(0.0, 1.0),
+            ],
+            holes: Vec::new(),
+        }
+    };
+    let mut rng = Rng::new(1616);
+    let patterns = [
+        ("random:400", uniform_pattern(&mut rng, 400)),
+        ("hex:spacing=0.06", hex("hex:spacing=0.06")),
+        ("grid:15x15", hex("grid:15x15")),
+    ];
+    for (sname, record) in [
+        ("cylinder", serde_json::from_str(cylinder).unwrap()),
+        ("cone", cone_record()),
+    ] {
+        let untrimmed = trimmed(
+            record.clone(),
+            &Trim {
+                outer: circle([0.5, 0.5], 0.49, 8, true),
+                holes: Vec::new(),
+            },
+        )
+        .domain();
+        let to_domain = |t: Trim| Trim {
+            outer: t
+                .outer
+                .iter()
+                .map(|&p| untrimmed.from_normalised(untrimmed.to_normalised(p)))
+                .collect(),
+            holes: t.holes,
+        };
+        let ellipse = Trim {
+            outer: circle([0.5, 0.5], 0.45, 128, true)
+                .into_iter()
+                .map(|p| untrimmed.from_normalised(p))
+                .collect(),
+            holes: Vec::new(),
+        };
+        for (tname, trim) in [
+            ("an ellipse", to_domain(ellipse)),
+            ("a notch", notch(untrimmed)),
+        ] {
+            let model = trimmed(record.clone(), &trim);
+            for (pname, pattern) in &patterns {
+                let name = format!("{sname} trimmed to {tname}, {pname}");
+                let (cut, _) = check_trimmed_strips(&name, &model, &trim, pattern);
+                assert!(cut.is_empty(), "{name}: facets cut {cut:?}");
+            }
+        }
+    }
+}
+
+/// A hole across the rulings cuts the strips that pass it into two parts; a facet keeps the
+/// part around its seed, every facet stays valid and ends on the trim, and the run names each
+/// facet cut (whose seed's ruling must cross the hole).
+#[test]
+fn a_hole_across_the_strips_leaves_their_far_parts_out_and_says_so() {
+    let record: serde_json::Value =
+        serde_json::from_str(r#"{"type": "cylinder", "radius": 1.5, "x": [-1, 1], "y": [-1, 1]}"#)
+            .unwrap();
+    let trim = Trim {
+        outer: circle([0.0, 0.0], 0.95, 128, true),
+        holes: vec![circle([-0.1, 0.1], 0.3, 64, false)],
+    };
+    let model = trimmed(record, &trim);
+    let mut rng = Rng::new(1617);
+    let pattern = uniform_pattern(&mut rng, 400);
+    let (cut, d) = check_trimmed_strips("cylinder with a hole", &model, &trim, &pattern);
+    assert!(!cut.is_empty(), "no facet crosses the hole");
+    for &point in &cut {
+        // Diagnostics name pattern points.
+        let f = (0..d.facet_count())
+            .find(|&f| d.pattern_index(f) == point as usize)
+            .unwrap();
+        // The facet's strip, [u_min, u_max] over its vertices, overlaps the hole's [-0.4, 0.2].
+        let u: Vec<f64> = facet_points(&d, f)
+            .into_iter()
+            .map(|x| closest_parameters(&model, x, 64)[0])
+            .collect();
+        let (low, high) = u
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        assert!(
+            low < 0.2 + 1e-9 && high > -0.4 - 1e-9,
+            "facet {f} over u in [{low}, {high}] does not cross the hole"
+        );
+    }
 }
 
 #[test]

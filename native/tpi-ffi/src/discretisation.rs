@@ -192,6 +192,9 @@ pub enum TpiDiagnosticKind {
     /// an extrusion): its facets are strips between the lines where the tangent planes of
     /// neighbouring rulings meet (point is TPI_NO_POINT).
     RulingStrips = 11,
+    /// The trim cuts the point's facet (a long strip) into several parts: it keeps the part
+    /// around its seed, the others are left out as gaps beside the trim.
+    FacetPartsLeftOut = 12,
 }
 
 impl TpiDiagnosticKind {
@@ -209,6 +212,7 @@ impl TpiDiagnosticKind {
             Diagnostic::SeamLeftOpen { .. } => TpiDiagnosticKind::SeamLeftOpen,
             Diagnostic::UnexpectedTopology { .. } => TpiDiagnosticKind::UnexpectedTopology,
             Diagnostic::RulingStrips { .. } => TpiDiagnosticKind::RulingStrips,
+            Diagnostic::FacetPartsLeftOut { .. } => TpiDiagnosticKind::FacetPartsLeftOut,
         }
     }
 }

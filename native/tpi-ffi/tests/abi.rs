@@ -86,6 +86,7 @@ fn flag_and_kind_numbers_match_the_core() {
     assert_eq!(TpiDiagnosticKind::SeamLeftOpen as u32, 9);
     assert_eq!(TpiDiagnosticKind::UnexpectedTopology as u32, 10);
     assert_eq!(TpiDiagnosticKind::RulingStrips as u32, 11);
+    assert_eq!(TpiDiagnosticKind::FacetPartsLeftOut as u32, 12);
 }
 
 #[test]
