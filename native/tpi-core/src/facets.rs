@@ -345,11 +345,6 @@ fn clip_facets(
     // 3. Facet loops as items, in chunks of facets (one buffer per chunk, none per facet).
     let corners = corner_samples(surface, &corner_list);
     let incident = tri.incident_triangles(ctx.uv.len());
-    let next = if ctx.long_edges {
-        next_crossings(&crossings)
-    } else {
-        Vec::new()
-    };
     let lookup = ItemContext {
         tri,
         incident: &incident,
@@ -359,7 +354,7 @@ fn clip_facets(
         corners: &corner_list,
         boundary,
         triangle_vertices: &triangle_vertices,
-        long_edges: ctx.long_edges.then_some((next.as_slice(), ctx.uv)),
+        long_edges: ctx.long_edges.then_some(ctx.uv),
     };
     let chunks: Vec<FacetChunk> = (0..real_count.div_ceil(FACET_CHUNK))
         .into_par_iter()
@@ -485,35 +480,9 @@ struct ItemContext<'a> {
     corners: &'a [([f64; 2], Position)],
     boundary: &'a Boundary,
     triangle_vertices: &'a [TriangleVertex],
-    /// With long edges ([`Context::long_edges`]): per crossing, the next crossing along its
-    /// boundary loop, and the seeds' parameters (a facet cut in several parts by the
-    /// boundary keeps the part around its seed).
-    long_edges: Option<(&'a [u32], &'a [[f64; 2]])>,
-}
-
-/// Per crossing, the next crossing along its loop (in the loop's direction), itself where
-/// it is alone on its loop.
-fn next_crossings(crossings: &[Crossing]) -> Vec<u32> {
-    let mut order: Vec<u32> = (0..crossings.len() as u32).collect();
-    order.sort_by(|&a, &b| {
-        let (a, b) = (crossings[a as usize].wall, crossings[b as usize].wall);
-        a.curve.cmp(&b.curve).then(a.along.total_cmp(&b.along))
-    });
-    let mut next = vec![0u32; crossings.len()];
-    let mut start = 0;
-    while start < order.len() {
-        let curve = crossings[order[start] as usize].wall.curve;
-        let end = start
-            + order[start..]
-                .iter()
-                .take_while(|&&c| crossings[c as usize].wall.curve == curve)
-                .count();
-        for k in start..end {
-            next[order[k] as usize] = order[if k + 1 < end { k + 1 } else { start }];
-        }
-        start = end;
-    }
-    next
+    /// With long edges ([`Context::long_edges`]): the seeds' parameters (each facet is
+    /// clipped by itself, and one cut in several parts keeps the part around its seed).
+    long_edges: Option<&'a [[f64; 2]]>,
 }
 
 /// The edges that can hold boundary crossings, in the order of [`DualTriangulation::edges`]:
@@ -1322,23 +1291,30 @@ fn facet_items(
             },
         ));
     }
-    if let Some((next, seed_uv)) = cx.long_edges {
-        if raw.iter().any(|r| r.1.is_some()) {
-            let (loop_items, parts) = seed_part(cx, &raw, next, seed_uv[i as usize]);
-            for item in loop_items {
-                items.push(item);
-            }
-            if parts > 1 {
-                diagnostics.push((
-                    i,
-                    Diagnostic::FacetPartsLeftOut {
-                        point: i,
-                        parts: parts as u32,
-                    },
-                ));
-            }
-            return false;
+    if let Some(seed_uv) = cx.long_edges {
+        let (mut loop_items, parts) = if raw.iter().any(|r| r.1.is_some()) {
+            seed_part(cx, &raw, seed_uv[i as usize])
+        } else {
+            (raw.iter().map(|r| r.0).collect(), 1)
+        };
+        // A facet that the wall leaves without area (all of it beyond the wall) keeps its
+        // closed fan: every seed keeps a facet.
+        if loop_items.len() < 3 && kind == Fan::Closed {
+            loop_items = fan.iter().map(|&t| Item::Triangle(t)).collect();
         }
+        for item in loop_items {
+            items.push(item);
+        }
+        if parts > 1 {
+            diagnostics.push((
+                i,
+                Diagnostic::FacetPartsLeftOut {
+                    point: i,
+                    parts: parts as u32,
+                },
+            ));
+        }
+        return false;
     }
     for (item, crossing) in raw {
         items.push(item);
@@ -1359,25 +1335,17 @@ fn facet_items(
     false
 }
 
-/// The part of facet i's loop around its seed, where the boundary cuts the facet in several
-/// parts (a long strip across a hole of a trim), and the number of parts. The parts are
-/// traced as in Weiler and Atherton's clipping: from an exit crossing the loop follows the
-/// boundary, picking up the corners it passes, to the next crossing along the boundary,
-/// which is an entry of the same facet, and goes on along the facet from there.
+/// The part of a facet's loop (`raw`, its walk with the crossings of its edges) around its
+/// seed, clipped by itself on the boundary, and the number of parts the boundary cuts it into
+/// (a long strip across a hole of a trim). The parts are traced as in Weiler and Atherton's
+/// clipping: from an exit crossing the loop follows the boundary, picking up the corners it
+/// passes, to the facet's own nearest entry ahead on that loop, and goes on along the facet
+/// from there.
 fn seed_part(
     cx: &ItemContext<'_>,
     raw: &[(Item, Option<(bool, Position)>)],
-    next: &[u32],
     seed: [f64; 2],
 ) -> (Vec<Item>, usize) {
-    let position: HashMap<u32, usize> = raw
-        .iter()
-        .enumerate()
-        .filter_map(|(k, r)| match r.0 {
-            Item::Crossing(c) => Some((c, k)),
-            _ => None,
-        })
-        .collect();
     let uv_of = |item: Item| match item {
         Item::Triangle(t) | Item::EdgePoint { triangle: t, .. } => {
             cx.triangle_vertices[t as usize].foot
@@ -1398,24 +1366,33 @@ fn seed_part(
             visited[k] = true;
             let (item, crossing) = raw[k];
             part.push(item);
-            let Item::Crossing(c) = item else {
-                k = (k + 1) % raw.len();
-                continue;
-            };
             let Some((true, wall)) = crossing else {
                 k = (k + 1) % raw.len();
                 continue;
             };
-            let entry = next[c as usize];
-            let mut owned: Vec<(f64, u32)> = (0..cx.corners.len() as u32)
-                .filter(|&q| cx.corner_owner[q as usize] == Some(c))
-                .filter_map(|q| Some((cx.boundary.ahead(wall, cx.corners[q as usize].1)?, q)))
-                .collect();
-            owned.sort_by(|x, y| x.0.total_cmp(&y.0));
-            part.extend(owned.into_iter().map(|x| Item::Corner(x.1)));
-            k = match position.get(&entry) {
-                Some(&e) if matches!(raw[e].1, Some((false, _))) => e,
-                _ => (k + 1) % raw.len(),
+            // Each facet is clipped by itself: from an exit, the boundary is followed to the
+            // facet's own nearest entry ahead on the same loop, picking up the corners between.
+            let entry = raw
+                .iter()
+                .enumerate()
+                .filter_map(|(e, r)| match r.1 {
+                    Some((false, at)) => Some((cx.boundary.ahead(wall, at)?, e)),
+                    _ => None,
+                })
+                .min_by(|x, y| x.0.total_cmp(&y.0));
+            k = match entry {
+                Some((length, e)) => {
+                    let mut passed: Vec<(f64, u32)> = (0..cx.corners.len() as u32)
+                        .filter_map(|q| {
+                            let ahead = cx.boundary.ahead(wall, cx.corners[q as usize].1)?;
+                            (ahead < length).then_some((ahead, q))
+                        })
+                        .collect();
+                    passed.sort_by(|x, y| x.0.total_cmp(&y.0));
+                    part.extend(passed.into_iter().map(|x| Item::Corner(x.1)));
+                    e
+                }
+                None => (k + 1) % raw.len(),
             };
         }
         parts.push(part);
