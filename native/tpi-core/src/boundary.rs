@@ -11,6 +11,11 @@
 //!   around holes); the rectangle's loop has length 4, corner c at c;
 //! - a **corner** is a parameter pair with its position; the facet that leaves the region
 //!   just before a corner (along its loop) holds it.
+//!
+//! A surface closed in one direction and discretised across its seam (a flat ring) is a
+//! **band**: its walls are only its open sides (not its seam, nor a pole), each a loop of its
+//! own of length 1 without corners, and the inside measure is the distance from the nearest
+//! of them, whatever the parameter along the closed direction.
 
 use crate::projection::{boundary_parameter, domain_corners, inside_measure};
 use crate::surface::Domain;
@@ -32,6 +37,15 @@ pub(crate) enum Boundary {
     Rectangle(Domain),
     /// A trim's loops.
     Loops(Loops),
+    /// The open sides (u0, u1, v0, v1) of a surface closed across the others (module doc).
+    Band {
+        /// The domain.
+        domain: Domain,
+        /// Which sides are walls.
+        walls: [bool; 4],
+        /// The directions (u, v) in which the surface is closed.
+        closed: [bool; 2],
+    },
 }
 
 /// A trim's loops in normalised parameters.
@@ -85,8 +99,27 @@ impl Boundary {
     /// left); none for the rectangle.
     pub(crate) fn loops(&self) -> &[Vec<[f64; 2]>] {
         match self {
-            Boundary::Rectangle(_) => &[],
+            Boundary::Rectangle(_) | Boundary::Band { .. } => &[],
             Boundary::Loops(loops) => &loops.points,
+        }
+    }
+
+    /// The directions (u, v) in which parameters wrap around (a band's seam).
+    pub(crate) fn periodic(&self) -> [bool; 2] {
+        match self {
+            Boundary::Band { closed, .. } => *closed,
+            _ => [false; 2],
+        }
+    }
+
+    /// The sides (u0, u1, v0, v1) that are poles of a band (no wall, across its seam).
+    pub(crate) fn poles(&self) -> [bool; 4] {
+        match self {
+            Boundary::Band { walls, closed, .. } => {
+                let pole = |side: usize| !walls[side] && !closed[side / 2];
+                [pole(0), pole(1), pole(2), pole(3)]
+            }
+            _ => [false; 4],
         }
     }
 
@@ -99,6 +132,18 @@ impl Boundary {
     pub(crate) fn inside_measure(&self, uv: [f64; 2]) -> f64 {
         match self {
             Boundary::Rectangle(domain) => inside_measure(domain, uv),
+            Boundary::Band {
+                domain,
+                walls,
+                closed,
+            } => {
+                let [s, t] = band_parameters(domain, walls, closed, uv);
+                let distances = [s, 1.0 - s, t, 1.0 - t];
+                (0..4)
+                    .filter(|&k| walls[k])
+                    .map(|k| distances[k])
+                    .fold(f64::INFINITY, f64::min)
+            }
             Boundary::Loops(loops) => {
                 let (distance, _) = loops.nearest(uv);
                 if loops.contains_normalised(loops.domain.to_normalised(uv)) {
@@ -117,6 +162,29 @@ impl Boundary {
                 curve: 0,
                 along: boundary_parameter(domain, uv),
             },
+            Boundary::Band {
+                domain,
+                walls,
+                closed,
+            } => {
+                let [s, t] = band_parameters(domain, walls, closed, uv);
+                let distances = [s, 1.0 - s, t, 1.0 - t];
+                let wall = (0..4)
+                    .filter(|&k| walls[k])
+                    .min_by(|&a, &b| distances[a].total_cmp(&distances[b]))
+                    .unwrap_or(0);
+                // Along each wall with the region on the left (as the rectangle's sides run).
+                let along = match wall {
+                    0 => 1.0 - t.rem_euclid(1.0),
+                    1 => t.rem_euclid(1.0),
+                    2 => s.rem_euclid(1.0),
+                    _ => 1.0 - s.rem_euclid(1.0),
+                };
+                Position {
+                    curve: wall as u32,
+                    along,
+                }
+            }
             Boundary::Loops(loops) => loops.nearest(uv).1,
         }
     }
@@ -138,42 +206,48 @@ impl Boundary {
                 })
                 .collect(),
             Boundary::Loops(loops) => loops.corners.clone(),
+            Boundary::Band { .. } => Vec::new(),
         }
     }
 
     /// The fractions tau in (0, 1), ascending, at which the parameter segment from `a` to `b`
     /// (a + tau (b - a)) crosses a boundary loop, in normalised parameters.
     pub(crate) fn segment_crossings(&self, a: [f64; 2], b: [f64; 2]) -> Vec<f64> {
-        let (domain, rectangle);
-        let loops: &[Vec<[f64; 2]>] = match self {
-            Boundary::Rectangle(d) => {
-                domain = *d;
-                rectangle = [vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]];
-                &rectangle
+        // The boundary as segments in normalised parameters: the rectangle's sides in loop
+        // order (v0, u1, v1, u0), a band's walls among them, or the trim's loops.
+        let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let side = |k: usize| (corners[k], corners[(k + 1) % 4]);
+        let (domain, segments): (Domain, Vec<Segment>) = match self {
+            Boundary::Rectangle(d) => (*d, (0..4).map(side).collect()),
+            Boundary::Band { domain, walls, .. } => {
+                // Loop side k is the wall [v0, u1, v1, u0][k].
+                let wall = [2, 1, 3, 0];
+                let open = (0..4).filter(|&k| walls[wall[k]]).map(side).collect();
+                (*domain, open)
             }
-            Boundary::Loops(loops) => {
-                domain = loops.domain;
-                &loops.points
-            }
+            Boundary::Loops(loops) => (
+                loops.domain,
+                loops
+                    .points
+                    .iter()
+                    .flat_map(|l| (0..l.len()).map(move |k| (l[k], l[(k + 1) % l.len()])))
+                    .collect(),
+            ),
         };
         let (p, q) = (domain.to_normalised(a), domain.to_normalised(b));
         let d = [q[0] - p[0], q[1] - p[1]];
         let mut found = Vec::new();
-        for points in loops {
-            let n = points.len();
-            for k in 0..n {
-                let (c, e) = (points[k], points[(k + 1) % n]);
-                let f = [e[0] - c[0], e[1] - c[1]];
-                let denominator = d[0] * f[1] - d[1] * f[0];
-                if denominator == 0.0 {
-                    continue;
-                }
-                let w = [c[0] - p[0], c[1] - p[1]];
-                let tau = (w[0] * f[1] - w[1] * f[0]) / denominator;
-                let sigma = (w[0] * d[1] - w[1] * d[0]) / denominator;
-                if tau > 0.0 && tau < 1.0 && (0.0..=1.0).contains(&sigma) {
-                    found.push(tau);
-                }
+        for (c, e) in segments {
+            let f = [e[0] - c[0], e[1] - c[1]];
+            let denominator = d[0] * f[1] - d[1] * f[0];
+            if denominator == 0.0 {
+                continue;
+            }
+            let w = [c[0] - p[0], c[1] - p[1]];
+            let tau = (w[0] * f[1] - w[1] * f[0]) / denominator;
+            let sigma = (w[0] * d[1] - w[1] * d[0]) / denominator;
+            if tau > 0.0 && tau < 1.0 && (0.0..=1.0).contains(&sigma) {
+                found.push(tau);
             }
         }
         found.sort_by(f64::total_cmp);
@@ -188,6 +262,7 @@ impl Boundary {
         }
         let length = match self {
             Boundary::Rectangle(_) => 4.0,
+            Boundary::Band { .. } => 1.0,
             Boundary::Loops(loops) => {
                 let a = &loops.arclength[from.curve as usize];
                 a[a.len() - 1]
@@ -195,6 +270,33 @@ impl Boundary {
         };
         Some((to.along - from.along).rem_euclid(length))
     }
+}
+
+/// A segment between two points in normalised parameters.
+type Segment = ([f64; 2], [f64; 2]);
+
+/// Normalised parameters of `uv` on a band: beyond a pole (a side of the open direction that
+/// is no wall) the surface continues on the other side of the pole, so the parameter there
+/// is reflected across it.
+fn band_parameters(
+    domain: &Domain,
+    walls: &[bool; 4],
+    closed: &[bool; 2],
+    uv: [f64; 2],
+) -> [f64; 2] {
+    let mut st = domain.to_normalised(uv);
+    for k in 0..2 {
+        if closed[k] {
+            continue;
+        }
+        if !walls[2 * k] && st[k] < 0.0 {
+            st[k] = -st[k];
+        }
+        if !walls[2 * k + 1] && st[k] > 1.0 {
+            st[k] = 2.0 - st[k];
+        }
+    }
+    st
 }
 
 impl Loops {

@@ -677,6 +677,9 @@ fn run_within(
         triangulation
     });
     let mut seam_closed = false;
+    // A flat surface closed one way (a ring, a disc around a pole): its facets end only on its
+    // open sides, and cells run across its seam (crate::boundary, a band).
+    let mut flat_band: Option<Boundary> = None;
 
     // Candidates and true neighbours.
     let stage = Instant::now();
@@ -725,6 +728,20 @@ fn run_within(
         // A flat surface: the Voronoi cells of the seeds in its plane (crate::flat), clipped
         // on the boundary (or the trim) as on the convex paths.
         _ if flat => {
+            if let Some(walls) = layout.open_sides().filter(|_| !boundary.is_trim()) {
+                check_seam(&uv, &seeds)?;
+                let open = walls.iter().filter(|&&w| w).count();
+                closed_topology = MeshTopology {
+                    euler: 2 - open as i64,
+                    boundary_loops: open,
+                };
+                seam_closed = true;
+                flat_band = Some(Boundary::Band {
+                    domain: surface.domain(),
+                    walls,
+                    closed: layout.closed,
+                });
+            }
             let triangulation = flat::voronoi_dual(&planes)?;
             timings.delaunay = ms(stage);
             // Zero curvature is what this path is for, not a defect to flag; every neighbour
@@ -834,6 +851,7 @@ fn run_within(
         far_vertex_factor: options.far_vertex_factor,
         weld_distance: options.weld_tolerance * diagonal,
         reversal_distance: REVERSAL_CHECK_TOLERANCE * diagonal,
+        exact_dual: flat_band.is_some(),
     };
     let mut adjustment = None;
     // The plane adjustment decides planes and flips edges: its time counts as neighbours'.
@@ -871,7 +889,7 @@ fn run_within(
         None => (
             build_facets(
                 surface,
-                boundary,
+                flat_band.as_ref().unwrap_or(boundary),
                 &uv,
                 &tangents,
                 &planes,

@@ -28,7 +28,7 @@ use crate::boundary::{Boundary, Position};
 use crate::diagnostics::Diagnostic;
 use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
 use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane};
-use crate::projection::foot;
+use crate::projection::periodic_foot;
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
     CORNER_ON_CROSSING, CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE,
@@ -59,6 +59,10 @@ pub(crate) struct FacetParams {
     /// Adjacent vertices farther apart than this (model units) are not tested for a reversed
     /// edge ([`crate::tolerance::REVERSAL_CHECK_TOLERANCE`] times the diagonal).
     pub reversal_distance: f64,
+    /// The dual structure is exact whatever its vertices' distances (the Delaunay
+    /// triangulation of a flat surface's seeds, [`crate::flat`]): a far vertex is believed as
+    /// on the convex path, not replaced by a stand-in.
+    pub exact_dual: bool,
 }
 
 /// What the facet stage knows about a mesh vertex's closest point on the surface.
@@ -127,7 +131,14 @@ struct Context<'a> {
 
 impl Context<'_> {
     fn measure(&self, x: DVec3, guess: [f64; 2]) -> ([f64; 2], f64) {
-        let uv = foot(self.surface, &self.domain, x, guess);
+        let uv = periodic_foot(
+            self.surface,
+            &self.domain,
+            x,
+            guess,
+            self.boundary.periodic(),
+            self.boundary.poles(),
+        );
         (uv, self.boundary.inside_measure(uv))
     }
 
@@ -148,14 +159,29 @@ impl Context<'_> {
     /// The mean first-order foot of x from the three points, and the largest normalised
     /// distance of the points from it.
     fn linear_estimate(&self, ids: [u32; 3], x: DVec3) -> ([f64; 2], f64) {
-        let feet = ids.map(|i| self.linear_foot(i, x));
+        let mut feet = ids.map(|i| self.linear_foot(i, x));
+        let mut seeds = ids.map(|i| self.uv[i as usize]);
+        // Across a band's seam the three points' parameters are taken within half a period of
+        // the first one's, so that their mean is near them, not on the far side.
+        for (k, periodic) in self.boundary.periodic().into_iter().enumerate() {
+            if !periodic {
+                continue;
+            }
+            let period = if k == 0 { self.domain.u } else { self.domain.v }.length();
+            let reference = seeds[0][k];
+            for j in 1..3 {
+                let shift = ((seeds[j][k] - reference) / period).round() * period;
+                seeds[j][k] -= shift;
+                feet[j][k] -= shift;
+            }
+        }
         let linear = [
             (feet[0][0] + feet[1][0] + feet[2][0]) / 3.0,
             (feet[0][1] + feet[1][1] + feet[2][1]) / 3.0,
         ];
-        let reach = ids
+        let reach = seeds
             .iter()
-            .map(|&i| normalised_distance(&self.domain, self.uv[i as usize], linear))
+            .map(|&p| normalised_distance(&self.domain, p, linear))
             .fold(0.0, f64::max);
         (linear, reach)
     }
@@ -166,7 +192,11 @@ impl Context<'_> {
     /// Returns the foot, its inside measure, and whether Newton's result was kept.
     fn measure_from(&self, x: DVec3, linear: [f64; 2], reach: f64) -> ([f64; 2], f64, bool) {
         let (newton, inside) = self.measure(x, linear);
-        if accept_newton(&self.domain, newton, linear, reach) {
+        // Across a seam the two feet differ by a period; a band is flat (crate::flat), where
+        // Newton's foot is the only one.
+        if self.boundary.periodic() != [false; 2]
+            || accept_newton(&self.domain, newton, linear, reach)
+        {
             (newton, inside, true)
         } else {
             (linear, self.boundary.inside_measure(linear), false)
@@ -217,7 +247,7 @@ pub(crate) fn build_facets(
         uv,
         tangents,
         convex_side,
-        regular: slopes.is_some(),
+        regular: slopes.is_some() || params.exact_dual,
         long_edges: false,
     };
     clip_facets(&ctx, uv.len(), tri, params, slopes)
@@ -1382,7 +1412,9 @@ fn seed_part(
                 .min_by(|x, y| x.0.total_cmp(&y.0));
             k = match entry {
                 Some((length, e)) => {
+                    // A corner a crossing sits on is that crossing (no owner then).
                     let mut passed: Vec<(f64, u32)> = (0..cx.corners.len() as u32)
+                        .filter(|&q| cx.corner_owner[q as usize].is_some())
                         .filter_map(|q| {
                             let ahead = cx.boundary.ahead(wall, cx.corners[q as usize].1)?;
                             (ahead < length).then_some((ahead, q))

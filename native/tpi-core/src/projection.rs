@@ -18,7 +18,55 @@ use crate::tolerance::{MAX_PROJECTION_ITERATIONS, PROJECTION_STEP_TOLERANCE};
 
 /// The foot of `x` on the (extended) surface, starting from `guess`.
 pub(crate) fn foot(surface: &dyn Surface, domain: &Domain, x: DVec3, guess: [f64; 2]) -> [f64; 2] {
-    let (mut u, mut v) = (guess[0], guess[1]);
+    periodic_foot(surface, domain, x, guess, [false; 2], [false; 4])
+}
+
+/// [`foot`] on a surface closed in the directions marked `periodic` (u, v): there the
+/// parameter wraps around the domain at every step instead of leaving it, so the foot is
+/// found across the seam, and it is returned within the domain in those directions. Across a
+/// side marked in `poles` (u0, u1, v0, v1) of a surface closed the other way, the surface
+/// goes on at the opposite side of the pole: the parameter is reflected across the side and
+/// the other one turned by half a period (exact for a surface of revolution).
+pub(crate) fn periodic_foot(
+    surface: &dyn Surface,
+    domain: &Domain,
+    x: DVec3,
+    guess: [f64; 2],
+    periodic: [bool; 2],
+    poles: [bool; 4],
+) -> [f64; 2] {
+    let interval = |k: usize| if k == 0 { domain.u } else { domain.v };
+    let wrap = |[mut u, mut v]: [f64; 2]| {
+        for k in 0..2 {
+            let other = 1 - k;
+            if !periodic[other] {
+                continue;
+            }
+            let (value, turned) = if k == 0 {
+                (&mut u, &mut v)
+            } else {
+                (&mut v, &mut u)
+            };
+            let range = interval(k);
+            let half = 0.5 * interval(other).length();
+            if poles[2 * k] && *value < range.min {
+                *value = 2.0 * range.min - *value;
+                *turned += half;
+            } else if poles[2 * k + 1] && *value > range.max {
+                *value = 2.0 * range.max - *value;
+                *turned += half;
+            }
+        }
+        let mut uv = [u, v];
+        for (k, value) in uv.iter_mut().enumerate() {
+            let range = interval(k);
+            if periodic[k] && value.is_finite() {
+                *value = range.min + (*value - range.min).rem_euclid(range.length());
+            }
+        }
+        uv
+    };
+    let [mut u, mut v] = wrap(guess);
     let (du_scale, dv_scale) = (domain.u.length(), domain.v.length());
     for _ in 0..MAX_PROJECTION_ITERATIONS {
         let (cu, cv) = domain.clamp(u, v);
@@ -47,8 +95,7 @@ pub(crate) fn foot(surface: &dyn Surface, domain: &Domain, x: DVec3, guess: [f64
         if !step_u.is_finite() || !step_v.is_finite() {
             break;
         }
-        u += step_u;
-        v += step_v;
+        [u, v] = wrap([u + step_u, v + step_v]);
         if (step_u / du_scale).abs() + (step_v / dv_scale).abs() < PROJECTION_STEP_TOLERANCE {
             break;
         }
