@@ -112,6 +112,25 @@ impl Boundary {
         }
     }
 
+    /// A band's wall nearest to `uv` (u0, u1, v0, v1 as 0..4) and its normalised distance,
+    /// negative beyond it; None for other boundaries, or a band without walls.
+    fn nearest_wall(&self, uv: [f64; 2]) -> Option<(usize, f64)> {
+        let Boundary::Band {
+            domain,
+            walls,
+            closed,
+        } = self
+        else {
+            return None;
+        };
+        let [s, t] = band_parameters(domain, walls, closed, uv);
+        let distances = [s, 1.0 - s, t, 1.0 - t];
+        (0..4)
+            .filter(|&k| walls[k])
+            .map(|k| (k, distances[k]))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
     /// The sides (u0, u1, v0, v1) that are poles of a band (no wall, across its seam).
     pub(crate) fn poles(&self) -> [bool; 4] {
         match self {
@@ -132,18 +151,7 @@ impl Boundary {
     pub(crate) fn inside_measure(&self, uv: [f64; 2]) -> f64 {
         match self {
             Boundary::Rectangle(domain) => inside_measure(domain, uv),
-            Boundary::Band {
-                domain,
-                walls,
-                closed,
-            } => {
-                let [s, t] = band_parameters(domain, walls, closed, uv);
-                let distances = [s, 1.0 - s, t, 1.0 - t];
-                (0..4)
-                    .filter(|&k| walls[k])
-                    .map(|k| distances[k])
-                    .fold(f64::INFINITY, f64::min)
-            }
+            Boundary::Band { .. } => self.nearest_wall(uv).map_or(f64::INFINITY, |w| w.1),
             Boundary::Loops(loops) => {
                 let (distance, _) = loops.nearest(uv);
                 if loops.contains_normalised(loops.domain.to_normalised(uv)) {
@@ -168,11 +176,7 @@ impl Boundary {
                 closed,
             } => {
                 let [s, t] = band_parameters(domain, walls, closed, uv);
-                let distances = [s, 1.0 - s, t, 1.0 - t];
-                let wall = (0..4)
-                    .filter(|&k| walls[k])
-                    .min_by(|&a, &b| distances[a].total_cmp(&distances[b]))
-                    .unwrap_or(0);
+                let wall = self.nearest_wall(uv).map_or(0, |w| w.0);
                 // Along each wall with the region on the left (as the rectangle's sides run).
                 let along = match wall {
                     0 => 1.0 - t.rem_euclid(1.0),

@@ -547,21 +547,9 @@ fn strips_stay_valid_with_a_hundred_thousand_random_seeds() {
 /// rational face, in the tilted plane z = 0.5 + 0.3 x: a full circle (u, nine control
 /// points) swept radially from r0 to r1 (v).
 fn flat_ring(r0: f64, r1: f64) -> NurbsSurface {
-    let w = std::f64::consts::FRAC_1_SQRT_2;
-    let circle = [
-        (1.0, 0.0, 1.0),
-        (1.0, 1.0, w),
-        (0.0, 1.0, 1.0),
-        (-1.0, 1.0, w),
-        (-1.0, 0.0, 1.0),
-        (-1.0, -1.0, w),
-        (0.0, -1.0, 1.0),
-        (1.0, -1.0, w),
-        (1.0, 0.0, 1.0),
-    ];
     let mut points = Vec::new();
     let mut weights = Vec::new();
-    for (x, y, weight) in circle {
+    for (x, y, weight) in rational_circle() {
         for r in [r0, r1] {
             points.push(DVec3::new(r * x, r * y, 0.5 + 0.3 * r * x));
             weights.push(weight);
