@@ -33,6 +33,7 @@ use crate::neighbours::{decide, decide_convex, NeighbourInput, NeighbourStats, S
 use crate::pattern::validate_uv;
 use crate::periodic;
 use crate::planes::{coincident, Plane};
+use crate::progress::{NoProgress, Progress, Stage, Stages};
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
 use crate::rulings;
 use crate::samples::{bounding_box, sample, Samples};
@@ -424,7 +425,18 @@ pub fn discretise(
     pattern: &[[f64; 2]],
     options: &DiscretiseOptions,
 ) -> Result<Discretisation, TpiError> {
-    run(surface, pattern, options, false).map(|(result, _)| result)
+    discretise_with_progress(surface, pattern, options, &NoProgress)
+}
+
+/// [`discretise`], reporting each stage's start, work items done and end to `progress`
+/// ([`crate::progress`]); the result is the same as without an observer.
+pub fn discretise_with_progress(
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    options: &DiscretiseOptions,
+    progress: &dyn Progress,
+) -> Result<Discretisation, TpiError> {
+    run(surface, pattern, options, false, progress).map(|(result, _)| result)
 }
 
 /// What the pipeline computed on the way, kept for live editing ([`crate::live`]).
@@ -485,12 +497,16 @@ pub(crate) fn run(
     pattern: &[[f64; 2]],
     options: &DiscretiseOptions,
     keep: bool,
+    progress: &dyn Progress,
 ) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let start = Instant::now();
+    let stages = Stages::new(progress);
     validate_pattern(pattern)?;
     let Some(trim) = surface.trim() else {
         let rectangle = Boundary::Rectangle(surface.domain());
-        let strips = run_within(surface, pattern, options, keep, &rectangle, start, true)?;
+        let strips = run_within(
+            surface, pattern, options, keep, &rectangle, start, true, &stages,
+        )?;
         // With adjusted planes, strips left invalid (next to an inflection of a developable
         // surface's cross-section, crate::rulings) are weighed against the general path,
         // which tilts the planes there; the one with fewer invalid facets is kept.
@@ -501,7 +517,9 @@ pub(crate) fn run(
             .iter()
             .any(|d| matches!(d, Diagnostic::RulingStrips { .. }));
         if options.planes == PlaneMode::Adjusted && ruled && invalid(&strips.0) > 0 {
-            let general = run_within(surface, pattern, options, keep, &rectangle, start, false)?;
+            let general = run_within(
+                surface, pattern, options, keep, &rectangle, start, false, &stages,
+            )?;
             if invalid(&general.0) < invalid(&strips.0) {
                 return Ok(general);
             }
@@ -530,7 +548,9 @@ pub(crate) fn run(
         });
     }
     let inside: Vec<[f64; 2]> = kept.iter().map(|&i| pattern[i as usize]).collect();
-    let (mut result, state) = run_within(surface, &inside, options, keep, &boundary, start, false)?;
+    let (mut result, state) = run_within(
+        surface, &inside, options, keep, &boundary, start, false, &stages,
+    )?;
     for d in &mut result.diagnostics {
         d.map_points(|p| kept[p as usize]);
     }
@@ -541,7 +561,9 @@ pub(crate) fn run(
 
 /// The pipeline on validated pattern points, the facets ending on `boundary`; `allow_strips`
 /// lets a developable surface with rulings along parameter lines take the strips
-/// (crate::rulings).
+/// (crate::rulings). Each stage is reported to `stages` where it is timed.
+// The pipeline's inputs and the two switches of `run`; a struct would only rename them.
+#[allow(clippy::too_many_arguments)]
 fn run_within(
     surface: &dyn Surface,
     pattern: &[[f64; 2]],
@@ -550,8 +572,11 @@ fn run_within(
     boundary: &Boundary,
     start: Instant,
     allow_strips: bool,
+    stages: &Stages<'_>,
 ) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let mut timings = Timings::default();
+    let observer = stages.observer();
+    stages.enter(Stage::Samples, Some(pattern.len()));
 
     let Samples {
         uv,
@@ -566,8 +591,9 @@ fn run_within(
         lifted,
         slopes,
         mut diagnostics,
-    } = sample(surface, pattern, options)?;
+    } = sample(surface, pattern, options, observer)?;
     timings.samples = ms(start);
+    stages.leave();
 
     // Closed surfaces and poles (crate::closed): seeds on a pole are refused everywhere, and
     // seeds on one surface point across the seam where the seam is to be closed.
@@ -594,6 +620,8 @@ fn run_within(
     let mut closed_topology = MeshTopology::DISC;
     let envelope = match layout.open_sides() {
         Some(open) if closable => {
+            // Timed as the triangulation when the hull succeeds (below).
+            stages.enter(Stage::Delaunay, None);
             let holes = open.iter().filter(|&&o| o).count();
             closed_topology = MeshTopology {
                 euler: 2 - holes as i64,
@@ -642,6 +670,7 @@ fn run_within(
             if closed {
                 check_seam(&uv, &seeds)?;
             }
+            stages.enter(Stage::Delaunay, None);
             rulings::strip_structure(surface, r, &uv, &planes, closed)
                 .map(|(triangulation, planes, source)| (r, closed, triangulation, planes, source))
         }
@@ -683,6 +712,7 @@ fn run_within(
     let (mut triangulation, mut augmented, mut neighbours) = match (&slopes, &lifted) {
         _ if ghost_dual => {
             timings.delaunay = ms(hull_stage);
+            stages.enter(Stage::Delaunay, None);
             (
                 strip_triangulation.or(envelope).unwrap_or_default(),
                 None,
@@ -691,19 +721,22 @@ fn run_within(
         }
         // Convex everywhere: the envelope's own structure, computed in slope space.
         (Some(slopes), Some(lifted)) => {
+            stages.enter(Stage::Delaunay, None);
             let mut triangulation = DualTriangulation::delaunay(slopes)?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
-            let stats = decide_convex(&mut triangulation, slopes, lifted, &input);
+            let stats = decide_convex(&mut triangulation, slopes, lifted, &input, stages);
             timings.neighbours = ms(stage);
             (triangulation, None, stats)
         }
         // Strictly convex everywhere but too steep for the slope embedding: the envelope tests
         // on parameter-space candidates, with the boundary clipped on the wall.
         _ if convex_side.iter().all(|&s| s != 0 && s == convex_side[0]) => {
+            stages.enter(Stage::Delaunay, None);
             let mut triangulation = DualTriangulation::delaunay(&plane_uv)?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
+            stages.enter(Stage::Neighbours, None);
             let stats = decide(
                 &mut triangulation,
                 &input,
@@ -716,6 +749,7 @@ fn run_within(
         // A flat surface: the Voronoi cells of the seeds in its plane (crate::flat), clipped
         // on the boundary (or the trim) as on the convex paths.
         _ if flat => {
+            stages.enter(Stage::Delaunay, None);
             let triangulation = flat::voronoi_dual(&planes)?;
             timings.delaunay = ms(stage);
             // Zero curvature is what this path is for, not a defect to flag; every neighbour
@@ -742,8 +776,10 @@ fn run_within(
             let seam = layout.open_sides().filter(|_| !boundary.is_trim());
             if seam.is_some() {
                 check_seam(&uv, &seeds)?;
+                stages.enter(Stage::Neighbours, None);
             }
             let folded = match seam {
+                // Triangulation, decision and fold are one step, timed as the neighbours.
                 Some(open) => periodic::decide_folded(
                     surface,
                     &periodic::Points {
@@ -771,6 +807,7 @@ fn run_within(
                 timings.neighbours = ms(stage);
                 (triangulation, Some(points), stats)
             } else {
+                stages.enter(Stage::Delaunay, None);
                 let augmented = if boundary.is_trim() {
                     augment_within_trim(
                         surface,
@@ -794,6 +831,7 @@ fn run_within(
                 let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
                 timings.delaunay = ms(stage);
                 let stage = Instant::now();
+                stages.enter(Stage::Neighbours, None);
                 let augmented_input = NeighbourInput {
                     plane_uv: &augmented.plane_uv,
                     geometry: &augmented.geometry,
@@ -834,7 +872,15 @@ fn run_within(
             let (all_planes, source) = closed_ghosts
                 .take()
                 .unwrap_or_else(|| (planes.clone(), (0..uv.len() as u32).collect()));
-            let mesh = build_closed_facets(&triangulation, &all_planes, uv.len(), &source, &params);
+            stages.enter(Stage::Facets, Some(triangulation.len() + uv.len()));
+            let mesh = build_closed_facets(
+                &triangulation,
+                &all_planes,
+                uv.len(),
+                &source,
+                &params,
+                stages,
+            );
             if strip_dual {
                 ghost_neighbours = real_pairs(&triangulation, uv.len());
             }
@@ -846,8 +892,9 @@ fn run_within(
             }
             (mesh, real)
         }
-        None => (
-            build_facets(
+        None => {
+            stages.enter(Stage::Facets, Some(triangulation.len() + uv.len()));
+            let mesh = build_facets(
                 surface,
                 boundary,
                 &uv,
@@ -860,9 +907,10 @@ fn run_within(
                     axes: SlopeFrame::new(n, convex_side[0]).axes,
                     slopes,
                 }),
-            ),
-            triangulation,
-        ),
+                stages,
+            );
+            (mesh, triangulation)
+        }
         Some(augmented) => {
             if options.planes == PlaneMode::Adjusted {
                 let adjust = Instant::now();
@@ -871,12 +919,14 @@ fn run_within(
                 adjustment = Some(stats);
                 planes.copy_from_slice(&augmented.planes[..uv.len()]);
             }
+            stages.enter(Stage::Facets, Some(triangulation.len() + uv.len()));
             let mesh = build_closed_facets(
                 &triangulation,
                 &augmented.planes,
                 uv.len(),
                 &augmented.source,
                 &params,
+                stages,
             );
             // The dual structure reported is the real seeds' part.
             let mut real = triangulation;
@@ -966,6 +1016,10 @@ fn run_within(
     let mut feet = feet;
     if options.quality_report {
         let stage = Instant::now();
+        stages.enter(
+            Stage::Report,
+            Some(result.facet_count() + result.vertices.len()),
+        );
         let mut diagnosed = vec![false; pattern.len()];
         for d in &result.diagnostics {
             for p in d.points() {
@@ -986,25 +1040,29 @@ fn run_within(
                 .map(|f| f.map_or(FootHint::FromSeed, FootHint::Known))
                 .collect();
         }
-        let (quality, flags) = report(&ReportInput {
-            surface,
-            uv: &uv,
-            planes: &planes,
-            vertices: &result.vertices,
-            offsets: &result.facet_offsets,
-            loops: &result.facet_loops,
-            diagonal,
-            diagnosed: &diagnosed,
-            neighbours,
-            diagnostic_count: result.diagnostics.len(),
-            feet: &feet,
-            convex_side: &convex_side,
-        });
+        let (quality, flags) = report(
+            &ReportInput {
+                surface,
+                uv: &uv,
+                planes: &planes,
+                vertices: &result.vertices,
+                offsets: &result.facet_offsets,
+                loops: &result.facet_loops,
+                diagonal,
+                diagnosed: &diagnosed,
+                neighbours,
+                diagnostic_count: result.diagnostics.len(),
+                feet: &feet,
+                convex_side: &convex_side,
+            },
+            observer,
+        );
         result.quality = Some(quality);
         result.facet_flags = flags;
         note_topology(&mut result, boundary.is_trim());
         result.timings.report = ms(stage);
     }
+    stages.leave();
     result.timings.total = ms(start);
     let state = keep.then(|| {
         let (lo, hi) = bounding_box(planes.iter().map(|p| p.point));

@@ -28,6 +28,7 @@ use crate::boundary::{Boundary, Position};
 use crate::diagnostics::Diagnostic;
 use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
 use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane};
+use crate::progress::{Stage, Stages, Tally};
 use crate::projection::foot;
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
@@ -202,7 +203,9 @@ pub(crate) fn build_facets(
     tri: &DualTriangulation,
     params: &FacetParams,
     slopes: Option<SlopeView<'_>>,
+    stages: &Stages<'_>,
 ) -> FacetMesh {
+    let observer = stages.observer();
     let domain = surface.domain();
     let ctx = Context {
         surface,
@@ -220,7 +223,13 @@ pub(crate) fn build_facets(
     let triangle_vertices: Vec<TriangleVertex> = tri
         .triangles
         .par_iter()
-        .map(|&ids| triangle_vertex(&ctx, ids, params.far_vertex_factor))
+        .map_init(
+            || Tally::new(observer, Stage::Facets),
+            |tally, &ids| {
+                tally.add(1);
+                triangle_vertex(&ctx, ids, params.far_vertex_factor)
+            },
+        )
         .collect();
     diagnostics.extend(
         triangle_vertices
@@ -288,22 +297,28 @@ pub(crate) fn build_facets(
     };
     let chunks: Vec<FacetChunk> = (0..uv.len().div_ceil(FACET_CHUNK))
         .into_par_iter()
-        .map(|c| {
-            let mut chunk = FacetChunk::default();
-            let mut fan = Vec::new();
-            for i in c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(uv.len()) {
-                let simple = facet_items(
-                    i as u32,
-                    &lookup,
-                    &mut fan,
-                    &mut chunk.items,
-                    &mut chunk.diagnostics,
-                );
-                chunk.ends.push(chunk.items.len() as u32);
-                chunk.simple.push(simple);
-            }
-            chunk
-        })
+        .map_init(
+            || Tally::new(observer, Stage::Facets),
+            |tally, c| {
+                let mut chunk = FacetChunk::default();
+                let mut fan = Vec::new();
+                let facets = c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(uv.len());
+                let count = facets.len();
+                for i in facets {
+                    let simple = facet_items(
+                        i as u32,
+                        &lookup,
+                        &mut fan,
+                        &mut chunk.items,
+                        &mut chunk.diagnostics,
+                    );
+                    chunk.ends.push(chunk.items.len() as u32);
+                    chunk.simple.push(simple);
+                }
+                tally.add(count);
+                chunk
+            },
+        )
         .collect();
 
     let mut mesh = assemble(Assembly {
@@ -317,6 +332,7 @@ pub(crate) fn build_facets(
         ghosts_from: None,
         slopes,
         diagnostics,
+        stages,
     });
     if absorbed.contains(&true) {
         mesh.diagnostics.retain(|d| {
@@ -1185,36 +1201,42 @@ pub(crate) fn build_closed_facets(
     real_count: usize,
     source: &[u32],
     params: &FacetParams,
+    stages: &Stages<'_>,
 ) -> FacetMesh {
+    let observer = stages.observer();
     let real = |t: &[u32; 3]| t.iter().any(|&v| (v as usize) < real_count);
     let triangle_vertices: Vec<TriangleVertex> = tri
         .triangles
         .par_iter()
-        .map(|ids| {
-            let mut ids = *ids;
-            ids.sort_unstable();
-            let [a, b, c] = ids.map(|i| &planes[i as usize]);
-            let meeting = meeting_point(a, b, c);
-            let centroid = (a.point + b.point + c.point) / 3.0;
-            // Far vertices (nearly parallel planes, at parabolic lines) are kept exact: a
-            // stand-in per edge would leave a hole, and the mesh must stay a disc. They are
-            // named in a diagnostic below; only a vertex at infinity gets stand-ins.
-            let exact = !real(&ids) || reachable(meeting.point, [a, b, c]);
-            let point = if exact {
-                meeting.point
-            } else {
-                regularised_meeting_point([a, b, c], centroid, 1e-6)
-            };
-            TriangleVertex {
-                point,
-                foot: [0.0; 2],
-                inside: 1.0,
-                reach: 0.0,
-                exact,
-                measured: true,
-                newton_foot: false,
-            }
-        })
+        .map_init(
+            || Tally::new(observer, Stage::Facets),
+            |tally, ids| {
+                tally.add(1);
+                let mut ids = *ids;
+                ids.sort_unstable();
+                let [a, b, c] = ids.map(|i| &planes[i as usize]);
+                let meeting = meeting_point(a, b, c);
+                let centroid = (a.point + b.point + c.point) / 3.0;
+                // Far vertices (nearly parallel planes, at parabolic lines) are kept exact: a
+                // stand-in per edge would leave a hole, and the mesh must stay a disc. They are
+                // named in a diagnostic below; only a vertex at infinity gets stand-ins.
+                let exact = !real(&ids) || reachable(meeting.point, [a, b, c]);
+                let point = if exact {
+                    meeting.point
+                } else {
+                    regularised_meeting_point([a, b, c], centroid, 1e-6)
+                };
+                TriangleVertex {
+                    point,
+                    foot: [0.0; 2],
+                    inside: 1.0,
+                    reach: 0.0,
+                    exact,
+                    measured: true,
+                    newton_foot: false,
+                }
+            },
+        )
         .collect();
     let mut diagnostics: Vec<Diagnostic> = tri
         .triangles
@@ -1261,40 +1283,47 @@ pub(crate) fn build_closed_facets(
     let incident = tri.incident_triangles(source.len());
     let chunks: Vec<FacetChunk> = (0..real_count.div_ceil(FACET_CHUNK))
         .into_par_iter()
-        .map(|c| {
-            let mut chunk = FacetChunk::default();
-            let mut fan = Vec::new();
-            for i in c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(real_count) {
-                let i = i as u32;
-                let kind = tri.fan(i, incident[i as usize], &mut fan);
-                if kind != Fan::Closed {
-                    let reason = "the fan of dual triangles around the point does not close".into();
-                    chunk
-                        .diagnostics
-                        .push((i, Diagnostic::OpenFacet { point: i, reason }));
-                }
-                if kind != Fan::Broken {
-                    for &t in &fan {
-                        if triangle_vertices[t as usize].exact {
-                            chunk.items.push(Item::Triangle(t));
-                        } else {
-                            let vertices = tri.triangles[t as usize];
-                            let p = vertices.iter().position(|&v| v == i).unwrap_or(0);
-                            for j in [vertices[(p + 1) % 3], vertices[(p + 2) % 3]] {
-                                chunk.items.push(Item::EdgePoint {
-                                    triangle: t,
-                                    lo: i.min(j),
-                                    hi: i.max(j),
-                                });
+        .map_init(
+            || Tally::new(observer, Stage::Facets),
+            |tally, c| {
+                let mut chunk = FacetChunk::default();
+                let mut fan = Vec::new();
+                let facets = c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(real_count);
+                let count = facets.len();
+                for i in facets {
+                    let i = i as u32;
+                    let kind = tri.fan(i, incident[i as usize], &mut fan);
+                    if kind != Fan::Closed {
+                        let reason =
+                            "the fan of dual triangles around the point does not close".into();
+                        chunk
+                            .diagnostics
+                            .push((i, Diagnostic::OpenFacet { point: i, reason }));
+                    }
+                    if kind != Fan::Broken {
+                        for &t in &fan {
+                            if triangle_vertices[t as usize].exact {
+                                chunk.items.push(Item::Triangle(t));
+                            } else {
+                                let vertices = tri.triangles[t as usize];
+                                let p = vertices.iter().position(|&v| v == i).unwrap_or(0);
+                                for j in [vertices[(p + 1) % 3], vertices[(p + 2) % 3]] {
+                                    chunk.items.push(Item::EdgePoint {
+                                        triangle: t,
+                                        lo: i.min(j),
+                                        hi: i.max(j),
+                                    });
+                                }
                             }
                         }
                     }
+                    chunk.ends.push(chunk.items.len() as u32);
+                    chunk.simple.push(false);
                 }
-                chunk.ends.push(chunk.items.len() as u32);
-                chunk.simple.push(false);
-            }
-            chunk
-        })
+                tally.add(count);
+                chunk
+            },
+        )
         .collect();
     let mut mesh = assemble(Assembly {
         tri,
@@ -1307,6 +1336,7 @@ pub(crate) fn build_closed_facets(
         ghosts_from: Some(real_count as u32),
         slopes: None,
         diagnostics: std::mem::take(&mut diagnostics),
+        stages,
     });
     // Live editing never runs on this path: what only it reads is let go.
     mesh.triangle_vertices = Vec::new();
