@@ -4,7 +4,8 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use tpi_core::{
-    discretise, Diagnostic, Discretisation, DiscretiseOptions, PlaneMode, SurfaceModel, TpiError,
+    discretise_with_progress, Diagnostic, Discretisation, DiscretiseOptions, PlaneMode,
+    SurfaceModel, TpiError,
 };
 
 use crate::error::CliError;
@@ -19,8 +20,9 @@ pub(crate) const AFTER_HELP: &str = "\
 All outputs are computed in memory first, checked (every number finite, every OBJ face with
 at least 3 distinct vertices) and then written through temporary files renamed together, so
 a failing or interrupted run leaves no output file (and no half-written one); an output that
-is also an input is refused. A summary of the quality report goes to stderr; a progress line
-too when stderr is a terminal and the run takes more than a second. When the report finds
+is also an input is refused. A summary of the quality report goes to stderr; progress bars
+too (one per stage that runs, with count, percentage and time left) when stderr is a terminal
+and the run takes more than a second. When the report finds
 invalid facets, or the surface intersects itself (sampled), a `warning:` line goes to
 stderr. Exit code 0 on success, 1 for bad input or output, 2 for usage, 3 for invalid facets
 with --strict.
@@ -226,24 +228,25 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
         check_output_path(path)?;
     }
     let started = Instant::now();
-    let progress = Progress::start(5);
+    let progress = Progress::start();
 
-    progress.step("reading the surface");
+    progress.stage("surface", None, opts.surface.clone());
     let surface: SurfaceModel = load_surface(Path::new(&opts.surface))?;
 
     // Sampled, a few milliseconds: a folded surface gets a warning, not silence.
     let self_intersection = crate::selfx::find(&surface, crate::selfx::DEFAULT_SAMPLES);
 
-    progress.step("reading the pattern");
+    progress.stage("pattern", None, opts.pattern.clone());
     let pattern = load_pattern(&opts.pattern)?;
+    progress.end_stage();
 
-    progress.step(format!("discretising {} points", pattern.pattern.len()));
+    // The core's stages, each reported as it runs.
     let options = DiscretiseOptions {
         quality_report: opts.report,
         planes: opts.planes,
         ..DiscretiseOptions::default()
     };
-    let run_core = || discretise(&surface, &pattern.pattern.uv, &options);
+    let run_core = || discretise_with_progress(&surface, &pattern.pattern.uv, &options, &progress);
     let (result, threads) = match opts.threads {
         Some(n) => {
             let pool = rayon::ThreadPoolBuilder::new()
@@ -266,17 +269,29 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
         )
     })?;
 
-    progress.step("rendering the outputs");
     let title = format!("{} with {}", opts.surface, pattern.label);
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::with_capacity(opts.outs.len());
+    if !opts.outs.is_empty() {
+        progress.stage("outputs", Some(opts.outs.len() as u64), "");
+    }
     for (path, format) in &opts.outs {
+        // Only the PNG is rendered; the other formats are written out as text.
+        let verb = if matches!(format, Format::Png) {
+            "rendering"
+        } else {
+            "encoding"
+        };
+        progress.message(format!("{verb} {}", path.display()));
         let bytes = render_output(&result, *format, &title, opts.size).map_err(|problem| {
             CliError::input(path.display(), format!("cannot encode: {problem}"))
         })?;
         files.push((path.clone(), bytes));
+        progress.advance(1);
     }
 
-    progress.step("writing the outputs");
+    if !files.is_empty() {
+        progress.stage("write", None, format!("{} files", files.len()));
+    }
     write_all(&files)?;
     progress.finish();
 

@@ -1,6 +1,6 @@
 //! End-to-end tests of the built `tpi` binary: every sample discretises, every output format
 //! is written and read back independently, bad input fails with one clear line and leaves no
-//! file behind, and the progress line stays off when stderr is not a terminal.
+//! file behind, and the progress bars stay off when stderr is not a terminal.
 
 mod common;
 
@@ -596,7 +596,7 @@ fn threads_and_no_report() {
 }
 
 #[test]
-fn no_progress_line_when_stderr_is_not_a_terminal() {
+fn no_progress_bars_when_stderr_is_not_a_terminal() {
     // A run of more than a second, and the delay set to zero as well: stderr is a pipe here,
     // so not a byte of progress may appear.
     let dir = scratch("progress");
@@ -633,7 +633,7 @@ fn no_progress_line_when_stderr_is_not_a_terminal() {
             "escape sequence on a non-terminal stderr"
         );
         assert!(
-            !err.contains("tpi ["),
+            !err.contains("ETA") && !err.contains("samples ["),
             "progress bar on a non-terminal stderr"
         );
         eprintln!("({pattern}: {:.1} s)", started.elapsed().as_secs_f64());
@@ -641,7 +641,7 @@ fn no_progress_line_when_stderr_is_not_a_terminal() {
 }
 
 #[test]
-fn progress_line_on_a_terminal() {
+fn progress_bars_on_a_terminal() {
     // util-linux `script` (Debian package bsdutils, installed by .ci/run) gives the command a
     // pseudo-terminal. Missing, the test fails: it must not pass without checking anything.
     assert!(
@@ -658,16 +658,41 @@ fn progress_line_on_a_terminal() {
     let run = Command::new("script")
         .args(["-qfec", &command, "/dev/null"])
         .env("TPI_PROGRESS_DELAY_MS", "0")
+        // indicatif draws nothing where TERM is unset or `dumb` (as CI may have it).
+        .env("TERM", "xterm")
         .output()
         .unwrap();
     assert!(run.status.success(), "{}", text(&run.stderr));
     let all = text(&run.stdout);
+    // One bar per stage that runs, with count/total and percentage; a spinner for the
+    // triangulation, which has no total.
+    for bar in [
+        "samples [",
+        "neighbours [",
+        "facets [",
+        "mesh [",
+        "report [",
+        "outputs [",
+    ] {
+        assert!(all.contains(bar), "no `{bar}` bar on a terminal: {all:?}");
+    }
+    assert!(all.contains("20,000/20,000"), "no count/total: {all:?}");
+    assert!(all.contains("100% in"), "no percentage: {all:?}");
+    assert!(all.contains("% ETA"), "no estimate: {all:?}");
+    assert!(all.contains("delaunay "), "no spinner: {all:?}");
+    // Only PNG output here: rendering, nothing called encoding.
+    assert!(!all.contains("encoding"), "{all:?}");
+    // The bars are cleared (cursor moved up over the cleared lines) right before the
+    // summary, and nothing of them comes after it.
+    let summary = all.find("tpi: ").expect("a summary");
+    let (before, after) = all.split_at(summary);
+    let tail: Vec<char> = before.chars().rev().take(200).collect();
     assert!(
-        all.contains("\r\x1b[2Ktpi ["),
-        "no progress line on a terminal: {all}"
+        before.ends_with('A') && before.contains("\x1b[2K"),
+        "bars not cleared before the summary: {:?}",
+        tail.iter().rev().collect::<String>()
     );
-    // The line is cleared before the summary.
-    assert!(all.contains("\r\x1b[2Ktpi: "), "{all:?}");
+    assert!(!after.contains("ETA") && !after.contains("[#"), "{after:?}");
 }
 
 // ---- pattern and info ----

@@ -34,6 +34,7 @@ use crate::neighbours::{decide, decide_convex, NeighbourInput, NeighbourStats, S
 use crate::pattern::validate_uv;
 use crate::periodic;
 use crate::planes::{coincident, Plane};
+use crate::progress::{NoProgress, Progress, Stage, Stages};
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
 use crate::rulings;
 use crate::samples::{bounding_box, sample, Samples};
@@ -425,7 +426,18 @@ pub fn discretise(
     pattern: &[[f64; 2]],
     options: &DiscretiseOptions,
 ) -> Result<Discretisation, TpiError> {
-    run(surface, pattern, options, false).map(|(result, _)| result)
+    discretise_with_progress(surface, pattern, options, &NoProgress)
+}
+
+/// [`discretise`], reporting each stage's start, work items done and end to `progress`
+/// ([`crate::progress`]); the result is the same as without an observer.
+pub fn discretise_with_progress(
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    options: &DiscretiseOptions,
+    progress: &dyn Progress,
+) -> Result<Discretisation, TpiError> {
+    run(surface, pattern, options, false, progress).map(|(result, _)| result)
 }
 
 /// What the pipeline computed on the way, kept for live editing ([`crate::live`]).
@@ -486,12 +498,16 @@ pub(crate) fn run(
     pattern: &[[f64; 2]],
     options: &DiscretiseOptions,
     keep: bool,
+    progress: &dyn Progress,
 ) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let start = Instant::now();
+    let stages = Stages::new(progress);
     validate_pattern(pattern)?;
     let Some(trim) = surface.trim() else {
         let rectangle = Boundary::Rectangle(surface.domain());
-        let strips = run_within(surface, pattern, options, keep, &rectangle, start, true)?;
+        let strips = run_within(
+            surface, pattern, options, keep, &rectangle, start, true, &stages,
+        )?;
         // With adjusted planes, strips left invalid (next to an inflection of a developable
         // surface's cross-section, crate::rulings) are weighed against the general path,
         // which tilts the planes there; the one with fewer invalid facets is kept.
@@ -502,7 +518,9 @@ pub(crate) fn run(
             .iter()
             .any(|d| matches!(d, Diagnostic::RulingStrips { .. }));
         if options.planes == PlaneMode::Adjusted && ruled && invalid(&strips.0) > 0 {
-            let general = run_within(surface, pattern, options, keep, &rectangle, start, false)?;
+            let general = run_within(
+                surface, pattern, options, keep, &rectangle, start, false, &stages,
+            )?;
             if invalid(&general.0) < invalid(&strips.0) {
                 return Ok(general);
             }
@@ -531,7 +549,9 @@ pub(crate) fn run(
         });
     }
     let inside: Vec<[f64; 2]> = kept.iter().map(|&i| pattern[i as usize]).collect();
-    let (mut result, state) = run_within(surface, &inside, options, keep, &boundary, start, true)?;
+    let (mut result, state) = run_within(
+        surface, &inside, options, keep, &boundary, start, true, &stages,
+    )?;
     for d in &mut result.diagnostics {
         d.map_points(|p| kept[p as usize]);
     }
@@ -542,7 +562,9 @@ pub(crate) fn run(
 
 /// The pipeline on validated pattern points, the facets ending on `boundary`; `allow_strips`
 /// lets a developable surface with rulings along parameter lines take the strips
-/// (crate::rulings).
+/// (crate::rulings). Each stage is reported to `stages` where it is timed.
+// The pipeline's inputs and the two switches of `run`; a struct would only rename them.
+#[allow(clippy::too_many_arguments)]
 fn run_within(
     surface: &dyn Surface,
     pattern: &[[f64; 2]],
@@ -551,8 +573,11 @@ fn run_within(
     boundary: &Boundary,
     start: Instant,
     allow_strips: bool,
+    stages: &Stages<'_>,
 ) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let mut timings = Timings::default();
+    let observer = stages.observer();
+    stages.enter(Stage::Samples, Some(pattern.len()));
 
     let Samples {
         uv,
@@ -567,8 +592,9 @@ fn run_within(
         lifted,
         slopes,
         mut diagnostics,
-    } = sample(surface, pattern, options)?;
+    } = sample(surface, pattern, options, observer)?;
     timings.samples = ms(start);
+    stages.leave();
 
     // Closed surfaces and poles (crate::closed): seeds on a pole are refused everywhere, and
     // seeds on one surface point across the seam where the seam is to be closed.
@@ -595,6 +621,8 @@ fn run_within(
     let mut closed_topology = MeshTopology::DISC;
     let envelope = match layout.open_sides() {
         Some(open) if closable => {
+            // Timed as the triangulation when the hull succeeds (below).
+            stages.enter(Stage::Delaunay, None);
             let holes = open.iter().filter(|&&o| o).count();
             closed_topology = MeshTopology {
                 euler: 2 - holes as i64,
@@ -646,6 +674,7 @@ fn run_within(
             if closed && !trimmed {
                 check_seam(&uv, &seeds)?;
             }
+            stages.enter(Stage::Delaunay, None);
             let margin = if trimmed {
                 STRIP_TRIM_MARGIN * diagonal
             } else {
@@ -695,6 +724,7 @@ fn run_within(
     let (mut triangulation, mut augmented, mut neighbours) = match (&slopes, &lifted) {
         _ if ghost_dual => {
             timings.delaunay = ms(hull_stage);
+            stages.enter(Stage::Delaunay, None);
             (
                 strip_triangulation.or(envelope).unwrap_or_default(),
                 None,
@@ -703,19 +733,22 @@ fn run_within(
         }
         // Convex everywhere: the envelope's own structure, computed in slope space.
         (Some(slopes), Some(lifted)) => {
+            stages.enter(Stage::Delaunay, None);
             let mut triangulation = DualTriangulation::delaunay(slopes)?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
-            let stats = decide_convex(&mut triangulation, slopes, lifted, &input);
+            let stats = decide_convex(&mut triangulation, slopes, lifted, &input, stages);
             timings.neighbours = ms(stage);
             (triangulation, None, stats)
         }
         // Strictly convex everywhere but too steep for the slope embedding: the envelope tests
         // on parameter-space candidates, with the boundary clipped on the wall.
         _ if convex_side.iter().all(|&s| s != 0 && s == convex_side[0]) => {
+            stages.enter(Stage::Delaunay, None);
             let mut triangulation = DualTriangulation::delaunay(&plane_uv)?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
+            stages.enter(Stage::Neighbours, None);
             let stats = decide(
                 &mut triangulation,
                 &input,
@@ -742,6 +775,7 @@ fn run_within(
                     closed: layout.closed,
                 });
             }
+            stages.enter(Stage::Delaunay, None);
             let triangulation = flat::voronoi_dual(&planes)?;
             timings.delaunay = ms(stage);
             // Zero curvature is what this path is for, not a defect to flag; every neighbour
@@ -768,8 +802,10 @@ fn run_within(
             let seam = layout.open_sides().filter(|_| !boundary.is_trim());
             if seam.is_some() {
                 check_seam(&uv, &seeds)?;
+                stages.enter(Stage::Neighbours, None);
             }
             let folded = match seam {
+                // Triangulation, decision and fold are one step, timed as the neighbours.
                 Some(open) => periodic::decide_folded(
                     surface,
                     &periodic::Points {
@@ -797,6 +833,7 @@ fn run_within(
                 timings.neighbours = ms(stage);
                 (triangulation, Some(points), stats)
             } else {
+                stages.enter(Stage::Delaunay, None);
                 let augmented = if boundary.is_trim() {
                     augment_within_trim(
                         surface,
@@ -820,6 +857,7 @@ fn run_within(
                 let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
                 timings.delaunay = ms(stage);
                 let stage = Instant::now();
+                stages.enter(Stage::Neighbours, None);
                 let augmented_input = NeighbourInput {
                     plane_uv: &augmented.plane_uv,
                     geometry: &augmented.geometry,
@@ -861,6 +899,7 @@ fn run_within(
             let (all_planes, source) = closed_ghosts
                 .take()
                 .unwrap_or_else(|| (planes.clone(), (0..uv.len() as u32).collect()));
+            stages.enter(Stage::Facets, Some(triangulation.len() + uv.len()));
             let mesh = if trimmed {
                 build_ghost_clipped_facets(
                     surface,
@@ -871,9 +910,17 @@ fn run_within(
                     &source,
                     &triangulation,
                     &params,
+                    stages,
                 )
             } else {
-                build_closed_facets(&triangulation, &all_planes, uv.len(), &source, &params)
+                build_closed_facets(
+                    &triangulation,
+                    &all_planes,
+                    uv.len(),
+                    &source,
+                    &params,
+                    stages,
+                )
             };
             if strip_dual {
                 ghost_neighbours = real_pairs(&triangulation, uv.len());
@@ -886,8 +933,9 @@ fn run_within(
             }
             (mesh, real)
         }
-        None => (
-            build_facets(
+        None => {
+            stages.enter(Stage::Facets, Some(triangulation.len() + uv.len()));
+            let mesh = build_facets(
                 surface,
                 flat_band.as_ref().unwrap_or(boundary),
                 &uv,
@@ -900,9 +948,10 @@ fn run_within(
                     axes: SlopeFrame::new(n, convex_side[0]).axes,
                     slopes,
                 }),
-            ),
-            triangulation,
-        ),
+                stages,
+            );
+            (mesh, triangulation)
+        }
         Some(augmented) => {
             if options.planes == PlaneMode::Adjusted {
                 let adjust = Instant::now();
@@ -911,12 +960,14 @@ fn run_within(
                 adjustment = Some(stats);
                 planes.copy_from_slice(&augmented.planes[..uv.len()]);
             }
+            stages.enter(Stage::Facets, Some(triangulation.len() + uv.len()));
             let mesh = build_closed_facets(
                 &triangulation,
                 &augmented.planes,
                 uv.len(),
                 &augmented.source,
                 &params,
+                stages,
             );
             // The dual structure reported is the real seeds' part.
             let mut real = triangulation;
@@ -1006,6 +1057,10 @@ fn run_within(
     let mut feet = feet;
     if options.quality_report {
         let stage = Instant::now();
+        stages.enter(
+            Stage::Report,
+            Some(result.facet_count() + result.vertices.len()),
+        );
         let mut diagnosed = vec![false; pattern.len()];
         for d in &result.diagnostics {
             for p in d.points() {
@@ -1026,25 +1081,29 @@ fn run_within(
                 .map(|f| f.map_or(FootHint::FromSeed, FootHint::Known))
                 .collect();
         }
-        let (quality, flags) = report(&ReportInput {
-            surface,
-            uv: &uv,
-            planes: &planes,
-            vertices: &result.vertices,
-            offsets: &result.facet_offsets,
-            loops: &result.facet_loops,
-            diagonal,
-            diagnosed: &diagnosed,
-            neighbours,
-            diagnostic_count: result.diagnostics.len(),
-            feet: &feet,
-            convex_side: &convex_side,
-        });
+        let (quality, flags) = report(
+            &ReportInput {
+                surface,
+                uv: &uv,
+                planes: &planes,
+                vertices: &result.vertices,
+                offsets: &result.facet_offsets,
+                loops: &result.facet_loops,
+                diagonal,
+                diagnosed: &diagnosed,
+                neighbours,
+                diagnostic_count: result.diagnostics.len(),
+                feet: &feet,
+                convex_side: &convex_side,
+            },
+            observer,
+        );
         result.quality = Some(quality);
         result.facet_flags = flags;
         note_topology(&mut result, boundary.is_trim());
         result.timings.report = ms(stage);
     }
+    stages.leave();
     result.timings.total = ms(start);
     let state = keep.then(|| {
         let (lo, hi) = bounding_box(planes.iter().map(|p| p.point));

@@ -28,6 +28,7 @@ use crate::boundary::{Boundary, Position};
 use crate::diagnostics::Diagnostic;
 use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
 use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane};
+use crate::progress::{Stage, Stages, Tally};
 use crate::projection::periodic_foot;
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
@@ -238,6 +239,7 @@ pub(crate) fn build_facets(
     tri: &DualTriangulation,
     params: &FacetParams,
     slopes: Option<SlopeView<'_>>,
+    stages: &Stages<'_>,
 ) -> FacetMesh {
     let ctx = Context {
         surface,
@@ -250,7 +252,7 @@ pub(crate) fn build_facets(
         regular: slopes.is_some() || params.exact_dual,
         long_edges: false,
     };
-    clip_facets(&ctx, uv.len(), tri, params, slopes)
+    clip_facets(&ctx, uv.len(), tri, params, slopes, stages)
 }
 
 /// The facets of the real seeds `0..uv.len()` of a triangulation closed by ghosts beyond the
@@ -268,6 +270,7 @@ pub(crate) fn build_ghost_clipped_facets(
     source: &[u32],
     tri: &DualTriangulation,
     params: &FacetParams,
+    stages: &Stages<'_>,
 ) -> FacetMesh {
     let real_count = uv.len();
     let mut all_uv = uv.to_vec();
@@ -293,7 +296,7 @@ pub(crate) fn build_ghost_clipped_facets(
     }
     ctx.uv = &all_uv;
     ctx.tangents = &all_tangents;
-    clip_facets(&ctx, real_count, tri, params, None)
+    clip_facets(&ctx, real_count, tri, params, None, stages)
 }
 
 /// The facets of the points `0..real_count` of `tri`, ending on `ctx.boundary` (module doc);
@@ -304,15 +307,23 @@ fn clip_facets(
     tri: &DualTriangulation,
     params: &FacetParams,
     slopes: Option<SlopeView<'_>>,
+    stages: &Stages<'_>,
 ) -> FacetMesh {
     let (surface, boundary, planes) = (ctx.surface, ctx.boundary, ctx.planes);
+    let observer = stages.observer();
     let mut diagnostics = Vec::new();
 
     // 1. Triangle vertices, their conditioning and whether they lie inside.
     let triangle_vertices: Vec<TriangleVertex> = tri
         .triangles
         .par_iter()
-        .map(|&ids| triangle_vertex(ctx, ids, params.far_vertex_factor))
+        .map_init(
+            || Tally::new(observer, Stage::Facets),
+            |tally, &ids| {
+                tally.add(1);
+                triangle_vertex(ctx, ids, params.far_vertex_factor)
+            },
+        )
         .collect();
     diagnostics.extend(
         triangle_vertices
@@ -388,22 +399,28 @@ fn clip_facets(
     };
     let chunks: Vec<FacetChunk> = (0..real_count.div_ceil(FACET_CHUNK))
         .into_par_iter()
-        .map(|c| {
-            let mut chunk = FacetChunk::default();
-            let mut fan = Vec::new();
-            for i in c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(real_count) {
-                let simple = facet_items(
-                    i as u32,
-                    &lookup,
-                    &mut fan,
-                    &mut chunk.items,
-                    &mut chunk.diagnostics,
-                );
-                chunk.ends.push(chunk.items.len() as u32);
-                chunk.simple.push(simple);
-            }
-            chunk
-        })
+        .map_init(
+            || Tally::new(observer, Stage::Facets),
+            |tally, c| {
+                let mut chunk = FacetChunk::default();
+                let mut fan = Vec::new();
+                let facets = c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(real_count);
+                let count = facets.len();
+                for i in facets {
+                    let simple = facet_items(
+                        i as u32,
+                        &lookup,
+                        &mut fan,
+                        &mut chunk.items,
+                        &mut chunk.diagnostics,
+                    );
+                    chunk.ends.push(chunk.items.len() as u32);
+                    chunk.simple.push(simple);
+                }
+                tally.add(count);
+                chunk
+            },
+        )
         .collect();
 
     let mut mesh = assemble(Assembly {
@@ -417,6 +434,7 @@ fn clip_facets(
         ghosts_from: None,
         slopes,
         diagnostics,
+        stages,
     });
     if absorbed.contains(&true) {
         mesh.diagnostics.retain(|d| {
@@ -1455,36 +1473,42 @@ pub(crate) fn build_closed_facets(
     real_count: usize,
     source: &[u32],
     params: &FacetParams,
+    stages: &Stages<'_>,
 ) -> FacetMesh {
+    let observer = stages.observer();
     let real = |t: &[u32; 3]| t.iter().any(|&v| (v as usize) < real_count);
     let triangle_vertices: Vec<TriangleVertex> = tri
         .triangles
         .par_iter()
-        .map(|ids| {
-            let mut ids = *ids;
-            ids.sort_unstable();
-            let [a, b, c] = ids.map(|i| &planes[i as usize]);
-            let meeting = meeting_point(a, b, c);
-            let centroid = (a.point + b.point + c.point) / 3.0;
-            // Far vertices (nearly parallel planes, at parabolic lines) are kept exact: a
-            // stand-in per edge would leave a hole, and the mesh must stay a disc. They are
-            // named in a diagnostic below; only a vertex at infinity gets stand-ins.
-            let exact = !real(&ids) || reachable(meeting.point, [a, b, c]);
-            let point = if exact {
-                meeting.point
-            } else {
-                regularised_meeting_point([a, b, c], centroid, 1e-6)
-            };
-            TriangleVertex {
-                point,
-                foot: [0.0; 2],
-                inside: 1.0,
-                reach: 0.0,
-                exact,
-                measured: true,
-                newton_foot: false,
-            }
-        })
+        .map_init(
+            || Tally::new(observer, Stage::Facets),
+            |tally, ids| {
+                tally.add(1);
+                let mut ids = *ids;
+                ids.sort_unstable();
+                let [a, b, c] = ids.map(|i| &planes[i as usize]);
+                let meeting = meeting_point(a, b, c);
+                let centroid = (a.point + b.point + c.point) / 3.0;
+                // Far vertices (nearly parallel planes, at parabolic lines) are kept exact: a
+                // stand-in per edge would leave a hole, and the mesh must stay a disc. They are
+                // named in a diagnostic below; only a vertex at infinity gets stand-ins.
+                let exact = !real(&ids) || reachable(meeting.point, [a, b, c]);
+                let point = if exact {
+                    meeting.point
+                } else {
+                    regularised_meeting_point([a, b, c], centroid, 1e-6)
+                };
+                TriangleVertex {
+                    point,
+                    foot: [0.0; 2],
+                    inside: 1.0,
+                    reach: 0.0,
+                    exact,
+                    measured: true,
+                    newton_foot: false,
+                }
+            },
+        )
         .collect();
     let mut diagnostics: Vec<Diagnostic> = tri
         .triangles
@@ -1531,40 +1555,47 @@ pub(crate) fn build_closed_facets(
     let incident = tri.incident_triangles(source.len());
     let chunks: Vec<FacetChunk> = (0..real_count.div_ceil(FACET_CHUNK))
         .into_par_iter()
-        .map(|c| {
-            let mut chunk = FacetChunk::default();
-            let mut fan = Vec::new();
-            for i in c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(real_count) {
-                let i = i as u32;
-                let kind = tri.fan(i, incident[i as usize], &mut fan);
-                if kind != Fan::Closed {
-                    let reason = "the fan of dual triangles around the point does not close".into();
-                    chunk
-                        .diagnostics
-                        .push((i, Diagnostic::OpenFacet { point: i, reason }));
-                }
-                if kind != Fan::Broken {
-                    for &t in &fan {
-                        if triangle_vertices[t as usize].exact {
-                            chunk.items.push(Item::Triangle(t));
-                        } else {
-                            let vertices = tri.triangles[t as usize];
-                            let p = vertices.iter().position(|&v| v == i).unwrap_or(0);
-                            for j in [vertices[(p + 1) % 3], vertices[(p + 2) % 3]] {
-                                chunk.items.push(Item::EdgePoint {
-                                    triangle: t,
-                                    lo: i.min(j),
-                                    hi: i.max(j),
-                                });
+        .map_init(
+            || Tally::new(observer, Stage::Facets),
+            |tally, c| {
+                let mut chunk = FacetChunk::default();
+                let mut fan = Vec::new();
+                let facets = c * FACET_CHUNK..((c + 1) * FACET_CHUNK).min(real_count);
+                let count = facets.len();
+                for i in facets {
+                    let i = i as u32;
+                    let kind = tri.fan(i, incident[i as usize], &mut fan);
+                    if kind != Fan::Closed {
+                        let reason =
+                            "the fan of dual triangles around the point does not close".into();
+                        chunk
+                            .diagnostics
+                            .push((i, Diagnostic::OpenFacet { point: i, reason }));
+                    }
+                    if kind != Fan::Broken {
+                        for &t in &fan {
+                            if triangle_vertices[t as usize].exact {
+                                chunk.items.push(Item::Triangle(t));
+                            } else {
+                                let vertices = tri.triangles[t as usize];
+                                let p = vertices.iter().position(|&v| v == i).unwrap_or(0);
+                                for j in [vertices[(p + 1) % 3], vertices[(p + 2) % 3]] {
+                                    chunk.items.push(Item::EdgePoint {
+                                        triangle: t,
+                                        lo: i.min(j),
+                                        hi: i.max(j),
+                                    });
+                                }
                             }
                         }
                     }
+                    chunk.ends.push(chunk.items.len() as u32);
+                    chunk.simple.push(false);
                 }
-                chunk.ends.push(chunk.items.len() as u32);
-                chunk.simple.push(false);
-            }
-            chunk
-        })
+                tally.add(count);
+                chunk
+            },
+        )
         .collect();
     let mut mesh = assemble(Assembly {
         tri,
@@ -1577,6 +1608,7 @@ pub(crate) fn build_closed_facets(
         ghosts_from: Some(real_count as u32),
         slopes: None,
         diagnostics: std::mem::take(&mut diagnostics),
+        stages,
     });
     // Live editing never runs on this path: what only it reads is let go.
     mesh.triangle_vertices = Vec::new();

@@ -42,6 +42,7 @@ mod periodic;
 mod planes;
 mod polysurface;
 mod predicates;
+mod progress;
 mod projection;
 mod quality;
 mod relax;
@@ -61,8 +62,8 @@ pub use closed::{surface_layout, SurfaceLayout};
 pub use diagnostics::Diagnostic;
 pub use diffgeo::LocalGeometry;
 pub use discretise::{
-    discretise, validate_pattern, Discretisation, DiscretiseOptions, MeshTopology, PlaneAdjustment,
-    PlaneMode, Seed, Timings,
+    discretise, discretise_with_progress, validate_pattern, Discretisation, DiscretiseOptions,
+    MeshTopology, PlaneAdjustment, PlaneMode, Seed, Timings,
 };
 pub use error::{
     bound_message, bounded, Direction, Num, TpiError, MAX_COORDINATE, MAX_WEIGHT_RATIO,
@@ -80,6 +81,7 @@ pub use pattern::{
     Generator, GridSize, Pattern, SplitMix64, DEFAULT_JITTER_AMOUNT, MAX_GENERATED_POINTS,
 };
 pub use polysurface::{Polysurface, MAX_POLYSURFACE_FACES};
+pub use progress::{NoProgress, Progress, Stage, PROGRESS_CHUNK};
 pub use quality::{
     QualityReport, FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
     INVALID_FLAGS,

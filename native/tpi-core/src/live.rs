@@ -52,6 +52,7 @@ use crate::mesh::edge_reversed;
 use crate::neighbours::{slope_repairs, NeighbourStats, SlopeFrame};
 use crate::planes::Plane;
 use crate::predicates::{orient2d, power_illegal};
+use crate::progress::NoProgress;
 use crate::projection::foot;
 use crate::quality::{report, ReportInput};
 use crate::samples::curvature_class;
@@ -357,7 +358,13 @@ impl LiveSurface {
 
     /// Runs the whole pipeline on the current inputs and keeps its state.
     fn recompute_all(&mut self) -> Result<(), TpiError> {
-        let (result, pipeline) = run(self.surface.as_ref(), &self.points, &self.options, true)?;
+        let (result, pipeline) = run(
+            self.surface.as_ref(),
+            &self.points,
+            &self.options,
+            true,
+            &NoProgress,
+        )?;
         self.stats.full += 1;
         self.state = pipeline.and_then(|p| State::from_pipeline(p, &result, &self.points));
         self.mesh = Some(result);
@@ -1310,20 +1317,23 @@ impl State {
                     diagnosed[p as usize] = true;
                 }
             }
-            let (quality, flags) = report(&ReportInput {
-                surface,
-                uv: &uv,
-                planes: &planes,
-                vertices: &result.vertices,
-                offsets: &result.facet_offsets,
-                loops: &result.facet_loops,
-                diagonal: self.diagonal,
-                diagnosed: &diagnosed,
-                neighbours: stats,
-                diagnostic_count: result.diagnostics.len(),
-                feet: &feet,
-                convex_side: &self.convex_side,
-            });
+            let (quality, flags) = report(
+                &ReportInput {
+                    surface,
+                    uv: &uv,
+                    planes: &planes,
+                    vertices: &result.vertices,
+                    offsets: &result.facet_offsets,
+                    loops: &result.facet_loops,
+                    diagonal: self.diagonal,
+                    diagnosed: &diagnosed,
+                    neighbours: stats,
+                    diagnostic_count: result.diagnostics.len(),
+                    feet: &feet,
+                    convex_side: &self.convex_side,
+                },
+                &NoProgress,
+            );
             result.quality = Some(quality);
             result.facet_flags = flags;
             crate::discretise::note_topology(&mut result, false);

@@ -29,6 +29,7 @@ use crate::facets::{
     ITEM_INDEX,
 };
 use crate::planes::Plane;
+use crate::progress::{Stage, Stages, Tally};
 use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
 
 /// The indexed polygon mesh before reporting.
@@ -108,6 +109,9 @@ pub(crate) struct Assembly<'a> {
     /// On the convex path: adjacent vertices whose edge is reversed are welded too.
     pub(crate) slopes: Option<SlopeView<'a>>,
     pub(crate) diagnostics: Vec<Diagnostic>,
+    /// The assembly is the mesh stage: it starts it, with the facets as its total, and counts
+    /// each facet as it is numbered.
+    pub(crate) stages: &'a Stages<'a>,
 }
 
 /// Welding, vertex numbering in facet order, loops (see the module doc).
@@ -123,8 +127,11 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
         ghosts_from,
         slopes,
         mut diagnostics,
+        stages,
     } = a;
     let uv_len = chunks.iter().map(|c| c.ends.len()).sum::<usize>();
+    stages.enter(Stage::Mesh, Some(uv_len));
+    let mut tally = Tally::new(stages.observer(), Stage::Mesh);
     // 4. Welding of coincident triangle vertices across interior edges.
     let assembly = std::time::Instant::now();
     let weld_pairs: Vec<(u32, u32)> = (0..tri.len())
@@ -196,6 +203,7 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
     let mut corner_claims = vec![0u32; corners.map_or(4, <[_]>::len)];
     let mut i = 0usize;
     for chunk in chunks {
+        let count = chunk.ends.len();
         let mut start_item = 0usize;
         let mut walk_diagnostics = chunk.diagnostics.into_iter().peekable();
         mesh.facet_simple.extend_from_slice(&chunk.simple);
@@ -319,6 +327,7 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
             mesh.offsets.push(mesh.loops.len() as u32);
             i += 1;
         }
+        tally.add(count);
     }
     for (corner, &claims) in corner_claims.iter().enumerate() {
         if corners.is_some() && claims != 1 {

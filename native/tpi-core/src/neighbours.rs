@@ -35,6 +35,7 @@ use glam::DVec3;
 use crate::diffgeo::{flat_curvatures, LocalGeometry};
 use crate::planes::{intersect_three, Plane};
 use crate::predicates::{orient2d, power_illegal};
+use crate::progress::{NoProgress, Stage, Stages, Tally};
 use crate::tolerance::{
     COMPENSATION_TIE_TOLERANCE, CONVEX_METRIC_REGULARISATION, DEGENERATE_SLIVER_FACTOR,
     DEVELOPABLE_METRIC_REGULARISATION, ENVELOPE_FLIP_TOLERANCE, GRADIENT_MIN_COS,
@@ -101,11 +102,20 @@ pub(crate) fn decide(
 ) -> NeighbourStats {
     let mut stats = NeighbourStats::default();
     let uv = input.plane_uv;
-    stats.compensation_flips =
-        flip_until_stable(tri, uv, |tri, t, k| compensation_illegal(tri, input, t, k)).0;
+    stats.compensation_flips = flip_until_stable(
+        tri,
+        uv,
+        |tri, t, k| compensation_illegal(tri, input, t, k),
+        None,
+    )
+    .0;
     if envelope {
-        let (flips, unresolved) =
-            flip_until_stable(tri, uv, |tri, t, k| envelope_illegal(tri, input, t, k));
+        let (flips, unresolved) = flip_until_stable(
+            tri,
+            uv,
+            |tri, t, k| envelope_illegal(tri, input, t, k),
+            None,
+        );
         stats.envelope_repairs = flips;
         stats.envelope_unresolved = unresolved;
     }
@@ -223,11 +233,17 @@ pub(crate) fn decide_convex(
     slopes: &[[f64; 2]],
     lifted: &[[f64; 3]],
     input: &NeighbourInput<'_>,
+    stages: &Stages<'_>,
 ) -> NeighbourStats {
-    let (_flips, unresolved) = flip_until_stable(tri, slopes, |tri, t, k| {
-        let ids = quad(tri, t, k);
-        power_illegal(ids.map(|i| lifted[i as usize]), ids)
-    });
+    let (_flips, unresolved) = flip_until_stable(
+        tri,
+        slopes,
+        |tri, t, k| {
+            let ids = quad(tri, t, k);
+            power_illegal(ids.map(|i| lifted[i as usize]), ids)
+        },
+        Some(stages),
+    );
     orient_like(tri, input.plane_uv);
     tri.canonicalise(input.plane_uv.len());
     // Rounding can leave slivers along a straight stretch of the hull.
@@ -503,10 +519,14 @@ fn hull_rejected(
 /// first tests of all edges are done in parallel up front: an edge whose two triangles no
 /// flip has touched yet reads nothing a flip changes, so its result stands. An edge whose
 /// triangles changed is found again by its two points (kept for the few changed triangles).
+///
+/// With `stages`, the neighbour stage starts with the interior edges as its total, and each
+/// edge of the loop counts as one item when its turn comes.
 fn flip_until_stable(
     tri: &mut DualTriangulation,
     embedding: &[[f64; 2]],
     illegal: impl Fn(&DualTriangulation, usize, usize) -> bool + Sync,
+    stages: Option<&Stages<'_>>,
 ) -> (usize, usize) {
     use rayon::prelude::*;
     // Interior edges in triangle order, as (triangle << 2 | side).
@@ -522,6 +542,13 @@ fn flip_until_stable(
         }
         v
     };
+    if let Some(stages) = stages {
+        stages.enter(Stage::Neighbours, Some(initial.len()));
+    }
+    let mut tally = Tally::new(
+        stages.map_or(&NoProgress, Stages::observer),
+        Stage::Neighbours,
+    );
     let first_tests: Vec<bool> = {
         let tri_ref: &DualTriangulation = tri;
         initial
@@ -538,6 +565,7 @@ fn flip_until_stable(
     let mut incident: Vec<u32> = Vec::new();
     let mut stack: Vec<(u32, u32)> = Vec::new();
     for (n, &e) in initial.iter().enumerate() {
+        tally.add(1);
         let (t0, k0) = ((e >> 2) as usize, (e & 3) as usize);
         let mut next: Option<(u32, u32, Option<bool>)> = {
             let other = tri.neighbours[t0][k0];
@@ -637,6 +665,10 @@ fn rotated(x: [u32; 3], k: usize) -> [u32; 3] {
 }
 
 /// The four points (c, a, b, d) of the quad around the edge opposite vertex k of triangle t.
+// Always inlined into the flip tests (the convex path's first tests call it once per edge):
+// left to the compiler, it stopped being inlined there when the progress counting came in
+// (+85 instructions an edge under callgrind).
+#[inline(always)]
 fn quad(tri: &DualTriangulation, t: usize, k: usize) -> [u32; 4] {
     let [c, a, b] = rotated(tri.triangles[t], k);
     let t2 = tri.neighbours[t][k] as usize;

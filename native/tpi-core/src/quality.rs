@@ -28,6 +28,7 @@ use crate::facets::{accept_newton, FootHint};
 use crate::mesh::find;
 use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
+use crate::progress::{NoProgress, Progress, Stage, Tally};
 use crate::projection::foot;
 use crate::surface::Surface;
 use crate::tolerance::SEPARATION_MARGIN;
@@ -141,8 +142,9 @@ fn facet<'a>(input: &ReportInput<'a>, i: usize) -> &'a [u32] {
     &input.loops[input.offsets[i] as usize..input.offsets[i + 1] as usize]
 }
 
-/// Computes the report and the per-facet flags.
-pub(crate) fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
+/// Computes the report and the per-facet flags, counting each facet's shape and then each
+/// vertex's deviation as an item of [`Stage::Report`].
+pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (QualityReport, Vec<u8>) {
     let facet_count = input.offsets.len().saturating_sub(1);
     let mut r = QualityReport {
         facet_count,
@@ -164,25 +166,32 @@ pub(crate) fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
         use rayon::prelude::*;
         (0..facet_count)
             .into_par_iter()
-            .map_init(Vec::new, |buffer, i| {
-                let l = facet(input, i);
-                let plane = &input.planes[i];
-                let mut planarity = 0.0f64;
-                let mut centroid = DVec3::ZERO;
-                for &v in l {
-                    let x = input.vertices[v as usize];
-                    planarity = planarity.max(plane.signed_distance(x).abs() / input.diagonal);
-                    centroid += x;
-                }
-                let centroid = if l.is_empty() {
-                    DVec3::NAN
-                } else {
-                    centroid / l.len() as f64
-                };
-                let shape =
-                    facet_shape_into(plane, l.iter().map(|&v| input.vertices[v as usize]), buffer);
-                (centroid, shape, planarity)
-            })
+            .map_init(
+                || (Vec::new(), Tally::new(progress, Stage::Report)),
+                |(buffer, tally), i| {
+                    tally.add(1);
+                    let l = facet(input, i);
+                    let plane = &input.planes[i];
+                    let mut planarity = 0.0f64;
+                    let mut centroid = DVec3::ZERO;
+                    for &v in l {
+                        let x = input.vertices[v as usize];
+                        planarity = planarity.max(plane.signed_distance(x).abs() / input.diagonal);
+                        centroid += x;
+                    }
+                    let centroid = if l.is_empty() {
+                        DVec3::NAN
+                    } else {
+                        centroid / l.len() as f64
+                    };
+                    let shape = facet_shape_into(
+                        plane,
+                        l.iter().map(|&v| input.vertices[v as usize]),
+                        buffer,
+                    );
+                    (centroid, shape, planarity)
+                },
+            )
             .collect()
     };
     let mut shared_edges: Vec<(u32, u32, u32, u32)> = Vec::new();
@@ -333,6 +342,7 @@ pub(crate) fn report(input: &ReportInput<'_>) -> (QualityReport, Vec<u8>) {
             let (cu, cw) = domain.clamp(u, w);
             input.surface.point_at(cu, cw).distance(input.vertices[v])
         },
+        progress,
     )
     .into_iter()
     .flatten()
@@ -362,11 +372,22 @@ pub(crate) fn resolve_feet(
     loops: &[u32],
     hints: &[FootHint],
 ) -> Vec<Option<[f64; 2]>> {
-    map_feet(surface, uv, vertices, offsets, loops, hints, |_, f| f)
+    map_feet(
+        surface,
+        uv,
+        vertices,
+        offsets,
+        loops,
+        hints,
+        |_, f| f,
+        &NoProgress,
+    )
 }
 
 /// `f(vertex, foot)` for every vertex used by a facet (None for the others), in parallel,
-/// with the feet of [`resolve_feet`].
+/// with the feet of [`resolve_feet`]; each vertex counts as an item of [`Stage::Report`].
+// The mesh's arrays, the feet's hints, the map and the observer.
+#[allow(clippy::too_many_arguments)]
 fn map_feet<T: Send>(
     surface: &dyn Surface,
     uv: &[[f64; 2]],
@@ -375,6 +396,7 @@ fn map_feet<T: Send>(
     loops: &[u32],
     hints: &[FootHint],
     f: impl Fn(usize, [f64; 2]) -> T + Sync,
+    progress: &dyn Progress,
 ) -> Vec<Option<T>> {
     use rayon::prelude::*;
     let facet_count = offsets.len().saturating_sub(1);
@@ -389,24 +411,28 @@ fn map_feet<T: Send>(
     let domain = surface.domain();
     (0..vertices.len())
         .into_par_iter()
-        .map(|v| {
-            let seed = *seed_of.get(v).filter(|&&s| s != u32::MAX)?;
-            let x = vertices[v];
-            let from_seed = || foot(surface, &domain, x, uv[seed as usize]);
-            let resolved = match hints.get(v) {
-                Some(&FootHint::Known(f)) => f,
-                Some(&FootHint::Guess { linear, reach }) => {
-                    let newton = foot(surface, &domain, x, linear);
-                    if accept_newton(&domain, newton, linear, reach) {
-                        newton
-                    } else {
-                        from_seed()
+        .map_init(
+            || Tally::new(progress, Stage::Report),
+            |tally, v| {
+                tally.add(1);
+                let seed = *seed_of.get(v).filter(|&&s| s != u32::MAX)?;
+                let x = vertices[v];
+                let from_seed = || foot(surface, &domain, x, uv[seed as usize]);
+                let resolved = match hints.get(v) {
+                    Some(&FootHint::Known(f)) => f,
+                    Some(&FootHint::Guess { linear, reach }) => {
+                        let newton = foot(surface, &domain, x, linear);
+                        if accept_newton(&domain, newton, linear, reach) {
+                            newton
+                        } else {
+                            from_seed()
+                        }
                     }
-                }
-                _ => from_seed(),
-            };
-            Some(f(v, resolved))
-        })
+                    _ => from_seed(),
+                };
+                Some(f(v, resolved))
+            },
+        )
         .collect()
 }
 

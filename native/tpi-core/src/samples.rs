@@ -18,6 +18,7 @@ use crate::discretise::{DiscretiseOptions, Seed};
 use crate::error::TpiError;
 use crate::neighbours::{gradient_embedding, slope_frame};
 use crate::planes::Plane;
+use crate::progress::{Progress, Stage, Tally};
 use crate::surface::Surface;
 use crate::tolerance::DEFAULT_PLANE_CURVATURE;
 
@@ -49,11 +50,13 @@ pub(crate) struct Samples {
     pub(crate) diagnostics: Vec<Diagnostic>,
 }
 
-/// Samples the surface at every (validated) pattern point.
+/// Samples the surface at every (validated) pattern point, counting each evaluation as an
+/// item of [`Stage::Samples`].
 pub(crate) fn sample(
     surface: &dyn Surface,
     pattern: &[[f64; 2]],
     options: &DiscretiseOptions,
+    progress: &dyn Progress,
 ) -> Result<Samples, TpiError> {
     let domain = surface.domain();
     let uv: Vec<[f64; 2]> = pattern
@@ -62,10 +65,14 @@ pub(crate) fn sample(
         .collect();
     let (mut geometry, tangents): (Vec<LocalGeometry>, Vec<[DVec3; 2]>) = uv
         .par_iter()
-        .map(|&[u, v]| {
-            let d = surface.evaluate(u, v);
-            (LocalGeometry::from_derivatives(&d), [d.su, d.sv])
-        })
+        .map_init(
+            || Tally::new(progress, Stage::Samples),
+            |tally, &[u, v]| {
+                tally.add(1);
+                let d = surface.evaluate(u, v);
+                (LocalGeometry::from_derivatives(&d), [d.su, d.sv])
+            },
+        )
         .unzip();
     if let Some(bad) = geometry
         .iter()

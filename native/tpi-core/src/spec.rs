@@ -30,7 +30,9 @@
 //! the model's length units, carried to every output; absent, the model is unitless.
 
 use glam::DVec3;
+use serde::de::{MapAccess, Visitor};
 use serde::{Deserialize, Serialize};
+use serde_json::value::RawValue;
 
 use crate::analytic::{AnalyticKind, AnalyticSurface};
 use crate::error::TpiError;
@@ -201,7 +203,8 @@ impl SurfaceSpec {
                 message,
             }
         };
-        // Syntax first, with serde_json's own positions.
+        // Syntax first, with serde_json's own positions: the whole document parsed (numbers in
+        // range, escapes valid, nesting within serde_json's limit, nothing after the end).
         let value: serde_json::Value =
             serde_json::from_str(text).map_err(|e| parse_error(e, context))?;
         let start = text.len() - text.trim_start().len();
@@ -214,7 +217,17 @@ impl SurfaceSpec {
                 ),
             ));
         }
-        let tags = find_members(text, "type");
+        drop(value);
+        // The top level's members as slices of the text, whose places in it are the positions
+        // of what they hold.
+        let members = top_level_members(text).map_err(|e| parse_error(e, context))?;
+        // Keys compared after unescaping (`"typ\u0065"` is `type`).
+        let is_type =
+            |key: &RawValue| serde_json::from_str::<String>(key.get()).is_ok_and(|k| k == "type");
+        let tags: Vec<usize> = (0..members.len())
+            .filter(|&k| is_type(members[k].0))
+            .collect();
+        let place = |raw: &RawValue| span_in(text, raw.get());
         let tag = match tags.as_slice() {
             [] => {
                 return Err(at(
@@ -222,28 +235,36 @@ impl SurfaceSpec {
                     format!("missing field `type` (one of {})", type_list()),
                 ))
             }
-            [tag] => tag,
-            [_, second, ..] => return Err(at(second.key, "duplicate field `type`".to_string())),
-        };
-        let name = match serde_json::from_str::<String>(&text[tag.value.clone()]) {
-            Ok(name) => name,
-            Err(_) => {
+            [tag] => *tag,
+            [_, second, ..] => {
                 return Err(at(
-                    tag.value.start,
-                    format!("`type` must be a string, one of {}", type_list()),
+                    place(members[*second].0).start,
+                    "duplicate field `type`".to_string(),
                 ))
             }
         };
-        // The tag is blanked out (same length, so every position stays), then the record is
-        // read as the type's own struct, which rejects unknown fields.
+        let (key, value) = members[tag];
+        let Ok(name) = serde_json::from_str::<String>(value.get()) else {
+            return Err(at(
+                place(value).start,
+                format!("`type` must be a string, one of {}", type_list()),
+            ));
+        };
+        // The tag is blanked out with one comma beside it (same length, so every position
+        // stays): from its key to the next key, or else from the end of the previous value.
+        let member = match (members.get(tag + 1), tag.checked_sub(1)) {
+            (Some(next), _) => place(key).start..place(next.0).start,
+            (None, Some(previous)) => place(members[previous].1).end..place(value).end,
+            (None, None) => place(key).start..place(value).end,
+        };
         let mut blanked = text.as_bytes().to_vec();
-        for byte in &mut blanked[tag.member.clone()] {
+        for byte in blanked.get_mut(member).into_iter().flatten() {
             if *byte != b'\n' {
                 *byte = b' ';
             }
         }
-        // The blanked span is ASCII (a key, a known type name, whitespace, a comma), so the
-        // bytes stay valid UTF-8; the fallback is never taken.
+        // The blanked span is all spaces and newlines now, so the bytes stay valid UTF-8; the
+        // fallback is never taken.
         let body = String::from_utf8(blanked).unwrap_or_default();
         Ok(match name.as_str() {
             "nurbs" => SurfaceSpec::Nurbs(read(&body, context)?),
@@ -332,7 +353,7 @@ impl SurfaceSpec {
             }
             other => {
                 return Err(at(
-                    tag.value.start,
+                    place(value).start,
                     format!(
                         "unknown surface type `{other}`, expected one of {}",
                         type_list()
@@ -615,14 +636,6 @@ struct PlaneRecord {
     trim: Option<Trim>,
 }
 
-fn type_list() -> String {
-    SurfaceSpec::TYPE_NAMES
-        .iter()
-        .map(|t| format!("`{t}`"))
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 fn json_kind(v: &serde_json::Value) -> &'static str {
     match v {
         serde_json::Value::Null => "null",
@@ -632,6 +645,14 @@ fn json_kind(v: &serde_json::Value) -> &'static str {
         serde_json::Value::Array(_) => "an array",
         serde_json::Value::Object(_) => "an object",
     }
+}
+
+fn type_list() -> String {
+    SurfaceSpec::TYPE_NAMES
+        .iter()
+        .map(|t| format!("`{t}`"))
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 /// Reads a record from JSON text (a whole document) with the path of the offending value in
@@ -697,124 +718,39 @@ fn line_column(text: &str, offset: usize) -> (usize, usize) {
     (line, before.len() - line_start + 1)
 }
 
-/// One member of the top-level JSON object, as byte ranges of the text.
-struct Member {
-    /// Start of the key's opening quote.
-    key: usize,
-    /// The value.
-    value: std::ops::Range<usize>,
-    /// The member with one adjacent comma: removing it leaves a valid object.
-    member: std::ops::Range<usize>,
+/// The members of the top-level object of `text` (a valid JSON object), key and value in
+/// order, repeated keys kept, as slices of `text`.
+fn top_level_members(text: &str) -> Result<Vec<(&RawValue, &RawValue)>, serde_json::Error> {
+    let mut de = serde_json::Deserializer::from_str(text);
+    let members = serde::Deserializer::deserialize_map(&mut de, MembersVisitor)?;
+    de.end()?;
+    Ok(members)
 }
 
-/// The members of the top-level object whose key is `name` (keys compared after unescaping).
-/// The text must be syntactically valid JSON (checked before); on anything unexpected the
-/// scan stops and returns what it found.
-fn find_members(text: &str, name: &str) -> Vec<Member> {
-    let b = text.as_bytes();
-    let mut found = Vec::new();
-    let mut i = skip_ws(b, 0);
-    if b.get(i) != Some(&b'{') {
-        return found;
+struct MembersVisitor;
+
+impl<'de> Visitor<'de> for MembersVisitor {
+    type Value = Vec<(&'de RawValue, &'de RawValue)>;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("a JSON object")
     }
-    i += 1;
-    let mut previous_comma: Option<usize> = None;
-    loop {
-        i = skip_ws(b, i);
-        if b.get(i) != Some(&b'"') {
-            return found;
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Self::Value, A::Error> {
+        let mut members = Vec::new();
+        while let Some(member) = map.next_entry::<&'de RawValue, &'de RawValue>()? {
+            members.push(member);
         }
-        let key = i;
-        let Some(key_end) = skip_string(b, i) else {
-            return found;
-        };
-        i = skip_ws(b, key_end);
-        if b.get(i) != Some(&b':') {
-            return found;
-        }
-        let value_start = skip_ws(b, i + 1);
-        let Some(value_end) = skip_value(b, value_start) else {
-            return found;
-        };
-        i = skip_ws(b, value_end);
-        let comma = b.get(i) == Some(&b',');
-        if serde_json::from_str::<String>(&text[key..key_end]).is_ok_and(|k| k == name) {
-            let member = if comma {
-                key..i + 1
-            } else if let Some(c) = previous_comma {
-                c..value_end
-            } else {
-                key..value_end
-            };
-            found.push(Member {
-                key,
-                value: value_start..value_end,
-                member,
-            });
-        }
-        if !comma {
-            return found;
-        }
-        previous_comma = Some(i);
-        i += 1;
+        Ok(members)
     }
 }
 
-fn skip_ws(b: &[u8], mut i: usize) -> usize {
-    while matches!(b.get(i), Some(b' ' | b'\t' | b'\n' | b'\r')) {
-        i += 1;
-    }
-    i
-}
-
-/// Index just past the string starting at `i` (an opening quote).
-fn skip_string(b: &[u8], i: usize) -> Option<usize> {
-    let mut j = i + 1;
-    loop {
-        match b.get(j)? {
-            b'\\' => j += 2,
-            b'"' => return Some(j + 1),
-            _ => j += 1,
-        }
-    }
-}
-
-/// Index just past the value starting at `i`.
-fn skip_value(b: &[u8], i: usize) -> Option<usize> {
-    match b.get(i)? {
-        b'"' => skip_string(b, i),
-        b'{' | b'[' => {
-            let mut depth = 0usize;
-            let mut j = i;
-            loop {
-                match b.get(j)? {
-                    b'"' => {
-                        j = skip_string(b, j)?;
-                        continue;
-                    }
-                    b'{' | b'[' => depth += 1,
-                    b'}' | b']' => {
-                        depth -= 1;
-                        if depth == 0 {
-                            return Some(j + 1);
-                        }
-                    }
-                    _ => {}
-                }
-                j += 1;
-            }
-        }
-        _ => {
-            let mut j = i;
-            while !matches!(
-                b.get(j),
-                None | Some(b',' | b'}' | b']' | b' ' | b'\t' | b'\n' | b'\r')
-            ) {
-                j += 1;
-            }
-            Some(j)
-        }
-    }
+/// The byte range in `text` of `part`, a slice of it (what a borrowed [`RawValue`] is).
+fn span_in(text: &str, part: &str) -> std::ops::Range<usize> {
+    let start = (part.as_ptr() as usize)
+        .saturating_sub(text.as_ptr() as usize)
+        .min(text.len());
+    start..(start + part.len()).min(text.len())
 }
 
 /// A validated surface of any supported kind: what the pipeline samples.

@@ -170,6 +170,29 @@ fn the_type_may_stand_anywhere_in_the_record() {
 }
 
 #[test]
+fn only_a_top_level_member_is_the_type() {
+    // Windows line ends around the tag, last in the record: blanked with its comma.
+    let crlf = "{\"radius\": 2, \"x\": [-1, 1], \"y\": [0, 1],\r\n\"type\":\"cylinder\"\r\n}";
+    assert!(SurfaceSpec::from_json(crlf, "s").is_ok());
+    // A "type" inside a value (a trim's loop) is not the record's tag.
+    let (line, column, message) =
+        parse_err(r#"{"trim": {"type": "cylinder"}, "radius": 2, "x": [-1, 1], "y": [0, 1]}"#);
+    assert!(message.contains("missing field `type`"), "{message}");
+    assert_eq!((line, column), (1, 1));
+    // A repeat spelled with an escape is a repeat, at its key; columns count bytes (`é` is 2).
+    let (line, column, message) =
+        parse_err("{\"é\": 1,\n \"type\": \"plane\", \"typ\\u0065\": \"plane\"}");
+    assert!(message.contains("duplicate field `type`"), "{message}");
+    assert_eq!((line, column), (2, 19));
+    // An unknown field is placed at the end of its key, in bytes (`ü` is 2), as serde_json counts.
+    let (line, column, message) = parse_err(
+        "{\"type\": \"cylinder\", \"units\": \"mm\", \"radius\": 2, \"x\": [-1, 1], \"y\": [0, 1], \"ü\": 1}",
+    );
+    assert!(message.contains("unknown field `ü`"), "{message}");
+    assert_eq!((line, column), (1, 80));
+}
+
+#[test]
 fn unknown_missing_repeated_and_malformed_types_are_named() {
     let (line, column, message) =
         parse_err("{\n  \"type\": \"spere_cap\", \"radius\": 2.0, \"x\": [-1, 1], \"y\": [-1, 1]}");
