@@ -197,6 +197,14 @@ impl Grid {
 /// Why an edit left the incremental path (internal: the edit then runs the whole pipeline).
 struct Fallback;
 
+/// Where a point's slopes lie in the structure.
+enum Location {
+    /// Strictly inside this triangle.
+    Inside(u32),
+    /// Strictly inside the edge opposite vertex k of this triangle.
+    OnEdge(u32, usize),
+}
+
 impl LiveSurface {
     /// Discretises `surface` with `pattern` (normalised, as [`crate::discretise`]) and keeps
     /// what the pipeline computed for later edits. Errors as [`crate::discretise`].
@@ -914,14 +922,35 @@ impl State {
         })
     }
 
-    /// Inserts point v (not in the structure) at its slopes, starting the search at `start`.
+    /// Inserts point v (not in the structure) at its slopes, starting the search at `start`:
+    /// the triangle holding them is split in three, or, where the slopes lie on an edge (a
+    /// pattern row dragged along itself on a surface whose slopes follow the parameters), the
+    /// two triangles of that edge in four; then the new triangles are legalised.
     fn insert_into_structure(
         &mut self,
         v: u32,
         start: u32,
         changed: &mut Changed,
     ) -> Result<(), Fallback> {
-        let t = self.locate(v, start)?;
+        let mut stack = std::mem::take(&mut self.scratch.stack);
+        stack.clear();
+        match self.locate(v, start)? {
+            Location::Inside(t) => self.split_triangle(v, t, changed, &mut stack),
+            Location::OnEdge(t, k) => self.split_edge(v, t, k, changed, &mut stack)?,
+        }
+        self.legalise(&mut stack, changed)?;
+        self.scratch.stack = stack;
+        Ok(())
+    }
+
+    /// Splits triangle t at v (inside it) into three; their outer edges go on `stack`.
+    fn split_triangle(
+        &mut self,
+        v: u32,
+        t: u32,
+        changed: &mut Changed,
+        stack: &mut Vec<(u32, usize)>,
+    ) {
         let [a, b, c] = self.tri.triangles[t as usize];
         let [n_a, n_b, n_c] = self.tri.neighbours[t as usize];
         self.free_slot(t);
@@ -942,23 +971,77 @@ impl State {
         for (x, t) in [(v, t1), (a, t2), (b, t3), (c, t1)] {
             self.holder[x as usize] = t;
         }
-        let mut stack = std::mem::take(&mut self.scratch.stack);
-        stack.clear();
         stack.extend_from_slice(&[(t1, 0), (t2, 0), (t3, 0)]);
-        self.legalise(&mut stack, changed)?;
-        self.scratch.stack = stack;
+    }
+
+    /// Splits the edge opposite vertex k of triangle t at v (strictly inside the edge) and
+    /// the two triangles sharing it into four; their outer edges go on `stack`. Fallback on
+    /// a hull edge.
+    fn split_edge(
+        &mut self,
+        v: u32,
+        t: u32,
+        k: usize,
+        changed: &mut Changed,
+        stack: &mut Vec<(u32, usize)>,
+    ) -> Result<(), Fallback> {
+        // t = (r, p, q) counter-clockwise with the edge (p, q) opposite r; u = (s, q, p)
+        // beyond it.
+        let tv = self.tri.triangles[t as usize];
+        let tn = self.tri.neighbours[t as usize];
+        let (r, p, q) = (tv[k], tv[(k + 1) % 3], tv[(k + 2) % 3]);
+        let (n_qr, n_rp) = (tn[(k + 1) % 3], tn[(k + 2) % 3]);
+        let u = tn[k];
+        if u == NO_TRIANGLE {
+            return Err(Fallback);
+        }
+        let uv = self.tri.triangles[u as usize];
+        let un = self.tri.neighbours[u as usize];
+        let k2 = un.iter().position(|&x| x == t).ok_or(Fallback)?;
+        let s = uv[k2];
+        if uv[(k2 + 1) % 3] != q || uv[(k2 + 2) % 3] != p {
+            return Err(Fallback);
+        }
+        let (n_ps, n_sq) = (un[(k2 + 1) % 3], un[(k2 + 2) % 3]);
+        self.free_slot(t);
+        self.free_slot(u);
+        // Around v counter-clockwise: (v, r, p), (v, q, r), (v, s, q), (v, p, s); each one's
+        // edge opposite v is an outer edge, its other two edges its ring neighbours'.
+        let t1 = self.new_slot([v, r, p], [n_rp, NO_TRIANGLE, NO_TRIANGLE]);
+        let t2 = self.new_slot([v, q, r], [n_qr, NO_TRIANGLE, NO_TRIANGLE]);
+        let t3 = self.new_slot([v, s, q], [n_sq, NO_TRIANGLE, NO_TRIANGLE]);
+        let t4 = self.new_slot([v, p, s], [n_ps, NO_TRIANGLE, NO_TRIANGLE]);
+        // In (v, r, p): opposite r is (p, v), shared with (v, p, s); opposite p is (v, r),
+        // shared with (v, q, r); and so on around v.
+        self.tri.neighbours[t1 as usize] = [n_rp, t4, t2];
+        self.tri.neighbours[t2 as usize] = [n_qr, t1, t3];
+        self.tri.neighbours[t3 as usize] = [n_sq, t2, t4];
+        self.tri.neighbours[t4 as usize] = [n_ps, t3, t1];
+        self.link(n_rp, r, p, t1);
+        self.link(n_qr, q, r, t2);
+        self.link(n_sq, s, q, t3);
+        self.link(n_ps, p, s, t4);
+        changed.created.extend_from_slice(&[t1, t2, t3, t4]);
+        changed.points.extend_from_slice(&[v, r, p, q, s]);
+        for (x, t) in [(v, t1), (r, t1), (p, t1), (q, t2), (s, t3)] {
+            self.holder[x as usize] = t;
+        }
+        stack.extend_from_slice(&[(t1, 0), (t2, 0), (t3, 0), (t4, 0)]);
         Ok(())
     }
 
-    /// The live triangle whose slope-space interior holds point v's slopes, by a walk from
-    /// `start` (Fallback on the hull, on an edge, or when the walk takes too long).
-    fn locate(&self, v: u32, start: u32) -> Result<u32, Fallback> {
+    /// Where point v's slopes lie, by a walk from `start`: inside a live triangle, or on the
+    /// inside of one of its edges (Fallback outside the hull, on a point's slopes, or when
+    /// the walk takes too long).
+    fn locate(&self, v: u32, start: u32) -> Result<Location, Fallback> {
         let mut t = self.live_slot(start);
         let limit = 4 * self.tri.len() + 16;
         let mut turn = 0usize;
         for _ in 0..limit {
             let tv = self.tri.triangles[t as usize];
-            let mut moved = false;
+            let mut next = None;
+            let mut on = None;
+            let mut zeros = 0;
             // Try the edges in a rotating order (a walk that cannot cycle for long).
             turn = turn.wrapping_add(1);
             for j in 0..3 {
@@ -966,20 +1049,20 @@ impl State {
                 let (a, b) = (tv[(k + 1) % 3], tv[(k + 2) % 3]);
                 let o = self.orientation(a, b, v);
                 if o < 0.0 {
-                    let next = self.tri.neighbours[t as usize][k];
-                    if next == NO_TRIANGLE {
-                        return Err(Fallback);
-                    }
-                    t = next;
-                    moved = true;
+                    next = Some(self.tri.neighbours[t as usize][k]);
                     break;
                 }
                 if o == 0.0 {
-                    return Err(Fallback);
+                    zeros += 1;
+                    on = Some(k);
                 }
             }
-            if !moved {
-                return Ok(t);
+            match (next, on) {
+                (Some(NO_TRIANGLE), _) => return Err(Fallback),
+                (Some(n), _) => t = n,
+                (None, None) => return Ok(Location::Inside(t)),
+                (None, Some(k)) if zeros == 1 => return Ok(Location::OnEdge(t, k)),
+                (None, Some(_)) => return Err(Fallback),
             }
         }
         Err(Fallback)

@@ -301,3 +301,72 @@ fn cylinder_and_plane_edits_equal_fresh_runs() {
         );
     }
 }
+
+/// The bicubic Bezier dome of the .NET tests (z = 1.5 (u (1 - u) + v (1 - v)) over
+/// [-1, 1]^2): its slopes follow the parameters, so a point dragged along a hex row lies
+/// exactly on the line of its row neighbours in slope space.
+fn bezier_dome() -> tpi_core::NurbsSurface {
+    let c = [0.0, 1.0, 1.0, 0.0];
+    let mut points = Vec::new();
+    for (i, ci) in c.iter().enumerate() {
+        for (j, cj) in c.iter().enumerate() {
+            points.push(glam::DVec3::new(
+                -1.0 + 2.0 * i as f64 / 3.0,
+                -1.0 + 2.0 * j as f64 / 3.0,
+                0.5 * (ci + cj),
+            ));
+        }
+    }
+    let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    tpi_core::NurbsSurface::new([3, 3], [4, 4], &knots, &knots, &points, None).expect("dome")
+}
+
+/// Issue 13: points of a hex pattern dragged along their rows and columns (their slopes on
+/// the edge between two neighbours') stay incremental (the edge is split) and agree with
+/// fresh runs.
+#[test]
+fn hex_rows_dragged_along_themselves_equal_fresh_runs() {
+    let hex = tpi_core::Generator::parse("hex:24x24")
+        .expect("spec")
+        .generate()
+        .uv;
+    for (name, surface) in [
+        ("Bezier dome", Box::new(bezier_dome()) as Box<dyn Surface>),
+        ("paraboloid", Box::new(paraboloid())),
+    ] {
+        let fresh: Box<dyn Surface> = if name == "paraboloid" {
+            Box::new(paraboloid())
+        } else {
+            Box::new(bezier_dome())
+        };
+        let mut live =
+            LiveSurface::new(surface, hex.clone(), DiscretiseOptions::default()).expect("new");
+        let mut rng = SplitMix64::new(13);
+        let edits = 300;
+        for step in 1..=edits {
+            let i = rng.below(live.points().len());
+            let p = live.points()[i];
+            let d = (0.2 + 0.6 * rng.next_f64()) / 24.0;
+            let q = if rng.next_f64() < 0.7 {
+                [(p[0] + d).clamp(0.0, 1.0), p[1]]
+            } else {
+                [p[0], (p[1] - d).clamp(0.0, 1.0)]
+            };
+            if live.move_point(i, q).is_err() {
+                continue; // a duplicate
+            }
+            check(
+                &mut live,
+                fresh.as_ref(),
+                step,
+                &format!("{name}: drag {i} to {q:?}"),
+            );
+        }
+        let stats = live.stats();
+        println!("{name}: {edits} row and column drags, {stats:?}");
+        assert!(
+            stats.incremental as f64 >= 0.5 * edits as f64,
+            "{name}: {stats:?}"
+        );
+    }
+}
