@@ -4,9 +4,77 @@
 //! same report and diagnostics (the whole output contract as JSON, byte for byte), and most
 //! edits take the incremental path (issue 7, item 3).
 
+use glam::DVec3;
 use tpi_core::benchmark::{nurbs_dome, paraboloid, random_pattern};
 use tpi_core::SplitMix64;
-use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, LiveSurface, Surface};
+use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, LiveChanges, LiveSurface, Surface};
+
+/// A host's copy of the mesh kept only by [`LiveSurface::take_changes`] (issue 13): vertex
+/// positions by live id, facet loops and planes.
+#[derive(Default)]
+struct Replica {
+    vertices: Vec<Option<DVec3>>,
+    loops: Vec<Vec<u32>>,
+    planes: Vec<(DVec3, DVec3)>,
+}
+
+impl Replica {
+    fn apply(&mut self, changes: &LiveChanges) {
+        if changes.everything {
+            *self = Replica::default();
+        }
+        self.vertices.resize(changes.vertex_id_bound, None);
+        self.loops.truncate(changes.facet_count);
+        self.loops.resize(changes.facet_count, Vec::new());
+        self.planes
+            .resize(changes.facet_count, (DVec3::NAN, DVec3::NAN));
+        for (k, &f) in changes.facets.iter().enumerate() {
+            self.loops[f as usize] = changes.facet_loop(k).to_vec();
+            self.planes[f as usize] = changes.planes[k];
+        }
+        for (&id, &x) in changes.vertex_ids.iter().zip(&changes.vertices) {
+            self.vertices[id as usize] = Some(x);
+        }
+    }
+
+    /// Takes the live surface's changes and checks the copy against its assembled mesh:
+    /// every facet's vertices and plane, bit for bit. Returns how many facets were listed.
+    fn follow(&mut self, live: &mut LiveSurface, step: usize, what: &str) -> usize {
+        let changes = live.take_changes();
+        assert_eq!(changes.facet_offsets.len(), changes.facets.len() + 1);
+        assert!(
+            changes.facets.windows(2).all(|w| w[0] < w[1]),
+            "{what}: facets ascending"
+        );
+        self.apply(&changes);
+        let mesh = live.discretisation();
+        assert_eq!(self.loops.len(), mesh.facet_count(), "edit {step} ({what})");
+        let bits = |x: DVec3| x.to_array().map(f64::to_bits);
+        for i in 0..mesh.facet_count() {
+            let expected: Vec<_> = mesh
+                .facet(i)
+                .iter()
+                .map(|&v| bits(mesh.vertices[v as usize]))
+                .collect();
+            let got: Vec<_> = self.loops[i]
+                .iter()
+                .map(|&v| {
+                    bits(self.vertices[v as usize].unwrap_or_else(|| {
+                        panic!("edit {step} ({what}): facet {i} holds vertex id {v} never listed")
+                    }))
+                })
+                .collect();
+            assert_eq!(got, expected, "edit {step} ({what}): facet {i}'s vertices");
+            let (p, n) = mesh.facet_plane(i);
+            assert_eq!(
+                (bits(self.planes[i].0), bits(self.planes[i].1)),
+                (bits(p), bits(n)),
+                "edit {step} ({what}): facet {i}'s plane"
+            );
+        }
+        changes.facets.len()
+    }
+}
 
 /// Compares the live mesh with a fresh run, byte for byte.
 fn check(live: &mut LiveSurface, surface: &dyn Surface, step: usize, what: &str) {
@@ -49,7 +117,14 @@ fn random_edits(
 ) {
     let mut live = LiveSurface::new(boxed, random_pattern(points), options).expect("discretises");
     check(&mut live, surface, 0, "new");
+    let mut replica = Replica::default();
+    assert_eq!(
+        replica.follow(&mut live, 0, "new"),
+        points,
+        "the first changes list everything"
+    );
     let mut rng = SplitMix64::new(seed);
+    let mut last_incremental = live.stats().incremental;
     for step in 1..=edits {
         let n = live.points().len();
         let roll = rng.next_f64();
@@ -78,6 +153,15 @@ fn random_edits(
             format!("remove {i}")
         };
         check(&mut live, surface, step, &what);
+        let incremental = live.stats().incremental;
+        let listed = replica.follow(&mut live, step, &what);
+        if what.starts_with("drag") && incremental > last_incremental {
+            assert!(
+                listed < 30,
+                "edit {step} ({what}): {listed} facets listed for a drag"
+            );
+        }
+        last_incremental = incremental;
     }
     let stats = live.stats();
     println!(
@@ -341,6 +425,8 @@ fn hex_rows_dragged_along_themselves_equal_fresh_runs() {
         };
         let mut live =
             LiveSurface::new(surface, hex.clone(), DiscretiseOptions::default()).expect("new");
+        let mut replica = Replica::default();
+        replica.follow(&mut live, 0, name);
         let mut rng = SplitMix64::new(13);
         let edits = 300;
         for step in 1..=edits {
