@@ -29,8 +29,9 @@
  * per thread: read it on the thread that made the failing call, before the next call (every
  * call except tpi_last_error_message and the *_free calls replaces it; success leaves "").
  *
- * Ownership. Opaque handles (TpiSurface, TpiPattern, TpiDiscretisation, TpiDiscreteSurface)
- * are created by tpi_*_new* calls (and tpi_discretise, tpi_discrete_surface_mesh), which
+ * Ownership. Opaque handles (TpiSurface, TpiPattern, TpiDiscretisation, TpiDiscreteSurface,
+ * TpiFabrication, TpiMeshChanges) are created by tpi_*_new* calls (and tpi_discretise,
+ * tpi_discrete_surface_mesh, tpi_discrete_surface_changes, tpi_fabricate), which
  * store the new handle through their last argument `out`; the caller owns it and frees it
  * with the matching tpi_*_free call exactly once. On failure `*out` is set to NULL, so a
  * handle from a failed create stays NULL and a later call on it gives
@@ -72,11 +73,12 @@
  * THREAD SAFETY
  *
  * - All calls may be made from any thread.
- * - TpiSurface, TpiPattern and TpiDiscretisation are immutable after creation: one handle may
- *   be used by several threads at the same time.
+ * - TpiSurface, TpiPattern, TpiDiscretisation, TpiFabrication and TpiMeshChanges are
+ *   immutable after creation: one handle may be used by several threads at the same time.
  * - TpiDiscreteSurface may also be used by several threads at the same time: calls on one
  *   object are serialised by a lock inside it (a recompute blocks the other calls on that
- *   object until it is done). Meshes taken from it are separate immutable handles.
+ *   object until it is done). Meshes and changes taken from it are separate immutable
+ *   handles.
  * - A *_free call must not overlap any other call on the same handle, and a handle must not
  *   be used after it was freed.
  * - The last error message is per thread (see above).
@@ -421,6 +423,20 @@ typedef struct TpiDiscretisation TpiDiscretisation;
 typedef struct TpiFabrication TpiFabrication;
 
 /**
+ * What changed in a discrete surface's mesh between two `tpi_discrete_surface_changes`
+ * calls: an immutable snapshot, read with the `tpi_mesh_changes_*` calls and freed with
+ * `tpi_mesh_changes_free`.
+ *
+ * Vertices are named by ids of the discrete surface's live structure, not by the vertex
+ * numbers of `tpi_discrete_surface_mesh`: an id keeps its position until a later snapshot
+ * lists it with a new one. When `everything` is set (the first snapshot, and after a
+ * recompute that ran the whole pipeline: a batch of edits, a new surface, an edit near the
+ * boundary or on a surface without live editing) the numbering started over and every
+ * facet and every vertex is listed.
+ */
+typedef struct TpiMeshChanges TpiMeshChanges;
+
+/**
  * A set of pattern points (s, t) in the normalised square [0, 1]^2, mapped linearly onto a
  * surface's domain: u = u_min + s (u_max - u_min), v = v_min + t (v_max - v_min). Immutable
  * once created.
@@ -500,6 +516,21 @@ typedef struct TpiOptions {
 } TpiOptions;
 
 /**
+ * A facet's plane: the plane through `point` with unit normal `normal`. Every vertex of the
+ * facet lies in it.
+ */
+typedef struct TpiPlane {
+    /**
+     * A point of the plane (the seed's surface point, unless the adjusted plane is offset).
+     */
+    double point[3];
+    /**
+     * Unit normal (the surface normal at the seed, unless the plane is adjusted).
+     */
+    double normal[3];
+} TpiPlane;
+
+/**
  * The pattern point behind a facet: its parameters in the surface's own domain, surface
  * point, unit normal (Su x Sv) and principal curvatures k1 <= k2.
  */
@@ -521,21 +552,6 @@ typedef struct TpiSeed {
      */
     double curvatures[2];
 } TpiSeed;
-
-/**
- * A facet's plane: the plane through `point` with unit normal `normal`. Every vertex of the
- * facet lies in it.
- */
-typedef struct TpiPlane {
-    /**
-     * A point of the plane (the seed's surface point, unless the adjusted plane is offset).
-     */
-    double point[3];
-    /**
-     * Unit normal (the surface normal at the seed, unless the plane is adjusted).
-     */
-    double normal[3];
-} TpiPlane;
 
 /**
  * The quality report as numbers; `tpi_discretisation_quality_json` has the same and the
@@ -919,6 +935,123 @@ enum TpiStatus tpi_discrete_surface_recompute(struct TpiDiscreteSurface *discret
  * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a pointer.
  */
 enum TpiStatus tpi_discrete_surface_mesh(const struct TpiDiscreteSurface *discrete_surface, struct TpiDiscretisation **out);
+
+/**
+ * Stores in `*out` a new handle holding what changed in the mesh since the last call on
+ * this discrete surface (the first call: since it was created, so everything), and starts
+ * the next such list empty. Only successful recomputes change the mesh; pending edits do
+ * not count. After one point edit recomputed by live editing the snapshot holds the few
+ * facets around the point (about 7 for a move) and costs microseconds whatever the mesh's
+ * size; after a recompute that ran the whole pipeline it lists everything (`everything`
+ * is 1). See `TpiMeshChanges` for the vertex numbering.
+ *
+ * On success `*out` is a new handle (free with `tpi_mesh_changes_free`), else NULL.
+ * Errors: TPI_STATUS_NULL_POINTER.
+ *
+ * # Safety
+ * `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a pointer.
+ */
+enum TpiStatus tpi_discrete_surface_changes(struct TpiDiscreteSurface *discrete_surface, struct TpiMeshChanges **out);
+
+/**
+ * Frees a changes snapshot. NULL is allowed and does nothing.
+ *
+ * # Safety
+ * `changes` is NULL or a handle that was not freed yet, and no other call is using it.
+ */
+void tpi_mesh_changes_free(struct TpiMeshChanges *changes);
+
+/**
+ * Stores whether everything changed (1: the vertex numbering started over and every facet
+ * and vertex is listed; 0: only what is listed changed) in `*everything`, the number of
+ * facets of the mesh now in `*facet_count` (facets from it on are gone), and one more than
+ * the largest vertex id in use in `*vertex_id_bound`. Any of the three may be NULL.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER (`changes`).
+ *
+ * # Safety
+ * `changes` is NULL or a live handle; `everything` is NULL or valid for writing a
+ * `uint32_t`, `facet_count` and `vertex_id_bound` NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_mesh_changes_counts(const struct TpiMeshChanges *changes, uint32_t *everything, size_t *facet_count, size_t *vertex_id_bound);
+
+/**
+ * Copies the indices of the changed facets (= pattern point indices), ascending: every
+ * facet whose loop or vertex positions changed, a new facet, and the facets renumbered by a
+ * removed point. Copy-out convention; `*needed` = number of changed facets.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * uint32_t; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_mesh_changes_facets(const struct TpiMeshChanges *changes, uint32_t *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the vertex count of each changed facet, in the order of
+ * `tpi_mesh_changes_facets`. Copy-out convention; `*needed` = number of changed facets.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * uint32_t; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_mesh_changes_facet_sizes(const struct TpiMeshChanges *changes, uint32_t *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the changed facets' loops, facet after facet in the order of
+ * `tpi_mesh_changes_facets`, as vertex ids (see `TpiMeshChanges`): counter-clockwise seen
+ * from the facet's normal and starting at the same vertex as the facet's loop in
+ * `tpi_discrete_surface_mesh`. Copy-out convention; `*needed` = the sum of the sizes.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * uint32_t; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_mesh_changes_facet_indices(const struct TpiMeshChanges *changes, uint32_t *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the changed facets' planes in the order of `tpi_mesh_changes_facets`, as
+ * `tpi_discretisation_planes` gives them. Copy-out convention; `*needed` = number of
+ * changed facets.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * TpiPlane; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_mesh_changes_planes(const struct TpiMeshChanges *changes, struct TpiPlane *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the ids of the vertices whose position is new, ascending (every other vertex id
+ * the listed loops hold kept its position). Copy-out convention; `*needed` = number of
+ * listed vertices.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * uint32_t; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_mesh_changes_vertex_ids(const struct TpiMeshChanges *changes, uint32_t *out, size_t capacity, size_t *needed);
+
+/**
+ * Copies the new positions of the listed vertices, x0, y0, z0, x1, ... in the order of
+ * `tpi_mesh_changes_vertex_ids`. Copy-out convention; `*needed` = 3 * number of listed
+ * vertices.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+ *
+ * # Safety
+ * `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+ * doubles; `needed` is NULL or valid for writing a `size_t`.
+ */
+enum TpiStatus tpi_mesh_changes_vertices(const struct TpiMeshChanges *changes, double *out, size_t capacity, size_t *needed);
 
 /**
  * Discretises `surface` with `pattern`: one planar facet per pattern point.

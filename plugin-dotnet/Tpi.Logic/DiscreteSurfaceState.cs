@@ -2,6 +2,11 @@
 // points, options) and the native TpiDiscreteSurface that computes its mesh, kept in step.
 // Every edit goes to the library first, so an edit the library rejects (index out of range,
 // NaN, a point outside the square) raises its TpiException and changes nothing here either.
+//
+// After each recompute the state takes the library's change snapshot (MeshChanges) into
+// LiveMesh: a dragged point costs the few facets around it, not a copy of the whole mesh. The
+// whole mesh (Mesh: with flags, seeds, the quality report, diagnostics) is copied out only when
+// it is asked for, once per recompute.
 using System;
 using System.Collections.Generic;
 using System.Linq;
@@ -17,6 +22,8 @@ namespace Tpi.Logic
         readonly Stack<EditRecord> _undo = new Stack<EditRecord>();
         readonly Stack<EditRecord> _redo = new Stack<EditRecord>();
         readonly object _lock = new object();
+        readonly LiveMeshData _live = new LiveMeshData();
+        MeshData _mesh;
 
         /// <summary>
         /// Creates the native object and computes the first mesh. Raises the library's
@@ -31,7 +38,7 @@ namespace Tpi.Logic
             using (var surface = _document.Surface.CreateNative())
             using (var pattern = Pattern.FromPoints(_document.Points))
                 _native = DiscreteSurface.Create(surface, pattern, _document.Options);
-            using (var mesh = _native.GetMesh()) Mesh = MeshData.From(mesh);
+            _live.Apply(_native.TakeChanges());
         }
 
         /// <summary>Shorthand: a state from a surface and points with the library's default options.</summary>
@@ -61,8 +68,29 @@ namespace Tpi.Logic
         /// <summary>The options.</summary>
         public DiscretisationOptions Options { get { return _document.Options.Clone(); } }
 
-        /// <summary>The mesh of the last successful recompute.</summary>
-        public MeshData Mesh { get; private set; }
+        /// <summary>
+        /// The mesh of the last successful recompute, copied out of the library whole (O(n)) the
+        /// first time it is asked for after each recompute. What a drag redraws is <see cref="LiveMesh"/>.
+        /// </summary>
+        public MeshData Mesh
+        {
+            get
+            {
+                lock (_lock)
+                {
+                    if (_mesh == null)
+                        using (var mesh = Native.GetMesh()) _mesh = MeshData.From(mesh);
+                    return _mesh;
+                }
+            }
+        }
+
+        /// <summary>
+        /// The mesh of the last successful recompute kept in step with the library's changes
+        /// (vertex positions, facet loops and planes; updated in place by each recompute, for
+        /// <see cref="PanelDisplay.Update(LiveMeshData)"/>). Read it on the thread that recomputes.
+        /// </summary>
+        public LiveMeshData LiveMesh { get { return _live; } }
 
         /// <summary>Edits not yet recomputed.</summary>
         public int PendingEdits { get { return Native.PendingEdits; } }
@@ -174,26 +202,44 @@ namespace Tpi.Logic
         }
 
         /// <summary>
-        /// Brings the mesh up to date and returns it. On a TpiException (e.g. a moved point now
-        /// duplicates another) the edits stay pending and <see cref="Mesh"/> stays the previous one.
+        /// Brings the mesh up to date and returns it (copied out whole: see <see cref="Mesh"/>).
+        /// On a TpiException (e.g. a moved point now duplicates another) the edits stay pending
+        /// and <see cref="Mesh"/> stays the previous one.
         /// </summary>
         public MeshData Recompute()
         {
             lock (_lock)
             {
-                if (Native.PendingEdits == 0) return Mesh;
-                Native.Recompute();
-                using (var mesh = Native.GetMesh()) Mesh = MeshData.From(mesh);
+                RecomputeChanges();
                 return Mesh;
             }
         }
 
-        /// <summary>Like <see cref="Recompute"/>, but reports failure as the library's message.</summary>
+        /// <summary>
+        /// Brings the mesh up to date and applies the library's changes to <see cref="LiveMesh"/>;
+        /// returns the facets they listed (empty when nothing was pending). The whole mesh is not
+        /// copied. On a TpiException the edits stay pending and nothing changes here.
+        /// </summary>
+        public int[] RecomputeChanges()
+        {
+            lock (_lock)
+            {
+                if (Native.PendingEdits == 0) return new int[0];
+                Native.Recompute();
+                _mesh = null;
+                return _live.Apply(Native.TakeChanges());
+            }
+        }
+
+        /// <summary>
+        /// Like <see cref="RecomputeChanges"/> (the whole mesh is not copied), but reports failure
+        /// as the library's message.
+        /// </summary>
         public bool TryRecompute(out string error)
         {
             try
             {
-                Recompute();
+                RecomputeChanges();
                 error = null;
                 return true;
             }

@@ -118,6 +118,25 @@ namespace Tpi.Native
             return Discretisation.Created(s, h, "tpi_discrete_surface_mesh");
         }
 
+        /// <summary>
+        /// What changed in the mesh since the last call (the first call: everything), copied
+        /// out: after one edit recomputed by live editing the few facets around it, in
+        /// microseconds whatever the mesh's size. Pending edits do not count until recomputed.
+        /// </summary>
+        public MeshChanges TakeChanges()
+        {
+            MeshChangesHandle h;
+            var s = UnsafeNativeMethods.tpi_discrete_surface_changes(Handle, out h);
+            if (s != Status.Ok)
+            {
+                var error = new TpiException(s, TpiLibrary.LastErrorMessage(), "tpi_discrete_surface_changes");
+                if (h != null) h.Dispose();
+                throw error;
+            }
+            h.Track();
+            using (h) return MeshChanges.Read(h);
+        }
+
         /// <summary>True once disposed.</summary>
         public bool IsDisposed { get { return Handle.IsClosed; } }
 

@@ -26,6 +26,8 @@ namespace Tpi.Tests
             live.Recompute();
             var snapshot = live.GetMesh();
             if (snapshot.FacetCount != 9 || mesh.VertexCount == 0) throw new Exception("unexpected mesh");
+            // A change snapshot: its handle is created and freed inside TakeChanges.
+            if (live.TakeChanges().FacetCount != 9) throw new Exception("unexpected changes");
             if (keep != null)
             {
                 keep.Add(dome); keep.Add(pattern); keep.Add(mesh); keep.Add(live); keep.Add(snapshot);

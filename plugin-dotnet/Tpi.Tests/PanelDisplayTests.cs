@@ -121,16 +121,18 @@ namespace Tpi.Tests
     }
 
     /// <summary>
-    /// The live-editing benchmark of issue 13, item 4: one pattern-point move through the native
-    /// DiscreteSurface (edit + recompute), the copy of the mesh out of the library and the
-    /// display update (only the changed panels rebuilt), at 10k and 100k panels. Prints the
-    /// median of several drags; asserts correctness only (a timing depends on the machine).
+    /// The live-editing benchmark of issue 13, item 4: one pattern-point move through
+    /// DiscreteSurfaceState (the native edit and recompute, the library's change snapshot applied
+    /// to LiveMesh) and the display update from it (only the changed panels rebuilt), at 10k and
+    /// 100k panels; then the same moves the way it was done before (the whole mesh copied out of
+    /// the library after each recompute, every panel compared). Prints medians (each column its
+    /// own) and the slowest move; asserts correctness only (a timing depends on the machine).
     /// Targets: 5 ms at 10k, 30 ms at 100k. TPI_BENCH_LARGE=0 skips the 100k size.
     /// </summary>
     [TestFixture, Category("Benchmark")]
     public class DisplayUpdateBenchmark
     {
-        static double Median(List<double> xs) { xs.Sort(); return xs[xs.Count / 2]; }
+        static double Median(List<double> xs) { var s = xs.OrderBy(x => x).ToList(); return s[s.Count / 2]; }
 
         static void Run(int side, int moves, bool quality)
         {
@@ -141,53 +143,90 @@ namespace Tpi.Tests
             using (var state = new DiscreteSurfaceState(LogicData.Dome(), points, options))
             {
                 var display = new PanelDisplay();
-                display.Update(state.Mesh);
+                display.Update(state.LiveMesh);
                 setup.Stop();
                 var edit = new List<double>();
-                var read = new List<double>();
                 var update = new List<double>();
                 var total = new List<double>();
                 var rebuilt = new List<double>();
+                int whole = 0;
                 var random = new Random(7);
                 for (int i = 0; i < moves; i++)
                 {
                     int index = random.Next(points.Length);
                     var p = state.Points[index];
                     double s = Math.Min(0.99, Math.Max(0.01, p.S + 0.2 / side));
+                    int version = state.LiveMesh.Version;
                     var w = Stopwatch.StartNew();
                     state.MovePoint(index, s, p.T);
                     string error;
                     Assert.IsTrue(state.TryRecompute(out error), error);
                     double t1 = w.Elapsed.TotalMilliseconds;
-                    // TryRecompute copies the mesh out (MeshData.From) as part of it; time the copy separately.
-                    var copy = Stopwatch.StartNew();
-                    var mesh = state.Mesh;
-                    copy.Stop();
-                    var u = Stopwatch.StartNew();
-                    var changed = display.Update(mesh);
-                    u.Stop();
+                    var changed = display.Update(state.LiveMesh);
                     total.Add(w.Elapsed.TotalMilliseconds);
                     edit.Add(t1);
-                    read.Add(copy.Elapsed.TotalMilliseconds);
-                    update.Add(u.Elapsed.TotalMilliseconds);
+                    update.Add(w.Elapsed.TotalMilliseconds - t1);
                     rebuilt.Add(changed.Length);
+                    if (state.LiveMesh.ChangedSince(version) == null) whole++;
                     Assert.Greater(changed.Length, 0);
-                    Assert.Less(changed.Length, mesh.FacetCount / 10);
+                    Assert.Less(changed.Length, state.LiveMesh.FacetCount / 10);
                 }
-                Console.WriteLine("      display benchmark: {0} panels, quality report {7} (setup {1:F0} ms), median of {2} moves: total {3:F2} ms, edit+recompute+copy {4:F2} ms, display update {5:F2} ms ({6} panels rebuilt)",
-                    state.Mesh.FacetCount, setup.Elapsed.TotalMilliseconds, moves, Median(total), Median(edit), Median(update), Median(rebuilt), quality ? "on" : "off (TpiEditPattern's drag preview)");
+                Console.WriteLine("      display benchmark: {0} panels, quality report {1} (setup {2:F0} ms), {3} moves: median total {4:F2} ms (edit + recompute + changes {5:F2} ms, display update {6:F2} ms, {7} panels rebuilt); slowest {8:F1} ms; {9} moves ran the whole pipeline",
+                    state.LiveMesh.FacetCount, quality ? "on" : "off (TpiEditPattern's drag preview)", setup.Elapsed.TotalMilliseconds, moves,
+                    Median(total), Median(edit), Median(update), Median(rebuilt), total.Max(), whole);
+
+                // Points on the boundary row: their facets are clipped by the boundary, so the
+                // library runs the whole pipeline and the changes list everything.
+                var edge = new List<double>();
+                int edgeWhole = 0;
+                for (int i = 0; i < 5; i++)
+                {
+                    int index = 1 + random.Next(side - 2);
+                    var p = state.Points[index];
+                    double s = Math.Min(0.99, Math.Max(0.01, p.S + 0.2 / side));
+                    int version = state.LiveMesh.Version;
+                    var w = Stopwatch.StartNew();
+                    state.MovePoint(index, s, p.T);
+                    string error;
+                    Assert.IsTrue(state.TryRecompute(out error), error);
+                    display.Update(state.LiveMesh);
+                    edge.Add(w.Elapsed.TotalMilliseconds);
+                    if (state.LiveMesh.ChangedSince(version) == null) edgeWhole++;
+                }
+                Console.WriteLine("      boundary row: median total {0:F2} ms over 5 moves ({1} ran the whole pipeline)", Median(edge), edgeWhole);
+
+                // Before: the whole mesh copied out after each recompute, every panel compared.
+                var before = new PanelDisplay();
+                before.Update(state.Mesh);
+                var copy = new List<double>();
+                var compare = new List<double>();
+                for (int i = 0; i < Math.Max(3, moves / 3); i++)
+                {
+                    int index = random.Next(points.Length);
+                    var p = state.Points[index];
+                    double s = Math.Min(0.99, Math.Max(0.01, p.S + 0.2 / side));
+                    var w = Stopwatch.StartNew();
+                    state.MovePoint(index, s, p.T);
+                    var mesh = state.Recompute();
+                    double t1 = w.Elapsed.TotalMilliseconds;
+                    before.Update(mesh);
+                    copy.Add(t1);
+                    compare.Add(w.Elapsed.TotalMilliseconds - t1);
+                }
+                Console.WriteLine("      whole-mesh path (before): median edit + recompute + copy {0:F2} ms, display update {1:F2} ms, total {2:F2} ms",
+                    Median(copy), Median(compare), Median(copy) + Median(compare));
             }
         }
 
         [Test]
-        public void TenThousandPanels() { Run(100, 15, true); Run(100, 15, false); }
+        public void TenThousandPanels() { Run(100, 31, true); Run(100, 31, false); }
 
         [Test]
         public void HundredThousandPanels()
         {
             if (Environment.GetEnvironmentVariable("TPI_BENCH_LARGE") == "0") { Console.WriteLine("      skipped (TPI_BENCH_LARGE=0)"); return; }
-            Run(316, 5, true);
-            Run(316, 5, false);
+            Run(316, 15, true);
+            Run(316, 15, false);
         }
     }
 }

@@ -923,11 +923,229 @@ static void test_discrete_surface(void) {
     tpi_surface_free(surface);
 }
 
+/* ------------------------------------------------------- mesh changes */
+
+/* A host's copy of a discrete surface's mesh kept only from tpi_discrete_surface_changes:
+ * vertex positions by id, loops and planes per facet. */
+typedef struct {
+    double *xyz;      /* 3 per vertex id */
+    size_t bound;     /* vertex ids */
+    uint32_t **loops; /* per facet */
+    uint32_t *sizes;
+    TpiPlane *planes;
+    size_t facets;
+} Replica;
+
+static void replica_free(Replica *r) {
+    for (size_t f = 0; f < r->facets; f++) free(r->loops[f]);
+    free(r->loops);
+    free(r->sizes);
+    free(r->planes);
+    free(r->xyz);
+    memset(r, 0, sizeof *r);
+}
+
+static void *read_changes_array(TpiStatus (*call)(const TpiMeshChanges *, void *, size_t, size_t *),
+                                const TpiMeshChanges *c, size_t element, size_t *count) {
+    *count = 0;
+    call(c, NULL, 0, count);
+    void *data = malloc(*count ? *count * element : 1);
+    if (data) CHECK_OK(call(c, data, *count, NULL));
+    return data;
+}
+
+/* Typed adapters for read_changes_array. */
+static TpiStatus facets_of(const TpiMeshChanges *c, void *o, size_t n, size_t *k) { return tpi_mesh_changes_facets(c, o, n, k); }
+static TpiStatus sizes_of(const TpiMeshChanges *c, void *o, size_t n, size_t *k) { return tpi_mesh_changes_facet_sizes(c, o, n, k); }
+static TpiStatus loops_of(const TpiMeshChanges *c, void *o, size_t n, size_t *k) { return tpi_mesh_changes_facet_indices(c, o, n, k); }
+static TpiStatus planes_of(const TpiMeshChanges *c, void *o, size_t n, size_t *k) { return tpi_mesh_changes_planes(c, o, n, k); }
+static TpiStatus ids_of(const TpiMeshChanges *c, void *o, size_t n, size_t *k) { return tpi_mesh_changes_vertex_ids(c, o, n, k); }
+static TpiStatus xyz_of(const TpiMeshChanges *c, void *o, size_t n, size_t *k) { return tpi_mesh_changes_vertices(c, o, n, k); }
+
+/* Takes the changes and applies them; returns the number of facets listed, *everything set. */
+static size_t replica_follow(Replica *r, TpiDiscreteSurface *ds, uint32_t *everything) {
+    TpiMeshChanges *c = NULL;
+    CHECK_OK(tpi_discrete_surface_changes(ds, &c));
+    size_t facet_count = 0, bound = 0, n = 0, n_sizes = 0, n_loops = 0, n_planes = 0, n_ids = 0, n_xyz = 0;
+    CHECK_OK(tpi_mesh_changes_counts(c, everything, &facet_count, &bound));
+    uint32_t *facets = read_changes_array(facets_of, c, sizeof(uint32_t), &n);
+    uint32_t *sizes = read_changes_array(sizes_of, c, sizeof(uint32_t), &n_sizes);
+    uint32_t *loops = read_changes_array(loops_of, c, sizeof(uint32_t), &n_loops);
+    TpiPlane *planes = read_changes_array(planes_of, c, sizeof(TpiPlane), &n_planes);
+    uint32_t *ids = read_changes_array(ids_of, c, sizeof(uint32_t), &n_ids);
+    double *xyz = read_changes_array(xyz_of, c, sizeof(double), &n_xyz);
+    tpi_mesh_changes_free(c);
+    CHECK(n_sizes == n && n_planes == n && n_xyz == 3 * n_ids);
+    if (*everything) {
+        CHECK(n == facet_count);
+        replica_free(r);
+    }
+    /* Resize to the facet count and the id bound. */
+    for (size_t f = facet_count; f < r->facets; f++) free(r->loops[f]);
+    r->loops = realloc(r->loops, (facet_count + 1) * sizeof *r->loops);
+    r->sizes = realloc(r->sizes, (facet_count + 1) * sizeof *r->sizes);
+    r->planes = realloc(r->planes, (facet_count + 1) * sizeof *r->planes);
+    for (size_t f = r->facets; f < facet_count; f++) {
+        r->loops[f] = NULL;
+        r->sizes[f] = 0;
+    }
+    r->facets = facet_count;
+    r->xyz = realloc(r->xyz, (bound + 1) * 3 * sizeof *r->xyz);
+    for (size_t v = r->bound; v < bound; v++) r->xyz[3 * v] = r->xyz[3 * v + 1] = r->xyz[3 * v + 2] = NAN;
+    r->bound = bound;
+    size_t start = 0;
+    for (size_t k = 0; k < n && facets && sizes && loops && planes; k++) {
+        size_t f = facets[k];
+        CHECK(f < facet_count && (k == 0 || facets[k - 1] < f));
+        if (f >= facet_count || start + sizes[k] > n_loops) break;
+        free(r->loops[f]);
+        r->loops[f] = malloc(sizes[k] * sizeof(uint32_t));
+        if (r->loops[f]) memcpy(r->loops[f], loops + start, sizes[k] * sizeof(uint32_t));
+        r->sizes[f] = sizes[k];
+        r->planes[f] = planes[k];
+        start += sizes[k];
+    }
+    for (size_t k = 0; k < n_ids && ids && xyz; k++) {
+        CHECK(ids[k] < bound);
+        if (ids[k] < bound) memcpy(r->xyz + 3 * ids[k], xyz + 3 * k, 3 * sizeof(double));
+    }
+    free(facets);
+    free(sizes);
+    free(loops);
+    free(planes);
+    free(ids);
+    free(xyz);
+    return n;
+}
+
+/* Every facet of the copy has the vertex positions (bit for bit) and plane of the mesh. */
+static void replica_check(const Replica *r, const TpiDiscreteSurface *ds) {
+    TpiDiscretisation *mesh = NULL;
+    CHECK_OK(tpi_discrete_surface_mesh(ds, &mesh));
+    size_t facets = 0, n_vertices = 0, n_sizes = 0, n_indices = 0, n_planes = 0;
+    CHECK_OK(tpi_discretisation_facet_count(mesh, &facets));
+    CHECK(facets == r->facets);
+    tpi_discretisation_vertices(mesh, NULL, 0, &n_vertices);
+    tpi_discretisation_facet_sizes(mesh, NULL, 0, &n_sizes);
+    tpi_discretisation_facet_indices(mesh, NULL, 0, &n_indices);
+    tpi_discretisation_planes(mesh, NULL, 0, &n_planes);
+    double *vertices = malloc(n_vertices * sizeof *vertices);
+    uint32_t *sizes = malloc(n_sizes * sizeof *sizes);
+    uint32_t *indices = malloc(n_indices * sizeof *indices);
+    TpiPlane *planes = malloc(n_planes * sizeof *planes);
+    int same = vertices && sizes && indices && planes && facets == r->facets;
+    if (same) {
+        CHECK_OK(tpi_discretisation_vertices(mesh, vertices, n_vertices, NULL));
+        CHECK_OK(tpi_discretisation_facet_sizes(mesh, sizes, n_sizes, NULL));
+        CHECK_OK(tpi_discretisation_facet_indices(mesh, indices, n_indices, NULL));
+        CHECK_OK(tpi_discretisation_planes(mesh, planes, n_planes, NULL));
+        size_t start = 0;
+        for (size_t f = 0; f < facets && same; f++) {
+            same = sizes[f] == r->sizes[f] && memcmp(&planes[f], &r->planes[f], sizeof planes[f]) == 0;
+            for (uint32_t k = 0; same && k < sizes[f]; k++) {
+                uint32_t id = r->loops[f][k];
+                same = id < r->bound && memcmp(vertices + 3 * indices[start + k], r->xyz + 3 * id, 3 * sizeof(double)) == 0;
+            }
+            start += sizes[f];
+        }
+    }
+    CHECK(same);
+    free(vertices);
+    free(sizes);
+    free(indices);
+    free(planes);
+    tpi_discretisation_free(mesh);
+}
+
+static void test_mesh_changes(void) {
+    TpiSurface *surface = dome();
+    TpiPattern *pattern = NULL;
+    CHECK_OK(tpi_pattern_new_hex(16, 16, &pattern));
+    TpiDiscreteSurface *ds = NULL;
+    CHECK_OK(tpi_discrete_surface_new(surface, pattern, NULL, &ds));
+    tpi_pattern_free(pattern);
+    Replica r;
+    memset(&r, 0, sizeof r);
+    uint32_t everything = 0;
+    CHECK(replica_follow(&r, ds, &everything) == 256 && everything == 1); /* the first: all */
+    replica_check(&r, ds);
+    CHECK(replica_follow(&r, ds, &everything) == 0 && everything == 0); /* nothing since */
+
+    /* Drags of interior points, an add and a remove: the copy stays the mesh. */
+    double *points = NULL;
+    ds_points(ds, &points);
+    int small = 0;
+    for (int step = 0; step < 24 && points; step++) {
+        size_t i = (size_t)(40 + 7 * step) % 256;
+        if (step == 20) {
+            CHECK_OK(tpi_discrete_surface_add_point(ds, 0.503, 0.497, NULL));
+        } else if (step == 22) {
+            CHECK_OK(tpi_discrete_surface_remove_point(ds, 17));
+        } else {
+            double s = points[2 * i] + 0.2 / 16, t = points[2 * i + 1] + (step % 3 - 1) * 0.1 / 16;
+            if (s > 0.99) s = 0.99;
+            CHECK_OK(tpi_discrete_surface_move_point(ds, i, s, t));
+            points[2 * i] = s;
+            points[2 * i + 1] = t;
+        }
+        CHECK(replica_follow(&r, ds, &everything) == 0); /* pending edits change nothing */
+        CHECK_OK(tpi_discrete_surface_recompute(ds));
+        size_t listed = replica_follow(&r, ds, &everything);
+        if (!everything && step < 20) {
+            CHECK(listed > 0 && listed < 30);
+            small++;
+        }
+        replica_check(&r, ds);
+    }
+    CHECK(small >= 10);
+    free(points);
+    check_against_scratch(ds, surface);
+
+    /* A new surface: everything. */
+    TpiSurface *taller = dome_scaled(1.5);
+    CHECK_OK(tpi_discrete_surface_set_surface(ds, taller));
+    CHECK_OK(tpi_discrete_surface_recompute(ds));
+    replica_follow(&r, ds, &everything);
+    CHECK(everything == 1);
+    replica_check(&r, ds);
+
+    /* Conventions and errors. */
+    TpiMeshChanges *c = NULL, *none = NULL;
+    TpiDiscretisation *mesh = NULL;
+    CHECK_OK(tpi_discrete_surface_changes(ds, &c));
+    CHECK_OK(tpi_discrete_surface_mesh(ds, &mesh));
+    CHECK_OK(tpi_mesh_changes_counts(c, NULL, NULL, NULL));
+    size_t count = 0, needed = 0;
+    uint32_t one[1];
+    CHECK_OK(tpi_mesh_changes_facets(c, NULL, 0, &needed)); /* nothing changed: empty */
+    CHECK(needed == 0);
+    CHECK_STATUS(tpi_mesh_changes_facet_sizes(c, NULL, 1, &needed), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_discrete_surface_changes(NULL, &none), TPI_STATUS_NULL_POINTER);
+    CHECK(none == NULL);
+    CHECK_STATUS(tpi_discrete_surface_changes(ds, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_mesh_changes_counts(NULL, NULL, &count, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_mesh_changes_vertex_ids((const TpiMeshChanges *)mesh, one, 1, &needed), TPI_STATUS_INVALID_HANDLE);
+    CHECK(last_error_contains("TpiMeshChanges"));
+    CHECK_STATUS(tpi_discretisation_facet_count((const TpiDiscretisation *)c, &count), TPI_STATUS_INVALID_HANDLE);
+    CHECK_STATUS(tpi_discrete_surface_changes((TpiDiscreteSurface *)c, &none), TPI_STATUS_INVALID_HANDLE);
+    tpi_mesh_changes_free((TpiMeshChanges *)mesh); /* the wrong kind: ignored */
+    CHECK_OK(tpi_discretisation_facet_count(mesh, &count));
+    tpi_discrete_surface_free(ds); /* the snapshot outlives it */
+    CHECK_OK(tpi_mesh_changes_counts(c, &everything, &count, NULL));
+    CHECK(everything == 0 && count == 256);
+    tpi_mesh_changes_free(c);
+    tpi_discretisation_free(mesh);
+    replica_free(&r);
+    tpi_surface_free(taller);
+    tpi_surface_free(surface);
+}
+
 static void test_free_null(void) {
     tpi_surface_free(NULL);
     tpi_pattern_free(NULL);
     tpi_discretisation_free(NULL);
     tpi_discrete_surface_free(NULL);
+    tpi_mesh_changes_free(NULL);
     CHECK(1);
 }
 
@@ -1512,6 +1730,7 @@ int main(void) {
     test_ruling_strips();
     test_diagnostics();
     test_discrete_surface();
+    test_mesh_changes();
     test_free_null();
     test_threads();
     test_units();

@@ -75,7 +75,7 @@ pub use fabricate::{
     MAX_SLOTS_PER_EDGE,
 };
 pub use facets::VertexKind;
-pub use live::{LiveStats, LiveSurface};
+pub use live::{LiveChanges, LiveStats, LiveSurface};
 pub use nurbs::{NurbsSpec, NurbsSurface};
 pub use pattern::{
     Generator, GridSize, Pattern, SplitMix64, DEFAULT_JITTER_AMOUNT, MAX_GENERATED_POINTS,

@@ -35,6 +35,16 @@
 //! renumbers the points after it (O(n), as the facets after it move down by one).
 //! [`LiveSurface::discretisation`] assembles the mesh in O(n) when asked for after edits
 //! (numbering, loops, the report's aggregates), without projecting anything again.
+//!
+//! # What changed
+//!
+//! A host that redraws after every edit needs only what the edit changed:
+//! [`LiveSurface::take_changes`] lists the facets whose loops or vertex positions changed
+//! since the last call, with their loops and planes, and the vertices whose positions are
+//! new, in O(what changed). Their vertices are numbered by the live structure (a triangle's
+//! slot, a boundary vertex's place), not as in the assembled mesh: an id keeps its position
+//! until a later change lists it again, and where an edit ran the whole pipeline the
+//! numbering starts over and the changes list everything.
 
 use std::collections::HashMap;
 
@@ -69,6 +79,74 @@ pub struct LiveStats {
     pub full: usize,
 }
 
+/// What changed in the mesh of a [`LiveSurface`] since the last
+/// [`LiveSurface::take_changes`] (or since it was made).
+///
+/// Vertex ids are the live structure's own numbering (see the module doc), below
+/// `vertex_id_bound`; a facet's loop is counter-clockwise seen from its normal and starts at
+/// the same vertex as in [`LiveSurface::discretisation`], so that with the listed vertices'
+/// positions it is that mesh's facet, vertex for vertex.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct LiveChanges {
+    /// The numbering started over (the first call, an edit that ran the whole pipeline, a
+    /// new surface): every facet and every vertex is listed, and ids from before mean
+    /// nothing.
+    pub everything: bool,
+    /// Facets in the mesh now (facet i belongs to pattern point i). Facets from this count
+    /// on are gone; a removed point renumbers the facets after it, and those are listed.
+    pub facet_count: usize,
+    /// The changed facets (pattern indices), ascending.
+    pub facets: Vec<u32>,
+    /// Changed facet k's loop is `facet_loops[facet_offsets[k]..facet_offsets[k + 1]]`
+    /// (`facets.len() + 1` offsets).
+    pub facet_offsets: Vec<u32>,
+    /// The changed facets' loops, concatenated, in vertex ids.
+    pub facet_loops: Vec<u32>,
+    /// The changed facets' planes (a point of it, unit normal), as
+    /// [`Discretisation::facet_plane`].
+    pub planes: Vec<(DVec3, DVec3)>,
+    /// Vertices whose position is new (every vertex the changed loops hold that is not
+    /// listed kept its position), ascending.
+    pub vertex_ids: Vec<u32>,
+    /// Their positions.
+    pub vertices: Vec<DVec3>,
+    /// One more than the largest vertex id in use.
+    pub vertex_id_bound: usize,
+}
+
+impl LiveChanges {
+    /// The loop of the k-th changed facet (of `facets[k]`), in vertex ids.
+    pub fn facet_loop(&self, k: usize) -> &[u32] {
+        &self.facet_loops[self.facet_offsets[k] as usize..self.facet_offsets[k + 1] as usize]
+    }
+
+    /// Everything of a mesh, numbered as the mesh numbers its vertices.
+    fn of_mesh(mesh: &Discretisation) -> Self {
+        let n = mesh.facet_count();
+        Self {
+            everything: true,
+            facet_count: n,
+            facets: (0..n as u32).collect(),
+            facet_offsets: mesh.facet_offsets.clone(),
+            facet_loops: mesh.facet_loops.clone(),
+            planes: (0..n).map(|i| mesh.facet_plane(i)).collect(),
+            vertex_ids: (0..mesh.vertices.len() as u32).collect(),
+            vertices: mesh.vertices.clone(),
+            vertex_id_bound: mesh.vertices.len(),
+        }
+    }
+
+    /// Nothing changed in a mesh of `facet_count` facets and `vertex_id_bound` ids.
+    fn nothing(facet_count: usize, vertex_id_bound: usize) -> Self {
+        Self {
+            facet_count,
+            facet_offsets: vec![0],
+            vertex_id_bound,
+            ..Self::default()
+        }
+    }
+}
+
 /// A surface with its pattern and discretisation, kept up to date edit by edit.
 pub struct LiveSurface {
     surface: Box<dyn Surface>,
@@ -81,6 +159,8 @@ pub struct LiveSurface {
     /// The incremental state, None where the incremental path does not apply.
     state: Option<State>,
     stats: LiveStats,
+    /// The whole pipeline ran since the last [`LiveSurface::take_changes`].
+    everything_changed: bool,
 }
 
 /// A vertex of the last full run that is not a plain triangle vertex (boundary, corner,
@@ -133,6 +213,12 @@ struct State {
     bbox: (DVec3, DVec3),
     grid: Grid,
     scratch: Scratch,
+    /// Since the last [`LiveSurface::take_changes`]: facets whose loops or vertices changed
+    /// (pattern indices, possibly repeated), every facet from `renumbered_from` on (a point
+    /// was removed there), and the triangle slots created.
+    touched_facets: Vec<u32>,
+    renumbered_from: usize,
+    touched_slots: Vec<u32>,
 }
 
 /// Point location: a square grid over the pattern's unit square, one point per cell.
@@ -195,8 +281,30 @@ impl Grid {
     }
 }
 
+/// The change lists of a live surface are sorted and made unique when they grow beyond this
+/// many times the mesh's size (plus [`CHANGE_LIST_FLOOR`]), so that a host that never asks
+/// for the changes does not make them grow without bound.
+const CHANGE_LIST_SLACK: usize = 2;
+
+/// See [`CHANGE_LIST_SLACK`].
+const CHANGE_LIST_FLOOR: usize = 1024;
+
+/// Sorts and removes repeats.
+fn sort_unique(list: &mut Vec<u32>) {
+    list.sort_unstable();
+    list.dedup();
+}
+
 /// Why an edit left the incremental path (internal: the edit then runs the whole pipeline).
 struct Fallback;
+
+/// Where a point's slopes lie in the structure.
+enum Location {
+    /// Strictly inside this triangle.
+    Inside(u32),
+    /// Strictly inside the edge opposite vertex k of this triangle.
+    OnEdge(u32, usize),
+}
 
 impl LiveSurface {
     /// Discretises `surface` with `pattern` (normalised, as [`crate::discretise`]) and keeps
@@ -214,6 +322,7 @@ impl LiveSurface {
             stale: None,
             stats: LiveStats::default(),
             state: None,
+            everything_changed: true,
         };
         live.recompute_all()?;
         Ok(live)
@@ -264,6 +373,21 @@ impl LiveSurface {
             self.mesh = Some(mesh.clone());
         }
         mesh
+    }
+
+    /// What changed in the mesh since the last call (the first call: everything), in
+    /// O(what changed) after incremental edits; see [`LiveChanges`]. Only edits that were
+    /// applied count; after a failed edit the mesh is as before, but the numbering may have
+    /// started over (then everything is listed).
+    pub fn take_changes(&mut self) -> LiveChanges {
+        let everything = std::mem::take(&mut self.everything_changed);
+        match (&mut self.state, &self.mesh) {
+            (Some(state), _) => state.take_changes(everything, &self.options),
+            // Without incremental state the mesh is never stale.
+            (None, Some(mesh)) if everything => LiveChanges::of_mesh(mesh),
+            (None, Some(mesh)) => LiveChanges::nothing(mesh.facet_count(), mesh.vertices.len()),
+            (None, None) => LiveChanges::nothing(self.points.len(), 0),
+        }
     }
 
     /// Moves pattern point `index` to `st` (normalised). On an error (index out of range,
@@ -366,6 +490,7 @@ impl LiveSurface {
             &NoProgress,
         )?;
         self.stats.full += 1;
+        self.everything_changed = true;
         self.state = pipeline.and_then(|p| State::from_pipeline(p, &result, &self.points));
         self.mesh = Some(result);
         Ok(())
@@ -511,6 +636,9 @@ impl State {
             diagonal: p.diagonal,
             bbox: p.bbox,
             scratch: Scratch::default(),
+            touched_facets: Vec::new(),
+            renumbered_from: usize::MAX,
+            touched_slots: Vec::new(),
         })
     }
 
@@ -550,6 +678,7 @@ impl State {
         };
         self.insert_into_structure(i as u32, start, &mut changed)?;
         self.finish_edit(surface, options, &changed)?;
+        self.record(&changed);
         self.recycle(changed);
         let old_cell = self.grid.index(old);
         if self.grid.cell[old_cell] == i as u32 {
@@ -589,6 +718,7 @@ impl State {
         let mut changed = self.changed();
         self.insert_into_structure(i as u32, start, &mut changed)?;
         self.finish_edit(surface, options, &changed)?;
+        self.record(&changed);
         self.recycle(changed);
         let cell = self.grid.index(to);
         self.grid.cell[cell] = i as u32;
@@ -651,6 +781,10 @@ impl State {
             }
         }
         self.finish_vertices(surface, options, &changed)?;
+        // Every facet after the removed one moved down by one index.
+        self.renumbered_from = self.renumbered_from.min(index);
+        self.touched_facets.retain(|&f| (f as usize) < index);
+        self.record(&changed);
         self.recycle(changed);
         Ok(())
     }
@@ -748,6 +882,117 @@ impl State {
     fn recycle(&mut self, changed: Changed) {
         self.scratch.created = changed.created;
         self.scratch.points = changed.points;
+    }
+
+    // ---- what changed -----------------------------------------------------------------
+
+    /// Notes an applied edit's changed facets and created slots for
+    /// [`LiveSurface::take_changes`].
+    fn record(&mut self, changed: &Changed) {
+        let perm = &self.perm;
+        self.touched_facets
+            .extend(changed.points.iter().map(|&p| perm[p as usize]));
+        self.touched_slots.extend_from_slice(&changed.created);
+        // A host that never asks keeps the lists bounded by the mesh's size.
+        if self.touched_facets.len() > CHANGE_LIST_SLACK * self.st.len() + CHANGE_LIST_FLOOR {
+            sort_unique(&mut self.touched_facets);
+        }
+        if self.touched_slots.len() > CHANGE_LIST_SLACK * self.tri.len() + CHANGE_LIST_FLOOR {
+            sort_unique(&mut self.touched_slots);
+        }
+    }
+
+    /// The vertex id of a loop key: boundary and other vertices of the full run first, then
+    /// the triangle slots.
+    fn vertex_id(&self, key: Key) -> u32 {
+        match key {
+            Key::Other(o) => o,
+            Key::Triangle(t) => self.others.len() as u32 + t,
+        }
+    }
+
+    /// The changes since the last call (everything when `everything`), and a fresh start.
+    fn take_changes(&mut self, everything: bool, options: &DiscretiseOptions) -> LiveChanges {
+        let n = self.st.len();
+        let mut facets = std::mem::take(&mut self.touched_facets);
+        let mut slots = std::mem::take(&mut self.touched_slots);
+        let from = std::mem::replace(&mut self.renumbered_from, usize::MAX);
+        if everything {
+            facets.clear();
+            facets.extend(0..n as u32);
+            slots.clear();
+            slots.extend(0..self.tri.len() as u32);
+        } else {
+            facets.retain(|&f| (f as usize) < n);
+            facets.extend(from.min(n) as u32..n as u32);
+            sort_unique(&mut facets);
+            sort_unique(&mut slots);
+        }
+        slots.retain(|&t| self.tri.triangles[t as usize][0] != NO_TRIANGLE);
+        let mut changes = LiveChanges::nothing(n, self.others.len() + self.tri.len());
+        changes.everything = everything;
+        changes.facet_offsets.reserve(facets.len());
+        changes.planes.reserve(facets.len());
+        let mut fan = Vec::new();
+        for &f in &facets {
+            let p = self.rank[f as usize];
+            match &self.complex[p as usize] {
+                Some(keys) => {
+                    let ids = keys.iter().map(|&k| self.vertex_id(k));
+                    changes.facet_loops.extend(ids);
+                }
+                None => {
+                    self.canonical_fan(p, &mut fan);
+                    let ids = fan.iter().map(|&t| self.vertex_id(Key::Triangle(t)));
+                    changes.facet_loops.extend(ids);
+                }
+            }
+            changes.facet_offsets.push(changes.facet_loops.len() as u32);
+            changes.planes.push(self.facet_plane(p as usize, options));
+        }
+        if everything {
+            changes.vertex_ids.extend(0..self.others.len() as u32);
+            changes.vertices.extend(self.others.iter().map(|o| o.point));
+        }
+        for &t in &slots {
+            changes.vertex_ids.push(self.vertex_id(Key::Triangle(t)));
+            changes.vertices.push(self.vertex[t as usize].point);
+        }
+        changes.facets = facets;
+        // The buffers go back empty for the next edits.
+        slots.clear();
+        self.touched_slots = slots;
+        changes
+    }
+
+    /// The closed fan of a simple facet's point p, starting where the assembled mesh's loop
+    /// starts: after the fan's first triangle in canonical order (see [`State::assemble`]).
+    fn canonical_fan(&self, p: u32, fan: &mut Vec<u32>) {
+        // A simple facet's fan is closed (checked by every edit); were it not, its triangles
+        // are listed as found.
+        let _ = self.tri.fan(p, self.holder[p as usize], fan);
+        let key = |t: u32| {
+            let tv = self.tri.triangles[t as usize].map(|v| self.perm[v as usize]);
+            let k = (0..3).min_by_key(|&k| tv[k]).unwrap_or(0);
+            (tv[k], tv[(k + 1) % 3])
+        };
+        let len = fan.len();
+        if let Some(first) = (0..len).min_by_key(|&j| key(fan[j])) {
+            fan.rotate_left((first + 1) % len);
+        }
+    }
+
+    /// Facet p's plane (internal number) as the assembled mesh gives it
+    /// ([`Discretisation::facet_plane`]).
+    fn facet_plane(&self, p: usize, options: &DiscretiseOptions) -> (DVec3, DVec3) {
+        let seed = &self.seeds[p];
+        if options.planes == PlaneMode::Adjusted {
+            let adjusted = plane_adjustments(std::slice::from_ref(seed), &self.planes[p..=p]);
+            if let Some(a) = adjusted.first() {
+                return (seed.point + a.normal * a.offset, a.normal);
+            }
+        }
+        (seed.point, seed.normal)
     }
 
     // ---- the structure ----------------------------------------------------------------
@@ -921,14 +1166,35 @@ impl State {
         })
     }
 
-    /// Inserts point v (not in the structure) at its slopes, starting the search at `start`.
+    /// Inserts point v (not in the structure) at its slopes, starting the search at `start`:
+    /// the triangle holding them is split in three, or, where the slopes lie on an edge (a
+    /// pattern row dragged along itself on a surface whose slopes follow the parameters), the
+    /// two triangles of that edge in four; then the new triangles are legalised.
     fn insert_into_structure(
         &mut self,
         v: u32,
         start: u32,
         changed: &mut Changed,
     ) -> Result<(), Fallback> {
-        let t = self.locate(v, start)?;
+        let mut stack = std::mem::take(&mut self.scratch.stack);
+        stack.clear();
+        match self.locate(v, start)? {
+            Location::Inside(t) => self.split_triangle(v, t, changed, &mut stack),
+            Location::OnEdge(t, k) => self.split_edge(v, t, k, changed, &mut stack)?,
+        }
+        self.legalise(&mut stack, changed)?;
+        self.scratch.stack = stack;
+        Ok(())
+    }
+
+    /// Splits triangle t at v (inside it) into three; their outer edges go on `stack`.
+    fn split_triangle(
+        &mut self,
+        v: u32,
+        t: u32,
+        changed: &mut Changed,
+        stack: &mut Vec<(u32, usize)>,
+    ) {
         let [a, b, c] = self.tri.triangles[t as usize];
         let [n_a, n_b, n_c] = self.tri.neighbours[t as usize];
         self.free_slot(t);
@@ -949,23 +1215,77 @@ impl State {
         for (x, t) in [(v, t1), (a, t2), (b, t3), (c, t1)] {
             self.holder[x as usize] = t;
         }
-        let mut stack = std::mem::take(&mut self.scratch.stack);
-        stack.clear();
         stack.extend_from_slice(&[(t1, 0), (t2, 0), (t3, 0)]);
-        self.legalise(&mut stack, changed)?;
-        self.scratch.stack = stack;
+    }
+
+    /// Splits the edge opposite vertex k of triangle t at v (strictly inside the edge) and
+    /// the two triangles sharing it into four; their outer edges go on `stack`. Fallback on
+    /// a hull edge.
+    fn split_edge(
+        &mut self,
+        v: u32,
+        t: u32,
+        k: usize,
+        changed: &mut Changed,
+        stack: &mut Vec<(u32, usize)>,
+    ) -> Result<(), Fallback> {
+        // t = (r, p, q) counter-clockwise with the edge (p, q) opposite r; u = (s, q, p)
+        // beyond it.
+        let tv = self.tri.triangles[t as usize];
+        let tn = self.tri.neighbours[t as usize];
+        let (r, p, q) = (tv[k], tv[(k + 1) % 3], tv[(k + 2) % 3]);
+        let (n_qr, n_rp) = (tn[(k + 1) % 3], tn[(k + 2) % 3]);
+        let u = tn[k];
+        if u == NO_TRIANGLE {
+            return Err(Fallback);
+        }
+        let uv = self.tri.triangles[u as usize];
+        let un = self.tri.neighbours[u as usize];
+        let k2 = un.iter().position(|&x| x == t).ok_or(Fallback)?;
+        let s = uv[k2];
+        if uv[(k2 + 1) % 3] != q || uv[(k2 + 2) % 3] != p {
+            return Err(Fallback);
+        }
+        let (n_ps, n_sq) = (un[(k2 + 1) % 3], un[(k2 + 2) % 3]);
+        self.free_slot(t);
+        self.free_slot(u);
+        // Around v counter-clockwise: (v, r, p), (v, q, r), (v, s, q), (v, p, s); each one's
+        // edge opposite v is an outer edge, its other two edges its ring neighbours'.
+        let t1 = self.new_slot([v, r, p], [n_rp, NO_TRIANGLE, NO_TRIANGLE]);
+        let t2 = self.new_slot([v, q, r], [n_qr, NO_TRIANGLE, NO_TRIANGLE]);
+        let t3 = self.new_slot([v, s, q], [n_sq, NO_TRIANGLE, NO_TRIANGLE]);
+        let t4 = self.new_slot([v, p, s], [n_ps, NO_TRIANGLE, NO_TRIANGLE]);
+        // In (v, r, p): opposite r is (p, v), shared with (v, p, s); opposite p is (v, r),
+        // shared with (v, q, r); and so on around v.
+        self.tri.neighbours[t1 as usize] = [n_rp, t4, t2];
+        self.tri.neighbours[t2 as usize] = [n_qr, t1, t3];
+        self.tri.neighbours[t3 as usize] = [n_sq, t2, t4];
+        self.tri.neighbours[t4 as usize] = [n_ps, t3, t1];
+        self.link(n_rp, r, p, t1);
+        self.link(n_qr, q, r, t2);
+        self.link(n_sq, s, q, t3);
+        self.link(n_ps, p, s, t4);
+        changed.created.extend_from_slice(&[t1, t2, t3, t4]);
+        changed.points.extend_from_slice(&[v, r, p, q, s]);
+        for (x, t) in [(v, t1), (r, t1), (p, t1), (q, t2), (s, t3)] {
+            self.holder[x as usize] = t;
+        }
+        stack.extend_from_slice(&[(t1, 0), (t2, 0), (t3, 0), (t4, 0)]);
         Ok(())
     }
 
-    /// The live triangle whose slope-space interior holds point v's slopes, by a walk from
-    /// `start` (Fallback on the hull, on an edge, or when the walk takes too long).
-    fn locate(&self, v: u32, start: u32) -> Result<u32, Fallback> {
+    /// Where point v's slopes lie, by a walk from `start`: inside a live triangle, or on the
+    /// inside of one of its edges (Fallback outside the hull, on a point's slopes, or when
+    /// the walk takes too long).
+    fn locate(&self, v: u32, start: u32) -> Result<Location, Fallback> {
         let mut t = self.live_slot(start);
         let limit = 4 * self.tri.len() + 16;
         let mut turn = 0usize;
         for _ in 0..limit {
             let tv = self.tri.triangles[t as usize];
-            let mut moved = false;
+            let mut next = None;
+            let mut on = None;
+            let mut zeros = 0;
             // Try the edges in a rotating order (a walk that cannot cycle for long).
             turn = turn.wrapping_add(1);
             for j in 0..3 {
@@ -973,20 +1293,20 @@ impl State {
                 let (a, b) = (tv[(k + 1) % 3], tv[(k + 2) % 3]);
                 let o = self.orientation(a, b, v);
                 if o < 0.0 {
-                    let next = self.tri.neighbours[t as usize][k];
-                    if next == NO_TRIANGLE {
-                        return Err(Fallback);
-                    }
-                    t = next;
-                    moved = true;
+                    next = Some(self.tri.neighbours[t as usize][k]);
                     break;
                 }
                 if o == 0.0 {
-                    return Err(Fallback);
+                    zeros += 1;
+                    on = Some(k);
                 }
             }
-            if !moved {
-                return Ok(t);
+            match (next, on) {
+                (Some(NO_TRIANGLE), _) => return Err(Fallback),
+                (Some(n), _) => t = n,
+                (None, None) => return Ok(Location::Inside(t)),
+                (None, Some(k)) if zeros == 1 => return Ok(Location::OnEdge(t, k)),
+                (None, Some(_)) => return Err(Fallback),
             }
         }
         Err(Fallback)

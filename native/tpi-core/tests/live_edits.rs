@@ -4,9 +4,77 @@
 //! same report and diagnostics (the whole output contract as JSON, byte for byte), and most
 //! edits take the incremental path (issue 7, item 3).
 
+use glam::DVec3;
 use tpi_core::benchmark::{nurbs_dome, paraboloid, random_pattern};
 use tpi_core::SplitMix64;
-use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, LiveSurface, Surface};
+use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, LiveChanges, LiveSurface, Surface};
+
+/// A host's copy of the mesh kept only by [`LiveSurface::take_changes`] (issue 13): vertex
+/// positions by live id, facet loops and planes.
+#[derive(Default)]
+struct Replica {
+    vertices: Vec<Option<DVec3>>,
+    loops: Vec<Vec<u32>>,
+    planes: Vec<(DVec3, DVec3)>,
+}
+
+impl Replica {
+    fn apply(&mut self, changes: &LiveChanges) {
+        if changes.everything {
+            *self = Replica::default();
+        }
+        self.vertices.resize(changes.vertex_id_bound, None);
+        self.loops.truncate(changes.facet_count);
+        self.loops.resize(changes.facet_count, Vec::new());
+        self.planes
+            .resize(changes.facet_count, (DVec3::NAN, DVec3::NAN));
+        for (k, &f) in changes.facets.iter().enumerate() {
+            self.loops[f as usize] = changes.facet_loop(k).to_vec();
+            self.planes[f as usize] = changes.planes[k];
+        }
+        for (&id, &x) in changes.vertex_ids.iter().zip(&changes.vertices) {
+            self.vertices[id as usize] = Some(x);
+        }
+    }
+
+    /// Takes the live surface's changes and checks the copy against its assembled mesh:
+    /// every facet's vertices and plane, bit for bit. Returns how many facets were listed.
+    fn follow(&mut self, live: &mut LiveSurface, step: usize, what: &str) -> usize {
+        let changes = live.take_changes();
+        assert_eq!(changes.facet_offsets.len(), changes.facets.len() + 1);
+        assert!(
+            changes.facets.windows(2).all(|w| w[0] < w[1]),
+            "{what}: facets ascending"
+        );
+        self.apply(&changes);
+        let mesh = live.discretisation();
+        assert_eq!(self.loops.len(), mesh.facet_count(), "edit {step} ({what})");
+        let bits = |x: DVec3| x.to_array().map(f64::to_bits);
+        for i in 0..mesh.facet_count() {
+            let expected: Vec<_> = mesh
+                .facet(i)
+                .iter()
+                .map(|&v| bits(mesh.vertices[v as usize]))
+                .collect();
+            let got: Vec<_> = self.loops[i]
+                .iter()
+                .map(|&v| {
+                    bits(self.vertices[v as usize].unwrap_or_else(|| {
+                        panic!("edit {step} ({what}): facet {i} holds vertex id {v} never listed")
+                    }))
+                })
+                .collect();
+            assert_eq!(got, expected, "edit {step} ({what}): facet {i}'s vertices");
+            let (p, n) = mesh.facet_plane(i);
+            assert_eq!(
+                (bits(self.planes[i].0), bits(self.planes[i].1)),
+                (bits(p), bits(n)),
+                "edit {step} ({what}): facet {i}'s plane"
+            );
+        }
+        changes.facets.len()
+    }
+}
 
 /// Compares the live mesh with a fresh run, byte for byte.
 fn check(live: &mut LiveSurface, surface: &dyn Surface, step: usize, what: &str) {
@@ -49,7 +117,14 @@ fn random_edits(
 ) {
     let mut live = LiveSurface::new(boxed, random_pattern(points), options).expect("discretises");
     check(&mut live, surface, 0, "new");
+    let mut replica = Replica::default();
+    assert_eq!(
+        replica.follow(&mut live, 0, "new"),
+        points,
+        "the first changes list everything"
+    );
     let mut rng = SplitMix64::new(seed);
+    let mut last_incremental = live.stats().incremental;
     for step in 1..=edits {
         let n = live.points().len();
         let roll = rng.next_f64();
@@ -78,6 +153,15 @@ fn random_edits(
             format!("remove {i}")
         };
         check(&mut live, surface, step, &what);
+        let incremental = live.stats().incremental;
+        let listed = replica.follow(&mut live, step, &what);
+        if what.starts_with("drag") && incremental > last_incremental {
+            assert!(
+                listed < 30,
+                "edit {step} ({what}): {listed} facets listed for a drag"
+            );
+        }
+        last_incremental = incremental;
     }
     let stats = live.stats();
     println!(
@@ -298,6 +382,77 @@ fn cylinder_and_plane_edits_equal_fresh_runs() {
             16,
             DiscretiseOptions::default(),
             0.0,
+        );
+    }
+}
+
+/// The bicubic Bezier dome of the .NET tests (z = 1.5 (u (1 - u) + v (1 - v)) over
+/// [-1, 1]^2): its slopes follow the parameters, so a point dragged along a hex row lies
+/// exactly on the line of its row neighbours in slope space.
+fn bezier_dome() -> tpi_core::NurbsSurface {
+    let c = [0.0, 1.0, 1.0, 0.0];
+    let mut points = Vec::new();
+    for (i, ci) in c.iter().enumerate() {
+        for (j, cj) in c.iter().enumerate() {
+            points.push(glam::DVec3::new(
+                -1.0 + 2.0 * i as f64 / 3.0,
+                -1.0 + 2.0 * j as f64 / 3.0,
+                0.5 * (ci + cj),
+            ));
+        }
+    }
+    let knots = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
+    tpi_core::NurbsSurface::new([3, 3], [4, 4], &knots, &knots, &points, None).expect("dome")
+}
+
+/// Issue 13: points of a hex pattern dragged along their rows and columns (their slopes on
+/// the edge between two neighbours') stay incremental (the edge is split) and agree with
+/// fresh runs.
+#[test]
+fn hex_rows_dragged_along_themselves_equal_fresh_runs() {
+    let hex = tpi_core::Generator::parse("hex:24x24")
+        .expect("spec")
+        .generate()
+        .uv;
+    for (name, surface) in [
+        ("Bezier dome", Box::new(bezier_dome()) as Box<dyn Surface>),
+        ("paraboloid", Box::new(paraboloid())),
+    ] {
+        let fresh: Box<dyn Surface> = if name == "paraboloid" {
+            Box::new(paraboloid())
+        } else {
+            Box::new(bezier_dome())
+        };
+        let mut live =
+            LiveSurface::new(surface, hex.clone(), DiscretiseOptions::default()).expect("new");
+        let mut replica = Replica::default();
+        replica.follow(&mut live, 0, name);
+        let mut rng = SplitMix64::new(13);
+        let edits = 300;
+        for step in 1..=edits {
+            let i = rng.below(live.points().len());
+            let p = live.points()[i];
+            let d = (0.2 + 0.6 * rng.next_f64()) / 24.0;
+            let q = if rng.next_f64() < 0.7 {
+                [(p[0] + d).clamp(0.0, 1.0), p[1]]
+            } else {
+                [p[0], (p[1] - d).clamp(0.0, 1.0)]
+            };
+            if live.move_point(i, q).is_err() {
+                continue; // a duplicate
+            }
+            check(
+                &mut live,
+                fresh.as_ref(),
+                step,
+                &format!("{name}: drag {i} to {q:?}"),
+            );
+        }
+        let stats = live.stats();
+        println!("{name}: {edits} row and column drags, {stats:?}");
+        assert!(
+            stats.incremental as f64 >= 0.5 * edits as f64,
+            "{name}: {stats:?}"
         );
     }
 }

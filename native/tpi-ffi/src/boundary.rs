@@ -417,7 +417,7 @@ pub trait Handle: Sized {
 pub const FREED_TAG: u64 = u64::from_le_bytes(*b"tpi:free");
 
 /// The live tags of every kind, for naming a wrong kind in a message.
-const KINDS: [(u64, &str); 5] = [
+const KINDS: [(u64, &str); 6] = [
     (
         crate::surface::TpiSurface::TAG,
         crate::surface::TpiSurface::C_NAME,
@@ -437,6 +437,10 @@ const KINDS: [(u64, &str); 5] = [
     (
         crate::fabrication::TpiFabrication::TAG,
         crate::fabrication::TpiFabrication::C_NAME,
+    ),
+    (
+        crate::discrete_surface::TpiMeshChanges::TAG,
+        crate::discrete_surface::TpiMeshChanges::C_NAME,
     ),
 ];
 

@@ -9,17 +9,22 @@
 //! discretised from scratch. Either way the mesh is exactly that of a discretisation of the
 //! edited inputs from scratch. The mesh is assembled when it is asked for
 //! (`tpi_discrete_surface_mesh`) after a recompute.
+//!
+//! A host that redraws after every edit takes only what changed instead
+//! (`tpi_discrete_surface_changes`, a `TpiMeshChanges` snapshot of
+//! `tpi_core::LiveChanges`): the changed facets with their loops and planes, and the vertices
+//! whose positions are new, in the live structure's own vertex numbering.
 
 use std::sync::{Arc, Mutex, MutexGuard, PoisonError};
 
 use tpi_core::Pattern;
 use tpi_core::SurfaceModel;
-use tpi_core::{Discretisation, DiscretiseOptions, LiveSurface, TpiError};
+use tpi_core::{Discretisation, DiscretiseOptions, LiveChanges, LiveSurface, TpiError};
 
 use crate::boundary::{
     copy_out, ffi_boundary, finite, index_error, try_handle, FfiResult, OutPtr, TpiStatus,
 };
-use crate::discretisation::TpiDiscretisation;
+use crate::discretisation::{TpiDiscretisation, TpiPlane};
 use crate::options::{read_options, TpiOptions};
 use crate::pattern::TpiPattern;
 use crate::surface::TpiSurface;
@@ -390,5 +395,275 @@ pub unsafe extern "C" fn tpi_discrete_surface_mesh(
         let mesh = ds.lock().mesh();
         out.set_boxed(TpiDiscretisation::new(mesh));
         Ok(())
+    }
+}
+
+/// What changed in a discrete surface's mesh between two `tpi_discrete_surface_changes`
+/// calls: an immutable snapshot, read with the `tpi_mesh_changes_*` calls and freed with
+/// `tpi_mesh_changes_free`.
+///
+/// Vertices are named by ids of the discrete surface's live structure, not by the vertex
+/// numbers of `tpi_discrete_surface_mesh`: an id keeps its position until a later snapshot
+/// lists it with a new one. When `everything` is set (the first snapshot, and after a
+/// recompute that ran the whole pipeline: a batch of edits, a new surface, an edit near the
+/// boundary or on a surface without live editing) the numbering started over and every
+/// facet and every vertex is listed.
+pub struct TpiMeshChanges {
+    changes: LiveChanges,
+    /// Vertex count of each listed facet.
+    sizes: Vec<u32>,
+    planes: Vec<TpiPlane>,
+    /// Positions of the listed vertices, x y z each.
+    vertices: Vec<f64>,
+}
+
+impl crate::boundary::Handle for TpiMeshChanges {
+    const TAG: u64 = u64::from_le_bytes(*b"tpi:chng");
+    const C_NAME: &'static str = "TpiMeshChanges";
+}
+
+impl TpiMeshChanges {
+    fn new(changes: LiveChanges) -> Self {
+        let offsets = &changes.facet_offsets;
+        let sizes = offsets
+            .iter()
+            .zip(offsets.iter().skip(1))
+            .map(|(start, end)| end - start)
+            .collect();
+        let planes = changes
+            .planes
+            .iter()
+            .map(|(point, normal)| TpiPlane {
+                point: point.to_array(),
+                normal: normal.to_array(),
+            })
+            .collect();
+        let vertices = changes.vertices.iter().flat_map(|x| x.to_array()).collect();
+        Self {
+            changes,
+            sizes,
+            planes,
+            vertices,
+        }
+    }
+}
+
+/// A changes handle argument.
+///
+/// # Safety
+/// `ptr` is NULL or a live handle.
+unsafe fn changes<'a>(ptr: *const TpiMeshChanges) -> FfiResult<&'a TpiMeshChanges> {
+    // SAFETY: forwarded contract.
+    unsafe { try_handle(ptr, "changes") }
+}
+
+/// Stores in `*out` a new handle holding what changed in the mesh since the last call on
+/// this discrete surface (the first call: since it was created, so everything), and starts
+/// the next such list empty. Only successful recomputes change the mesh; pending edits do
+/// not count. After one point edit recomputed by live editing the snapshot holds the few
+/// facets around the point (about 7 for a move) and costs microseconds whatever the mesh's
+/// size; after a recompute that ran the whole pipeline it lists everything (`everything`
+/// is 1). See `TpiMeshChanges` for the vertex numbering.
+///
+/// On success `*out` is a new handle (free with `tpi_mesh_changes_free`), else NULL.
+/// Errors: TPI_STATUS_NULL_POINTER.
+///
+/// # Safety
+/// `discrete_surface` is NULL or a live handle; `out` is NULL or valid for writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discrete_surface_changes(
+    discrete_surface: *mut TpiDiscreteSurface,
+    out: *mut *mut TpiMeshChanges,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let out = unsafe { OutPtr::handle(out, "out") }?;
+        let ds = unsafe { handle(discrete_surface.cast_const()) }?;
+        let changes = ds.lock().live.take_changes();
+        out.set_boxed(TpiMeshChanges::new(changes));
+        Ok(())
+    }
+}
+
+/// Frees a changes snapshot. NULL is allowed and does nothing.
+///
+/// # Safety
+/// `changes` is NULL or a handle that was not freed yet, and no other call is using it.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_mesh_changes_free(changes: *mut TpiMeshChanges) {
+    crate::boundary::run_infallible((), || {
+        // SAFETY: the caller hands back ownership of a handle from this library.
+        unsafe { crate::boundary::free_handle(changes) }
+    })
+}
+
+/// Stores whether everything changed (1: the vertex numbering started over and every facet
+/// and vertex is listed; 0: only what is listed changed) in `*everything`, the number of
+/// facets of the mesh now in `*facet_count` (facets from it on are gone), and one more than
+/// the largest vertex id in use in `*vertex_id_bound`. Any of the three may be NULL.
+///
+/// Errors: TPI_STATUS_NULL_POINTER (`changes`).
+///
+/// # Safety
+/// `changes` is NULL or a live handle; `everything` is NULL or valid for writing a
+/// `uint32_t`, `facet_count` and `vertex_id_bound` NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_mesh_changes_counts(
+    changes: *const TpiMeshChanges,
+    everything: *mut u32,
+    facet_count: *mut usize,
+    vertex_id_bound: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let c = unsafe { self::changes(changes) }?;
+        if !everything.is_null() {
+            unsafe { OutPtr::new(everything, "everything") }?.set(u32::from(c.changes.everything));
+        }
+        if !facet_count.is_null() {
+            unsafe { OutPtr::new(facet_count, "facet_count") }?.set(c.changes.facet_count);
+        }
+        if !vertex_id_bound.is_null() {
+            unsafe { OutPtr::new(vertex_id_bound, "vertex_id_bound") }?.set(c.changes.vertex_id_bound);
+        }
+        Ok(())
+    }
+}
+
+/// Copies the indices of the changed facets (= pattern point indices), ascending: every
+/// facet whose loop or vertex positions changed, a new facet, and the facets renumbered by a
+/// removed point. Copy-out convention; `*needed` = number of changed facets.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// uint32_t; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_mesh_changes_facets(
+    changes: *const TpiMeshChanges,
+    out: *mut u32,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let c = unsafe { self::changes(changes) }?;
+        unsafe { copy_out(&c.changes.facets, out, capacity, needed, "out") }
+    }
+}
+
+/// Copies the vertex count of each changed facet, in the order of
+/// `tpi_mesh_changes_facets`. Copy-out convention; `*needed` = number of changed facets.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// uint32_t; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_mesh_changes_facet_sizes(
+    changes: *const TpiMeshChanges,
+    out: *mut u32,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let c = unsafe { self::changes(changes) }?;
+        unsafe { copy_out(&c.sizes, out, capacity, needed, "out") }
+    }
+}
+
+/// Copies the changed facets' loops, facet after facet in the order of
+/// `tpi_mesh_changes_facets`, as vertex ids (see `TpiMeshChanges`): counter-clockwise seen
+/// from the facet's normal and starting at the same vertex as the facet's loop in
+/// `tpi_discrete_surface_mesh`. Copy-out convention; `*needed` = the sum of the sizes.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// uint32_t; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_mesh_changes_facet_indices(
+    changes: *const TpiMeshChanges,
+    out: *mut u32,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let c = unsafe { self::changes(changes) }?;
+        unsafe { copy_out(&c.changes.facet_loops, out, capacity, needed, "out") }
+    }
+}
+
+/// Copies the changed facets' planes in the order of `tpi_mesh_changes_facets`, as
+/// `tpi_discretisation_planes` gives them. Copy-out convention; `*needed` = number of
+/// changed facets.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// TpiPlane; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_mesh_changes_planes(
+    changes: *const TpiMeshChanges,
+    out: *mut TpiPlane,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let c = unsafe { self::changes(changes) }?;
+        unsafe { copy_out(&c.planes, out, capacity, needed, "out") }
+    }
+}
+
+/// Copies the ids of the vertices whose position is new, ascending (every other vertex id
+/// the listed loops hold kept its position). Copy-out convention; `*needed` = number of
+/// listed vertices.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// uint32_t; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_mesh_changes_vertex_ids(
+    changes: *const TpiMeshChanges,
+    out: *mut u32,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let c = unsafe { self::changes(changes) }?;
+        unsafe { copy_out(&c.changes.vertex_ids, out, capacity, needed, "out") }
+    }
+}
+
+/// Copies the new positions of the listed vertices, x0, y0, z0, x1, ... in the order of
+/// `tpi_mesh_changes_vertex_ids`. Copy-out convention; `*needed` = 3 * number of listed
+/// vertices.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_BUFFER_TOO_SMALL.
+///
+/// # Safety
+/// `changes` is NULL or a live handle; `out` is NULL or valid for writing `capacity`
+/// doubles; `needed` is NULL or valid for writing a `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_mesh_changes_vertices(
+    changes: *const TpiMeshChanges,
+    out: *mut f64,
+    capacity: usize,
+    needed: *mut usize,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let c = unsafe { self::changes(changes) }?;
+        unsafe { copy_out(&c.vertices, out, capacity, needed, "out") }
     }
 }

@@ -1,4 +1,4 @@
-// SafeHandle wrappers for the four opaque handles of include/tpi.h. Each owns one native
+// SafeHandle wrappers for the opaque handles of include/tpi.h. Each owns one native
 // handle and frees it exactly once with the matching tpi_*_free call (from Dispose or, if the
 // owner forgot, from the finalizer). SafeHandle's reference counting keeps a handle alive for
 // the duration of every P/Invoke call that receives it, so a Dispose on another thread can
@@ -15,7 +15,7 @@ namespace Tpi.Native.Interop
     {
         static long s_live;
 
-        /// <summary>Handles created through this binding and not yet freed (all four kinds).</summary>
+        /// <summary>Handles created through this binding and not yet freed (all kinds).</summary>
         public static long LiveCount { get { return Interlocked.Read(ref s_live); } }
 
         /// <summary>A handle with no native object yet (filled in by the marshaller).</summary>
@@ -85,5 +85,14 @@ namespace Tpi.Native.Interop
         public DiscreteSurfaceHandle() { }
         /// <inheritdoc/>
         protected override void Free(IntPtr native) { UnsafeNativeMethods.tpi_discrete_surface_free(native); }
+    }
+
+    /// <summary>Owns a TpiMeshChanges.</summary>
+    public sealed class MeshChangesHandle : TpiHandle
+    {
+        /// <summary>Used by the marshaller.</summary>
+        public MeshChangesHandle() { }
+        /// <inheritdoc/>
+        protected override void Free(IntPtr native) { UnsafeNativeMethods.tpi_mesh_changes_free(native); }
     }
 }

@@ -349,5 +349,49 @@ namespace Tpi.Native.Interop
         //     struct TpiDiscretisation **out);
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         internal static extern Status tpi_discrete_surface_mesh(DiscreteSurfaceHandle discrete_surface, out DiscretisationHandle @out);
+
+        // enum TpiStatus tpi_discrete_surface_changes(struct TpiDiscreteSurface *discrete_surface,
+        //     struct TpiMeshChanges **out);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_discrete_surface_changes(DiscreteSurfaceHandle discrete_surface, out MeshChangesHandle @out);
+
+        // void tpi_mesh_changes_free(struct TpiMeshChanges *changes);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern void tpi_mesh_changes_free(IntPtr changes);
+
+        // enum TpiStatus tpi_mesh_changes_counts(const struct TpiMeshChanges *changes, uint32_t *everything,
+        //     size_t *facet_count, size_t *vertex_id_bound);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_mesh_changes_counts(MeshChangesHandle changes, out uint everything, out UIntPtr facet_count, out UIntPtr vertex_id_bound);
+
+        // enum TpiStatus tpi_mesh_changes_facets(const struct TpiMeshChanges *changes, uint32_t *out,
+        //     size_t capacity, size_t *needed);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_mesh_changes_facets(MeshChangesHandle changes, [Out] uint[] @out, UIntPtr capacity, out UIntPtr needed);
+
+        // enum TpiStatus tpi_mesh_changes_facet_sizes(const struct TpiMeshChanges *changes, uint32_t *out,
+        //     size_t capacity, size_t *needed);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_mesh_changes_facet_sizes(MeshChangesHandle changes, [Out] uint[] @out, UIntPtr capacity, out UIntPtr needed);
+
+        // enum TpiStatus tpi_mesh_changes_facet_indices(const struct TpiMeshChanges *changes, uint32_t *out,
+        //     size_t capacity, size_t *needed);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_mesh_changes_facet_indices(MeshChangesHandle changes, [Out] uint[] @out, UIntPtr capacity, out UIntPtr needed);
+
+        // enum TpiStatus tpi_mesh_changes_planes(const struct TpiMeshChanges *changes, struct TpiPlane *out,
+        //     size_t capacity, size_t *needed);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_mesh_changes_planes(MeshChangesHandle changes, [Out] FacetPlane[] @out, UIntPtr capacity, out UIntPtr needed);
+
+        // enum TpiStatus tpi_mesh_changes_vertex_ids(const struct TpiMeshChanges *changes, uint32_t *out,
+        //     size_t capacity, size_t *needed);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_mesh_changes_vertex_ids(MeshChangesHandle changes, [Out] uint[] @out, UIntPtr capacity, out UIntPtr needed);
+
+        // enum TpiStatus tpi_mesh_changes_vertices(const struct TpiMeshChanges *changes, double *out,
+        //     size_t capacity, size_t *needed);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_mesh_changes_vertices(MeshChangesHandle changes, [Out] double[] @out, UIntPtr capacity, out UIntPtr needed);
     }
 }

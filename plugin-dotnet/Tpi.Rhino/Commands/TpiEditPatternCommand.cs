@@ -154,10 +154,11 @@ namespace Tpi.RhinoPlugIn
                 drag.SetCommandPrompt("New location on the surface");
                 drag.Constrain(surface, false);
                 drag.SetBasePoint(from, true);
-                // The drawn panels: only those whose vertices changed are converted again (PanelDisplay).
+                // The drawn panels: each mouse move takes only the library's changes (LiveMesh), and
+                // only the panels whose vertices changed are converted again (PanelDisplay).
                 var display = new PanelDisplay();
                 var panels = new List<List<Point3d>>();
-                Refresh(display, panels, state.Mesh);
+                Refresh(display, panels, preview.LiveMesh);
                 drag.DynamicDraw += (sender, e) =>
                 {
                     PatternPoint st;
@@ -167,7 +168,7 @@ namespace Tpi.RhinoPlugIn
                         try
                         {
                             preview.MovePoint(point, st.S, st.T);
-                            if (preview.TryRecompute(out error)) Refresh(display, panels, preview.Mesh);
+                            if (preview.TryRecompute(out error)) Refresh(display, panels, preview.LiveMesh);
                         }
                         catch (Tpi.Native.TpiException) { }
                     }
@@ -204,7 +205,7 @@ namespace Tpi.RhinoPlugIn
         }
 
         /// <summary>Brings <paramref name="panels"/> to <paramref name="mesh"/>, converting only the panels that changed.</summary>
-        static void Refresh(PanelDisplay display, List<List<Point3d>> panels, MeshData mesh)
+        static void Refresh(PanelDisplay display, List<List<Point3d>> panels, LiveMeshData mesh)
         {
             display.UpdateInto(mesh, panels, polyline => polyline.Select(RhinoConvert.ToPoint).ToList());
         }
