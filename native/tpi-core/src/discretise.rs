@@ -1,11 +1,22 @@
-//! The pipeline: surface + pattern -> samples -> neighbours -> facets -> mesh -> report.
+//! The pipeline: surface + pattern -> samples -> dual structure -> facets -> mesh -> report.
 //!
 //! [`discretise`] validates the pattern (normalised uv in [0, 1]^2, finite, no duplicates
 //! closer than [`crate::tolerance::DUPLICATE_UV_TOLERANCE`], at least three points, not all
-//! collinear), evaluates point, normal and principal curvatures at every pattern point,
-//! decides the true neighbours ([`crate::neighbours`]), builds one planar facet per pattern
-//! point ([`crate::facets`]) and measures the result ([`crate::quality`]). Facet i always
-//! belongs to pattern point i: none is dropped or reordered.
+//! collinear), leaves out the points outside a trim, and chains the stages, each a typed
+//! result of the one before (`run_within`):
+//!
+//! 1. [`crate::samples::sample`] -> `Samples`: point, normal, principal curvatures and tangent
+//!    plane at every pattern point;
+//! 2. [`crate::structure::decide_structure`] -> `DualStructure`: the true neighbours (the
+//!    dual triangulation) and how the facets are built, by the path the surface takes
+//!    (convex envelope, closed hull, strips, flat Voronoi, any curvature);
+//! 3. [`crate::facets::build_stage`] -> `Facets`: one planar facet per pattern point, the
+//!    vertices three-plane intersections, ending on the boundary, assembled into a mesh
+//!    ([`crate::mesh`]: welding, numbering, loops);
+//! 4. `measure` -> [`QualityReport`] and the facet flags ([`crate::quality`]).
+//!
+//! Facet i always belongs to pattern point i (on a trimmed surface, to the i-th point inside
+//! the trim): none is dropped or reordered.
 //!
 //! The result is bit-identical for any number of threads: parallel stages are order-preserving
 //! maps, and every shared vertex is computed by one canonical expression.
@@ -17,31 +28,24 @@ use rayon::prelude::*;
 use serde::ser::{SerializeMap, SerializeStruct};
 use serde::{Serialize, Serializer};
 
-use crate::adjusted_planes::{adjust_planes, tilt_and_offset};
+use crate::adjusted_planes::tilt_and_offset;
 use crate::boundary::Boundary;
-use crate::closed;
+use crate::closed::SurfaceLayout;
 use crate::diagnostics::Diagnostic;
-use crate::diffgeo::{flat_curvatures, LocalGeometry};
 use crate::error::TpiError;
-use crate::facets::{
-    build_closed_facets, build_facets, build_ghost_clipped_facets, FacetParams, FootHint,
-    TriangleVertex, VertexKind,
-};
-use crate::flat;
-use crate::ghosts::{augment, augment_within_trim};
-use crate::mesh::{FacetMesh, SlopeView};
-use crate::neighbours::{decide, decide_convex, NeighbourInput, NeighbourStats, SlopeFrame};
+use crate::facets::{build_stage, FacetParams, Facets, FootHint, TriangleVertex, VertexKind};
+use crate::mesh::FacetMesh;
+use crate::neighbours::{NeighbourStats, SlopeFrame};
 use crate::pattern::validate_uv;
-use crate::periodic;
-use crate::planes::{coincident, Plane};
+use crate::planes::Plane;
 use crate::progress::{NoProgress, Progress, Stage, Stages};
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
-use crate::rulings;
 use crate::samples::{bounding_box, sample, Samples};
+use crate::structure::{decide_structure, FacetPlan, StructureInput};
 use crate::surface::Surface;
 use crate::tolerance::{
     COLLINEAR_TOLERANCE, DEFAULT_FAR_VERTEX_FACTOR, DEFAULT_FLAT_TOLERANCE, DEFAULT_WELD_TOLERANCE,
-    REVERSAL_CHECK_TOLERANCE, STRIP_TRIM_MARGIN,
+    REVERSAL_CHECK_TOLERANCE,
 };
 use crate::triangulation::{orient, sorted_pairs, triangle_edges, DualTriangulation};
 
@@ -576,559 +580,213 @@ fn run_within(
     stages: &Stages<'_>,
 ) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let mut timings = Timings::default();
-    let observer = stages.observer();
     stages.enter(Stage::Samples, Some(pattern.len()));
-
-    let Samples {
-        uv,
-        geometry,
-        tangents,
-        mut planes,
-        diagonal,
-        convex_side,
-        plane_uv,
-        seeds,
-        frame,
-        lifted,
-        slopes,
-        mut diagnostics,
-    } = sample(surface, pattern, options, observer)?;
+    let mut samples = sample(surface, pattern, options, stages.observer())?;
     timings.samples = ms(start);
     stages.leave();
 
-    // Closed surfaces and poles (crate::closed): seeds on a pole are refused everywhere, and
-    // seeds on one surface point across the seam where the seam is to be closed.
-    let layout = closed::surface_layout(surface);
-    let convex = convex_side.iter().all(|&s| s != 0 && s == convex_side[0]);
-    let closable = layout.open_sides().is_some() && convex && !boundary.is_trim();
-    if layout.poles.contains(&true) || closable {
-        let regular: Vec<bool> = if geometry.len() == uv.len() {
-            geometry.iter().map(|g| g.regular).collect()
-        } else {
-            vec![true; uv.len()]
-        };
-        let weld = options.weld_tolerance * diagonal;
-        check_closed_seeds(surface, &layout, &uv, &seeds, &regular, closable, weld)?;
-    }
-    // A convex surface closed in one direction: the envelope is the hull of the dual points,
-    // with ghost seeds beyond its open sides (not at its poles or its seam) that end the mesh
-    // there as on the any-curvature path. Where the closed surface is not convex at every
-    // seed, or its tangent planes do not bound one convex body (a dented sphere), it is
-    // discretised as an open patch (the CLI warns that the seam stays open). A trimmed one is
-    // left to the clipping of the convex paths, which ends it on its trim.
-    let hull_stage = Instant::now();
-    let mut closed_ghosts: Option<(Vec<Plane>, Vec<u32>)> = None;
-    let mut closed_topology = MeshTopology::DISC;
-    let envelope = match layout.open_sides() {
-        Some(open) if closable => {
-            // Timed as the triangulation when the hull succeeds (below).
-            stages.enter(Stage::Delaunay, None);
-            let holes = open.iter().filter(|&&o| o).count();
-            closed_topology = MeshTopology {
-                euler: 2 - holes as i64,
-                boundary_loops: holes,
-            };
-            if holes == 0 {
-                closed::envelope_triangulation(&planes, planes.len()).ok()
-            } else {
-                // The slope path lets the local geometry go: the ghosts need it.
-                let recomputed: Vec<LocalGeometry>;
-                let full: &[LocalGeometry] = if geometry.len() == uv.len() {
-                    &geometry
-                } else {
-                    recomputed = uv
-                        .iter()
-                        .map(|&[u, v]| LocalGeometry::from_derivatives(&surface.evaluate(u, v)))
-                        .collect();
-                    &recomputed
-                };
-                let extent = plane_extent(&plane_uv, pattern);
-                let ghosts = augment(surface, &uv, &plane_uv, extent, full, &convex_side, open);
-                let envelope = closed::envelope_triangulation(&ghosts.planes, uv.len()).ok();
-                closed_ghosts = Some((ghosts.planes, ghosts.source));
-                envelope
-            }
-        }
-        _ => None,
+    let input = StructureInput {
+        surface,
+        pattern,
+        options,
+        boundary,
+        allow_strips,
     };
-    let closed_convex = envelope.is_some();
-    // Seeds of a seam about to be closed: no two on one surface point across it.
-    let check_seam = |uv: &[[f64; 2]], seeds: &[Seed]| {
-        let weld = options.weld_tolerance * diagonal;
-        let regular = vec![true; uv.len()];
-        check_closed_seeds(surface, &layout, uv, seeds, &regular, true, weld)
-    };
-    // A developable surface with rulings along parameter lines (crate::rulings): strips, and
-    // an annulus where it is closed across its rulings.
-    // Rulings are sampled only where every seed is flat (K ~ 0): elsewhere they cannot be.
-    let flat_seeds = seeds
-        .iter()
-        .all(|s| flat_curvatures(s.curvatures[0], s.curvatures[1]));
-    let rulings = flat_seeds.then(|| rulings::find_rulings(surface)).flatten();
-    // Trimmed, they are the strips of the seeds inside, with walls beyond the domain, clipped
-    // on the trim by the facet stage.
-    let trimmed = boundary.is_trim();
-    let strips = match rulings.filter(|_| allow_strips) {
-        Some(r) if !closed_convex => {
-            let closed = layout.closed[1 - r.along];
-            if closed && !trimmed {
-                check_seam(&uv, &seeds)?;
-            }
-            stages.enter(Stage::Delaunay, None);
-            let margin = if trimmed {
-                STRIP_TRIM_MARGIN * diagonal
-            } else {
-                0.0
-            };
-            rulings::strip_structure(surface, r, &uv, &planes, closed, margin)
-                .map(|(triangulation, planes, source)| (r, closed, triangulation, planes, source))
-        }
-        _ => None,
-    };
-    let strips_closed = strips.as_ref().is_some_and(|s| s.1);
-    let strip_dual = strips.is_some();
-    let ghost_dual = closed_convex || strip_dual;
-    let mut ghost_neighbours = Vec::new();
-    let strip_triangulation = strips.map(|(r, closed, triangulation, all_planes, source)| {
-        if closed && !trimmed {
-            closed_topology = MeshTopology {
-                euler: 0,
-                boundary_loops: 2,
-            };
-        }
-        // Their zero curvature is what the strips are built for, not a defect to flag.
-        diagnostics.retain(|d| !matches!(d, Diagnostic::FlatPoint { .. }));
-        diagnostics.push(Diagnostic::RulingStrips {
-            direction: r.along as u8,
-            closed,
-        });
-        closed_ghosts = Some((all_planes, source));
-        triangulation
-    });
-    let mut seam_closed = false;
-    // A flat surface closed one way (a ring, a disc around a pole): its facets end only on its
-    // open sides, and cells run across its seam (crate::boundary, a band).
-    let mut flat_band: Option<Boundary> = None;
+    let structure = decide_structure(&input, &mut samples, &mut timings, stages)?;
+    let (topology, strips, neighbours) = (
+        structure.topology,
+        structure.is_strips(),
+        structure.neighbours,
+    );
 
-    // Candidates and true neighbours.
-    let stage = Instant::now();
-    let flat = planes.iter().all(|p| coincident(&planes[0], p));
-    check_not_collinear(&plane_uv)?;
-    let input = NeighbourInput {
-        plane_uv: &plane_uv,
-        geometry: &geometry,
-        planes: &planes,
-        convex_side: &convex_side,
-        any_curvature: false,
-    };
-    let (mut triangulation, mut augmented, mut neighbours) = match (&slopes, &lifted) {
-        _ if ghost_dual => {
-            timings.delaunay = ms(hull_stage);
-            stages.enter(Stage::Delaunay, None);
-            (
-                strip_triangulation.or(envelope).unwrap_or_default(),
-                None,
-                NeighbourStats::default(),
-            )
-        }
-        // Convex everywhere: the envelope's own structure, computed in slope space.
-        (Some(slopes), Some(lifted)) => {
-            stages.enter(Stage::Delaunay, None);
-            let mut triangulation = DualTriangulation::delaunay(slopes)?;
-            timings.delaunay = ms(stage);
-            let stage = Instant::now();
-            let stats = decide_convex(&mut triangulation, slopes, lifted, &input, stages);
-            timings.neighbours = ms(stage);
-            (triangulation, None, stats)
-        }
-        // Strictly convex everywhere but too steep for the slope embedding: the envelope tests
-        // on parameter-space candidates, with the boundary clipped on the wall.
-        _ if convex_side.iter().all(|&s| s != 0 && s == convex_side[0]) => {
-            stages.enter(Stage::Delaunay, None);
-            let mut triangulation = DualTriangulation::delaunay(&plane_uv)?;
-            timings.delaunay = ms(stage);
-            let stage = Instant::now();
-            stages.enter(Stage::Neighbours, None);
-            let stats = decide(
-                &mut triangulation,
-                &input,
-                options.envelope_repair,
-                plane_uv.len(),
-            );
-            timings.neighbours = ms(stage);
-            (triangulation, None, stats)
-        }
-        // A flat surface: the Voronoi cells of the seeds in its plane (crate::flat), clipped
-        // on the boundary (or the trim) as on the convex paths.
-        _ if flat => {
-            if let Some(walls) = layout.open_sides().filter(|_| !boundary.is_trim()) {
-                check_seam(&uv, &seeds)?;
-                let open = walls.iter().filter(|&&w| w).count();
-                closed_topology = MeshTopology {
-                    euler: 2 - open as i64,
-                    boundary_loops: open,
-                };
-                seam_closed = true;
-                flat_band = Some(Boundary::Band {
-                    domain: surface.domain(),
-                    walls,
-                    closed: layout.closed,
-                });
-            }
-            stages.enter(Stage::Delaunay, None);
-            let triangulation = flat::voronoi_dual(&planes)?;
-            timings.delaunay = ms(stage);
-            // Zero curvature is what this path is for, not a defect to flag; every neighbour
-            // pair is separated by its bisector.
-            diagnostics.retain(|d| !matches!(d, Diagnostic::FlatPoint { .. }));
-            diagnostics.push(Diagnostic::CoincidentPlanes {
-                pairs: real_pairs(&triangulation, planes.len()).len() as u32,
-            });
-            (triangulation, None, NeighbourStats::default())
-        }
-        // A trimmed cylinder, cone or extrusion whose strips could not be built (seeds of
-        // several rulings on one plane): the ghosts' triangulation would give no valid mesh.
-        _ if boundary.is_trim() && rulings.is_some() => {
-            return Err(TpiError::TrimUnsupported {
-                reason: "the surface is developable (a cylinder, cone or extrusion: its facets are strips along its rulings), and these seeds give no strips (several rulings share one tangent plane)".into(),
-            });
-        }
-        // Saddles and mixed curvature: ghost seeds beyond the boundary (or the trim) close
-        // every real facet for the validity flips.
-        _ => {
-            let extent = plane_extent(&plane_uv, pattern);
-            // Closed one way with open sides across it (crate::periodic): the seam closed
-            // where the structure folds into an annulus, else left open as on an open patch.
-            let seam = layout.open_sides().filter(|_| !boundary.is_trim());
-            if seam.is_some() {
-                check_seam(&uv, &seeds)?;
-                stages.enter(Stage::Neighbours, None);
-            }
-            let folded = match seam {
-                // Triangulation, decision and fold are one step, timed as the neighbours.
-                Some(open) => periodic::decide_folded(
-                    surface,
-                    &periodic::Points {
-                        uv: &uv,
-                        plane_uv: &plane_uv,
-                        geometry: &geometry,
-                        convex_side: &convex_side,
-                    },
-                    extent,
-                    open,
-                    usize::from(layout.closed[1]),
-                    options.envelope_repair,
-                )?,
-                None => None,
-            };
-            if let Some((triangulation, points, stats)) = folded {
-                // Every open side is a boundary loop; poles are closed over.
-                let open = seam.map_or(0, |o| o.iter().filter(|&&o| o).count());
-                closed_topology = MeshTopology {
-                    euler: 2 - open as i64,
-                    boundary_loops: open,
-                };
-                seam_closed = true;
-                // Triangulation, decision and fold are one step here.
-                timings.neighbours = ms(stage);
-                (triangulation, Some(points), stats)
-            } else {
-                stages.enter(Stage::Delaunay, None);
-                let augmented = if boundary.is_trim() {
-                    augment_within_trim(
-                        surface,
-                        &plane_uv,
-                        extent,
-                        &geometry,
-                        &convex_side,
-                        boundary,
-                    )
-                } else {
-                    augment(
-                        surface,
-                        &uv,
-                        &plane_uv,
-                        extent,
-                        &geometry,
-                        &convex_side,
-                        [true; 4],
-                    )
-                };
-                let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
-                timings.delaunay = ms(stage);
-                let stage = Instant::now();
-                stages.enter(Stage::Neighbours, None);
-                let augmented_input = NeighbourInput {
-                    plane_uv: &augmented.plane_uv,
-                    geometry: &augmented.geometry,
-                    planes: &augmented.planes,
-                    convex_side: &augmented.convex_side,
-                    any_curvature: true,
-                };
-                let stats = decide(
-                    &mut triangulation,
-                    &augmented_input,
-                    options.envelope_repair,
-                    plane_uv.len(),
-                );
-                timings.neighbours = ms(stage);
-                (triangulation, Some(augmented), stats)
-            }
-        }
-    };
-    if let Some(k) = (0..2)
-        .find(|&k| layout.closed[k])
-        .filter(|_| !closed_convex && !strips_closed && !seam_closed)
-    {
-        diagnostics.push(Diagnostic::SeamLeftOpen { direction: k as u8 });
-    }
-
-    // Facets and mesh.
     let stage = Instant::now();
     let params = FacetParams {
         far_vertex_factor: options.far_vertex_factor,
-        weld_distance: options.weld_tolerance * diagonal,
-        reversal_distance: REVERSAL_CHECK_TOLERANCE * diagonal,
-        exact_dual: flat_band.is_some(),
+        weld_distance: options.weld_tolerance * samples.diagonal,
+        reversal_distance: REVERSAL_CHECK_TOLERANCE * samples.diagonal,
+        exact_dual: matches!(structure.plan, FacetPlan::Clipped { band: Some(_) }),
     };
-    let mut adjustment = None;
-    // The plane adjustment decides planes and flips edges: its time counts as neighbours'.
-    let mut adjust_ms = 0.0;
-    let (mesh, triangulation) = match &mut augmented {
-        None if ghost_dual => {
-            let (all_planes, source) = closed_ghosts
-                .take()
-                .unwrap_or_else(|| (planes.clone(), (0..uv.len() as u32).collect()));
-            stages.enter(Stage::Facets, Some(triangulation.len() + uv.len()));
-            let mesh = if trimmed {
-                build_ghost_clipped_facets(
-                    surface,
-                    boundary,
-                    &uv,
-                    &tangents,
-                    &all_planes,
-                    &source,
-                    &triangulation,
-                    &params,
-                    stages,
-                )
-            } else {
-                build_closed_facets(
-                    &triangulation,
-                    &all_planes,
-                    uv.len(),
-                    &source,
-                    &params,
-                    stages,
-                )
-            };
-            if strip_dual {
-                ghost_neighbours = real_pairs(&triangulation, uv.len());
-            }
-            // The dual structure reported is the real seeds' part.
-            let mut real = triangulation;
-            if all_planes.len() > uv.len() {
-                real.retain_points(uv.len());
-                real.canonicalise(uv.len());
-            }
-            (mesh, real)
-        }
-        None => {
-            stages.enter(Stage::Facets, Some(triangulation.len() + uv.len()));
-            let mesh = build_facets(
-                surface,
-                flat_band.as_ref().unwrap_or(boundary),
-                &uv,
-                &tangents,
-                &planes,
-                &convex_side,
-                &triangulation,
-                &params,
-                slopes.as_ref().zip(frame).map(|(slopes, n)| SlopeView {
-                    axes: SlopeFrame::new(n, convex_side[0]).axes,
-                    slopes,
-                }),
-                stages,
-            );
-            (mesh, triangulation)
-        }
-        Some(augmented) => {
-            if options.planes == PlaneMode::Adjusted {
-                let adjust = Instant::now();
-                let stats = adjust_planes(&mut triangulation, &mut augmented.planes, uv.len());
-                adjust_ms = ms(adjust);
-                adjustment = Some(stats);
-                planes.copy_from_slice(&augmented.planes[..uv.len()]);
-            }
-            stages.enter(Stage::Facets, Some(triangulation.len() + uv.len()));
-            let mesh = build_closed_facets(
-                &triangulation,
-                &augmented.planes,
-                uv.len(),
-                &augmented.source,
-                &params,
-                stages,
-            );
-            // The dual structure reported is the real seeds' part.
-            let mut real = triangulation;
-            real.retain_points(uv.len());
-            real.canonicalise(uv.len());
-            (mesh, real)
-        }
-    };
-    drop(augmented);
-    diagnostics.extend(mesh.diagnostics.iter().cloned());
-    if !mesh.vertices.is_empty()
-        && !strip_dual
-        && mesh
-            .diagnostics
-            .iter()
-            .filter(|d| matches!(d, Diagnostic::IllConditionedVertex { .. }))
-            .count()
-            == triangulation.len()
-    {
-        return Err(TpiError::DegenerateSurface {
-            reason: "every triple of neighbouring tangent planes is (nearly) parallel: the surface is developable".into(),
-        });
-    }
-    timings.facets = ms(stage) - mesh.assembly_ms - adjust_ms;
-    timings.neighbours += adjust_ms;
-    timings.mesh = mesh.assembly_ms;
+    let facets = build_stage(surface, boundary, &samples, structure, &params, stages);
+    check_not_developable(&facets, strips)?;
+    timings.facets = ms(stage) - facets.mesh.assembly_ms;
+    timings.mesh = facets.mesh.assembly_ms;
 
+    let Facets {
+        mesh,
+        triangulation,
+        ghost_neighbours,
+    } = facets;
     let FacetMesh {
         vertices,
         vertex_kinds,
         offsets,
         loops,
         feet,
-        mut triangle_vertices,
-        mut vertex_source,
-        mut facet_simple,
+        triangle_vertices,
+        vertex_source,
+        facet_simple,
         welded,
+        diagnostics,
         ..
     } = mesh;
-    // What only live editing reads is let go now (the report's peak is the pipeline's).
-    if !keep {
-        triangle_vertices = Vec::new();
-        vertex_source = Vec::new();
-        facet_simple = Vec::new();
-    }
-    let kept_triangulation = keep.then(|| triangulation.clone());
-    let dual_triangles = triangulation.triangles;
-    drop(triangulation.neighbours);
-    let (plane_uv, slopes) = if keep {
-        (plane_uv, slopes)
-    } else {
-        (Vec::new(), None)
-    };
-    let _ = plane_uv;
+    samples.diagnostics.extend(diagnostics);
     let mut result = Discretisation {
         vertices,
         vertex_kinds,
         facet_offsets: offsets,
         facet_loops: loops,
-        seeds,
+        seeds: std::mem::take(&mut samples.seeds),
         pattern_indices: Vec::new(),
         outside_trim: 0,
-        dual_triangles,
+        dual_triangles: Vec::new(),
         ghost_neighbours,
         quality: None,
         facet_flags: Vec::new(),
-        diagnostics,
+        diagnostics: std::mem::take(&mut samples.diagnostics),
         plane_adjustments: Vec::new(),
         timings,
         units: surface.units(),
-        topology: if ghost_dual || seam_closed {
-            closed_topology
-        } else {
-            MeshTopology::DISC
-        },
+        topology,
     };
-    if let Some(stats) = adjustment {
-        neighbours.plane_tilts = stats.tilts;
-        neighbours.validity_unresolved = stats.unresolved;
-    }
+    // What only live editing reads is let go now (the report's peak is the pipeline's).
+    let live = keep.then(|| LiveParts {
+        triangulation: triangulation.clone(),
+        triangle_vertices,
+        vertex_source,
+        facet_simple,
+        welded,
+    });
+    result.dual_triangles = triangulation.triangles;
+    drop(triangulation.neighbours);
     if options.planes == PlaneMode::Adjusted {
         // Every facet says how its plane differs (0 where it is the exact tangent plane, as
         // everywhere on convex surfaces).
-        result.plane_adjustments = plane_adjustments(&result.seeds, &planes);
+        result.plane_adjustments = plane_adjustments(&result.seeds, &samples.planes);
     }
     let mut resolved = Vec::new();
-    let mut feet = feet;
     if options.quality_report {
         let stage = Instant::now();
         stages.enter(
             Stage::Report,
             Some(result.facet_count() + result.vertices.len()),
         );
-        let mut diagnosed = vec![false; pattern.len()];
-        for d in &result.diagnostics {
-            for p in d.points() {
-                diagnosed[p as usize] = true;
-            }
-        }
-        if keep {
+        let feet = if keep {
             resolved = resolve_feet(
                 surface,
-                &uv,
+                &samples.uv,
                 &result.vertices,
                 &result.facet_offsets,
                 &result.facet_loops,
                 &feet,
             );
-            feet = resolved
-                .iter()
-                .map(|f| f.map_or(FootHint::FromSeed, FootHint::Known))
-                .collect();
-        }
-        let (quality, flags) = report(
-            &ReportInput {
-                surface,
-                uv: &uv,
-                planes: &planes,
-                vertices: &result.vertices,
-                offsets: &result.facet_offsets,
-                loops: &result.facet_loops,
-                diagonal,
-                diagnosed: &diagnosed,
-                neighbours,
-                diagnostic_count: result.diagnostics.len(),
-                feet: &feet,
-                convex_side: &convex_side,
-            },
-            observer,
-        );
-        result.quality = Some(quality);
-        result.facet_flags = flags;
+            let known = |f: &Option<[f64; 2]>| f.map_or(FootHint::FromSeed, FootHint::Known);
+            resolved.iter().map(known).collect()
+        } else {
+            feet
+        };
+        measure(surface, &samples, &mut result, neighbours, &feet, stages);
         note_topology(&mut result, boundary.is_trim());
         result.timings.report = ms(stage);
     }
     stages.leave();
     result.timings.total = ms(start);
-    let state = keep.then(|| {
-        let (lo, hi) = bounding_box(planes.iter().map(|p| p.point));
-        let side = convex_side.first().copied().unwrap_or(0);
-        PipelineState {
-            uv,
-            seeds: result.seeds.clone(),
-            tangents,
-            planes,
-            convex_side,
-            slopes: frame
-                .zip(slopes)
-                .map(|(n, s)| (SlopeFrame::new(n, side), s)),
-            triangulation: kept_triangulation.unwrap_or_default(),
-            triangle_vertices,
-            vertex_source,
-            facet_simple,
-            feet: resolved,
-            neighbours,
-            welded,
-            diagonal,
-            bbox: (lo, hi),
-        }
-    });
+    let state = live.map(|live| pipeline_state(samples, &result, live, neighbours, resolved));
     Ok((result, state))
+}
+
+/// What live editing keeps of the facet stage beyond the output.
+struct LiveParts {
+    triangulation: DualTriangulation,
+    triangle_vertices: Vec<TriangleVertex>,
+    vertex_source: Vec<u32>,
+    facet_simple: Vec<bool>,
+    welded: Vec<u32>,
+}
+
+/// Refuses a surface none of whose dual triangles gave a well-conditioned vertex (every
+/// triple of neighbouring planes nearly parallel), except on strips, which are built for it.
+fn check_not_developable(facets: &Facets, strips: bool) -> Result<(), TpiError> {
+    let mesh = &facets.mesh;
+    let ill_conditioned = mesh
+        .diagnostics
+        .iter()
+        .filter(|d| matches!(d, Diagnostic::IllConditionedVertex { .. }))
+        .count();
+    if !mesh.vertices.is_empty() && !strips && ill_conditioned == facets.triangulation.len() {
+        return Err(TpiError::DegenerateSurface {
+            reason: "every triple of neighbouring tangent planes is (nearly) parallel: the surface is developable".into(),
+        });
+    }
+    Ok(())
+}
+
+/// Stage 5 of the pipeline: the quality report of `result` and its facet flags, the feet of
+/// its vertices as the facet stage (or live editing) knows them.
+fn measure(
+    surface: &dyn Surface,
+    samples: &Samples,
+    result: &mut Discretisation,
+    neighbours: NeighbourStats,
+    feet: &[FootHint],
+    stages: &Stages<'_>,
+) {
+    let mut diagnosed = vec![false; samples.uv.len()];
+    for d in &result.diagnostics {
+        for p in d.points() {
+            diagnosed[p as usize] = true;
+        }
+    }
+    let (quality, flags) = report(
+        &ReportInput {
+            surface,
+            uv: &samples.uv,
+            planes: &samples.planes,
+            vertices: &result.vertices,
+            offsets: &result.facet_offsets,
+            loops: &result.facet_loops,
+            diagonal: samples.diagonal,
+            diagnosed: &diagnosed,
+            neighbours,
+            diagnostic_count: result.diagnostics.len(),
+            feet,
+            convex_side: &samples.convex_side,
+        },
+        stages.observer(),
+    );
+    result.quality = Some(quality);
+    result.facet_flags = flags;
+}
+
+/// What live editing keeps of a run ([`PipelineState`]).
+fn pipeline_state(
+    samples: Samples,
+    result: &Discretisation,
+    live: LiveParts,
+    neighbours: NeighbourStats,
+    resolved: Vec<Option<[f64; 2]>>,
+) -> PipelineState {
+    let (lo, hi) = bounding_box(samples.planes.iter().map(|p| p.point));
+    let side = samples.convex_side.first().copied().unwrap_or(0);
+    PipelineState {
+        uv: samples.uv,
+        seeds: result.seeds.clone(),
+        tangents: samples.tangents,
+        planes: samples.planes,
+        convex_side: samples.convex_side,
+        slopes: samples
+            .frame
+            .zip(samples.slopes)
+            .map(|(n, s)| (SlopeFrame::new(n, side), s)),
+        triangulation: live.triangulation,
+        triangle_vertices: live.triangle_vertices,
+        vertex_source: live.vertex_source,
+        facet_simple: live.facet_simple,
+        feet: resolved,
+        neighbours,
+        welded: live.welded,
+        diagonal: samples.diagonal,
+        bbox: (lo, hi),
+    }
 }
 
 /// Each facet's plane against the exact tangent plane at its seed.
@@ -1149,7 +807,7 @@ pub(crate) fn plane_adjustments(seeds: &[Seed], planes: &[Plane]) -> Vec<PlaneAd
 
 /// Rejects patterns whose points all lie on one line in parameter space (no facet could
 /// close), whatever space the triangulation is then built in.
-fn check_not_collinear(points: &[[f64; 2]]) -> Result<(), TpiError> {
+pub(crate) fn check_not_collinear(points: &[[f64; 2]]) -> Result<(), TpiError> {
     let first = points[0];
     let distance2 = |p: [f64; 2]| (p[0] - first[0]).powi(2) + (p[1] - first[1]).powi(2);
     let far = points
@@ -1170,13 +828,13 @@ fn check_not_collinear(points: &[[f64; 2]]) -> Result<(), TpiError> {
     }
 }
 
-fn ms(since: Instant) -> f64 {
+pub(crate) fn ms(since: Instant) -> f64 {
     since.elapsed().as_secs_f64() * 1e3
 }
 
 /// The size of the triangulation plane's rectangle: the scale factors that
 /// [`scaled_parameters`] applied to the normalised pattern coordinates.
-fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
+pub(crate) fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
     let mut extent = [1.0, 1.0];
     for axis in 0..2 {
         if let Some(k) =
@@ -1190,21 +848,12 @@ fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
     extent
 }
 
-/// The edges of `tri` between two real points (`< real_count`), as sorted pairs i < j
-/// (every edge where all points are real).
-fn real_pairs(tri: &DualTriangulation, real_count: usize) -> Vec<[u32; 2]> {
-    sorted_pairs(
-        triangle_edges(&tri.triangles)
-            .filter(|&[a, b]| (a as usize) < real_count && (b as usize) < real_count),
-    )
-}
-
 /// No seed on a pole (its tangent plane is not defined by the parametrisation); on a closed
 /// surface about to be discretised as one (`closing`: convex, untrimmed) also no seed where
 /// the surface is singular and no two seeds on one surface point (across the seam).
-fn check_closed_seeds(
+pub(crate) fn check_closed_seeds(
     surface: &dyn Surface,
-    layout: &closed::SurfaceLayout,
+    layout: &SurfaceLayout,
     uv: &[[f64; 2]],
     seeds: &[Seed],
     regular: &[bool],

@@ -27,8 +27,11 @@ use rayon::prelude::*;
 use crate::boundary::{Boundary, Position};
 use crate::diagnostics::Diagnostic;
 use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
+use crate::neighbours::SlopeFrame;
 use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane};
 use crate::progress::{Stage, Stages, Tally};
+use crate::samples::Samples;
+use crate::structure::{DualStructure, FacetPlan};
 use crate::projection::periodic_foot;
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
@@ -36,7 +39,7 @@ use crate::tolerance::{
     DEFAULT_FAR_VERTEX_FACTOR, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES, RAY_DOUBLINGS,
     RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR,
 };
-use crate::triangulation::{triangle_edges, DualTriangulation, Edge, Fan, NO_TRIANGLE};
+use crate::triangulation::{real_pairs, triangle_edges, DualTriangulation, Edge, Fan, NO_TRIANGLE};
 
 /// What a mesh vertex is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -223,6 +226,109 @@ pub(crate) fn accept_newton(
 fn surely_inside(boundary: &Boundary, linear: [f64; 2], reach: f64) -> bool {
     let margin = 2.0 * reach + 1e-9;
     boundary.inside_measure(linear) > margin * (1.0 + 1e-9) + 1e-12
+}
+
+/// The facet stage's result.
+pub(crate) struct Facets {
+    /// The facets and their mesh.
+    pub(crate) mesh: FacetMesh,
+    /// The dual structure's triangles over the real seeds alone (ghosts dropped).
+    pub(crate) triangulation: DualTriangulation,
+    /// On strips, every neighbour pair of real seeds (their triangles nearly all hold a ghost);
+    /// empty otherwise.
+    pub(crate) ghost_neighbours: Vec<[u32; 2]>,
+}
+
+/// Stage 3 of the pipeline: dual structure -> facets, as its [`FacetPlan`] says: clipped on
+/// `boundary` (or the plan's band), or closed by the ghosts' planes (clipped on a trim where
+/// there is one).
+pub(crate) fn build_stage(
+    surface: &dyn Surface,
+    boundary: &Boundary,
+    samples: &Samples,
+    structure: DualStructure,
+    params: &FacetParams,
+    stages: &Stages<'_>,
+) -> Facets {
+    let n = samples.uv.len();
+    let DualStructure {
+        triangulation,
+        plan,
+        ..
+    } = structure;
+    stages.enter(Stage::Facets, Some(triangulation.len() + n));
+    // `ghosts`: the structure holds more points than the real seeds.
+    let (mesh, ghosts, strips) = match &plan {
+        FacetPlan::Clipped { band } => {
+            let slopes = samples.slopes.as_ref().zip(samples.frame);
+            let mesh = build_facets(
+                surface,
+                band.as_ref().unwrap_or(boundary),
+                &samples.uv,
+                &samples.tangents,
+                &samples.planes,
+                &samples.convex_side,
+                &triangulation,
+                params,
+                slopes.map(|(slopes, normal)| SlopeView {
+                    axes: SlopeFrame::new(normal, samples.convex_side[0]).axes,
+                    slopes,
+                }),
+                stages,
+            );
+            (mesh, false, false)
+        }
+        FacetPlan::Ghosts {
+            planes,
+            source,
+            strips,
+        } => {
+            let mesh = if boundary.is_trim() {
+                build_ghost_clipped_facets(
+                    surface,
+                    boundary,
+                    &samples.uv,
+                    &samples.tangents,
+                    planes,
+                    source,
+                    &triangulation,
+                    params,
+                    stages,
+                )
+            } else {
+                build_closed_facets(&triangulation, planes, n, source, params, stages)
+            };
+            (mesh, planes.len() > n, *strips)
+        }
+        FacetPlan::Augmented(augmented) => {
+            let mesh = build_closed_facets(
+                &triangulation,
+                &augmented.planes,
+                n,
+                &augmented.source,
+                params,
+                stages,
+            );
+            (mesh, true, false)
+        }
+    };
+    drop(plan);
+    let ghost_neighbours = if strips {
+        real_pairs(&triangulation, n)
+    } else {
+        Vec::new()
+    };
+    // The dual structure reported is the real seeds' part.
+    let mut real = triangulation;
+    if ghosts {
+        real.retain_points(n);
+        real.canonicalise(n);
+    }
+    Facets {
+        mesh,
+        triangulation: real,
+        ghost_neighbours,
+    }
 }
 
 /// Builds the facets of all pattern points from the dual triangulation, ending them on

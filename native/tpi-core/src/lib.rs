@@ -50,6 +50,7 @@ mod rulings;
 mod samples;
 mod sanity;
 mod spec;
+mod structure;
 mod surface;
 pub mod tolerance;
 mod triangulation;

@@ -423,3 +423,12 @@ fn rotate<T: Copy>(x: [T; 3], k: usize) -> [T; 3] {
 pub(crate) fn orient(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
 }
+
+/// The neighbour pairs (i < j, sorted) among the first `real_count` points (the real seeds
+/// before any ghosts).
+pub(crate) fn real_pairs(tri: &DualTriangulation, real_count: usize) -> Vec<[u32; 2]> {
+    sorted_pairs(
+        triangle_edges(&tri.triangles)
+            .filter(|&[a, b]| (a as usize) < real_count && (b as usize) < real_count),
+    )
+}
