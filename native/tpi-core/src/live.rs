@@ -57,14 +57,13 @@ use crate::discretise::{
     PlaneMode, Seed, Timings,
 };
 use crate::error::TpiError;
-use crate::facets::{accept_newton, single_triangle_vertex, FootHint, TriangleVertex, VertexKind};
+use crate::facets::{single_triangle_vertex, FootHint, TriangleVertex, VertexKind};
 use crate::mesh::edge_reversed;
 use crate::neighbours::{slope_repairs, NeighbourStats, SlopeFrame};
 use crate::planes::Plane;
 use crate::predicates::{orient2d, power_illegal};
 use crate::progress::NoProgress;
-use crate::projection::foot;
-use crate::quality::{report, ReportInput};
+use crate::quality::{report, resolve_foot, ReportInput};
 use crate::samples::curvature_class;
 use crate::surface::Surface;
 use crate::tolerance::DUPLICATE_UV_TOLERANCE;
@@ -1750,21 +1749,14 @@ fn renumber_diagnostic(d: &mut Diagnostic, k: u32) {
     }
 }
 
-/// The report's foot of a triangle vertex whose first facet is `seed` (see
-/// [`crate::quality::resolve_feet`]).
+/// The report's foot of a triangle vertex whose first facet is `seed`
+/// ([`crate::quality::resolve_foot`]).
 fn report_foot(surface: &dyn Surface, vertex: &TriangleVertex, seed_uv: [f64; 2]) -> [f64; 2] {
-    let domain = surface.domain();
-    let x = vertex.point;
-    match vertex.hint() {
-        FootHint::Known(f) => f,
-        FootHint::Guess { linear, reach } => {
-            let newton = foot(surface, &domain, x, linear);
-            if accept_newton(&domain, newton, linear, reach) {
-                newton
-            } else {
-                foot(surface, &domain, x, seed_uv)
-            }
-        }
-        FootHint::FromSeed => foot(surface, &domain, x, seed_uv),
-    }
+    resolve_foot(
+        surface,
+        &surface.domain(),
+        vertex.point,
+        vertex.hint(),
+        seed_uv,
+    )
 }

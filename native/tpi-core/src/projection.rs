@@ -14,11 +14,41 @@
 use glam::DVec3;
 
 use crate::surface::{Domain, Surface};
-use crate::tolerance::{MAX_PROJECTION_ITERATIONS, PROJECTION_STEP_TOLERANCE};
+use crate::tolerance::{
+    DISTANCE_FOOT_MIN_FOCAL_FACTOR, DISTANCE_FOOT_STEP_TOLERANCE, MAX_PROJECTION_ITERATIONS,
+    PROJECTION_STEP_TOLERANCE,
+};
 
 /// The foot of `x` on the (extended) surface, starting from `guess`.
 pub(crate) fn foot(surface: &dyn Surface, domain: &Domain, x: DVec3, guess: [f64; 2]) -> [f64; 2] {
     periodic_foot(surface, domain, x, guess, [false; 2], [false; 4])
+}
+
+/// [`foot`] to the accuracy the distance |S(foot) - x| needs, for the quality report's
+/// deviation: Newton stops after a full-Hessian step shorter than
+/// [`DISTANCE_FOOT_STEP_TOLERANCE`]. After such a step of length s the foot is off by
+/// O(s^2) (quadratic convergence), and the distance, stationary at the foot, by O(s^4):
+/// below 1e-20 of the domain's scale, where [`foot`] takes one or two more evaluations to
+/// see its last step fall below [`PROJECTION_STEP_TOLERANCE`]. Gauss-Newton steps (where
+/// the full Hessian is not positive definite, or outside the domain) converge only linearly,
+/// and near the focal surface ((1 - k1 d)(1 - k2 d) below
+/// [`DISTANCE_FOOT_MIN_FOCAL_FACTOR`], d the distance) the quadratic constant is unbounded:
+/// those keep the strict tolerance.
+pub(crate) fn distance_foot(
+    surface: &dyn Surface,
+    domain: &Domain,
+    x: DVec3,
+    guess: [f64; 2],
+) -> [f64; 2] {
+    newton_foot(
+        surface,
+        domain,
+        x,
+        guess,
+        [false; 2],
+        [false; 4],
+        DISTANCE_FOOT_STEP_TOLERANCE,
+    )
 }
 
 /// [`foot`] on a surface closed in the directions marked `periodic` (u, v): there the
@@ -34,6 +64,28 @@ pub(crate) fn periodic_foot(
     guess: [f64; 2],
     periodic: [bool; 2],
     poles: [bool; 4],
+) -> [f64; 2] {
+    newton_foot(
+        surface,
+        domain,
+        x,
+        guess,
+        periodic,
+        poles,
+        PROJECTION_STEP_TOLERANCE,
+    )
+}
+
+/// [`periodic_foot`], stopping after a full-Hessian step shorter than `quadratic_stop`
+/// (normalised) or any step shorter than [`PROJECTION_STEP_TOLERANCE`].
+fn newton_foot(
+    surface: &dyn Surface,
+    domain: &Domain,
+    x: DVec3,
+    guess: [f64; 2],
+    periodic: [bool; 2],
+    poles: [bool; 4],
+    quadratic_stop: f64,
 ) -> [f64; 2] {
     let interval = |k: usize| if k == 0 { domain.u } else { domain.v };
     let wrap = |[mut u, mut v]: [f64; 2]| {
@@ -76,13 +128,19 @@ pub(crate) fn periodic_foot(
         let r = x - s;
         let g = [d.su.dot(r), d.sv.dot(r)];
         let mut h = [d.su.dot(d.su), d.su.dot(d.sv), d.sv.dot(d.sv)];
+        let mut quadratic = false;
         if inside {
             let full = [
                 h[0] - r.dot(d.suu),
                 h[1] - r.dot(d.suv),
                 h[2] - r.dot(d.svv),
             ];
-            if full[0] > 0.0 && full[0] * full[2] - full[1] * full[1] > 0.0 {
+            let full_det = full[0] * full[2] - full[1] * full[1];
+            if full[0] > 0.0 && full_det > 0.0 {
+                // det(J^T J - r.II) / det(J^T J) = (1 - k1 d)(1 - k2 d): near the focal
+                // surface Newton's quadratic constant grows without bound.
+                let metric_det = h[0] * h[2] - h[1] * h[1];
+                quadratic = full_det > DISTANCE_FOOT_MIN_FOCAL_FACTOR * metric_det;
                 h = full;
             }
         }
@@ -96,7 +154,8 @@ pub(crate) fn periodic_foot(
             break;
         }
         [u, v] = wrap([u + step_u, v + step_v]);
-        if (step_u / du_scale).abs() + (step_v / dv_scale).abs() < PROJECTION_STEP_TOLERANCE {
+        let step = (step_u / du_scale).abs() + (step_v / dv_scale).abs();
+        if step < PROJECTION_STEP_TOLERANCE || (quadratic && step < quadratic_stop) {
             break;
         }
     }

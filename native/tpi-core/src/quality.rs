@@ -29,8 +29,8 @@ use crate::mesh::find;
 use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
 use crate::progress::{NoProgress, Progress, Stage, Tally};
-use crate::projection::foot;
-use crate::surface::Surface;
+use crate::projection::distance_foot;
+use crate::surface::{Domain, Surface};
 use crate::tolerance::SEPARATION_MARGIN;
 use crate::validity_flips::polygons_overlap;
 
@@ -384,6 +384,31 @@ pub(crate) fn resolve_feet(
     )
 }
 
+/// The report's foot of the vertex `x` from what the facet stage knows of it (`hint`): as
+/// known; a first-order guess refined by Newton and kept if it stays with its triangle
+/// ([`accept_newton`]); otherwise Newton from `seed_uv`, the parameters of the first facet
+/// that holds the vertex. Each to the accuracy the deviation needs ([`distance_foot`]).
+pub(crate) fn resolve_foot(
+    surface: &dyn Surface,
+    domain: &Domain,
+    x: DVec3,
+    hint: FootHint,
+    seed_uv: [f64; 2],
+) -> [f64; 2] {
+    match hint {
+        FootHint::Known(f) => f,
+        FootHint::Guess { linear, reach } => {
+            let newton = distance_foot(surface, domain, x, linear);
+            if accept_newton(domain, newton, linear, reach) {
+                newton
+            } else {
+                distance_foot(surface, domain, x, seed_uv)
+            }
+        }
+        FootHint::FromSeed => distance_foot(surface, domain, x, seed_uv),
+    }
+}
+
 /// `f(vertex, foot)` for every vertex used by a facet (None for the others), in parallel,
 /// with the feet of [`resolve_feet`]; each vertex counts as an item of [`Stage::Report`].
 // The mesh's arrays, the feet's hints, the map and the observer.
@@ -416,20 +441,8 @@ fn map_feet<T: Send>(
             |tally, v| {
                 tally.add(1);
                 let seed = *seed_of.get(v).filter(|&&s| s != u32::MAX)?;
-                let x = vertices[v];
-                let from_seed = || foot(surface, &domain, x, uv[seed as usize]);
-                let resolved = match hints.get(v) {
-                    Some(&FootHint::Known(f)) => f,
-                    Some(&FootHint::Guess { linear, reach }) => {
-                        let newton = foot(surface, &domain, x, linear);
-                        if accept_newton(&domain, newton, linear, reach) {
-                            newton
-                        } else {
-                            from_seed()
-                        }
-                    }
-                    _ => from_seed(),
-                };
+                let hint = hints.get(v).copied().unwrap_or(FootHint::FromSeed);
+                let resolved = resolve_foot(surface, &domain, vertices[v], hint, uv[seed as usize]);
                 Some(f(v, resolved))
             },
         )

@@ -230,6 +230,15 @@ pub const MAX_PROJECTION_ITERATIONS: usize = 16;
 /// Stop when the Newton step is below this, in normalised parameters.
 pub const PROJECTION_STEP_TOLERANCE: f64 = 1e-14;
 
+/// The quality report's projections (deviation) stop after a full-Newton step below this, in
+/// normalised parameters: the foot is then off by O(1e-10) and the distance by O(1e-20)
+/// (`projection::distance_foot`).
+pub const DISTANCE_FOOT_STEP_TOLERANCE: f64 = 1e-5;
+
+/// ... provided the point is this far from the focal surface: (1 - k1 d)(1 - k2 d), the
+/// ratio of the full Newton Hessian's determinant to the metric's, at least this.
+pub const DISTANCE_FOOT_MIN_FOCAL_FACTOR: f64 = 0.25;
+
 // ---- read by quality.rs ----
 
 /// A vertex within this fraction of an edge's length of the edge's line counts as on it in
