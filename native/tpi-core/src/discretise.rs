@@ -577,6 +577,7 @@ fn run_within(
 ) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let mut timings = Timings::default();
     let observer = stages.observer();
+    stages.check()?;
     stages.enter(Stage::Samples, Some(pattern.len()));
 
     let Samples {
@@ -594,6 +595,7 @@ fn run_within(
         mut diagnostics,
     } = sample(surface, pattern, options, observer)?;
     timings.samples = ms(start);
+    stages.check()?;
     stages.leave();
 
     // Closed surfaces and poles (crate::closed): seeds on a pole are refused everywhere, and
@@ -735,6 +737,7 @@ fn run_within(
         (Some(slopes), Some(lifted)) => {
             stages.enter(Stage::Delaunay, None);
             let mut triangulation = DualTriangulation::delaunay(slopes)?;
+            stages.check()?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
             let stats = decide_convex(&mut triangulation, slopes, lifted, &input, stages);
@@ -746,6 +749,7 @@ fn run_within(
         _ if convex_side.iter().all(|&s| s != 0 && s == convex_side[0]) => {
             stages.enter(Stage::Delaunay, None);
             let mut triangulation = DualTriangulation::delaunay(&plane_uv)?;
+            stages.check()?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
             stages.enter(Stage::Neighbours, None);
@@ -855,6 +859,7 @@ fn run_within(
                     )
                 };
                 let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
+                stages.check()?;
                 timings.delaunay = ms(stage);
                 let stage = Instant::now();
                 stages.enter(Stage::Neighbours, None);
@@ -883,6 +888,7 @@ fn run_within(
         diagnostics.push(Diagnostic::SeamLeftOpen { direction: k as u8 });
     }
 
+    stages.check()?;
     // Facets and mesh.
     let stage = Instant::now();
     let params = FacetParams {
@@ -1053,6 +1059,7 @@ fn run_within(
         // everywhere on convex surfaces).
         result.plane_adjustments = plane_adjustments(&result.seeds, &planes);
     }
+    stages.check()?;
     let mut resolved = Vec::new();
     let mut feet = feet;
     if options.quality_report {
@@ -1103,6 +1110,7 @@ fn run_within(
         note_topology(&mut result, boundary.is_trim());
         result.timings.report = ms(stage);
     }
+    stages.check()?;
     stages.leave();
     result.timings.total = ms(start);
     let state = keep.then(|| {
