@@ -572,11 +572,13 @@ typedef struct TpiPlane {
  * stage cannot know it beforehand: then `done` stays 0). Returns 0 to go on, anything else to
  * cancel the call.
  *
- * It is called when a stage starts (`done` 0), as its items get done (at most about once per
- * percent of `total`), and when it ends (`done` == `total`). Calls may come from the calling
- * thread or from the library's worker threads, never two at once; the callback must return
- * quickly, must not unwind (no C++ exception, no .NET exception crossing it), and must not
- * call the library.
+ * It is called when a stage starts (`done` 0), as its items get done where the calling
+ * thread does them (at most about once per percent of `total`; the items the library's
+ * worker threads do are only seen in the next call), and when it ends (`done` == `total`).
+ * Calls come only from the thread that called `tpi_discretise_with_progress` (a runtime
+ * such as Mono waits at exit for every foreign thread that ever called into it); the
+ * callback must return quickly, must not unwind (no C++ exception, no .NET exception
+ * crossing it), and must not call the library.
  */
 typedef int32_t (*TpiProgressCallback)(void *user_data, uint32_t stage, uint64_t done, uint64_t total);
 
@@ -1136,7 +1138,7 @@ enum TpiStatus tpi_discretise(const struct TpiSurface *surface, const struct Tpi
  *
  * # Safety
  * As `tpi_discretise`; `callback` is NULL or a function that may be called with `user_data`
- * from any thread (never two at once) until this call returns.
+ * on the calling thread until this call returns.
  */
 enum TpiStatus tpi_discretise_with_progress(const struct TpiSurface *surface, const struct TpiPattern *pattern, const struct TpiOptions *options, TpiProgressCallback callback, void *user_data, struct TpiDiscretisation **out);
 

@@ -68,9 +68,10 @@ namespace Tpi.Native
         /// when <paramref name="cancel"/> is cancelled: the library asks between stages, so the
         /// call returns within one stage's time. Then it throws
         /// <see cref="OperationCanceledException"/> for <paramref name="cancel"/> and nothing
-        /// is created. <paramref name="progress"/> is called from the calling thread or the
-        /// library's worker threads, never twice at once; an exception it throws is kept and
-        /// rethrown here after the library has stopped (it cancels the run).
+        /// is created. <paramref name="progress"/> is called on the calling thread only (a
+        /// callback from the library's worker threads would attach them to the runtime, and
+        /// Mono waits for them at exit); an exception it throws is kept and rethrown here after
+        /// the library has stopped (it cancels the run).
         /// </summary>
         public static Discretisation Create(Surface surface, Pattern pattern, DiscretisationOptions options, Action<DiscretisationProgress> progress, CancellationToken cancel)
         {

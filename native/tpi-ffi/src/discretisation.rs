@@ -422,11 +422,13 @@ pub const TPI_STAGE_REPORT: u32 = 5;
 /// stage cannot know it beforehand: then `done` stays 0). Returns 0 to go on, anything else to
 /// cancel the call.
 ///
-/// It is called when a stage starts (`done` 0), as its items get done (at most about once per
-/// percent of `total`), and when it ends (`done` == `total`). Calls may come from the calling
-/// thread or from the library's worker threads, never two at once; the callback must return
-/// quickly, must not unwind (no C++ exception, no .NET exception crossing it), and must not
-/// call the library.
+/// It is called when a stage starts (`done` 0), as its items get done where the calling
+/// thread does them (at most about once per percent of `total`; the items the library's
+/// worker threads do are only seen in the next call), and when it ends (`done` == `total`).
+/// Calls come only from the thread that called `tpi_discretise_with_progress` (a runtime
+/// such as Mono waits at exit for every foreign thread that ever called into it); the
+/// callback must return quickly, must not unwind (no C++ exception, no .NET exception
+/// crossing it), and must not call the library.
 pub type TpiProgressCallback =
     Option<unsafe extern "C" fn(user_data: *mut c_void, stage: u32, done: u64, total: u64) -> i32>;
 
@@ -460,11 +462,12 @@ struct CallbackObserver {
     reported: Mutex<Reported>,
     done: AtomicU64,
     cancel: AtomicBool,
+    /// The thread that called `tpi_discretise_with_progress`: the only one that calls back.
+    caller: std::thread::ThreadId,
 }
 
 // SAFETY: `user_data` is only handed back to the callback, never dereferenced here, and the
-// callback is never called by two threads at once (every call holds `reported`); the header
-// tells the caller that calls may come from other threads.
+// callback is only called on the thread that passed them (checked against `caller`).
 unsafe impl Sync for CallbackObserver {}
 
 impl CallbackObserver {
@@ -487,13 +490,19 @@ impl Progress for CallbackObserver {
             reported.stage = stage_number(stage);
             reported.total = total.map_or(0, |t| t as u64);
             self.done.store(0, Ordering::SeqCst);
-            self.call(&mut reported, 0);
+            if std::thread::current().id() == self.caller {
+                self.call(&mut reported, 0);
+            }
         }
     }
 
     fn advanced(&self, _stage: Stage, items: usize) {
         let done = self.done.fetch_add(items as u64, Ordering::SeqCst) + items as u64;
-        // A worker that finds the callback busy leaves this count to a later call.
+        // Only the calling thread calls back: a host runtime (Mono) that attaches a foreign
+        // worker thread on its first callback waits for it at exit, and the workers never end.
+        if std::thread::current().id() != self.caller {
+            return;
+        }
         if let Ok(mut reported) = self.reported.try_lock() {
             let step = (reported.total / 100).max(1);
             if reported.total > 0 && done.saturating_sub(reported.sent) >= step {
@@ -506,7 +515,9 @@ impl Progress for CallbackObserver {
     fn stage_finished(&self, _stage: Stage) {
         if let Ok(mut reported) = self.reported.lock() {
             let done = self.done.load(Ordering::SeqCst).min(reported.total);
-            self.call(&mut reported, done);
+            if std::thread::current().id() == self.caller {
+                self.call(&mut reported, done);
+            }
         }
     }
 
@@ -530,7 +541,7 @@ impl Progress for CallbackObserver {
 ///
 /// # Safety
 /// As `tpi_discretise`; `callback` is NULL or a function that may be called with `user_data`
-/// from any thread (never two at once) until this call returns.
+/// on the calling thread until this call returns.
 #[no_mangle]
 pub unsafe extern "C" fn tpi_discretise_with_progress(
     surface: *const TpiSurface,
@@ -559,6 +570,7 @@ pub unsafe extern "C" fn tpi_discretise_with_progress(
                     }),
                     done: AtomicU64::new(0),
                     cancel: AtomicBool::new(false),
+                    caller: std::thread::current().id(),
                 };
                 discretise_with_progress(&surface.model, &pattern.pattern.uv, &options, &observer)?
             }
