@@ -71,7 +71,13 @@ namespace Tpi.GhComponents
                 // One task per iteration, valid input or not, so GetSolveResults stays in step.
                 var input = CollectInput(DA, out errors, out warnings);
                 if (input == null) TaskList.Add(Task.FromResult(ComponentSolvers.DiscretiseOrReject(null, errors, warnings)));
-                else TaskList.Add(Task.Run(() => ComponentSolvers.DiscretiseOrReject(input, errors, warnings), CancelToken));
+                else
+                {
+                    // Grasshopper cancels the token when the solution is aborted (Escape) or
+                    // expires again; the library stops where its running stage ends.
+                    var cancel = CancelToken;
+                    TaskList.Add(Task.Run(() => ComponentSolvers.DiscretiseOrReject(input, errors, warnings, ShowProgress, cancel), cancel));
+                }
                 return;
             }
 
@@ -79,20 +85,30 @@ namespace Tpi.GhComponents
             if (!GetSolveResults(DA, out output))
             {
                 var input = CollectInput(DA, out errors, out warnings);
-                output = ComponentSolvers.DiscretiseOrReject(input, errors, warnings);
+                output = ComponentSolvers.DiscretiseOrReject(input, errors, warnings, ShowProgress, System.Threading.CancellationToken.None);
             }
             if (output == null) return;
             foreach (var e in output.Errors) AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e);
             foreach (var w in output.Warnings) AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, w);
-            // Under the component: the size of the last result (the library reports no progress
-            // while it runs, so there is nothing to show during a solve).
-            Message = output.Success ? output.Mesh.FacetCount + " panels" : null;
+            // Under the component: the progress while it runs (ShowProgress), then the size of
+            // the result, or that it was cancelled.
+            Message = output.Success ? output.Mesh.FacetCount + " panels" : output.Cancelled ? ProgressText.Cancelled : null;
             if (!output.Success) return;
             DA.SetDataList(0, output.Polylines.Select(p => new PolylineCurve(GhConvert.ToPolyline(p))));
             DA.SetDataList(1, output.Planes.Select(GhConvert.ToPlane));
             DA.SetData(2, GhConvert.ToMesh(output.NgonMesh));
             DA.SetData(3, output.QualityJson);
             DA.SetData(4, new GH_ObjectWrapper(output.Mesh));
+        }
+
+        /// <summary>
+        /// Shows a progress text (ProgressText.Format, each new one once) under the component and
+        /// asks for a canvas redraw on the UI thread; called from the solve's worker thread.
+        /// </summary>
+        void ShowProgress(string text)
+        {
+            Message = text;
+            Rhino.RhinoApp.InvokeOnUiThread(new Action(Grasshopper.Instances.RedrawCanvas));
         }
 
         /// <summary>Reads the inputs on the UI thread (RhinoCommon calls stay off the worker).</summary>

@@ -5,6 +5,7 @@
 using System;
 using System.Collections.Generic;
 using System.Linq;
+using System.Threading;
 using Tpi.Native;
 
 namespace Tpi.Logic
@@ -43,6 +44,8 @@ namespace Tpi.Logic
         public List<string> Warnings { get; private set; }
         /// <summary>True if a mesh was made.</summary>
         public bool Success { get { return Mesh != null; } }
+        /// <summary>True if the solve was cancelled (no mesh; Errors says where it stopped).</summary>
+        public bool Cancelled { get; internal set; }
 
         internal DiscretiseOutput() { Errors = new List<string>(); Warnings = new List<string>(); }
     }
@@ -110,6 +113,18 @@ namespace Tpi.Logic
         /// </summary>
         public static DiscretiseOutput DiscretiseOrReject(DiscretiseInput input, IEnumerable<string> errors, IEnumerable<string> warnings)
         {
+            return DiscretiseOrReject(input, errors, warnings, null, CancellationToken.None);
+        }
+
+        /// <summary>
+        /// <see cref="DiscretiseOrReject(DiscretiseInput, IEnumerable{string}, IEnumerable{string})"/>
+        /// that shows its progress through <paramref name="progress"/> (texts of
+        /// <see cref="ProgressText.Format"/>, each new one once; may be null) and stops when
+        /// <paramref name="cancel"/> is cancelled: then the output has no mesh,
+        /// <see cref="DiscretiseOutput.Cancelled"/> set and an error naming the stage.
+        /// </summary>
+        public static DiscretiseOutput DiscretiseOrReject(DiscretiseInput input, IEnumerable<string> errors, IEnumerable<string> warnings, Action<string> progress, CancellationToken cancel)
+        {
             DiscretiseOutput output;
             if (input == null)
             {
@@ -118,7 +133,7 @@ namespace Tpi.Logic
             }
             else
             {
-                output = Discretise(input);
+                output = Discretise(input, progress, cancel);
             }
             if (warnings != null) output.Warnings.InsertRange(0, warnings);
             return output;
@@ -126,6 +141,15 @@ namespace Tpi.Logic
 
         /// <summary>"TPI Discretise": problems are reported in the output, never thrown.</summary>
         public static DiscretiseOutput Discretise(DiscretiseInput input)
+        {
+            return Discretise(input, null, CancellationToken.None);
+        }
+
+        /// <summary>
+        /// "TPI Discretise" with progress texts and cancelling (see
+        /// <see cref="DiscretiseOrReject(DiscretiseInput, IEnumerable{string}, IEnumerable{string}, Action{string}, CancellationToken)"/>).
+        /// </summary>
+        public static DiscretiseOutput Discretise(DiscretiseInput input, Action<string> progress, CancellationToken cancel)
         {
             var output = new DiscretiseOutput();
             if (input == null || input.Surface == null) { output.Errors.Add("no surface"); return output; }
@@ -144,8 +168,10 @@ namespace Tpi.Logic
                         else output.Errors.Add("point " + i + ": " + error);
                     }
                     if (output.Errors.Count > 0) return output;
+                    Action<DiscretisationProgress> report = null;
+                    if (progress != null) report = new ProgressMessages(progress).Report;
                     using (var pattern = Native.Pattern.FromPoints(points))
-                    using (var mesh = Discretisation.Create(surface, pattern, input.Options))
+                    using (var mesh = Discretisation.Create(surface, pattern, input.Options, report, cancel))
                     {
                         var data = MeshData.From(mesh);
                         data.Source = new DiscreteSurfaceDocument { Surface = input.Surface, Points = points, Options = input.Options };
@@ -166,6 +192,12 @@ namespace Tpi.Logic
             {
                 output.Mesh = null;
                 output.Errors.Add(TpiLibrary.StatusName(e.Status) + ": " + e.NativeMessage);
+            }
+            catch (OperationCanceledException e)
+            {
+                output.Mesh = null;
+                output.Cancelled = true;
+                output.Errors.Add(ProgressText.Cancelled + ": " + e.Message);
             }
             return output;
         }

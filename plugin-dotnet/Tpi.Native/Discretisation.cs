@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using System.Threading;
 using Tpi.Native.Interop;
 
 namespace Tpi.Native
@@ -59,6 +60,62 @@ namespace Tpi.Native
                 s = UnsafeNativeMethods.tpi_discretise(Surface.HandleOf(surface), Pattern.HandleOf(pattern), ref native, out h);
             }
             return Created(s, h, "tpi_discretise");
+        }
+
+        /// <summary>
+        /// <see cref="Create(Surface, Pattern, DiscretisationOptions)"/> (the same result) that
+        /// reports each stage's progress to <paramref name="progress"/> (may be null) and stops
+        /// when <paramref name="cancel"/> is cancelled: the library asks between stages, so the
+        /// call returns within one stage's time. Then it throws
+        /// <see cref="OperationCanceledException"/> for <paramref name="cancel"/> and nothing
+        /// is created. <paramref name="progress"/> is called on the calling thread only (a
+        /// callback from the library's worker threads would attach them to the runtime, and
+        /// Mono waits for them at exit); an exception it throws is kept and rethrown here after
+        /// the library has stopped (it cancels the run).
+        /// </summary>
+        public static Discretisation Create(Surface surface, Pattern pattern, DiscretisationOptions options, Action<DiscretisationProgress> progress, CancellationToken cancel)
+        {
+            cancel.ThrowIfCancellationRequested();
+            Exception thrown = null;
+            // Kept alive by the GC.KeepAlive below until the library has returned.
+            UnsafeNativeMethods.ProgressCallback callback = (userData, stage, done, total) =>
+            {
+                // No exception may cross into the library: it is kept and cancels the run.
+                try
+                {
+                    if (progress != null) progress(new DiscretisationProgress((Stage)stage, done, total));
+                    return cancel.IsCancellationRequested ? 1 : 0;
+                }
+                catch (Exception e)
+                {
+                    if (thrown == null) thrown = e;
+                    return 1;
+                }
+            };
+            DiscretisationHandle h;
+            Status s;
+            if (options == null)
+            {
+                s = UnsafeNativeMethods.tpi_discretise_with_progress_defaults(Surface.HandleOf(surface), Pattern.HandleOf(pattern), IntPtr.Zero, callback, IntPtr.Zero, out h);
+            }
+            else
+            {
+                var native = options.ToNative();
+                s = UnsafeNativeMethods.tpi_discretise_with_progress(Surface.HandleOf(surface), Pattern.HandleOf(pattern), ref native, callback, IntPtr.Zero, out h);
+            }
+            GC.KeepAlive(callback);
+            if (thrown != null)
+            {
+                if (h != null) h.Dispose();
+                throw new InvalidOperationException("the progress handler threw: " + thrown.Message, thrown);
+            }
+            if (s == Status.Cancelled)
+            {
+                var message = TpiLibrary.LastErrorMessage();
+                if (h != null) h.Dispose();
+                throw new OperationCanceledException(message, cancel);
+            }
+            return Created(s, h, "tpi_discretise_with_progress");
         }
 
         T[] Cached<T>(ref T[] field, TpiLibrary.CopyOutCall<T> call, string function)

@@ -580,9 +580,11 @@ fn run_within(
     stages: &Stages<'_>,
 ) -> Result<(Discretisation, Option<PipelineState>), TpiError> {
     let mut timings = Timings::default();
+    stages.check()?;
     stages.enter(Stage::Samples, Some(pattern.len()));
     let mut samples = sample(surface, pattern, options, stages.observer())?;
     timings.samples = ms(start);
+    stages.check()?;
     stages.leave();
 
     let input = StructureInput {
@@ -599,6 +601,7 @@ fn run_within(
         structure.neighbours,
     );
 
+    stages.check()?;
     let stage = Instant::now();
     let params = FacetParams {
         far_vertex_factor: options.far_vertex_factor,
@@ -663,6 +666,7 @@ fn run_within(
         // everywhere on convex surfaces).
         result.plane_adjustments = plane_adjustments(&result.seeds, &samples.planes);
     }
+    stages.check()?;
     let mut resolved = Vec::new();
     if options.quality_report {
         let stage = Instant::now();
@@ -688,6 +692,7 @@ fn run_within(
         note_topology(&mut result, boundary.is_trim());
         result.timings.report = ms(stage);
     }
+    stages.check()?;
     stages.leave();
     result.timings.total = ms(start);
     let state = live.map(|live| pipeline_state(samples, &result, live, neighbours, resolved));

@@ -252,6 +252,14 @@ pub enum TpiError {
         /// What is wrong and what is supported.
         reason: String,
     },
+    /// The caller's progress observer asked the run to stop ([`crate::Progress::cancelled`]).
+    /// Nothing of the run is kept: no result, and no state changed anywhere.
+    #[error("cancelled by the caller ({stage} stage)")]
+    Cancelled {
+        /// The stage the run had reached, as in [`crate::Stage::name`] (`samples` when it had
+        /// not started).
+        stage: String,
+    },
     /// Malformed input document (JSON syntax or structure).
     #[error(
         "{}: line {line}, column {column}: {}",

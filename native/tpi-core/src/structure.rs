@@ -284,6 +284,7 @@ pub(crate) fn decide_structure(
         (Some(slopes), Some(lifted)) => {
             stages.enter(Stage::Delaunay, None);
             let mut triangulation = DualTriangulation::delaunay(slopes)?;
+            stages.check()?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
             let neighbours =
@@ -295,6 +296,7 @@ pub(crate) fn decide_structure(
         _ if convex => {
             stages.enter(Stage::Delaunay, None);
             let mut triangulation = DualTriangulation::delaunay(&samples.plane_uv)?;
+            stages.check()?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
             stages.enter(Stage::Neighbours, None);
@@ -502,6 +504,7 @@ fn any_curvature(
                 )
             };
             let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
+            stages.check()?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
             stages.enter(Stage::Neighbours, None);

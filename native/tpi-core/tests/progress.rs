@@ -291,3 +291,76 @@ fn a_failing_run_reports_only_what_it_started() {
         ]
     );
 }
+
+/// An observer that asks the run to stop once `stage` has started (or from the start).
+struct CancelAt {
+    stage: Option<Stage>,
+    seen: Mutex<Vec<Stage>>,
+    asked: std::sync::atomic::AtomicBool,
+}
+
+impl Progress for CancelAt {
+    fn stage_started(&self, stage: Stage, _total: Option<usize>) {
+        self.seen.lock().unwrap().push(stage);
+        if Some(stage) == self.stage {
+            self.asked.store(true, std::sync::atomic::Ordering::SeqCst);
+        }
+    }
+
+    fn cancelled(&self) -> bool {
+        self.stage.is_none() || self.asked.load(std::sync::atomic::Ordering::SeqCst)
+    }
+}
+
+#[test]
+fn a_cancelled_run_stops_in_the_stage_it_was_asked_in() {
+    let pattern = uniform_pattern(&mut Rng::new(3), 2000);
+    let surface = sample_surface("nurbs-dome.json");
+    let options = DiscretiseOptions::default();
+    // Asked before anything: no stage runs.
+    let before = CancelAt {
+        stage: None,
+        seen: Mutex::default(),
+        asked: Default::default(),
+    };
+    match discretise_with_progress(&surface, &pattern, &options, &before) {
+        Err(tpi_core::TpiError::Cancelled { stage }) => assert_eq!(stage, "samples"),
+        other => panic!("expected Cancelled, got {:?}", other.map(|_| ())),
+    }
+    assert!(before.seen.lock().unwrap().is_empty());
+    // Asked when a stage starts: that stage ends, no later stage starts, and the error names it.
+    for stage in Stage::ALL {
+        let observer = CancelAt {
+            stage: Some(stage),
+            seen: Mutex::default(),
+            asked: Default::default(),
+        };
+        // The facets and the mesh assembly are one step: asked in the facets, the run stops
+        // after the mesh.
+        let stops = if stage == Stage::Facets {
+            Stage::Mesh
+        } else {
+            stage
+        };
+        let got = discretise_with_progress(&surface, &pattern, &options, &observer);
+        match got {
+            Err(tpi_core::TpiError::Cancelled { stage: named }) => {
+                assert_eq!(named, stops.name())
+            }
+            other => panic!(
+                "{}: expected Cancelled, got {:?}",
+                stage.name(),
+                other.map(|_| ())
+            ),
+        }
+        let seen = observer.seen.into_inner().unwrap();
+        assert_eq!(seen.last(), Some(&stops), "{}: {seen:?}", stage.name());
+        let message = tpi_core::TpiError::Cancelled {
+            stage: stage.name().into(),
+        }
+        .to_string();
+        assert!(message.contains("cancelled") && message.contains(stage.name()));
+    }
+    // An observer that never asks changes nothing (the result equals discretise's above).
+    observed("nurbs dome, not cancelled", &surface, &pattern, &options);
+}

@@ -60,6 +60,9 @@ pub enum TpiStatus {
     /// another kind (a TpiDiscretisation passed where a TpiDiscreteSurface is expected), or
     /// one that was already freed and still reads as freed. Nothing was read through it.
     InvalidHandle = 12,
+    /// The caller's progress callback asked the call to stop (`tpi_discretise_with_progress`).
+    /// Nothing was created.
+    Cancelled = 13,
 }
 
 impl TpiStatus {
@@ -79,13 +82,14 @@ impl TpiStatus {
             TpiStatus::OutOfDomain => "TPI_STATUS_OUT_OF_DOMAIN",
             TpiStatus::Unavailable => "TPI_STATUS_UNAVAILABLE",
             TpiStatus::InvalidHandle => "TPI_STATUS_INVALID_HANDLE",
+            TpiStatus::Cancelled => "TPI_STATUS_CANCELLED",
         }
     }
 
     /// Every status, in numeric order.
     ///
     /// cbindgen:ignore
-    pub const ALL: [TpiStatus; 13] = [
+    pub const ALL: [TpiStatus; 14] = [
         TpiStatus::Ok,
         TpiStatus::NullPointer,
         TpiStatus::InvalidArgument,
@@ -99,6 +103,7 @@ impl TpiStatus {
         TpiStatus::OutOfDomain,
         TpiStatus::Unavailable,
         TpiStatus::InvalidHandle,
+        TpiStatus::Cancelled,
     ];
 
     /// The status with this number, if any.
@@ -197,6 +202,7 @@ pub fn status_of(error: &TpiError) -> TpiStatus {
         // Faces that cannot be joined (trimmed, nested, apart, not a rectangle) are invalid
         // input, the message naming the face.
         TpiError::InvalidPolysurface { .. } => TpiStatus::InvalidArgument,
+        TpiError::Cancelled { .. } => TpiStatus::Cancelled,
         // The core's error is non-exhaustive; a variant added later is reported as invalid
         // input until it gets its own code.
         _ => TpiStatus::InvalidArgument,

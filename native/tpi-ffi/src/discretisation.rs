@@ -1,10 +1,14 @@
 //! Discretisation results: the mesh, the adjacency, the quality report, the diagnostics.
 
-use std::ffi::c_char;
+use std::ffi::{c_char, c_void};
 use std::mem::size_of;
-use std::sync::{Arc, OnceLock};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
 
-use tpi_core::{discretise, Diagnostic, Discretisation, QualityReport};
+use tpi_core::{
+    discretise, discretise_with_progress, Diagnostic, Discretisation, Progress, QualityReport,
+    Stage,
+};
 
 use crate::boundary::{
     check_copy_out, copy_out, copy_out_str, ffi_boundary, flag, try_handle, FfiError, FfiResult,
@@ -394,6 +398,183 @@ pub unsafe extern "C" fn tpi_discretise(
         let pattern = unsafe { try_handle(pattern, "pattern") }?;
         let options = unsafe { read_options(options) }?;
         let result = discretise(&surface.model, &pattern.pattern.uv, &options)?;
+        out.set_boxed(TpiDiscretisation::new(Arc::new(result)));
+        Ok(())
+    }
+}
+
+/// Stage of a discretisation reported to a `TpiProgressCallback`: evaluation and curvature at
+/// every pattern point.
+pub const TPI_STAGE_SAMPLES: u32 = 0;
+/// Stage: the candidate triangulation (Delaunay, the hull of a closed convex surface, strips).
+pub const TPI_STAGE_DELAUNAY: u32 = 1;
+/// Stage: the neighbour decision (flips, envelope repair, plane adjustment).
+pub const TPI_STAGE_NEIGHBOURS: u32 = 2;
+/// Stage: facet vertices and loops.
+pub const TPI_STAGE_FACETS: u32 = 3;
+/// Stage: mesh assembly (welding, vertex numbering).
+pub const TPI_STAGE_MESH: u32 = 4;
+/// Stage: the quality report.
+pub const TPI_STAGE_REPORT: u32 = 5;
+
+/// A progress callback for `tpi_discretise_with_progress`: `stage` is a TPI_STAGE_* number,
+/// `done` the work items of that stage done so far, `total` its number of items (0 when the
+/// stage cannot know it beforehand: then `done` stays 0). Returns 0 to go on, anything else to
+/// cancel the call.
+///
+/// It is called when a stage starts (`done` 0), as its items get done where the calling
+/// thread does them (at most about once per percent of `total`; the items the library's
+/// worker threads do are only seen in the next call), and when it ends (`done` == `total`).
+/// Calls come only from the thread that called `tpi_discretise_with_progress` (a runtime
+/// such as Mono waits at exit for every foreign thread that ever called into it); the
+/// callback must return quickly, must not unwind (no C++ exception, no .NET exception
+/// crossing it), and must not call the library.
+pub type TpiProgressCallback =
+    Option<unsafe extern "C" fn(user_data: *mut c_void, stage: u32, done: u64, total: u64) -> i32>;
+
+/// The TPI_STAGE_* number of a stage.
+fn stage_number(stage: Stage) -> u32 {
+    match stage {
+        Stage::Samples => TPI_STAGE_SAMPLES,
+        Stage::Delaunay => TPI_STAGE_DELAUNAY,
+        Stage::Neighbours => TPI_STAGE_NEIGHBOURS,
+        Stage::Facets => TPI_STAGE_FACETS,
+        Stage::Mesh => TPI_STAGE_MESH,
+        // Stage is non-exhaustive; a later stage counts as the report's (the last).
+        _ => TPI_STAGE_REPORT,
+    }
+}
+
+/// The current stage as the callback last heard of it.
+struct Reported {
+    stage: u32,
+    total: u64,
+    /// `done` at the last call.
+    sent: u64,
+}
+
+/// The core's progress observer calling a C callback: one call at a time (under `reported`),
+/// the workers' counts summed in `done`; a nonzero return sets `cancel`, which the core asks
+/// between stages.
+struct CallbackObserver {
+    callback: unsafe extern "C" fn(*mut c_void, u32, u64, u64) -> i32,
+    user_data: *mut c_void,
+    reported: Mutex<Reported>,
+    done: AtomicU64,
+    cancel: AtomicBool,
+    /// The thread that called `tpi_discretise_with_progress`: the only one that calls back.
+    caller: std::thread::ThreadId,
+}
+
+// SAFETY: `user_data` is only handed back to the callback, never dereferenced here, and the
+// callback is only called on the thread that passed them (checked against `caller`).
+unsafe impl Sync for CallbackObserver {}
+
+impl CallbackObserver {
+    /// Calls the callback (the caller holds `reported`).
+    fn call(&self, reported: &mut Reported, done: u64) {
+        reported.sent = done;
+        // SAFETY: the caller's contract for `callback` and `user_data`
+        // (tpi_discretise_with_progress).
+        let answer =
+            unsafe { (self.callback)(self.user_data, reported.stage, done, reported.total) };
+        if answer != 0 {
+            self.cancel.store(true, Ordering::SeqCst);
+        }
+    }
+}
+
+impl Progress for CallbackObserver {
+    fn stage_started(&self, stage: Stage, total: Option<usize>) {
+        if let Ok(mut reported) = self.reported.lock() {
+            reported.stage = stage_number(stage);
+            reported.total = total.map_or(0, |t| t as u64);
+            self.done.store(0, Ordering::SeqCst);
+            if std::thread::current().id() == self.caller {
+                self.call(&mut reported, 0);
+            }
+        }
+    }
+
+    fn advanced(&self, _stage: Stage, items: usize) {
+        let done = self.done.fetch_add(items as u64, Ordering::SeqCst) + items as u64;
+        // Only the calling thread calls back: a host runtime (Mono) that attaches a foreign
+        // worker thread on its first callback waits for it at exit, and the workers never end.
+        if std::thread::current().id() != self.caller {
+            return;
+        }
+        if let Ok(mut reported) = self.reported.try_lock() {
+            let step = (reported.total / 100).max(1);
+            if reported.total > 0 && done.saturating_sub(reported.sent) >= step {
+                let done = done.min(reported.total);
+                self.call(&mut reported, done);
+            }
+        }
+    }
+
+    fn stage_finished(&self, _stage: Stage) {
+        if let Ok(mut reported) = self.reported.lock() {
+            let done = self.done.load(Ordering::SeqCst).min(reported.total);
+            if std::thread::current().id() == self.caller {
+                self.call(&mut reported, done);
+            }
+        }
+    }
+
+    fn cancelled(&self) -> bool {
+        self.cancel.load(Ordering::SeqCst)
+    }
+}
+
+/// `tpi_discretise`, reporting progress to `callback` (see `TpiProgressCallback`), which can
+/// cancel it by returning nonzero.
+///
+/// `callback` may be NULL (no reports, no cancelling: the same as `tpi_discretise`);
+/// `user_data` is handed to every call of `callback` and never read by the library. The
+/// result is the same as `tpi_discretise`'s. Once the callback has returned nonzero, the call
+/// stops where the running stage ends (the facets and the mesh assembly count as one; every
+/// stage is under a second at a million points on two cores) and returns
+/// TPI_STATUS_CANCELLED with `*out` NULL and nothing created; the last error message names
+/// the stage it stopped in.
+///
+/// Errors: those of `tpi_discretise`, and TPI_STATUS_CANCELLED.
+///
+/// # Safety
+/// As `tpi_discretise`; `callback` is NULL or a function that may be called with `user_data`
+/// on the calling thread until this call returns.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_discretise_with_progress(
+    surface: *const TpiSurface,
+    pattern: *const TpiPattern,
+    options: *const TpiOptions,
+    callback: TpiProgressCallback,
+    user_data: *mut c_void,
+    out: *mut *mut TpiDiscretisation,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract for every argument.
+        let out = unsafe { OutPtr::handle(out, "out") }?;
+        let surface = unsafe { try_handle(surface, "surface") }?;
+        let pattern = unsafe { try_handle(pattern, "pattern") }?;
+        let options = unsafe { read_options(options) }?;
+        let result = match callback {
+            None => discretise(&surface.model, &pattern.pattern.uv, &options)?,
+            Some(callback) => {
+                let observer = CallbackObserver {
+                    callback,
+                    user_data,
+                    reported: Mutex::new(Reported {
+                        stage: TPI_STAGE_SAMPLES,
+                        total: 0,
+                        sent: 0,
+                    }),
+                    done: AtomicU64::new(0),
+                    cancel: AtomicBool::new(false),
+                    caller: std::thread::current().id(),
+                };
+                discretise_with_progress(&surface.model, &pattern.pattern.uv, &options, &observer)?
+            }
+        };
         out.set_boxed(TpiDiscretisation::new(Arc::new(result)));
         Ok(())
     }

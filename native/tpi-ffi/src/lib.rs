@@ -89,6 +89,7 @@ pub extern "C" fn tpi_status_name(status: u32) -> *const c_char {
             Some(TpiStatus::OutOfDomain) => "TPI_STATUS_OUT_OF_DOMAIN\0",
             Some(TpiStatus::Unavailable) => "TPI_STATUS_UNAVAILABLE\0",
             Some(TpiStatus::InvalidHandle) => "TPI_STATUS_INVALID_HANDLE\0",
+            Some(TpiStatus::Cancelled) => "TPI_STATUS_CANCELLED\0",
             None => UNKNOWN,
         };
         name.as_ptr().cast()

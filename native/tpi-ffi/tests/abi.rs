@@ -33,6 +33,7 @@ fn status_numbers_are_fixed() {
         (TpiStatus::OutOfDomain, 10, "TPI_STATUS_OUT_OF_DOMAIN"),
         (TpiStatus::Unavailable, 11, "TPI_STATUS_UNAVAILABLE"),
         (TpiStatus::InvalidHandle, 12, "TPI_STATUS_INVALID_HANDLE"),
+        (TpiStatus::Cancelled, 13, "TPI_STATUS_CANCELLED"),
     ];
     assert_eq!(
         TpiStatus::ALL.len(),
@@ -57,7 +58,7 @@ fn status_numbers_are_fixed() {
     }
     // SAFETY: as above.
     assert_eq!(
-        unsafe { CStr::from_ptr(tpi_status_name(13)) }.to_str(),
+        unsafe { CStr::from_ptr(tpi_status_name(14)) }.to_str(),
         Ok("TPI_STATUS_UNKNOWN")
     );
     // SAFETY: as above.

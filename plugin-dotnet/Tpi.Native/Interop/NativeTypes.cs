@@ -36,6 +36,42 @@ namespace Tpi.Native
         Unavailable = 11,
         /// <summary>TPI_STATUS_INVALID_HANDLE: a handle of another kind, or one already freed.</summary>
         InvalidHandle = 12,
+        /// <summary>TPI_STATUS_CANCELLED: the progress callback asked the discretisation to stop; nothing was created.</summary>
+        Cancelled = 13,
+    }
+
+    /// <summary>A stage of a discretisation as reported to progress (TPI_STAGE_*), in pipeline order.</summary>
+    public enum Stage : uint
+    {
+        /// <summary>TPI_STAGE_SAMPLES: evaluation and curvature at every pattern point.</summary>
+        Samples = 0,
+        /// <summary>TPI_STAGE_DELAUNAY: the candidate triangulation.</summary>
+        Delaunay = 1,
+        /// <summary>TPI_STAGE_NEIGHBOURS: the neighbour decision.</summary>
+        Neighbours = 2,
+        /// <summary>TPI_STAGE_FACETS: facet vertices and loops.</summary>
+        Facets = 3,
+        /// <summary>TPI_STAGE_MESH: mesh assembly.</summary>
+        Mesh = 4,
+        /// <summary>TPI_STAGE_REPORT: the quality report.</summary>
+        Report = 5,
+    }
+
+    /// <summary>
+    /// One progress report of a discretisation: <see cref="Done"/> of <see cref="Total"/> work
+    /// items of <see cref="Stage"/> (Total 0: the stage cannot count its items beforehand).
+    /// </summary>
+    public struct DiscretisationProgress
+    {
+        /// <summary>The stage running.</summary>
+        public Stage Stage;
+        /// <summary>Items of the stage done so far (0 when it starts, Total when it ends).</summary>
+        public ulong Done;
+        /// <summary>The stage's items, 0 when unknown.</summary>
+        public ulong Total;
+
+        /// <summary>Makes a report.</summary>
+        public DiscretisationProgress(Stage stage, ulong done, ulong total) { Stage = stage; Done = done; Total = total; }
     }
 
     /// <summary>What a diagnostic is about (TpiDiagnosticKind).</summary>

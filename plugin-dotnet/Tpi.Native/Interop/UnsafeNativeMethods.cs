@@ -182,6 +182,20 @@ namespace Tpi.Native.Interop
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true, EntryPoint = "tpi_discretise")]
         internal static extern Status tpi_discretise_defaults(SurfaceHandle surface, PatternHandle pattern, IntPtr nullOptions, out DiscretisationHandle @out);
 
+        // typedef int32_t (*TpiProgressCallback)(void *user_data, uint32_t stage, uint64_t done, uint64_t total);
+        [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
+        internal delegate int ProgressCallback(IntPtr userData, uint stage, ulong done, ulong total);
+
+        // enum TpiStatus tpi_discretise_with_progress(const struct TpiSurface *surface,
+        //     const struct TpiPattern *pattern, const struct TpiOptions *options,
+        //     TpiProgressCallback callback, void *user_data, struct TpiDiscretisation **out);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_discretise_with_progress(SurfaceHandle surface, PatternHandle pattern, ref NativeOptions options, ProgressCallback callback, IntPtr userData, out DiscretisationHandle @out);
+
+        // (the same entry point with options = NULL, for the defaults)
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true, EntryPoint = "tpi_discretise_with_progress")]
+        internal static extern Status tpi_discretise_with_progress_defaults(SurfaceHandle surface, PatternHandle pattern, IntPtr nullOptions, ProgressCallback callback, IntPtr userData, out DiscretisationHandle @out);
+
         // void tpi_discretisation_free(struct TpiDiscretisation *discretisation);
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         internal static extern void tpi_discretisation_free(IntPtr discretisation);

@@ -15,6 +15,7 @@ namespace Grasshopper
     public static class Instances
     {
         public static Kernel.GH_ComponentServer ComponentServer { get { return null; } }
+        public static void RedrawCanvas() { }
     }
 }
 

@@ -52,6 +52,7 @@ namespace Rhino
         public static void WriteLine(string message) { }
         public static void WriteLine(string format, object arg0) { }
         public static void WriteLine(string format, object arg0, object arg1) { }
+        public static void InvokeOnUiThread(Delegate method, params object[] args) { }
     }
 }
 
