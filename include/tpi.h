@@ -213,7 +213,7 @@
 #define TPI_FILE_SHEETS_SVG 2
 
 /**
- * File of `tpi_fabrication_file`: sheets.dxf (ASCII DXF R12, `$INSUNITS` from the surface's
+ * File of `tpi_fabrication_file`: sheets.dxf (ASCII DXF R2000, `$INSUNITS` from the surface's
  * units, `tpi_surface_with_units`; metres for a unitless surface).
  */
 #define TPI_FILE_SHEETS_DXF 3

@@ -20,6 +20,10 @@ cd "$(dirname "$0")/.."
 if ! python3 -c 'import rhino3dm' 2>/dev/null; then
     python3 -m pip install --quiet --disable-pip-version-check 'rhino3dm==8.*'
 fi
+# ezdxf reads sheets.dxf back in the fabrication test (an independent DXF reader).
+if ! python3 -c 'import ezdxf' 2>/dev/null; then
+    python3 -m pip install --quiet --disable-pip-version-check 'ezdxf==1.4.*'
+fi
 missing=()
 for tool in cc c++ nm valgrind script; do
     command -v "$tool" >/dev/null 2>&1 || missing+=("$tool")

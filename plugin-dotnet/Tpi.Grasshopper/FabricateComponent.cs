@@ -52,7 +52,7 @@ namespace Tpi.GhComponents
             pManager.AddCurveParameter("Sheets", "SH", "The sheet rectangles, side by side beside the model.", GH_ParamAccess.list);
             pManager.AddNumberParameter("Utilisation", "U", "Parts' area over sheet area, per sheet.", GH_ParamAccess.list);
             pManager.AddTextParameter("G-code", "NC", "G-code for a 3-axis router, in sheet coordinates.", GH_ParamAccess.item);
-            pManager.AddTextParameter("DXF", "DXF", "The sheets as ASCII DXF R12 (layers SHEET, CUT, BOTTOM, SLOT, ENGRAVE).", GH_ParamAccess.item);
+            pManager.AddTextParameter("DXF", "DXF", "The sheets as ASCII DXF R2000 (layers SHEET, CUT, BOTTOM, SLOT, ENGRAVE).", GH_ParamAccess.item);
             pManager.AddTextParameter("Bevels", "B", "bevels.csv: panel, side, neighbour, length, dihedral, bevel.", GH_ParamAccess.item);
             pManager.AddCurveParameter("Labels", "L", "Panel and neighbour numbers as single strokes for engraving, on the sheets.", GH_ParamAccess.list);
         }

@@ -184,7 +184,8 @@ namespace Tpi.Logic
         }
     }
 
-    /// <summary>A POLYLINE of an ASCII DXF R12 drawing (its VERTEX points, x and y).</summary>
+    /// <summary>A polyline of an ASCII DXF drawing: an LWPOLYLINE (R14 and later, what the library
+    /// writes) or a POLYLINE with its VERTEX points (R12); x and y.</summary>
     public sealed class DxfPolyline
     {
         /// <summary>Layer name (code 8).</summary>
@@ -194,14 +195,15 @@ namespace Tpi.Logic
         /// <summary>The vertices.</summary>
         public Point2[] Points { get; set; }
 
-        /// <summary>The POLYLINE entities of <paramref name="dxf"/> in file order; FormatException on a malformed one.</summary>
+        /// <summary>The LWPOLYLINE and POLYLINE entities of <paramref name="dxf"/> in file order;
+        /// FormatException on a malformed one.</summary>
         public static List<DxfPolyline> Parse(string dxf)
         {
             var lines = (dxf ?? string.Empty).Replace("\r", string.Empty).Split('\n');
             var result = new List<DxfPolyline>();
             DxfPolyline current = null;
             List<Point2> points = null;
-            bool inVertex = false;
+            bool inVertex = false, light = false, haveX = false;
             double x = 0;
             for (int i = 0; i + 1 < lines.Length; i += 2)
             {
@@ -209,7 +211,21 @@ namespace Tpi.Logic
                 var value = lines[i + 1].Trim();
                 if (code == "0")
                 {
-                    if (value == "POLYLINE") { current = new DxfPolyline(); points = new List<Point2>(); inVertex = false; }
+                    if (light)
+                    {
+                        // An LWPOLYLINE ends at the next entity.
+                        if (haveX) throw new FormatException("DXF: an LWPOLYLINE vertex without y at line " + (i + 1));
+                        current.Points = points.ToArray();
+                        result.Add(current);
+                        current = null;
+                        light = false;
+                    }
+                    if (value == "LWPOLYLINE")
+                    {
+                        if (current != null) throw new FormatException("DXF: an LWPOLYLINE inside a POLYLINE at line " + (i + 1));
+                        current = new DxfPolyline(); points = new List<Point2>(); light = true; haveX = false;
+                    }
+                    else if (value == "POLYLINE") { current = new DxfPolyline(); points = new List<Point2>(); inVertex = false; }
                     else if (value == "VERTEX")
                     {
                         if (current == null) throw new FormatException("DXF: VERTEX outside a POLYLINE at line " + (i + 1));
@@ -226,11 +242,30 @@ namespace Tpi.Logic
                     continue;
                 }
                 if (current == null) continue;
+                if (light)
+                {
+                    if (code == "8") current.Layer = value;
+                    else if (code == "70") current.Closed = (int.Parse(value, CultureInfo.InvariantCulture) & 1) != 0;
+                    else if (code == "10")
+                    {
+                        if (haveX) throw new FormatException("DXF: an LWPOLYLINE vertex without y at line " + (i + 1));
+                        x = double.Parse(value, NumberStyles.Float, CultureInfo.InvariantCulture);
+                        haveX = true;
+                    }
+                    else if (code == "20")
+                    {
+                        if (!haveX) throw new FormatException("DXF: an LWPOLYLINE y without x at line " + (i + 1));
+                        points.Add(new Point2(x, double.Parse(value, NumberStyles.Float, CultureInfo.InvariantCulture)));
+                        haveX = false;
+                    }
+                    continue;
+                }
                 if (code == "8" && !inVertex) current.Layer = value;
                 else if (code == "70" && !inVertex) current.Closed = (int.Parse(value, CultureInfo.InvariantCulture) & 1) != 0;
                 else if (code == "10" && inVertex) x = double.Parse(value, NumberStyles.Float, CultureInfo.InvariantCulture);
                 else if (code == "20" && inVertex) points.Add(new Point2(x, double.Parse(value, NumberStyles.Float, CultureInfo.InvariantCulture)));
             }
+            if (light) throw new FormatException("DXF: an LWPOLYLINE without an end");
             if (current != null) throw new FormatException("DXF: a POLYLINE without SEQEND");
             return result;
         }

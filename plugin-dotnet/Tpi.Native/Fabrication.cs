@@ -21,7 +21,7 @@ namespace Tpi.Native
         PanelsObj = 1,
         /// <summary>sheets.svg: the nested flat parts.</summary>
         SheetsSvg = 2,
-        /// <summary>sheets.dxf: the nested flat parts, ASCII DXF R12.</summary>
+        /// <summary>sheets.dxf: the nested flat parts, ASCII DXF R2000.</summary>
         SheetsDxf = 3,
         /// <summary>bevels.csv: dihedral and bevel angles per joint.</summary>
         BevelsCsv = 4,

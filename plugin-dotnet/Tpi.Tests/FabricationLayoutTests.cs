@@ -212,6 +212,20 @@ namespace Tpi.Tests
             Assert.AreEqual("SLOT", read[1].Layer);
             Assert.IsFalse(read[1].Closed);
             Assert.Throws<FormatException>(() => DxfPolyline.Parse("0\nPOLYLINE\n8\nCUT\n0\nVERTEX\n10\n1\n20\n2\n"), "no SEQEND");
+
+            // LWPOLYLINE (what the library writes): the vertices are the 10/20 pairs, the entity ends at the next 0.
+            var lw = "0\nSECTION\n2\nENTITIES\n0\nLWPOLYLINE\n5\n2A\n100\nAcDbEntity\n8\nENGRAVE\n100\nAcDbPolyline\n90\n3\n70\n0\n"
+                + "10\n1\n20\n2\n10\n3.5\n20\n-4\n10\n5\n20\n6\n0\nLWPOLYLINE\n8\nCUT\n90\n1\n70\n1\n10\n9\n20\n8\n0\nENDSEC\n0\nEOF\n";
+            var lwRead = DxfPolyline.Parse(lw);
+            Assert.AreEqual(2, lwRead.Count);
+            Assert.AreEqual("ENGRAVE", lwRead[0].Layer);
+            Assert.IsFalse(lwRead[0].Closed);
+            Assert.AreEqual(3, lwRead[0].Points.Length);
+            Assert.AreEqual(3.5, lwRead[0].Points[1].X);
+            Assert.AreEqual(-4.0, lwRead[0].Points[1].Y);
+            Assert.AreEqual("CUT", lwRead[1].Layer);
+            Assert.IsTrue(lwRead[1].Closed);
+            Assert.Throws<FormatException>(() => DxfPolyline.Parse("0\nLWPOLYLINE\n8\nCUT\n10\n1\n10\n2\n20\n3\n0\nEOF\n"), "x without y");
         }
 
         [Test]

@@ -60,7 +60,7 @@ static void test_fabrication(void) {
     CHECK(svg && strncmp(svg, "<svg", 4) == 0);
     free(svg);
     char *dxf = file_text(f, TPI_FILE_SHEETS_DXF);
-    CHECK(dxf && strstr(dxf, "AC1009") != NULL && strstr(dxf, "EOF") != NULL);
+    CHECK(dxf && strstr(dxf, "AC1015") != NULL && strstr(dxf, "EOF") != NULL);
     free(dxf);
     char *csv = file_text(f, TPI_FILE_BEVELS_CSV);
     CHECK(csv && strncmp(csv, "panel,side,neighbour,length,dihedral_deg,bevel_deg\n", 51) == 0);

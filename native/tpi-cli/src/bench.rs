@@ -461,7 +461,10 @@ fn fabrication_timings(
         let bytes = fab.to_json().len()
             + fab.to_obj().len()
             + fab.sheets_svg().len()
-            + fab.sheets_dxf(tpi_core::Units::Metres).len()
+            + fab
+                .sheets_dxf(tpi_core::Units::Metres)
+                .map_err(|e| fail(&e))?
+                .len()
             + fab.bevels_csv().len()
             + fab.gcode(&tool).map_err(|e| fail(&e))?.len();
         write.push(start.elapsed().as_secs_f64() * 1e3);

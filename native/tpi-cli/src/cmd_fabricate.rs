@@ -74,7 +74,7 @@ pub(crate) struct FabricateArgs {
     threads: Option<String>,
     /// Output, repeatable; the extension picks the format: .json (panels, sides, angles,
     /// flat outlines, placements, slots), .obj (one closed polyhedron per panel and cleat),
-    /// .svg (the nested sheets), .dxf (ASCII DXF R12: CUT, SLOT, ENGRAVE), .nc (G-code for a
+    /// .svg (the nested sheets), .dxf (ASCII DXF R2000: CUT, SLOT, ENGRAVE), .nc (G-code for a
     /// 3-axis router, one program per sheet), .csv (bevels)
     #[arg(long, short = 'o', value_name = "FILE")]
     out: Vec<String>,
@@ -304,7 +304,10 @@ pub(crate) fn run(args: FabricateArgs) -> Result<(), CliError> {
             Format::Json => fab.to_json().into_bytes(),
             Format::Obj => fab.to_obj().into_bytes(),
             Format::Svg => fab.sheets_svg().into_bytes(),
-            Format::Dxf => fab.sheets_dxf(units).into_bytes(),
+            Format::Dxf => fab
+                .sheets_dxf(units)
+                .map_err(|e| fabrication_error(&e))?
+                .into_bytes(),
             Format::Csv => fab.bevels_csv().into_bytes(),
             Format::Nc => fab
                 .gcode(&opts.tool)

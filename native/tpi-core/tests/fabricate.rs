@@ -955,55 +955,131 @@ fn files_read_back() {
         assert!(c[3].parse::<f64>().unwrap() >= 0.0);
         assert_eq!(c[2].is_empty(), c[4].is_empty());
     }
-    // sheets.dxf: group code / value pairs, R12, units, layers, one CUT polyline per part.
-    let dxf = fab.sheets_dxf(Units::Millimetres);
-    let lines: Vec<&str> = dxf.lines().collect();
-    assert_eq!(lines.len() % 2, 0);
-    let pairs: Vec<(i32, &str)> = lines
-        .chunks(2)
-        .map(|c| (c[0].trim().parse::<i32>().unwrap(), c[1]))
-        .collect();
-    let after = |name: &str| {
-        pairs
-            .iter()
-            .position(|&(c, v)| c == 9 && v == name)
-            .map(|q| pairs[q + 1])
-    };
-    assert_eq!(after("$ACADVER"), Some((1, "AC1009")));
-    assert_eq!(after("$INSUNITS"), Some((70, "4")));
-    for layer in ["CUT", "BOTTOM", "SLOT", "ENGRAVE"] {
-        assert!(
-            pairs
-                .windows(2)
-                .any(|w| w[0] == (0, "LAYER") && w[1] == (2, layer)),
-            "{layer}"
-        );
-    }
-    let mut cut = 0;
-    let mut q = 0;
-    while q < pairs.len() {
-        if pairs[q] == (0, "POLYLINE") && pairs[q + 1] == (8, "CUT") {
-            cut += 1;
-            let mut n = 0;
-            q += 1;
-            while pairs[q] != (0, "SEQEND") {
-                if pairs[q] == (0, "VERTEX") {
-                    n += 1;
-                }
-                q += 1;
-            }
-            assert!(n >= 3);
-        }
-        q += 1;
-    }
-    assert_eq!(cut, fab.panels.len());
-    assert_eq!(pairs.last(), Some(&(0, "EOF")));
+    // sheets.dxf: read back by ezdxf (tests/fabrication/read_dxf.py).
+    check_dxf_with_ezdxf(&fab);
     let svg = fab.sheets_svg();
     assert_eq!(
         svg.matches("<polygon stroke=\"#c00\"").count(),
         fab.panels.len()
     );
     assert_eq!(svg.matches("<rect").count(), fab.sheets.len());
+}
+
+/// sheets.dxf written in millimetres, read by ezdxf (Python, an independent reader): R2000,
+/// `$INSUNITS` 4, layers CUT, SLOT and ENGRAVE, no audit error; every part's cut outline a
+/// closed CUT polyline equal to its flat cut outline turned by `angle_deg` and moved by
+/// `(x, y)` plus its sheet's offset (sheets 1.1 W apart), every slot an open SLOT polyline the
+/// same way, every ENGRAVE stroke inside a sheet.
+fn check_dxf_with_ezdxf(fab: &Fabrication) {
+    let dxf = fab.sheets_dxf(Units::Millimetres).unwrap();
+    let dir = std::env::temp_dir().join(format!("tpi-fabricate-dxf-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("sheets.dxf");
+    std::fs::write(&file, &dxf).unwrap();
+    let python = std::env::var("TPI_PYTHON").unwrap_or_else(|_| "python3".to_string());
+    let script = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/fabrication/read_dxf.py");
+    let output = std::process::Command::new(&python)
+        .arg(&script)
+        .arg(&file)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run `{python}` ({e}); the DXF test needs Python 3 with ezdxf (`python3 -m pip install 'ezdxf==1.4.*'`) or TPI_PYTHON"));
+    let _ = std::fs::remove_dir_all(&dir);
+    assert!(
+        output.status.success(),
+        "ezdxf could not read sheets.dxf (is ezdxf installed? `python3 -m pip install 'ezdxf==1.4.*'`):\n{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let read: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
+    assert_eq!(read["version"], "AC1015");
+    assert_eq!(read["insunits"], 4);
+    assert_eq!(read["audit_errors"], 0);
+    let layers: Vec<&str> = read["layers"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l.as_str().unwrap())
+        .collect();
+    for layer in ["CUT", "SLOT", "ENGRAVE"] {
+        assert!(layers.contains(&layer), "layer {layer} missing: {layers:?}");
+    }
+    let polylines = read["polylines"].as_array().unwrap();
+    let on = |layer: &str| -> Vec<(bool, Vec<DVec2>)> {
+        polylines
+            .iter()
+            .filter(|p| p["layer"] == layer)
+            .map(|p| {
+                let pts = p["points"]
+                    .as_array()
+                    .unwrap()
+                    .iter()
+                    .map(|q| DVec2::new(q[0].as_f64().unwrap(), q[1].as_f64().unwrap()))
+                    .collect();
+                (p["closed"].as_bool().unwrap(), pts)
+            })
+            .collect()
+    };
+    let mut offsets = vec![0.0];
+    for s in &fab.sheets {
+        offsets.push(offsets.last().unwrap() + 1.1 * s.size[0]);
+    }
+    let place = |pl: &tpi_core::Placement, q: DVec2| {
+        let (sin, cos) = pl.angle_deg.to_radians().sin_cos();
+        DVec2::new(
+            cos * q.x - sin * q.y + pl.x + offsets[pl.sheet],
+            sin * q.x + cos * q.y + pl.y,
+        )
+    };
+    let same = |a: &[DVec2], b: &[DVec2]| {
+        a.len() == b.len() && a.iter().zip(b).all(|(p, q)| p.distance(*q) <= 1e-9)
+    };
+    let cut = on("CUT");
+    assert_eq!(cut.len(), fab.panels.len());
+    let slots = on("SLOT");
+    assert_eq!(
+        slots.len(),
+        fab.panels.iter().map(|p| p.slots.len()).sum::<usize>()
+    );
+    assert!(!slots.is_empty());
+    for p in &fab.panels {
+        let want: Vec<DVec2> = p
+            .cut_outline
+            .iter()
+            .map(|&q| place(&p.placement, q))
+            .collect();
+        assert!(
+            cut.iter().any(|(closed, pts)| *closed && same(pts, &want)),
+            "panel {}: its cut outline is not a closed CUT polyline of the DXF",
+            p.seed
+        );
+        for s in &p.slots {
+            let want: Vec<DVec2> = s
+                .flat
+                .iter()
+                .map(|&q| place(&p.placement, DVec2::from_array(q)))
+                .collect();
+            assert!(
+                slots
+                    .iter()
+                    .any(|(closed, pts)| !*closed && same(pts, &want)),
+                "panel {}: slot at {} missing from SLOT",
+                p.seed,
+                s.at
+            );
+        }
+    }
+    let engrave = on("ENGRAVE");
+    assert!(engrave.len() > fab.panels.len());
+    for (_, pts) in &engrave {
+        for q in pts {
+            let k = offsets.iter().rposition(|&o| o <= q.x).unwrap();
+            assert!(k < fab.sheets.len());
+            let s = fab.sheets[k].size;
+            assert!(
+                q.x - offsets[k] <= s[0] && q.y >= 0.0 && q.y <= s[1],
+                "stroke off its sheet: {q}"
+            );
+        }
+    }
 }
 
 /// Four planar quads around one vertex: the 3 x 3 grid x in {-1, 0, 1.5}, y in {-0.7, 0, 1}

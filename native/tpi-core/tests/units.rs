@@ -160,7 +160,7 @@ fn dxf_insunits_follow_the_units() {
         (Units::Yards, 10),
         (Units::Microns, 13),
     ] {
-        let dxf = fab.sheets_dxf(units);
+        let dxf = fab.sheets_dxf(units).unwrap();
         let lines: Vec<&str> = dxf.lines().map(str::trim).collect();
         let at = lines.iter().position(|l| *l == "$INSUNITS").unwrap();
         assert_eq!(lines[at + 1], "70");

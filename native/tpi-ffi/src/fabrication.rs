@@ -26,7 +26,7 @@ pub const TPI_FILE_PANELS_JSON: u32 = 0;
 pub const TPI_FILE_PANELS_OBJ: u32 = 1;
 /// File of `tpi_fabrication_file`: sheets.svg.
 pub const TPI_FILE_SHEETS_SVG: u32 = 2;
-/// File of `tpi_fabrication_file`: sheets.dxf (ASCII DXF R12, `$INSUNITS` from the surface's
+/// File of `tpi_fabrication_file`: sheets.dxf (ASCII DXF R2000, `$INSUNITS` from the surface's
 /// units, `tpi_surface_with_units`; metres for a unitless surface).
 pub const TPI_FILE_SHEETS_DXF: u32 = 3;
 /// File of `tpi_fabrication_file`: bevels.csv.
@@ -169,13 +169,22 @@ pub unsafe extern "C" fn tpi_fabrication_file(
         let Some(cell) = f.files.get(file as usize) else {
             return Err(FfiError::invalid(format!("file = {file}: expected 0 to 4 (TPI_FILE_*)")));
         };
-        let text = cell.get_or_init(|| match file {
-            TPI_FILE_PANELS_JSON => f.fab.to_json(),
-            TPI_FILE_PANELS_OBJ => f.fab.to_obj(),
-            TPI_FILE_SHEETS_SVG => f.fab.sheets_svg(),
-            TPI_FILE_SHEETS_DXF => f.fab.sheets_dxf(f.fab.units.unwrap_or(Units::Metres)),
-            _ => f.fab.bevels_csv(),
-        });
+        let text = match cell.get() {
+            Some(text) => text,
+            None => {
+                let text = match file {
+                    TPI_FILE_PANELS_JSON => f.fab.to_json(),
+                    TPI_FILE_PANELS_OBJ => f.fab.to_obj(),
+                    TPI_FILE_SHEETS_SVG => f.fab.sheets_svg(),
+                    TPI_FILE_SHEETS_DXF => f
+                        .fab
+                        .sheets_dxf(f.fab.units.unwrap_or(Units::Metres))
+                        .map_err(|e| fabrication_error(&e))?,
+                    _ => f.fab.bevels_csv(),
+                };
+                cell.get_or_init(|| text)
+            }
+        };
         unsafe { copy_out_str(text, out, capacity, needed, "out") }
     }
 }

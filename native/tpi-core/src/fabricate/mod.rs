@@ -214,6 +214,14 @@ pub enum FabricationError {
         /// What is wrong.
         reason: String,
     },
+    /// An output file could not be written (the DXF crate refused the drawing).
+    #[error("{file}: {reason}")]
+    Output {
+        /// The file (`sheets.dxf`).
+        file: &'static str,
+        /// The writer's message.
+        reason: String,
+    },
     /// A flat part does not fit on a sheet in any orientation tried.
     #[error("panel {panel} needs {width} x {height} (with the gap on every side) and does not fit on a {sheet_width} x {sheet_height} sheet; use a larger --sheet")]
     PartTooLarge {

@@ -1,12 +1,15 @@
-//! The files: panels.json, panels.obj, bevels.csv, sheets.svg and sheets.dxf (ASCII DXF R12,
-//! written here: the format is a short list of group codes, and no dependency is needed).
+//! The files: panels.json, panels.obj, bevels.csv, sheets.svg and sheets.dxf (ASCII DXF R2000
+//! through the `dxf` crate).
 
 use std::fmt::Write;
 
 use glam::DVec2;
 use serde::Serialize;
 
-use super::{Fabrication, FabricationDiagnostic, Panel, Placement, Polyhedron, Sheet, Side, Slot};
+use super::{
+    Fabrication, FabricationDiagnostic, FabricationError, Panel, Placement, Polyhedron, Sheet,
+    Side, Slot,
+};
 
 pub use crate::units::Units;
 
@@ -259,73 +262,41 @@ impl Fabrication {
         sizes.get(sizes.len() / 2).copied().unwrap_or(1.0) / 6.0
     }
 
-    /// sheets.dxf: ASCII DXF R12, layers SHEET, CUT (part outlines), BOTTOM (the bottom
-    /// outline seen through the part, for the bevels), SLOT (notches) and ENGRAVE (panel labels at the centre, and each side's neighbour id beside the side, as
-    /// single strokes); sheets side by side, 10 % apart.
-    pub fn sheets_dxf(&self, units: Units) -> String {
-        let mut out = String::new();
-        let mut pair = |code: u32, value: &str| {
-            let _ = writeln!(out, "{code:>3}\n{value}");
-        };
-        pair(0, "SECTION");
-        pair(2, "HEADER");
-        pair(9, "$ACADVER");
-        pair(1, "AC1009");
-        pair(9, "$INSUNITS");
-        pair(70, &units.insunits().to_string());
-        pair(0, "ENDSEC");
-        pair(0, "SECTION");
-        pair(2, "TABLES");
-        pair(0, "TABLE");
-        pair(2, "LTYPE");
-        pair(70, "1");
-        pair(0, "LTYPE");
-        pair(2, "CONTINUOUS");
-        pair(70, "0");
-        pair(3, "Solid line");
-        pair(72, "65");
-        pair(73, "0");
-        pair(40, "0.0");
-        pair(0, "ENDTAB");
-        pair(0, "TABLE");
-        pair(2, "LAYER");
-        pair(70, "5");
-        for (name, colour) in [
-            ("SHEET", "8"),
-            ("CUT", "1"),
-            ("BOTTOM", "9"),
-            ("SLOT", "5"),
-            ("ENGRAVE", "3"),
-        ] {
-            pair(0, "LAYER");
-            pair(2, name);
-            pair(70, "0");
-            pair(62, colour);
-            pair(6, "CONTINUOUS");
+    /// sheets.dxf, written with the `dxf` crate: ASCII DXF R2000 (`$ACADVER` AC1015, the first
+    /// version with `$INSUNITS`), layers SHEET, CUT (part outlines), BOTTOM (the bottom
+    /// outline seen through the part, for the bevels), SLOT (notches) and ENGRAVE (panel labels
+    /// at the centre, and each side's neighbour id beside the side, as single strokes), every
+    /// curve an LWPOLYLINE; sheets side by side, 10 % apart.
+    ///
+    /// Errors: [`FabricationError::Output`] if the crate refuses to write the drawing.
+    pub fn sheets_dxf(&self, units: Units) -> Result<String, FabricationError> {
+        use dxf::entities::{Entity, EntityType, LwPolyline};
+        use dxf::LwPolylineVertex;
+        let mut drawing = dxf::Drawing::new();
+        drawing.header.version = dxf::enums::AcadVersion::R2000;
+        drawing.header.default_drawing_units = dxf_units(units);
+        for (name, colour) in DXF_LAYERS {
+            drawing.add_layer(dxf::tables::Layer {
+                name: name.to_string(),
+                color: dxf::Color::from_index(colour),
+                ..Default::default()
+            });
         }
-        pair(0, "ENDTAB");
-        pair(0, "ENDSEC");
-        pair(0, "SECTION");
-        pair(2, "ENTITIES");
-        let polyline =
-            |pair: &mut dyn FnMut(u32, &str), layer: &str, pts: &[DVec2], closed: bool| {
-                pair(0, "POLYLINE");
-                pair(8, layer);
-                pair(66, "1");
-                pair(70, if closed { "1" } else { "0" });
-                pair(10, "0.0");
-                pair(20, "0.0");
-                pair(30, "0.0");
-                for p in pts {
-                    pair(0, "VERTEX");
-                    pair(8, layer);
-                    pair(10, &p.x.to_string());
-                    pair(20, &p.y.to_string());
-                    pair(30, "0.0");
-                }
-                pair(0, "SEQEND");
-                pair(8, layer);
-            };
+        let mut polyline = |layer: &str, pts: &[DVec2], closed: bool| {
+            let mut line = LwPolyline::default();
+            line.set_is_closed(closed);
+            line.vertices = pts
+                .iter()
+                .map(|p| LwPolylineVertex {
+                    x: p.x,
+                    y: p.y,
+                    ..Default::default()
+                })
+                .collect();
+            let mut entity = Entity::new(EntityType::LwPolyline(line));
+            entity.common.layer = layer.to_string();
+            drawing.add_entity(entity);
+        };
         for (k, s) in self.sheets.iter().enumerate() {
             let x0 = self.sheet_offset(k);
             let rect = [
@@ -334,23 +305,58 @@ impl Fabrication {
                 DVec2::new(x0 + s.size[0], s.size[1]),
                 DVec2::new(x0, s.size[1]),
             ];
-            polyline(&mut pair, "SHEET", &rect, true);
+            polyline("SHEET", &rect, true);
         }
         let h = self.label_height();
         for p in &self.panels {
             let (outline, slots, _) = self.placed(p);
-            polyline(&mut pair, "CUT", &outline, true);
-            polyline(&mut pair, "BOTTOM", &self.placed_bottom(p), true);
+            polyline("CUT", &outline, true);
+            polyline("BOTTOM", &self.placed_bottom(p), true);
             for s in &slots {
-                polyline(&mut pair, "SLOT", s, false);
+                polyline("SLOT", s, false);
             }
             for stroke in self.labels(p, h) {
-                polyline(&mut pair, "ENGRAVE", &stroke, false);
+                polyline("ENGRAVE", &stroke, false);
             }
         }
-        pair(0, "ENDSEC");
-        pair(0, "EOF");
-        out
+        let mut bytes = Vec::new();
+        drawing
+            .save(&mut bytes)
+            .map_err(|e| FabricationError::Output {
+                file: "sheets.dxf",
+                reason: e.to_string(),
+            })?;
+        String::from_utf8(bytes).map_err(|e| FabricationError::Output {
+            file: "sheets.dxf",
+            reason: e.to_string(),
+        })
+    }
+}
+
+/// The DXF layers and their colours (AutoCAD colour index: 8 grey, 1 red, 9 light grey, 5 blue,
+/// 3 green).
+const DXF_LAYERS: [(&str, u8); 5] = [
+    ("SHEET", 8),
+    ("CUT", 1),
+    ("BOTTOM", 9),
+    ("SLOT", 5),
+    ("ENGRAVE", 3),
+];
+
+/// The `$INSUNITS` value of our units in the `dxf` crate's terms (the same numbers as
+/// [`Units::insunits`]).
+fn dxf_units(units: Units) -> dxf::enums::Units {
+    use dxf::enums::Units as D;
+    match units {
+        Units::Inches => D::Inches,
+        Units::Feet => D::Feet,
+        Units::Miles => D::Miles,
+        Units::Millimetres => D::Millimeters,
+        Units::Centimetres => D::Centimeters,
+        Units::Metres => D::Meters,
+        Units::Kilometres => D::Kilometers,
+        Units::Yards => D::Yards,
+        Units::Microns => D::Microns,
     }
 }
 
