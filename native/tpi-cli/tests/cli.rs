@@ -1519,6 +1519,36 @@ fn an_overflowing_control_point_is_refused_by_name() {
         }
     });
     discretise_fails(&dir, &surface, "hex:12x12", 1, &["knots_u[3] = 1.5e300"]);
+    // From below: knots scaled by 1e-80 (derivatives overflow) and the model scaled by 1e-100
+    // (normals underflow) used to be called "developable"; both are refused with the bound.
+    let surface = edited_dome(&dir, "k-tiny.json", |v| {
+        for key in ["knots_u", "knots_v"] {
+            for k in v[key].as_array_mut().unwrap() {
+                *k = (k.as_f64().unwrap() * 1e-80).into();
+            }
+        }
+    });
+    discretise_fails(
+        &dir,
+        &surface,
+        "hex:12x12",
+        1,
+        &["knots_u[6] - knots_u[2] = 1e-79", "domain length >= 1e-15"],
+    );
+    let surface = edited_dome(&dir, "p-tiny.json", |v| {
+        for p in v["points"].as_array_mut().unwrap() {
+            for c in p.as_array_mut().unwrap() {
+                *c = (c.as_f64().unwrap() * 1e-100).into();
+            }
+        }
+    });
+    discretise_fails(
+        &dir,
+        &surface,
+        "hex:12x12",
+        1,
+        &["bounding-box diagonal of points = 1.65", ">= 1e-15"],
+    );
     let surface = edited_dome(&dir, "w.json", |v| {
         let weights: Vec<f64> = (0..42)
             .map(|i| if i == 20 { 1e-300 } else { 1.0 })
