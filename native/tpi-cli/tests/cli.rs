@@ -1882,7 +1882,10 @@ fn a_self_intersecting_surface_is_warned_about() {
 }
 
 /// Completions for bash, zsh, fish and PowerShell, and a man page, each naming every command
-/// and the options of `tpi discretise`.
+/// and the options of `tpi discretise`. The bash script is checked by `bash -n` and then
+/// sourced: completing `tpi disc` and `tpi discretise --st` gives `discretise` and `--strict`.
+/// The man page documents every command's options in one page (clap_mangen alone referred to
+/// tpi-discretise(1) and so on, pages that exist nowhere).
 #[test]
 fn completions_and_man_page() {
     for (shell, marker) in [
@@ -1904,11 +1907,54 @@ fn completions_and_man_page() {
             assert!(script.contains(word), "{shell} lacks {word}");
         }
     }
+    let dir = scratch("completions");
+    let bash_script = dir.join("tpi.bash");
+    fs::write(&bash_script, ok(&["completions", "bash"]).stdout).unwrap();
+    let syntax = Command::new("bash")
+        .arg("-n")
+        .arg(&bash_script)
+        .output()
+        .unwrap();
+    assert!(syntax.status.success(), "{}", text(&syntax.stderr));
+    let complete = |words: &str| -> String {
+        let script = format!(
+            "source {}; COMP_WORDS=({words}); COMP_CWORD=$(( ${{#COMP_WORDS[@]}} - 1 )); \
+             COMP_LINE=\"{words}\"; COMP_POINT=${{#COMP_LINE}}; _tpi tpi \"${{COMP_WORDS[COMP_CWORD]}}\" \
+             \"${{COMP_WORDS[COMP_CWORD-1]}}\"; printf '%s\\n' \"${{COMPREPLY[@]}}\"",
+            bash_script.display()
+        );
+        let run = Command::new("bash").args(["-c", &script]).output().unwrap();
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        text(&run.stdout)
+    };
+    assert!(
+        complete("tpi disc").lines().any(|l| l == "discretise"),
+        "{}",
+        complete("tpi disc")
+    );
+    assert!(
+        complete("tpi discretise --st")
+            .lines()
+            .any(|l| l == "--strict"),
+        "{}",
+        complete("tpi discretise --st")
+    );
     let man = text(&ok(&["man"]).stdout);
     assert!(man.starts_with(".ie") || man.contains(".TH tpi 1"), "{man}");
-    for word in ["discretise", "pattern", "info", "bench"] {
+    for word in [
+        ".SH \"TPI DISCRETISE\"",
+        ".SH \"TPI PATTERN\"",
+        ".SH \"TPI INFO\"",
+        ".SH \"TPI BENCH\"",
+        ".SH \"TPI FABRICATE\"",
+        "\\-\\-surface",
+        "\\-\\-strict",
+        "\\-\\-relax",
+        "tpi discretise \\-\\-surface samples/nurbs\\-dome.json",
+    ] {
         assert!(man.contains(word), "man page lacks {word}");
     }
+    assert!(!man.contains("tpi\\-discretise(1)"), "{man}");
     fails(&["completions", "tcsh"], 2, &["tcsh"]);
 }
 
