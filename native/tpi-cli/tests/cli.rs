@@ -2290,3 +2290,51 @@ fn a_cylinder_with_random_points_gives_strips() {
         assert!(y.abs() < 1e-9 || (y - 3.0).abs() < 1e-9, "vertex {v}");
     }
 }
+
+/// docs/cli.md's example summary used to be stale (issue 14). It must be what the current
+/// build prints for its command, line by line, apart from the timings and the file sizes.
+#[cfg(unix)]
+#[test]
+fn the_documented_summary_is_a_real_run() {
+    let docs = fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/cli.md"))
+        .unwrap();
+    let block = docs
+        .split("**The summary** on stderr after a successful run:\n\n```\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("the summary block in docs/cli.md");
+    let dir = scratch("documented-summary");
+    std::os::unix::fs::symlink(samples(), dir.join("samples")).unwrap();
+    let run = Command::new(TPI)
+        .current_dir(&dir)
+        .args([
+            "discretise",
+            "--surface",
+            "samples/nurbs-dome.json",
+            "--pattern",
+            "samples/random-1000.json",
+            "--out",
+            "dome.json",
+            "--out",
+            "dome.obj",
+            "--out",
+            "dome.svg",
+            "--out",
+            "dome.png",
+        ])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let compared = |t: &str| -> Vec<String> {
+        t.lines()
+            .filter(|l| {
+                !["  timings:", "  wrote ", "  done in "]
+                    .iter()
+                    .any(|p| l.starts_with(p))
+            })
+            .map(str::to_string)
+            .collect()
+    };
+    assert_eq!(compared(block), compared(&text(&run.stderr)));
+    assert_eq!(block.lines().count(), text(&run.stderr).lines().count());
+}
