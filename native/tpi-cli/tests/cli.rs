@@ -2338,3 +2338,67 @@ fn the_documented_summary_is_a_real_run() {
     assert_eq!(compared(block), compared(&text(&run.stderr)));
     assert_eq!(block.lines().count(), text(&run.stderr).lines().count());
 }
+
+/// Issue 14's command `tpi discretise --surface samples/hypar.json --pattern random:4:seed=1
+/// --out r.obj` wrote `f 7 8` (an open facet as a face of two vertices). Five random points on
+/// the NURBS dome give an open facet (JSON flag 16): the run succeeds, and the OBJ has a
+/// comment in its place, every `f` line with at least 3 distinct vertices. The four points of
+/// the issue's command lie nearly on one line: on the saddle (curved everywhere) that is the
+/// pattern's doing, and the message says so instead of calling the surface developable.
+#[test]
+fn an_open_facet_is_no_obj_face_and_a_hopeless_pattern_is_named() {
+    let dir = scratch("open-obj");
+    let (json, obj) = (dir.join("r.json"), dir.join("r.obj"));
+    ok(&[
+        "discretise",
+        "--surface",
+        &sample("nurbs-dome.json"),
+        "--pattern",
+        "random:5:seed=1",
+        "--out",
+        json.to_str().unwrap(),
+        "--out",
+        obj.to_str().unwrap(),
+    ]);
+    let c = read_contract(&json);
+    let distinct = |v: &[u32]| {
+        let mut v = v.to_vec();
+        v.sort_unstable();
+        v.dedup();
+        v.len()
+    };
+    let open: Vec<usize> = (0..c.facets.len())
+        .filter(|&i| c.facets[i].flags & 16 != 0)
+        .collect();
+    assert!(!open.is_empty(), "no open facet: the test needs one");
+    assert!(open.iter().all(|&i| distinct(&c.facets[i].vertices) < 3));
+    let text = fs::read_to_string(&obj).unwrap();
+    let parsed = parse_obj(&text);
+    assert!(
+        parsed.faces.iter().all(|f| {
+            let f: Vec<u32> = f.iter().map(|&k| k as u32).collect();
+            distinct(&f) >= 3
+        }),
+        "{text}"
+    );
+    let comments = text.lines().filter(|l| l.starts_with("# facet ")).count();
+    assert_eq!(comments, open.len(), "{text}");
+    assert_eq!(parsed.faces.len() + comments, c.facets.len());
+
+    let r = dir.join("h.obj");
+    let line = fails(
+        &[
+            "discretise",
+            "--surface",
+            &sample("hypar.json"),
+            "--pattern",
+            "random:4:seed=1",
+            "--out",
+            r.to_str().unwrap(),
+        ],
+        1,
+        &["curved at the pattern points", "too close to one line"],
+    );
+    assert!(!line.contains("developable"), "{line}");
+    assert!(!r.exists());
+}

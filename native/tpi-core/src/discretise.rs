@@ -987,9 +987,17 @@ fn run_within(
             .count()
             == triangulation.len()
     {
-        return Err(TpiError::DegenerateSurface {
-            reason: "every triple of neighbouring tangent planes is (nearly) parallel: the surface is developable".into(),
-        });
+        // Curved at the seeds, the planes fail to meet because of the pattern (issue 14: four
+        // random points nearly on one line on a saddle were said to make it developable).
+        let reason = if flat_seeds {
+            "every triple of neighbouring tangent planes is (nearly) parallel: the surface is developable".to_string()
+        } else {
+            format!(
+                "every triple of neighbouring tangent planes is (nearly) parallel, though the surface is curved at the pattern points: the {} points are too few or too close to one line for their tangent planes to meet; use more points, spread in both directions",
+                uv.len()
+            )
+        };
+        return Err(TpiError::DegenerateSurface { reason });
     }
     timings.facets = ms(stage) - mesh.assembly_ms - adjust_ms;
     timings.neighbours += adjust_ms;
