@@ -22,10 +22,10 @@ at least 3 distinct vertices) and then written through temporary files renamed t
 a failing or interrupted run leaves no output file (and no half-written one); an output that
 is also an input is refused. A summary of the quality report goes to stderr; progress bars
 too (one per stage that runs, with count, percentage and time left) when stderr is a terminal
-and the run takes more than a second. When the report finds
-invalid facets, or the surface intersects itself (sampled), a `warning:` line goes to
-stderr. Exit code 0 on success, 1 for bad input or output, 2 for usage, 3 for invalid facets
-with --strict.
+and the run takes more than a second. When the report finds invalid facets or an unexpected
+topology, the surface intersects itself (sampled) or a seam stays open, a `warning:` line
+goes to stderr. Exit code 0 on success, 1 for bad input or output, 2 for usage, 3 for
+invalid facets or an unexpected topology with --strict.
 
 EXAMPLES:
     tpi discretise --surface samples/nurbs-dome.json --pattern samples/random-1000.json \\
@@ -67,8 +67,8 @@ pub(crate) struct DiscretiseArgs {
     /// seeds
     #[arg(long, value_name = "MODE")]
     planes: Option<String>,
-    /// Exit with code 3 when the mesh has invalid facets (open, non-simple or overlapping;
-    /// the outputs are still written)
+    /// Exit with code 3 when the mesh has invalid facets (open, non-simple or overlapping) or
+    /// is not the disc, annulus or sphere expected; the outputs are still written
     #[arg(long)]
     strict: bool,
 }

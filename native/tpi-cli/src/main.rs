@@ -187,6 +187,75 @@ fn from_clap(e: clap::Error, argv: &[OsString]) -> Result<(), CliError> {
     Err(CliError::usage(command, message))
 }
 
+/// The man page: clap_mangen's sections for `tpi` itself, then one section per command
+/// (`TPI DISCRETISE`, ...) with its synopsis, description, options, notes and examples, so
+/// that the one page documents every option (clap_mangen alone lists the commands as
+/// tpi-discretise(1) and so on, pages that are not installed anywhere).
+fn man_page() -> std::io::Result<Vec<u8>> {
+    let mut top = Cli::command();
+    top.build();
+    let man = clap_mangen::Man::new(top.clone());
+    let mut page = Vec::new();
+    man.render_title(&mut page)?;
+    man.render_name_section(&mut page)?;
+    man.render_synopsis_section(&mut page)?;
+    man.render_description_section(&mut page)?;
+    man.render_options_section(&mut page)?;
+    page.extend_from_slice(b".SH NOTES\n");
+    let mut notes = Vec::new();
+    man.render_extra_section(&mut notes)?;
+    page.extend(strip_heading(&notes));
+    for sub in top.get_subcommands().filter(|c| c.get_name() != "help") {
+        let name = format!("tpi {}", sub.get_name());
+        page.extend_from_slice(format!(".SH \"{}\"\n", name.to_uppercase()).as_bytes());
+        let man = clap_mangen::Man::new(sub.clone().bin_name(&name));
+        let mut section = Vec::new();
+        man.render_description_section(&mut section)?;
+        page.extend(strip_heading(&section));
+        for (render, title) in [
+            (
+                clap_mangen::Man::render_synopsis_section as Render,
+                "Synopsis",
+            ),
+            (clap_mangen::Man::render_options_section, "Options"),
+            (clap_mangen::Man::render_extra_section, "Notes and examples"),
+        ] {
+            let mut section = Vec::new();
+            render(&man, &mut section)?;
+            if section.is_empty() {
+                continue;
+            }
+            page.extend_from_slice(format!(".SS \"{title}\"\n").as_bytes());
+            page.extend(strip_heading(&section));
+        }
+    }
+    man.render_version_section(&mut page)?;
+    Ok(page)
+}
+
+/// One of clap_mangen's section renderers.
+type Render = fn(&clap_mangen::Man, &mut dyn std::io::Write) -> std::io::Result<()>;
+
+/// A rendered section without what comes before its body: the preamble roff puts at the
+/// start of every rendering (`.ie \n(.g .ds Aq ...`) and the `.SH` heading line.
+fn strip_heading(section: &[u8]) -> &[u8] {
+    let heading = if section.starts_with(b".SH ") {
+        Some(0)
+    } else {
+        section
+            .windows(5)
+            .position(|w| w == b"\n.SH ")
+            .map(|at| at + 1)
+    };
+    match heading {
+        Some(at) => section[at..]
+            .iter()
+            .position(|&b| b == b'\n')
+            .map_or(&[][..], |end| &section[at + end + 1..]),
+        None => section,
+    }
+}
+
 fn main() {
     // Before anything is written: SIGINT/SIGTERM remove the temporary output files.
     output::clean_up_on_signals();
@@ -203,9 +272,12 @@ fn main() {
                 clap_complete::generate(shell, &mut Cli::command(), "tpi", &mut std::io::stdout());
                 Ok(())
             }
-            Command::Man => clap_mangen::Man::new(Cli::command())
-                .render(&mut std::io::stdout())
-                .map_err(|e| CliError::input("stdout", e.to_string())),
+            Command::Man => {
+                use std::io::Write;
+                man_page()
+                    .and_then(|page| std::io::stdout().write_all(&page))
+                    .map_err(|e| CliError::input("stdout", e.to_string()))
+            }
         },
     };
     if let Err(e) = result {

@@ -1519,6 +1519,36 @@ fn an_overflowing_control_point_is_refused_by_name() {
         }
     });
     discretise_fails(&dir, &surface, "hex:12x12", 1, &["knots_u[3] = 1.5e300"]);
+    // From below: knots scaled by 1e-80 (derivatives overflow) and the model scaled by 1e-100
+    // (normals underflow) used to be called "developable"; both are refused with the bound.
+    let surface = edited_dome(&dir, "k-tiny.json", |v| {
+        for key in ["knots_u", "knots_v"] {
+            for k in v[key].as_array_mut().unwrap() {
+                *k = (k.as_f64().unwrap() * 1e-80).into();
+            }
+        }
+    });
+    discretise_fails(
+        &dir,
+        &surface,
+        "hex:12x12",
+        1,
+        &["knots_u[6] - knots_u[2] = 1e-79", "domain length >= 1e-15"],
+    );
+    let surface = edited_dome(&dir, "p-tiny.json", |v| {
+        for p in v["points"].as_array_mut().unwrap() {
+            for c in p.as_array_mut().unwrap() {
+                *c = (c.as_f64().unwrap() * 1e-100).into();
+            }
+        }
+    });
+    discretise_fails(
+        &dir,
+        &surface,
+        "hex:12x12",
+        1,
+        &["bounding-box diagonal of points = 1.65", ">= 1e-15"],
+    );
     let surface = edited_dome(&dir, "w.json", |v| {
         let weights: Vec<f64> = (0..42)
             .map(|i| if i == 20 { 1e-300 } else { 1.0 })
@@ -1852,7 +1882,10 @@ fn a_self_intersecting_surface_is_warned_about() {
 }
 
 /// Completions for bash, zsh, fish and PowerShell, and a man page, each naming every command
-/// and the options of `tpi discretise`.
+/// and the options of `tpi discretise`. The bash script is checked by `bash -n` and then
+/// sourced: completing `tpi disc` and `tpi discretise --st` gives `discretise` and `--strict`.
+/// The man page documents every command's options in one page (clap_mangen alone referred to
+/// tpi-discretise(1) and so on, pages that exist nowhere).
 #[test]
 fn completions_and_man_page() {
     for (shell, marker) in [
@@ -1874,11 +1907,54 @@ fn completions_and_man_page() {
             assert!(script.contains(word), "{shell} lacks {word}");
         }
     }
+    let dir = scratch("completions");
+    let bash_script = dir.join("tpi.bash");
+    fs::write(&bash_script, ok(&["completions", "bash"]).stdout).unwrap();
+    let syntax = Command::new("bash")
+        .arg("-n")
+        .arg(&bash_script)
+        .output()
+        .unwrap();
+    assert!(syntax.status.success(), "{}", text(&syntax.stderr));
+    let complete = |words: &str| -> String {
+        let script = format!(
+            "source {}; COMP_WORDS=({words}); COMP_CWORD=$(( ${{#COMP_WORDS[@]}} - 1 )); \
+             COMP_LINE=\"{words}\"; COMP_POINT=${{#COMP_LINE}}; _tpi tpi \"${{COMP_WORDS[COMP_CWORD]}}\" \
+             \"${{COMP_WORDS[COMP_CWORD-1]}}\"; printf '%s\\n' \"${{COMPREPLY[@]}}\"",
+            bash_script.display()
+        );
+        let run = Command::new("bash").args(["-c", &script]).output().unwrap();
+        assert!(run.status.success(), "{}", text(&run.stderr));
+        text(&run.stdout)
+    };
+    assert!(
+        complete("tpi disc").lines().any(|l| l == "discretise"),
+        "{}",
+        complete("tpi disc")
+    );
+    assert!(
+        complete("tpi discretise --st")
+            .lines()
+            .any(|l| l == "--strict"),
+        "{}",
+        complete("tpi discretise --st")
+    );
     let man = text(&ok(&["man"]).stdout);
     assert!(man.starts_with(".ie") || man.contains(".TH tpi 1"), "{man}");
-    for word in ["discretise", "pattern", "info", "bench"] {
+    for word in [
+        ".SH \"TPI DISCRETISE\"",
+        ".SH \"TPI PATTERN\"",
+        ".SH \"TPI INFO\"",
+        ".SH \"TPI BENCH\"",
+        ".SH \"TPI FABRICATE\"",
+        "\\-\\-surface",
+        "\\-\\-strict",
+        "\\-\\-relax",
+        "tpi discretise \\-\\-surface samples/nurbs\\-dome.json",
+    ] {
         assert!(man.contains(word), "man page lacks {word}");
     }
+    assert!(!man.contains("tpi\\-discretise(1)"), "{man}");
     fails(&["completions", "tcsh"], 2, &["tcsh"]);
 }
 
@@ -2213,4 +2289,116 @@ fn a_cylinder_with_random_points_gives_strips() {
         let y = v[1].as_f64().unwrap();
         assert!(y.abs() < 1e-9 || (y - 3.0).abs() < 1e-9, "vertex {v}");
     }
+}
+
+/// docs/cli.md's example summary used to be stale (issue 14). It must be what the current
+/// build prints for its command, line by line, apart from the timings and the file sizes.
+#[cfg(unix)]
+#[test]
+fn the_documented_summary_is_a_real_run() {
+    let docs = fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/cli.md"))
+        .unwrap();
+    let block = docs
+        .split("**The summary** on stderr after a successful run:\n\n```\n")
+        .nth(1)
+        .and_then(|rest| rest.split("```").next())
+        .expect("the summary block in docs/cli.md");
+    let dir = scratch("documented-summary");
+    std::os::unix::fs::symlink(samples(), dir.join("samples")).unwrap();
+    let run = Command::new(TPI)
+        .current_dir(&dir)
+        .args([
+            "discretise",
+            "--surface",
+            "samples/nurbs-dome.json",
+            "--pattern",
+            "samples/random-1000.json",
+            "--out",
+            "dome.json",
+            "--out",
+            "dome.obj",
+            "--out",
+            "dome.svg",
+            "--out",
+            "dome.png",
+        ])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let compared = |t: &str| -> Vec<String> {
+        t.lines()
+            .filter(|l| {
+                !["  timings:", "  wrote ", "  done in "]
+                    .iter()
+                    .any(|p| l.starts_with(p))
+            })
+            .map(str::to_string)
+            .collect()
+    };
+    assert_eq!(compared(block), compared(&text(&run.stderr)));
+    assert_eq!(block.lines().count(), text(&run.stderr).lines().count());
+}
+
+/// Issue 14's command `tpi discretise --surface samples/hypar.json --pattern random:4:seed=1
+/// --out r.obj` wrote `f 7 8` (an open facet as a face of two vertices). Five random points on
+/// the NURBS dome give an open facet (JSON flag 16): the run succeeds, and the OBJ has a
+/// comment in its place, every `f` line with at least 3 distinct vertices. The four points of
+/// the issue's command lie nearly on one line: on the saddle (curved everywhere) that is the
+/// pattern's doing, and the message says so instead of calling the surface developable.
+#[test]
+fn an_open_facet_is_no_obj_face_and_a_hopeless_pattern_is_named() {
+    let dir = scratch("open-obj");
+    let (json, obj) = (dir.join("r.json"), dir.join("r.obj"));
+    ok(&[
+        "discretise",
+        "--surface",
+        &sample("nurbs-dome.json"),
+        "--pattern",
+        "random:5:seed=1",
+        "--out",
+        json.to_str().unwrap(),
+        "--out",
+        obj.to_str().unwrap(),
+    ]);
+    let c = read_contract(&json);
+    let distinct = |v: &[u32]| {
+        let mut v = v.to_vec();
+        v.sort_unstable();
+        v.dedup();
+        v.len()
+    };
+    let open: Vec<usize> = (0..c.facets.len())
+        .filter(|&i| c.facets[i].flags & 16 != 0)
+        .collect();
+    assert!(!open.is_empty(), "no open facet: the test needs one");
+    assert!(open.iter().all(|&i| distinct(&c.facets[i].vertices) < 3));
+    let text = fs::read_to_string(&obj).unwrap();
+    let parsed = parse_obj(&text);
+    assert!(
+        parsed.faces.iter().all(|f| {
+            let f: Vec<u32> = f.iter().map(|&k| k as u32).collect();
+            distinct(&f) >= 3
+        }),
+        "{text}"
+    );
+    let comments = text.lines().filter(|l| l.starts_with("# facet ")).count();
+    assert_eq!(comments, open.len(), "{text}");
+    assert_eq!(parsed.faces.len() + comments, c.facets.len());
+
+    let r = dir.join("h.obj");
+    let line = fails(
+        &[
+            "discretise",
+            "--surface",
+            &sample("hypar.json"),
+            "--pattern",
+            "random:4:seed=1",
+            "--out",
+            r.to_str().unwrap(),
+        ],
+        1,
+        &["curved at the pattern points", "too close to one line"],
+    );
+    assert!(!line.contains("developable"), "{line}");
+    assert!(!r.exists());
 }

@@ -32,6 +32,7 @@ use crate::adjusted_planes::tilt_and_offset;
 use crate::boundary::Boundary;
 use crate::closed::SurfaceLayout;
 use crate::diagnostics::Diagnostic;
+use crate::diffgeo::flat_curvatures;
 use crate::error::TpiError;
 use crate::facets::{build_stage, FacetParams, Facets, FootHint, TriangleVertex, VertexKind};
 use crate::mesh::FacetMesh;
@@ -610,7 +611,7 @@ fn run_within(
         exact_dual: matches!(structure.plan, FacetPlan::Clipped { band: Some(_) }),
     };
     let facets = build_stage(surface, boundary, &samples, structure, &params, stages);
-    check_not_developable(&facets, strips)?;
+    check_not_developable(&facets, &samples, strips)?;
     timings.facets = ms(stage) - facets.mesh.assembly_ms;
     timings.mesh = facets.mesh.assembly_ms;
 
@@ -710,7 +711,8 @@ struct LiveParts {
 
 /// Refuses a surface none of whose dual triangles gave a well-conditioned vertex (every
 /// triple of neighbouring planes nearly parallel), except on strips, which are built for it.
-fn check_not_developable(facets: &Facets, strips: bool) -> Result<(), TpiError> {
+/// Where the seeds are curved, the pattern is to blame, not the surface.
+fn check_not_developable(facets: &Facets, samples: &Samples, strips: bool) -> Result<(), TpiError> {
     let mesh = &facets.mesh;
     let ill_conditioned = mesh
         .diagnostics
@@ -718,9 +720,21 @@ fn check_not_developable(facets: &Facets, strips: bool) -> Result<(), TpiError> 
         .filter(|d| matches!(d, Diagnostic::IllConditionedVertex { .. }))
         .count();
     if !mesh.vertices.is_empty() && !strips && ill_conditioned == facets.triangulation.len() {
-        return Err(TpiError::DegenerateSurface {
-            reason: "every triple of neighbouring tangent planes is (nearly) parallel: the surface is developable".into(),
-        });
+        // Curved at the seeds, the planes fail to meet because of the pattern (issue 14: four
+        // random points nearly on one line on a saddle were said to make it developable).
+        let flat_seeds = samples
+            .seeds
+            .iter()
+            .all(|s| flat_curvatures(s.curvatures[0], s.curvatures[1]));
+        let reason = if flat_seeds {
+            "every triple of neighbouring tangent planes is (nearly) parallel: the surface is developable".to_string()
+        } else {
+            format!(
+                "every triple of neighbouring tangent planes is (nearly) parallel, though the surface is curved at the pattern points: the {} points are too few or too close to one line for their tangent planes to meet; use more points, spread in both directions",
+                samples.uv.len()
+            )
+        };
+        return Err(TpiError::DegenerateSurface { reason });
     }
     Ok(())
 }

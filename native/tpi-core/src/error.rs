@@ -298,6 +298,16 @@ pub const MAX_COORDINATE: f64 = 1e15;
 /// the derivatives grow with this ratio and their products with its square (a weight of
 /// 1e-300 beside weights of 1 made every derivative there overflow).
 pub const MAX_WEIGHT_RATIO: f64 = 1e6;
+/// The smallest length accepted for a NURBS domain in each direction (the knots' last
+/// minus first value in use). Derivatives grow as the domain's inverse, their products
+/// (the first fundamental form) as its fourth power: knots of a dome scaled by 1e-80 made
+/// them overflow, and the surface was called developable. With |knot| <= [`MAX_COORDINATE`]
+/// the domain's length lies within 1e+-15, so these products stay within about 1e+-120.
+pub const MIN_KNOT_DOMAIN: f64 = 1e-15;
+/// The smallest bounding-box diagonal accepted for a NURBS control net. A net smaller (or a
+/// single point repeated) has derivatives whose products underflow to zero: a dome scaled
+/// by 1e-100 had every normal vanish, and the surface was called developable.
+pub const MIN_NET_EXTENT: f64 = 1e-15;
 
 /// Checks `|value| <= MAX_COORDINATE`, naming `field` otherwise.
 pub(crate) fn check_magnitude(field: impl FnOnce() -> String, value: f64) -> Result<f64, TpiError> {

@@ -68,7 +68,7 @@ pub use discretise::{
 };
 pub use error::{
     bound_message, bounded, Direction, Num, TpiError, MAX_COORDINATE, MAX_WEIGHT_RATIO,
-    MESSAGE_LIMIT, QUOTE_LIMIT,
+    MESSAGE_LIMIT, MIN_KNOT_DOMAIN, MIN_NET_EXTENT, QUOTE_LIMIT,
 };
 pub use fabricate::{
     fabricate, Cleat, FabricateOptions, Fabrication, FabricationDiagnostic, FabricationError,

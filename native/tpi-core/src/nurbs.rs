@@ -72,7 +72,11 @@
 //! control point coordinates have |x| <= [`crate::MAX_COORDINATE`] (1e15), and the largest
 //! weight is at most [`crate::MAX_WEIGHT_RATIO`] (1e6) times the smallest (equal weights of
 //! any size are fine). Beyond them evaluation overflows (a control point at 1e308 gave
-//! infinite points and NaN normals). They are checked after the finiteness checks above.
+//! infinite points and NaN normals). From below, each direction's domain is at least
+//! [`crate::MIN_KNOT_DOMAIN`] long and the control net's bounding-box diagonal at least
+//! [`crate::MIN_NET_EXTENT`] (both 1e-15): smaller, the derivatives' products overflow or
+//! underflow and a curved surface looked developable. They are checked after the finiteness
+//! checks above.
 //!
 //! Knot multiplicity follows openNURBS: in the Rhino convention no knot value may occur more than
 //! `degree` times (an interior knot of multiplicity degree + 1 would break the surface apart; an
@@ -91,7 +95,10 @@
 use glam::{DVec3, DVec4};
 use serde::{Deserialize, Serialize};
 
-use crate::error::{check_finite, check_magnitude, Direction, Num, TpiError, MAX_WEIGHT_RATIO};
+use crate::error::{
+    check_finite, check_magnitude, Direction, Num, TpiError, MAX_WEIGHT_RATIO, MIN_KNOT_DOMAIN,
+    MIN_NET_EXTENT,
+};
 use crate::surface::{Domain, Interval, Surface, SurfaceDerivatives};
 use crate::tolerance::MAX_NURBS_DEGREE;
 use crate::units::Units;
@@ -226,6 +233,19 @@ impl KnotVector {
                 direction,
                 min,
                 max,
+            });
+        }
+        // A tiny domain makes the derivatives and their products overflow (issue 14).
+        if max - min < MIN_KNOT_DOMAIN {
+            return Err(TpiError::OutOfBounds {
+                field: format!(
+                    "{field}[{}] - {field}[{}]",
+                    rhino_offset + count - 1,
+                    rhino_offset + degree - 1
+                ),
+                value: max - min,
+                requirement: format!("domain length >= {}", Num(MIN_KNOT_DOMAIN)),
+                reason: "derivatives grow as the domain shrinks and would overflow; scale the knots into range".to_string(),
             });
         }
 
@@ -572,6 +592,15 @@ impl NurbsSurface {
             || "bounding-box diagonal of points".to_string(),
             net_diagonal,
         )?;
+        // A tiny net (or one point repeated) has normals that underflow to zero (issue 14).
+        if net_diagonal < MIN_NET_EXTENT {
+            return Err(TpiError::OutOfBounds {
+                field: "bounding-box diagonal of points".to_string(),
+                value: net_diagonal,
+                requirement: format!(">= {}", Num(MIN_NET_EXTENT)),
+                reason: "a control net this small (or a single point) has no representable normals; scale the model into range".to_string(),
+            });
+        }
 
         let domain = Domain::new(basis_u.interval(), basis_v.interval());
         let bezier = BezierPatches::extract(&basis_u, &basis_v, &homogeneous);

@@ -336,7 +336,10 @@ fn interior_knot_multiplicity_above_degree_is_rejected() {
     let spec = NurbsSpec {
         count: [5, 6],
         knots_v: vec![-2.0, -2.0, 0.5, 0.5, 0.5, 1.0, 1.0],
-        points: vec![[0.0, 0.0, 0.0]; 30],
+        // A flat net (one point repeated is refused: MIN_NET_EXTENT).
+        points: (0..30)
+            .map(|k| [(k / 6) as f64, (k % 6) as f64, 0.0])
+            .collect(),
         weights: None,
         ..valid_spec()
     };
@@ -736,4 +739,73 @@ fn random_inputs_never_panic() {
         accepted > 1000,
         "only {accepted} random inputs were valid: the fuzz loop tests little"
     );
+}
+
+/// Issue 14: a dome with its knots scaled by 1e-80 (or its control points by 1e-100) was
+/// accepted, its derivatives' products overflowed (or underflowed), and the surface was called
+/// developable. The domain's length and the net's extent are bounded from below
+/// (MIN_KNOT_DOMAIN, MIN_NET_EXTENT): just above the bounds the surface evaluates with finite
+/// derivatives and a normal whose first fundamental form is finite and non-zero; just below
+/// it is refused, naming the knots or the net and the bound.
+#[test]
+fn a_tiny_domain_or_net_is_refused_with_the_bound() {
+    use tpi_core::{MIN_KNOT_DOMAIN, MIN_NET_EXTENT};
+    let spec = valid_spec();
+    let scaled_knots = |factor: f64| NurbsSpec {
+        knots_u: spec.knots_u.iter().map(|k| k * factor).collect(),
+        knots_v: spec.knots_v.iter().map(|k| k * factor).collect(),
+        ..spec.clone()
+    };
+    let net = spec.build().expect("valid").bounding_box_diagonal();
+    let scaled_points = |factor: f64| NurbsSpec {
+        points: spec
+            .points
+            .iter()
+            .map(|p| [p[0] * factor, p[1] * factor, p[2] * factor])
+            .collect(),
+        ..spec.clone()
+    };
+    // Both domains of valid_spec are 2 long, its net about 5 across.
+    for accepted in [
+        scaled_knots(MIN_KNOT_DOMAIN / 2.0 * 1.01),
+        scaled_points(MIN_NET_EXTENT / net * 1.01),
+        // The extreme ratio: the smallest domain with a net of 5e14.
+        NurbsSpec {
+            points: scaled_points(1e14).points,
+            ..scaled_knots(MIN_KNOT_DOMAIN / 2.0 * 1.01)
+        },
+    ] {
+        let surface = accepted.build().expect("within the bounds");
+        let d = surface.domain();
+        for (a, b) in [(0.3, 0.4), (0.5, 0.5), (0.9, 0.1)] {
+            let e = surface.evaluate(d.u.lerp(a), d.v.lerp(b));
+            let (su, sv) = (e.su, e.sv);
+            let first = su.dot(su) * sv.dot(sv) - su.dot(sv).powi(2);
+            assert!(
+                [e.point, su, sv, e.suu, e.suv, e.svv]
+                    .iter()
+                    .all(|v| v.is_finite()),
+                "{e:?}"
+            );
+            assert!(first.is_finite() && first > 0.0, "EG - F^2 = {first:e}");
+        }
+    }
+    match build_error(&scaled_knots(MIN_KNOT_DOMAIN / 2.0 * 0.99)) {
+        TpiError::OutOfBounds { field, value, .. } => {
+            assert_eq!(field, "knots_u[4] - knots_u[2]");
+            assert!(value < MIN_KNOT_DOMAIN);
+        }
+        other => panic!("{other:?}"),
+    }
+    match build_error(&scaled_points(MIN_NET_EXTENT / net * 0.99)) {
+        TpiError::OutOfBounds { field, value, .. } => {
+            assert_eq!(field, "bounding-box diagonal of points");
+            assert!(value < MIN_NET_EXTENT);
+        }
+        other => panic!("{other:?}"),
+    }
+    // One point repeated: no surface at all.
+    let mut single = spec.clone();
+    single.points = vec![[1.0, 2.0, 3.0]; spec.points.len()];
+    assert!(matches!(build_error(&single), TpiError::OutOfBounds { .. }));
 }
