@@ -30,9 +30,9 @@ use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
 use crate::neighbours::SlopeFrame;
 use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane};
 use crate::progress::{Stage, Stages, Tally};
+use crate::projection::periodic_foot;
 use crate::samples::Samples;
 use crate::structure::{DualStructure, FacetPlan};
-use crate::projection::periodic_foot;
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
     CORNER_ON_CROSSING, CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE,

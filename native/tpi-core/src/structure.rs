@@ -37,8 +37,8 @@ use crate::closed::{self, SurfaceLayout};
 use crate::diagnostics::Diagnostic;
 use crate::diffgeo::{flat_curvatures, LocalGeometry};
 use crate::discretise::{
-    check_closed_seeds, check_not_collinear, ms, plane_extent, DiscretiseOptions,
-    MeshTopology, PlaneMode, Timings,
+    check_closed_seeds, check_not_collinear, ms, plane_extent, DiscretiseOptions, MeshTopology,
+    PlaneMode, Timings,
 };
 use crate::error::TpiError;
 use crate::flat;
@@ -223,14 +223,8 @@ pub(crate) fn decide_structure(
         } else {
             0.0
         };
-        let strips = rulings::strip_structure(
-            surface,
-            r,
-            &samples.uv,
-            &samples.planes,
-            closed,
-            margin,
-        );
+        let strips =
+            rulings::strip_structure(surface, r, &samples.uv, &samples.planes, closed, margin);
         if let Some((triangulation, planes, source)) = strips {
             check_not_collinear(&samples.plane_uv)?;
             timings.delaunay = ms(hull_stage);
@@ -290,7 +284,10 @@ pub(crate) fn decide_structure(
             let neighbours =
                 decide_convex(&mut triangulation, slopes, lifted, &neighbour_input, stages);
             timings.neighbours = ms(stage);
-            (clipped(triangulation, neighbours, None, MeshTopology::DISC), false)
+            (
+                clipped(triangulation, neighbours, None, MeshTopology::DISC),
+                false,
+            )
         }
         // Path 4: strictly convex everywhere but too steep for the slope embedding.
         _ if convex => {
@@ -307,7 +304,10 @@ pub(crate) fn decide_structure(
                 samples.plane_uv.len(),
             );
             timings.neighbours = ms(stage);
-            (clipped(triangulation, neighbours, None, MeshTopology::DISC), false)
+            (
+                clipped(triangulation, neighbours, None, MeshTopology::DISC),
+                false,
+            )
         }
         // Path 5: a flat surface, the Voronoi cells of the seeds in its plane.
         _ if flat => {
