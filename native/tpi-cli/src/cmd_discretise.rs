@@ -446,3 +446,52 @@ fn human_size(n: usize) -> String {
         format!("{n} B")
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::check_finite;
+    use glam::DVec3;
+    use tpi_core::{Discretisation, QualityReport, Seed};
+
+    fn finite() -> Discretisation {
+        Discretisation {
+            vertices: vec![DVec3::ZERO, DVec3::X, DVec3::Y],
+            seeds: vec![Seed {
+                uv: [0.5, 0.5],
+                point: DVec3::ZERO,
+                normal: DVec3::Z,
+                curvatures: [0.1, 0.2],
+            }],
+            quality: Some(QualityReport {
+                all_finite: true,
+                ..QualityReport::default()
+            }),
+            ..Discretisation::default()
+        }
+    }
+
+    #[test]
+    fn every_non_finite_number_is_refused_before_writing() {
+        // Issue 14: an overflowing surface gave `null` vertices in the JSON and exit 0.
+        assert_eq!(check_finite(&finite()), Ok(()));
+        let mut vertex = finite();
+        vertex.vertices[2].y = f64::NAN;
+        let message = check_finite(&vertex).unwrap_err();
+        assert!(message.starts_with("vertex 2 is not finite"), "{message}");
+        let mut seed = finite();
+        seed.seeds[0].curvatures[1] = f64::INFINITY;
+        let message = check_finite(&seed).unwrap_err();
+        assert!(message.starts_with("pattern point 0:"), "{message}");
+        let mut report = finite();
+        if let Some(q) = report.quality.as_mut() {
+            q.max_deviation = f64::INFINITY;
+        }
+        let message = check_finite(&report).unwrap_err();
+        assert!(message.contains("deviation is not finite"), "{message}");
+        let mut flagged = finite();
+        if let Some(q) = flagged.quality.as_mut() {
+            q.all_finite = false;
+        }
+        assert!(check_finite(&flagged).is_err());
+    }
+}

@@ -198,7 +198,45 @@ fn plane_summary(result: &Discretisation) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{sig, topology_warning};
+    use super::{sig, summary, topology_warning};
+    use tpi_core::{Discretisation, QualityReport};
+
+    /// The area line of the summary of a mesh whose smallest facet area is `min`.
+    fn area_line(min: f64) -> String {
+        let result = Discretisation {
+            quality: Some(QualityReport {
+                min_facet_area: min,
+                max_facet_area: 2.5,
+                ..QualityReport::default()
+            }),
+            ..Discretisation::default()
+        };
+        let text = summary(&result, "s.json", "hex:4x4", 1);
+        let line = text.lines().find(|l| l.contains("facet area"));
+        line.unwrap_or_else(|| panic!("no area line in {text}"))
+            .to_string()
+    }
+
+    #[test]
+    fn a_negative_facet_area_is_said_to_be_signed() {
+        // Issue 14: the summary printed negative areas with no word on what they mean.
+        let negative = area_line(-0.125);
+        assert!(
+            negative.contains("facet area -0.1250 .. 2.500"),
+            "{negative}"
+        );
+        assert!(
+            negative
+                .contains("(signed: negative for a facet wound the wrong way round, non-simple)"),
+            "{negative}"
+        );
+        let positive = area_line(0.125);
+        assert!(
+            positive.contains("facet area 0.1250 .. 2.500"),
+            "{positive}"
+        );
+        assert!(!positive.contains("signed"), "{positive}");
+    }
 
     #[test]
     fn the_topology_warning_points_at_the_invalid_facets_where_there_are_some() {
