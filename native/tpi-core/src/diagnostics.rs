@@ -153,3 +153,15 @@ impl Diagnostic {
         }
     }
 }
+
+/// Per pattern point (of `count`), whether a diagnostic names it (the report's
+/// [`crate::FLAG_DIAGNOSTIC`]).
+pub(crate) fn diagnosed_points(diagnostics: &[Diagnostic], count: usize) -> Vec<bool> {
+    let mut diagnosed = vec![false; count];
+    for d in diagnostics {
+        for p in d.points() {
+            diagnosed[p as usize] = true;
+        }
+    }
+    diagnosed
+}

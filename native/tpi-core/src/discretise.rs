@@ -31,7 +31,7 @@ use serde::{Serialize, Serializer};
 use crate::adjusted_planes::tilt_and_offset;
 use crate::boundary::Boundary;
 use crate::closed::SurfaceLayout;
-use crate::diagnostics::Diagnostic;
+use crate::diagnostics::{diagnosed_points, Diagnostic};
 use crate::diffgeo::flat_curvatures;
 use crate::error::TpiError;
 use crate::facets::{build_stage, FacetParams, Facets, FootHint, TriangleVertex, VertexKind};
@@ -749,12 +749,7 @@ fn measure(
     feet: &[FootHint],
     stages: &Stages<'_>,
 ) {
-    let mut diagnosed = vec![false; samples.uv.len()];
-    for d in &result.diagnostics {
-        for p in d.points() {
-            diagnosed[p as usize] = true;
-        }
-    }
+    let diagnosed = diagnosed_points(&result.diagnostics, samples.uv.len());
     let (quality, flags) = report(
         &ReportInput {
             surface,

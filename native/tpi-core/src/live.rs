@@ -50,7 +50,7 @@ use std::collections::HashMap;
 
 use glam::DVec3;
 
-use crate::diagnostics::Diagnostic;
+use crate::diagnostics::{diagnosed_points, Diagnostic};
 use crate::diffgeo::LocalGeometry;
 use crate::discretise::{
     plane_adjustments, run, Discretisation, DiscretiseOptions, MeshTopology, PipelineState,
@@ -1630,12 +1630,7 @@ impl State {
             topology: MeshTopology::DISC,
         };
         if options.quality_report {
-            let mut diagnosed = vec![false; n];
-            for d in &result.diagnostics {
-                for p in d.points() {
-                    diagnosed[p as usize] = true;
-                }
-            }
+            let diagnosed = diagnosed_points(&result.diagnostics, n);
             let (quality, flags) = report(
                 &ReportInput {
                     surface,

@@ -151,18 +151,6 @@ pub(crate) fn decide_structure(
             weld,
         )?;
     }
-    let check_seam = |samples: &Samples| {
-        let regular = vec![true; samples.uv.len()];
-        check_closed_seeds(
-            surface,
-            &layout,
-            &samples.uv,
-            &samples.seeds,
-            &regular,
-            true,
-            weld,
-        )
-    };
 
     // Path 1: closed and convex.
     let hull_stage = Instant::now();
@@ -214,7 +202,7 @@ pub(crate) fn decide_structure(
     if let Some(r) = rulings.filter(|_| allow_strips) {
         let closed = layout.closed[1 - r.along];
         if closed && !trimmed {
-            check_seam(samples)?;
+            check_seam(surface, &layout, samples, weld)?;
         }
         stages.enter(Stage::Delaunay, None);
         // Trimmed: walls beyond the domain, the strips clipped on the trim by the facet stage.
@@ -314,7 +302,7 @@ pub(crate) fn decide_structure(
             let mut band = None;
             let mut topology = MeshTopology::DISC;
             if let Some(walls) = layout.open_sides().filter(|_| !trimmed) {
-                check_seam(samples)?;
+                check_seam(surface, &layout, samples, weld)?;
                 let open = walls.iter().filter(|&&w| w).count();
                 topology = MeshTopology {
                     euler: 2 - open as i64,
@@ -364,6 +352,26 @@ fn note_open_seam(samples: &mut Samples, layout: &SurfaceLayout) {
             .diagnostics
             .push(Diagnostic::SeamLeftOpen { direction: k as u8 });
     }
+}
+
+/// No two seeds on one surface point across the seam of a surface about to be closed
+/// (`weld`: the weld distance).
+fn check_seam(
+    surface: &dyn Surface,
+    layout: &SurfaceLayout,
+    samples: &Samples,
+    weld: f64,
+) -> Result<(), TpiError> {
+    let regular = vec![true; samples.uv.len()];
+    check_closed_seeds(
+        surface,
+        layout,
+        &samples.uv,
+        &samples.seeds,
+        &regular,
+        true,
+        weld,
+    )
 }
 
 /// A structure whose facets are clipped on the boundary.
@@ -442,13 +450,10 @@ fn any_curvature(
     let mut topology = MeshTopology::DISC;
     let mut folded = None;
     if let Some(open) = seam {
-        check_closed_seeds(
+        check_seam(
             surface,
             layout,
-            &samples.uv,
-            &samples.seeds,
-            &vec![true; n],
-            true,
+            samples,
             options.weld_tolerance * samples.diagonal,
         )?;
         stages.enter(Stage::Neighbours, None);
