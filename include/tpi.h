@@ -427,8 +427,8 @@ typedef enum TpiDiagnosticKind {
      */
     TPI_DIAGNOSTIC_KIND_RULING_STRIPS = 11,
     /**
-     * The trim cuts the point's facet (a long strip) into several parts: it keeps the part
-     * around its seed, the others are left out as gaps beside the trim.
+     * The boundary or trim cuts the point's facet into several parts: it keeps the part
+     * around its seed, the others are left out as gaps beside the boundary.
      */
     TPI_DIAGNOSTIC_KIND_FACET_PARTS_LEFT_OUT = 12,
 } TpiDiagnosticKind;

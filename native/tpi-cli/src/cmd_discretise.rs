@@ -317,7 +317,7 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
         .filter(|d| matches!(d, Diagnostic::FacetPartsLeftOut { .. }))
         .count();
     if cut > 0 {
-        eprintln!("warning: the trim cuts {cut} strip facet(s) into several parts (a hole or notch across the rulings): each keeps the part around its seed, and the other parts are left out as gaps beside the trim (facet_parts_left_out in the JSON)");
+        eprintln!("warning: the boundary cuts {cut} facet(s) into several parts (a strip across a hole or notch of a trim, or a saddle's facet whose edge dips beyond the wall): each keeps the part around its seed, and the other parts are left out as gaps beside the boundary (facet_parts_left_out in the JSON)");
     }
     for d in &result.diagnostics {
         match *d {

@@ -264,15 +264,36 @@ impl Boundary {
         if from.curve != to.curve {
             return None;
         }
-        let length = match self {
+        Some((to.along - from.along).rem_euclid(self.loop_length(from.curve)))
+    }
+
+    /// As [`Boundary::ahead`], but a `to` less than `slack` behind `from` is that far behind
+    /// (negative) rather than almost a whole loop ahead.
+    pub(crate) fn ahead_or_just_behind(
+        &self,
+        from: Position,
+        to: Position,
+        slack: f64,
+    ) -> Option<f64> {
+        let ahead = self.ahead(from, to)?;
+        let length = self.loop_length(from.curve);
+        Some(if ahead > length - slack {
+            ahead - length
+        } else {
+            ahead
+        })
+    }
+
+    /// The length of loop `curve` (normalised parameters).
+    fn loop_length(&self, curve: u32) -> f64 {
+        match self {
             Boundary::Rectangle(_) => 4.0,
             Boundary::Band { .. } => 1.0,
             Boundary::Loops(loops) => {
-                let a = &loops.arclength[from.curve as usize];
+                let a = &loops.arclength[curve as usize];
                 a[a.len() - 1]
             }
-        };
-        Some((to.along - from.along).rem_euclid(length))
+        }
     }
 }
 

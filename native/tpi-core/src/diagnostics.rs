@@ -86,10 +86,11 @@ pub enum Diagnostic {
         /// Closed across the rulings: the strips close up into an annulus.
         closed: bool,
     },
-    /// The trim cuts this point's facet into several parts (a long strip of a developable
-    /// surface across a hole or a notch of the trim): the facet keeps the part around its
-    /// seed, and the other parts, which no other facet's plane can cover, are left out of
-    /// the mesh as gaps beside the trim.
+    /// The boundary or trim cuts this point's facet into several parts (a long strip of a
+    /// developable surface across a hole or a notch of a trim, or a saddle's boundary facet
+    /// whose edge dips beyond the wall and back): the facet keeps the part around its seed,
+    /// and the other parts, which no other facet's plane can cover, are left out of the mesh
+    /// as gaps beside the boundary.
     FacetPartsLeftOut {
         /// The pattern point.
         point: u32,

@@ -26,18 +26,18 @@ use rayon::prelude::*;
 
 use crate::boundary::{Boundary, Position};
 use crate::diagnostics::Diagnostic;
-use crate::mesh::{assemble, Assembly, FacetMesh, SlopeView};
+use crate::mesh::{assemble, drop_coincident_crossings, Assembly, FacetMesh, SlopeView};
 use crate::neighbours::SlopeFrame;
 use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane};
-use crate::progress::{Stage, Stages, Tally};
+use crate::progress::{NoProgress, Stage, Stages, Tally};
 use crate::projection::periodic_foot;
 use crate::samples::Samples;
 use crate::structure::{DualStructure, FacetPlan};
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
     CORNER_ON_CROSSING, CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE,
-    DEFAULT_FAR_VERTEX_FACTOR, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES, RAY_DOUBLINGS,
-    RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR,
+    DEFAULT_FAR_VERTEX_FACTOR, GRAZING_CROSSING_SLACK, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES,
+    RAY_DOUBLINGS, RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR, WALL_CLIP_SHORT_EDGE,
 };
 use crate::triangulation::{real_pairs, triangle_edges, DualTriangulation, Edge, Fan, NO_TRIANGLE};
 
@@ -300,15 +300,41 @@ pub(crate) fn build_stage(
             };
             (mesh, planes.len() > n, *strips)
         }
-        FacetPlan::Augmented(augmented) => {
-            let mesh = build_closed_facets(
+        FacetPlan::Augmented { seeds, on_wall } => {
+            // Clipped on the wall, the closed facets are only the yardstick of the clipped
+            // ones: the progress reported is the clipped build's.
+            let unreported = Stages::new(&NoProgress);
+            let closed = build_closed_facets(
                 &triangulation,
-                &augmented.planes,
+                &seeds.planes,
                 n,
-                &augmented.source,
+                &seeds.source,
                 params,
-                stages,
+                if *on_wall { &unreported } else { stages },
             );
+            let mesh = if *on_wall {
+                let mut clipped = build_ghost_clipped_facets(
+                    surface,
+                    boundary,
+                    &samples.uv,
+                    &samples.tangents,
+                    &seeds.planes,
+                    &seeds.source,
+                    &triangulation,
+                    params,
+                    stages,
+                );
+                let spacing = samples.diagonal / (2.0 * n as f64).sqrt();
+                drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
+                mark_boundary_vertices(&mut clipped);
+                if wall_clip_keeps_shape(&closed, &clipped, &seeds.planes[..n]) {
+                    clipped
+                } else {
+                    closed
+                }
+            } else {
+                closed
+            };
             (mesh, true, false)
         }
     };
@@ -329,6 +355,77 @@ pub(crate) fn build_stage(
         triangulation: real,
         ghost_neighbours,
     }
+}
+
+/// Whether the facets clipped on the wall (`clipped`) keep the shape of the facets closed by
+/// the ghosts' planes (`closed`), both over `planes` (the real seeds'): the same Euler
+/// characteristic and boundary loops, every edge held once or twice in opposite directions,
+/// and no more facets open or non-simple. On a saddle a boundary facet's edges can run past
+/// the wall all around it (its polygon, not its seed, beyond the boundary) and its neighbours'
+/// cuts then leave it apart: the closed facets, which the validity flips judged, are kept.
+fn wall_clip_keeps_shape(closed: &FacetMesh, clipped: &FacetMesh, planes: &[Plane]) -> bool {
+    match (mesh_shape(closed, planes), mesh_shape(clipped, planes)) {
+        (Some(before), Some(after)) => {
+            after.euler == before.euler
+                && after.boundary_loops == before.boundary_loops
+                && after.bad_facets <= before.bad_facets
+        }
+        (None, Some(_)) => true,
+        (_, None) => false,
+    }
+}
+
+/// Gives every vertex on an edge held by one facet, other than a corner, the kind
+/// [`VertexKind::Boundary`]: on the wall-clipped path a triangle vertex with a ghost can end the
+/// mesh short of the wall, or a crossing be merged into a triangle vertex, and the mesh's edge
+/// is what fabrication and the report read the kind for (as on the closed path, where every
+/// vertex of a triangle with a ghost is a boundary vertex).
+fn mark_boundary_vertices(mesh: &mut FacetMesh) {
+    let Ok((_, boundary)) = crate::sanity::edges(&mesh.offsets, &mesh.loops) else {
+        return;
+    };
+    for (a, b) in boundary {
+        for v in [a, b] {
+            let kind = &mut mesh.vertex_kinds[v as usize];
+            if *kind == VertexKind::Interior {
+                *kind = VertexKind::Boundary;
+            }
+        }
+    }
+}
+
+/// What [`wall_clip_keeps_shape`] compares.
+struct MeshShape {
+    euler: i64,
+    boundary_loops: usize,
+    /// Facets with fewer than three vertices or a loop that is not simple in its plane.
+    bad_facets: usize,
+}
+
+/// The shape of a facet mesh, or `None` where an edge is held by more than two facets or twice
+/// in one direction.
+fn mesh_shape(mesh: &FacetMesh, planes: &[Plane]) -> Option<MeshShape> {
+    let (edges, boundary) = crate::sanity::edges(&mesh.offsets, &mesh.loops).ok()?;
+    let mut used = vec![false; mesh.vertices.len()];
+    let mut buffer = Vec::new();
+    let mut bad_facets = 0;
+    for (f, w) in mesh.offsets.windows(2).enumerate() {
+        let lp = &mesh.loops[w[0] as usize..w[1] as usize];
+        for &v in lp {
+            used[v as usize] = true;
+        }
+        let points = lp.iter().map(|&v| mesh.vertices[v as usize]);
+        if !crate::quality::facet_shape_into(&planes[f], points, &mut buffer).simple {
+            bad_facets += 1;
+        }
+    }
+    let vertices = used.iter().filter(|&&u| u).count() as i64;
+    let facets = mesh.offsets.len().saturating_sub(1) as i64;
+    Some(MeshShape {
+        euler: vertices - edges as i64 + facets,
+        boundary_loops: crate::sanity::boundary_loops(mesh.vertices.len(), &boundary),
+        bad_facets,
+    })
 }
 
 /// Builds the facets of all pattern points from the dual triangulation, ending them on
@@ -402,7 +499,12 @@ pub(crate) fn build_ghost_clipped_facets(
     }
     ctx.uv = &all_uv;
     ctx.tangents = &all_tangents;
-    clip_facets(&ctx, real_count, tri, params, None, stages)
+    let mut mesh = clip_facets(&ctx, real_count, tri, params, None, stages);
+    // Diagnostics name pattern points: a ghost stands for its seed.
+    for diagnostic in &mut mesh.diagnostics {
+        diagnostic.map_points(|p| source[p as usize]);
+    }
+    mesh
 }
 
 /// The facets of the points `0..real_count` of `tri`, ending on `ctx.boundary` (module doc);
@@ -1530,7 +1632,11 @@ fn seed_part(
                 .iter()
                 .enumerate()
                 .filter_map(|(e, r)| match r.1 {
-                    Some((false, at)) => Some((cx.boundary.ahead(wall, at)?, e)),
+                    Some((false, at)) => Some((
+                        cx.boundary
+                            .ahead_or_just_behind(wall, at, GRAZING_CROSSING_SLACK)?,
+                        e,
+                    )),
                     _ => None,
                 })
                 .min_by(|x, y| x.0.total_cmp(&y.0));

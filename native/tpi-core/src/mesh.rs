@@ -351,7 +351,7 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
 /// facet, exactly at a vertex where three planes meet): kept, the zero-length edge v-w would
 /// turn the facets non-simple. A merge that would leave a facet fewer than three vertices is
 /// not made. Vertices are renumbered in order; nothing changes when no such pair is found.
-fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
+pub(crate) fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
     let is_crossing = |mesh: &FacetMesh, v: u32| match mesh.vertex_kinds[v as usize] {
         VertexKind::Corner => true,
         VertexKind::Boundary => mesh.vertex_source[v as usize] == u32::MAX,

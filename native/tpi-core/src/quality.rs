@@ -468,7 +468,7 @@ pub(crate) struct FacetShape {
 
 /// Measures a polygon lying (nearly) in `plane`, with a caller's buffer for the 2D points (no
 /// allocation per facet).
-fn facet_shape_into(
+pub(crate) fn facet_shape_into(
     plane: &Plane,
     points: impl Iterator<Item = DVec3>,
     p: &mut Vec<DVec2>,

@@ -132,7 +132,7 @@ impl Discretisation {
             }
             check_facet(self, facet, diagonal, &mut flat)?;
         }
-        let (edges, boundary) = edges(self)?;
+        let (edges, boundary) = edges(&self.facet_offsets, &self.facet_loops)?;
         let vertices = used.iter().filter(|&&u| u).count();
         let euler = vertices as i64 - edges as i64 + facets as i64;
         let loops = boundary_loops(self.vertices.len(), &boundary);
@@ -220,12 +220,16 @@ pub(crate) fn crosses(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
 }
 
 /// The number of distinct edges, and the boundary edges (held by one facet), after checking
-/// that every edge is held once, or twice in opposite directions.
-fn edges(d: &Discretisation) -> Result<(usize, Vec<(u32, u32)>), SanityError> {
+/// that every edge is held once, or twice in opposite directions. Facet f's loop is
+/// `loops[offsets[f]..offsets[f + 1]]`.
+pub(crate) fn edges(
+    offsets: &[u32],
+    loops: &[u32],
+) -> Result<(usize, Vec<(u32, u32)>), SanityError> {
     // Key: (lo << 32 | hi) << 1 | (direction lo -> hi ? 0 : 1).
-    let mut keys: Vec<u128> = Vec::with_capacity(d.facet_loops.len());
-    for facet in 0..d.facet_count() {
-        let lp = d.facet(facet);
+    let mut keys: Vec<u128> = Vec::with_capacity(loops.len());
+    for w in offsets.windows(2) {
+        let lp = &loops[w[0] as usize..w[1] as usize];
         for k in 0..lp.len() {
             let (a, b) = (lp[k], lp[(k + 1) % lp.len()]);
             let (lo, hi, reversed) = if a < b { (a, b, 0) } else { (b, a, 1) };
@@ -268,7 +272,7 @@ fn edges(d: &Discretisation) -> Result<(usize, Vec<(u32, u32)>), SanityError> {
 }
 
 /// Connected components of the boundary edges.
-fn boundary_loops(vertex_count: usize, boundary: &[(u32, u32)]) -> usize {
+pub(crate) fn boundary_loops(vertex_count: usize, boundary: &[(u32, u32)]) -> usize {
     let mut parent: Vec<u32> = (0..vertex_count as u32).collect();
     let mut components = 0usize;
     let mut on_boundary = vec![false; vertex_count];

@@ -73,8 +73,15 @@ pub(crate) enum FacetPlan {
         /// The strips of a developable surface (path 2).
         strips: bool,
     },
-    /// The any-curvature path's seeds and ghosts, every real facet closed by them.
-    Augmented(Augmented),
+    /// The any-curvature path's seeds and ghosts, every real facet closed by them; `on_wall`:
+    /// the ghosts are mirrored across the boundary or trim (not a structure folded across a
+    /// seam), and the facets are clipped on its wall where that keeps the mesh's shape.
+    Augmented {
+        /// Seeds and ghosts.
+        seeds: Augmented,
+        /// Clip on the boundary's wall.
+        on_wall: bool,
+    },
 }
 
 /// The result of the dual-structure stage.
@@ -541,7 +548,10 @@ fn any_curvature(
     }
     let structure = DualStructure {
         triangulation,
-        plan: FacetPlan::Augmented(augmented),
+        plan: FacetPlan::Augmented {
+            seeds: augmented,
+            on_wall: !seam_closed,
+        },
         neighbours,
         topology,
     };

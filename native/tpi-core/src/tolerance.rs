@@ -153,6 +153,22 @@ pub const CROSSING_ACCEPTANCE: f64 = 1e-9;
 /// boundary crossing along its loop is that crossing: no vertex of its own.
 pub const CORNER_ON_CROSSING: f64 = 1e-9;
 
+/// Where a facet's exit crossing and its next entry crossing lie within this arclength
+/// (normalised parameters) of each other along their loop, the entry counts as at the exit
+/// even when rounding puts it just behind: an edge that grazes the wall (common on saddles,
+/// where facet edges run along the boundary) leaves and re-enters at one point, and must not
+/// send the clipped facet once around the whole loop.
+pub const GRAZING_CROSSING_SLACK: f64 = 1e-9;
+
+/// Facets clipped on the wall on the any-curvature path: a boundary crossing or corner within
+/// this fraction of the mean seed spacing (the bounding diagonal over sqrt(2 n)) of its
+/// neighbour in every facet that holds it is merged into that neighbour. The crossing lies on
+/// the line of the edge it ends, so the merge keeps every facet exactly planar; the mesh's edge
+/// then leaves the wall by at most this much. Without it, a triangle vertex just inside the
+/// wall and the crossing just beyond it give a boundary edge thousands of times shorter than
+/// the spacing, which the panels' offset (fabrication) cannot follow.
+pub const WALL_CLIP_SHORT_EDGE: f64 = 0.01;
+
 /// Doublings of the step when following a hull ray outwards.
 pub const RAY_DOUBLINGS: usize = 60;
 

@@ -793,3 +793,75 @@ fn adjusted_planes_give_valid_meshes_on_any_curvature() {
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// Where a boundary vertex of a saddle mesh stands, by an independent projection: on the
+/// boundary's wall (the ruled surface S(b) + t n(b) of the normals along the boundary curve),
+/// beyond it, or short of it inside the domain (normalised distance from the boundary).
+enum WallPlace {
+    OnWall,
+    Beyond,
+    Inside(f64),
+}
+
+fn wall_place(surface: &dyn Surface, x: DVec3, spacing: f64) -> WallPlace {
+    let uv = closest_parameters(surface, x, 48);
+    let measure = inside_measure(surface, uv);
+    if measure > 1e-7 {
+        return WallPlace::Inside(measure);
+    }
+    // The foot is on the boundary: x is on the wall when x - S(foot) runs along the normal.
+    let r = x - surface.point_at(uv[0], uv[1]);
+    let n = unit_normal(surface, uv[0], uv[1]);
+    if (r - n * r.dot(n)).length() <= 1e-6 * spacing {
+        WallPlace::OnWall
+    } else {
+        WallPlace::Beyond
+    }
+}
+
+/// Issue 10, item 2: saddle meshes end on the boundary's wall as convex ones do, not with
+/// boundary facets reaching out beyond it. Every boundary-loop vertex lies on the wall or
+/// (where a triangle vertex with a ghost ends a facet first) inside the domain within one
+/// seed spacing of the boundary; none beyond the wall; most on it; and every vertex of the
+/// mesh lies within a tenth of the spacing of the surface.
+#[test]
+fn saddle_meshes_end_on_the_wall() {
+    let surfaces = saddles();
+    for (name, surface) in &surfaces {
+        let surface = surface.as_ref();
+        for (pattern_name, pattern) in patterns(300) {
+            let d = discretise(surface, &pattern, &DiscretiseOptions::default()).unwrap();
+            let n = d.facet_count();
+            let spacing = seed_diagonal(&d) / (2.0 * n as f64).sqrt();
+            let t = topology(&d);
+            let (mut on, mut inside) = (0, 0);
+            for (v, _) in t.on_boundary.iter().enumerate().filter(|(_, &b)| b) {
+                match wall_place(surface, d.vertices[v], spacing) {
+                    WallPlace::OnWall => on += 1,
+                    WallPlace::Inside(m) => {
+                        inside += 1;
+                        assert!(
+                            m <= 1.0 / (n as f64).sqrt(),
+                            "{name} / {pattern_name}: boundary vertex {v} {m} inside"
+                        );
+                    }
+                    WallPlace::Beyond => {
+                        panic!("{name} / {pattern_name}: boundary vertex {v} beyond the wall")
+                    }
+                }
+            }
+            assert!(
+                on > inside,
+                "{name} / {pattern_name}: {on} boundary vertices on the wall, {inside} inside"
+            );
+            for (v, &x) in d.vertices.iter().enumerate() {
+                let uv = closest_parameters(surface, x, 48);
+                let off = x.distance(surface.point_at(uv[0], uv[1]));
+                assert!(
+                    off <= 0.1 * spacing,
+                    "{name} / {pattern_name}: vertex {v} {off} from the surface (spacing {spacing})"
+                );
+            }
+        }
+    }
+}

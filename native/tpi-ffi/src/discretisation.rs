@@ -196,8 +196,8 @@ pub enum TpiDiagnosticKind {
     /// an extrusion): its facets are strips between the lines where the tangent planes of
     /// neighbouring rulings meet (point is TPI_NO_POINT).
     RulingStrips = 11,
-    /// The trim cuts the point's facet (a long strip) into several parts: it keeps the part
-    /// around its seed, the others are left out as gaps beside the trim.
+    /// The boundary or trim cuts the point's facet into several parts: it keeps the part
+    /// around its seed, the others are left out as gaps beside the boundary.
     FacetPartsLeftOut = 12,
 }
 

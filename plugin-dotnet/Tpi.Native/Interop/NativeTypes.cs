@@ -99,7 +99,7 @@ namespace Tpi.Native
         UnexpectedTopology = 10,
         /// <summary>The surface is developable with its rulings along parameter lines: its facets are strips between the lines where the tangent planes of neighbouring rulings meet.</summary>
         RulingStrips = 11,
-        /// <summary>The trim cuts the point's facet (a long strip) into several parts: it keeps the part around its seed, the others are left out as gaps beside the trim.</summary>
+        /// <summary>The boundary or trim cuts the point's facet into several parts: it keeps the part around its seed, the others are left out as gaps beside the boundary.</summary>
         FacetPartsLeftOut = 12,
     }
 
