@@ -328,6 +328,14 @@ pub(crate) fn build_stage(
                 drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
                 mark_boundary_vertices(&mut clipped);
                 if wall_clip_keeps_shape(&closed, &clipped, &seeds.planes[..n]) {
+                    // The count of coincident neighbour planes is the structure's, not the
+                    // clip's: it is kept.
+                    clipped.diagnostics.extend(
+                        closed
+                            .diagnostics
+                            .into_iter()
+                            .filter(|d| matches!(d, Diagnostic::CoincidentPlanes { .. })),
+                    );
                     clipped
                 } else {
                     closed
