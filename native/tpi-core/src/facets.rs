@@ -26,7 +26,9 @@ use rayon::prelude::*;
 
 use crate::boundary::{Boundary, Position};
 use crate::diagnostics::Diagnostic;
-use crate::mesh::{assemble, drop_coincident_crossings, Assembly, FacetMesh, SlopeView};
+use crate::mesh::{
+    assemble, drop_coincident_crossings, weld_coincident_crossings, Assembly, FacetMesh, SlopeView,
+};
 use crate::neighbours::SlopeFrame;
 use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane};
 use crate::progress::{NoProgress, Stage, Stages, Tally};
@@ -325,8 +327,10 @@ pub(crate) fn build_stage(
                     stages,
                 );
                 let spacing = samples.diagonal / (2.0 * n as f64).sqrt();
+                weld_coincident_crossings(&mut clipped, params.weld_distance);
                 drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
                 mark_boundary_vertices(&mut clipped);
+                start_loops_at_lowest_triangle(&mut clipped);
                 if wall_clip_keeps_shape(&closed, &clipped, &seeds.planes[..n]) {
                     // The count of coincident neighbour planes is the structure's, not the
                     // clip's: it is kept.
@@ -398,6 +402,22 @@ fn mark_boundary_vertices(mesh: &mut FacetMesh) {
             if *kind == VertexKind::Interior {
                 *kind = VertexKind::Boundary;
             }
+        }
+    }
+}
+
+/// Starts each facet's loop at its vertex of the lowest-numbered dual triangle (loops without
+/// one keep their start). The clip's walk starts a loop wherever the facet's first inside item
+/// falls, and a vertex lying on the wall is inside or not by rounding: the same structure
+/// (one face, or the same face split into a polysurface) must give the same loops.
+fn start_loops_at_lowest_triangle(mesh: &mut FacetMesh) {
+    for f in 0..mesh.offsets.len().saturating_sub(1) {
+        let lp = &mut mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize];
+        let first = (0..lp.len())
+            .filter(|&k| mesh.vertex_source[lp[k] as usize] != u32::MAX)
+            .min_by_key(|&k| mesh.vertex_source[lp[k] as usize]);
+        if let Some(k) = first {
+            lp.rotate_left(k);
         }
     }
 }

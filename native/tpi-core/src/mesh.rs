@@ -462,6 +462,86 @@ pub(crate) fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
     mesh.offsets = offsets;
 }
 
+/// Merges each boundary crossing with every vertex within `weld` of it into one vertex,
+/// whichever facets hold them: where a triangle vertex lies exactly on the wall (as a grid on a
+/// ruled surface gives), the edges ending there get crossings at that point too, and kept
+/// apart they would give zero-length edges. Points that coincide lie in every plane either lies in, so
+/// every facet stays planar. Loops lose the repeated vertex; nothing changes without such a
+/// pair.
+pub(crate) fn weld_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
+    let is_crossing = |v: u32| {
+        mesh.vertex_kinds[v as usize] == VertexKind::Boundary
+            && mesh.vertex_source[v as usize] == u32::MAX
+    };
+    let mut by_x: Vec<u32> = (0..mesh.vertices.len() as u32).collect();
+    by_x.sort_by(|&a, &b| {
+        mesh.vertices[a as usize]
+            .x
+            .total_cmp(&mesh.vertices[b as usize].x)
+    });
+    let mut merged: Vec<u32> = (0..mesh.vertices.len() as u32).collect();
+    let mut any = false;
+    for (k, &a) in by_x.iter().enumerate() {
+        let pa = mesh.vertices[a as usize];
+        for &b in &by_x[k + 1..] {
+            let pb = mesh.vertices[b as usize];
+            if pb.x - pa.x > weld {
+                break;
+            }
+            if (is_crossing(a) || is_crossing(b)) && pa.distance(pb) <= weld {
+                let (ra, rb) = (find(&mut merged, a), find(&mut merged, b));
+                if ra != rb {
+                    // A triangle vertex stays what it is: the crossings go into it.
+                    let (keep, gone) = match (is_crossing(ra), is_crossing(rb)) {
+                        (true, false) => (rb, ra),
+                        (false, true) => (ra, rb),
+                        _ => (ra.min(rb), ra.max(rb)),
+                    };
+                    merged[gone as usize] = keep;
+                    any = true;
+                }
+            }
+        }
+    }
+    if !any {
+        return;
+    }
+    let drop: Vec<bool> = (0..mesh.vertices.len() as u32)
+        .map(|v| find(&mut merged, v) != v)
+        .collect();
+    let mut renumber = vec![u32::MAX; mesh.vertices.len()];
+    let mut next = 0u32;
+    for (v, slot) in renumber.iter_mut().enumerate() {
+        if !drop[v] {
+            *slot = next;
+            next += 1;
+        }
+    }
+    let facets = mesh.offsets.len() - 1;
+    let mut loops = Vec::with_capacity(mesh.loops.len());
+    let mut offsets = Vec::with_capacity(mesh.offsets.len());
+    offsets.push(0);
+    for f in 0..facets {
+        let start = loops.len();
+        for k in mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize {
+            let id = renumber[find(&mut merged, mesh.loops[k]) as usize];
+            if loops.len() == start || loops[loops.len() - 1] != id {
+                loops.push(id);
+            }
+        }
+        while loops.len() > start + 1 && loops[start] == loops[loops.len() - 1] {
+            loops.pop();
+        }
+        offsets.push(loops.len() as u32);
+    }
+    retain_indexed(&mut mesh.vertices, &drop);
+    retain_indexed(&mut mesh.vertex_kinds, &drop);
+    retain_indexed(&mut mesh.feet, &drop);
+    retain_indexed(&mut mesh.vertex_source, &drop);
+    mesh.loops = loops;
+    mesh.offsets = offsets;
+}
+
 /// Removes the items whose index is marked in `drop`, keeping the order.
 fn retain_indexed<T>(values: &mut Vec<T>, drop: &[bool]) {
     let mut index = 0;
