@@ -372,7 +372,9 @@ pub(crate) fn build_stage(
 /// Whether the facets clipped on the wall (`clipped`) keep the shape of the facets closed by
 /// the ghosts' planes (`closed`), both over `planes` (the real seeds'): the same Euler
 /// characteristic and boundary loops, every edge held once or twice in opposite directions,
-/// and no more facets open or non-simple. On a saddle a boundary facet's edges can run past
+/// no more facets open or non-simple, and no vertex farther from its facet's seed than the
+/// closed facets reach (a clipped facet is a part of its closed one; a corner's normal line
+/// that meets a non-convex facet's plane far away must not add a spike). On a saddle a boundary facet's edges can run past
 /// the wall all around it (its polygon, not its seed, beyond the boundary) and its neighbours'
 /// cuts then leave it apart: the closed facets, which the validity flips judged, are kept.
 fn wall_clip_keeps_shape(closed: &FacetMesh, clipped: &FacetMesh, planes: &[Plane]) -> bool {
@@ -381,6 +383,7 @@ fn wall_clip_keeps_shape(closed: &FacetMesh, clipped: &FacetMesh, planes: &[Plan
             after.euler == before.euler
                 && after.boundary_loops == before.boundary_loops
                 && after.bad_facets <= before.bad_facets
+                && after.reach <= before.reach
         }
         (None, Some(_)) => true,
         (_, None) => false,
@@ -428,6 +431,8 @@ struct MeshShape {
     boundary_loops: usize,
     /// Facets with fewer than three vertices or a loop that is not simple in its plane.
     bad_facets: usize,
+    /// The largest distance of a vertex from its facet's seed point.
+    reach: f64,
 }
 
 /// The shape of a facet mesh, or `None` where an edge is held by more than two facets or twice
@@ -437,10 +442,12 @@ fn mesh_shape(mesh: &FacetMesh, planes: &[Plane]) -> Option<MeshShape> {
     let mut used = vec![false; mesh.vertices.len()];
     let mut buffer = Vec::new();
     let mut bad_facets = 0;
+    let mut reach = 0.0f64;
     for (f, w) in mesh.offsets.windows(2).enumerate() {
         let lp = &mesh.loops[w[0] as usize..w[1] as usize];
         for &v in lp {
             used[v as usize] = true;
+            reach = reach.max(mesh.vertices[v as usize].distance(planes[f].point));
         }
         let points = lp.iter().map(|&v| mesh.vertices[v as usize]);
         if !crate::quality::facet_shape_into(&planes[f], points, &mut buffer).simple {
@@ -453,6 +460,7 @@ fn mesh_shape(mesh: &FacetMesh, planes: &[Plane]) -> Option<MeshShape> {
         euler: vertices - edges as i64 + facets,
         boundary_loops: crate::sanity::boundary_loops(mesh.vertices.len(), &boundary),
         bad_facets,
+        reach,
     })
 }
 
