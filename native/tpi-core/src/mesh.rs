@@ -419,55 +419,17 @@ pub(crate) fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
             any = true;
         }
     }
-    if !any {
-        return;
+    if any {
+        apply_merges(mesh, &mut merged);
     }
-    let drop: Vec<bool> = (0..mesh.vertices.len())
-        .map(|v| merged[v] != v as u32)
-        .collect();
-    let mut renumber = vec![u32::MAX; mesh.vertices.len()];
-    let mut next = 0u32;
-    for (v, slot) in renumber.iter_mut().enumerate() {
-        if !drop[v] {
-            *slot = next;
-            next += 1;
-        }
-    }
-    retain_indexed(&mut mesh.vertices, &drop);
-    retain_indexed(&mut mesh.vertex_kinds, &drop);
-    retain_indexed(&mut mesh.feet, &drop);
-    retain_indexed(&mut mesh.vertex_source, &drop);
-    let mut loops = Vec::with_capacity(mesh.loops.len());
-    let mut offsets = Vec::with_capacity(mesh.offsets.len());
-    offsets.push(0);
-    for f in 0..facets {
-        let start = loops.len();
-        for &v in &mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize] {
-            // A vertex merged into one merged in turn goes to the end of the chain.
-            let mut target = v;
-            while merged[target as usize] != target {
-                target = merged[target as usize];
-            }
-            let id = renumber[target as usize];
-            if loops.len() == start || loops[loops.len() - 1] != id {
-                loops.push(id);
-            }
-        }
-        while loops.len() > start + 1 && loops[start] == loops[loops.len() - 1] {
-            loops.pop();
-        }
-        offsets.push(loops.len() as u32);
-    }
-    mesh.loops = loops;
-    mesh.offsets = offsets;
 }
 
 /// Merges each boundary crossing with every vertex within `weld` of it into one vertex,
 /// whichever facets hold them: where a triangle vertex lies exactly on the wall (as a grid on a
 /// ruled surface gives), the edges ending there get crossings at that point too, and kept
-/// apart they would give zero-length edges. Points that coincide lie in every plane either lies in, so
-/// every facet stays planar. Loops lose the repeated vertex; nothing changes without such a
-/// pair.
+/// apart they would give zero-length edges. Points that coincide lie in every plane either
+/// lies in, so every facet stays planar. Loops lose the repeated vertex; nothing changes
+/// without such a pair.
 pub(crate) fn weld_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
     let is_crossing = |v: u32| {
         mesh.vertex_kinds[v as usize] == VertexKind::Boundary
@@ -503,11 +465,18 @@ pub(crate) fn weld_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
             }
         }
     }
-    if !any {
-        return;
+    if any {
+        apply_merges(mesh, &mut merged);
     }
+}
+
+/// Rewrites the mesh after merges: `merged` holds, per vertex, the vertex it was merged into
+/// (itself when kept; chains are followed to their end). Kept vertices are renumbered in
+/// order, the others removed, and each loop takes the kept vertices, dropping a vertex that
+/// repeats its predecessor (also across the loop's end).
+fn apply_merges(mesh: &mut FacetMesh, merged: &mut [u32]) {
     let drop: Vec<bool> = (0..mesh.vertices.len() as u32)
-        .map(|v| find(&mut merged, v) != v)
+        .map(|v| find(merged, v) != v)
         .collect();
     let mut renumber = vec![u32::MAX; mesh.vertices.len()];
     let mut next = 0u32;
@@ -524,7 +493,7 @@ pub(crate) fn weld_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
     for f in 0..facets {
         let start = loops.len();
         for k in mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize {
-            let id = renumber[find(&mut merged, mesh.loops[k]) as usize];
+            let id = renumber[find(merged, mesh.loops[k]) as usize];
             if loops.len() == start || loops[loops.len() - 1] != id {
                 loops.push(id);
             }
