@@ -142,6 +142,12 @@ impl Boundary {
         }
     }
 
+    /// Whether the region is convex in normalised parameters (the domain rectangle), so that
+    /// a segment between two inside points stays inside.
+    pub(crate) fn is_convex(&self) -> bool {
+        matches!(self, Boundary::Rectangle(_))
+    }
+
     /// Whether this is a trim's boundary.
     pub(crate) fn is_trim(&self) -> bool {
         matches!(self, Boundary::Loops(_))

@@ -329,9 +329,13 @@ pub(crate) fn build_stage(
                 let spacing = samples.diagonal / (2.0 * n as f64).sqrt();
                 weld_coincident_crossings(&mut clipped, params.weld_distance);
                 drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
-                mark_boundary_vertices(&mut clipped);
                 start_loops_at_lowest_triangle(&mut clipped);
-                if wall_clip_keeps_shape(&closed, &clipped, &seeds.planes[..n]) {
+                // One edge count serves both: marking changes kinds, not loops.
+                let clipped_edges = crate::sanity::edges(&clipped.offsets, &clipped.loops).ok();
+                if let Some((_, boundary)) = &clipped_edges {
+                    mark_boundary_vertices(&mut clipped, boundary);
+                }
+                if wall_clip_keeps_shape(&closed, &clipped, clipped_edges, &seeds.planes[..n]) {
                     // The count of coincident neighbour planes is the structure's, not the
                     // clip's: it is kept.
                     clipped.diagnostics.extend(
@@ -377,8 +381,18 @@ pub(crate) fn build_stage(
 /// that meets a non-convex facet's plane far away must not add a spike). On a saddle a boundary facet's edges can run past
 /// the wall all around it (its polygon, not its seed, beyond the boundary) and its neighbours'
 /// cuts then leave it apart: the closed facets, which the validity flips judged, are kept.
-fn wall_clip_keeps_shape(closed: &FacetMesh, clipped: &FacetMesh, planes: &[Plane]) -> bool {
-    match (mesh_shape(closed, planes), mesh_shape(clipped, planes)) {
+/// `clipped_edges` are the clipped mesh's [`crate::sanity::edges`] (None: an edge held wrongly).
+fn wall_clip_keeps_shape(
+    closed: &FacetMesh,
+    clipped: &FacetMesh,
+    clipped_edges: Option<(usize, Vec<(u32, u32)>)>,
+    planes: &[Plane],
+) -> bool {
+    let closed_edges = crate::sanity::edges(&closed.offsets, &closed.loops).ok();
+    match (
+        mesh_shape(closed, closed_edges, planes),
+        mesh_shape(clipped, clipped_edges, planes),
+    ) {
         (Some(before), Some(after)) => {
             after.euler == before.euler
                 && after.boundary_loops == before.boundary_loops
@@ -395,11 +409,9 @@ fn wall_clip_keeps_shape(closed: &FacetMesh, clipped: &FacetMesh, planes: &[Plan
 /// mesh short of the wall, or a crossing be merged into a triangle vertex, and the mesh's edge
 /// is what fabrication and the report read the kind for (as on the closed path, where every
 /// vertex of a triangle with a ghost is a boundary vertex).
-fn mark_boundary_vertices(mesh: &mut FacetMesh) {
-    let Ok((_, boundary)) = crate::sanity::edges(&mesh.offsets, &mesh.loops) else {
-        return;
-    };
-    for (a, b) in boundary {
+/// `boundary` holds the mesh's edges held by one facet ([`crate::sanity::edges`]).
+fn mark_boundary_vertices(mesh: &mut FacetMesh, boundary: &[(u32, u32)]) {
+    for &(a, b) in boundary {
         for v in [a, b] {
             let kind = &mut mesh.vertex_kinds[v as usize];
             if *kind == VertexKind::Interior {
@@ -435,10 +447,14 @@ struct MeshShape {
     reach: f64,
 }
 
-/// The shape of a facet mesh, or `None` where an edge is held by more than two facets or twice
-/// in one direction.
-fn mesh_shape(mesh: &FacetMesh, planes: &[Plane]) -> Option<MeshShape> {
-    let (edges, boundary) = crate::sanity::edges(&mesh.offsets, &mesh.loops).ok()?;
+/// The shape of a facet mesh with its [`crate::sanity::edges`], or `None` where an edge is held
+/// by more than two facets or twice in one direction (`edges` None).
+fn mesh_shape(
+    mesh: &FacetMesh,
+    edges: Option<(usize, Vec<(u32, u32)>)>,
+    planes: &[Plane],
+) -> Option<MeshShape> {
+    let (edges, boundary) = edges?;
     let mut used = vec![false; mesh.vertices.len()];
     let mut buffer = Vec::new();
     let mut bad_facets = 0;
@@ -1227,6 +1243,13 @@ fn long_edge_crossings(
     triangle_vertices: &[TriangleVertex],
 ) -> Vec<Crossing> {
     if edge.right == NO_TRIANGLE || edge.left == NO_TRIANGLE {
+        return Vec::new();
+    }
+    // Both ends decided inside from their first-order feet (`surely_inside`): their measured
+    // feet would lie inside too, within the margin, and on a convex region so does the
+    // segment between them, which then crosses nothing. No projection needed.
+    let unmeasured = |t: u32| !triangle_vertices[t as usize].measured;
+    if ctx.boundary.is_convex() && unmeasured(edge.right) && unmeasured(edge.left) {
         return Vec::new();
     }
     let end_of = |t: u32| {

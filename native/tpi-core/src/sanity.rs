@@ -226,49 +226,71 @@ pub(crate) fn edges(
     offsets: &[u32],
     loops: &[u32],
 ) -> Result<(usize, Vec<(u32, u32)>), SanityError> {
-    // Key: (lo << 32 | hi) << 1 | (direction lo -> hi ? 0 : 1).
-    let mut keys: Vec<u128> = Vec::with_capacity(loops.len());
-    for w in offsets.windows(2) {
-        let lp = &loops[w[0] as usize..w[1] as usize];
-        for k in 0..lp.len() {
-            let (a, b) = (lp[k], lp[(k + 1) % lp.len()]);
-            let (lo, hi, reversed) = if a < b { (a, b, 0) } else { (b, a, 1) };
-            keys.push(((u128::from(lo) << 32 | u128::from(hi)) << 1) | reversed);
-        }
+    // Every directed edge filed under its lower end (a counting sort), then each end's few
+    // edges sorted by (upper end, direction): the order of one sort by (lo, hi, direction),
+    // in linear time. Entry: hi << 1 | (direction lo -> hi ? 0 : 1).
+    let vertex_count = loops.iter().max().map_or(0, |&m| m as usize + 1);
+    let mut start = vec![0usize; vertex_count + 1];
+    for (a, b) in directed_edges(offsets, loops) {
+        start[a.min(b) as usize + 1] += 1;
     }
-    keys.sort_unstable();
+    for v in 0..vertex_count {
+        start[v + 1] += start[v];
+    }
+    let mut filled = start.clone();
+    let mut entries = vec![0u64; start[vertex_count]];
+    for (a, b) in directed_edges(offsets, loops) {
+        let (lo, hi, reversed) = if a < b { (a, b, 0) } else { (b, a, 1) };
+        entries[filled[lo as usize]] = u64::from(hi) << 1 | reversed;
+        filled[lo as usize] += 1;
+    }
     let mut count = 0;
     let mut boundary = Vec::new();
-    let mut k = 0;
-    while k < keys.len() {
-        let edge = keys[k] >> 1;
-        let mut end = k + 1;
-        while end < keys.len() && keys[end] >> 1 == edge {
-            end += 1;
-        }
-        let (a, b) = ((edge >> 32) as u32, edge as u32);
-        match end - k {
-            1 => boundary.push((a, b)),
-            2 if keys[k] & 1 != keys[k + 1] & 1 => {}
-            2 => {
-                return Err(SanityError::Edge {
-                    a,
-                    b,
-                    reason: "run in the same direction by two facets",
-                })
+    for lo in 0..vertex_count {
+        let bucket = &mut entries[start[lo]..start[lo + 1]];
+        bucket.sort_unstable();
+        let mut k = 0;
+        while k < bucket.len() {
+            let hi = bucket[k] >> 1;
+            let mut end = k + 1;
+            while end < bucket.len() && bucket[end] >> 1 == hi {
+                end += 1;
             }
-            _ => {
-                return Err(SanityError::Edge {
-                    a,
-                    b,
-                    reason: "held by more than two facets",
-                })
+            let (a, b) = (lo as u32, hi as u32);
+            match end - k {
+                1 => boundary.push((a, b)),
+                2 if bucket[k] & 1 != bucket[k + 1] & 1 => {}
+                2 => {
+                    return Err(SanityError::Edge {
+                        a,
+                        b,
+                        reason: "run in the same direction by two facets",
+                    })
+                }
+                _ => {
+                    return Err(SanityError::Edge {
+                        a,
+                        b,
+                        reason: "held by more than two facets",
+                    })
+                }
             }
+            count += 1;
+            k = end;
         }
-        count += 1;
-        k = end;
     }
     Ok((count, boundary))
+}
+
+/// The directed edges (a, b) of every facet loop, facet by facet.
+fn directed_edges<'a>(
+    offsets: &'a [u32],
+    loops: &'a [u32],
+) -> impl Iterator<Item = (u32, u32)> + 'a {
+    offsets.windows(2).flat_map(move |w| {
+        let lp = &loops[w[0] as usize..w[1] as usize];
+        (0..lp.len()).map(move |k| (lp[k], lp[(k + 1) % lp.len()]))
+    })
 }
 
 /// Connected components of the boundary edges.

@@ -906,7 +906,7 @@ pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool 
                 && !poly
                     .iter()
                     .any(|q| (*q - p).length_squared() <= tolerance * tolerance)
-                && point_in_polygon(p, poly, tolerance) == Some(true)
+                && point_strictly_inside(p, poly, tolerance)
         })
     };
     inside(pb, pa, box_a) || inside(pa, pb, box_b)
@@ -950,23 +950,25 @@ fn separated(a: &[DVec3], b: &[DVec3], ends: [DVec3; 2], normal: DVec3) -> bool 
     (ap && !an && bn && !bp) || (an && !ap && bp && !bn)
 }
 
-/// Some(inside) by the crossing number for a point farther than `tolerance` from every edge
-/// of the polygon; None for a point on its boundary.
-fn point_in_polygon(p: DVec2, poly: &[DVec2], tolerance: f64) -> Option<bool> {
+/// Whether `p` lies strictly inside the polygon: inside by the crossing number and farther than
+/// `tolerance` from every edge (a point on the boundary is not inside). The crossing number
+/// comes first: most points tested are outside, and then no distance is needed.
+fn point_strictly_inside(p: DVec2, poly: &[DVec2], tolerance: f64) -> bool {
     let n = poly.len();
     let mut inside = false;
     for k in 0..n {
         let (a, b) = (poly[k], poly[(k + 1) % n]);
-        let ab = b - a;
-        let t = ((p - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
-        if (a + ab * t - p).length_squared() <= tolerance * tolerance {
-            return None;
-        }
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * ab.x {
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
             inside = !inside;
         }
     }
-    Some(inside)
+    inside
+        && (0..n).all(|k| {
+            let (a, b) = (poly[k], poly[(k + 1) % n]);
+            let ab = b - a;
+            let t = ((p - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+            (a + ab * t - p).length_squared() > tolerance * tolerance
+        })
 }
 
 /// The segments ab and cd cross properly: each strictly (beyond `eps`, an area) on both
