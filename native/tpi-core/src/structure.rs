@@ -17,6 +17,8 @@
 //!    This is the envelope's structure exactly. Facets: [`FacetPlan::Clipped`].
 //! 4. **Convex but too steep** for the slope frame: parameter-space Delaunay candidates,
 //!    repaired against the envelope ([`crate::neighbours::decide`]). [`FacetPlan::Clipped`].
+//!    A closed surface whose seeds are all convex but whose tangent planes have no envelope
+//!    (path 1 failed: creases, as on a pinched sphere) goes to path 6 instead.
 //! 5. **Flat**: every plane the same; the Voronoi diagram of the seeds in it
 //!    ([`crate::flat`]), on a band boundary where the plane is closed one way.
 //!    [`FacetPlan::Clipped`].
@@ -284,8 +286,11 @@ pub(crate) fn decide_structure(
                 false,
             )
         }
-        // Path 4: strictly convex everywhere but too steep for the slope embedding.
-        _ if convex => {
+        // Path 4: strictly convex everywhere but too steep for the slope embedding. Not for
+        // a closed surface that path 1 refused: its seeds look convex, but its tangent planes
+        // have no envelope (a sphere pinched into concave creases), and as an open patch it
+        // would leave its seam and poles open; the any-curvature path closes them.
+        _ if convex && !closable => {
             stages.enter(Stage::Delaunay, None);
             let mut triangulation = DualTriangulation::delaunay(&samples.plane_uv)?;
             stages.check()?;
