@@ -59,6 +59,7 @@
 //!   `x -> ((x - top[0]) . e1, (x - top[0]) . e2)` with `e1` along its first edge and
 //!   `e2 = n_i x e1`, so outlines keep their lengths and angles and stay counter-clockwise.
 
+mod clip;
 mod layout;
 mod solids;
 mod toolpath;
@@ -174,8 +175,11 @@ pub enum FabricationError {
         /// The valid range.
         reason: &'static str,
     },
-    /// The thickness collapses a bottom edge: the offset vertices pass each other.
-    #[error("thickness {thickness} is too large for this mesh: the bottom edge of panel {panel} {} collapses at thickness {max}; use a thickness below {max} (or a coarser pattern there)", across(.neighbour))]
+    /// The thickness collapses bottom edges in a way clipping cannot resolve (see
+    /// [`FabricationDiagnostic::EdgeCollapsed`] for the ones it does): no solid is left, a
+    /// non-convex facet, or a cascade of collapses. `max` is the thickness below which no
+    /// bottom edge collapses at all.
+    #[error("thickness {thickness} is too large for this mesh: {reason}; the first bottom edge to collapse (panel {panel} {}) does at thickness {max}; use a thickness below {max} (or a coarser pattern there)", across(.neighbour))]
     ThicknessTooLarge {
         /// The thickness asked for.
         thickness: f64,
@@ -183,8 +187,10 @@ pub enum FabricationError {
         max: f64,
         /// The panel (seed) whose bottom edge collapses first.
         panel: u32,
-        /// Its neighbour along that edge (None: a boundary side).
+        /// Its neighbour along that edge (None: a boundary side, or not an edge).
         neighbour: Option<u32>,
+        /// Why the collapse is not resolved, naming the panel.
+        reason: String,
     },
     /// The discretisation cannot be fabricated (empty, a facet with fewer than three vertices,
     /// a vertex that is not finite).
@@ -250,6 +256,24 @@ pub enum FabricationDiagnostic {
         vertex: u32,
         /// The panels around it, in fan order from the lowest seed.
         panels: Vec<u32>,
+    },
+    /// The thickness is beyond the limit of this edge: the offset vertices at its two ends
+    /// met at `at_thickness`, the bottom edge vanished, and the panels around it were clipped
+    /// (each the intersection of its half-spaces; the side faces over the edge are
+    /// triangles). Below the edge the third panels at its two ends now meet (`joined`), on
+    /// their bisector plane, as a side of zero top length at each of them.
+    EdgeCollapsed {
+        /// A panel of the edge.
+        panel: u32,
+        /// The other (None: a boundary edge).
+        neighbour: Option<u32>,
+        /// The edge's two mesh vertices.
+        vertices: [u32; 2],
+        /// The thickness at which the bottom edge vanished.
+        at_thickness: f64,
+        /// The two panels that meet below it instead (None on the boundary, or where a vertex
+        /// of the edge is not where exactly three panels meet).
+        joined: Option<[u32; 2]>,
     },
     /// Two neighbouring facets are coplanar: the side between them is cut square.
     ParallelNeighbours {
