@@ -37,8 +37,11 @@
 //! * **Thickness limit.** The bottom edge of side k is `b_{k+1} - b_k = (v_{k+1} - v_k) +
 //!   T (u_{k+1} - u_k)` with `u = w / T` fixed by the planes, so it shortens linearly with T and
 //!   collapses at `T_max = |v_{k+1} - v_k| / (-(u_{k+1} - u_k) . d)` (`d` the unit top edge).
-//!   A thickness at or above the smallest such `T_max` is rejected with
-//!   [`FabricationError::ThicknessTooLarge`], naming the panel, its neighbour and the limit.
+//!   For a thickness at or above an edge's `T_max`, the panels around the edge are clipped
+//!   to the intersection of their half-spaces and the edge flips (module `clip`, named by
+//!   [`FabricationDiagnostic::EdgeCollapsed`]); what clipping cannot resolve (no solid left, a
+//!   non-convex facet, a cascade) is rejected with [`FabricationError::ThicknessTooLarge`],
+//!   naming the panel and the reason.
 //! * **Angles.** `dihedral_deg` is the angle between the two top faces measured through the
 //!   material: `180 - theta` when the neighbour bends towards the offset side, `180 + theta`
 //!   otherwise (`theta` the angle between the normals). `bevel_deg` is the angle between the side
@@ -47,7 +50,7 @@
 //!   square side.
 //! * **Volume.** Every section of a panel between its two faces is the polygon
 //!   `top[k] + t (bottom[k] - top[k])`, so its area is quadratic in t and the volume is the
-//!   prismatoid formula `T (A_top + 4 A_mid + A_bottom) / 6`.
+//!   prismatoid formula `T (A_top + 4 A_mid + A_bottom) / 6` (not for a clipped panel).
 //! * **Slots.** A slot at parameter t of an interior edge (from `top[k]` to `top[k+1]` of the
 //!   panel of the lower seed) is a notch of length L along the edge, centred there, and depth D
 //!   into each panel, measured in the panel's plane square to the edge, through the full
@@ -179,7 +182,7 @@ pub enum FabricationError {
     /// [`FabricationDiagnostic::EdgeCollapsed`] for the ones it does): no solid is left, a
     /// non-convex facet, or a cascade of collapses. `max` is the thickness below which no
     /// bottom edge collapses at all.
-    #[error("thickness {thickness} is too large for this mesh: {reason}; the first bottom edge to collapse (panel {panel} {}) does at thickness {max}; use a thickness below {max} (or a coarser pattern there)", across(.neighbour))]
+    #[error("thickness {thickness} is too large for this mesh: {reason}; the first bottom edge (panel {panel} {}) collapses at thickness {max}, and up to that thickness no panel is clipped; use a thinner panel (or a coarser pattern there)", across(.neighbour))]
     ThicknessTooLarge {
         /// The thickness asked for.
         thickness: f64,
@@ -372,7 +375,9 @@ pub struct Panel {
     pub normal: DVec3,
     /// Top outline (the facet; a vertex repeated where the vertex was split).
     pub top: Vec<DVec3>,
-    /// Bottom outline: `bottom[k]` is the offset of `top[k]`.
+    /// Bottom outline: `bottom[k]` is the offset of `top[k]`; in a panel clipped where a bottom
+    /// edge collapsed, the corner where side k's bottom edge begins (`bottom[k] = bottom[k+1]`
+    /// when side k does not reach the bottom face).
     pub bottom: Vec<DVec3>,
     /// Side k joins `top[k]` and `top[k + 1]`.
     pub sides: Vec<Side>,
