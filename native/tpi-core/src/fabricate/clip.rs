@@ -62,12 +62,14 @@ pub(super) struct Frame<'a> {
 }
 
 impl Frame<'_> {
-    fn refuse(&self, panel: usize, reason: String) -> FabricationError {
+    /// The refusal; `reason` names the panel that cannot be resolved, `panel` and `neighbour`
+    /// of the error are the first edge to collapse.
+    fn refuse(&self, reason: String) -> FabricationError {
         FabricationError::ThicknessTooLarge {
             thickness: self.t,
             max: self.worst.0,
-            panel: panel as u32,
-            neighbour: None,
+            panel: self.worst.1,
+            neighbour: self.worst.2,
             reason,
         }
     }
@@ -178,16 +180,15 @@ fn add_side(
     partner: u32,
 ) -> Result<(), FabricationError> {
     let Some(q) = ids.iter().position(|&x| x == vertex) else {
-        return Err(frame.refuse(p, format!("vertex {vertex} is not on panel {p}")));
+        return Err(frame.refuse(format!("vertex {vertex} is not on panel {p}")));
     };
     let (mi, mj) = (frame.m[p], frame.m[partner as usize]);
     let diff = mi - mj;
     let len = diff.length();
     if len < FABRICATION_PARALLEL_TOLERANCE {
-        return Err(frame.refuse(
-            p,
-            format!("panel {p} and panel {partner} meet below a collapsed edge and are coplanar"),
-        ));
+        return Err(frame.refuse(format!(
+            "panel {p} and panel {partner} meet below a collapsed edge and are coplanar"
+        )));
     }
     let (mut s, mut d) = (diff / len, (frame.e[p] - frame.e[partner as usize]) / len);
     if s.dot(frame.centroid[p]) > d {
@@ -249,7 +250,6 @@ fn clip_panel(
         let turn = (b - a).cross(c - b).dot(nrm);
         if turn < -eps * frame.diagonal {
             return Err(frame.refuse(
-                p,
                 format!("panel {p}'s facet is not convex, so a collapsed bottom edge there cannot be resolved by clipping"),
             ));
         }
@@ -282,16 +282,14 @@ fn clip_panel(
                 .all(|c| f.1.iter().any(|&q| vertices[q as usize] == *c))
     });
     if !top_ok {
-        return Err(frame.refuse(
-            p,
-            format!("clipping panel {p} where a bottom edge collapsed would cut its top face"),
-        ));
+        return Err(frame.refuse(format!(
+            "clipping panel {p} where a bottom edge collapsed would cut its top face"
+        )));
     }
     let Some(bottom_face) = faces.iter().find(|f| f.0 == 1) else {
-        return Err(frame.refuse(
-            p,
-            format!("panel {p} has no bottom face left at this thickness: no solid exists"),
-        ));
+        return Err(frame.refuse(format!(
+            "panel {p} has no bottom face left at this thickness: no solid exists"
+        )));
     };
     // bottom[k]: the start of side k's bottom edge (along the top edge's direction).
     let on_bottom: Vec<u32> = bottom_face.1.clone();
@@ -310,10 +308,9 @@ fn clip_panel(
         }
     }
     let Some(first) = (0..ring).find(|&k| start[k].is_some()) else {
-        return Err(frame.refuse(
-            p,
-            format!("panel {p} has no bottom face left at this thickness: no solid exists"),
-        ));
+        return Err(frame.refuse(format!(
+            "panel {p} has no bottom face left at this thickness: no solid exists"
+        )));
     };
     let mut bottom = vec![DVec3::ZERO; ring];
     let mut next = start[first].unwrap_or_default();
@@ -326,7 +323,6 @@ fn clip_panel(
             let edge = (ids[k].min(ids[k1]), ids[k].max(ids[k1]));
             if ids[k] == ids[k1] || !collapsed_edges.contains(&edge) {
                 return Err(frame.refuse(
-                    p,
                     format!(
                         "side {k} of panel {p} (neighbour {}) leaves the bottom face too: the collapse cascades, which clipping does not resolve",
                         panel.sides[k].neighbour.map_or("none".to_string(), |j| j.to_string())
