@@ -372,6 +372,7 @@ fn summary(fab: &Fabrication, density: Option<f64>) -> String {
                 FabricationDiagnostic::BottomOutsideTop { .. } => "cut outline widened",
                 FabricationDiagnostic::SlotSkipped { .. } => "slot left out",
                 FabricationDiagnostic::InvalidFacet { .. } => "invalid facet",
+                FabricationDiagnostic::EdgeCollapsed { .. } => "collapsed edge",
                 _ => "other",
             };
             match kinds.iter_mut().find(|(k, _)| *k == kind) {
@@ -384,6 +385,25 @@ fn summary(fab: &Fabrication, density: Option<f64>) -> String {
             "  diagnostics: {} (each named in the .json output)\n",
             list.join(", ")
         );
+        for d in &fab.diagnostics {
+            if let FabricationDiagnostic::EdgeCollapsed {
+                panel,
+                neighbour,
+                vertices,
+                at_thickness,
+                joined,
+            } = d
+            {
+                let across = neighbour.map_or("the boundary".to_string(), |j| format!("panel {j}"));
+                let below = joined.map_or(String::new(), |[a, b]| {
+                    format!("; panels {a} and {b} meet below it")
+                });
+                s += &format!(
+                    "  collapsed edge: the bottom edge of panel {panel} along {across} (vertices {} and {}) vanishes at thickness {at_thickness}: panels clipped{below}\n",
+                    vertices[0], vertices[1]
+                );
+            }
+        }
     }
     let utils: Vec<f64> = fab.sheets.iter().map(|x| x.utilisation * 100.0).collect();
     let mean = utils.iter().sum::<f64>() / utils.len().max(1) as f64;

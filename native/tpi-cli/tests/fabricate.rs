@@ -132,3 +132,69 @@ fn a_bad_thickness_is_named_and_nothing_is_written() {
     assert!(stderr(&o).contains("--thickness is required"));
     fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn collapsed_edges_are_clipped_and_named_on_stderr_and_in_the_json() {
+    // The ellipsoid with a coarse hex pattern: its first bottom edge collapses at a thickness of
+    // about 1.26; at 1.9 the panels around each collapsed edge are clipped, not refused.
+    let dir = scratch("collapse");
+    let json = dir.join("p.json");
+    let o = tpi(&[
+        "fabricate",
+        "--surface",
+        &sample("ellipsoid.json"),
+        "--pattern",
+        "hex:7x6",
+        "--thickness",
+        "1.9",
+        "--sheet",
+        "100x100",
+        "--out",
+        &json.to_string_lossy(),
+    ]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    let lines: Vec<&str> = err
+        .lines()
+        .filter(|l| l.contains("collapsed edge: the bottom edge of panel"))
+        .collect();
+    let v: serde_json::Value = serde_json::from_str(&fs::read_to_string(&json).unwrap()).unwrap();
+    let named: Vec<&serde_json::Value> = v["diagnostics"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|d| d["kind"] == "edge_collapsed")
+        .collect();
+    assert!(lines.len() >= 5, "{err}");
+    assert_eq!(lines.len(), named.len(), "{err}");
+    let panels = v["panels"].as_array().unwrap().len() as u64;
+    for (line, d) in lines.iter().zip(&named) {
+        let panel = d["panel"].as_u64().unwrap();
+        let at = d["at_thickness"].as_f64().unwrap();
+        assert!(panel < panels && at > 0.0 && at <= 1.9, "{d}");
+        assert!(
+            line.contains(&format!("panel {panel} along")),
+            "{line} vs {d}"
+        );
+        let [a, b] = [&d["vertices"][0], &d["vertices"][1]];
+        assert!(line.contains(&format!("(vertices {a} and {b})")), "{line}");
+    }
+    // Every bottom vertex still lies at the thickness below its top face's plane.
+    for p in v["panels"].as_array().unwrap() {
+        let pt = |x: &serde_json::Value| -> [f64; 3] { [0, 1, 2].map(|c| x[c].as_f64().unwrap()) };
+        let top: Vec<[f64; 3]> = p["top"].as_array().unwrap().iter().map(pt).collect();
+        let mut n = [0.0f64; 3];
+        for k in 0..top.len() {
+            let (a, b) = (top[k], top[(k + 1) % top.len()]);
+            n[0] += a[1] * b[2] - a[2] * b[1];
+            n[1] += a[2] * b[0] - a[0] * b[2];
+            n[2] += a[0] * b[1] - a[1] * b[0];
+        }
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        for b in p["bottom"].as_array().unwrap().iter().map(pt) {
+            let d: f64 = (0..3).map(|c| (b[c] - top[0][c]) * n[c] / len).sum();
+            assert!((d.abs() - 1.9).abs() < 1e-9, "panel {}: {d}", p["seed"]);
+        }
+    }
+    fs::remove_dir_all(&dir).unwrap();
+}

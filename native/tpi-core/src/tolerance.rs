@@ -364,6 +364,12 @@ pub const FABRICATION_SHORT_EDGE: f64 = 1e-12;
 /// The same distance decides whether a bottom vertex lies outside the top outline.
 pub const FABRICATION_OUTLINE_MERGE: f64 = 1e-9;
 
+/// A panel clipped where a bottom edge collapsed (thickness beyond the edge's limit) is the
+/// intersection of its half-spaces: a point within this fraction of the bounding-box diagonal
+/// of a plane counts as on it (vertices of the cell, faces of the solid), and two cell vertices
+/// closer than it are one. Rounding of the three-plane vertices is far below it.
+pub const FABRICATION_CLIP_TOLERANCE: f64 = 1e-11;
+
 /// Largest number of panels walked around one vertex before the walk counts as broken
 /// (a non-manifold mesh): far above any real valence.
 pub const FABRICATION_MAX_VALENCE: usize = 64;

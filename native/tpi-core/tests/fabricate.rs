@@ -88,6 +88,25 @@ fn check_closed_planar(s: &Polyhedron, tol: f64, what: &str) {
 
 /// All the solid checks of one fabrication of `mesh`.
 fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f64) {
+    // Panels clipped where a bottom edge collapsed (named by the diagnostics): their volume is
+    // checked against an independent cell in `clipped_panels_are_the_cells_of_the_nearest_plane`,
+    // not the prismatoid formula.
+    let mut clipped = std::collections::HashSet::new();
+    let mut joined_pairs = std::collections::HashSet::new();
+    for d in &fab.diagnostics {
+        if let FabricationDiagnostic::EdgeCollapsed {
+            panel,
+            neighbour,
+            joined,
+            ..
+        } = d
+        {
+            clipped.insert(*panel);
+            clipped.extend(neighbour.iter().copied());
+            clipped.extend(joined.iter().flatten().copied());
+            joined_pairs.extend(joined.iter().copied());
+        }
+    }
     let diag = diagonal(mesh);
     let tol = TOL * diag;
     let mut shared_interior_sides = 0;
@@ -155,7 +174,8 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
         let prismatoid = t * (a_top + 4.0 * a_mid + a_bot) / 6.0;
         let div = volume_by_divergence(&p.solid);
         assert!(
-            (div - prismatoid).abs() <= 1e-9 * prismatoid.max(t * a_top),
+            clipped.contains(&(i as u32))
+                || (div - prismatoid).abs() <= 1e-9 * prismatoid.max(t * a_top),
             "panel {i}: volume {div} vs prismatoid {prismatoid}"
         );
         // Side planes: the side face's four points lie on the reported plane; interior
@@ -166,7 +186,26 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
             let s = &p.sides[k];
             let sn = DVec3::new(s.plane[0], s.plane[1], s.plane[2]);
             assert!((sn.length() - 1.0).abs() < 1e-12);
-            for q in [p.top[k], p.top[k1], p.bottom[k], p.bottom[k1]] {
+            // A side whose bottom edge collapsed (clipped panels) has bottom[k] = bottom[k+1],
+            // not on its plane: its face is the triangle of the top edge and the apex.
+            let collapsed = (p.bottom[k] - p.bottom[k1]).length() <= tol && p.top[k] != p.top[k1];
+            // A side of zero top length where two panels meet below a collapsed edge lies
+            // below the top: its face is the triangle of its bottom edge and the apex.
+            let below = p.top[k] == p.top[k1]
+                && s.neighbour
+                    .is_some_and(|j| joined_pairs.contains(&[j.min(i as u32), j.max(i as u32)]));
+            let corners = if below {
+                vec![p.bottom[k], p.bottom[k1]]
+            } else if collapsed {
+                assert!(
+                    clipped.contains(&(i as u32)),
+                    "panel {i}: side {k} collapsed"
+                );
+                vec![p.top[k], p.top[k1]]
+            } else {
+                vec![p.top[k], p.top[k1], p.bottom[k], p.bottom[k1]]
+            };
+            for &q in &corners {
                 assert!(
                     (sn.dot(q) - s.plane[3]).abs() <= tol,
                     "panel {i} side {k} off its plane"
@@ -179,7 +218,7 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
             };
             let (oj, nj) = planes[j as usize];
             // Independent bisector: points x with n.(x - p_i) = nj.(x - p_j).
-            for q in [p.top[k], p.top[k1], p.bottom[k], p.bottom[k1]] {
+            for &q in &corners {
                 let r = n.dot(q - origin) - nj.dot(q - oj);
                 assert!(
                     r.abs() <= 2.0 * tol,
@@ -189,11 +228,23 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
             // The neighbour's side over the same edge: the same plane, opposite normal.
             let pj = &fab.panels[j as usize];
             let rj = pj.top.len();
-            let Some(kj) = (0..rj).find(|&l| {
-                pj.sides[l].neighbour == Some(i as u32)
-                    && pj.top[l] == p.top[k1]
-                    && pj.top[(l + 1) % rj] == p.top[k]
-            }) else {
+            // (A side of zero top length where two panels meet below a collapsed edge starts at
+            // another vertex in each panel.)
+            let Some(kj) = (0..rj)
+                .find(|&l| {
+                    pj.sides[l].neighbour == Some(i as u32)
+                        && pj.top[l] == p.top[k1]
+                        && pj.top[(l + 1) % rj] == p.top[k]
+                })
+                .or_else(|| {
+                    (0..rj).find(|&l| {
+                        clipped.contains(&(i as u32))
+                            && p.top[k] == p.top[k1]
+                            && pj.sides[l].neighbour == Some(i as u32)
+                            && pj.top[l] == pj.top[(l + 1) % rj]
+                    })
+                })
+            else {
                 panic!("panel {i} side {k}: panel {j} has no side over the same edge");
             };
             let o = &pj.sides[kj].plane;
@@ -213,8 +264,11 @@ fn check_panels(mesh: &Discretisation, fab: &Fabrication, t: f64, expect_side: f
                     .map(|q| mesh.vertex_kinds[q] == VertexKind::Interior)
                     .unwrap_or(false)
             });
-            if ends_interior {
-                let kj1 = (kj + 1) % rj;
+            let kj1 = (kj + 1) % rj;
+            let collapsed_j =
+                (pj.bottom[kj] - pj.bottom[kj1]).length() <= tol && pj.top[kj] != pj.top[kj1];
+            assert_eq!(collapsed, collapsed_j, "panel {i}/{j}: one side collapsed");
+            if ends_interior && !collapsed {
                 assert!(
                     (pj.bottom[kj1] - p.bottom[k]).length() <= tol,
                     "panel {i}/{j}: bottom corner differs"
@@ -1217,5 +1271,193 @@ fn absurd_counts_are_refused_not_attempted() {
             }
         ),
         "{err}"
+    );
+}
+
+/// Clips a convex polyhedron (outward face polygons) by the half-space `n . x <= d`
+/// (Sutherland-Hodgman on every face, then the cap of the cut points): a different algorithm
+/// from the core's enumeration of three-plane points.
+fn clip_convex(faces: Vec<Vec<DVec3>>, n: DVec3, d: f64) -> Vec<Vec<DVec3>> {
+    let mut out = Vec::with_capacity(faces.len() + 1);
+    let mut cut: Vec<DVec3> = Vec::new();
+    for f in faces {
+        let mut g = Vec::with_capacity(f.len() + 1);
+        for k in 0..f.len() {
+            let (a, b) = (f[k], f[(k + 1) % f.len()]);
+            let (sa, sb) = (n.dot(a) - d, n.dot(b) - d);
+            if sa <= 0.0 {
+                g.push(a);
+            }
+            if sa == 0.0 {
+                cut.push(a);
+            }
+            if (sa < 0.0 && sb > 0.0) || (sa > 0.0 && sb < 0.0) {
+                let x = a + (b - a) * (sa / (sa - sb));
+                g.push(x);
+                cut.push(x);
+            }
+        }
+        if g.len() >= 3 {
+            out.push(g);
+        }
+    }
+    if cut.len() >= 3 {
+        let c = cut.iter().sum::<DVec3>() / cut.len() as f64;
+        let u = n.any_orthonormal_vector();
+        let w = n.cross(u);
+        cut.sort_by(|x, y| {
+            let (rx, ry) = (*x - c, *y - c);
+            rx.dot(w)
+                .atan2(rx.dot(u))
+                .total_cmp(&ry.dot(w).atan2(ry.dot(u)))
+        });
+        out.push(cut);
+    }
+    out
+}
+
+/// The box `[lo, hi]` as outward face polygons.
+fn box_faces(lo: DVec3, hi: DVec3) -> Vec<Vec<DVec3>> {
+    let c = |x: usize, y: usize, z: usize| {
+        DVec3::new(
+            if x == 0 { lo.x } else { hi.x },
+            if y == 0 { lo.y } else { hi.y },
+            if z == 0 { lo.z } else { hi.z },
+        )
+    };
+    vec![
+        vec![c(0, 0, 0), c(0, 1, 0), c(1, 1, 0), c(1, 0, 0)],
+        vec![c(0, 0, 1), c(1, 0, 1), c(1, 1, 1), c(0, 1, 1)],
+        vec![c(0, 0, 0), c(1, 0, 0), c(1, 0, 1), c(0, 0, 1)],
+        vec![c(0, 1, 0), c(0, 1, 1), c(1, 1, 1), c(1, 1, 0)],
+        vec![c(0, 0, 0), c(0, 0, 1), c(0, 1, 1), c(0, 1, 0)],
+        vec![c(1, 0, 0), c(1, 1, 0), c(1, 1, 1), c(1, 0, 1)],
+    ]
+}
+
+#[test]
+fn clipped_panels_are_the_cells_of_the_nearest_plane() {
+    // A coarse hex pattern on the ellipsoid: at 1.5 times the thickness where its first bottom
+    // edge collapses, 14 edges have collapsed; that thickness used to be refused.
+    let mesh = sample_mesh("ellipsoid.json", "hex:7x6");
+    let options = |t: f64| FabricateOptions {
+        thickness: t,
+        sheet: [100.0, 100.0],
+        slots: SlotPlan::Even(1),
+        ..FabricateOptions::default()
+    };
+    let FabricationError::ThicknessTooLarge { max, reason, .. } =
+        fabricate(&mesh, &options(100.0)).unwrap_err()
+    else {
+        panic!("a thickness of 100 on the ellipsoid should leave no solid");
+    };
+    assert!(reason.contains("no solid"), "{reason}");
+    let t = 1.5 * max;
+    let fab = fabricate(&mesh, &options(t)).unwrap();
+    let collapsed: Vec<_> = fab
+        .diagnostics
+        .iter()
+        .filter_map(|d| match d {
+            FabricationDiagnostic::EdgeCollapsed {
+                panel,
+                neighbour,
+                at_thickness,
+                joined,
+                ..
+            } => Some((*panel, *neighbour, *at_thickness, *joined)),
+            _ => None,
+        })
+        .collect();
+    assert!(collapsed.len() >= 5, "{collapsed:?}");
+    assert!(collapsed.iter().any(|c| c.3.is_some()), "no edge flipped");
+    for c in &collapsed {
+        assert!(c.2 >= max * (1.0 - 1e-12) && c.2 <= t, "{c:?}");
+    }
+    let side = fab.panels[0].normal.dot(mesh.seeds[0].normal).signum();
+    check_panels(&mesh, &fab, t, side);
+    check_nesting(&fab);
+    assert!(fab.to_json().contains("\"kind\":\"edge_collapsed\""));
+
+    // Independently: on this K > 0 surface, thickened to its concave side, the panel of
+    // facet p is the set of points at depth 0..T below its plane that lie no deeper below any
+    // other facet's plane (the nearest plane wins; depths along each facet's normal). That
+    // cell, clipped here from a box by every other facet's bisector, must be the solid: every
+    // solid vertex inside it and the same volume. Checked for every panel with no boundary
+    // side (a boundary side is cut square instead).
+    let diag = diagonal(&mesh);
+    let tol = TOL * diag;
+    let planes: Vec<(DVec3, f64)> = (0..mesh.facet_count())
+        .map(|i| {
+            let corners: Vec<DVec3> = mesh
+                .facet(i)
+                .iter()
+                .map(|&q| mesh.vertices[q as usize])
+                .collect();
+            let mut n = area_vector(&corners).normalize();
+            if n.dot(mesh.seeds[i].normal) * side < 0.0 {
+                n = -n;
+            }
+            let o = corners.iter().copied().sum::<DVec3>() / corners.len() as f64;
+            (n, n.dot(o))
+        })
+        .collect();
+    // Panels at a vertex where more than three panels meet (the poles) follow the split of
+    // that vertex by the fan from the lowest seed, not the nearest plane: left out.
+    let split: std::collections::HashSet<u32> = fab
+        .diagnostics
+        .iter()
+        .filter_map(|d| match d {
+            FabricationDiagnostic::SplitVertex { panels, .. } => Some(panels.clone()),
+            _ => None,
+        })
+        .flatten()
+        .collect();
+    let mut checked = 0;
+    let mut clipped_checked = 0;
+    for (i, p) in fab.panels.iter().enumerate() {
+        if p.sides.iter().any(|s| s.neighbour.is_none()) || split.contains(&(i as u32)) {
+            continue;
+        }
+        let (n, e) = planes[i];
+        let mut half: Vec<(DVec3, f64)> = vec![(-n, -e), (n, e + t)];
+        for (q, &(nq, eq)) in planes.iter().enumerate() {
+            if q != i && (n - nq).length() > 1e-9 {
+                half.push((n - nq, e - eq));
+            }
+        }
+        let (lo, hi) = p.top.iter().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), v| (lo.min(*v), hi.max(*v)),
+        );
+        let mut cell = box_faces(lo - DVec3::splat(3.0 * t), hi + DVec3::splat(3.0 * t));
+        for &(hn, hd) in &half {
+            cell = clip_convex(cell, hn, hd);
+        }
+        let cell_volume: f64 = cell.iter().map(|f| area_vector(f).dot(f[0]) / 3.0).sum();
+        let volume = volume_by_divergence(&p.solid);
+        assert!(
+            (volume - cell_volume).abs() <= 1e-9 * cell_volume,
+            "panel {i}: volume {volume}, nearest-plane cell {cell_volume}"
+        );
+        for v in &p.solid.vertices {
+            for &(hn, hd) in &half {
+                let out = (hn.dot(*v) - hd) / hn.length();
+                assert!(
+                    out <= tol,
+                    "panel {i}: vertex {v} outside its cell by {out}"
+                );
+            }
+        }
+        checked += 1;
+        if collapsed.iter().any(|c| {
+            c.0 == i as u32 || c.1 == Some(i as u32) || c.3.is_some_and(|j| j.contains(&(i as u32)))
+        }) {
+            clipped_checked += 1;
+        }
+    }
+    println!("{checked} panels checked against their cell, {clipped_checked} of them clipped, {} edges collapsed", collapsed.len());
+    assert!(
+        checked >= 10 && clipped_checked >= 10,
+        "{checked} {clipped_checked}"
     );
 }

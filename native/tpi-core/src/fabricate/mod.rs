@@ -37,8 +37,11 @@
 //! * **Thickness limit.** The bottom edge of side k is `b_{k+1} - b_k = (v_{k+1} - v_k) +
 //!   T (u_{k+1} - u_k)` with `u = w / T` fixed by the planes, so it shortens linearly with T and
 //!   collapses at `T_max = |v_{k+1} - v_k| / (-(u_{k+1} - u_k) . d)` (`d` the unit top edge).
-//!   A thickness at or above the smallest such `T_max` is rejected with
-//!   [`FabricationError::ThicknessTooLarge`], naming the panel, its neighbour and the limit.
+//!   For a thickness at or above an edge's `T_max`, the panels around the edge are clipped
+//!   to the intersection of their half-spaces and the edge flips (module `clip`, named by
+//!   [`FabricationDiagnostic::EdgeCollapsed`]); what clipping cannot resolve (no solid left, a
+//!   non-convex facet, a cascade) is rejected with [`FabricationError::ThicknessTooLarge`],
+//!   naming the panel and the reason.
 //! * **Angles.** `dihedral_deg` is the angle between the two top faces measured through the
 //!   material: `180 - theta` when the neighbour bends towards the offset side, `180 + theta`
 //!   otherwise (`theta` the angle between the normals). `bevel_deg` is the angle between the side
@@ -47,7 +50,7 @@
 //!   square side.
 //! * **Volume.** Every section of a panel between its two faces is the polygon
 //!   `top[k] + t (bottom[k] - top[k])`, so its area is quadratic in t and the volume is the
-//!   prismatoid formula `T (A_top + 4 A_mid + A_bottom) / 6`.
+//!   prismatoid formula `T (A_top + 4 A_mid + A_bottom) / 6` (not for a clipped panel).
 //! * **Slots.** A slot at parameter t of an interior edge (from `top[k]` to `top[k+1]` of the
 //!   panel of the lower seed) is a notch of length L along the edge, centred there, and depth D
 //!   into each panel, measured in the panel's plane square to the edge, through the full
@@ -59,6 +62,7 @@
 //!   `x -> ((x - top[0]) . e1, (x - top[0]) . e2)` with `e1` along its first edge and
 //!   `e2 = n_i x e1`, so outlines keep their lengths and angles and stay counter-clockwise.
 
+mod clip;
 mod layout;
 mod solids;
 mod toolpath;
@@ -174,8 +178,11 @@ pub enum FabricationError {
         /// The valid range.
         reason: &'static str,
     },
-    /// The thickness collapses a bottom edge: the offset vertices pass each other.
-    #[error("thickness {thickness} is too large for this mesh: the bottom edge of panel {panel} {} collapses at thickness {max}; use a thickness below {max} (or a coarser pattern there)", across(.neighbour))]
+    /// The thickness collapses bottom edges in a way clipping cannot resolve (see
+    /// [`FabricationDiagnostic::EdgeCollapsed`] for the ones it does): no solid is left, a
+    /// non-convex facet, or a cascade of collapses. `max` is the thickness below which no
+    /// bottom edge collapses at all.
+    #[error("thickness {thickness} is too large for this mesh: {reason}; the first bottom edge (panel {panel} {}) collapses at thickness {max}, and up to that thickness no panel is clipped; use a thinner panel (or a coarser pattern there)", across(.neighbour))]
     ThicknessTooLarge {
         /// The thickness asked for.
         thickness: f64,
@@ -183,8 +190,10 @@ pub enum FabricationError {
         max: f64,
         /// The panel (seed) whose bottom edge collapses first.
         panel: u32,
-        /// Its neighbour along that edge (None: a boundary side).
+        /// Its neighbour along that edge (None: a boundary side, or not an edge).
         neighbour: Option<u32>,
+        /// Why the collapse is not resolved, naming the panel.
+        reason: String,
     },
     /// The discretisation cannot be fabricated (empty, a facet with fewer than three vertices,
     /// a vertex that is not finite).
@@ -250,6 +259,24 @@ pub enum FabricationDiagnostic {
         vertex: u32,
         /// The panels around it, in fan order from the lowest seed.
         panels: Vec<u32>,
+    },
+    /// The thickness is beyond the limit of this edge: the offset vertices at its two ends
+    /// met at `at_thickness`, the bottom edge vanished, and the panels around it were clipped
+    /// (each the intersection of its half-spaces; the side faces over the edge are
+    /// triangles). Below the edge the third panels at its two ends now meet (`joined`), on
+    /// their bisector plane, as a side of zero top length at each of them.
+    EdgeCollapsed {
+        /// A panel of the edge.
+        panel: u32,
+        /// The other (None: a boundary edge).
+        neighbour: Option<u32>,
+        /// The edge's two mesh vertices.
+        vertices: [u32; 2],
+        /// The thickness at which the bottom edge vanished.
+        at_thickness: f64,
+        /// The two panels that meet below it instead (None on the boundary, or where a vertex
+        /// of the edge is not where exactly three panels meet).
+        joined: Option<[u32; 2]>,
     },
     /// Two neighbouring facets are coplanar: the side between them is cut square.
     ParallelNeighbours {
@@ -348,7 +375,9 @@ pub struct Panel {
     pub normal: DVec3,
     /// Top outline (the facet; a vertex repeated where the vertex was split).
     pub top: Vec<DVec3>,
-    /// Bottom outline: `bottom[k]` is the offset of `top[k]`.
+    /// Bottom outline: `bottom[k]` is the offset of `top[k]`; in a panel clipped where a bottom
+    /// edge collapsed, the corner where side k's bottom edge begins (`bottom[k] = bottom[k+1]`
+    /// when side k does not reach the bottom face).
     pub bottom: Vec<DVec3>,
     /// Side k joins `top[k]` and `top[k + 1]`.
     pub sides: Vec<Side>,

@@ -5,6 +5,7 @@ use std::collections::HashMap;
 
 use glam::{DVec2, DVec3};
 
+use super::clip;
 use super::layout::Placement;
 use super::{
     Cleat, FabricationDiagnostic, FabricationError, Panel, PanelSide, Polyhedron, Side, Slot,
@@ -24,6 +25,8 @@ pub(super) struct Built {
     pub(super) diagonal: f64,
     /// Notches per panel: (side, s0, s1, depth), s along the side from `top[side]`.
     notches: Vec<Vec<(usize, f64, f64, f64)>>,
+    /// Panels clipped where a bottom edge collapsed: their solid is already built (no slots).
+    clipped: Vec<bool>,
 }
 
 /// `w` with `m_i . w = m_j . w = m_k . w = t` for the sorted triple (so every panel gets the
@@ -203,6 +206,7 @@ pub(super) fn build(
     };
 
     let mut panels = Vec::with_capacity(n);
+    let mut ring_ids: Vec<Vec<u32>> = Vec::with_capacity(n);
     for i in 0..n {
         let f = mesh.facet(i);
         let len = f.len();
@@ -211,6 +215,7 @@ pub(super) fn build(
         let mut top: Vec<DVec3> = Vec::with_capacity(len + 2);
         let mut bottom: Vec<DVec3> = Vec::with_capacity(len + 2);
         let mut side_nb: Vec<Option<u32>> = Vec::with_capacity(len + 2);
+        let mut ids: Vec<u32> = Vec::with_capacity(len + 2);
         for k in 0..len {
             let v = pos(k);
             let prev_nb = neighbours[i][(k + len - 1) % len];
@@ -244,6 +249,7 @@ pub(super) fn build(
                                 own_offset(m[i], s1, s2, t)
                             });
                         top.push(v);
+                        ids.push(f[k]);
                         bottom.push(v + w);
                         side_nb.push(if q + 1 < seq.len() - 1 {
                             Some(seq[q + 1])
@@ -256,6 +262,7 @@ pub(super) fn build(
                     let (s1, _, _) = side_plane(i, pos(k + len - 1), v, prev_nb);
                     let (s2, _, _) = side_plane(i, v, pos(k + 1), next_nb);
                     top.push(v);
+                    ids.push(f[k]);
                     bottom.push(v + own_offset(m[i], s1, s2, t));
                     side_nb.push(next_nb);
                 }
@@ -295,85 +302,11 @@ pub(super) fn build(
                 length: (b - a).length(),
             });
         }
-        // Flat frame.
-        let nrm = m[i] * sigma;
-        let origin = top[0];
-        let e1 = (1..=ring)
-            .map(|q| top[q % ring] - top[q - 1])
-            .find(|d| d.length() > short)
-            .map(|d| d.normalize())
-            .unwrap_or_else(|| nrm.any_orthonormal_vector());
-        let e2 = nrm.cross(e1).normalize();
-        let to_flat = |x: DVec3| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2));
-        let flat: Vec<DVec2> = top.iter().map(|&x| to_flat(x)).collect();
-        let flat_bottom: Vec<DVec2> = bottom.iter().map(|&x| to_flat(x)).collect();
         let tol = FABRICATION_OUTLINE_MERGE * diagonal;
-        let mut outline: Vec<DVec2> = Vec::with_capacity(ring);
-        for &p in &flat {
-            if outline.last().map_or(true, |q| (*q - p).length() > tol) {
-                outline.push(p);
-            }
-        }
-        while outline.len() > 1 && (outline[0] - outline[outline.len() - 1]).length() <= tol {
-            outline.pop();
-        }
-        if outline.len() < 3 {
-            return Err(FabricationError::BadMesh {
-                reason: format!(
-                    "facet {i} is degenerate: fewer than 3 of its vertices are apart by more than {tol}"
-                ),
-            });
-        }
-        // The outline a vertical cut must follow: each side's top edge line, moved out to the
-        // side's bottom edge where that lies outside (a negative bevel); consecutive lines
-        // meet at the corners. Without negative bevels this is the top outline itself.
-        let mut lines: Vec<(DVec2, DVec2)> = Vec::with_capacity(ring); // (point, direction)
-        let mut widened = false;
-        for k in 0..ring {
-            let k1 = (k + 1) % ring;
-            let e = flat[k1] - flat[k];
-            if e.length() <= tol {
-                continue;
-            }
-            let d = e.normalize();
-            let out = DVec2::new(d.y, -d.x);
-            let push = (flat_bottom[k] - flat[k])
-                .dot(out)
-                .max((flat_bottom[k1] - flat[k1]).dot(out))
-                .max(0.0);
-            if push > tol {
-                widened = true;
-            }
-            lines.push((flat[k] + out * push, d));
-        }
-        let cut_outline = if widened {
+        let part = flat_part(i, &top, &bottom, m[i] * sigma, short, tol)?;
+        if part.widened {
             diagnostics.push(FabricationDiagnostic::BottomOutsideTop { panel: i as u32 });
-            let n_lines = lines.len();
-            let mut corners: Vec<DVec2> = Vec::with_capacity(n_lines);
-            for q in 0..n_lines {
-                let (p0, d0) = lines[(q + n_lines - 1) % n_lines];
-                let (p1, d1) = lines[q];
-                let cross = d0.perp_dot(d1);
-                let corner = if cross.abs() <= 1e-12 {
-                    p1
-                } else {
-                    // p0 + a d0 = p1 + b d1
-                    p0 + d0 * ((p1 - p0).perp_dot(d1) / cross)
-                };
-                if corners
-                    .last()
-                    .map_or(true, |c| (*c - corner).length() > tol)
-                {
-                    corners.push(corner);
-                }
-            }
-            while corners.len() > 1 && (corners[0] - corners[corners.len() - 1]).length() <= tol {
-                corners.pop();
-            }
-            corners
-        } else {
-            outline
-        };
+        }
         if let Some(&flags) = mesh.facet_flags.get(i) {
             if flags & crate::INVALID_FLAGS != 0 {
                 diagnostics.push(FabricationDiagnostic::InvalidFacet {
@@ -388,19 +321,22 @@ pub(super) fn build(
             top,
             bottom,
             sides,
-            frame: (origin, e1, e2),
-            flat,
-            flat_bottom,
-            cut_outline,
+            frame: part.frame,
+            flat: part.flat,
+            flat_bottom: part.flat_bottom,
+            cut_outline: part.cut_outline,
             slots: Vec::new(),
             placement: Placement::default(),
             solid: Polyhedron::default(),
         });
+        ring_ids.push(ids);
     }
 
-    // Thickness limit: no bottom edge may collapse.
+    // Thickness limit: where a bottom edge collapses (its offset vertices meet at T_max <= T),
+    // the panels around it are clipped instead (clip.rs).
     let mut worst: Option<(f64, u32, Option<u32>)> = None;
-    for p in &panels {
+    let mut collapsed: Vec<(usize, usize, f64)> = Vec::new();
+    for (i, p) in panels.iter().enumerate() {
         let ring = p.top.len();
         for k in 0..ring {
             let k1 = (k + 1) % ring;
@@ -416,18 +352,32 @@ pub(super) fn build(
                 if worst.map_or(true, |(w, _, _)| max < w) {
                     worst = Some((max, p.seed, p.sides[k].neighbour));
                 }
+                if t >= max {
+                    collapsed.push((i, k, max));
+                }
             }
         }
     }
-    if let Some((max, panel, neighbour)) = worst {
-        if t >= max {
-            return Err(FabricationError::ThicknessTooLarge {
-                thickness: t,
-                max,
-                panel,
-                neighbour,
-            });
-        }
+    let mut clipped = vec![false; panels.len()];
+    if let (false, Some(worst)) = (collapsed.is_empty(), worst) {
+        let frame = clip::Frame {
+            mesh,
+            neighbours: &neighbours,
+            m: &m,
+            e: &e,
+            centroid: &centroid,
+            sigma,
+            t,
+            diagonal,
+            worst,
+        };
+        clipped = clip::resolve(
+            &frame,
+            &mut panels,
+            &mut ring_ids,
+            &collapsed,
+            &mut diagnostics,
+        )?;
     }
     let notches = vec![Vec::new(); panels.len()];
     Ok(Built {
@@ -435,12 +385,125 @@ pub(super) fn build(
         diagnostics,
         diagonal,
         notches,
+        clipped,
+    })
+}
+
+/// The flat frame, outlines and cut outline of a panel.
+pub(super) struct FlatPart {
+    pub(super) frame: (DVec3, DVec3, DVec3),
+    pub(super) flat: Vec<DVec2>,
+    pub(super) flat_bottom: Vec<DVec2>,
+    pub(super) cut_outline: Vec<DVec2>,
+    /// The cut outline reaches outside the top outline (a negative bevel).
+    pub(super) widened: bool,
+}
+
+/// Lays panel `i` flat (see the module doc): `nrm` is the facet's normal (`m_i s`), `short`
+/// the zero edge length, `tol` the outline merge distance.
+pub(super) fn flat_part(
+    i: usize,
+    top: &[DVec3],
+    bottom: &[DVec3],
+    nrm: DVec3,
+    short: f64,
+    tol: f64,
+) -> Result<FlatPart, FabricationError> {
+    let ring = top.len();
+    let origin = top[0];
+    let e1 = (1..=ring)
+        .map(|q| top[q % ring] - top[q - 1])
+        .find(|d| d.length() > short)
+        .map(|d| d.normalize())
+        .unwrap_or_else(|| nrm.any_orthonormal_vector());
+    let e2 = nrm.cross(e1).normalize();
+    let to_flat = |x: DVec3| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2));
+    let flat: Vec<DVec2> = top.iter().map(|&x| to_flat(x)).collect();
+    let flat_bottom: Vec<DVec2> = bottom.iter().map(|&x| to_flat(x)).collect();
+    let mut outline: Vec<DVec2> = Vec::with_capacity(ring);
+    for &p in &flat {
+        if outline.last().map_or(true, |q| (*q - p).length() > tol) {
+            outline.push(p);
+        }
+    }
+    while outline.len() > 1 && (outline[0] - outline[outline.len() - 1]).length() <= tol {
+        outline.pop();
+    }
+    if outline.len() < 3 {
+        return Err(FabricationError::BadMesh {
+            reason: format!(
+                "facet {i} is degenerate: fewer than 3 of its vertices are apart by more than {tol}"
+            ),
+        });
+    }
+    // The outline a vertical cut must follow: each side's top edge line, moved out to the
+    // side's bottom edge where that lies outside (a negative bevel); consecutive lines
+    // meet at the corners. Without negative bevels this is the top outline itself.
+    let mut lines: Vec<(DVec2, DVec2)> = Vec::with_capacity(ring); // (point, direction)
+    let mut widened = false;
+    for k in 0..ring {
+        let k1 = (k + 1) % ring;
+        let e = flat[k1] - flat[k];
+        if e.length() <= tol {
+            continue;
+        }
+        let d = e.normalize();
+        let out = DVec2::new(d.y, -d.x);
+        // The bottom points of this side and of every side of zero length at its two ends
+        // (a split vertex, or two panels meeting below a collapsed edge).
+        let push = (0..ring)
+            .filter(|&q| {
+                q == k
+                    || q == k1
+                    || (flat[q] - flat[k]).length() <= tol
+                    || (flat[q] - flat[k1]).length() <= tol
+            })
+            .map(|q| (flat_bottom[q] - flat[k]).dot(out))
+            .fold(0.0, f64::max);
+        if push > tol {
+            widened = true;
+        }
+        lines.push((flat[k] + out * push, d));
+    }
+    let cut_outline = if widened {
+        let n_lines = lines.len();
+        let mut corners: Vec<DVec2> = Vec::with_capacity(n_lines);
+        for q in 0..n_lines {
+            let (p0, d0) = lines[(q + n_lines - 1) % n_lines];
+            let (p1, d1) = lines[q];
+            let cross = d0.perp_dot(d1);
+            let corner = if cross.abs() <= 1e-12 {
+                p1
+            } else {
+                // p0 + a d0 = p1 + b d1
+                p0 + d0 * ((p1 - p0).perp_dot(d1) / cross)
+            };
+            if corners
+                .last()
+                .map_or(true, |c| (*c - corner).length() > tol)
+            {
+                corners.push(corner);
+            }
+        }
+        while corners.len() > 1 && (corners[0] - corners[corners.len() - 1]).length() <= tol {
+            corners.pop();
+        }
+        corners
+    } else {
+        outline
+    };
+    Ok(FlatPart {
+        frame: (origin, e1, e2),
+        flat,
+        flat_bottom,
+        cut_outline,
+        widened,
     })
 }
 
 /// The panels around the vertex at position k of facet i, walking across each panel's side
 /// that starts at the vertex; None when the walk reaches the boundary (or breaks).
-fn walk_fan(
+pub(super) fn walk_fan(
     mesh: &Discretisation,
     neighbours: &[Vec<Option<u32>>],
     i: usize,
@@ -511,6 +574,18 @@ pub(super) fn cut_slots(
         let (Some(ka), Some(kb)) = (find(a, b), find(b, a)) else {
             return Err(bad(format!("panels {a} and {b} are not neighbours")));
         };
+        if built.clipped[a as usize] || built.clipped[b as usize] {
+            if matches!(plan, SlotPlan::Even(_)) {
+                built
+                    .diagnostics
+                    .push(FabricationDiagnostic::SlotSkipped { panels: [a, b], t });
+                continue;
+            }
+            let c = if built.clipped[a as usize] { a } else { b };
+            return Err(bad(format!(
+                "panel {c} is clipped where a bottom edge collapsed (edge_collapsed diagnostic), and clipped panels take no slots"
+            )));
+        }
         let pa = &built.panels[a as usize];
         let pb = &built.panels[b as usize];
         let ring_a = pa.top.len();
@@ -626,8 +701,15 @@ pub(super) fn cut_slots(
             solid,
         });
     }
-    for (p, notches) in built.panels.iter_mut().zip(&built.notches) {
-        p.solid = panel_solid(p, notches);
+    for ((p, notches), &clipped) in built
+        .panels
+        .iter_mut()
+        .zip(&built.notches)
+        .zip(&built.clipped)
+    {
+        if !clipped {
+            p.solid = panel_solid(p, notches);
+        }
     }
     Ok(cleats)
 }
