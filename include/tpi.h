@@ -1363,7 +1363,7 @@ enum TpiStatus tpi_discretisation_json(const struct TpiDiscretisation *discretis
  *
  * On success `*out` is a new handle (free with `tpi_fabrication_free`), else NULL.
  * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_NON_FINITE (a NaN or infinite length),
- * TPI_STATUS_INVALID_ARGUMENT (a length <= 0, a thickness beyond the mesh's limit, a part
+ * TPI_STATUS_INVALID_ARGUMENT (a length <= 0, a thickness for which no panel solid exists, a part
  * larger than the sheet, `side` not 0 or 1), TPI_STATUS_DEGENERATE (a facet that cannot be
  * a panel). The message names the option, or the panel.
  *

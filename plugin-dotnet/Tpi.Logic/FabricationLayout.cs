@@ -278,7 +278,7 @@ namespace Tpi.Logic
         public int Seed { get; set; }
         /// <summary>Top outline (the facet).</summary>
         public Vec3[] Top { get; set; }
-        /// <summary>Bottom outline, bottom[k] the offset of top[k].</summary>
+        /// <summary>Bottom outline: bottom[k] the offset of top[k], or where a collapsed edge was clipped the corner where side k's bottom edge starts (docs/fabrication.md).</summary>
         public Vec3[] Bottom { get; set; }
         /// <summary>Top outline in panel coordinates, same order as <see cref="Top"/>.</summary>
         public Point2[] Flat { get; set; }
