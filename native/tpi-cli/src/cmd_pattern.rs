@@ -87,7 +87,9 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
             return Err(usage("--density needs --surface FILE".into()));
         };
         if seed.is_some() {
-            return Err(usage("--seed is for --max-deviation (a density file has \"seed\")".into()));
+            return Err(usage(
+                "--seed is for --max-deviation (a density file has \"seed\")".into(),
+            ));
         }
         check_outputs(&out, &preview)?;
         let iterations = parse_relax(relax.as_deref())?;
@@ -199,11 +201,11 @@ fn run_density(
     let dir = file.parent().unwrap_or(std::path::Path::new("."));
     for (index, image) in spec.image_files() {
         let image_path = dir.join(&image);
-        let bytes = std::fs::read(&image_path)
-            .map_err(|e| CliError::io(&image_path, "read", &e))?;
+        let bytes =
+            std::fs::read(&image_path).map_err(|e| CliError::io(&image_path, "read", &e))?;
         let name = image_path.display().to_string();
-        let grey = tpi_core::GreyImage::from_pgm(&bytes, &name)
-            .map_err(|e| CliError::core(&name, &e))?;
+        let grey =
+            tpi_core::GreyImage::from_pgm(&bytes, &name).map_err(|e| CliError::core(&name, &e))?;
         spec.attach_image(index, grey);
     }
     let surface = crate::input::load_surface(path)?;
@@ -234,7 +236,11 @@ fn run_density(
     }
     write_all(&files)?;
     let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
-    eprintln!("tpi: {described}: {} points -> {}", uv.len(), names.join(", "));
+    eprintln!(
+        "tpi: {described}: {} points -> {}",
+        uv.len(),
+        names.join(", ")
+    );
     Ok(())
 }
 
@@ -304,7 +310,8 @@ fn run_fit(
             ),
         ));
     }
-    let hex = tpi_core::hex_baseline(&surface, d, &options).map_err(|e| CliError::core(&name, &e))?;
+    let hex =
+        tpi_core::hex_baseline(&surface, d, &options).map_err(|e| CliError::core(&name, &e))?;
     let described = format!("max deviation {d} on {name}");
     let mut files = Vec::new();
     if let Some(p) = out {
@@ -320,9 +327,9 @@ fn run_fit(
     }
     write_all(&files)?;
     let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
-    let units = surface
-        .units()
-        .map_or(String::new(), |u| format!(" {}", tpi_core::units_label(Some(u))));
+    let units = surface.units().map_or(String::new(), |u| {
+        format!(" {}", tpi_core::units_label(Some(u)))
+    });
     eprintln!(
         "tpi: {described}: {} points (mesh max deviation {:.4e}{units}, {} invalid facets, {} \
          discretisations) -> {}",

@@ -193,7 +193,8 @@ impl GreyImage {
     /// The grey level at (s, t) of the unit square (s to the right, t upwards), bilinear
     /// between pixel centres.
     pub fn sample(&self, st: [f64; 2]) -> f64 {
-        let x = (st[0].clamp(0.0, 1.0) * self.width as f64 - 0.5).clamp(0.0, (self.width - 1) as f64);
+        let x =
+            (st[0].clamp(0.0, 1.0) * self.width as f64 - 0.5).clamp(0.0, (self.width - 1) as f64);
         let y = ((1.0 - st[1].clamp(0.0, 1.0)) * self.height as f64 - 0.5)
             .clamp(0.0, (self.height - 1) as f64);
         let (i, j) = (x.floor() as usize, y.floor() as usize);
@@ -278,7 +279,11 @@ impl DensitySpec {
                     if uv.is_some() == point.is_some() {
                         return bad(name("uv"), f64::NAN, "give exactly one of uv and point");
                     }
-                    let finite = uv.iter().flatten().chain(point.iter().flatten()).all(|x| x.is_finite());
+                    let finite = uv
+                        .iter()
+                        .flatten()
+                        .chain(point.iter().flatten())
+                        .all(|x| x.is_finite());
                     if !finite {
                         return bad(name("uv"), f64::NAN, "coordinates must be finite");
                     }
@@ -303,7 +308,12 @@ impl DensitySpec {
                             "give exactly one of uv and points, with at least one point",
                         );
                     }
-                    let finite = uv.iter().flatten().flatten().chain(points.iter().flatten().flatten()).all(|x| x.is_finite());
+                    let finite = uv
+                        .iter()
+                        .flatten()
+                        .flatten()
+                        .chain(points.iter().flatten().flatten())
+                        .all(|x| x.is_finite());
                     if !finite {
                         return bad(name("uv"), f64::NAN, "coordinates must be finite");
                     }
@@ -433,10 +443,14 @@ impl DensitySpec {
             None => top * 1e-12,
         };
         let spacing = self.spacing;
-        Ok(SizingField::isotropic(surface, DENSITY_NODES, move |st, g| {
-            let rho = self.density(st, g, kappa_max).clamp(floor, top.max(floor));
-            spacing / rho.sqrt()
-        }))
+        Ok(SizingField::isotropic(
+            surface,
+            DENSITY_NODES,
+            move |st, g| {
+                let rho = self.density(st, g, kappa_max).clamp(floor, top.max(floor));
+                spacing / rho.sqrt()
+            },
+        ))
     }
 }
 

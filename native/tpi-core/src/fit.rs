@@ -44,7 +44,7 @@ use crate::tolerance::DUPLICATE_UV_TOLERANCE;
 /// Rounds of field adaptation in [`fit_pattern`].
 pub const FIT_ROUNDS: usize = 6;
 /// Lloyd iterations after each round's Poisson-disk sampling.
-pub const FIT_LLOYD_ITERATIONS: usize = 12;
+pub const FIT_LLOYD_ITERATIONS: usize = 4;
 /// Poisson-disk radius in units of the field's hexagonal spacing (0.78: a maximal Poisson-disk
 /// set has about 0.7 / r^2 points per unit area, a hexagonal lattice 2 / (sqrt(3) a^2)).
 pub const FIT_POISSON_RADIUS: f64 = 0.78;
@@ -224,7 +224,7 @@ fn consider(
         }
     } else if closest
         .as_ref()
-        .is_none_or(|c| candidate.max_deviation < c.max_deviation)
+        .map_or(true, |c| candidate.max_deviation < c.max_deviation)
     {
         *closest = Some(candidate);
     }

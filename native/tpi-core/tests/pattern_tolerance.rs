@@ -12,7 +12,10 @@ use tpi_core::{discretise, fit_pattern, DiscretiseOptions, Generator, Surface, S
 fn sample(name: &str) -> tpi_core::SurfaceModel {
     let path = format!("{}/../../samples/{name}", env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(&path).unwrap();
-    SurfaceSpec::from_json(&text, name).unwrap().build().unwrap()
+    SurfaceSpec::from_json(&text, name)
+        .unwrap()
+        .build()
+        .unwrap()
 }
 
 /// The largest distance of a mesh vertex from the surface (own projection) and the mesh's
@@ -88,9 +91,15 @@ fn fit_and_compare(name: &str, tolerance: f64) -> f64 {
         fitted.uv.len()
     );
     // Rounding of the two projections apart, every vertex within D.
-    assert!(dev <= tolerance * (1.0 + 1e-9), "{name}: {dev} > {tolerance}");
+    assert!(
+        dev <= tolerance * (1.0 + 1e-9),
+        "{name}: {dev} > {tolerance}"
+    );
     if hex_invalid == 0 {
-        assert_eq!(invalid, 0, "{name}: invalid facets where uniform hex has none");
+        assert_eq!(
+            invalid, 0,
+            "{name}: invalid facets where uniform hex has none"
+        );
     }
     ratio
 }
