@@ -27,6 +27,8 @@ EXAMPLES:
     tpi pattern random:1000:seed=7 --out random.json
     tpi pattern poisson:0.03:seed=7 --out poisson.json --preview poisson.svg
     tpi pattern random:1000 --surface samples/nurbs-dome.json --relax 20 --out even.json
+    tpi pattern --surface samples/saddle.json --max-deviation 0.01 --out fit.json
+    tpi pattern --surface samples/nurbs-dome.json --density density.json --relax 5 --out graded.json
 ";
 
 /// The arguments of `tpi pattern`, as given (checked in [`run`]).
