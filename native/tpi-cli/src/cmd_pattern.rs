@@ -3,7 +3,7 @@
 use std::fmt::Write;
 use std::path::PathBuf;
 
-use tpi_core::Generator;
+use tpi_core::{Generator, Surface};
 
 use crate::error::CliError;
 use crate::output::{check_output_path, write_all};
@@ -27,12 +27,15 @@ EXAMPLES:
     tpi pattern random:1000:seed=7 --out random.json
     tpi pattern poisson:0.03:seed=7 --out poisson.json --preview poisson.svg
     tpi pattern random:1000 --surface samples/nurbs-dome.json --relax 20 --out even.json
+    tpi pattern --surface samples/saddle.json --max-deviation 0.01 --out fit.json
+    tpi pattern --surface samples/nurbs-dome.json --density density.json --relax 5 --out graded.json
 ";
 
 /// The arguments of `tpi pattern`, as given (checked in [`run`]).
 #[derive(clap::Args, Debug)]
 pub(crate) struct PatternArgs {
-    /// The generator spec, e.g. hex:24x20 (see GENERATOR below) [required]
+    /// The generator spec, e.g. hex:24x20 (see GENERATOR below) [required unless
+    /// --max-deviation]
     #[arg(value_name = "GENERATOR")]
     spec: Option<String>,
     /// The pattern file ({"uv": [[s, t], ...]}, docs/formats.md)
@@ -41,9 +44,22 @@ pub(crate) struct PatternArgs {
     /// An SVG of the points and their Voronoi diagram in the unit square
     #[arg(long, value_name = "FILE")]
     preview: Option<PathBuf>,
-    /// The surface the pattern is for (with --relax)
+    /// The surface the pattern is for (with --relax or --max-deviation)
     #[arg(long, value_name = "FILE")]
     surface: Option<PathBuf>,
+    /// Tolerance-driven pattern: few points whose mesh (exact planes) keeps every vertex
+    /// within D model units of the surface; prints its count and the count of the smallest
+    /// uniform hex pattern that meets D [requires --surface, no GENERATOR]
+    #[arg(long, value_name = "D")]
+    max_deviation: Option<String>,
+    /// Density-graded pattern: a Poisson-disk sampling whose spacing follows the density
+    /// field in FILE (attractors, curves, curvature, a PGM image; docs/formats.md), relaxed
+    /// with --relax N following the same density [requires --surface, no GENERATOR]
+    #[arg(long, value_name = "FILE")]
+    density: Option<PathBuf>,
+    /// Random seed of the tolerance-driven pattern's sampling (default 0)
+    #[arg(long, value_name = "S")]
+    seed: Option<String>,
     /// Relax the points by N Lloyd iterations on the surface (areas measured on the surface,
     /// not in parameters), so that the panels come out even in size [requires --surface]
     #[arg(long, value_name = "N")]
@@ -59,42 +75,53 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
         preview,
         surface,
         relax,
+        max_deviation,
+        density,
+        seed,
     } = args;
+    if let Some(file) = density {
+        if spec.is_some() || max_deviation.is_some() {
+            return Err(usage(
+                "--density makes its own pattern: give no GENERATOR and no --max-deviation".into(),
+            ));
+        }
+        let Some(path) = surface else {
+            return Err(usage("--density needs --surface FILE".into()));
+        };
+        if seed.is_some() {
+            return Err(usage(
+                "--seed is for --max-deviation (a density file has \"seed\")".into(),
+            ));
+        }
+        check_outputs(&out, &preview)?;
+        let iterations = parse_relax(relax.as_deref())?;
+        return run_density(&file, iterations, &path, &out, &preview);
+    }
+    if let Some(tolerance) = max_deviation {
+        if spec.is_some() || relax.is_some() {
+            return Err(usage(
+                "--max-deviation makes its own pattern: give no GENERATOR and no --relax".into(),
+            ));
+        }
+        let Some(path) = surface else {
+            return Err(usage("--max-deviation needs --surface FILE".into()));
+        };
+        check_outputs(&out, &preview)?;
+        return run_fit(&tolerance, seed.as_deref(), &path, &out, &preview);
+    }
+    if seed.is_some() {
+        return Err(usage(
+            "--seed is for --max-deviation (generators take :seed=S)".into(),
+        ));
+    }
     let relax = match (&relax, &surface) {
         (None, None) => None,
         (Some(_), None) => return Err(usage("--relax needs --surface FILE".into())),
         (None, Some(_)) => return Err(usage("--surface is for --relax N".into())),
-        (Some(n), Some(path)) => {
-            let iterations = n
-                .parse::<usize>()
-                .ok()
-                .filter(|&k| k <= tpi_core::MAX_RELAX_ITERATIONS)
-                .ok_or_else(|| {
-                    usage(format!(
-                        "--relax {}: expected a whole number from 0 to {}",
-                        tpi_core::bounded(n, tpi_core::QUOTE_LIMIT),
-                        tpi_core::MAX_RELAX_ITERATIONS
-                    ))
-                })?;
-            Some((iterations, path.clone()))
-        }
+        (Some(n), Some(path)) => Some((parse_relax(Some(n))?, path.clone())),
     };
     let spec = spec.ok_or_else(|| usage("a GENERATOR is required, e.g. hex:24x20".into()))?;
-    if out.is_none() && preview.is_none() {
-        return Err(usage("--out (and/or --preview) is required".into()));
-    }
-    for (path, ext) in [(&out, "json"), (&preview, "svg")] {
-        if let Some(p) = path {
-            if p.extension()
-                .and_then(|e| e.to_str())
-                .map(|e| e.to_ascii_lowercase())
-                != Some(ext.to_string())
-            {
-                return Err(usage(format!("{} must end in .{ext}", p.display())));
-            }
-            check_output_path(p)?;
-        }
-    }
+    check_outputs(&out, &preview)?;
     let generator = Generator::parse(&spec).map_err(|e| match e {
         tpi_core::TpiError::InvalidGenerator { reason, .. } => {
             CliError::input(&spec, format!("invalid pattern generator: {reason}"))
@@ -140,6 +167,195 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
         pattern.len(),
         names.join(", ")
     );
+    Ok(())
+}
+
+/// The --relax count (0 when absent).
+fn parse_relax(n: Option<&str>) -> Result<usize, CliError> {
+    let Some(n) = n else { return Ok(0) };
+    n.parse::<usize>()
+        .ok()
+        .filter(|&k| k <= tpi_core::MAX_RELAX_ITERATIONS)
+        .ok_or_else(|| {
+            CliError::usage(
+                Some("pattern"),
+                format!(
+                    "--relax {}: expected a whole number from 0 to {}",
+                    tpi_core::bounded(n, tpi_core::QUOTE_LIMIT),
+                    tpi_core::MAX_RELAX_ITERATIONS
+                ),
+            )
+        })
+}
+
+/// `tpi pattern --surface S --density FILE [--relax N]`.
+fn run_density(
+    file: &std::path::Path,
+    iterations: usize,
+    path: &std::path::Path,
+    out: &Option<PathBuf>,
+    preview: &Option<PathBuf>,
+) -> Result<(), CliError> {
+    let file_name = file.display().to_string();
+    let text = crate::output::read_text(file)?;
+    let mut spec = tpi_core::DensitySpec::from_json(&text, &file_name)
+        .map_err(|e| CliError::core(&file_name, &e))?;
+    let dir = file.parent().unwrap_or(std::path::Path::new("."));
+    for (index, image) in spec.image_files() {
+        let image_path = dir.join(&image);
+        let bytes =
+            std::fs::read(&image_path).map_err(|e| CliError::io(&image_path, "read", &e))?;
+        let name = image_path.display().to_string();
+        let grey =
+            tpi_core::GreyImage::from_pgm(&bytes, &name).map_err(|e| CliError::core(&name, &e))?;
+        spec.attach_image(index, grey);
+    }
+    let surface = crate::input::load_surface(path)?;
+    let name = path.display().to_string();
+    let uv = tpi_core::density_pattern(
+        &surface,
+        &spec,
+        iterations,
+        tpi_core::MAX_GENERATED_POINTS,
+        &tpi_core::DiscretiseOptions::default(),
+    )
+    .map_err(|e| CliError::core(&name, &e))?;
+    let described = if iterations > 0 {
+        format!("density {file_name} on {name}, relaxed {iterations} times")
+    } else {
+        format!("density {file_name} on {name}")
+    };
+    let mut files = Vec::new();
+    if let Some(p) = out {
+        files.push((p.clone(), pattern_json(&uv).into_bytes()));
+    }
+    if let Some(p) = preview {
+        let cells = voronoi::cells(&uv);
+        files.push((
+            p.clone(),
+            svg::pattern_preview(&uv, &cells, &format!("tpi pattern {described}")).into_bytes(),
+        ));
+    }
+    write_all(&files)?;
+    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+    eprintln!(
+        "tpi: {described}: {} points -> {}",
+        uv.len(),
+        names.join(", ")
+    );
+    Ok(())
+}
+
+/// Checks --out and --preview: at least one, each with its extension, writable.
+fn check_outputs(out: &Option<PathBuf>, preview: &Option<PathBuf>) -> Result<(), CliError> {
+    let usage = |message: String| CliError::usage(Some("pattern"), message);
+    if out.is_none() && preview.is_none() {
+        return Err(usage("--out (and/or --preview) is required".into()));
+    }
+    for (path, ext) in [(out, "json"), (preview, "svg")] {
+        if let Some(p) = path {
+            if p.extension()
+                .and_then(|e| e.to_str())
+                .map(|e| e.to_ascii_lowercase())
+                != Some(ext.to_string())
+            {
+                return Err(usage(format!("{} must end in .{ext}", p.display())));
+            }
+            check_output_path(p)?;
+        }
+    }
+    Ok(())
+}
+
+/// `tpi pattern --surface S --max-deviation D`: the fitted pattern, its count and the
+/// uniform hex count for the same tolerance. Fails (writing nothing) when D cannot be met.
+fn run_fit(
+    tolerance: &str,
+    seed: Option<&str>,
+    path: &std::path::Path,
+    out: &Option<PathBuf>,
+    preview: &Option<PathBuf>,
+) -> Result<(), CliError> {
+    let usage = |message: String| CliError::usage(Some("pattern"), message);
+    let d = tolerance
+        .parse::<f64>()
+        .ok()
+        .filter(|d| d.is_finite() && *d > 0.0)
+        .ok_or_else(|| {
+            usage(format!(
+                "--max-deviation {}: expected a positive number (model units)",
+                tpi_core::bounded(tolerance, tpi_core::QUOTE_LIMIT)
+            ))
+        })?;
+    let seed = match seed {
+        None => 0,
+        Some(s) => s.parse::<u64>().map_err(|_| {
+            usage(format!(
+                "--seed {}: expected an unsigned 64-bit integer",
+                tpi_core::bounded(s, tpi_core::QUOTE_LIMIT)
+            ))
+        })?,
+    };
+    let surface = crate::input::load_surface(path)?;
+    let name = path.display().to_string();
+    let options = tpi_core::DiscretiseOptions::default();
+    let fitted = tpi_core::fit_pattern(&surface, d, seed, &options)
+        .map_err(|e| CliError::core(&name, &e))?;
+    if !fitted.met {
+        return Err(CliError::input(
+            &name,
+            format!(
+                "no pattern found whose mesh stays within {d}: the closest had {} points and \
+                 a vertex {} off the surface",
+                fitted.uv.len(),
+                fitted.max_deviation
+            ),
+        ));
+    }
+    let hex =
+        tpi_core::hex_baseline(&surface, d, &options).map_err(|e| CliError::core(&name, &e))?;
+    let described = format!("max deviation {d} on {name}");
+    let mut files = Vec::new();
+    if let Some(p) = out {
+        files.push((p.clone(), pattern_json(&fitted.uv).into_bytes()));
+    }
+    if let Some(p) = preview {
+        let cells = voronoi::cells(&fitted.uv);
+        files.push((
+            p.clone(),
+            svg::pattern_preview(&fitted.uv, &cells, &format!("tpi pattern {described}"))
+                .into_bytes(),
+        ));
+    }
+    write_all(&files)?;
+    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+    let units = surface.units().map_or(String::new(), |u| {
+        format!(" {}", tpi_core::units_label(Some(u)))
+    });
+    eprintln!(
+        "tpi: {described}: {} points (mesh max deviation {:.4e}{units}, {} invalid facets, {} \
+         discretisations) -> {}",
+        fitted.uv.len(),
+        fitted.max_deviation,
+        fitted.invalid_facets,
+        fitted.discretisations,
+        names.join(", ")
+    );
+    match hex {
+        Some(h) => eprintln!(
+            "tpi: uniform hex for the same tolerance: {} points ({}, max deviation {:.4e}, {} \
+             invalid facets); the fitted pattern has {:.1}% of them",
+            h.count,
+            h.generator,
+            h.max_deviation,
+            h.invalid_facets,
+            100.0 * fitted.uv.len() as f64 / h.count as f64
+        ),
+        None => eprintln!(
+            "tpi: no uniform hex pattern up to hex:spacing=1/{} meets the same tolerance",
+            tpi_core::MAX_HEX_COLUMNS
+        ),
+    }
     Ok(())
 }
 

@@ -2404,3 +2404,102 @@ fn an_open_facet_is_no_obj_face_and_a_hopeless_pattern_is_named() {
     assert!(!line.contains("developable"), "{line}");
     assert!(!r.exists());
 }
+
+/// Issue 15: `--max-deviation` writes a pattern whose mesh, discretised by `tpi discretise`,
+/// reports a deviation within the tolerance, and prints the uniform hex count; `--density`
+/// writes a graded pattern; the options refuse to be mixed with a generator.
+#[test]
+fn pattern_max_deviation_and_density_make_their_own_patterns() {
+    #[derive(Deserialize)]
+    struct Quality {
+        max_deviation: f64,
+        invalid_facets: usize,
+    }
+    #[derive(Deserialize)]
+    struct Mesh {
+        quality: Quality,
+    }
+    let dir = scratch("fit");
+    let fit = dir.join("fit.json");
+    let surface = sample("saddle.json");
+    let out = ok(&[
+        "pattern",
+        "--surface",
+        &surface,
+        "--max-deviation",
+        "0.02",
+        "--out",
+        fit.to_str().unwrap(),
+    ]);
+    let said = text(&out.stderr);
+    assert!(
+        said.contains("uniform hex for the same tolerance"),
+        "{said}"
+    );
+    let mesh = dir.join("mesh.json");
+    ok(&[
+        "discretise",
+        "--surface",
+        &surface,
+        "--pattern",
+        fit.to_str().unwrap(),
+        "--out",
+        mesh.to_str().unwrap(),
+    ]);
+    let m: Mesh = serde_json::from_str(&fs::read_to_string(&mesh).unwrap()).unwrap();
+    assert!(
+        m.quality.max_deviation <= 0.02,
+        "{}",
+        m.quality.max_deviation
+    );
+    assert_eq!(m.quality.invalid_facets, 0);
+
+    let density = dir.join("density.json");
+    fs::write(
+        &density,
+        r#"{"spacing": 0.6, "terms": [{"type": "attractor", "uv": [0.5, 0.5], "radius": 0.3, "peak": 6}]}"#,
+    )
+    .unwrap();
+    let graded = dir.join("graded.json");
+    ok(&[
+        "pattern",
+        "--surface",
+        &surface,
+        "--density",
+        density.to_str().unwrap(),
+        "--relax",
+        "2",
+        "--out",
+        graded.to_str().unwrap(),
+    ]);
+    assert!(fs::read_to_string(&graded)
+        .unwrap()
+        .starts_with("{\"uv\": ["));
+    fails(
+        &[
+            "pattern",
+            "hex:4x4",
+            "--surface",
+            &surface,
+            "--max-deviation",
+            "0.1",
+            "--out",
+            fit.to_str().unwrap(),
+        ],
+        2,
+        &["GENERATOR"],
+    );
+    fails(
+        &[
+            "pattern",
+            "--surface",
+            &surface,
+            "--max-deviation",
+            "0",
+            "--out",
+            fit.to_str().unwrap(),
+        ],
+        2,
+        &["positive number"],
+    );
+}

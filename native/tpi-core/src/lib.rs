@@ -24,12 +24,14 @@ mod analytic;
 pub mod benchmark;
 mod boundary;
 mod closed;
+mod density;
 mod diagnostics;
 mod diffgeo;
 mod discretise;
 mod error;
 mod fabricate;
 mod facets;
+mod fit;
 mod flat;
 mod ghosts;
 mod hull;
@@ -49,6 +51,7 @@ mod relax;
 mod rulings;
 mod samples;
 mod sanity;
+mod sizing;
 mod spec;
 mod structure;
 mod surface;
@@ -60,6 +63,7 @@ mod validity_flips;
 
 pub use analytic::{AnalyticKind, AnalyticSurface};
 pub use closed::{surface_layout, SurfaceLayout};
+pub use density::{density_pattern, DensitySpec, DensityTerm, GreyImage, DENSITY_NODES};
 pub use diagnostics::Diagnostic;
 pub use diffgeo::LocalGeometry;
 pub use discretise::{
@@ -76,6 +80,11 @@ pub use fabricate::{
     MAX_SLOTS_PER_EDGE,
 };
 pub use facets::VertexKind;
+pub use fit::{
+    fit_pattern, hex_baseline, vertex_deviations, FittedPattern, HexBaseline, FIT_LLOYD_ITERATIONS,
+    FIT_MAX_STEP, FIT_POISSON_RADIUS, FIT_REFINE_PASSES, FIT_ROUNDS, FIT_TARGET_RATIO,
+    MAX_FIT_POINTS, MAX_HEX_COLUMNS, MIN_FIT_POINTS,
+};
 pub use live::{LiveChanges, LiveStats, LiveSurface};
 pub use nurbs::{NurbsSpec, NurbsSurface};
 pub use pattern::{

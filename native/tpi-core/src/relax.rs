@@ -50,14 +50,46 @@ pub fn relax(
             reason: format!("at most {MAX_RELAX_ITERATIONS} relaxation iterations"),
         });
     }
+    relax_weighted(surface, pattern, iterations, options, None)
+}
+
+/// A density of points over the normalised square: Lloyd's iteration weighted by it makes
+/// cells of surface area proportional to density^(-1/2) (sizing.rs).
+pub(crate) type Density<'a> = &'a (dyn Fn([f64; 2]) -> f64 + Sync);
+
+/// [`relax`] with an optional `density` (None: uniform): the cell centroids are weighted by
+/// it, and the first spreading follows area times density. Over-relaxed by
+/// [`OVER_RELAXATION`] without a density, plain Lloyd steps with one.
+pub(crate) fn relax_weighted(
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    iterations: usize,
+    options: &DiscretiseOptions,
+    density: Option<Density<'_>>,
+) -> Result<Vec<[f64; 2]>, TpiError> {
+    if iterations == 0 {
+        return Ok(pattern.to_vec());
+    }
+    let mut points = spread_by_area(surface, pattern, density);
+    for _ in 0..iterations {
+        points = lloyd_step(surface, &points, options, density)?.0;
+    }
+    Ok(points)
+}
+
+/// One Lloyd iteration (module doc), weighted by `density` where given: the points after it
+/// and the discretisation of the points before it.
+pub(crate) fn lloyd_step(
+    surface: &dyn Surface,
+    points: &[[f64; 2]],
+    options: &DiscretiseOptions,
+    density: Option<Density<'_>>,
+) -> Result<(Vec<[f64; 2]>, crate::Discretisation), TpiError> {
     let options = DiscretiseOptions {
         quality_report: true,
         ..*options
     };
     let domain = surface.domain();
-    if iterations == 0 {
-        return Ok(pattern.to_vec());
-    }
     // On a seam or a pole a point would be refused (or be one with its image): keep clear.
     let layout = crate::closed::surface_layout(surface);
     let margin = |k: usize| {
@@ -69,40 +101,62 @@ pub fn relax(
         }
     };
     let (margin_s, margin_t) = (margin(0), margin(1));
-    let mut points = spread_by_area(surface, pattern);
-    for _ in 0..iterations {
-        let d = discretise(surface, &points, &options)?;
-        let mut moved: Vec<Option<[f64; 2]>> = vec![None; points.len()];
-        for i in 0..d.facet_count() {
-            if d.facet_flags
-                .get(i)
-                .is_some_and(|&f| f & INVALID_FLAGS != 0)
-            {
-                continue;
-            }
-            let corners: Vec<DVec3> = d.facet(i).iter().map(|&v| d.vertices[v as usize]).collect();
-            let Some(centroid) = polygon_centroid(&corners) else {
-                continue;
-            };
-            let target = foot(surface, &domain, centroid, d.seeds[i].uv);
-            let seed = d.seeds[i].uv;
-            // Over-relaxed: a step past the centroid, which Lloyd's iteration otherwise
-            // approaches slowly where the density has far to travel.
-            let uv = [
-                seed[0] + OVER_RELAXATION * (target[0] - seed[0]),
-                seed[1] + OVER_RELAXATION * (target[1] - seed[1]),
-            ];
-            let [s, t] = domain.to_normalised(uv);
-            if s.is_finite() && t.is_finite() {
-                moved[d.pattern_index(i)] = Some([
-                    s.clamp(margin_s, 1.0 - margin_s),
-                    t.clamp(margin_t, 1.0 - margin_t),
-                ]);
-            }
+    let over = if density.is_some() {
+        1.0
+    } else {
+        OVER_RELAXATION
+    };
+    let d = discretise(surface, points, &options)?;
+    let mut moved: Vec<Option<[f64; 2]>> = vec![None; points.len()];
+    for i in 0..d.facet_count() {
+        if d.facet_flags
+            .get(i)
+            .is_some_and(|&f| f & INVALID_FLAGS != 0)
+        {
+            continue;
         }
-        points = place_moves(&points, &moved);
+        let corners: Vec<DVec3> = d.facet(i).iter().map(|&v| d.vertices[v as usize]).collect();
+        let seed = d.seeds[i].uv;
+        let centroid = match density {
+            None => polygon_centroid(&corners),
+            Some(rho) => {
+                let at_seed = surface.evaluate(seed[0], seed[1]);
+                let to_st = |x: DVec3| {
+                    // First order: the parameters of x's foot near the seed.
+                    let (su, sv) = (at_seed.su, at_seed.sv);
+                    let r = x - at_seed.point;
+                    let (e, f, g) = (su.dot(su), su.dot(sv), sv.dot(sv));
+                    let det = e * g - f * f;
+                    let (a, b) = (su.dot(r), sv.dot(r));
+                    let uv = [
+                        seed[0] + (g * a - f * b) / det,
+                        seed[1] + (e * b - f * a) / det,
+                    ];
+                    let [s, t] = domain.to_normalised(uv);
+                    [s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)]
+                };
+                weighted_centroid(&corners, |x| rho(to_st(x)))
+            }
+        };
+        let Some(centroid) = centroid else {
+            continue;
+        };
+        let target = foot(surface, &domain, centroid, seed);
+        // Over-relaxed without a density: a step past the centroid, which Lloyd's iteration
+        // otherwise approaches slowly where the density has far to travel.
+        let uv = [
+            seed[0] + over * (target[0] - seed[0]),
+            seed[1] + over * (target[1] - seed[1]),
+        ];
+        let [s, t] = domain.to_normalised(uv);
+        if s.is_finite() && t.is_finite() {
+            moved[d.pattern_index(i)] = Some([
+                s.clamp(margin_s, 1.0 - margin_s),
+                t.clamp(margin_t, 1.0 - margin_t),
+            ]);
+        }
     }
-    Ok(points)
+    Ok((place_moves(points, &moved), d))
 }
 
 /// The points after one iteration's moves (`moved[i]`: where point i goes, None where it
@@ -213,7 +267,11 @@ const AREA_GRID: usize = 64;
 /// consecutive points, sorted by t, to the quantiles of the area in t over the strip. The area
 /// density |Su x Sv| is measured on a grid of [`AREA_GRID`]^2 cells. Lloyd's iteration evens
 /// fine scales quickly but coarse ones only over many steps; this does them at once.
-fn spread_by_area(surface: &dyn Surface, pattern: &[[f64; 2]]) -> Vec<[f64; 2]> {
+fn spread_by_area(
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    density: Option<Density<'_>>,
+) -> Vec<[f64; 2]> {
     let domain = surface.domain();
     let g = AREA_GRID;
     let h = 1.0 / g as f64;
@@ -222,10 +280,13 @@ fn spread_by_area(surface: &dyn Surface, pattern: &[[f64; 2]]) -> Vec<[f64; 2]> 
         .map(|i| {
             (0..g)
                 .map(|j| {
-                    let [u, v] =
-                        domain.from_normalised([(i as f64 + 0.5) * h, (j as f64 + 0.5) * h]);
+                    let st = [(i as f64 + 0.5) * h, (j as f64 + 0.5) * h];
+                    let [u, v] = domain.from_normalised(st);
                     let d = surface.evaluate(u, v);
-                    let a = d.su.cross(d.sv).length();
+                    // Lloyd with density rho makes cell areas go as rho^(-1/2): the number
+                    // of points per area as sqrt(rho).
+                    let weight = density.map_or(1.0, |rho| rho(st).max(0.0).sqrt());
+                    let a = d.su.cross(d.sv).length() * weight;
                     if a.is_finite() {
                         a
                     } else {
@@ -285,6 +346,27 @@ fn spread_by_area(surface: &dyn Surface, pattern: &[[f64; 2]]) -> Vec<[f64; 2]> 
         }
     }
     out
+}
+
+/// The centroid of a planar polygon under a density (fan around the vertex mean, each
+/// triangle weighted by its area times the density at its centroid); None when it has no
+/// weight or is not finite.
+fn weighted_centroid(corners: &[DVec3], density: impl Fn(DVec3) -> f64) -> Option<DVec3> {
+    if corners.len() < 3 {
+        return None;
+    }
+    let mean = corners.iter().copied().sum::<DVec3>() / corners.len() as f64;
+    let mut weight = 0.0;
+    let mut weighted = DVec3::ZERO;
+    for k in 0..corners.len() {
+        let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
+        let g = (mean + a + b) / 3.0;
+        let w = 0.5 * (a - mean).cross(b - mean).length() * density(g).max(0.0);
+        weight += w;
+        weighted += w * g;
+    }
+    let c = weighted / weight;
+    (weight > 0.0 && c.is_finite()).then_some(c)
 }
 
 /// The area-weighted centroid of a planar polygon (fan around the vertex mean); None when it

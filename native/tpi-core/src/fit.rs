@@ -1,0 +1,490 @@
+//! Tolerance-driven patterns: few pattern points whose TPI mesh keeps every vertex within a
+//! distance D of the surface (issue 15, item 1).
+//!
+//! The geometry (DESIGN.md, items 3, 4, 7): near a seed the surface is z = 1/2 x^T II x over
+//! its tangent plane, and three tangent planes meet above the circumcentre of their seeds in
+//! the metric II, at 1/2 R^2 from the surface (R the circumradius in that metric; for a facet
+//! of circumradius r on normal curvature k that is about k r^2 / 2). A hexagonal lattice of
+//! spacing a in the metric |II| has R = a / sqrt(3), so the deviation D is met with
+//! a = sqrt(6 D): the curvature sizing field M = |II| / (6 D) of `sizing.rs`, anisotropic
+//! (cells long along the weakly curved direction) and with its curvatures floored so flat
+//! places keep a finite spacing.
+//!
+//! [`fit_pattern`] runs, for a bounded number of rounds:
+//!
+//! 1. a Poisson-disk sampling in the field's metric at radius [`FIT_POISSON_RADIUS`] (a
+//!    maximal Poisson-disk set of radius 0.78 a has about as many points as a hexagonal
+//!    lattice of spacing a), then [`FIT_LLOYD_ITERATIONS`] Lloyd iterations on the surface
+//!    weighted by the field's density, which even the cells towards hexagons;
+//! 2. the real discretisation (the caller's options, exact planes by default) and the
+//!    deviation of every mesh vertex as the quality report measures it ([`vertex_deviations`]);
+//! 3. the field's spacing scaled at every node by sqrt(tau / phi), phi the largest deviation
+//!    of the nearby facets' vertices over D and tau = [`FIT_TARGET_RATIO`]: finer where D is
+//!    exceeded, coarser where the deviation is far below it (bounded per round by
+//!    [`FIT_MAX_STEP`]);
+//!
+//! and keeps the pattern of each round finished by local refinement: while some vertex
+//! deviates more than D, a pattern point is added at the foot of each offending vertex
+//! (worst first, one per neighbourhood), which splits the circle that vertex is the centre of.
+//! The answer is the smallest finished pattern that meets D (with no invalid facet when one
+//! was found without); when no round meets D within [`FIT_REFINE_PASSES`] refinements, the
+//! result says so ([`FittedPattern::met`]) and carries the closest attempt.
+
+use rayon::prelude::*;
+
+use crate::discretise::{discretise, Discretisation, DiscretiseOptions};
+use crate::error::TpiError;
+use crate::pattern::Generator;
+use crate::projection::distance_foot;
+use crate::relax::relax_weighted;
+use crate::sizing::{metric_poisson, CurvatureFloors, SizingField};
+use crate::surface::Surface;
+use crate::tolerance::DUPLICATE_UV_TOLERANCE;
+
+/// Rounds of field adaptation in [`fit_pattern`].
+pub const FIT_ROUNDS: usize = 6;
+/// Lloyd iterations after each round's Poisson-disk sampling.
+pub const FIT_LLOYD_ITERATIONS: usize = 4;
+/// Poisson-disk radius in units of the field's hexagonal spacing (0.78: a maximal Poisson-disk
+/// set has about 0.7 / r^2 points per unit area, a hexagonal lattice 2 / (sqrt(3) a^2)).
+pub const FIT_POISSON_RADIUS: f64 = 0.78;
+/// Deviation over D that the field adaptation aims at, below 1 to leave room for the
+/// irregularity of the points.
+pub const FIT_TARGET_RATIO: f64 = 0.8;
+/// Largest change of the spacing at one node in one round (factor, and its inverse).
+pub const FIT_MAX_STEP: f64 = 1.5;
+/// Refinement passes (points added at offending vertices) that finish each round.
+pub const FIT_REFINE_PASSES: usize = 12;
+/// Most points a fitted pattern may have.
+pub const MAX_FIT_POINTS: usize = 2_000_000;
+/// Fewest points a fitted pattern starts from.
+pub const MIN_FIT_POINTS: usize = 12;
+/// Nodes per side of the sizing field.
+const FIELD_NODES: usize = 65;
+/// Curvature floors of the field: anisotropy at most 1 : 20 in curvature, and the spacing at
+/// most 1 / sqrt(0.01) = 10 times the finest.
+const FIT_FLOORS: CurvatureFloors = CurvatureFloors {
+    relative: 0.05,
+    global: 0.01,
+};
+
+/// What [`fit_pattern`] found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FittedPattern {
+    /// The pattern points (normalised, [0, 1]^2).
+    pub uv: Vec<[f64; 2]>,
+    /// Whether every mesh vertex lies within the tolerance.
+    pub met: bool,
+    /// The largest vertex deviation of its mesh (model units): the larger of the quality
+    /// report's and [`vertex_deviations`]'s.
+    pub max_deviation: f64,
+    /// Invalid facets of its mesh (the quality report's count).
+    pub invalid_facets: usize,
+    /// Discretisations run to find it.
+    pub discretisations: usize,
+}
+
+/// The deviation of every mesh vertex from the surface (model units), as the quality report
+/// measures it: the distance to the foot found by Newton's method from the parameters of the
+/// first facet holding the vertex ([`crate::projection`]); 0 for vertices no facet uses.
+pub fn vertex_deviations(surface: &dyn Surface, d: &Discretisation) -> Vec<f64> {
+    vertex_feet(surface, d)
+        .into_iter()
+        .map(|f| f.map_or(0.0, |(dev, _)| dev))
+        .collect()
+}
+
+/// Per vertex, its deviation and its foot's parameters (the surface's own), None if unused.
+fn vertex_feet(surface: &dyn Surface, d: &Discretisation) -> Vec<Option<(f64, [f64; 2])>> {
+    let mut first = vec![u32::MAX; d.vertices.len()];
+    for i in 0..d.facet_count() {
+        for &v in d.facet(i) {
+            if first[v as usize] == u32::MAX {
+                first[v as usize] = i as u32;
+            }
+        }
+    }
+    let domain = surface.domain();
+    (0..d.vertices.len())
+        .into_par_iter()
+        .map(|v| {
+            let i = *first.get(v).filter(|&&i| i != u32::MAX)?;
+            let x = d.vertices[v];
+            let [u, w] = distance_foot(surface, &domain, x, d.seeds[i as usize].uv);
+            let (cu, cw) = domain.clamp(u, w);
+            let dev = surface.point_at(cu, cw).distance(x);
+            Some((if dev.is_finite() { dev } else { f64::INFINITY }, [cu, cw]))
+        })
+        .collect()
+}
+
+/// A tolerance-driven pattern for `surface` (module doc): few points whose TPI mesh, built
+/// with `options`, keeps every vertex within `max_deviation` of the surface. `seed` drives
+/// the Poisson-disk sampling.
+///
+/// Errors: [`TpiError::InvalidParameter`] for a tolerance that is not a positive finite
+/// number, or one so small that the pattern would need more than [`MAX_FIT_POINTS`] points;
+/// those of [`crate::discretise`].
+pub fn fit_pattern(
+    surface: &dyn Surface,
+    max_deviation: f64,
+    seed: u64,
+    options: &DiscretiseOptions,
+) -> Result<FittedPattern, TpiError> {
+    if !(max_deviation.is_finite() && max_deviation > 0.0) {
+        return Err(TpiError::InvalidParameter {
+            field: "max_deviation".into(),
+            value: max_deviation,
+            reason: "the tolerance must be a positive number (model units)".into(),
+        });
+    }
+    let options = DiscretiseOptions {
+        quality_report: true,
+        ..*options
+    };
+    let base = SizingField::curvature(surface, FIELD_NODES, max_deviation, FIT_FLOORS);
+    let nodes = base.nodes();
+    let mut multiplier = vec![1.0f64; nodes * nodes];
+    let mut best: Option<FittedPattern> = None;
+    let mut closest: Option<FittedPattern> = None;
+    let mut runs = 0usize;
+    for _round in 0..FIT_ROUNDS {
+        let mut field = base.clone();
+        field.scale_spacing(&multiplier);
+        let expected = field.expected_poisson_count(FIT_POISSON_RADIUS);
+        if expected > MAX_FIT_POINTS as f64 {
+            return Err(TpiError::InvalidParameter {
+                field: "max_deviation".into(),
+                value: max_deviation,
+                reason: format!(
+                    "the tolerance needs about {expected:.0} pattern points, more than \
+                     {MAX_FIT_POINTS}"
+                ),
+            });
+        }
+        if expected < MIN_FIT_POINTS as f64 {
+            // A nearly flat surface or a loose tolerance: start from a few points anyway.
+            let f = (expected.max(1e-12) / MIN_FIT_POINTS as f64).sqrt();
+            for m in &mut multiplier {
+                *m *= f;
+            }
+            field = base.clone();
+            field.scale_spacing(&multiplier);
+        }
+        let mut points = metric_poisson(&field, FIT_POISSON_RADIUS, seed, MAX_FIT_POINTS);
+        if points.len() < 3 {
+            points = Generator::parse("hex:3x3")?.generate().uv;
+        }
+        let density = |st: [f64; 2]| field.lloyd_density(st);
+        points = relax_weighted(
+            surface,
+            &points,
+            FIT_LLOYD_ITERATIONS,
+            &options,
+            Some(&density),
+        )?;
+        runs += FIT_LLOYD_ITERATIONS;
+        let d = discretise(surface, &points, &options)?;
+        runs += 1;
+        let feet = vertex_feet(surface, &d);
+        let ratios = facet_ratios(&d, &feet, max_deviation);
+        update_multiplier(&mut multiplier, nodes, &surface.domain(), &d, &ratios);
+        let finished = refine(surface, points, d, feet, max_deviation, &options, &mut runs)?;
+        consider(&mut best, &mut closest, finished);
+    }
+    let mut result = best.or(closest).unwrap_or(FittedPattern {
+        uv: Vec::new(),
+        met: false,
+        max_deviation: f64::INFINITY,
+        invalid_facets: 0,
+        discretisations: 0,
+    });
+    result.discretisations = runs;
+    Ok(result)
+}
+
+/// Keeps the better pattern: among those that meet the tolerance the one with no invalid
+/// facet, then the fewest points; else the one closest to the tolerance.
+fn consider(
+    best: &mut Option<FittedPattern>,
+    closest: &mut Option<FittedPattern>,
+    candidate: FittedPattern,
+) {
+    if candidate.met {
+        let better = match best {
+            None => true,
+            Some(b) => {
+                (candidate.invalid_facets == 0 && b.invalid_facets > 0)
+                    || ((candidate.invalid_facets == 0) == (b.invalid_facets == 0)
+                        && candidate.uv.len() < b.uv.len())
+            }
+        };
+        if better {
+            *best = Some(candidate);
+        }
+    } else if closest
+        .as_ref()
+        .map_or(true, |c| candidate.max_deviation < c.max_deviation)
+    {
+        *closest = Some(candidate);
+    }
+}
+
+/// Per facet, the largest deviation of its vertices over `tolerance`.
+fn facet_ratios(d: &Discretisation, feet: &[Option<(f64, [f64; 2])>], tolerance: f64) -> Vec<f64> {
+    (0..d.facet_count())
+        .map(|i| {
+            d.facet(i)
+                .iter()
+                .filter_map(|&v| feet[v as usize].map(|(dev, _)| dev))
+                .fold(0.0, f64::max)
+                / tolerance
+        })
+        .collect()
+}
+
+/// Scales the spacing multiplier at every node by sqrt(tau / phi) (module doc), phi the
+/// largest ratio of the facets whose seeds are nearest that node, spread to nodes with no
+/// seed from their neighbours and smoothed over 3 x 3 nodes (geometric mean).
+fn update_multiplier(
+    multiplier: &mut [f64],
+    nodes: usize,
+    domain: &crate::surface::Domain,
+    d: &Discretisation,
+    ratios: &[f64],
+) {
+    let m = (nodes - 1) as f64;
+    let mut phi = vec![f64::NAN; nodes * nodes];
+    for (i, &r) in ratios.iter().enumerate() {
+        let st = domain.to_normalised(d.seeds[i].uv);
+        let a = ((st[0] * m).round() as usize).min(nodes - 1);
+        let b = ((st[1] * m).round() as usize).min(nodes - 1);
+        let k = a * nodes + b;
+        let r = if r.is_finite() { r } else { 4.0 };
+        phi[k] = if phi[k].is_nan() { r } else { phi[k].max(r) };
+    }
+    // Nodes without a seed take the largest of their filled neighbours, ring by ring.
+    loop {
+        let empty = phi.iter().filter(|x| x.is_nan()).count();
+        if empty == 0 || empty == phi.len() {
+            break;
+        }
+        let before = phi.clone();
+        for a in 0..nodes {
+            for b in 0..nodes {
+                if !before[a * nodes + b].is_nan() {
+                    continue;
+                }
+                let mut v = f64::NAN;
+                for (da, db) in [(-1i64, 0i64), (1, 0), (0, -1), (0, 1)] {
+                    let (x, y) = (a as i64 + da, b as i64 + db);
+                    if x >= 0 && y >= 0 && (x as usize) < nodes && (y as usize) < nodes {
+                        let w = before[x as usize * nodes + y as usize];
+                        if !w.is_nan() {
+                            v = if v.is_nan() { w } else { v.max(w) };
+                        }
+                    }
+                }
+                phi[a * nodes + b] = v;
+            }
+        }
+    }
+    let step: Vec<f64> = phi
+        .iter()
+        .map(|&p| {
+            let p = if p.is_nan() { FIT_TARGET_RATIO } else { p };
+            (FIT_TARGET_RATIO / p.max(1e-6))
+                .sqrt()
+                .clamp(1.0 / FIT_MAX_STEP, FIT_MAX_STEP)
+                .ln()
+        })
+        .collect();
+    for a in 0..nodes {
+        for b in 0..nodes {
+            let (mut sum, mut count) = (0.0, 0.0);
+            for x in a.saturating_sub(1)..=(a + 1).min(nodes - 1) {
+                for y in b.saturating_sub(1)..=(b + 1).min(nodes - 1) {
+                    sum += step[x * nodes + y];
+                    count += 1.0;
+                }
+            }
+            // The smoothed step, but never coarser than the node's own.
+            let own = step[a * nodes + b];
+            multiplier[a * nodes + b] *= (sum / count).min(own).exp();
+        }
+    }
+}
+
+/// The pattern finished by local refinement (module doc), starting from `points` and their
+/// discretisation `d` with its vertices' `feet`.
+fn refine(
+    surface: &dyn Surface,
+    mut points: Vec<[f64; 2]>,
+    mut d: Discretisation,
+    mut feet: Vec<Option<(f64, [f64; 2])>>,
+    tolerance: f64,
+    options: &DiscretiseOptions,
+    runs: &mut usize,
+) -> Result<FittedPattern, TpiError> {
+    let domain = surface.domain();
+    for pass in 0..=FIT_REFINE_PASSES {
+        let report = d.quality.as_ref();
+        let own = feet
+            .iter()
+            .filter_map(|f| f.map(|(dev, _)| dev))
+            .fold(0.0, f64::max);
+        let max_deviation = own.max(report.map_or(0.0, |q| q.max_deviation));
+        let invalid = report.map_or(0, |q| q.invalid_facets);
+        if max_deviation <= tolerance || pass == FIT_REFINE_PASSES {
+            return Ok(FittedPattern {
+                uv: points,
+                met: max_deviation <= tolerance,
+                max_deviation,
+                invalid_facets: invalid,
+                discretisations: 0,
+            });
+        }
+        // Offending vertices, worst first; one new point per neighbourhood: no two new
+        // points closer than half the distance from their vertex to its first facet's seed.
+        let mut offending: Vec<(f64, [f64; 2], f64)> = Vec::new();
+        let mut first = vec![u32::MAX; d.vertices.len()];
+        for i in 0..d.facet_count() {
+            for &v in d.facet(i) {
+                if first[v as usize] == u32::MAX {
+                    first[v as usize] = i as u32;
+                }
+            }
+        }
+        for (v, f) in feet.iter().enumerate() {
+            if let Some((dev, foot)) = *f {
+                if dev > tolerance && first[v] != u32::MAX {
+                    let seed = domain.to_normalised(d.seeds[first[v] as usize].uv);
+                    let st = domain.to_normalised(foot);
+                    let st = [st[0].clamp(0.0, 1.0), st[1].clamp(0.0, 1.0)];
+                    let reach = (st[0] - seed[0]).hypot(st[1] - seed[1]);
+                    offending.push((dev, st, reach));
+                }
+            }
+        }
+        if offending.is_empty() {
+            // The report's projection sees a deviation this one does not: refine the
+            // facets around the report's worst by their own vertices' means.
+            return Ok(FittedPattern {
+                uv: points,
+                met: false,
+                max_deviation,
+                invalid_facets: invalid,
+                discretisations: 0,
+            });
+        }
+        offending.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let mut added: Vec<([f64; 2], f64)> = Vec::new();
+        for (_, st, reach) in offending {
+            let near = |p: [f64; 2], r: f64| (p[0] - st[0]).hypot(p[1] - st[1]) < r;
+            if added.iter().any(|&(p, r)| near(p, 0.5 * r.max(reach))) {
+                continue;
+            }
+            if points
+                .iter()
+                .any(|&p| near(p, (0.25 * reach).max(10.0 * DUPLICATE_UV_TOLERANCE)))
+            {
+                continue;
+            }
+            added.push((st, reach));
+        }
+        if added.is_empty() {
+            return Ok(FittedPattern {
+                uv: points,
+                met: false,
+                max_deviation,
+                invalid_facets: invalid,
+                discretisations: 0,
+            });
+        }
+        points.extend(added.into_iter().map(|(p, _)| p));
+        d = discretise(surface, &points, options)?;
+        *runs += 1;
+        feet = vertex_feet(surface, &d);
+    }
+    unreachable_result()
+}
+
+/// Never reached: the refinement loop returns on its last pass.
+fn unreachable_result() -> Result<FittedPattern, TpiError> {
+    Err(TpiError::InvalidParameter {
+        field: "refinement".into(),
+        value: FIT_REFINE_PASSES as f64,
+        reason: "the refinement loop ended without a result".into(),
+    })
+}
+
+/// The smallest uniform hexagonal pattern `hex:NxM` (`hex:spacing=1/N`) whose mesh keeps
+/// every vertex within the tolerance, by doubling N and then bisection on it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HexBaseline {
+    /// The generator found.
+    pub generator: Generator,
+    /// Its number of points.
+    pub count: usize,
+    /// Its mesh's largest vertex deviation (as [`FittedPattern::max_deviation`]).
+    pub max_deviation: f64,
+    /// Its mesh's invalid facets.
+    pub invalid_facets: usize,
+}
+
+/// The uniform hexagonal baseline of a tolerance ([`HexBaseline`]); None when even
+/// `hex:spacing=1/N` with N up to [`MAX_HEX_COLUMNS`] does not meet it.
+///
+/// Errors: those of [`crate::discretise`].
+pub fn hex_baseline(
+    surface: &dyn Surface,
+    max_deviation: f64,
+    options: &DiscretiseOptions,
+) -> Result<Option<HexBaseline>, TpiError> {
+    let options = DiscretiseOptions {
+        quality_report: true,
+        ..*options
+    };
+    let try_columns = |n: usize| -> Result<HexBaseline, TpiError> {
+        let generator = Generator::Hex(crate::pattern::GridSize::Spacing(1.0 / n as f64));
+        let uv = generator.generate().uv;
+        let d = discretise(surface, &uv, &options)?;
+        let own = vertex_deviations(surface, &d)
+            .into_iter()
+            .fold(0.0, f64::max);
+        let q = d.quality.as_ref();
+        Ok(HexBaseline {
+            generator,
+            count: uv.len(),
+            max_deviation: own.max(q.map_or(0.0, |q| q.max_deviation)),
+            invalid_facets: q.map_or(0, |q| q.invalid_facets),
+        })
+    };
+    let mut lo = 2usize; // fails (or is too few)
+    let mut hi = 4usize;
+    let mut found = loop {
+        let h = try_columns(hi)?;
+        if h.max_deviation <= max_deviation {
+            break h;
+        }
+        lo = hi;
+        hi *= 2;
+        if hi > MAX_HEX_COLUMNS {
+            return Ok(None);
+        }
+    };
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        let h = try_columns(mid)?;
+        if h.max_deviation <= max_deviation {
+            hi = mid;
+            found = h;
+        } else {
+            lo = mid;
+        }
+    }
+    Ok(Some(found))
+}
+
+/// Most columns [`hex_baseline`] tries (about 1.3 million points).
+pub const MAX_HEX_COLUMNS: usize = 1024;
