@@ -267,6 +267,16 @@ impl DensitySpec {
                 return bad("ratio".into(), r, "must be a number >= 1");
             }
         }
+        // An attractor's or a curve's falloff: its radius and its peak, both positive.
+        let falloff = |name: &dyn Fn(&str) -> String, radius: f64, peak: f64| {
+            if !positive(radius) {
+                return bad(name("radius"), radius, "must be a positive number");
+            }
+            if !positive(peak) {
+                return bad(name("peak"), peak, "must be a positive number");
+            }
+            Ok(())
+        };
         for (k, term) in self.terms.iter().enumerate() {
             let name = |f: &str| format!("terms[{k}].{f}");
             match term {
@@ -287,12 +297,7 @@ impl DensitySpec {
                     if !finite {
                         return bad(name("uv"), f64::NAN, "coordinates must be finite");
                     }
-                    if !positive(*radius) {
-                        return bad(name("radius"), *radius, "must be a positive number");
-                    }
-                    if !positive(*peak) {
-                        return bad(name("peak"), *peak, "must be a positive number");
-                    }
+                    falloff(&name, *radius, *peak)?;
                 }
                 DensityTerm::Curve {
                     uv,
@@ -317,12 +322,7 @@ impl DensitySpec {
                     if !finite {
                         return bad(name("uv"), f64::NAN, "coordinates must be finite");
                     }
-                    if !positive(*radius) {
-                        return bad(name("radius"), *radius, "must be a positive number");
-                    }
-                    if !positive(*peak) {
-                        return bad(name("peak"), *peak, "must be a positive number");
-                    }
+                    falloff(&name, *radius, *peak)?;
                 }
                 DensityTerm::Curvature { exponent } => {
                     if !(exponent.is_finite() && *exponent >= 0.0 && *exponent <= 8.0) {

@@ -289,6 +289,26 @@ fn vase(profile: &[(f64, f64)], transposed: bool) -> NurbsSurface {
     }
 }
 
+/// The discretisation of a closed surface, with one facet per seed and no seam left open
+/// asserted, and its independent validity checks.
+fn closed_discretisation(
+    name: &str,
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    options: &DiscretiseOptions,
+) -> (Discretisation, validity::Validity) {
+    let d = discretise(surface, pattern, options).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert_eq!(d.facet_count(), pattern.len(), "{name}");
+    assert!(
+        !d.diagnostics
+            .iter()
+            .any(|g| matches!(g, Diagnostic::SeamLeftOpen { .. })),
+        "{name}: seam left open"
+    );
+    let v = validity::check(&d);
+    (d, v)
+}
+
 /// Issue 16, item 2: a surface closed one way that is not convex (a vase with a waist, K < 0;
 /// one with bulges and a waist, mixed curvature) gives an annulus with its seam closed, for
 /// irregular patterns too. Oracles from the facet loops and the seeds, not the pipeline: the
@@ -340,16 +360,7 @@ fn closed_surfaces_that_are_not_convex_close_their_seam_and_poles() {
                 planes: *planes,
                 ..DiscretiseOptions::default()
             };
-            let d =
-                discretise(surface, pattern, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
-            assert_eq!(d.facet_count(), pattern.len(), "{name}");
-            assert!(
-                !d.diagnostics
-                    .iter()
-                    .any(|g| matches!(g, Diagnostic::SeamLeftOpen { .. })),
-                "{name}: seam left open"
-            );
-            let v = validity::check(&d);
+            let (d, v) = closed_discretisation(&name, surface, pattern, &options);
             // Two open ends: an annulus; two poles: a sphere.
             let expected = if *sname == "peanut" { (2, 0) } else { (0, 2) };
             assert!(
@@ -479,16 +490,7 @@ fn a_closed_surface_convex_at_every_seed_but_not_as_a_whole_closes() {
                 planes,
                 ..DiscretiseOptions::default()
             };
-            let d =
-                discretise(&surface, pattern, &options).unwrap_or_else(|e| panic!("{name}: {e}"));
-            assert_eq!(d.facet_count(), pattern.len(), "{name}");
-            assert!(
-                !d.diagnostics
-                    .iter()
-                    .any(|g| matches!(g, Diagnostic::SeamLeftOpen { .. })),
-                "{name}: seam left open"
-            );
-            let v = validity::check(&d);
+            let (d, v) = closed_discretisation(&name, &surface, pattern, &options);
             assert!(
                 (v.euler, v.boundary_loops, v.topology_problems) == (2, 0, 0),
                 "{name}: Euler {}, boundary loops {}, topology problems {}",
