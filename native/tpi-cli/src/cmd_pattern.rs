@@ -47,11 +47,16 @@ pub(crate) struct PatternArgs {
     /// The surface the pattern is for (with --relax or --max-deviation)
     #[arg(long, value_name = "FILE")]
     surface: Option<PathBuf>,
-    /// Tolerance-driven pattern: few points whose mesh (exact planes) keeps every vertex
-    /// within D model units of the surface; prints its count and the count of the smallest
-    /// uniform hex pattern that meets D [requires --surface, no GENERATOR]
+    /// Tolerance-driven pattern: few points whose mesh keeps every vertex within D model
+    /// units of the surface; prints its count and the count of the smallest uniform hex
+    /// pattern that meets D [requires --surface, no GENERATOR]
     #[arg(long, value_name = "D")]
     max_deviation: Option<String>,
+    /// The facet planes of the meshes --max-deviation measures: `exact` (the default) or
+    /// `adjusted` (as `tpi discretise --planes`; across parabolic lines, where exact
+    /// vertices run away, only adjusted planes can meet a tolerance)
+    #[arg(long, value_name = "MODE")]
+    planes: Option<String>,
     /// Density-graded pattern: a Poisson-disk sampling whose spacing follows the density
     /// field in FILE (attractors, curves, curvature, a PGM image; docs/formats.md), relaxed
     /// with --relax N following the same density [requires --surface, no GENERATOR]
@@ -78,7 +83,11 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
         max_deviation,
         density,
         seed,
+        planes,
     } = args;
+    if planes.is_some() && max_deviation.is_none() {
+        return Err(usage("--planes is for --max-deviation".into()));
+    }
     if let Some(file) = density {
         if spec.is_some() || max_deviation.is_some() {
             return Err(usage(
@@ -106,8 +115,9 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
         let Some(path) = surface else {
             return Err(usage("--max-deviation needs --surface FILE".into()));
         };
+        let planes = crate::cmd_discretise::plane_mode(planes.as_deref(), "pattern")?;
         check_outputs(&out, &preview)?;
-        return run_fit(&tolerance, seed.as_deref(), &path, &out, &preview);
+        return run_fit(&tolerance, seed.as_deref(), planes, &path, &out, &preview);
     }
     if seed.is_some() {
         return Err(usage(
@@ -272,6 +282,7 @@ fn check_outputs(out: &Option<PathBuf>, preview: &Option<PathBuf>) -> Result<(),
 fn run_fit(
     tolerance: &str,
     seed: Option<&str>,
+    planes: tpi_core::PlaneMode,
     path: &std::path::Path,
     out: &Option<PathBuf>,
     preview: &Option<PathBuf>,
@@ -298,7 +309,10 @@ fn run_fit(
     };
     let surface = crate::input::load_surface(path)?;
     let name = path.display().to_string();
-    let options = tpi_core::DiscretiseOptions::default();
+    let options = tpi_core::DiscretiseOptions {
+        planes,
+        ..Default::default()
+    };
     let fitted = tpi_core::fit_pattern(&surface, d, seed, &options)
         .map_err(|e| CliError::core(&name, &e))?;
     if !fitted.met {
@@ -306,14 +320,21 @@ fn run_fit(
             &name,
             format!(
                 "no pattern found whose mesh stays within {d}: the closest had {} points and \
-                 a vertex {} off the surface",
+                 a vertex {} off the surface{}",
                 fitted.uv.len(),
-                fitted.max_deviation
+                fitted.max_deviation,
+                if planes == tpi_core::PlaneMode::Exact {
+                    " (where exact tangent planes are nearly parallel, vertices run away: \
+                     try --planes adjusted)"
+                } else {
+                    ""
+                }
             ),
         ));
     }
-    let hex =
-        tpi_core::hex_baseline(&surface, d, &options).map_err(|e| CliError::core(&name, &e))?;
+    let search_limit = fitted.uv.len() * tpi_core::HEX_BASELINE_SEARCH_FACTOR;
+    let hex = tpi_core::hex_baseline(&surface, d, search_limit, &options)
+        .map_err(|e| CliError::core(&name, &e))?;
     let described = format!("max deviation {d} on {name}");
     let mut files = Vec::new();
     if let Some(p) = out {
@@ -352,8 +373,9 @@ fn run_fit(
             100.0 * fitted.uv.len() as f64 / h.count as f64
         ),
         None => eprintln!(
-            "tpi: no uniform hex pattern up to hex:spacing=1/{} meets the same tolerance",
-            tpi_core::MAX_HEX_COLUMNS
+            "tpi: no uniform hex pattern of up to {search_limit} points ({}x the fitted \
+             pattern) meets the same tolerance",
+            tpi_core::HEX_BASELINE_SEARCH_FACTOR
         ),
     }
     Ok(())

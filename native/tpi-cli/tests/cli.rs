@@ -2502,4 +2502,55 @@ fn pattern_max_deviation_and_density_make_their_own_patterns() {
         2,
         &["positive number"],
     );
+    // With adjusted planes the fit measures the adjusted mesh, which `tpi discretise
+    // --planes adjusted` then reproduces within the tolerance.
+    let fit_adjusted = dir.join("fit-adjusted.json");
+    ok(&[
+        "pattern",
+        "--surface",
+        &surface,
+        "--max-deviation",
+        "0.02",
+        "--planes",
+        "adjusted",
+        "--out",
+        fit_adjusted.to_str().unwrap(),
+    ]);
+    let mesh_adjusted = dir.join("mesh-adjusted.json");
+    ok(&[
+        "discretise",
+        "--surface",
+        &surface,
+        "--pattern",
+        fit_adjusted.to_str().unwrap(),
+        "--planes",
+        "adjusted",
+        "--out",
+        mesh_adjusted.to_str().unwrap(),
+    ]);
+    let m: Mesh = serde_json::from_str(&fs::read_to_string(&mesh_adjusted).unwrap()).unwrap();
+    assert!(
+        m.quality.max_deviation <= 0.02,
+        "{}",
+        m.quality.max_deviation
+    );
+    assert_eq!(m.quality.invalid_facets, 0);
+    fails(
+        &[
+            "pattern",
+            "--surface",
+            &surface,
+            "--max-deviation",
+            "0.02",
+            "--planes",
+            "tilted",
+        ],
+        2,
+        &["--planes tilted", "adjusted"],
+    );
+    fails(
+        &["pattern", "hex:4x4", "--planes", "adjusted"],
+        2,
+        &["--planes is for --max-deviation"],
+    );
 }

@@ -55,6 +55,11 @@ pub const FIT_TARGET_RATIO: f64 = 0.8;
 pub const FIT_MAX_STEP: f64 = 1.5;
 /// Refinement passes (points added at offending vertices) that finish each round.
 pub const FIT_REFINE_PASSES: usize = 12;
+/// Refinement passes in a row that may lower neither the largest deviation nor the number
+/// of vertices beyond the tolerance before the refinement of a round gives up (the passes
+/// of a converging refinement are noisy: on a saddle two such passes in a row occur on the
+/// way to a fit).
+pub const FIT_STALLED_PASSES: usize = 3;
 /// Most points a fitted pattern may have.
 pub const MAX_FIT_POINTS: usize = 2_000_000;
 /// Fewest points a fitted pattern starts from.
@@ -189,7 +194,21 @@ pub fn fit_pattern(
         let feet = vertex_feet(surface, &d);
         let ratios = facet_ratios(&d, &feet, max_deviation);
         update_multiplier(&mut multiplier, nodes, &surface.domain(), &d, &ratios);
-        let finished = refine(surface, points, d, feet, max_deviation, &options, &mut runs)?;
+        // A finished pattern larger than the best valid one found cannot replace it.
+        let limit = best
+            .as_ref()
+            .filter(|b| b.invalid_facets == 0)
+            .map_or(usize::MAX, |b| b.uv.len());
+        let finished = refine(
+            surface,
+            points,
+            d,
+            feet,
+            max_deviation,
+            limit,
+            &options,
+            &mut runs,
+        )?;
         consider(&mut best, &mut closest, finished);
     }
     let mut result = best.or(closest).unwrap_or(FittedPattern {
@@ -316,17 +335,27 @@ fn update_multiplier(
 }
 
 /// The pattern finished by local refinement (module doc), starting from `points` and their
-/// discretisation `d` with its vertices' `feet`.
+/// discretisation `d` with its vertices' `feet`. The refinement gives up, returning the
+/// pattern as it stands, when the next pass would have more than `limit` points or when
+/// [`FIT_STALLED_PASSES`] passes in a row have lowered neither the largest deviation below
+/// its lowest so far nor the number of vertices beyond the tolerance: where
+/// exact tangent planes are nearly parallel (parabolic lines) a vertex runs away whatever
+/// points are added, and each pass would only make the pattern denser and the mesh slower.
+#[allow(clippy::too_many_arguments)]
 fn refine(
     surface: &dyn Surface,
     mut points: Vec<[f64; 2]>,
     mut d: Discretisation,
     mut feet: Vec<Option<(f64, [f64; 2])>>,
     tolerance: f64,
+    limit: usize,
     options: &DiscretiseOptions,
     runs: &mut usize,
 ) -> Result<FittedPattern, TpiError> {
     let domain = surface.domain();
+    let mut lowest = f64::INFINITY;
+    let mut last_offending = usize::MAX;
+    let mut stalled = 0usize;
     for pass in 0..=FIT_REFINE_PASSES {
         let report = d.quality.as_ref();
         let own = feet
@@ -335,7 +364,19 @@ fn refine(
             .fold(0.0, f64::max);
         let max_deviation = own.max(report.map_or(0.0, |q| q.max_deviation));
         let invalid = report.map_or(0, |q| q.invalid_facets);
-        if max_deviation <= tolerance || pass == FIT_REFINE_PASSES {
+        let offending_count = feet
+            .iter()
+            .filter(|f| f.is_some_and(|(dev, _)| dev > tolerance))
+            .count();
+        if max_deviation < lowest || offending_count < last_offending {
+            stalled = 0;
+        } else {
+            stalled += 1;
+        }
+        lowest = lowest.min(max_deviation);
+        last_offending = offending_count;
+        if max_deviation <= tolerance || pass == FIT_REFINE_PASSES || stalled >= FIT_STALLED_PASSES
+        {
             return Ok(FittedPattern {
                 uv: points,
                 met: max_deviation <= tolerance,
@@ -392,7 +433,7 @@ fn refine(
             }
             added.push((st, reach));
         }
-        if added.is_empty() {
+        if added.is_empty() || points.len() + added.len() > limit {
             return Ok(FittedPattern {
                 uv: points,
                 met: false,
@@ -432,13 +473,17 @@ pub struct HexBaseline {
     pub invalid_facets: usize,
 }
 
-/// The uniform hexagonal baseline of a tolerance ([`HexBaseline`]); None when even
-/// `hex:spacing=1/N` with N up to [`MAX_HEX_COLUMNS`] does not meet it.
+/// The uniform hexagonal baseline of a tolerance ([`HexBaseline`]); None when no
+/// `hex:spacing=1/N` with at most `max_points` points (and N at most [`MAX_HEX_COLUMNS`])
+/// meets it. The bound keeps the search finite in time where no uniform pattern meets the
+/// tolerance (exact planes across a parabolic line): a caller comparing with a fitted
+/// pattern of n points needs to look no further than a few times n.
 ///
 /// Errors: those of [`crate::discretise`].
 pub fn hex_baseline(
     surface: &dyn Surface,
     max_deviation: f64,
+    max_points: usize,
     options: &DiscretiseOptions,
 ) -> Result<Option<HexBaseline>, TpiError> {
     let options = DiscretiseOptions {
@@ -462,7 +507,16 @@ pub fn hex_baseline(
     };
     let mut lo = 2usize; // fails (or is too few)
     let mut hi = 4usize;
+    let points_of = |n: usize| {
+        Generator::Hex(crate::pattern::GridSize::Spacing(1.0 / n as f64))
+            .generate()
+            .uv
+            .len()
+    };
     let mut found = loop {
+        if points_of(hi) > max_points {
+            return Ok(None);
+        }
         let h = try_columns(hi)?;
         if h.max_deviation <= max_deviation {
             break h;
@@ -485,6 +539,10 @@ pub fn hex_baseline(
     }
     Ok(Some(found))
 }
+
+/// How many times a fitted pattern's count the CLI lets [`hex_baseline`] search: a ratio
+/// below 1 / 8 is reported as such rather than measured.
+pub const HEX_BASELINE_SEARCH_FACTOR: usize = 8;
 
 /// Most columns [`hex_baseline`] tries (about 1.3 million points).
 pub const MAX_HEX_COLUMNS: usize = 1024;

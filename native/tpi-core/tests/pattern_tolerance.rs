@@ -139,3 +139,26 @@ fn bad_tolerances_are_named() {
     let e = fit_pattern(&surface, 1e-12, 0, &DiscretiseOptions::default()).unwrap_err();
     assert!(e.to_string().contains("pattern points"), "{e}");
 }
+
+/// A roof with crests, flanks and parabolic lines between them: where neighbouring tangent
+/// planes are nearly parallel, exact vertices run away from the surface whatever points are
+/// added there, so a refinement that keeps adding points never ends (it ran for more than
+/// 15 minutes, each mesh slower than the last). The fit must stop refining a round that no
+/// longer gets closer, and still return a pattern that meets D at every vertex by this
+/// file's own projection, with no invalid facet.
+#[test]
+fn a_mixed_curvature_roof_is_fitted_without_endless_refinement() {
+    let surface = sample("mixed-roof.json");
+    let tolerance = 0.01;
+    let fitted = fit_pattern(&surface, tolerance, 0, &DiscretiseOptions::default()).unwrap();
+    assert!(fitted.met, "{fitted:?}");
+    let (dev, invalid) = independent_check(&surface, &fitted.uv);
+    println!(
+        "mixed-roof D = {tolerance}: {} points, {} discretisations, independent max deviation \
+         {dev:.5e}, {invalid} invalid",
+        fitted.uv.len(),
+        fitted.discretisations
+    );
+    assert!(dev <= tolerance * (1.0 + 1e-9), "{dev} > {tolerance}");
+    assert_eq!(invalid, 0);
+}
