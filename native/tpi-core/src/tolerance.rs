@@ -338,6 +338,18 @@ pub const DETOUR_BUDGET: f64 = 0.1;
 /// spread the search over).
 pub const DETOUR_BUDGET_FLOOR: usize = 100;
 
+/// Work the validity repair's detours may spend, per judged point (counted in edges of
+/// polygons built and products of edge counts of pairs tested for overlap, from the start
+/// of the detours): `validity_flips.rs`.
+/// Saddles, torus bands and mixed roofs with hex, grid, Poisson-disk and uniform random
+/// patterns of 1k-10k points spend at most 1,200 per point in all, so this never binds
+/// there; a pattern made dense around runaway vertices (fans of 150 triangles) spent 44,600
+/// per point (16 s for 4,249 points).
+pub const DETOUR_WORK_BUDGET: u64 = 4_000;
+
+/// Detour work every run may spend whatever its size.
+pub const DETOUR_WORK_BUDGET_FLOOR: u64 = 2_000_000;
+
 /// Relative tolerance of the local validity tests: orientations smaller than this times the
 /// squared size of the polygons count as collinear, distances smaller than this times the
 /// size as zero (rounding of the three-plane vertices is far below it).

@@ -34,7 +34,12 @@
 //! it leaves fewer invalid facets than before, or undone (a journal of the flips and
 //! verdicts). Rounds until no detour is kept; the detours tried are counted against
 //! [`DETOUR_BUDGET`] per point plus [`DETOUR_BUDGET_FLOOR`], so uniform random points (many
-//! facets no flip sequence repairs with exact planes) cost a bounded amount.
+//! facets no flip sequence repairs with exact planes) cost a bounded amount. A detour's cost
+//! grows with the square of the fans it touches, and around runaway vertices of nearly
+//! parallel planes (parabolic lines) fans of a hundred triangles occur: so the work of
+//! judging facets is counted too (edges of the polygons built, products of the edge counts
+//! of the pairs tested for overlap), and the detours also stop at [`DETOUR_WORK_BUDGET`] per
+//! point plus [`DETOUR_WORK_BUDGET_FLOOR`].
 //!
 //! Facets on the hull (open fans) are built with the boundary later ([`crate::facets`]);
 //! they are not judged here.
@@ -49,8 +54,8 @@ use glam::{DVec2, DVec3};
 use crate::facets::reachable;
 use crate::planes::{meeting_point, Plane};
 use crate::tolerance::{
-    DETOUR_BUDGET, DETOUR_BUDGET_FLOOR, DETOUR_REPAIR_PASSES, MAX_VALIDITY_ROUNDS,
-    VALIDITY_TOLERANCE,
+    DETOUR_BUDGET, DETOUR_BUDGET_FLOOR, DETOUR_REPAIR_PASSES, DETOUR_WORK_BUDGET,
+    DETOUR_WORK_BUDGET_FLOOR, MAX_VALIDITY_ROUNDS, VALIDITY_TOLERANCE,
 };
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
@@ -107,10 +112,14 @@ pub(crate) fn validity_flips(
     // Counted, not timed (the result stays deterministic): uniform random points leave many
     // facets no flip sequence repairs, and the search stops there.
     let budget = (DETOUR_BUDGET * n as f64).ceil() as usize + DETOUR_BUDGET_FLOOR;
+    state.work_budget = state
+        .work
+        .saturating_add(DETOUR_WORK_BUDGET.saturating_mul(n as u64))
+        .saturating_add(DETOUR_WORK_BUDGET_FLOOR);
     'detours: for _ in 0..MAX_VALIDITY_ROUNDS {
         let mut kept = 0;
         for i in 0..n as u32 {
-            if state.detours >= budget {
+            if state.detours >= budget || state.work >= state.work_budget {
                 stats.flips += kept;
                 break 'detours;
             }
@@ -159,6 +168,11 @@ pub(crate) struct State<'a> {
     pub(crate) plane_changes: usize,
     /// Detour flips tried ([`State::try_detour`]): the measure of their work.
     detours: usize,
+    /// Work spent judging facets: the edges of every polygon built and the products of the
+    /// edge counts of every pair tested for overlap ([`DETOUR_WORK_BUDGET`]).
+    work: u64,
+    /// The work at which detours stop, even within one facet's candidates.
+    work_budget: u64,
 }
 
 /// The old values of what a tentative sequence of changes replaced, in order.
@@ -234,6 +248,8 @@ impl<'a> State<'a> {
             reach_limit: None,
             plane_changes: 0,
             detours: 0,
+            work: 0,
+            work_budget: u64::MAX,
         };
         state.invalid = state.initial_verdicts(judged);
         state
@@ -412,6 +428,7 @@ impl<'a> State<'a> {
             let tangle = polygon
                 .as_ref()
                 .map_or(0, |p| tangle(p, self.planes[i as usize].normal));
+            self.work += polygon.as_ref().map_or(0, |p| p.len() as u64);
             let simple = polygon.is_some() && tangle == 0;
             let neighbours = if polygon.is_some() {
                 (0..fan.len())
@@ -545,6 +562,7 @@ impl<'a> State<'a> {
                 );
                 match (a, b) {
                     (Some(a), Some(b)) => {
+                        self.work += (a.len() * b.len()) as u64;
                         !separated(a, b, ends, normal) && polygons_overlap(a, b, normal)
                     }
                     _ => false,
@@ -597,6 +615,9 @@ impl<'a> State<'a> {
             return false;
         };
         for (a, b) in candidates {
+            if self.work >= self.work_budget {
+                return false;
+            }
             let Some((t, k, quad)) = self.flippable(a, b) else {
                 continue;
             };
@@ -824,18 +845,46 @@ pub(crate) fn tangle(points: &[DVec3], normal: DVec3) -> usize {
         return usize::MAX;
     }
     let area: f64 = (0..n).map(|k| p[k].perp_dot(p[(k + 1) % n])).sum();
-    let mut tangle = if area > 0.0 { 0 } else { n };
-    for a in 0..n {
-        for b in a + 2..n {
-            if a == 0 && b == n - 1 {
-                continue;
-            }
-            if edges_meet(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n]) {
-                tangle += 1;
+    let not_ccw = if area > 0.0 { 0 } else { n };
+    not_ccw + crossing_edge_pairs(&p)
+}
+
+/// Polygons with more edges than this count their crossing edge pairs by a sweep in x.
+const SWEEP_MIN_EDGES: usize = 24;
+
+/// The number of pairs of non-adjacent edges of the closed polygon `p` that meet
+/// ([`edges_meet`]). Two edges whose x-extents are disjoint cannot meet, so beyond
+/// [`SWEEP_MIN_EDGES`] edges only the pairs whose x-extents overlap are tested (edges sorted
+/// by their smallest x, each against the following ones that start before it ends): the
+/// same count, without the quadratic cost on the rare facets of a hundred or more edges
+/// (around runaway vertices of nearly parallel planes).
+fn crossing_edge_pairs(p: &[DVec2]) -> usize {
+    let n = p.len();
+    let adjacent = |a: usize, b: usize| b == a + 1 || (a == 0 && b == n - 1);
+    let meet = |a: usize, b: usize| edges_meet(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n]);
+    if n <= SWEEP_MIN_EDGES {
+        return (0..n)
+            .flat_map(|a| (a + 2..n).map(move |b| (a, b)))
+            .filter(|&(a, b)| !adjacent(a, b) && meet(a, b))
+            .count();
+    }
+    let extent = |k: usize| {
+        let (x0, x1) = (p[k].x, p[(k + 1) % n].x);
+        (x0.min(x1), x0.max(x1))
+    };
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_unstable_by(|&a, &b| extent(a).0.total_cmp(&extent(b).0).then(a.cmp(&b)));
+    let mut count = 0;
+    for (k, &e) in order.iter().enumerate() {
+        let end = extent(e).1;
+        for &f in order[k + 1..].iter().take_while(|&&f| extent(f).0 <= end) {
+            let (a, b) = (e.min(f), e.max(f));
+            if !adjacent(a, b) && meet(a, b) {
+                count += 1;
             }
         }
     }
-    tangle
+    count
 }
 
 /// Whether two simple polygons that may share vertices overlap in area, seen along
@@ -1014,4 +1063,61 @@ fn proper_crossing(a: DVec2, b: DVec2, c: DVec2, d: DVec2, eps: f64) -> bool {
     let d4 = (d - c).perp_dot(b - c);
     let opposite = |x: f64, y: f64| (x > eps && y < -eps) || (x < -eps && y > eps);
     opposite(d1, d2) && opposite(d3, d4)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The sweep counts the same crossing pairs as testing every pair of non-adjacent edges:
+    /// star polygons (many crossings), random walks (some) and convex polygons (none), with
+    /// vertical edges and repeated x-coordinates that tie the sweep's order.
+    #[test]
+    fn the_sweep_counts_every_crossing_pair_of_a_large_polygon() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let every_pair = |p: &[DVec2]| {
+            let n = p.len();
+            let mut count = 0;
+            for a in 0..n {
+                for b in a + 2..n {
+                    if !(a == 0 && b == n - 1)
+                        && edges_meet(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n])
+                    {
+                        count += 1;
+                    }
+                }
+            }
+            count
+        };
+        let mut crossings_seen = 0;
+        for n in [3, 5, 24, 25, 40, 97, 150] {
+            let star: Vec<DVec2> = (0..n)
+                .map(|k| {
+                    let angle = std::f64::consts::TAU * (k * (n / 2 - 1).max(1)) as f64 / n as f64;
+                    DVec2::new(angle.cos(), angle.sin())
+                })
+                .collect();
+            let walk: Vec<DVec2> = (0..n)
+                .map(|_| DVec2::new((next() * 8.0).round(), next()))
+                .collect();
+            let convex: Vec<DVec2> = (0..n)
+                .map(|k| {
+                    let angle = std::f64::consts::TAU * k as f64 / n as f64;
+                    DVec2::new(angle.cos(), 0.5 * angle.sin())
+                })
+                .collect();
+            for p in [star, walk, convex] {
+                let expected = every_pair(&p);
+                assert_eq!(crossing_edge_pairs(&p), expected, "{n} points: {p:?}");
+                crossings_seen += expected;
+            }
+        }
+        assert!(crossings_seen > 1000, "{crossings_seen}");
+    }
 }
