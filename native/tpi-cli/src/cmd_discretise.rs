@@ -52,6 +52,11 @@ pub(crate) struct DiscretiseArgs {
     /// count, flagged facets outlined red), .png (shaded 3D view)
     #[arg(long, short = 'o', value_name = "FILE")]
     out: Vec<String>,
+    /// PNG colours: `sides` (the default, by side count) or `deviation[:D]` (each facet by
+    /// the largest distance of its vertices from the surface, red at D; without D at the
+    /// largest deviation)
+    #[arg(long, value_name = "MODE")]
+    colour: Option<String>,
     /// PNG size in pixels [default: 1200x900]
     #[arg(long, value_name = "WxH")]
     size: Option<String>,
@@ -95,7 +100,42 @@ impl Format {
     }
 }
 
+/// How the PNG colours its facets (`--colour`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum PngColour {
+    Sides,
+    /// By deviation, red at the given tolerance or (None) at the largest deviation.
+    Deviation(Option<f64>),
+}
+
+/// `--colour MODE`.
+fn png_colour(arg: Option<&str>) -> Result<PngColour, CliError> {
+    let refuse = |v: &str| {
+        CliError::usage(
+            Some("discretise"),
+            format!(
+                "--colour {}: expected `sides`, `deviation` or `deviation:D` with D a positive \
+                 number (model units)",
+                tpi_core::bounded(v, tpi_core::QUOTE_LIMIT)
+            ),
+        )
+    };
+    match arg {
+        None | Some("sides") => Ok(PngColour::Sides),
+        Some("deviation") => Ok(PngColour::Deviation(None)),
+        Some(v) => {
+            let d = v
+                .strip_prefix("deviation:")
+                .and_then(|d| d.parse::<f64>().ok())
+                .filter(|d| d.is_finite() && *d > 0.0)
+                .ok_or_else(|| refuse(v))?;
+            Ok(PngColour::Deviation(Some(d)))
+        }
+    }
+}
+
 struct Options {
+    colour: PngColour,
     surface: String,
     pattern: String,
     outs: Vec<(PathBuf, Format)>,
@@ -130,6 +170,12 @@ fn parse(args: DiscretiseArgs) -> Result<Options, CliError> {
     let pattern = args
         .pattern
         .ok_or_else(|| usage("--pattern is required".into()))?;
+    let colour = png_colour(args.colour.as_deref())?;
+    if args.colour.is_some() && !outs.iter().any(|(_, f)| *f == Format::Png) {
+        return Err(usage(
+            "--colour applies to a .png output, and none is given".into(),
+        ));
+    }
     if size.is_some() && !outs.iter().any(|(_, f)| *f == Format::Png) {
         return Err(usage(
             "--size applies to a .png output, and none is given".into(),
@@ -142,6 +188,7 @@ fn parse(args: DiscretiseArgs) -> Result<Options, CliError> {
         ));
     }
     Ok(Options {
+        colour,
         surface,
         pattern,
         outs,
@@ -270,6 +317,28 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
     })?;
 
     let title = format!("{} with {}", opts.surface, pattern.label);
+    let deviations = match opts.colour {
+        PngColour::Sides => Vec::new(),
+        PngColour::Deviation(_) => render::facet_deviations(&surface, &result),
+    };
+    let colouring = match opts.colour {
+        PngColour::Sides => render::Colouring::Sides,
+        PngColour::Deviation(scale) => render::Colouring::Deviation {
+            per_facet: &deviations,
+            scale: scale.unwrap_or_else(|| {
+                let largest = deviations
+                    .iter()
+                    .copied()
+                    .filter(|d| d.is_finite())
+                    .fold(0.0, f64::max);
+                if largest > 0.0 {
+                    largest
+                } else {
+                    1.0
+                }
+            }),
+        },
+    };
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::with_capacity(opts.outs.len());
     if !opts.outs.is_empty() {
         progress.stage("outputs", Some(opts.outs.len() as u64), "");
@@ -282,9 +351,10 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
             "encoding"
         };
         progress.message(format!("{verb} {}", path.display()));
-        let bytes = render_output(&result, *format, &title, opts.size).map_err(|problem| {
-            CliError::input(path.display(), format!("cannot encode: {problem}"))
-        })?;
+        let bytes =
+            render_output(&result, *format, &title, opts.size, colouring).map_err(|problem| {
+                CliError::input(path.display(), format!("cannot encode: {problem}"))
+            })?;
         files.push((path.clone(), bytes));
         progress.advance(1);
     }
@@ -364,13 +434,18 @@ fn render_output(
     format: Format,
     title: &str,
     size: (u32, u32),
+    colouring: render::Colouring<'_>,
 ) -> Result<Vec<u8>, String> {
     Ok(match format {
         Format::Json => result.to_json(true).into_bytes(),
         Format::Obj => obj::to_obj(result, title).into_bytes(),
         Format::Svg => svg::mesh_top_view(result, &format!("tpi: {title}")).into_bytes(),
         Format::Png => {
-            let rgb = render::render(result, size.0, size.1);
+            let picture = render::Picture {
+                colouring,
+                seeds: false,
+            };
+            let rgb = render::render_picture(result, size.0, size.1, picture);
             render::encode_png(&rgb, size.0, size.1)?
         }
     })

@@ -7,6 +7,7 @@ use tpi_core::{Generator, Surface};
 
 use crate::error::CliError;
 use crate::output::{check_output_path, write_all};
+use crate::render;
 use crate::{svg, voronoi};
 
 /// The text after the options in `tpi pattern --help`.
@@ -124,11 +125,16 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
             "--seed is for --max-deviation (generators take :seed=S)".into(),
         ));
     }
-    let relax = match (&relax, &surface) {
+    let iterations = match (&relax, &surface) {
         (None, None) => None,
         (Some(_), None) => return Err(usage("--relax needs --surface FILE".into())),
-        (None, Some(_)) => return Err(usage("--surface is for --relax N".into())),
-        (Some(n), Some(path)) => Some((parse_relax(Some(n))?, path.clone())),
+        (None, Some(_)) if !on_surface(&preview) => {
+            return Err(usage(
+                "--surface is for --relax N or a .png --preview".into(),
+            ))
+        }
+        (None, Some(_)) => None,
+        (Some(n), Some(_)) => Some(parse_relax(Some(n))?),
     };
     let spec = spec.ok_or_else(|| usage("a GENERATOR is required, e.g. hex:24x20".into()))?;
     check_outputs(&out, &preview)?;
@@ -143,10 +149,16 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
         .validate()
         .map_err(|e| CliError::input(&spec, e.to_string()))?;
     let mut described = generator.to_string();
-    if let Some((iterations, path)) = relax {
-        let surface = crate::input::load_surface(&path)?;
+    let loaded = match &surface {
+        Some(path) => Some((
+            crate::input::load_surface(path)?,
+            path.display().to_string(),
+        )),
+        None => None,
+    };
+    if let (Some(iterations), Some((surface, _)), Some(path)) = (iterations, &loaded, &surface) {
         pattern.uv = tpi_core::relax(
-            &surface,
+            surface,
             &pattern.uv,
             iterations,
             &tpi_core::DiscretiseOptions::default(),
@@ -163,12 +175,15 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
         files.push((p.clone(), pattern_json(&pattern.uv).into_bytes()));
     }
     if let Some(p) = &preview {
-        let cells = voronoi::cells(&pattern.uv);
-        files.push((
-            p.clone(),
-            svg::pattern_preview(&pattern.uv, &cells, &format!("tpi pattern {described}"))
-                .into_bytes(),
-        ));
+        let bytes = preview_bytes(
+            p,
+            &pattern.uv,
+            &described,
+            loaded.as_ref().map(|(s, n)| (s, n.as_str())),
+            None,
+            &tpi_core::DiscretiseOptions::default(),
+        )?;
+        files.push((p.clone(), bytes));
     }
     write_all(&files)?;
     let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
@@ -240,11 +255,15 @@ fn run_density(
         files.push((p.clone(), pattern_json(&uv).into_bytes()));
     }
     if let Some(p) = preview {
-        let cells = voronoi::cells(&uv);
-        files.push((
-            p.clone(),
-            svg::pattern_preview(&uv, &cells, &format!("tpi pattern {described}")).into_bytes(),
-        ));
+        let bytes = preview_bytes(
+            p,
+            &uv,
+            &described,
+            Some((&surface, &name)),
+            None,
+            &tpi_core::DiscretiseOptions::default(),
+        )?;
+        files.push((p.clone(), bytes));
     }
     write_all(&files)?;
     let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
@@ -262,19 +281,74 @@ fn check_outputs(out: &Option<PathBuf>, preview: &Option<PathBuf>) -> Result<(),
     if out.is_none() && preview.is_none() {
         return Err(usage("--out (and/or --preview) is required".into()));
     }
-    for (path, ext) in [(out, "json"), (preview, "svg")] {
+    for (path, exts) in [(out, &["json"][..]), (preview, &["svg", "png"][..])] {
         if let Some(p) = path {
-            if p.extension()
+            let ext = p
+                .extension()
                 .and_then(|e| e.to_str())
-                .map(|e| e.to_ascii_lowercase())
-                != Some(ext.to_string())
-            {
-                return Err(usage(format!("{} must end in .{ext}", p.display())));
+                .map(|e| e.to_ascii_lowercase());
+            if !exts.iter().any(|&e| ext.as_deref() == Some(e)) {
+                return Err(usage(format!(
+                    "{} must end in .{}",
+                    p.display(),
+                    exts.join(" or .")
+                )));
             }
             check_output_path(p)?;
         }
     }
     Ok(())
+}
+
+/// Whether the preview is a picture on the surface (.png) rather than the unit square.
+fn on_surface(preview: &Option<PathBuf>) -> bool {
+    preview.as_ref().is_some_and(|p| {
+        p.extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("png"))
+    })
+}
+
+/// The preview's bytes: an .svg of the points and their Voronoi cells in the unit square,
+/// or a .png of the pattern on `surface`: its TPI mesh (the cells the points make on the
+/// surface) rendered in 3D with the points as dots, coloured by deviation from the surface
+/// (red at `tolerance`) when a tolerance is given, else by side count.
+fn preview_bytes(
+    path: &std::path::Path,
+    uv: &[[f64; 2]],
+    described: &str,
+    surface: Option<(&tpi_core::SurfaceModel, &str)>,
+    tolerance: Option<f64>,
+    options: &tpi_core::DiscretiseOptions,
+) -> Result<Vec<u8>, CliError> {
+    let title = format!("tpi pattern {described}");
+    if !on_surface(&Some(path.to_path_buf())) {
+        let cells = voronoi::cells(uv);
+        return Ok(svg::pattern_preview(uv, &cells, &title).into_bytes());
+    }
+    let Some((surface, name)) = surface else {
+        return Err(CliError::usage(
+            Some("pattern"),
+            "a .png preview draws the pattern on a surface: give --surface FILE".to_string(),
+        ));
+    };
+    let mesh = tpi_core::discretise(surface, uv, options).map_err(|e| CliError::core(name, &e))?;
+    let deviations = render::facet_deviations(surface, &mesh);
+    let colouring = match tolerance {
+        Some(scale) => render::Colouring::Deviation {
+            per_facet: &deviations,
+            scale,
+        },
+        None => render::Colouring::Sides,
+    };
+    let picture = render::Picture {
+        colouring,
+        seeds: true,
+    };
+    let (w, h) = render::DEFAULT_SIZE;
+    let rgb = render::render_picture(&mesh, w, h, picture);
+    render::encode_png(&rgb, w, h)
+        .map_err(|problem| CliError::input(path.display(), format!("cannot encode: {problem}")))
 }
 
 /// `tpi pattern --surface S --max-deviation D`: the fitted pattern, its count and the
@@ -341,12 +415,15 @@ fn run_fit(
         files.push((p.clone(), pattern_json(&fitted.uv).into_bytes()));
     }
     if let Some(p) = preview {
-        let cells = voronoi::cells(&fitted.uv);
-        files.push((
-            p.clone(),
-            svg::pattern_preview(&fitted.uv, &cells, &format!("tpi pattern {described}"))
-                .into_bytes(),
-        ));
+        let bytes = preview_bytes(
+            p,
+            &fitted.uv,
+            &described,
+            Some((&surface, &name)),
+            Some(d),
+            &options,
+        )?;
+        files.push((p.clone(), bytes));
     }
     write_all(&files)?;
     let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();

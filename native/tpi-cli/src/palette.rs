@@ -32,6 +32,33 @@ pub(crate) fn side_class(sides: usize) -> usize {
     }
 }
 
+/// The colour of a deviation `t` in units of the scale: a ramp through blue (0), teal,
+/// green, yellow (0.75) to red (1 and beyond), so that what meets a tolerance reads cool and
+/// what reaches it warm.
+pub(crate) fn deviation_colour(t: f64) -> [u8; 3] {
+    const STOPS: [(f64, [f64; 3]); 5] = [
+        (0.0, [0x2c as f64, 0x4f as f64, 0xa0 as f64]),
+        (0.25, [0x2a as f64, 0x9d as f64, 0xa8 as f64]),
+        (0.5, [0x6a as f64, 0xbf as f64, 0x4b as f64]),
+        (0.75, [0xf0 as f64, 0xc8 as f64, 0x3c as f64]),
+        (1.0, [0xd7 as f64, 0x30 as f64, 0x27 as f64]),
+    ];
+    let t = if t.is_finite() {
+        t.clamp(0.0, 1.0)
+    } else {
+        1.0
+    };
+    let k = STOPS
+        .iter()
+        .rposition(|&(at, _)| at <= t)
+        .unwrap_or(0)
+        .min(3);
+    let ((a, ca), (b, cb)) = (STOPS[k], STOPS[k + 1]);
+    let f = ((t - a) / (b - a)).clamp(0.0, 1.0);
+    let mix = |i: usize| (ca[i] + (cb[i] - ca[i]) * f).round() as u8;
+    [mix(0), mix(1), mix(2)]
+}
+
 /// Outline colour of flagged facets.
 pub(crate) const FLAG_COLOUR: [u8; 3] = [0xe0, 0x00, 0x00];
 

@@ -3,10 +3,11 @@
 //! A small software rasteriser: orthographic view from above at an angle (azimuth -60 deg,
 //! elevation 40 deg), each facet triangulated (ear clipping in its own plane, so that
 //! non-convex facets of saddle regions fill correctly), z-buffered, Lambert-shaded with a
-//! fixed light relative to the view and lit from both sides, coloured by side count. Edges
-//! are drawn dark (flagged facets' edges red) with a depth bias, and the image is rendered
-//! at twice the resolution and averaged down for anti-aliasing. A legend of the side-count
-//! colours sits in the lower left corner.
+//! fixed light relative to the view and lit from both sides, coloured by side count or by
+//! deviation from the surface ([`Colouring`]). Edges are drawn dark (flagged facets' edges
+//! red) with a depth bias, seeds optionally as dots on the surface, and the image is rendered
+//! at twice the resolution and averaged down for anti-aliasing. A legend of the colours sits
+//! in the lower left corner.
 
 use std::collections::HashMap;
 
@@ -14,7 +15,7 @@ use glam::{DVec2, DVec3};
 use tpi_core::Discretisation;
 
 use crate::font::{self, Image};
-use crate::palette::{side_class, side_colour, EDGE_COLOUR, FLAG_COLOUR};
+use crate::palette::{deviation_colour, side_class, side_colour, EDGE_COLOUR, FLAG_COLOUR};
 
 /// Default picture size.
 pub(crate) const DEFAULT_SIZE: (u32, u32) = (1200, 900);
@@ -22,8 +23,56 @@ pub(crate) const DEFAULT_SIZE: (u32, u32) = (1200, 900);
 /// Largest accepted picture side.
 pub(crate) const MAX_SIDE: u32 = 16_384;
 
-/// Renders the mesh into an RGB image of `width` x `height` (row-major, 3 bytes a pixel).
-pub(crate) fn render(result: &Discretisation, width: u32, height: u32) -> Vec<u8> {
+/// How the facets are coloured.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Colouring<'a> {
+    /// By side count (the palette's classes).
+    Sides,
+    /// By each facet's deviation (model units, one per facet) over `scale`: the ramp of
+    /// [`deviation_colour`], red at `scale` and beyond.
+    Deviation {
+        /// Per facet, the largest distance of its vertices from the surface.
+        per_facet: &'a [f64],
+        /// The deviation drawn red (a tolerance, or the largest deviation).
+        scale: f64,
+    },
+}
+
+/// Per facet, the largest distance of its vertices from the surface (model units), as the
+/// quality report measures it ([`tpi_core::vertex_deviations`]).
+pub(crate) fn facet_deviations(
+    surface: &dyn tpi_core::Surface,
+    result: &Discretisation,
+) -> Vec<f64> {
+    let per_vertex = tpi_core::vertex_deviations(surface, result);
+    (0..result.facet_count())
+        .map(|i| {
+            result
+                .facet(i)
+                .iter()
+                .map(|&v| per_vertex.get(v as usize).copied().unwrap_or(f64::NAN))
+                .fold(0.0, f64::max)
+        })
+        .collect()
+}
+
+/// What to draw besides the facets.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Picture<'a> {
+    /// The facets' colours.
+    pub colouring: Colouring<'a>,
+    /// Whether each facet's seed is drawn as a dot on the surface.
+    pub seeds: bool,
+}
+
+/// Renders the mesh into an RGB image of `width` x `height` (row-major, 3 bytes a pixel),
+/// with the colours and seeds of `picture`.
+pub(crate) fn render_picture(
+    result: &Discretisation,
+    width: u32,
+    height: u32,
+    picture: Picture<'_>,
+) -> Vec<u8> {
     let ss: usize = if (width as usize) * (height as usize) <= 16_000_000 {
         2
     } else {
@@ -47,17 +96,21 @@ pub(crate) fn render(result: &Discretisation, width: u32, height: u32) -> Vec<u8
     let finite: Vec<DVec3> = crate::palette::framing_points(result);
     if !finite.is_empty() && result.facet_count() > 0 {
         let camera = Camera::fit(&finite, w as f64, h as f64, ss as f64 * 40.0);
-        draw_mesh(&mut canvas, result, &camera, ss);
+        draw_mesh(&mut canvas, result, &camera, ss, picture.colouring);
+        if picture.seeds {
+            draw_seeds(&mut canvas, result, &camera, ss);
+        }
     }
     let mut rgb = canvas.downsample(ss, width as usize, height as usize);
-    legend(
-        &mut Image {
-            rgb: &mut rgb,
-            w: width as usize,
-            h: height as usize,
-        },
-        result,
-    );
+    let mut image = Image {
+        rgb: &mut rgb,
+        w: width as usize,
+        h: height as usize,
+    };
+    match picture.colouring {
+        Colouring::Sides => legend(&mut image, result),
+        Colouring::Deviation { scale, .. } => deviation_legend(&mut image, scale),
+    }
     rgb
 }
 
@@ -206,7 +259,13 @@ impl Camera {
     }
 }
 
-fn draw_mesh(canvas: &mut Canvas, result: &Discretisation, cam: &Camera, ss: usize) {
+fn draw_mesh(
+    canvas: &mut Canvas,
+    result: &Discretisation,
+    cam: &Camera,
+    ss: usize,
+    colouring: Colouring<'_>,
+) {
     let projected: Vec<Screen> = result.vertices.iter().map(|&v| cam.project(v)).collect();
     let mut edges: HashMap<(u32, u32), bool> = HashMap::new();
     let mut lengths: Vec<f64> = Vec::new();
@@ -229,7 +288,12 @@ fn draw_mesh(canvas: &mut Canvas, result: &Discretisation, cam: &Camera, ss: usi
         }
         let lambert = normal.dot(cam.light).max(0.0) as f32;
         let intensity = 0.32 + 0.68 * lambert;
-        let base = side_colour(side_class(facet.len()));
+        let base = match colouring {
+            Colouring::Sides => side_colour(side_class(facet.len())),
+            Colouring::Deviation { per_facet, scale } => {
+                deviation_colour(per_facet.get(i).copied().unwrap_or(f64::NAN) / scale)
+            }
+        };
         let colour = [
             base[0] as f32 * intensity,
             base[1] as f32 * intensity,
@@ -445,6 +509,40 @@ fn draw_line(canvas: &mut Canvas, a: Screen, b: Screen, radius: f64, bias: f32, 
             }
         }
     }
+}
+
+/// Each seed as a dark dot on its surface point, hidden where the mesh lies in front.
+fn draw_seeds(canvas: &mut Canvas, result: &Discretisation, cam: &Camera, ss: usize) {
+    let radius = ss as f64 * 1.6;
+    for seed in result.seeds.iter().filter(|s| s.point.is_finite()) {
+        let p = cam.project(seed.point);
+        // A dot is a line of no length, drawn with the edges' colour and depth bias.
+        draw_line(canvas, p, p, radius, 0.02, 1);
+    }
+}
+
+/// A colour bar from 0 to `scale` with its labels in the lower left corner (final
+/// resolution).
+fn deviation_legend(img: &mut Image<'_>, scale: f64) {
+    let text_scale = if img.h >= 600 { 2 } else { 1 };
+    let (bar_w, bar_h) = (160 * text_scale, 7 * text_scale + 4);
+    let x0 = 12usize;
+    let y = img.h.saturating_sub(bar_h + 12);
+    let dark = [0x22, 0x22, 0x22];
+    let x = font::draw_text(img, x0, y + 2, text_scale, "0", dark) + 8;
+    img.fill_rect(x, y, bar_w, bar_h, dark);
+    for k in 0..bar_w.saturating_sub(2) {
+        let t = k as f64 / (bar_w - 3).max(1) as f64;
+        img.fill_rect(x + 1 + k, y + 1, 1, bar_h - 2, deviation_colour(t));
+    }
+    font::draw_text(
+        img,
+        x + bar_w + 8,
+        y + 2,
+        text_scale,
+        &format!("{scale:.3e}"),
+        dark,
+    );
 }
 
 /// Swatches with side counts in the lower left corner (final resolution).

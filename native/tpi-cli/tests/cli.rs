@@ -2554,3 +2554,114 @@ fn pattern_max_deviation_and_density_make_their_own_patterns() {
         &["--planes is for --max-deviation"],
     );
 }
+
+/// The RGB pixels of a PNG.
+fn png_pixels(path: &Path) -> Vec<[u8; 3]> {
+    let decoder = png::Decoder::new(std::io::BufReader::new(fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    buf[..info.buffer_size()]
+        .chunks(3)
+        .map(|c| [c[0], c[1], c[2]])
+        .collect()
+}
+
+/// Pixels clearly red (red channel 40 above both others) and clearly blue (blue 40 above
+/// red); the background's grey-blue and the dark edges are neither.
+fn red_and_blue(pixels: &[[u8; 3]]) -> (usize, usize) {
+    let red = pixels
+        .iter()
+        .filter(|p| p[0] as i32 > p[1] as i32 + 40 && p[0] as i32 > p[2] as i32 + 40)
+        .count();
+    let blue = pixels
+        .iter()
+        .filter(|p| p[2] as i32 > p[0] as i32 + 40)
+        .count();
+    (red, blue)
+}
+
+/// Issue 15, item 5 and the README's deviation map: `--colour deviation:D` colours each
+/// facet by its deviation over D, so a D far below every facet's deviation paints the mesh
+/// red and one far above paints it blue; `tpi pattern --preview P.png` draws the pattern on
+/// its surface, and refuses without one.
+#[test]
+fn deviation_colours_and_pattern_previews_on_the_surface() {
+    let dir = scratch("deviation-colour");
+    let surface = sample("paraboloid.json");
+    let mut counts = Vec::new();
+    for scale in ["1e-12", "1e9"] {
+        let png = dir.join(format!("d{scale}.png"));
+        ok(&[
+            "discretise",
+            "--surface",
+            &surface,
+            "--pattern",
+            "hex:12x10",
+            "--colour",
+            &format!("deviation:{scale}"),
+            "--out",
+            png.to_str().unwrap(),
+        ]);
+        assert_eq!(png_size(&png), (1200, 900));
+        counts.push(red_and_blue(&png_pixels(&png)));
+    }
+    let ((red_low, blue_low), (red_high, blue_high)) = (counts[0], counts[1]);
+    assert!(red_low > 100_000 && blue_low < red_low / 50, "{counts:?}");
+    assert!(
+        blue_high > 100_000 && red_high < blue_high / 50,
+        "{counts:?}"
+    );
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            &surface,
+            "--pattern",
+            "hex:4x4",
+            "--colour",
+            "deviation:-1",
+            "--out",
+            dir.join("x.png").to_str().unwrap(),
+        ],
+        2,
+        &["--colour deviation:-1"],
+    );
+    fails(
+        &[
+            "discretise",
+            "--surface",
+            &surface,
+            "--pattern",
+            "hex:4x4",
+            "--colour",
+            "deviation",
+            "--out",
+            dir.join("x.json").to_str().unwrap(),
+        ],
+        2,
+        &["--colour applies to a .png"],
+    );
+
+    let preview = dir.join("p.png");
+    ok(&[
+        "pattern",
+        "hex:8x8",
+        "--surface",
+        &sample("saddle.json"),
+        "--preview",
+        preview.to_str().unwrap(),
+    ]);
+    assert_eq!(png_size(&preview), (1200, 900));
+    fails(
+        &[
+            "pattern",
+            "hex:8x8",
+            "--preview",
+            dir.join("q.png").to_str().unwrap(),
+        ],
+        2,
+        &["give --surface"],
+    );
+    assert!(!dir.join("q.png").exists());
+}
