@@ -30,6 +30,9 @@ EXAMPLES:
     tpi pattern random:1000 --surface samples/nurbs-dome.json --relax 20 --out even.json
     tpi pattern --surface samples/saddle.json --max-deviation 0.01 --out fit.json
     tpi pattern --surface samples/nurbs-dome.json --density density.json --relax 5 --out graded.json
+    tpi pattern hex:spacing=0.04 --surface samples/saddle.json --align principal --out aligned.json
+    tpi pattern grid:30x30 --surface samples/torus-band.json --align uv:30 --out grid.json
+    tpi pattern hex:24x20 --surface samples/saddle.json --align field:grain.json --out grain.json
 ";
 
 /// The arguments of `tpi pattern`, as given (checked in [`run`]).
@@ -66,6 +69,12 @@ pub(crate) struct PatternArgs {
     /// Random seed of the tolerance-driven pattern's sampling (default 0)
     #[arg(long, value_name = "S")]
     seed: Option<String>,
+    /// Lay a hex or grid GENERATOR's lattice along a direction field on the surface, about
+    /// as many points as the generator makes, so that the facet edges follow the field:
+    /// principal (curvature directions), asymptotic (where K < 0), uv:ANGLE (degrees from the
+    /// u axis in parameters) or field:FILE.json (docs/formats.md) [requires --surface]
+    #[arg(long, value_name = "FIELD")]
+    align: Option<String>,
     /// Relax the points by N Lloyd iterations on the surface (areas measured on the surface,
     /// not in parameters), so that the panels come out even in size [requires --surface]
     #[arg(long, value_name = "N")]
@@ -85,9 +94,26 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
         density,
         seed,
         planes,
+        align,
     } = args;
     if planes.is_some() && max_deviation.is_none() {
         return Err(usage("--planes is for --max-deviation".into()));
+    }
+    if let Some(field) = align {
+        if max_deviation.is_some() || density.is_some() || relax.is_some() || seed.is_some() {
+            return Err(usage(
+                "--align lays a hex or grid GENERATOR's lattice: give no --max-deviation, \
+                 --density, --relax or --seed"
+                    .into(),
+            ));
+        }
+        let Some(path) = surface else {
+            return Err(usage("--align needs --surface FILE".into()));
+        };
+        let spec =
+            spec.ok_or_else(|| usage("--align needs a GENERATOR, hex:... or grid:...".into()))?;
+        check_outputs(&out, &preview)?;
+        return run_align(&spec, &field, &path, &out, &preview);
     }
     if let Some(file) = density {
         if spec.is_some() || max_deviation.is_some() {
@@ -190,6 +216,90 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
     eprintln!(
         "tpi: {described}: {} points -> {}",
         pattern.len(),
+        names.join(", ")
+    );
+    Ok(())
+}
+
+/// `tpi pattern hex:...|grid:... --surface S --align FIELD`.
+fn run_align(
+    spec: &str,
+    field: &str,
+    path: &std::path::Path,
+    out: &Option<PathBuf>,
+    preview: &Option<PathBuf>,
+) -> Result<(), CliError> {
+    let generator = Generator::parse(spec).map_err(|e| match e {
+        tpi_core::TpiError::InvalidGenerator { reason, .. } => {
+            CliError::input(spec, format!("invalid pattern generator: {reason}"))
+        }
+        other => CliError::input(spec, other.to_string()),
+    })?;
+    let (lattice, count) = match generator {
+        Generator::Hex(size) => {
+            let (nu, nv) = size.hex_counts();
+            (tpi_core::Lattice::Hex, nu * nv)
+        }
+        Generator::Grid(size) => {
+            let (nu, nv) = size.square_counts();
+            (tpi_core::Lattice::Grid, nu * nv)
+        }
+        _ => {
+            return Err(CliError::usage(
+                Some("pattern"),
+                format!(
+                    "--align lays a hex or grid lattice: {} is neither",
+                    tpi_core::bounded(spec, tpi_core::QUOTE_LIMIT)
+                ),
+            ))
+        }
+    };
+    let align = match field.strip_prefix("field:") {
+        Some(file) => {
+            let file = std::path::Path::new(file);
+            let text = crate::output::read_text(file)?;
+            let name = file.display().to_string();
+            tpi_core::AlignField::File(
+                tpi_core::DirectionField::from_json(&text, &name)
+                    .map_err(|e| CliError::core(&name, &e))?,
+            )
+        }
+        None => tpi_core::AlignField::parse(field).map_err(|e| match e {
+            tpi_core::TpiError::InvalidParameter { reason, .. } => CliError::usage(
+                Some("pattern"),
+                format!(
+                    "--align {}: {reason}",
+                    tpi_core::bounded(field, tpi_core::QUOTE_LIMIT)
+                ),
+            ),
+            other => CliError::usage(Some("pattern"), other.to_string()),
+        })?,
+    };
+    let surface = crate::input::load_surface(path)?;
+    let name = path.display().to_string();
+    let uv = tpi_core::aligned_pattern(&surface, lattice, count, &align)
+        .map_err(|e| CliError::core(&name, &e))?;
+    let described = format!("{generator} aligned with {field} on {name}");
+    let mut files = Vec::new();
+    if let Some(p) = out {
+        files.push((p.clone(), pattern_json(&uv).into_bytes()));
+    }
+    if let Some(p) = preview {
+        let bytes = preview_bytes(
+            p,
+            &uv,
+            &described,
+            Some((&surface, &name)),
+            None,
+            &tpi_core::DiscretiseOptions::default(),
+        )?;
+        files.push((p.clone(), bytes));
+    }
+    write_all(&files)?;
+    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+    eprintln!(
+        "tpi: {described}: {} points -> {}",
+        uv.len(),
         names.join(", ")
     );
     Ok(())

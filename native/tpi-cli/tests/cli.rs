@@ -2665,3 +2665,117 @@ fn deviation_colours_and_pattern_previews_on_the_surface() {
     );
     assert!(!dir.join("q.png").exists());
 }
+
+/// Issue 15, item 3: `--align` writes a pattern that `tpi discretise` meshes with no invalid
+/// facet on the saddle, about as many points as the generator; a direction file is read;
+/// bad fields, generators and combinations are usage or input errors.
+#[test]
+fn pattern_align_lays_hex_and_grid_along_a_field() {
+    #[derive(Deserialize)]
+    struct Quality {
+        invalid_facets: usize,
+    }
+    #[derive(Deserialize)]
+    struct Mesh {
+        quality: Quality,
+    }
+    #[derive(Deserialize)]
+    struct Points {
+        uv: Vec<[f64; 2]>,
+    }
+    let dir = scratch("align");
+    let surface = sample("saddle.json");
+    let aligned = dir.join("aligned.json");
+    let said = text(
+        &ok(&[
+            "pattern",
+            "hex:24x20",
+            "--surface",
+            &surface,
+            "--align",
+            "principal",
+            "--out",
+            aligned.to_str().unwrap(),
+        ])
+        .stderr,
+    );
+    assert!(said.contains("aligned with principal"), "{said}");
+    let p: Points = serde_json::from_str(&fs::read_to_string(&aligned).unwrap()).unwrap();
+    assert!((400..=560).contains(&p.uv.len()), "{}", p.uv.len());
+    let mesh = dir.join("mesh.json");
+    ok(&[
+        "discretise",
+        "--surface",
+        &surface,
+        "--pattern",
+        aligned.to_str().unwrap(),
+        "--out",
+        mesh.to_str().unwrap(),
+    ]);
+    let m: Mesh = serde_json::from_str(&fs::read_to_string(&mesh).unwrap()).unwrap();
+    assert_eq!(m.quality.invalid_facets, 0);
+
+    let field = dir.join("grain.json");
+    fs::write(
+        &field,
+        r#"{"size": [2, 2], "directions": [[1, 0], [1, 0], [1, 1], [1, 1]]}"#,
+    )
+    .unwrap();
+    let grain = dir.join("grain-pattern.json");
+    ok(&[
+        "pattern",
+        "grid:20x20",
+        "--surface",
+        &surface,
+        "--align",
+        &format!("field:{}", field.display()),
+        "--out",
+        grain.to_str().unwrap(),
+    ]);
+    let out = aligned.to_str().unwrap();
+    for (args, code, says) in [
+        (
+            vec!["hex:24x20", "--align", "principle"],
+            2,
+            "principal, asymptotic",
+        ),
+        (vec!["hex:24x20", "--align", "uv:x"], 2, "uv:ANGLE"),
+        (vec!["random:100", "--align", "principal"], 2, "hex or grid"),
+        (vec!["--align", "principal"], 2, "GENERATOR"),
+        (
+            vec!["hex:4x4", "--align", "principal", "--relax", "3"],
+            2,
+            "--relax",
+        ),
+    ] {
+        let mut all = vec!["pattern"];
+        all.extend(args);
+        all.extend(["--surface", &surface, "--out", out]);
+        fails(&all, code, &[says]);
+    }
+    fails(
+        &["pattern", "hex:4x4", "--align", "principal", "--out", out],
+        2,
+        &["--surface"],
+    );
+    let bad = dir.join("bad.json");
+    fs::write(
+        &bad,
+        r#"{"size": [2, 2], "directions": [[0, 0], [0, 0], [0, 0], [0, 0]]}"#,
+    )
+    .unwrap();
+    fails(
+        &[
+            "pattern",
+            "hex:4x4",
+            "--surface",
+            &surface,
+            "--align",
+            &format!("field:{}", bad.display()),
+            "--out",
+            out,
+        ],
+        1,
+        &["every direction is zero"],
+    );
+}

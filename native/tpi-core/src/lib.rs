@@ -20,6 +20,7 @@
 #![warn(missing_docs)]
 
 mod adjusted_planes;
+mod align;
 mod analytic;
 pub mod benchmark;
 mod boundary;
@@ -61,6 +62,10 @@ mod trim;
 mod units;
 mod validity_flips;
 
+pub use align::{
+    aligned_pattern, AlignField, DirectionField, Lattice, ALIGN_NODES, ALIGN_SMOOTHING_SWEEPS,
+    MAX_ALIGN_ANISOTROPY, MAX_DIRECTION_NODES,
+};
 pub use analytic::{AnalyticKind, AnalyticSurface};
 pub use closed::{surface_layout, SurfaceLayout};
 pub use density::{density_pattern, DensitySpec, DensityTerm, GreyImage, DENSITY_NODES};

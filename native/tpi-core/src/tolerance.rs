@@ -391,3 +391,23 @@ pub const DEFAULT_SLOT_LENGTH_FACTOR: f64 = 4.0;
 
 /// Default slot depth into each panel, in panel thicknesses.
 pub const DEFAULT_SLOT_DEPTH_FACTOR: f64 = 2.0;
+
+// ---- read by align.rs ----
+
+/// Two points of an aligned lattice are never closer than this, in lattice units (the
+/// lattice's own step is 1) measured in the frame at the newer point: proposals of the same
+/// lattice site from different parents merge, and a gap wider than 1 + this is filled.
+pub const ALIGN_MIN_SEPARATION: f64 = 0.8;
+
+/// Below this fraction of the surface's largest principal curvature a node counts as flat
+/// and its lattice is regular on the surface (the curvature no longer decides its facets).
+pub const ALIGN_FLAT_CURVATURE: f64 = 1e-3;
+
+/// Largest angle (degrees) of an aligned hexagonal lattice's triangle seen through the
+/// curvature metric |II|^(1/2): below 90 the triangle is the |II|-Delaunay one the
+/// discretiser picks, so the facet edges are the conjugates the lattice was built for.
+pub const ALIGN_MAX_TRIANGLE_ANGLE_DEG: f64 = 80.0;
+
+/// Largest departure (degrees) from a right angle of an aligned square lattice's cell seen
+/// through |II|^(1/2).
+pub const ALIGN_MAX_SHEAR_DEG: f64 = 30.0;
