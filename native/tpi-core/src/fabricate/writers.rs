@@ -1,5 +1,5 @@
-//! The files: panels.json, panels.obj, bevels.csv, sheets.svg and sheets.dxf (ASCII DXF R2000
-//! through the `dxf` crate).
+//! The files: panels.json, panels.obj, bevels.csv, sheets.svg and sheets.dxf (ASCII DXF R2000:
+//! header and tables by the `dxf` crate, entities streamed in its format).
 
 use std::fmt::Write;
 
