@@ -287,20 +287,29 @@ pub(crate) fn run(args: FabricateArgs) -> Result<(), CliError> {
         )?;
         Ok(fabricate(&mesh, &opts.fab))
     };
-    let result = match opts.threads {
-        Some(n) => rayon::ThreadPoolBuilder::new()
-            .num_threads(n)
-            .build()
-            .map_err(|e| CliError::input("--threads", format!("cannot start {n} threads: {e}")))?
-            .install(run_core),
+    let pool = match opts.threads {
+        Some(n) => Some(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| {
+                    CliError::input("--threads", format!("cannot start {n} threads: {e}"))
+                })?,
+        ),
+        None => None,
+    };
+    let result = match &pool {
+        Some(pool) => pool.install(run_core),
         None => run_core(),
     };
     let fab = result
         .map_err(|e| CliError::core(&opts.surface, &e))?
         .map_err(|e| fabrication_error(&e))?;
-    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::with_capacity(opts.outs.len());
-    for (path, format) in &opts.outs {
-        let bytes = match format {
+    // The outputs are independent: written in parallel (on the same threads as the core),
+    // each into memory, then committed together; the first failing one, in the order given,
+    // is reported.
+    let render = |format: &Format| -> Result<Vec<u8>, CliError> {
+        Ok(match format {
             Format::Json => fab.to_json().into_bytes(),
             Format::Obj => fab.to_obj().into_bytes(),
             Format::Svg => fab.sheets_svg().into_bytes(),
@@ -313,8 +322,22 @@ pub(crate) fn run(args: FabricateArgs) -> Result<(), CliError> {
                 .gcode(&opts.tool)
                 .map_err(|e| fabrication_error(&e))?
                 .into_bytes(),
-        };
-        files.push((path.clone(), bytes));
+        })
+    };
+    let render_all = || -> Vec<Result<Vec<u8>, CliError>> {
+        use rayon::prelude::*;
+        opts.outs
+            .par_iter()
+            .map(|(_, format)| render(format))
+            .collect()
+    };
+    let rendered = match &pool {
+        Some(pool) => pool.install(render_all),
+        None => render_all(),
+    };
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::with_capacity(opts.outs.len());
+    for ((path, _), bytes) in opts.outs.iter().zip(rendered) {
+        files.push((path.clone(), bytes?));
     }
     write_all(&files)?;
     eprint!("{}", summary(&fab, opts.density));

@@ -1019,6 +1019,162 @@ fn files_read_back() {
     assert_eq!(svg.matches("<rect").count(), fab.sheets.len());
 }
 
+/// sheets.dxf read back by the `dxf` crate (an independent reader and writer; the entities
+/// are written by our own code): R2000, `$INSUNITS` 4, the five layers, handles distinct and
+/// below `$HANDSEED`; one closed SHEET rectangle per sheet (1.1 W apart), then per part in
+/// seed order its closed CUT outline and closed BOTTOM outline placed on its sheet, its open
+/// SLOT polylines, and ENGRAVE strokes inside its sheet; and the same polylines given to the
+/// crate as entities (the way sheets.dxf was written before) make the very same text.
+#[test]
+fn dxf_reads_back_with_the_dxf_crate() {
+    use dxf::entities::EntityType;
+    let (_, fab) = workshop();
+    let text = fab.sheets_dxf(Units::Millimetres).unwrap();
+    let drawing = dxf::Drawing::load(&mut text.as_bytes()).unwrap();
+    assert_eq!(drawing.header.version, dxf::enums::AcadVersion::R2000);
+    assert_eq!(
+        drawing.header.default_drawing_units,
+        dxf::enums::Units::Millimeters
+    );
+    let layers: Vec<&str> = drawing.layers().map(|l| l.name.as_str()).collect();
+    for layer in ["SHEET", "CUT", "BOTTOM", "SLOT", "ENGRAVE"] {
+        assert!(layers.contains(&layer), "layer {layer} missing: {layers:?}");
+    }
+    let entities: Vec<(&str, bool, Vec<DVec2>, u64)> = drawing
+        .entities()
+        .map(|e| match &e.specific {
+            EntityType::LwPolyline(l) => (
+                e.common.layer.as_str(),
+                l.is_closed(),
+                l.vertices.iter().map(|v| DVec2::new(v.x, v.y)).collect(),
+                e.common.handle.0,
+            ),
+            other => panic!("not an LWPOLYLINE: {other:?}"),
+        })
+        .collect();
+    let mut handles: Vec<u64> = entities.iter().map(|e| e.3).collect();
+    handles.extend(drawing.layers().map(|l| l.handle.0));
+    handles.sort_unstable();
+    let count = handles.len();
+    handles.dedup();
+    assert_eq!(handles.len(), count, "handles repeat");
+    assert!(handles[0] > 0 && handles[count - 1] < drawing.header.next_available_handle.0);
+    let mut offsets = vec![0.0];
+    for s in &fab.sheets {
+        offsets.push(offsets.last().unwrap() + 1.1 * s.size[0]);
+    }
+    let same = |a: &[DVec2], b: &[DVec2]| {
+        a.len() == b.len() && a.iter().zip(b).all(|(p, q)| p.distance(*q) <= 1e-9)
+    };
+    let mut at = entities.iter();
+    for (k, s) in fab.sheets.iter().enumerate() {
+        let (x0, [w, h]) = (offsets[k], s.size);
+        let (layer, closed, pts, _) = at.next().unwrap();
+        let rect = [
+            DVec2::new(x0, 0.0),
+            DVec2::new(x0 + w, 0.0),
+            DVec2::new(x0 + w, h),
+            DVec2::new(x0, h),
+        ];
+        assert!(
+            *layer == "SHEET" && *closed && same(pts, &rect),
+            "sheet {k}"
+        );
+    }
+    let mut rest = at.peekable();
+    for p in &fab.panels {
+        let pl = p.placement;
+        let place = |q: DVec2| {
+            let (sin, cos) = pl.angle_deg.to_radians().sin_cos();
+            DVec2::new(
+                cos * q.x - sin * q.y + pl.x + offsets[pl.sheet],
+                sin * q.x + cos * q.y + pl.y,
+            )
+        };
+        let want: Vec<DVec2> = p.cut_outline.iter().map(|&q| place(q)).collect();
+        let (layer, closed, pts, _) = rest.next().unwrap();
+        assert!(
+            *layer == "CUT" && *closed && same(pts, &want),
+            "panel {} cut",
+            p.seed
+        );
+        let want: Vec<DVec2> = p.flat_bottom.iter().map(|&q| place(q)).collect();
+        let (layer, closed, pts, _) = rest.next().unwrap();
+        assert!(
+            *layer == "BOTTOM" && *closed && same(pts, &want),
+            "panel {} bottom",
+            p.seed
+        );
+        for s in &p.slots {
+            let want: Vec<DVec2> = s
+                .flat
+                .iter()
+                .map(|&q| place(DVec2::from_array(q)))
+                .collect();
+            let (layer, closed, pts, _) = rest.next().unwrap();
+            assert!(
+                *layer == "SLOT" && !*closed && same(pts, &want),
+                "panel {} slot",
+                p.seed
+            );
+        }
+        let mut strokes = 0;
+        while let Some((_, _, pts, _)) = rest.next_if(|e| e.0 == "ENGRAVE") {
+            strokes += 1;
+            let (x0, [w, h]) = (offsets[pl.sheet], fab.sheets[pl.sheet].size);
+            assert!(
+                pts.iter()
+                    .all(|q| q.x >= x0 && q.x <= x0 + w && q.y >= 0.0 && q.y <= h),
+                "panel {}: a stroke off its sheet",
+                p.seed
+            );
+        }
+        assert!(strokes > 0, "panel {} has no label", p.seed);
+    }
+    assert!(rest.next().is_none());
+    // The same polylines handed to the crate as entities (as sheets.dxf was made before its
+    // entities were streamed) give the very same text.
+    let mut rebuilt = dxf::Drawing::new();
+    rebuilt.header.version = dxf::enums::AcadVersion::R2000;
+    rebuilt.header.default_drawing_units = dxf::enums::Units::Millimeters;
+    // A new drawing gets new random identifiers: the ones read are kept.
+    rebuilt.header.fingerprint_guid = drawing.header.fingerprint_guid;
+    rebuilt.header.version_guid = drawing.header.version_guid;
+    for layer in drawing.layers().filter(|l| l.name != "0") {
+        rebuilt.add_layer(dxf::tables::Layer {
+            name: layer.name.clone(),
+            color: layer.color.clone(),
+            ..Default::default()
+        });
+    }
+    for (layer, closed, pts, _) in &entities {
+        let mut line = dxf::entities::LwPolyline::default();
+        line.set_is_closed(*closed);
+        line.vertices = pts
+            .iter()
+            .map(|p| dxf::LwPolylineVertex {
+                x: p.x,
+                y: p.y,
+                ..Default::default()
+            })
+            .collect();
+        let mut entity = dxf::entities::Entity::new(EntityType::LwPolyline(line));
+        entity.common.layer = layer.to_string();
+        rebuilt.add_entity(entity);
+    }
+    let mut bytes = Vec::new();
+    rebuilt.save(&mut bytes).unwrap();
+    let bytes = String::from_utf8(bytes).unwrap();
+    if let Some(k) = bytes.lines().zip(text.lines()).position(|(a, b)| a != b) {
+        panic!(
+            "line {k}: the crate writes {:?}, sheets.dxf has {:?}",
+            bytes.lines().nth(k),
+            text.lines().nth(k)
+        );
+    }
+    assert_eq!(bytes.len(), text.len());
+}
+
 /// sheets.dxf written in millimetres, read by ezdxf (Python, an independent reader): R2000,
 /// `$INSUNITS` 4, layers CUT, SLOT and ENGRAVE, no audit error; every part's cut outline a
 /// closed CUT polyline equal to its flat cut outline turned by `angle_deg` and moved by

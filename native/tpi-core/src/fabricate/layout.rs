@@ -1,7 +1,5 @@
 //! Flat parts on sheets: a bottom-left fill of the parts' convex hulls (see [`nest`]).
 
-use std::collections::HashMap;
-
 use glam::DVec2;
 use rayon::prelude::*;
 use serde::Serialize;
@@ -75,37 +73,116 @@ fn bounds(points: &[DVec2]) -> (DVec2, DVec2) {
     )
 }
 
-/// Whether two convex counter-clockwise polygons are at least `gap` apart: some edge normal
-/// of either separates their projections by `gap` or more. (The distance of convex sets is the
-/// largest such separation over all directions, so this never passes closer parts; it may
-/// refuse a few that are far enough apart at a vertex-to-vertex contact.)
-fn separated(a: &[DVec2], b: &[DVec2], gap: f64) -> bool {
-    for (p, q) in [(a, b), (b, a)] {
-        let n = p.len();
-        let (lo, hi) = bounds(p);
-        // An edge this short has no reliable direction: its normal proves nothing.
-        let shortest = 1e-9 * (hi - lo).length();
-        for k in 0..n {
-            let e = p[(k + 1) % n] - p[k];
-            let len = e.length();
-            if len <= shortest {
-                continue;
-            }
-            let out = DVec2::new(e.y, -e.x) / len;
-            let edge = out.dot(p[k]);
-            if q.iter().all(|x| out.dot(*x) - edge >= gap) {
-                return true;
-            }
+/// The separating axes of a convex counter-clockwise polygon: for each edge longer than
+/// `1e-9` of its bounds' diagonal (a shorter edge has no reliable direction, its normal
+/// proves nothing), the unit outward normal `out` and the edge line's offset `out . p[k]`.
+fn axes(hull: &[DVec2], lo: DVec2, hi: DVec2) -> Vec<(DVec2, f64)> {
+    let n = hull.len();
+    let shortest = 1e-9 * (hi - lo).length();
+    let mut axes = Vec::with_capacity(n);
+    for k in 0..n {
+        let e = hull[(k + 1) % n] - hull[k];
+        let len = e.length();
+        if len <= shortest {
+            continue;
         }
+        let out = DVec2::new(e.y, -e.x) / len;
+        axes.push((out, out.dot(hull[k])));
     }
-    false
+    axes
 }
 
-/// A part placed on a sheet: its hull in sheet coordinates and the hull's bounds.
+/// A part in one of its four turns, at the origin of its own coordinates: the turned hull,
+/// its bounds and its separating axes. Moved by `shift`, an axis `(out, edge)` becomes
+/// `(out, edge + out . shift)`: the axes are made once per turn, not once per test.
+struct Turn {
+    angle: f64,
+    hull: Vec<DVec2>,
+    lo: DVec2,
+    hi: DVec2,
+    axes: Vec<(DVec2, f64)>,
+}
+
+/// Whether the part `turn`, moved by `shift`, and the placed part `o` (both convex,
+/// counter-clockwise) are at least `gap` apart: some edge normal of either separates their
+/// projections by `gap` or more. (The distance of convex sets is the largest such separation
+/// over all directions, so this never passes closer parts; it may refuse a few that are far
+/// enough apart at a vertex-to-vertex contact.)
+fn separated(turn: &Turn, shift: DVec2, o: &Placed, gap: f64) -> bool {
+    o.axes
+        .iter()
+        .any(|&(out, edge)| turn.hull.iter().all(|&x| out.dot(x + shift) - edge >= gap))
+        || turn.axes.iter().any(|&(out, edge)| {
+            let edge = edge + out.dot(shift);
+            o.hull.iter().all(|&x| out.dot(x) - edge >= gap)
+        })
+}
+
+/// A part placed on a sheet: its hull in sheet coordinates, the hull's bounds, its
+/// separating axes (see [`axes`]) and the grid cell of its lower bound.
 struct Placed {
     hull: Vec<DVec2>,
     lo: DVec2,
     hi: DVec2,
+    axes: Vec<(DVec2, f64)>,
+    cell: (usize, usize),
+}
+
+/// A uniform grid over a sheet: the placed parts by cell, each part in every cell its bounds
+/// meet. Indices are clamped to the grid, so a query reaching past the sheet reads the edge
+/// cells (all parts lie on the sheet).
+struct Grid {
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    cells: Vec<Vec<u32>>,
+}
+
+/// Most grid cells along a side of a sheet: parts much smaller than the sheet get cells of
+/// at least this fraction of it (which changes only how many parts a query reads).
+const GRID_MAX_CELLS: f64 = 256.0;
+
+impl Grid {
+    fn new(sheet: [f64; 2], cell: f64) -> Grid {
+        let cell = cell
+            .max(sheet[0] / GRID_MAX_CELLS)
+            .max(sheet[1] / GRID_MAX_CELLS);
+        let count = |w: f64| ((w / cell).floor() as usize).saturating_add(1);
+        let (nx, ny) = (count(sheet[0]), count(sheet[1]));
+        Grid {
+            cell,
+            nx,
+            ny,
+            cells: Vec::new(),
+        }
+    }
+
+    fn index(x: f64, cell: f64, n: usize) -> usize {
+        // `as` saturates: negative values and NaN give 0.
+        ((x / cell).floor().max(0.0) as usize).min(n - 1)
+    }
+
+    /// The cells [i0, i1] x [j0, j1] that [lo, hi] meets.
+    fn range(&self, lo: DVec2, hi: DVec2) -> (usize, usize, usize, usize) {
+        (
+            Self::index(lo.x, self.cell, self.nx),
+            Self::index(lo.y, self.cell, self.ny),
+            Self::index(hi.x, self.cell, self.nx),
+            Self::index(hi.y, self.cell, self.ny),
+        )
+    }
+
+    fn insert(&mut self, lo: DVec2, hi: DVec2, part: u32) {
+        if self.cells.is_empty() {
+            self.cells = vec![Vec::new(); self.nx * self.ny];
+        }
+        let (i0, j0, i1, j1) = self.range(lo, hi);
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                self.cells[j * self.nx + i].push(part);
+            }
+        }
+    }
 }
 
 struct OpenSheet {
@@ -117,75 +194,87 @@ struct OpenSheet {
     /// Parts in a row that found no place on this sheet (from [`SHEET_PATIENCE`] on it is
     /// no longer tried).
     misses: usize,
-    /// Placed parts by grid cell (each part in every cell its bounds meet): the feasibility
-    /// test reads only the parts in the cells a candidate's bounds, widened by the gap, meet,
-    /// which are all the parts its bounds can come within the gap of.
-    cells: HashMap<(i64, i64), Vec<usize>>,
+    /// Placed parts by grid cell: the feasibility test reads only the parts in the cells a
+    /// candidate's bounds, widened by the gap, meet, which are all the parts its bounds can
+    /// come within the gap of.
+    grid: Grid,
 }
 
 impl OpenSheet {
-    fn new(gap: f64) -> OpenSheet {
+    fn new(gap: f64, grid: Grid) -> OpenSheet {
         OpenSheet {
             placed: Vec::new(),
             corners: vec![DVec2::splat(gap)],
             used: 0.0,
             misses: 0,
-            cells: HashMap::new(),
+            grid,
         }
     }
 
-    fn cell_range(lo: DVec2, hi: DVec2, cell: f64) -> ((i64, i64), (i64, i64)) {
-        let index = |x: f64| (x / cell).floor() as i64;
-        ((index(lo.x), index(lo.y)), (index(hi.x), index(hi.y)))
+    /// Frees what only placing needs (the sheet takes no more parts).
+    fn close(&mut self) {
+        self.placed = Vec::new();
+        self.corners = Vec::new();
+        self.grid.cells = Vec::new();
     }
 
-    fn insert(&mut self, part: Placed, cell: f64, gap: f64) {
+    fn insert(&mut self, hull: Vec<DVec2>, gap: f64) {
+        let (lo, hi) = bounds(&hull);
         // A corner inside a placed hull can take no part whose hull reaches its bounds'
         // corner, which is nearly every part: it is dropped for good.
-        self.corners.retain(|&c| !strictly_inside(c, &part.hull));
-        let (lo, hi) = (part.lo, part.hi);
+        self.corners
+            .retain(|&c| !(inside_bounds(c, lo, hi) && strictly_inside(c, &hull)));
         for c in [
             DVec2::new(hi.x + gap, lo.y),
             DVec2::new(lo.x, hi.y + gap),
             DVec2::new(hi.x + gap, gap),
             DVec2::new(gap, hi.y + gap),
         ] {
-            let free = self.all_near(c, c, 0.0, cell, |o| !strictly_inside(c, &o.hull));
+            let inside = |o: &Placed| inside_bounds(c, o.lo, o.hi) && strictly_inside(c, &o.hull);
+            let free = self.all_near(c, c, 0.0, |o| !inside(o));
             let lowest_first = |a: &DVec2| a.y.total_cmp(&c.y).then(a.x.total_cmp(&c.x));
             if let (true, Err(at)) = (free, self.corners.binary_search_by(lowest_first)) {
                 self.corners.insert(at, c);
             }
         }
-        let ((i0, j0), (i1, j1)) = Self::cell_range(part.lo, part.hi, cell);
-        let index = self.placed.len();
-        for i in i0..=i1 {
-            for j in j0..=j1 {
-                self.cells.entry((i, j)).or_default().push(index);
-            }
-        }
-        self.placed.push(part);
+        let index = self.placed.len() as u32;
+        self.grid.insert(lo, hi, index);
+        let (i0, j0, _, _) = self.grid.range(lo, hi);
+        let axes = axes(&hull, lo, hi);
+        self.placed.push(Placed {
+            hull,
+            lo,
+            hi,
+            axes,
+            cell: (i0, j0),
+        });
     }
 
     /// Whether every placed part whose bounds could come within `gap` of [lo, hi] passes
-    /// `clear` (each may be asked more than once).
-    fn all_near(
-        &self,
-        lo: DVec2,
-        hi: DVec2,
-        gap: f64,
-        cell: f64,
-        clear: impl Fn(&Placed) -> bool,
-    ) -> bool {
-        let ((i0, j0), (i1, j1)) =
-            Self::cell_range(lo - DVec2::splat(gap), hi + DVec2::splat(gap), cell);
-        (i0..=i1).all(|i| {
-            (j0..=j1).all(|j| {
-                self.cells
-                    .get(&(i, j))
-                    .map_or(true, |parts| parts.iter().all(|&k| clear(&self.placed[k])))
-            })
-        })
+    /// `clear` (each is asked once: in the first cell of the query that it is filed in).
+    fn all_near(&self, lo: DVec2, hi: DVec2, gap: f64, clear: impl Fn(&Placed) -> bool) -> bool {
+        if self.grid.cells.is_empty() {
+            return true;
+        }
+        let (i0, j0, i1, j1) = self
+            .grid
+            .range(lo - DVec2::splat(gap), hi + DVec2::splat(gap));
+        for j in j0..=j1 {
+            for i in i0..=i1 {
+                for &k in &self.grid.cells[j * self.grid.nx + i] {
+                    let o = &self.placed[k as usize];
+                    if (i, j) == (o.cell.0.max(i0), o.cell.1.max(j0)) && !clear(o) {
+                        return false;
+                    }
+                }
+            }
+        }
+        true
     }
+}
+
+fn inside_bounds(c: DVec2, lo: DVec2, hi: DVec2) -> bool {
+    c.x > lo.x && c.x < hi.x && c.y > lo.y && c.y < hi.y
 }
 
 /// Whether p lies inside the convex counter-clockwise polygon, off its edges.
@@ -291,12 +380,19 @@ pub(super) fn nest(
     };
     let mut sheets: Vec<OpenSheet> = Vec::new();
     for (q, hull, base, area) in parts {
-        let turns: Vec<(f64, Vec<DVec2>, DVec2, DVec2)> = (0..4)
+        let turns: Vec<Turn> = (0..4)
             .map(|k| {
                 let angle = base + f64::from(k) * std::f64::consts::FRAC_PI_2;
                 let r: Vec<DVec2> = hull.iter().map(|&x| rotate(x, angle)).collect();
                 let (lo, hi) = bounds(&r);
-                (angle, r, lo, hi)
+                let axes = axes(&r, lo, hi);
+                Turn {
+                    angle,
+                    hull: r,
+                    lo,
+                    hi,
+                    axes,
+                }
             })
             .collect();
         let first = sheets.len().saturating_sub(OPEN_SHEETS);
@@ -310,9 +406,9 @@ pub(super) fn nest(
             // turns are then compared in order, as one loop over them would.
             let per_turn: Vec<Option<(f64, DVec2, f64)>> = turns
                 .par_iter()
-                .map(|(angle, r, lo, hi)| {
+                .map(|turn| {
                     let mut best: Option<(f64, DVec2, f64)> = None;
-                    let size = *hi - *lo;
+                    let (lo, size) = (turn.lo, turn.hi - turn.lo);
                     let feasible = |at: DVec2| -> bool {
                         if at.x < gap - 1e-12
                             || at.y < gap - 1e-12
@@ -321,34 +417,22 @@ pub(super) fn nest(
                         {
                             return false;
                         }
-                        let shift = at - *lo;
+                        let shift = at - lo;
                         let (plo, phi) = (at, at + size);
-                        // The hull moved to `at`, made once, and only if a part comes near.
-                        let moved = std::cell::OnceCell::new();
-                        open.all_near(plo, phi, gap, cell, |o| {
+                        open.all_near(plo, phi, gap, |o| {
                             o.lo.x >= phi.x + gap
                                 || o.hi.x + gap <= plo.x
                                 || o.lo.y >= phi.y + gap
                                 || o.hi.y + gap <= plo.y
-                                || separated(
-                                    moved.get_or_init(|| {
-                                        r.iter().map(|&x| x + shift).collect::<Vec<_>>()
-                                    }),
-                                    &o.hull,
-                                    gap,
-                                )
+                                || separated(turn, shift, o, gap)
                         })
                     };
                     // The two lowest feasible candidates (then leftmost) are dropped: the
                     // corners are kept in that order, so the search stops at the second.
-                    let feasible_corners: Vec<DVec2> = open
-                        .corners
-                        .iter()
-                        .copied()
-                        .filter(|&c| feasible(c))
-                        .take(2)
-                        .collect();
-                    for c in feasible_corners {
+                    let mut feasible_corners =
+                        open.corners.iter().copied().filter(|&c| feasible(c));
+                    let feasible_corners = [feasible_corners.next(), feasible_corners.next()];
+                    for c in feasible_corners.into_iter().flatten() {
                         // Drop down, then left, then down again (bisection to 1e-4 of the gap).
                         let mut at = c;
                         for axis in [1usize, 0, 1] {
@@ -373,7 +457,7 @@ pub(super) fn nest(
                         }
                         let score = at.y * 4.0 * w_sheet + at.x + (at.y + size.y) * w_sheet;
                         if best.map_or(true, |(_, _, sc)| score < sc) {
-                            best = Some((*angle, at - *lo, score));
+                            best = Some((turn.angle, at - lo, score));
                         }
                     }
                     best
@@ -395,29 +479,25 @@ pub(super) fn nest(
         let (s, angle, shift) = match chosen {
             Some((s, angle, shift, _)) => (s, angle, shift),
             None => {
-                sheets.push(OpenSheet::new(gap));
-                let (angle, _, lo, hi) = &turns[0];
-                let (angle, lo) =
-                    if hi.x - lo.x + 2.0 * gap <= w_sheet && hi.y - lo.y + 2.0 * gap <= h_sheet {
-                        (*angle, *lo)
-                    } else {
-                        (turns[1].0, turns[1].2)
-                    };
+                sheets.push(OpenSheet::new(gap, Grid::new(sheet, cell)));
+                // Only the last few sheets are tried: the one before them is closed.
+                if let Some(closed) = sheets.len().checked_sub(OPEN_SHEETS + 1) {
+                    sheets[closed].close();
+                }
+                let t0 = &turns[0];
+                let (angle, lo) = if t0.hi.x - t0.lo.x + 2.0 * gap <= w_sheet
+                    && t0.hi.y - t0.lo.y + 2.0 * gap <= h_sheet
+                {
+                    (t0.angle, t0.lo)
+                } else {
+                    (turns[1].angle, turns[1].lo)
+                };
                 (sheets.len() - 1, angle, DVec2::splat(gap) - lo)
             }
         };
         let placed: Vec<DVec2> = hull.iter().map(|&x| rotate(x, angle) + shift).collect();
-        let (lo, hi) = bounds(&placed);
         sheets[s].misses = 0;
-        sheets[s].insert(
-            Placed {
-                hull: placed,
-                lo,
-                hi,
-            },
-            cell,
-            gap,
-        );
+        sheets[s].insert(placed, gap);
         sheets[s].used += polygon_area(&panels[q].cut_outline).abs();
         panels[q].placement = Placement {
             sheet: s,

@@ -60,6 +60,27 @@ impl Default for ToolpathOptions {
     }
 }
 
+/// A coordinate in the G-code: 9 decimals, written straight into the text.
+struct Fixed9(f64);
+
+impl std::fmt::Display for Fixed9 {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{:.9}", self.0)
+    }
+}
+
+/// The feed word of a profile's first move (` F6000`), nothing on the others.
+struct Feed(Option<f64>);
+
+impl std::fmt::Display for Feed {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.0 {
+            Some(feed) => write!(f, " F{feed}"),
+            None => Ok(()),
+        }
+    }
+}
+
 /// One move of a profile: a line to a point, or a counter-clockwise arc to a point about a
 /// centre.
 #[derive(Clone, Copy, Debug)]
@@ -149,7 +170,7 @@ impl Fabrication {
         } else {
             "G21"
         };
-        let f = |x: f64| format!("{x:.9}");
+        let f = Fixed9;
         for (k, sheet) in self.sheets.iter().enumerate() {
             let _ = writeln!(
                 out,
@@ -233,12 +254,8 @@ impl Fabrication {
                     let mut at = start;
                     let mut first = true;
                     for (q, m) in moves.iter().enumerate() {
-                        let feed = if first {
-                            first = false;
-                            format!(" F{}", options.feed)
-                        } else {
-                            String::new()
-                        };
+                        let feed = Feed(first.then_some(options.feed));
+                        first = false;
                         match *m {
                             Move::Line(to) => {
                                 if last && tabbed.contains(&q) && tab_z > z {

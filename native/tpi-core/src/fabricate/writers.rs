@@ -1,5 +1,5 @@
-//! The files: panels.json, panels.obj, bevels.csv, sheets.svg and sheets.dxf (ASCII DXF R2000
-//! through the `dxf` crate).
+//! The files: panels.json, panels.obj, bevels.csv, sheets.svg and sheets.dxf (ASCII DXF R2000:
+//! header and tables by the `dxf` crate, entities streamed in its format).
 
 use std::fmt::Write;
 
@@ -234,7 +234,7 @@ impl Fabrication {
     fn labels(&self, p: &Panel, h: f64) -> Vec<Vec<DVec2>> {
         let pl = p.placement;
         let dx = DVec2::new(self.sheet_offset(pl.sheet), 0.0);
-        let (_, _, centre) = self.placed(p);
+        let centre = pl.apply(p.flat.iter().copied().sum::<DVec2>() / p.flat.len() as f64) + dx;
         let mut strokes = number_strokes(&p.seed.to_string(), centre, h, 0.0);
         let r = p.flat.len();
         for (k, s) in p.sides.iter().enumerate() {
@@ -262,75 +262,143 @@ impl Fabrication {
         sizes.get(sizes.len() / 2).copied().unwrap_or(1.0) / 6.0
     }
 
-    /// sheets.dxf, written with the `dxf` crate: ASCII DXF R2000 (`$ACADVER` AC1015, the first
-    /// version with `$INSUNITS`), layers SHEET, CUT (part outlines), BOTTOM (the bottom
-    /// outline seen through the part, for the bevels), SLOT (notches) and ENGRAVE (panel labels
-    /// at the centre, and each side's neighbour id beside the side, as single strokes), every
-    /// curve an LWPOLYLINE; sheets side by side, 10 % apart.
+    /// sheets.dxf: ASCII DXF R2000 (`$ACADVER` AC1015, the first version with `$INSUNITS`),
+    /// layers SHEET, CUT (part outlines), BOTTOM (the bottom outline seen through the part, for
+    /// the bevels), SLOT (notches) and ENGRAVE (panel labels at the centre, and each side's
+    /// neighbour id beside the side, as single strokes), every curve an LWPOLYLINE; sheets side
+    /// by side, 10 % apart.
+    ///
+    /// The header and the tables are the `dxf` crate's (a drawing with the layers and no
+    /// entities); the entities are streamed into the text here, code pair by code pair, as
+    /// the crate writes an LWPOLYLINE (handles numbered on from the tables', `$HANDSEED` the
+    /// next free one, coordinates with 12 decimals less trailing zeros): the same bytes as
+    /// the crate's own `save` of the whole drawing, without building ~30 entities' worth of
+    /// code pairs per part.
     ///
     /// Errors: [`FabricationError::Output`] if the crate refuses to write the drawing.
     pub fn sheets_dxf(&self, units: Units) -> Result<String, FabricationError> {
-        use dxf::entities::{Entity, EntityType, LwPolyline};
-        use dxf::LwPolylineVertex;
-        let mut drawing = dxf::Drawing::new();
-        drawing.header.version = dxf::enums::AcadVersion::R2000;
-        drawing.header.default_drawing_units = dxf_units(units);
-        for (name, colour) in DXF_LAYERS {
-            drawing.add_layer(dxf::tables::Layer {
-                name: name.to_string(),
-                color: dxf::Color::from_index(colour),
-                ..Default::default()
-            });
-        }
-        let mut polyline = |layer: &str, pts: &[DVec2], closed: bool| {
-            let mut line = LwPolyline::default();
-            line.set_is_closed(closed);
-            line.vertices = pts
-                .iter()
-                .map(|p| LwPolylineVertex {
-                    x: p.x,
-                    y: p.y,
-                    ..Default::default()
-                })
-                .collect();
-            let mut entity = Entity::new(EntityType::LwPolyline(line));
-            entity.common.layer = layer.to_string();
-            drawing.add_entity(entity);
+        let fail = |reason: String| FabricationError::Output {
+            file: "sheets.dxf",
+            reason,
         };
+        let drawing = dxf_drawing(units);
+        let first = drawing.header.next_available_handle.0;
+        let mut bytes = Vec::new();
+        drawing.save(&mut bytes).map_err(|e| fail(e.to_string()))?;
+        let prelude = String::from_utf8(bytes).map_err(|e| fail(e.to_string()))?;
+        let section = prelude
+            .find(DXF_ENTITIES)
+            .map(|at| at + DXF_ENTITIES.len())
+            .ok_or_else(|| fail("the dxf crate wrote no ENTITIES section".into()))?;
+        let seed = format!("$HANDSEED\r\n  5\r\n{first:X}\r\n");
+        if !prelude[..section].contains(&seed) {
+            return Err(fail("the dxf crate wrote no $HANDSEED".into()));
+        }
+        let mut entities = DxfEntities {
+            out: String::with_capacity(300 * self.panels.len()),
+            handle: first,
+        };
+        let offsets = self.sheet_offsets();
         for (k, s) in self.sheets.iter().enumerate() {
-            let x0 = self.sheet_offset(k);
+            let x0 = offsets[k];
             let rect = [
                 DVec2::new(x0, 0.0),
                 DVec2::new(x0 + s.size[0], 0.0),
                 DVec2::new(x0 + s.size[0], s.size[1]),
                 DVec2::new(x0, s.size[1]),
             ];
-            polyline("SHEET", &rect, true);
+            entities.polyline("SHEET", &rect, true);
         }
         let h = self.label_height();
         for p in &self.panels {
             let (outline, slots, _) = self.placed(p);
-            polyline("CUT", &outline, true);
-            polyline("BOTTOM", &self.placed_bottom(p), true);
+            entities.polyline("CUT", &outline, true);
+            entities.polyline("BOTTOM", &self.placed_bottom(p), true);
             for s in &slots {
-                polyline("SLOT", s, false);
+                entities.polyline("SLOT", s, false);
             }
             for stroke in self.labels(p, h) {
-                polyline("ENGRAVE", &stroke, false);
+                entities.polyline("ENGRAVE", &stroke, false);
             }
         }
-        let mut bytes = Vec::new();
-        drawing
-            .save(&mut bytes)
-            .map_err(|e| FabricationError::Output {
-                file: "sheets.dxf",
-                reason: e.to_string(),
-            })?;
-        String::from_utf8(bytes).map_err(|e| FabricationError::Output {
-            file: "sheets.dxf",
-            reason: e.to_string(),
-        })
+        let head = prelude[..section].replacen(
+            &seed,
+            &format!("$HANDSEED\r\n  5\r\n{:X}\r\n", entities.handle),
+            1,
+        );
+        let tail = &prelude[section..];
+        let mut text = String::with_capacity(head.len() + entities.out.len() + tail.len());
+        text.push_str(&head);
+        text.push_str(&entities.out);
+        text.push_str(tail);
+        Ok(text)
     }
+
+    /// The horizontal offset of every sheet (see [`Fabrication::sheet_offset`]).
+    fn sheet_offsets(&self) -> Vec<f64> {
+        (0..self.sheets.len())
+            .map(|k| self.sheet_offset(k))
+            .collect()
+    }
+}
+
+/// What the `dxf` crate writes where the ENTITIES section begins.
+const DXF_ENTITIES: &str = "  0\r\nSECTION\r\n  2\r\nENTITIES\r\n";
+
+/// The drawing of sheets.dxf without entities: version R2000, `$INSUNITS`, the layers.
+fn dxf_drawing(units: Units) -> dxf::Drawing {
+    let mut drawing = dxf::Drawing::new();
+    drawing.header.version = dxf::enums::AcadVersion::R2000;
+    drawing.header.default_drawing_units = dxf_units(units);
+    for (name, colour) in DXF_LAYERS {
+        drawing.add_layer(dxf::tables::Layer {
+            name: name.to_string(),
+            color: dxf::Color::from_index(colour),
+            ..Default::default()
+        });
+    }
+    drawing
+}
+
+/// The ENTITIES section's text, written as the `dxf` crate writes an LWPOLYLINE.
+struct DxfEntities {
+    out: String,
+    /// The next entity's handle.
+    handle: u64,
+}
+
+impl DxfEntities {
+    /// One LWPOLYLINE on `layer` (a name without control characters).
+    fn polyline(&mut self, layer: &str, pts: &[DVec2], closed: bool) {
+        let out = &mut self.out;
+        let _ = write!(
+            out,
+            "  0\r\nLWPOLYLINE\r\n  5\r\n{:X}\r\n100\r\nAcDbEntity\r\n  8\r\n{layer}\r\n370\r\n     0\r\n100\r\nAcDbPolyline\r\n 90\r\n{: >9}\r\n 70\r\n{: >6}\r\n",
+            self.handle,
+            pts.len(),
+            u8::from(closed)
+        );
+        self.handle += 1;
+        for p in pts {
+            out.push_str(" 10\r\n");
+            push_dxf_number(out, p.x);
+            out.push_str(" 20\r\n");
+            push_dxf_number(out, p.y);
+        }
+    }
+}
+
+/// A coordinate as the `dxf` crate prints it: 12 decimals, trailing zeros dropped, at least
+/// one decimal; then the line end.
+fn push_dxf_number(out: &mut String, x: f64) {
+    let start = out.len();
+    let _ = write!(out, "{x:.12}");
+    let kept = out[start..].trim_end_matches('0').len();
+    out.truncate(start + kept);
+    if out.ends_with('.') {
+        out.push('0');
+    }
+    out.push_str("\r\n");
 }
 
 /// The DXF layers and their colours (AutoCAD colour index: 8 grey, 1 red, 9 light grey, 5 blue,
