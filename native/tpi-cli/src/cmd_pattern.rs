@@ -164,12 +164,7 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
     };
     let spec = spec.ok_or_else(|| usage("a GENERATOR is required, e.g. hex:24x20".into()))?;
     check_outputs(&out, &preview)?;
-    let generator = Generator::parse(&spec).map_err(|e| match e {
-        tpi_core::TpiError::InvalidGenerator { reason, .. } => {
-            CliError::input(&spec, format!("invalid pattern generator: {reason}"))
-        }
-        other => CliError::input(&spec, other.to_string()),
-    })?;
+    let generator = parse_generator(&spec)?;
     let mut pattern = generator.generate();
     pattern
         .validate()
@@ -196,28 +191,16 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
         );
     }
 
-    let mut files = Vec::new();
-    if let Some(p) = &out {
-        files.push((p.clone(), pattern_json(&pattern.uv).into_bytes()));
-    }
-    if let Some(p) = &preview {
-        let bytes = preview_bytes(
-            p,
-            &pattern.uv,
-            &described,
-            loaded.as_ref().map(|(s, n)| (s, n.as_str())),
-            None,
-            &tpi_core::DiscretiseOptions::default(),
-        )?;
-        files.push((p.clone(), bytes));
-    }
-    write_all(&files)?;
-    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
-    eprintln!(
-        "tpi: {described}: {} points -> {}",
-        pattern.len(),
-        names.join(", ")
-    );
+    let names = write_pattern(
+        &pattern.uv,
+        &described,
+        &out,
+        &preview,
+        loaded.as_ref().map(|(s, n)| (s, n.as_str())),
+        None,
+        &tpi_core::DiscretiseOptions::default(),
+    )?;
+    eprintln!("tpi: {described}: {} points -> {}", pattern.len(), names);
     Ok(())
 }
 
@@ -229,12 +212,7 @@ fn run_align(
     out: &Option<PathBuf>,
     preview: &Option<PathBuf>,
 ) -> Result<(), CliError> {
-    let generator = Generator::parse(spec).map_err(|e| match e {
-        tpi_core::TpiError::InvalidGenerator { reason, .. } => {
-            CliError::input(spec, format!("invalid pattern generator: {reason}"))
-        }
-        other => CliError::input(spec, other.to_string()),
-    })?;
+    let generator = parse_generator(spec)?;
     let (lattice, count) = match generator {
         Generator::Hex(size) => {
             let (nu, nv) = size.hex_counts();
@@ -280,29 +258,51 @@ fn run_align(
     let uv = tpi_core::aligned_pattern(&surface, lattice, count, &align)
         .map_err(|e| CliError::core(&name, &e))?;
     let described = format!("{generator} aligned with {field} on {name}");
+    let names = write_pattern(
+        &uv,
+        &described,
+        out,
+        preview,
+        Some((&surface, &name)),
+        None,
+        &tpi_core::DiscretiseOptions::default(),
+    )?;
+    eprintln!("tpi: {described}: {} points -> {}", uv.len(), names);
+    Ok(())
+}
+
+/// A generator spec parsed, its errors naming the spec.
+fn parse_generator(spec: &str) -> Result<Generator, CliError> {
+    Generator::parse(spec).map_err(|e| match e {
+        tpi_core::TpiError::InvalidGenerator { reason, .. } => {
+            CliError::input(spec, format!("invalid pattern generator: {reason}"))
+        }
+        other => CliError::input(spec, other.to_string()),
+    })
+}
+
+/// Writes the pattern file (`out`) and the preview (`preview_bytes`), all or nothing, and
+/// returns their names for the summary line.
+fn write_pattern(
+    uv: &[[f64; 2]],
+    described: &str,
+    out: &Option<PathBuf>,
+    preview: &Option<PathBuf>,
+    surface: Option<(&tpi_core::SurfaceModel, &str)>,
+    tolerance: Option<f64>,
+    options: &tpi_core::DiscretiseOptions,
+) -> Result<String, CliError> {
     let mut files = Vec::new();
     if let Some(p) = out {
-        files.push((p.clone(), pattern_json(&uv).into_bytes()));
+        files.push((p.clone(), pattern_json(uv).into_bytes()));
     }
     if let Some(p) = preview {
-        let bytes = preview_bytes(
-            p,
-            &uv,
-            &described,
-            Some((&surface, &name)),
-            None,
-            &tpi_core::DiscretiseOptions::default(),
-        )?;
+        let bytes = preview_bytes(p, uv, described, surface, tolerance, options)?;
         files.push((p.clone(), bytes));
     }
     write_all(&files)?;
     let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
-    eprintln!(
-        "tpi: {described}: {} points -> {}",
-        uv.len(),
-        names.join(", ")
-    );
-    Ok(())
+    Ok(names.join(", "))
 }
 
 /// The --relax count (0 when absent).
@@ -360,28 +360,16 @@ fn run_density(
     } else {
         format!("density {file_name} on {name}")
     };
-    let mut files = Vec::new();
-    if let Some(p) = out {
-        files.push((p.clone(), pattern_json(&uv).into_bytes()));
-    }
-    if let Some(p) = preview {
-        let bytes = preview_bytes(
-            p,
-            &uv,
-            &described,
-            Some((&surface, &name)),
-            None,
-            &tpi_core::DiscretiseOptions::default(),
-        )?;
-        files.push((p.clone(), bytes));
-    }
-    write_all(&files)?;
-    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
-    eprintln!(
-        "tpi: {described}: {} points -> {}",
-        uv.len(),
-        names.join(", ")
-    );
+    let names = write_pattern(
+        &uv,
+        &described,
+        out,
+        preview,
+        Some((&surface, &name)),
+        None,
+        &tpi_core::DiscretiseOptions::default(),
+    )?;
+    eprintln!("tpi: {described}: {} points -> {}", uv.len(), names);
     Ok(())
 }
 
@@ -520,23 +508,15 @@ fn run_fit(
     let hex = tpi_core::hex_baseline(&surface, d, search_limit, &options)
         .map_err(|e| CliError::core(&name, &e))?;
     let described = format!("max deviation {d} on {name}");
-    let mut files = Vec::new();
-    if let Some(p) = out {
-        files.push((p.clone(), pattern_json(&fitted.uv).into_bytes()));
-    }
-    if let Some(p) = preview {
-        let bytes = preview_bytes(
-            p,
-            &fitted.uv,
-            &described,
-            Some((&surface, &name)),
-            Some(d),
-            &options,
-        )?;
-        files.push((p.clone(), bytes));
-    }
-    write_all(&files)?;
-    let names: Vec<String> = files.iter().map(|(p, _)| p.display().to_string()).collect();
+    let names = write_pattern(
+        &fitted.uv,
+        &described,
+        out,
+        preview,
+        Some((&surface, &name)),
+        Some(d),
+        &options,
+    )?;
     let units = surface.units().map_or(String::new(), |u| {
         format!(" {}", tpi_core::units_label(Some(u)))
     });
@@ -547,7 +527,7 @@ fn run_fit(
         fitted.max_deviation,
         fitted.invalid_facets,
         fitted.discretisations,
-        names.join(", ")
+        names
     );
     match hex {
         Some(h) => eprintln!(

@@ -18,7 +18,7 @@ use common::*;
 use glam::DVec3;
 use tpi_core::{
     discretise, AnalyticKind, AnalyticSurface, Discretisation, DiscretiseOptions, Generator,
-    NurbsSurface, PlaneMode, Surface, SurfaceSpec,
+    NurbsSurface, PlaneMode, Surface,
 };
 use tpi_core::{FLAG_NON_SIMPLE, FLAG_OVERLAP};
 
@@ -137,15 +137,6 @@ fn torus_band() -> NurbsSurface {
         [120f64.to_radians(), 240f64.to_radians()],
         [-45f64.to_radians(), 45f64.to_radians()],
     )
-}
-
-fn sample_surface(name: &str) -> tpi_core::SurfaceModel {
-    let path = format!("{}/../../samples/{name}", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap();
-    SurfaceSpec::from_json(&text, name)
-        .unwrap()
-        .build()
-        .unwrap()
 }
 
 /// Largest Gaussian curvature over a 30 x 30 grid (negative: a saddle everywhere).

@@ -22,17 +22,7 @@ use common::*;
 use glam::DVec3;
 use tpi_core::{
     aligned_pattern, discretise, AlignField, DirectionField, DiscretiseOptions, Lattice, Surface,
-    SurfaceSpec,
 };
-
-fn sample(name: &str) -> tpi_core::SurfaceModel {
-    let path = format!("{}/../../samples/{name}", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap();
-    SurfaceSpec::from_json(&text, name)
-        .unwrap()
-        .build()
-        .unwrap()
-}
 
 /// Principal curvatures k1 <= k2 of s * II (s = `sign`) and their unit 3D directions, from
 /// the shape operator in parameters: (II - k I) (du, dv) = 0.
@@ -262,7 +252,7 @@ fn run(name: &str, surface: &dyn Surface, lattice: Lattice, field: Field, size: 
 #[test]
 fn aligned_hexagons_on_saddles_are_valid_and_follow_the_field() {
     for name in ["saddle.json", "torus-band.json", "hypar.json"] {
-        let surface = sample(name);
+        let surface = sample_surface(name);
         for size in [300, 1000, 2000] {
             let row = run(name, &surface, Lattice::Hex, Field::Principal, size);
             assert!(
@@ -298,7 +288,7 @@ fn aligned_patterns_table() {
     ];
     let mut problems = Vec::new();
     for name in surfaces {
-        let surface = sample(name);
+        let surface = sample_surface(name);
         for lattice in [Lattice::Hex, Lattice::Grid] {
             for field in [
                 Field::Principal,
@@ -359,7 +349,7 @@ fn bad_alignment_input_is_rejected() {
         "f.json"
     )
     .is_ok());
-    let surface = sample("saddle.json");
+    let surface = sample_surface("saddle.json");
     assert!(aligned_pattern(&surface, Lattice::Hex, 0, &AlignField::Principal).is_err());
     let zero = AlignField::File(field([2, 2], vec![[0.0, 0.0]; 4]));
     assert!(aligned_pattern(&surface, Lattice::Hex, 100, &zero).is_err());

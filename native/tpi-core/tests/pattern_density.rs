@@ -9,16 +9,10 @@
 //! counting noise is under 10 %, and the points straddling a region's edge (perimeter over
 //! spacing, a few %) make up most of the rest.
 
-use tpi_core::{density_pattern, DensitySpec, DiscretiseOptions, GreyImage, Surface, SurfaceSpec};
+mod common;
 
-fn sample(name: &str) -> tpi_core::SurfaceModel {
-    let path = format!("{}/../../samples/{name}", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap();
-    SurfaceSpec::from_json(&text, name)
-        .unwrap()
-        .build()
-        .unwrap()
-}
+use common::sample_surface;
+use tpi_core::{density_pattern, DensitySpec, DiscretiseOptions, GreyImage, Surface};
 
 /// Surface area and integral of `rho` over the region `inside` of the normalised square.
 fn integrate(
@@ -82,7 +76,7 @@ fn attractor_rho(st: [f64; 2]) -> f64 {
 
 #[test]
 fn points_crowd_around_a_uv_attractor_as_the_field_says() {
-    let surface = sample("paraboloid.json");
+    let surface = sample_surface("paraboloid.json");
     let spec = DensitySpec::from_json(ATTRACTOR, "attractor").unwrap();
     let near = |p: [f64; 2]| (p[0] - 0.3).hypot(p[1] - 0.5) < 0.07;
     let far = |p: [f64; 2]| p[0] > 0.7;
@@ -111,7 +105,7 @@ fn points_crowd_around_a_uv_attractor_as_the_field_says() {
 
 #[test]
 fn the_spacing_ratio_bound_caps_the_density_ratio() {
-    let surface = sample("paraboloid.json");
+    let surface = sample_surface("paraboloid.json");
     let spec = DensitySpec::from_json(
         r#"{"spacing": 0.4, "ratio": 2, "terms": [
             {"type": "attractor", "uv": [0.3, 0.5], "radius": 0.3, "peak": 100}]}"#,
@@ -139,7 +133,7 @@ fn the_spacing_ratio_bound_caps_the_density_ratio() {
 
 #[test]
 fn a_grey_image_grades_the_points() {
-    let surface = sample("nurbs-dome.json");
+    let surface = sample_surface("nurbs-dome.json");
     // 8 x 1 pixels: the left half black, the right half white.
     let image =
         GreyImage::from_pgm(b"P2\n# test\n8 1\n255\n0 0 0 0 255 255 255 255\n", "t.pgm").unwrap();

@@ -7,16 +7,7 @@
 mod common;
 
 use common::*;
-use tpi_core::{discretise, fit_pattern, DiscretiseOptions, Generator, Surface, SurfaceSpec};
-
-fn sample(name: &str) -> tpi_core::SurfaceModel {
-    let path = format!("{}/../../samples/{name}", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap();
-    SurfaceSpec::from_json(&text, name)
-        .unwrap()
-        .build()
-        .unwrap()
-}
+use tpi_core::{discretise, fit_pattern, DiscretiseOptions, Generator, Surface};
 
 /// The largest distance of a mesh vertex from the surface (own projection) and the mesh's
 /// invalid facets.
@@ -78,7 +69,7 @@ fn hex_bisection(surface: &dyn Surface, tolerance: f64) -> (usize, usize) {
 /// Fits, checks every vertex independently, compares with the hex baseline; returns the
 /// ratio of counts.
 fn fit_and_compare(name: &str, tolerance: f64) -> f64 {
-    let surface = sample(name);
+    let surface = sample_surface(name);
     let fitted = fit_pattern(&surface, tolerance, 0, &DiscretiseOptions::default()).unwrap();
     assert!(fitted.met, "{name}: {fitted:?}");
     let (dev, invalid) = independent_check(&surface, &fitted.uv);
@@ -130,7 +121,7 @@ fn on_nearly_uniform_surfaces_the_pattern_still_beats_uniform_hex() {
 
 #[test]
 fn bad_tolerances_are_named() {
-    let surface = sample("paraboloid.json");
+    let surface = sample_surface("paraboloid.json");
     for bad in [0.0, -1.0, f64::NAN, f64::INFINITY] {
         let e = fit_pattern(&surface, bad, 0, &DiscretiseOptions::default()).unwrap_err();
         assert!(e.to_string().contains("max_deviation"), "{e}");
@@ -148,7 +139,7 @@ fn bad_tolerances_are_named() {
 /// file's own projection, with no invalid facet.
 #[test]
 fn a_mixed_curvature_roof_is_fitted_without_endless_refinement() {
-    let surface = sample("mixed-roof.json");
+    let surface = sample_surface("mixed-roof.json");
     let tolerance = 0.01;
     let fitted = fit_pattern(&surface, tolerance, 0, &DiscretiseOptions::default()).unwrap();
     assert!(fitted.met, "{fitted:?}");

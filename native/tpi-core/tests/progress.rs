@@ -59,15 +59,6 @@ impl Progress for Recorder {
     }
 }
 
-fn sample_surface(name: &str) -> tpi_core::SurfaceModel {
-    let path = format!("{}/../../samples/{name}", env!("CARGO_MANIFEST_DIR"));
-    let text = std::fs::read_to_string(&path).unwrap();
-    SurfaceSpec::from_json(&text, name)
-        .unwrap()
-        .build()
-        .unwrap()
-}
-
 fn analytic(json: &str) -> tpi_core::SurfaceModel {
     SurfaceSpec::from_json(json, "test")
         .unwrap()

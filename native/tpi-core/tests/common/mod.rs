@@ -946,3 +946,13 @@ pub const RATIONAL_CIRCLE: [(f64, f64, f64); 9] = {
 
 /// The knots of [`RATIONAL_CIRCLE`] (Rhino's convention: no extra end knots).
 pub const RATIONAL_CIRCLE_KNOTS: [f64; 10] = [0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0];
+
+/// A surface of the repository's `samples/` folder, by file name.
+pub fn sample_surface(name: &str) -> tpi_core::SurfaceModel {
+    let path = format!("{}/../../samples/{name}", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    tpi_core::SurfaceSpec::from_json(&text, name)
+        .unwrap()
+        .build()
+        .unwrap()
+}
