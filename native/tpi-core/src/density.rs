@@ -25,7 +25,7 @@ use serde::Deserialize;
 use crate::diffgeo::LocalGeometry;
 use crate::error::TpiError;
 use crate::relax::relax_weighted;
-use crate::sizing::{metric_poisson, node_geometry, SizingField};
+use crate::sizing::{largest_regular_curvature, metric_poisson, node_geometry, SizingField};
 use crate::surface::Surface;
 use crate::DiscretiseOptions;
 
@@ -396,7 +396,13 @@ impl DensitySpec {
                 }
                 DensityTerm::Curvature { exponent } => {
                     let k = geometry.k1.abs().max(geometry.k2.abs());
-                    let relative = if kappa_max > 0.0 { k / kappa_max } else { 1.0 };
+                    // At most 1: a singular node ([`largest_regular_curvature`]) is not
+                    // denser than the most curved regular place.
+                    let relative = if kappa_max > 0.0 {
+                        (k / kappa_max).min(1.0)
+                    } else {
+                        1.0
+                    };
                     relative.max(CURVATURE_TERM_FLOOR).powf(*exponent)
                 }
                 DensityTerm::Image {
@@ -432,9 +438,7 @@ impl DensitySpec {
                 .filter(|x| x.is_finite())
                 .fold(0.0, f64::max)
         };
-        let kappa_max = largest(node_geometry(surface, DENSITY_NODES, |_, g, _, _| {
-            g.k1.abs().max(g.k2.abs())
-        }));
+        let kappa_max = largest_regular_curvature(surface, DENSITY_NODES);
         let top = largest(node_geometry(surface, DENSITY_NODES, |_, g, _, st| {
             self.density(st, g, kappa_max)
         }));

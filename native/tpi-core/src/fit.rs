@@ -30,13 +30,14 @@
 //! was found without); when no round meets D within [`FIT_REFINE_PASSES`] refinements, the
 //! result says so ([`FittedPattern::met`]) and carries the closest attempt.
 
+use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::discretise::{discretise, Discretisation, DiscretiseOptions};
 use crate::error::TpiError;
 use crate::pattern::Generator;
-use crate::projection::distance_foot;
-use crate::relax::relax_weighted;
+use crate::projection::{distance_foot, Wrap};
+use crate::relax::{relax_weighted, seam_margins};
 use crate::sizing::{metric_poisson, CurvatureFloors, SizingField};
 use crate::surface::Surface;
 use crate::tolerance::DUPLICATE_UV_TOLERANCE;
@@ -109,13 +110,14 @@ fn vertex_feet(surface: &dyn Surface, d: &Discretisation) -> Vec<Option<(f64, [f
             }
         }
     }
-    let domain = surface.domain();
+    let wrap = Wrap::of(surface);
+    let domain = wrap.domain;
     (0..d.vertices.len())
         .into_par_iter()
         .map(|v| {
             let i = *first.get(v).filter(|&&i| i != u32::MAX)?;
             let x = d.vertices[v];
-            let [u, w] = distance_foot(surface, &domain, x, d.seeds[i as usize].uv);
+            let [u, w] = distance_foot(surface, &wrap, x, d.seeds[i as usize].uv);
             let (cu, cw) = domain.clamp(u, w);
             let dev = surface.point_at(cu, cw).distance(x);
             Some((if dev.is_finite() { dev } else { f64::INFINITY }, [cu, cw]))
@@ -353,6 +355,7 @@ fn refine(
     runs: &mut usize,
 ) -> Result<FittedPattern, TpiError> {
     let domain = surface.domain();
+    let [margin_s, margin_t] = seam_margins(surface);
     let mut lowest = f64::INFINITY;
     let mut last_offending = usize::MAX;
     let mut stalled = 0usize;
@@ -387,7 +390,13 @@ fn refine(
         }
         // Offending vertices, worst first; one new point per neighbourhood: no two new
         // points closer than half the distance from their vertex to its first facet's seed.
-        let mut offending: Vec<(f64, [f64; 2], f64)> = Vec::new();
+        // Each: (deviation, foot in normalised parameters and on the surface,
+        // distance from the foot to its first facet's seed in parameters and on the surface).
+        let on_surface = |st: [f64; 2]| {
+            let [u, v] = domain.from_normalised(st);
+            surface.point_at(u, v)
+        };
+        let mut offending: Vec<(f64, [f64; 2], DVec3, f64, f64)> = Vec::new();
         let mut first = vec![u32::MAX; d.vertices.len()];
         for i in 0..d.facet_count() {
             for &v in d.facet(i) {
@@ -399,11 +408,16 @@ fn refine(
         for (v, f) in feet.iter().enumerate() {
             if let Some((dev, foot)) = *f {
                 if dev > tolerance && first[v] != u32::MAX {
-                    let seed = domain.to_normalised(d.seeds[first[v] as usize].uv);
+                    let seed = &d.seeds[first[v] as usize];
+                    let seed_st = domain.to_normalised(seed.uv);
                     let st = domain.to_normalised(foot);
-                    let st = [st[0].clamp(0.0, 1.0), st[1].clamp(0.0, 1.0)];
-                    let reach = (st[0] - seed[0]).hypot(st[1] - seed[1]);
-                    offending.push((dev, st, reach));
+                    let st = [
+                        st[0].clamp(margin_s, 1.0 - margin_s),
+                        st[1].clamp(margin_t, 1.0 - margin_t),
+                    ];
+                    let x = on_surface(st);
+                    let reach = (st[0] - seed_st[0]).hypot(st[1] - seed_st[1]);
+                    offending.push((dev, st, x, reach, x.distance(seed.point)));
                 }
             }
         }
@@ -419,19 +433,32 @@ fn refine(
             });
         }
         offending.sort_by(|a, b| b.0.total_cmp(&a.0));
-        let mut added: Vec<([f64; 2], f64)> = Vec::new();
-        for (_, st, reach) in offending {
-            let near = |p: [f64; 2], r: f64| (p[0] - st[0]).hypot(p[1] - st[1]) < r;
-            if added.iter().any(|&(p, r)| near(p, 0.5 * r.max(reach))) {
-                continue;
-            }
-            if points
+        // Near in parameters or on the surface: across a seam or around a pole, points far
+        // apart in (s, t) are near, or one.
+        let existing: Vec<DVec3> = points.iter().map(|&p| on_surface(p)).collect();
+        let mut added: Vec<([f64; 2], DVec3, f64, f64)> = Vec::new();
+        for (_, st, x, reach, reach_3d) in offending {
+            let near = |p: [f64; 2], q: DVec3, r: f64, r_3d: f64| {
+                (p[0] - st[0]).hypot(p[1] - st[1]) < r || q.distance(x) < r_3d
+            };
+            if added
                 .iter()
-                .any(|&p| near(p, (0.25 * reach).max(10.0 * DUPLICATE_UV_TOLERANCE)))
+                .any(|&(p, q, r, r_3d)| near(p, q, 0.5 * r.max(reach), 0.5 * r_3d.max(reach_3d)))
             {
                 continue;
             }
-            added.push((st, reach));
+            let (r, r_3d) = (
+                (0.25 * reach).max(10.0 * DUPLICATE_UV_TOLERANCE),
+                0.25 * reach_3d,
+            );
+            if points
+                .iter()
+                .zip(&existing)
+                .any(|(&p, &q)| near(p, q, r, r_3d))
+            {
+                continue;
+            }
+            added.push((st, x, reach, reach_3d));
         }
         if added.is_empty() || points.len() + added.len() > limit {
             return Ok(FittedPattern {
@@ -442,7 +469,7 @@ fn refine(
                 discretisations: 0,
             });
         }
-        points.extend(added.into_iter().map(|(p, _)| p));
+        points.extend(added.into_iter().map(|(p, ..)| p));
         d = discretise(surface, &points, options)?;
         *runs += 1;
         feet = vertex_feet(surface, &d);

@@ -63,6 +63,7 @@ use crate::neighbours::{slope_repairs, NeighbourStats, SlopeFrame};
 use crate::planes::Plane;
 use crate::predicates::{orient2d, power_illegal};
 use crate::progress::NoProgress;
+use crate::projection::Wrap;
 use crate::quality::{report, resolve_foot, ReportInput};
 use crate::samples::curvature_class;
 use crate::surface::Surface;
@@ -201,6 +202,8 @@ struct State {
     /// Per slot: its vertex and the report's foot of it.
     vertex: Vec<TriangleVertex>,
     report_foot: Vec<Option<[f64; 2]>>,
+    /// How the report's projections continue past the domain's sides (as in a full run).
+    wrap: Wrap,
     /// Per point: one live triangle holding it.
     holder: Vec<u32>,
     /// Per facet: None for a simple facet (its loop is its closed fan), else its loop.
@@ -490,7 +493,8 @@ impl LiveSurface {
         )?;
         self.stats.full += 1;
         self.everything_changed = true;
-        self.state = pipeline.and_then(|p| State::from_pipeline(p, &result, &self.points));
+        let wrap = Wrap::of(self.surface.as_ref());
+        self.state = pipeline.and_then(|p| State::from_pipeline(p, &result, &self.points, wrap));
         self.mesh = Some(result);
         Ok(())
     }
@@ -508,6 +512,7 @@ impl State {
         p: PipelineState,
         result: &Discretisation,
         points: &[[f64; 2]],
+        wrap: Wrap,
     ) -> Option<Self> {
         let (frame, slopes) = p.slopes?;
         if p.neighbours.envelope_unresolved > 0 || p.triangulation.is_empty() {
@@ -625,6 +630,7 @@ impl State {
             slope_sign,
             vertex,
             report_foot,
+            wrap,
             tri,
             free: Vec::new(),
             holder,
@@ -1483,6 +1489,7 @@ impl State {
                 let first = self.in_pattern_order(self.tri.triangles[t as usize])[0];
                 self.report_foot[t as usize] = Some(report_foot(
                     surface,
+                    &self.wrap,
                     &self.vertex[t as usize],
                     self.uv[first as usize],
                 ));
@@ -1746,12 +1753,11 @@ fn renumber_diagnostic(d: &mut Diagnostic, k: u32) {
 
 /// The report's foot of a triangle vertex whose first facet is `seed`
 /// ([`crate::quality::resolve_foot`]).
-fn report_foot(surface: &dyn Surface, vertex: &TriangleVertex, seed_uv: [f64; 2]) -> [f64; 2] {
-    resolve_foot(
-        surface,
-        &surface.domain(),
-        vertex.point,
-        vertex.hint(),
-        seed_uv,
-    )
+fn report_foot(
+    surface: &dyn Surface,
+    wrap: &Wrap,
+    vertex: &TriangleVertex,
+    seed_uv: [f64; 2],
+) -> [f64; 2] {
+    resolve_foot(surface, wrap, vertex.point, vertex.hint(), seed_uv)
 }

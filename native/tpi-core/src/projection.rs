@@ -16,7 +16,7 @@ use glam::DVec3;
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
     DISTANCE_FOOT_MIN_FOCAL_FACTOR, DISTANCE_FOOT_STEP_TOLERANCE, MAX_PROJECTION_ITERATIONS,
-    PROJECTION_STEP_TOLERANCE,
+    POLE_RESTART_BAND, PROJECTION_STEP_TOLERANCE,
 };
 
 /// The foot of `x` on the (extended) surface, starting from `guess`.
@@ -34,21 +34,85 @@ pub(crate) fn foot(surface: &dyn Surface, domain: &Domain, x: DVec3, guess: [f64
 /// and near the focal surface ((1 - k1 d)(1 - k2 d) below
 /// [`DISTANCE_FOOT_MIN_FOCAL_FACTOR`], d the distance) the quadratic constant is unbounded:
 /// those keep the strict tolerance.
+///
+/// On a closed surface the foot is found across the seam and past a pole as by
+/// [`periodic_foot`] (`wrap`): clamped at the seam, a vertex near it would be measured from
+/// the wrong side, ten times the true distance on Rhino's ellipsoids. Near a pole, where the
+/// Jacobian vanishes, Newton may stop on the wrong side of it: there it starts again half a
+/// turn round ([`Wrap::across_pole`]) and the nearer foot is kept.
 pub(crate) fn distance_foot(
     surface: &dyn Surface,
-    domain: &Domain,
+    wrap: &Wrap,
     x: DVec3,
     guess: [f64; 2],
 ) -> [f64; 2] {
-    newton_foot(
-        surface,
-        domain,
-        x,
-        guess,
-        [false; 2],
-        [false; 4],
-        DISTANCE_FOOT_STEP_TOLERANCE,
-    )
+    let newton = |start: [f64; 2]| {
+        newton_foot(
+            surface,
+            &wrap.domain,
+            x,
+            start,
+            wrap.periodic,
+            wrap.poles,
+            DISTANCE_FOOT_STEP_TOLERANCE,
+        )
+    };
+    let foot = newton(guess);
+    let Some(start) = wrap.across_pole(foot) else {
+        return foot;
+    };
+    let other = newton(start);
+    let distance = |[u, v]: [f64; 2]| {
+        let (u, v) = wrap.domain.clamp(u, v);
+        surface.point_at(u, v).distance(x)
+    };
+    if distance(other) < distance(foot) {
+        other
+    } else {
+        foot
+    }
+}
+
+/// How a projection continues beyond the sides of a surface's domain: across the seam of a
+/// closed direction and past a pole ([`periodic_foot`]), by the tangent plane elsewhere.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Wrap {
+    /// The surface's domain.
+    pub domain: Domain,
+    /// Closed in u, in v.
+    pub periodic: [bool; 2],
+    /// Pole sides (u0, u1, v0, v1) of a surface closed the other way.
+    pub poles: [bool; 4],
+}
+
+impl Wrap {
+    /// Where `uv` lies within [`POLE_RESTART_BAND`] (normalised) of a pole side: the same
+    /// distance from the pole, half a turn round it (a second start for Newton). None
+    /// elsewhere.
+    pub(crate) fn across_pole(&self, [u, v]: [f64; 2]) -> Option<[f64; 2]> {
+        let [s, t] = self.domain.to_normalised([u, v]);
+        let near = |k: usize, x: f64| {
+            (self.poles[2 * k] && x < POLE_RESTART_BAND)
+                || (self.poles[2 * k + 1] && x > 1.0 - POLE_RESTART_BAND)
+        };
+        if self.periodic[0] && near(1, t) {
+            Some([u + 0.5 * self.domain.u.length(), v])
+        } else if self.periodic[1] && near(0, s) {
+            Some([u, v + 0.5 * self.domain.v.length()])
+        } else {
+            None
+        }
+    }
+
+    /// The wrap of `surface`, from its sampled layout ([`crate::closed::surface_layout`]).
+    pub(crate) fn of(surface: &dyn Surface) -> Self {
+        let layout = crate::closed::surface_layout(surface);
+        Wrap {
+            domain: surface.domain(),
+            periodic: layout.closed,
+            poles: layout.poles,
+        }
+    }
 }
 
 /// [`foot`] on a surface closed in the directions marked `periodic` (u, v): there the

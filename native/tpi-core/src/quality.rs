@@ -29,8 +29,8 @@ use crate::mesh::find;
 use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
 use crate::progress::{NoProgress, Progress, Stage, Tally};
-use crate::projection::distance_foot;
-use crate::surface::{Domain, Surface};
+use crate::projection::{distance_foot, Wrap};
+use crate::surface::Surface;
 use crate::tolerance::SEPARATION_MARGIN;
 use crate::validity_flips::polygons_overlap;
 
@@ -390,7 +390,7 @@ pub(crate) fn resolve_feet(
 /// that holds the vertex. Each to the accuracy the deviation needs ([`distance_foot`]).
 pub(crate) fn resolve_foot(
     surface: &dyn Surface,
-    domain: &Domain,
+    wrap: &Wrap,
     x: DVec3,
     hint: FootHint,
     seed_uv: [f64; 2],
@@ -398,14 +398,14 @@ pub(crate) fn resolve_foot(
     match hint {
         FootHint::Known(f) => f,
         FootHint::Guess { linear, reach } => {
-            let newton = distance_foot(surface, domain, x, linear);
-            if accept_newton(domain, newton, linear, reach) {
+            let newton = distance_foot(surface, wrap, x, linear);
+            if accept_newton(&wrap.domain, newton, linear, reach) {
                 newton
             } else {
-                distance_foot(surface, domain, x, seed_uv)
+                distance_foot(surface, wrap, x, seed_uv)
             }
         }
-        FootHint::FromSeed => distance_foot(surface, domain, x, seed_uv),
+        FootHint::FromSeed => distance_foot(surface, wrap, x, seed_uv),
     }
 }
 
@@ -433,7 +433,7 @@ fn map_feet<T: Send>(
             }
         }
     }
-    let domain = surface.domain();
+    let wrap = Wrap::of(surface);
     (0..vertices.len())
         .into_par_iter()
         .map_init(
@@ -442,7 +442,7 @@ fn map_feet<T: Send>(
                 tally.add(1);
                 let seed = *seed_of.get(v).filter(|&&s| s != u32::MAX)?;
                 let hint = hints.get(v).copied().unwrap_or(FootHint::FromSeed);
-                let resolved = resolve_foot(surface, &domain, vertices[v], hint, uv[seed as usize]);
+                let resolved = resolve_foot(surface, &wrap, vertices[v], hint, uv[seed as usize]);
                 Some(f(v, resolved))
             },
         )

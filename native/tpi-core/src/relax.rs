@@ -90,17 +90,7 @@ pub(crate) fn lloyd_step(
         ..*options
     };
     let domain = surface.domain();
-    // On a seam or a pole a point would be refused (or be one with its image): keep clear.
-    let layout = crate::closed::surface_layout(surface);
-    let margin = |k: usize| {
-        let sides = [layout.poles[2 * k], layout.poles[2 * k + 1]];
-        if layout.closed[k] || sides.contains(&true) {
-            SEAM_MARGIN
-        } else {
-            0.0
-        }
-    };
-    let (margin_s, margin_t) = (margin(0), margin(1));
+    let [margin_s, margin_t] = seam_margins(surface);
     let over = if density.is_some() {
         1.0
     } else {
@@ -157,6 +147,24 @@ pub(crate) fn lloyd_step(
         }
     }
     Ok((place_moves(points, &moved), d))
+}
+
+/// How far (normalised) a moved pattern point keeps from the sides of the domain in s and
+/// in t: [`POLE_MARGIN`] in a direction with a pole at one of its ends (a point on a pole is
+/// refused), [`SEAM_MARGIN`] in a closed direction (a point on the seam would be one with its
+/// image), 0 otherwise.
+pub(crate) fn seam_margins(surface: &dyn Surface) -> [f64; 2] {
+    let layout = crate::closed::surface_layout(surface);
+    let margin = |k: usize| {
+        if layout.poles[2 * k] || layout.poles[2 * k + 1] {
+            POLE_MARGIN
+        } else if layout.closed[k] {
+            SEAM_MARGIN
+        } else {
+            0.0
+        }
+    };
+    [margin(0), margin(1)]
 }
 
 /// The points after one iteration's moves (`moved[i]`: where point i goes, None where it
@@ -255,8 +263,14 @@ const INWARD_TRIES: usize = 16;
 /// lowers the energy for small steps).
 const OVER_RELAXATION: f64 = 1.9;
 
-/// Normalised distance kept from a seam or a pole (where a seed is refused or doubled).
+/// Normalised distance kept from a seam (where a seed would be doubled).
 const SEAM_MARGIN: f64 = 1e-6;
+
+/// Normalised distance kept from a pole (where a seed is refused). Larger than
+/// [`SEAM_MARGIN`]: where the control net collapses in several rows (Rhino's Flow2 example)
+/// the surface leaves its pole as the cube of the parameter, so at 1e-6 every point of the
+/// ring lies within 1e-10 of the diagonal of the pole, and seeds clamped there are one.
+const POLE_MARGIN: f64 = 1e-3;
 
 /// Cells per side of the grid on which [`spread_by_area`] measures the surface's area.
 const AREA_GRID: usize = 64;

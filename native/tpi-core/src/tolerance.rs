@@ -255,6 +255,12 @@ pub const DISTANCE_FOOT_STEP_TOLERANCE: f64 = 1e-5;
 /// ratio of the full Newton Hessian's determinant to the metric's, at least this.
 pub const DISTANCE_FOOT_MIN_FOCAL_FACTOR: f64 = 0.25;
 
+/// Normalised distance from a pole side within which the report's projection, having
+/// stopped there, starts again half a turn round the pole and keeps the nearer foot
+/// (`projection::Wrap::across_pole`): the Jacobian vanishes at a pole, and Newton may stop
+/// on the wrong side of it.
+pub const POLE_RESTART_BAND: f64 = 0.1;
+
 // ---- read by quality.rs ----
 
 /// A vertex within this fraction of an edge's length of the edge's line counts as on it in

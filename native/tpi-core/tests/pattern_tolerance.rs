@@ -153,3 +153,95 @@ fn a_mixed_curvature_roof_is_fitted_without_endless_refinement() {
     assert!(dev <= tolerance * (1.0 + 1e-9), "{dev} > {tolerance}");
     assert_eq!(invalid, 0);
 }
+
+/// A closed surface with poles: the refinement adds points at the feet of offending
+/// vertices, and near a pole or the seam those feet used to be clamped onto the pole side
+/// (a seed there is refused: "it lies on a pole") or onto both sides of the seam. Now they
+/// keep clear of both, and neighbourhoods are judged on the surface, not in parameters.
+#[test]
+fn a_closed_surface_with_poles_is_fitted() {
+    let surface = sample_surface("ellipsoid.json");
+    let tolerance = 0.05;
+    let fitted = fit_pattern(&surface, tolerance, 0, &DiscretiseOptions::default()).unwrap();
+    assert!(fitted.met, "{fitted:?}");
+    // The sample is the ellipsoid with semi-axes 12, 8, 5 about the origin: the oracle is
+    // its closed-form distance (a projection from a grid stalls at the poles).
+    let d = discretise(&surface, &fitted.uv, &DiscretiseOptions::default()).unwrap();
+    d.sanity_check().unwrap();
+    let dev = d
+        .facet_loops
+        .iter()
+        .map(|&v| ellipsoid_distance([12.0, 8.0, 5.0], d.vertices[v as usize]))
+        .fold(0.0, f64::max);
+    let invalid = d.quality.as_ref().unwrap().invalid_facets;
+    println!(
+        "ellipsoid D = {tolerance}: {} points, closed-form max deviation {dev:.5e}, {invalid} invalid",
+        fitted.uv.len()
+    );
+    assert!(dev <= tolerance * (1.0 + 1e-9), "{dev} > {tolerance}");
+    assert_eq!(invalid, 0);
+}
+
+/// The paraboloid z = -0.08 (x^2 + y^2) over [-5, 5]^2 with a bump 1e-4 high and 1e-5 wide
+/// at its apex, where one node of the fit's curvature field lies: there the curvature is
+/// 2e6, ten million times the rest. Real faces have such nodes next to degenerate poles
+/// (curvature 1e13 at 2 of 4,225 nodes): taken as the surface's largest curvature they
+/// floored the field everywhere and the fit asked for 1e14 points. The bump is far below
+/// the tolerance, so the fit should not see it: about as many points as on the smooth
+/// paraboloid, and every vertex within D by the independent projection.
+#[test]
+fn an_isolated_singular_curvature_does_not_set_the_spacing() {
+    struct Bumped;
+    const A: f64 = -0.08;
+    const HEIGHT: f64 = 1e-4;
+    const WIDTH: f64 = 1e-5;
+    impl tpi_core::Surface for Bumped {
+        fn domain(&self) -> tpi_core::Domain {
+            tpi_core::Domain::new(
+                tpi_core::Interval::new(-5.0, 5.0),
+                tpi_core::Interval::new(-5.0, 5.0),
+            )
+        }
+        fn evaluate(&self, x: f64, y: f64) -> tpi_core::SurfaceDerivatives {
+            // z = A r^2 + H exp(-r^2 / w^2).
+            let w2 = WIDTH * WIDTH;
+            let e = HEIGHT * (-(x * x + y * y) / w2).exp();
+            let z = A * (x * x + y * y) + e;
+            let zx = 2.0 * A * x - 2.0 * x / w2 * e;
+            let zy = 2.0 * A * y - 2.0 * y / w2 * e;
+            let zxx = 2.0 * A + (4.0 * x * x / (w2 * w2) - 2.0 / w2) * e;
+            let zyy = 2.0 * A + (4.0 * y * y / (w2 * w2) - 2.0 / w2) * e;
+            let zxy = 4.0 * x * y / (w2 * w2) * e;
+            tpi_core::SurfaceDerivatives {
+                point: glam::DVec3::new(x, y, z),
+                su: glam::DVec3::new(1.0, 0.0, zx),
+                sv: glam::DVec3::new(0.0, 1.0, zy),
+                suu: glam::DVec3::new(0.0, 0.0, zxx),
+                suv: glam::DVec3::new(0.0, 0.0, zxy),
+                svv: glam::DVec3::new(0.0, 0.0, zyy),
+            }
+        }
+    }
+    let tolerance = 0.01;
+    let options = DiscretiseOptions::default();
+    let smooth = fit_pattern(&sample_surface("paraboloid.json"), tolerance, 0, &options).unwrap();
+    let bumped = fit_pattern(&Bumped, tolerance, 0, &options).unwrap();
+    assert!(bumped.met, "{bumped:?}");
+    // The bumped surface lies within HEIGHT of the smooth paraboloid, so a vertex's distance
+    // to it is within HEIGHT of its distance to the paraboloid (projected independently).
+    let (smooth_dev, invalid) = independent_check(&sample_surface("paraboloid.json"), &bumped.uv);
+    let dev = smooth_dev + HEIGHT;
+    println!(
+        "bumped paraboloid: {} points (smooth {}), independent max deviation {dev:.5e}",
+        bumped.uv.len(),
+        smooth.uv.len()
+    );
+    assert!(dev <= tolerance * (1.0 + 1e-9), "{dev} > {tolerance}");
+    assert_eq!(invalid, 0);
+    assert!(
+        (bumped.uv.len() as f64) < 1.5 * smooth.uv.len() as f64,
+        "{} points against {} on the smooth paraboloid",
+        bumped.uv.len(),
+        smooth.uv.len()
+    );
+}

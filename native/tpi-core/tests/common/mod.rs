@@ -956,3 +956,39 @@ pub fn sample_surface(name: &str) -> tpi_core::SurfaceModel {
         .build()
         .unwrap()
 }
+
+/// Distance from x to the ellipsoid x^2/a^2 + y^2/b^2 + z^2/c^2 = 1, from its closed form:
+/// the nearest point is p_i = a_i^2 x_i / (a_i^2 + l), l the root of
+/// f(l) = sum (a_i x_i / (a_i^2 + l))^2 - 1 on (-min a_i^2, inf), where f falls from +inf
+/// to -1 (bisection to the last bit). For x on an axis inside the ellipsoid the root may not
+/// exist; no mesh vertex of these tests lies there.
+pub fn ellipsoid_distance(axes: [f64; 3], x: DVec3) -> f64 {
+    let x = x.to_array();
+    let f = |l: f64| {
+        (0..3)
+            .map(|i| (axes[i] * x[i] / (axes[i] * axes[i] + l)).powi(2))
+            .sum::<f64>()
+            - 1.0
+    };
+    let smallest = axes.iter().map(|a| a * a).fold(f64::INFINITY, f64::min);
+    let (mut lo, mut hi) = (-smallest, 1.0);
+    while f(hi) > 0.0 {
+        hi *= 2.0;
+    }
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if f(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let l = 0.5 * (lo + hi);
+    let p: Vec<f64> = (0..3)
+        .map(|i| axes[i] * axes[i] * x[i] / (axes[i] * axes[i] + l))
+        .collect();
+    ((p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2) + (p[2] - x[2]).powi(2)).sqrt()
+}
