@@ -73,7 +73,10 @@ pub(crate) fn load_pattern(
         } else {
             CliError::input(
                 &shown,
-                format!("no such pattern file, and not a pattern spec either ({reason})"),
+                format!(
+                    "no such pattern file, and not a pattern generator or pattern spec either \
+                     ({reason})"
+                ),
             )
         }
     })?;
