@@ -246,6 +246,12 @@
 #define TPI_PLANES_ADJUSTED 1
 
 /**
+ * Size in bytes of the first version of `TpiFitReport`: the smallest `struct_size`
+ * accepted.
+ */
+#define TPI_FIT_REPORT_SIZE_V1 40
+
+/**
  * Units of `tpi_surface_with_units` and `tpi_surface_units`: unitless (the default of every
  * new surface). The values are those of Rhino's `UnitSystem` (RhinoCommon and rhino3dm), so
  * that `(int)doc.ModelUnitSystem` passes through.
@@ -337,7 +343,7 @@ typedef enum TpiStatus {
     TPI_STATUS_INVALID_NURBS = 6,
     /**
      * The pattern is invalid: a point outside [0, 1]^2, two coincident points, fewer than
-     * three points, all points collinear, or a malformed generator.
+     * three points, all points collinear, or a malformed generator or pattern spec.
      */
     TPI_STATUS_INVALID_PATTERN = 7,
     /**
@@ -756,6 +762,41 @@ typedef struct TpiDiagnosticEntry {
      */
     uint32_t diagnostic;
 } TpiDiagnosticEntry;
+
+/**
+ * How a `fit:D` pattern went (`tpi_pattern_fit_report`).
+ *
+ * Growth: fields are only ever appended; set `struct_size` to sizeof(TpiFitReport) before
+ * the call, and the library writes only that many bytes (and stores in `struct_size` how
+ * many it filled in).
+ */
+typedef struct TpiFitReport {
+    /**
+     * sizeof(TpiFitReport) as compiled by the caller; at least TPI_FIT_REPORT_SIZE_V1.
+     */
+    uint32_t struct_size;
+    /**
+     * 1 if every vertex of the pattern's mesh lies within `tolerance` of the surface, else
+     * 0 (the pattern is then the closest attempt).
+     */
+    uint32_t met;
+    /**
+     * The tolerance asked for, D (model units).
+     */
+    double tolerance;
+    /**
+     * The largest vertex deviation of the pattern's mesh (model units).
+     */
+    double max_deviation;
+    /**
+     * Invalid facets of the pattern's mesh.
+     */
+    uint64_t invalid_facets;
+    /**
+     * Discretisations run to find the pattern.
+     */
+    uint64_t discretisations;
+} TpiFitReport;
 
 /**
  * The parameter domain [u_min, u_max] x [v_min, v_max] of a surface.
@@ -1523,6 +1564,76 @@ enum TpiStatus tpi_pattern_new_poisson(double radius, uint64_t seed, struct TpiP
  * `spec` is NULL or a NUL-terminated string; `out` is NULL or valid for writing a pointer.
  */
 enum TpiStatus tpi_pattern_new_from_spec(const char *spec, struct TpiPattern **out);
+
+/**
+ * Creates a pattern made on `surface` from a pattern spec: a generator (as
+ * `tpi_pattern_new_from_spec`) or one of the forms that look at the surface (the grammar of
+ * the command line's `tpi discretise --pattern`, tpi_core::SurfacePatternSpec):
+ *
+ * - `fit:D[:seed=S]`: few points whose TPI mesh keeps every vertex within D model units of
+ *   the surface (D > 0); `tpi_pattern_fit_report` tells whether D was met. A fit that does
+ *   not meet D still creates the pattern (the closest attempt): check `met`.
+ * - `relax:N:SPEC`: SPEC's points after N (0 to 1000) Lloyd iterations on the surface,
+ *   areas measured on the surface; SPEC is any form but `fit:` and `relax:` (of a density,
+ *   the iterations follow the density).
+ * - `align:LATTICE:FIELD`: LATTICE `hex:NUxNV`, `hex:spacing=A`, `grid:NUxNV` or
+ *   `grid:spacing=A` (about that many points) laid along FIELD: `principal`, `asymptotic`,
+ *   `uv:ANGLE` (degrees) or a direction field as inline JSON
+ *   `{"size": [NS, NT], "directions": [[ds, dt], ...]}`.
+ * - `density:{JSON}`: a Poisson-disk sampling following a density field (the JSON of a
+ *   density file, docs/formats.md, inline).
+ *
+ * The field and the density run to the end of the spec, so their JSON may hold colons. The
+ * library reads no files: `@FILE` and density `image` terms (which name a file) are refused
+ * with TPI_STATUS_INVALID_PATTERN; read the file and put its JSON text in the spec.
+ * `options` (NULL for the defaults) are those of the discretisations the form runs (the
+ * plane mode decides what a fit measures). Deterministic for a given spec, surface and
+ * options. A fit or a relaxation runs many discretisations and may take seconds.
+ *
+ * On success `*out` is a new handle (free with `tpi_pattern_free`), else NULL. Errors:
+ * TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (not UTF-8, bad options, a bad
+ * number in the JSON), TPI_STATUS_INVALID_PATTERN (a malformed spec: the message quotes the
+ * piece that is wrong), TPI_STATUS_NON_FINITE, TPI_STATUS_DEGENERATE (a surface the form
+ * cannot work on).
+ *
+ * # Safety
+ * `surface` is NULL or a live handle; `spec` is NULL or a NUL-terminated string; `options`
+ * is NULL or a `TpiOptions` with `struct_size` readable bytes; `out` is NULL or valid for
+ * writing a pointer.
+ */
+enum TpiStatus tpi_pattern_new_for_surface(const struct TpiSurface *surface, const char *spec, const struct TpiOptions *options, struct TpiPattern **out);
+
+/**
+ * Fills `*out` with how the fit went, for a pattern made by `tpi_pattern_new_for_surface`
+ * with a `fit:D` spec (the point count is `tpi_pattern_point_count`). Set
+ * `out->struct_size` = sizeof(TpiFitReport) first; only that many bytes are written, and on
+ * return `struct_size` holds the number of bytes filled in.
+ *
+ * Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (`struct_size` below
+ * TPI_FIT_REPORT_SIZE_V1), TPI_STATUS_UNAVAILABLE (the pattern was not made by a fit).
+ *
+ * # Safety
+ * `pattern` is NULL or a live handle; `out` is NULL or valid for reading and writing
+ * `out->struct_size` bytes.
+ */
+enum TpiStatus tpi_pattern_fit_report(const struct TpiPattern *pattern, struct TpiFitReport *out);
+
+/**
+ * The smallest uniform hexagonal pattern `hex:spacing=1/N` whose mesh on `surface` keeps
+ * every vertex within `max_deviation` (model units, > 0) of the surface, found by doubling N
+ * and bisection, looking at patterns of at most `max_points` points (the baseline a fitted
+ * pattern is compared with). `options`: NULL for the defaults.
+ *
+ * On success `*count` is its number of points and `*deviation` its mesh's largest vertex
+ * deviation; when no such pattern has at most `max_points` points, `*count` is 0 and
+ * `*deviation` NaN. Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT
+ * (`max_deviation` not > 0, bad options), TPI_STATUS_NON_FINITE, TPI_STATUS_DEGENERATE.
+ *
+ * # Safety
+ * `surface` is NULL or a live handle; `options` is NULL or a `TpiOptions` with
+ * `struct_size` readable bytes; `count` and `deviation` are NULL or valid for writing.
+ */
+enum TpiStatus tpi_pattern_hex_baseline(const struct TpiSurface *surface, double max_deviation, size_t max_points, const struct TpiOptions *options, size_t *count, double *deviation);
 
 /**
  * Frees a pattern. NULL is allowed and does nothing.

@@ -10,12 +10,12 @@ using Tpi.Logic;
 
 namespace Tpi.GhComponents
 {
-    /// <summary>"TPI Pattern": the pattern generators with their parameters.</summary>
+    /// <summary>"TPI Pattern": the pattern generators with their parameters, and the patterns made on a surface (tolerance, relaxation, alignment, density; logic in Tpi.Logic).</summary>
     public sealed class PatternComponent : GH_Component
     {
         /// <summary>Made by Grasshopper.</summary>
         public PatternComponent()
-            : base("TPI Pattern", "TPIPat", "Pattern points in the unit square from a generator (grid, hex, jitter, random, poisson) or a spec such as hex:12x12.", Tab.Name, Tab.Pattern)
+            : base("TPI Pattern", "TPIPat", "Pattern points in the unit square from a generator (grid, hex, jitter, random, poisson) or a spec such as hex:12x12; on a surface also tolerance-driven, relaxed, aligned or density-graded (specs such as fit:0.01 or relax:20:random:500).", Tab.Name, Tab.Pattern)
         {
         }
 
@@ -38,8 +38,12 @@ namespace Tpi.GhComponents
             pManager.AddNumberParameter("Radius", "R", "Poisson-disk radius in the unit square (>= 0.001).", GH_ParamAccess.item, 0.08);
             pManager.AddIntegerParameter("Seed", "Sd", "Random seed.", GH_ParamAccess.item, 1);
             pManager.AddTextParameter("Spec", "Sp", "A generator spec (e.g. grid:spacing=0.05); overrides the inputs above.", GH_ParamAccess.item);
-            pManager.AddSurfaceParameter("Surface", "S", "Optional surface to place the points on.", GH_ParamAccess.item);
-            for (int i = 0; i < 8; i++) pManager[i].Optional = true;
+            pManager.AddSurfaceParameter("Surface", "S", "Optional surface to place the points on; needed by the inputs below (patterns made on the surface).", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Tolerance", "D", "Tolerance-driven pattern (fit:D): few points whose mesh keeps every vertex within D model units of S. 0: off. Replaces the generator.", GH_ParamAccess.item, 0.0);
+            pManager.AddIntegerParameter("Relax", "N", "Lloyd iterations on S (areas measured on the surface) so that the panels come out even. 0: off.", GH_ParamAccess.item, 0);
+            pManager.AddTextParameter("Align", "Al", "Lay the hex or grid generator along a direction field on S: principal, asymptotic, uv:ANGLE or a direction field's JSON. Empty: off.", GH_ParamAccess.item);
+            pManager.AddTextParameter("Density", "De", "A density field's JSON (attractors, curves, curvature; docs/formats.md): a graded pattern on S, replacing the generator. Empty: off.", GH_ParamAccess.item);
+            for (int i = 0; i < 12; i++) pManager[i].Optional = true;
         }
 
         /// <inheritdoc/>
@@ -47,7 +51,8 @@ namespace Tpi.GhComponents
         {
             pManager.AddPointParameter("UV", "UV", "Pattern points as (s, t, 0) in the unit square.", GH_ParamAccess.list);
             pManager.AddPointParameter("Points", "P", "Pattern points on the surface (when S is given).", GH_ParamAccess.list);
-            pManager.AddTextParameter("Spec", "Sp", "The generator spec that made the points.", GH_ParamAccess.item);
+            pManager.AddTextParameter("Spec", "Sp", "The pattern spec that made the points (as tpi discretise --pattern takes it).", GH_ParamAccess.item);
+            pManager.AddNumberParameter("Deviation", "Dev", "For a tolerance-driven pattern: the largest vertex deviation of its mesh (model units).", GH_ParamAccess.item);
         }
 
         /// <inheritdoc/>
@@ -67,6 +72,24 @@ namespace Tpi.GhComponents
             DA.GetData(5, ref seed);
             DA.GetData(6, ref spec);
             DA.GetData(7, ref surface);
+            double tolerance = 0.0;
+            int relax = 0;
+            string align = null, density = null;
+            DA.GetData(8, ref tolerance);
+            DA.GetData(9, ref relax);
+            DA.GetData(10, ref align);
+            DA.GetData(11, ref density);
+            var onSurface = new SurfacePatternInputs { MaxDeviation = tolerance, Relax = relax, Align = align, DensityJson = density };
+            SurfaceSpec surfaceSpec = null;
+            if (surface != null)
+            {
+                surfaceSpec = GhConvert.ToSpec(surface);
+                if (surfaceSpec == null && (onSurface.Any || SurfacePatternInputs.NeedsSurface(spec)))
+                {
+                    AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "the surface has no NURBS form");
+                    return;
+                }
+            }
             GeneratorKind kind;
             if (!PatternGenerator.TryParseKind(name, out kind) && string.IsNullOrWhiteSpace(spec))
             {
@@ -74,9 +97,11 @@ namespace Tpi.GhComponents
                 return;
             }
             var generator = new PatternGenerator { Kind = kind, CountU = countU, CountV = countV, Amount = amount, Radius = radius, Seed = (ulong)Math.Max(0, seed) };
-            var output = ComponentSolvers.Pattern(new PatternInput { Generator = generator, Spec = spec });
+            var output = ComponentSolvers.Pattern(new PatternInput { Generator = generator, Spec = spec, Surface = surfaceSpec, OnSurface = onSurface });
             foreach (var e in output.Errors) AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e);
             if (output.Errors.Count > 0) return;
+            foreach (var w in output.Warnings) AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, w);
+            if (output.Fit.HasValue) DA.SetData(3, output.Fit.Value.MaxDeviation);
             DA.SetDataList(0, output.Points.Select(p => new Point3d(p.S, p.T, 0)));
             if (surface != null) DA.SetDataList(1, output.Points.Select(p => GhConvert.PointAt(surface, p)));
             DA.SetData(2, output.Spec);

@@ -55,8 +55,14 @@ namespace Tpi.Logic
     {
         /// <summary>The generator and its parameters.</summary>
         public PatternGenerator Generator { get; set; }
-        /// <summary>A spec in the library's syntax ("hex:12x12", "grid:spacing=0.05"); overrides Generator.</summary>
+        /// <summary>A spec in the library's syntax ("hex:12x12", "grid:spacing=0.05", or one made on the surface such as "relax:20:random:500"); overrides Generator.</summary>
         public string Spec { get; set; }
+        /// <summary>The surface, needed by a pattern made on it (a spec such as fit:D or relax:N:..., or <see cref="OnSurface"/>); may be null otherwise.</summary>
+        public SurfaceSpec Surface { get; set; }
+        /// <summary>Tolerance, relaxation, alignment and density, combined with the generator (or the spec) into one spec; null for none.</summary>
+        public SurfacePatternInputs OnSurface { get; set; }
+        /// <summary>Options of the discretisations a pattern made on the surface runs; null for the library's defaults.</summary>
+        public DiscretisationOptions Options { get; set; }
     }
 
     /// <summary>Outputs of "TPI Pattern".</summary>
@@ -68,7 +74,11 @@ namespace Tpi.Logic
         public string Spec { get; internal set; }
         /// <summary>Problems that stopped the solve.</summary>
         public List<string> Errors { get; private set; }
-        internal PatternOutput() { Errors = new List<string>(); Points = new PatternPoint[0]; Spec = string.Empty; }
+        /// <summary>Problems worth a look (a tolerance that was not met).</summary>
+        public List<string> Warnings { get; private set; }
+        /// <summary>For a tolerance-driven pattern (fit:D), how the fit went; else null.</summary>
+        public FitReport? Fit { get; internal set; }
+        internal PatternOutput() { Errors = new List<string>(); Warnings = new List<string>(); Points = new PatternPoint[0]; Spec = string.Empty; }
     }
 
     /// <summary>Outputs of "TPI Quality" (one entry per facet, plus the report).</summary>
@@ -210,11 +220,41 @@ namespace Tpi.Logic
             {
                 bool bySpec = input != null && !string.IsNullOrWhiteSpace(input.Spec);
                 var generator = input == null || input.Generator == null ? new PatternGenerator() : input.Generator;
-                using (var pattern = bySpec ? Native.Pattern.FromSpec(input.Spec.Trim()) : generator.Create())
+                string spec = bySpec ? input.Spec.Trim() : generator.ToSpec();
+                var onSurface = input == null ? null : input.OnSurface;
+                if (onSurface != null && onSurface.Any)
                 {
-                    output.Points = pattern.Points.ToArray();
-                    output.Spec = bySpec ? input.Spec.Trim() : generator.ToSpec();
+                    string error;
+                    if (!onSurface.TryCompose(spec, out spec, out error)) { output.Errors.Add(error); return output; }
                 }
+                if (input != null && input.Surface != null)
+                {
+                    // Any spec, surface-aware or not, through the one entry point that knows the surface.
+                    using (var surface = input.Surface.CreateNative())
+                    using (var pattern = Native.Pattern.ForSurface(surface, spec, input.Options))
+                    {
+                        output.Points = pattern.Points.ToArray();
+                        output.Fit = pattern.Fit;
+                    }
+                    if (output.Fit.HasValue && output.Fit.Value.Met == 0)
+                    {
+                        var f = output.Fit.Value;
+                        output.Warnings.Add(string.Format(System.Globalization.CultureInfo.InvariantCulture,
+                            "the tolerance {0} is not met: the closest pattern found has a vertex {1} off the surface (exact planes cannot meet a tolerance where neighbouring tangent planes are nearly parallel: try adjusted planes)",
+                            f.Tolerance, f.MaxDeviation));
+                    }
+                }
+                else if ((onSurface != null && onSurface.Any) || SurfacePatternInputs.NeedsSurface(spec))
+                {
+                    output.Errors.Add("a tolerance, relaxation, alignment or density needs a surface (S)");
+                    return output;
+                }
+                else
+                {
+                    using (var pattern = bySpec ? Native.Pattern.FromSpec(spec) : generator.Create())
+                        output.Points = pattern.Points.ToArray();
+                }
+                output.Spec = spec;
             }
             catch (TpiException e)
             {

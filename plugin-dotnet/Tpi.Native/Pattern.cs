@@ -99,6 +99,59 @@ namespace Tpi.Native
             return Created(s, h, "tpi_pattern_new_from_spec");
         }
 
+        /// <summary>
+        /// A pattern made on <paramref name="surface"/> from a pattern spec (tpi_pattern_new_for_surface):
+        /// a generator, or "fit:D[:seed=S]", "relax:N:SPEC", "align:LATTICE:FIELD" (FIELD principal,
+        /// asymptotic, uv:ANGLE or a direction field's JSON), "density:{JSON}". The library reads no
+        /// files: JSON goes inline. <paramref name="options"/>: null for the defaults. A fit that misses
+        /// its tolerance still gives a pattern: see <see cref="Fit"/>.
+        /// </summary>
+        public static Pattern ForSurface(Surface surface, string spec, DiscretisationOptions options = null)
+        {
+            PatternHandle h;
+            Status s;
+            var text = spec == null ? null : TpiLibrary.EncodeUtf8(spec);
+            if (options == null)
+            {
+                s = UnsafeNativeMethods.tpi_pattern_new_for_surface_defaults(Surface.HandleOf(surface), text, IntPtr.Zero, out h);
+            }
+            else
+            {
+                var native = options.ToNative();
+                s = UnsafeNativeMethods.tpi_pattern_new_for_surface(Surface.HandleOf(surface), text, ref native, out h);
+            }
+            GC.KeepAlive(surface);
+            return Created(s, h, "tpi_pattern_new_for_surface");
+        }
+
+        /// <summary>How the fit went (tpi_pattern_fit_report), or null when the pattern was not made by a fit:D spec.</summary>
+        public FitReport? Fit
+        {
+            get
+            {
+                var report = new FitReport { StructSize = (uint)FitReport.SizeV1 };
+                var s = UnsafeNativeMethods.tpi_pattern_fit_report(Handle, ref report);
+                if (s == Status.Unavailable) return null;
+                TpiLibrary.Check(s, "tpi_pattern_fit_report");
+                return report;
+            }
+        }
+
+        /// <summary>
+        /// The point count of the smallest uniform hexagonal pattern hex:spacing=1/N whose mesh on
+        /// <paramref name="surface"/> (default options) keeps every vertex within <paramref name="maxDeviation"/>,
+        /// looking at no more than <paramref name="maxPoints"/> points (tpi_pattern_hex_baseline); 0 when none
+        /// does. <paramref name="deviation"/>: its mesh's largest vertex deviation (NaN when none).
+        /// </summary>
+        public static int HexBaseline(Surface surface, double maxDeviation, int maxPoints, out double deviation)
+        {
+            UIntPtr count;
+            var s = UnsafeNativeMethods.tpi_pattern_hex_baseline(Surface.HandleOf(surface), maxDeviation, TpiLibrary.Size(maxPoints), IntPtr.Zero, out count, out deviation);
+            GC.KeepAlive(surface);
+            TpiLibrary.Check(s, "tpi_pattern_hex_baseline");
+            return TpiLibrary.ToInt(count);
+        }
+
         /// <summary>Number of points.</summary>
         public int Count
         {

@@ -46,7 +46,7 @@ namespace Tpi.Tests
             var declared = Regex.Matches(File.ReadAllText(header), @"\b(tpi_[a-z0-9_]+)\(")
                 .Cast<Match>().Select(m => m.Groups[1].Value).Distinct().OrderBy(s => s).ToArray();
             var imported = Imports().Select(EntryPoint).Distinct().OrderBy(s => s).ToArray();
-            Assert.AreEqual(74, declared.Length, "functions in the header");
+            Assert.AreEqual(77, declared.Length, "functions in the header");
             CollectionAssert.AreEquivalent(declared, imported);
         }
 
@@ -61,6 +61,8 @@ namespace Tpi.Tests
             Assert.AreEqual(80, Marshal.SizeOf(typeof(Seed)), "TpiSeed");
             Assert.AreEqual(48, Marshal.SizeOf(typeof(FacetPlane)), "TpiPlane");
             Assert.AreEqual(12, Marshal.SizeOf(typeof(DiagnosticEntry)), "TpiDiagnosticEntry");
+            Assert.AreEqual(40, Marshal.SizeOf(typeof(FitReport)), "TpiFitReport (TPI_FIT_REPORT_SIZE_V1)");
+            Assert.AreEqual(16, (int)Marshal.OffsetOf(typeof(FitReport), "MaxDeviation"));
             Assert.AreEqual(168, (int)Marshal.OffsetOf(typeof(QualityReport), "CompensationFlips"));
             Assert.AreEqual(112, (int)Marshal.OffsetOf(typeof(QualityReport), "BoundaryLoops"));
         }

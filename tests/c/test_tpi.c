@@ -1797,6 +1797,106 @@ static void test_progress(void) {
     tpi_surface_free(surface);
 }
 
+/* Patterns made on a surface from a spec (tpi_pattern_new_for_surface): a relaxation gives
+ * the Rust API's own relaxed points (from the fixture), and a fit meets its tolerance at every
+ * mesh vertex by a check made here, on the sphere cap where the distance from the surface has
+ * a closed form: | |x - centre| - radius | (the distance to the whole sphere; a vertex
+ * beyond the cap's edge is at least that far from the cap, so the check can only be
+ * stricter than needed, never looser). */
+static void test_surface_patterns(void) {
+    TpiSurface *dome_surface = dome();
+    TpiPattern *p = NULL;
+    CHECK_OK(tpi_pattern_new_for_surface(dome_surface, RELAXED_SPEC, NULL, &p));
+    CHECK(pattern_size(p) == EXPECTED_RELAXED_LEN / 2);
+    double relaxed[EXPECTED_RELAXED_LEN];
+    CHECK_OK(tpi_pattern_points(p, relaxed, EXPECTED_RELAXED_LEN, NULL));
+    int moved = 0;
+    for (size_t k = 0; k < EXPECTED_RELAXED_LEN; k++) {
+        CHECK_CLOSE(relaxed[k], expected_relaxed[k], 1e-12);
+        if (fabs(relaxed[k] - dome_pattern[k]) > 1e-6) moved = 1;
+    }
+    CHECK(moved); /* the relaxation did something */
+    TpiFitReport report;
+    memset(&report, 0, sizeof report);
+    report.struct_size = sizeof report;
+    CHECK_STATUS(tpi_pattern_fit_report(p, &report), TPI_STATUS_UNAVAILABLE);
+    CHECK(last_error_contains("fit:D"));
+    tpi_pattern_free(p);
+    p = NULL;
+
+    /* Malformed specs name the piece that is wrong; nothing is created. */
+    CHECK_STATUS(tpi_pattern_new_for_surface(dome_surface, "relax:abc:hex:4x4", NULL, &p), TPI_STATUS_INVALID_PATTERN);
+    CHECK(p == NULL && last_error_contains("relax:abc"));
+    CHECK_STATUS(tpi_pattern_new_for_surface(dome_surface, "fit:-1", NULL, &p), TPI_STATUS_INVALID_PATTERN);
+    CHECK(last_error_contains("fit:-1"));
+    CHECK_STATUS(tpi_pattern_new_for_surface(dome_surface, "density:@graded.json", NULL, &p), TPI_STATUS_INVALID_PATTERN);
+    CHECK(last_error_contains("inline"));
+    CHECK_STATUS(tpi_pattern_new_for_surface(dome_surface, "align:random:40:principal", NULL, &p), TPI_STATUS_INVALID_PATTERN);
+    CHECK(last_error_contains("align:random"));
+    CHECK_STATUS(tpi_pattern_new_for_surface(NULL, "hex:4x4", NULL, &p), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_pattern_new_for_surface(dome_surface, NULL, NULL, &p), TPI_STATUS_NULL_POINTER);
+    CHECK_STATUS(tpi_pattern_new_for_surface(dome_surface, "hex:4x4", NULL, NULL), TPI_STATUS_NULL_POINTER);
+    CHECK(p == NULL);
+
+    /* An aligned lattice along a direction field given as inline JSON (colons and all). */
+    CHECK_OK(tpi_pattern_new_for_surface(dome_surface,
+        "align:hex:6x6:{\"size\": [2, 2], \"directions\": [[1, 0], [1, 0], [1, 1], [1, 1]]}", NULL, &p));
+    CHECK(pattern_size(p) >= 18 && pattern_size(p) <= 72);
+    tpi_pattern_free(p);
+    p = NULL;
+    tpi_surface_free(dome_surface);
+
+    TpiSurface *sphere = NULL;
+    const double radius = 10.0, tolerance = 0.01;
+    CHECK_OK(tpi_surface_new_sphere_cap(radius, -3, 3, -3, 3, &sphere));
+    CHECK_OK(tpi_pattern_new_for_surface(sphere, "fit:0.01:seed=2", NULL, &p));
+    memset(&report, 0, sizeof report);
+    report.struct_size = sizeof report;
+    CHECK_OK(tpi_pattern_fit_report(p, &report));
+    CHECK(report.struct_size == sizeof report && sizeof report == TPI_FIT_REPORT_SIZE_V1);
+    CHECK(report.met == 1 && report.tolerance == tolerance);
+    CHECK(report.max_deviation > 0.0 && report.max_deviation <= tolerance);
+    CHECK(report.discretisations >= 1);
+    size_t count = pattern_size(p);
+    CHECK(count >= 12);
+    TpiDiscretisation *mesh = NULL;
+    CHECK_OK(tpi_discretise(sphere, p, NULL, &mesh));
+    size_t n_indices = 0, n_vertices = 0;
+    CHECK_STATUS(tpi_discretisation_facet_indices(mesh, NULL, 0, &n_indices), TPI_STATUS_BUFFER_TOO_SMALL);
+    CHECK_OK(tpi_discretisation_vertex_count(mesh, &n_vertices));
+    uint32_t *indices = malloc(n_indices * sizeof *indices);
+    double *vertices = malloc(3 * n_vertices * sizeof *vertices);
+    CHECK(indices != NULL && vertices != NULL);
+    CHECK_OK(tpi_discretisation_facet_indices(mesh, indices, n_indices, NULL));
+    CHECK_OK(tpi_discretisation_vertices(mesh, vertices, 3 * n_vertices, NULL));
+    double worst = 0.0;
+    for (size_t k = 0; k < n_indices; k++) {
+        const double *x = vertices + 3 * (size_t)indices[k];
+        double off = fabs(sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]) - radius);
+        if (off > worst) worst = off;
+    }
+    CHECK(worst > 0.0 && worst <= tolerance * (1.0 + 1e-9));
+    free(indices);
+    free(vertices);
+    tpi_discretisation_free(mesh);
+    tpi_pattern_free(p);
+    p = NULL;
+
+    /* The uniform hexagonal baseline of the same tolerance. */
+    size_t hex_count = 0;
+    double hex_deviation = 0.0;
+    CHECK_OK(tpi_pattern_hex_baseline(sphere, tolerance, 100000, NULL, &hex_count, &hex_deviation));
+    CHECK(hex_count > 0 && hex_deviation > 0.0 && hex_deviation <= tolerance);
+    CHECK_OK(tpi_pattern_hex_baseline(sphere, tolerance, 10, NULL, &hex_count, &hex_deviation));
+    CHECK(hex_count == 0 && isnan(hex_deviation)); /* none of at most 10 points meets it */
+    CHECK_STATUS(tpi_pattern_hex_baseline(sphere, -1.0, 100, NULL, &hex_count, &hex_deviation), TPI_STATUS_INVALID_ARGUMENT);
+    CHECK(last_error_contains("max_deviation"));
+    CHECK_STATUS(tpi_pattern_hex_baseline(sphere, 0.1, 100, NULL, NULL, &hex_deviation), TPI_STATUS_NULL_POINTER);
+    report.struct_size = 4;
+    CHECK_STATUS(tpi_pattern_fit_report(NULL, &report), TPI_STATUS_NULL_POINTER);
+    tpi_surface_free(sphere);
+}
+
 int main(void) {
     test_version_and_status_names();
     test_last_error();
@@ -1807,6 +1907,7 @@ int main(void) {
     test_evaluate_errors();
     test_analytic_surfaces();
     test_patterns();
+    test_surface_patterns();
     test_dome_discretisation();
     test_options_in_use();
     test_adjusted_planes();

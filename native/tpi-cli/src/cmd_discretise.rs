@@ -27,12 +27,37 @@ topology, the surface intersects itself (sampled) or a seam stays open, a `warni
 goes to stderr. Exit code 0 on success, 1 for bad input or output, 2 for usage, 3 for
 invalid facets or an unexpected topology with --strict.
 
+PATTERN SPECS made on the surface (the same grammar as the C ABI's
+tpi_pattern_new_for_surface and the Grasshopper component; tpi_core::SurfacePatternSpec):
+    fit:D[:seed=S]          few points whose mesh keeps every vertex within D model units of
+                            the surface (as tpi pattern --max-deviation D; refused when D is
+                            not met)
+    relax:N:SPEC            SPEC's points after N Lloyd iterations on the surface (as
+                            tpi pattern SPEC --relax N); SPEC is anything here but fit: or
+                            relax:; of a density, the iterations follow the density
+    align:LATTICE:FIELD     LATTICE hex:NUxNV, hex:spacing=A, grid:NUxNV or grid:spacing=A
+                            laid along FIELD: principal, asymptotic, uv:ANGLE, a direction
+                            field as inline JSON {...} or @FILE.json (as tpi pattern LATTICE
+                            --align FIELD)
+    density:DATA            a Poisson-disk sampling following a density field: inline JSON
+                            {...} or @FILE.json (as tpi pattern --density FILE); its image
+                            files are read beside the density file
+The field and the density run to the end of the spec, so inline JSON may hold colons.
+The surface-aware patterns use the plane mode of --planes.
+
 EXAMPLES:
     tpi discretise --surface samples/nurbs-dome.json --pattern samples/random-1000.json \\
         --out dome.json --out dome.obj --out dome.svg --out dome.png
     tpi discretise --surface samples/paraboloid.json --pattern hex:24x20 --out mesh.obj
     tpi discretise --surface samples/hypar.json --pattern poisson:0.03:seed=7 \\
         --out hypar.png --size 800x600 --threads 2
+    tpi discretise --surface samples/nurbs-dome.json --pattern relax:20:random:500 --out even.obj
+    tpi discretise --surface samples/saddle.json --pattern fit:0.01 --out fit.png \\
+        --colour deviation:0.01
+    tpi discretise --surface samples/saddle.json --pattern align:hex:spacing=0.04:asymptotic \\
+        --out aligned.obj
+    tpi discretise --surface samples/nurbs-dome.json \\
+        --pattern relax:5:density:@samples/attractor-density.json --out graded.png
 ";
 
 /// The arguments of `tpi discretise`, as given (checked in [`run`]).
@@ -41,10 +66,11 @@ pub(crate) struct DiscretiseArgs {
     /// Surface file (docs/formats.md): NURBS or analytic [required]
     #[arg(long, value_name = "FILE")]
     surface: Option<String>,
-    /// A pattern file ({"uv": [[s, t], ...]}) or a generator spec: grid:NUxNV,
+    /// A pattern file ({"uv": [[s, t], ...]}) or a pattern spec: a generator (grid:NUxNV,
     /// grid:spacing=D, hex:NUxNV, hex:spacing=D, jitter:NUxNV[:amount=A][:seed=S],
-    /// random:N[:seed=S], poisson:R[:seed=S]; an existing file wins over a spec of the same
-    /// name [required]
+    /// random:N[:seed=S], poisson:R[:seed=S]) or a pattern made on the surface (fit:D,
+    /// relax:N:SPEC, align:LATTICE:FIELD, density:JSON; see PATTERN SPECS below); an
+    /// existing file wins over a spec of the same name [required]
     #[arg(long, value_name = "P")]
     pattern: Option<String>,
     /// Output, repeatable; the extension picks the format: .json (the output contract),
@@ -283,16 +309,18 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
     // Sampled, a few milliseconds: a folded surface gets a warning, not silence.
     let self_intersection = crate::selfx::find(&surface, crate::selfx::DEFAULT_SAMPLES);
 
-    progress.stage("pattern", None, opts.pattern.clone());
-    let pattern = load_pattern(&opts.pattern)?;
-    progress.end_stage();
-
-    // The core's stages, each reported as it runs.
     let options = DiscretiseOptions {
         quality_report: opts.report,
         planes: opts.planes,
         ..DiscretiseOptions::default()
     };
+    // A surface-aware spec (relax:, fit:, align:, density:) is made on the surface with the
+    // same plane mode.
+    progress.stage("pattern", None, opts.pattern.clone());
+    let pattern = load_pattern(&opts.pattern, &surface, &options)?;
+    progress.end_stage();
+
+    // The core's stages, each reported as it runs.
     let run_core = || discretise_with_progress(&surface, &pattern.pattern.uv, &options, &progress);
     let (result, threads) = match opts.threads {
         Some(n) => {

@@ -33,7 +33,8 @@ pub(crate) struct FabricateArgs {
     /// Surface file (docs/formats.md) [required]
     #[arg(long, value_name = "FILE")]
     surface: Option<String>,
-    /// Pattern file or generator spec (as for `tpi discretise`) [required]
+    /// Pattern file or pattern spec, also one made on the surface such as relax:20:random:500
+    /// or fit:0.01 (as for `tpi discretise`) [required]
     #[arg(long, value_name = "P")]
     pattern: Option<String>,
     /// Panel thickness (> 0, below the limit the mesh allows) [required]
@@ -275,16 +276,13 @@ pub(crate) fn run(args: FabricateArgs) -> Result<(), CliError> {
         (None, None) => Units::Metres,
     };
     opts.tool.units = units;
-    let pattern = load_pattern(&opts.pattern)?;
+    let options = DiscretiseOptions {
+        planes: opts.planes,
+        ..DiscretiseOptions::default()
+    };
+    let pattern = load_pattern(&opts.pattern, &surface, &options)?;
     let run_core = || -> Result<Result<Fabrication, FabricationError>, tpi_core::TpiError> {
-        let mesh = discretise(
-            &surface,
-            &pattern.pattern.uv,
-            &DiscretiseOptions {
-                planes: opts.planes,
-                ..DiscretiseOptions::default()
-            },
-        )?;
+        let mesh = discretise(&surface, &pattern.pattern.uv, &options)?;
         Ok(fabricate(&mesh, &opts.fab))
     };
     let pool = match opts.threads {

@@ -1,8 +1,10 @@
-//! Reading a surface file and a pattern (file or generator spec).
+//! Reading a surface file and a pattern (file, generator or surface-aware pattern spec).
 
 use std::path::Path;
 
-use tpi_core::{Generator, Pattern, SurfaceModel, SurfaceSpec, TpiError};
+use tpi_core::{
+    DiscretiseOptions, Pattern, SurfaceModel, SurfacePatternSpec, SurfaceSpec, TpiError,
+};
 
 use crate::error::CliError;
 use crate::output::read_text;
@@ -30,9 +32,16 @@ pub(crate) struct PatternSource {
     pub label: String,
 }
 
-/// `arg` is an existing file (read as a pattern file) or else a generator spec. A string
-/// that is neither gets an error naming both possibilities.
-pub(crate) fn load_pattern(arg: &str) -> Result<PatternSource, CliError> {
+/// `arg` is an existing file (read as a pattern file) or else a pattern spec: a generator
+/// or a surface-aware form (`fit:D`, `relax:N:SPEC`, `align:LATTICE:FIELD`, `density:DATA`;
+/// tpi_core::SurfacePatternSpec), made on `surface` with `options`. `@FILE` in a spec is read
+/// here. A string that is neither gets an error naming both possibilities; a `fit:D` that
+/// does not meet D is refused as `tpi pattern --max-deviation` refuses it.
+pub(crate) fn load_pattern(
+    arg: &str,
+    surface: &SurfaceModel,
+    options: &DiscretiseOptions,
+) -> Result<PatternSource, CliError> {
     let path = Path::new(arg);
     if path.exists() {
         let text = read_text(path)?;
@@ -42,37 +51,78 @@ pub(crate) fn load_pattern(arg: &str) -> Result<PatternSource, CliError> {
             label: arg.to_string(),
         });
     }
-    match Generator::parse(arg) {
-        // Cheap checks first: too few or collinear points are found by arithmetic on the
-        // spec, before any point is made.
-        Ok(generator) => match generator.check_discretisable() {
-            Ok(()) => Ok(PatternSource {
-                pattern: generator.generate(),
-                label: generator.to_string(),
-            }),
-            Err(e) => Err(CliError::input(generator.to_string(), e.to_string())),
-        },
-        Err(e) => {
-            let reason = match &e {
-                TpiError::InvalidGenerator { reason, .. } => reason.clone(),
-                other => other.to_string(),
-            };
-            Err(if looks_like_spec(arg) {
-                CliError::input(arg, format!("invalid pattern generator: {reason} (and no pattern file of this name exists)"))
-            } else {
-                CliError::input(
-                    arg,
-                    format!(
-                        "no such pattern file, and not a pattern generator spec either ({reason})"
-                    ),
-                )
-            })
+    let shown = tpi_core::bounded(arg, tpi_core::QUOTE_LIMIT).to_string();
+    let spec = SurfacePatternSpec::parse_with(arg, &mut read_spec_file).map_err(|e| {
+        let reason = match &e {
+            TpiError::InvalidGenerator { reason, .. } => {
+                format!("invalid pattern generator: {reason}")
+            }
+            TpiError::Parse {
+                context,
+                line,
+                column,
+                message,
+            } => format!("{context}: line {line}, column {column}: {message}"),
+            other => other.to_string(),
+        };
+        if looks_like_spec(arg) {
+            CliError::input(
+                &shown,
+                format!("{reason} (and no pattern file of this name exists)"),
+            )
+        } else {
+            CliError::input(
+                &shown,
+                format!(
+                    "no such pattern file, and not a pattern generator or pattern spec either \
+                     ({reason})"
+                ),
+            )
         }
+    })?;
+    // Cheap checks first: too few or collinear points are found by arithmetic on the
+    // generator, before any point is made.
+    if let SurfacePatternSpec::Generator(generator) = &spec {
+        generator
+            .check_discretisable()
+            .map_err(|e| CliError::input(generator.to_string(), e.to_string()))?;
     }
+    let label = spec.to_string();
+    let made = spec
+        .generate(surface, options)
+        .map_err(|e| CliError::core(&label, &e))?;
+    if let Some(fit) = made.fit.filter(|f| !f.met) {
+        return Err(CliError::input(
+            &label,
+            format!(
+                "no pattern found whose mesh stays within {}: the closest had {} points and a \
+                 vertex {} off the surface",
+                fit.tolerance,
+                made.uv.len(),
+                fit.max_deviation
+            ),
+        ));
+    }
+    Ok(PatternSource {
+        pattern: Pattern::new(made.uv),
+        label,
+    })
 }
 
-/// Whether a string reads more like a generator spec than a file path.
+/// Reads a file a pattern spec names (`@FILE`, a density's image).
+fn read_spec_file(name: &str) -> Result<Vec<u8>, TpiError> {
+    std::fs::read(name).map_err(|e| TpiError::InvalidPatternSpec {
+        part: format!("@{name}"),
+        reason: format!("cannot read: {}", crate::error::describe_io(&e)),
+    })
+}
+
+/// Whether a string reads more like a pattern spec than a file path.
 fn looks_like_spec(arg: &str) -> bool {
     let kind = arg.split(':').next().unwrap_or("");
-    arg.contains(':') && ["grid", "hex", "jitter", "random", "poisson"].contains(&kind)
+    arg.contains(':')
+        && [
+            "grid", "hex", "jitter", "random", "poisson", "fit", "relax", "align", "density",
+        ]
+        .contains(&kind)
 }

@@ -204,6 +204,19 @@ pub enum TpiError {
         /// What is wrong and what is expected.
         reason: String,
     },
+    /// A surface-aware pattern spec ([`crate::SurfacePatternSpec`]) is malformed: `part` is
+    /// the piece of the spec that is wrong (e.g. `relax:abc`, `fit:-1`, `@grain.json`).
+    #[error(
+        "invalid pattern spec: `{}`: {}",
+        bounded(part, QUOTE_LIMIT),
+        bound_message(reason)
+    )]
+    InvalidPatternSpec {
+        /// The offending piece of the spec.
+        part: String,
+        /// What is wrong and what is expected.
+        reason: String,
+    },
     /// The surface cannot be discretised by tangent plane intersection at all
     /// (a plane, or developable everywhere).
     #[error("the surface cannot be discretised by tangent plane intersection: {reason}")]

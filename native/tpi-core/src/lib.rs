@@ -56,6 +56,7 @@ mod sizing;
 mod spec;
 mod structure;
 mod surface;
+mod surface_pattern;
 pub mod tolerance;
 mod triangulation;
 mod trim;
@@ -106,6 +107,7 @@ pub use rulings::ruling_direction;
 pub use sanity::SanityError;
 pub use spec::{sampled_bounding_box, SurfaceModel, SurfaceSpec};
 pub use surface::{Domain, Interval, Surface, SurfaceDerivatives};
+pub use surface_pattern::{aligned_lattice, FitOutcome, SurfacePattern, SurfacePatternSpec};
 pub use trim::Trim;
 pub use units::{units_label, UnknownUnits};
 // The tolerances a caller sets or checks against, also at the root.

@@ -17,12 +17,14 @@ use std::fmt::Write as _;
 use common::{dome_points, DOME_COUNT, DOME_DEGREE, DOME_KNOTS};
 use glam::DVec3;
 use tpi_core::Generator;
-use tpi_core::{discretise, DiscretiseOptions, LocalGeometry, NurbsSurface, Surface};
+use tpi_core::{discretise, relax, DiscretiseOptions, LocalGeometry, NurbsSurface, Surface};
 
 /// Height of the dome of the C test.
 const HEIGHT: f64 = 3.0;
 /// The dome's pattern.
 const PATTERN: &str = "hex:8x8";
+/// Lloyd iterations of the relaxed pattern.
+const RELAX_ITERATIONS: usize = 3;
 
 fn doubles(out: &mut String, name: &str, values: &[f64]) {
     writeln!(out, "#define {}_LEN {}", name.to_uppercase(), values.len()).ok();
@@ -213,6 +215,19 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         "expected_diagnostics_json",
         &serde_json::to_string(&result.diagnostics)?,
     );
+    // The dome's pattern relaxed on the dome by the Rust API's own relax (the C test makes
+    // it through tpi_pattern_new_for_surface with the spec RELAXED_SPEC).
+    let relaxed = relax(
+        &dome,
+        &pattern,
+        RELAX_ITERATIONS,
+        &DiscretiseOptions::default(),
+    )?;
+    writeln!(
+        out,
+        "#define RELAXED_SPEC \"relax:{RELAX_ITERATIONS}:{PATTERN}\"\n"
+    )?;
+    doubles(&mut out, "expected_relaxed", relaxed.as_flattened());
     out.push_str("#endif /* TPI_FIXTURE_H */\n");
 
     if let Some(dir) = std::path::Path::new(&path).parent() {

@@ -43,7 +43,7 @@ pub enum TpiStatus {
     /// multiplicity, empty domain), the number of points or weights, or a weight <= 0.
     InvalidNurbs = 6,
     /// The pattern is invalid: a point outside [0, 1]^2, two coincident points, fewer than
-    /// three points, all points collinear, or a malformed generator.
+    /// three points, all points collinear, or a malformed generator or pattern spec.
     InvalidPattern = 7,
     /// The surface cannot be discretised by tangent plane intersection (flat or developable
     /// at every pattern point).
@@ -192,7 +192,8 @@ pub fn status_of(error: &TpiError) -> TpiStatus {
         | TpiError::SameSurfacePoint { .. }
         | TpiError::TooFewPatternPoints { .. }
         | TpiError::CollinearPattern { .. }
-        | TpiError::InvalidGenerator { .. } => TpiStatus::InvalidPattern,
+        | TpiError::InvalidGenerator { .. }
+        | TpiError::InvalidPatternSpec { .. } => TpiStatus::InvalidPattern,
         TpiError::DegenerateSurface { .. } => TpiStatus::Degenerate,
         // A malformed trim is invalid input; a trim that a path (live editing, a non-convex
         // surface) cannot honour is refused as such, never ignored.

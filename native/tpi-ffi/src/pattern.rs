@@ -2,11 +2,16 @@
 
 use std::ffi::c_char;
 
-use tpi_core::{Generator, GridSize, Pattern};
+use std::mem::size_of;
+
+use tpi_core::{FitOutcome, Generator, GridSize, Pattern, SurfacePatternSpec};
 
 use crate::boundary::{
-    copy_out, ffi_boundary, try_handle, try_pairs, try_str, FfiResult, OutPtr, TpiStatus,
+    copy_out, ffi_boundary, finite, try_handle, try_pairs, try_str, FfiError, FfiResult, OutPtr,
+    TpiStatus,
 };
+use crate::options::{read_options, TpiOptions};
+use crate::surface::TpiSurface;
 
 /// A set of pattern points (s, t) in the normalised square [0, 1]^2, mapped linearly onto a
 /// surface's domain: u = u_min + s (u_max - u_min), v = v_min + t (v_max - v_min). Immutable
@@ -16,6 +21,8 @@ use crate::boundary::{
 /// several threads at once.
 pub struct TpiPattern {
     pub(crate) pattern: Pattern,
+    /// How the fit went, for a pattern made by a `fit:D` spec.
+    pub(crate) fit: Option<FitOutcome>,
 }
 
 impl crate::boundary::Handle for TpiPattern {
@@ -27,7 +34,7 @@ fn create(out: *mut *mut TpiPattern, build: impl FnOnce() -> FfiResult<Pattern>)
     // SAFETY: `out` is NULL or valid for writes (the contract of every create call).
     let out = unsafe { OutPtr::handle(out, "out") }?;
     let pattern = build()?;
-    out.set_boxed(TpiPattern { pattern });
+    out.set_boxed(TpiPattern { pattern, fit: None });
     Ok(())
 }
 
@@ -175,6 +182,175 @@ pub unsafe extern "C" fn tpi_pattern_new_from_spec(
             let spec = unsafe { try_str(spec, "spec") }?;
             generate(Generator::parse(spec)?)
         })
+    }
+}
+
+/// Creates a pattern made on `surface` from a pattern spec: a generator (as
+/// `tpi_pattern_new_from_spec`) or one of the forms that look at the surface (the grammar of
+/// the command line's `tpi discretise --pattern`, tpi_core::SurfacePatternSpec):
+///
+/// - `fit:D[:seed=S]`: few points whose TPI mesh keeps every vertex within D model units of
+///   the surface (D > 0); `tpi_pattern_fit_report` tells whether D was met. A fit that does
+///   not meet D still creates the pattern (the closest attempt): check `met`.
+/// - `relax:N:SPEC`: SPEC's points after N (0 to 1000) Lloyd iterations on the surface,
+///   areas measured on the surface; SPEC is any form but `fit:` and `relax:` (of a density,
+///   the iterations follow the density).
+/// - `align:LATTICE:FIELD`: LATTICE `hex:NUxNV`, `hex:spacing=A`, `grid:NUxNV` or
+///   `grid:spacing=A` (about that many points) laid along FIELD: `principal`, `asymptotic`,
+///   `uv:ANGLE` (degrees) or a direction field as inline JSON
+///   `{"size": [NS, NT], "directions": [[ds, dt], ...]}`.
+/// - `density:{JSON}`: a Poisson-disk sampling following a density field (the JSON of a
+///   density file, docs/formats.md, inline).
+///
+/// The field and the density run to the end of the spec, so their JSON may hold colons. The
+/// library reads no files: `@FILE` and density `image` terms (which name a file) are refused
+/// with TPI_STATUS_INVALID_PATTERN; read the file and put its JSON text in the spec.
+/// `options` (NULL for the defaults) are those of the discretisations the form runs (the
+/// plane mode decides what a fit measures). Deterministic for a given spec, surface and
+/// options. A fit or a relaxation runs many discretisations and may take seconds.
+///
+/// On success `*out` is a new handle (free with `tpi_pattern_free`), else NULL. Errors:
+/// TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (not UTF-8, bad options, a bad
+/// number in the JSON), TPI_STATUS_INVALID_PATTERN (a malformed spec: the message quotes the
+/// piece that is wrong), TPI_STATUS_NON_FINITE, TPI_STATUS_DEGENERATE (a surface the form
+/// cannot work on).
+///
+/// # Safety
+/// `surface` is NULL or a live handle; `spec` is NULL or a NUL-terminated string; `options`
+/// is NULL or a `TpiOptions` with `struct_size` readable bytes; `out` is NULL or valid for
+/// writing a pointer.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_pattern_new_for_surface(
+    surface: *const TpiSurface,
+    spec: *const c_char,
+    options: *const TpiOptions,
+    out: *mut *mut TpiPattern,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract for every argument.
+        let out = unsafe { OutPtr::handle(out, "out") }?;
+        let surface = unsafe { try_handle(surface, "surface") }?;
+        let spec = unsafe { try_str(spec, "spec") }?;
+        let options = unsafe { read_options(options) }?;
+        let made = SurfacePatternSpec::parse(spec)?.generate(&surface.model, &options)?;
+        let pattern = Pattern::new(made.uv);
+        pattern.validate()?;
+        out.set_boxed(TpiPattern { pattern, fit: made.fit });
+        Ok(())
+    }
+}
+
+/// Size in bytes of the first version of `TpiFitReport`: the smallest `struct_size`
+/// accepted.
+pub const TPI_FIT_REPORT_SIZE_V1: u32 = 40;
+
+/// How a `fit:D` pattern went (`tpi_pattern_fit_report`).
+///
+/// Growth: fields are only ever appended; set `struct_size` to sizeof(TpiFitReport) before
+/// the call, and the library writes only that many bytes (and stores in `struct_size` how
+/// many it filled in).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TpiFitReport {
+    /// sizeof(TpiFitReport) as compiled by the caller; at least TPI_FIT_REPORT_SIZE_V1.
+    pub struct_size: u32,
+    /// 1 if every vertex of the pattern's mesh lies within `tolerance` of the surface, else
+    /// 0 (the pattern is then the closest attempt).
+    pub met: u32,
+    /// The tolerance asked for, D (model units).
+    pub tolerance: f64,
+    /// The largest vertex deviation of the pattern's mesh (model units).
+    pub max_deviation: f64,
+    /// Invalid facets of the pattern's mesh.
+    pub invalid_facets: u64,
+    /// Discretisations run to find the pattern.
+    pub discretisations: u64,
+}
+
+/// Fills `*out` with how the fit went, for a pattern made by `tpi_pattern_new_for_surface`
+/// with a `fit:D` spec (the point count is `tpi_pattern_point_count`). Set
+/// `out->struct_size` = sizeof(TpiFitReport) first; only that many bytes are written, and on
+/// return `struct_size` holds the number of bytes filled in.
+///
+/// Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT (`struct_size` below
+/// TPI_FIT_REPORT_SIZE_V1), TPI_STATUS_UNAVAILABLE (the pattern was not made by a fit).
+///
+/// # Safety
+/// `pattern` is NULL or a live handle; `out` is NULL or valid for reading and writing
+/// `out->struct_size` bytes.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_pattern_fit_report(
+    pattern: *const TpiPattern,
+    out: *mut TpiFitReport,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract.
+        let pattern = unsafe { try_handle(pattern, "pattern") }?;
+        let out = unsafe { OutPtr::new(out, "out") }?;
+        // SAFETY: checked non-NULL and aligned; struct_size is the first field.
+        let size = unsafe { out.as_ptr().cast::<u32>().read() };
+        if size < TPI_FIT_REPORT_SIZE_V1 {
+            return Err(FfiError::invalid(format!(
+                "out->struct_size is {size}; set it to sizeof(TpiFitReport) (at least {TPI_FIT_REPORT_SIZE_V1})"
+            )));
+        }
+        let fit = pattern.fit.ok_or_else(|| {
+            FfiError::new(
+                TpiStatus::Unavailable,
+                "this pattern was not made by a fit:D spec (tpi_pattern_new_for_surface)",
+            )
+        })?;
+        let bytes = (size as usize).min(size_of::<TpiFitReport>());
+        let report = TpiFitReport {
+            struct_size: bytes as u32,
+            met: u32::from(fit.met),
+            tolerance: fit.tolerance,
+            max_deviation: fit.max_deviation,
+            invalid_facets: fit.invalid_facets as u64,
+            discretisations: fit.discretisations as u64,
+        };
+        // SAFETY: `bytes` bytes are writable (contract) and readable from `report`.
+        unsafe { std::ptr::copy_nonoverlapping((&report as *const TpiFitReport).cast::<u8>(), out.as_ptr().cast::<u8>(), bytes) };
+        Ok(())
+    }
+}
+
+/// The smallest uniform hexagonal pattern `hex:spacing=1/N` whose mesh on `surface` keeps
+/// every vertex within `max_deviation` (model units, > 0) of the surface, found by doubling N
+/// and bisection, looking at patterns of at most `max_points` points (the baseline a fitted
+/// pattern is compared with). `options`: NULL for the defaults.
+///
+/// On success `*count` is its number of points and `*deviation` its mesh's largest vertex
+/// deviation; when no such pattern has at most `max_points` points, `*count` is 0 and
+/// `*deviation` NaN. Errors: TPI_STATUS_NULL_POINTER, TPI_STATUS_INVALID_ARGUMENT
+/// (`max_deviation` not > 0, bad options), TPI_STATUS_NON_FINITE, TPI_STATUS_DEGENERATE.
+///
+/// # Safety
+/// `surface` is NULL or a live handle; `options` is NULL or a `TpiOptions` with
+/// `struct_size` readable bytes; `count` and `deviation` are NULL or valid for writing.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_pattern_hex_baseline(
+    surface: *const TpiSurface,
+    max_deviation: f64,
+    max_points: usize,
+    options: *const TpiOptions,
+    count: *mut usize,
+    deviation: *mut f64,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract for every argument.
+        let surface = unsafe { try_handle(surface, "surface") }?;
+        let count = unsafe { OutPtr::new(count, "count") }?;
+        let deviation = unsafe { OutPtr::new(deviation, "deviation") }?;
+        let options = unsafe { read_options(options) }?;
+        let d = finite("max_deviation", max_deviation)?;
+        if d <= 0.0 {
+            return Err(FfiError::invalid(format!("max_deviation is {d}; it must be > 0")));
+        }
+        let found = tpi_core::hex_baseline(&surface.model, d, max_points, &options)?;
+        count.set(found.as_ref().map_or(0, |h| h.count));
+        deviation.set(found.as_ref().map_or(f64::NAN, |h| h.max_deviation));
+        Ok(())
     }
 }
 

@@ -286,6 +286,26 @@ namespace Tpi.Native
         public uint Diagnostic;
     }
 
+    /// <summary>TpiFitReport (first version, 40 bytes): how a fit:D pattern went. See include/tpi.h.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct FitReport
+    {
+        /// <summary>TPI_FIT_REPORT_SIZE_V1.</summary>
+        public const int SizeV1 = 40;
+        /// <summary>On return: how many bytes the library filled in.</summary>
+        public uint StructSize;
+        /// <summary>1 if every vertex of the pattern's mesh lies within Tolerance of the surface.</summary>
+        public uint Met;
+        /// <summary>The tolerance asked for (model units).</summary>
+        public double Tolerance;
+        /// <summary>The largest vertex deviation of the pattern's mesh (model units).</summary>
+        public double MaxDeviation;
+        /// <summary>Invalid facets of the pattern's mesh.</summary>
+        public ulong InvalidFacets;
+        /// <summary>Discretisations run to find the pattern.</summary>
+        public ulong Discretisations;
+    }
+
     /// <summary>TpiQualityReport (second version, 232 bytes). See include/tpi.h for each field.</summary>
     [StructLayout(LayoutKind.Sequential)]
     public struct QualityReport

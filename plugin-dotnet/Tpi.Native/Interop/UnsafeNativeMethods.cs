@@ -158,6 +158,24 @@ namespace Tpi.Native.Interop
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         internal static extern Status tpi_pattern_new_from_spec(byte[] spec, out PatternHandle @out);
 
+        // enum TpiStatus tpi_pattern_new_for_surface(const struct TpiSurface *surface, const char *spec,
+        //     const struct TpiOptions *options, struct TpiPattern **out);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_pattern_new_for_surface(SurfaceHandle surface, byte[] spec, ref NativeOptions options, out PatternHandle @out);
+
+        // (the same entry point with options = NULL, for the defaults)
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true, EntryPoint = "tpi_pattern_new_for_surface")]
+        internal static extern Status tpi_pattern_new_for_surface_defaults(SurfaceHandle surface, byte[] spec, IntPtr nullOptions, out PatternHandle @out);
+
+        // enum TpiStatus tpi_pattern_fit_report(const struct TpiPattern *pattern, struct TpiFitReport *out);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_pattern_fit_report(PatternHandle pattern, ref FitReport @out);
+
+        // enum TpiStatus tpi_pattern_hex_baseline(const struct TpiSurface *surface, double max_deviation,
+        //     size_t max_points, const struct TpiOptions *options, size_t *count, double *deviation);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_pattern_hex_baseline(SurfaceHandle surface, double maxDeviation, UIntPtr maxPoints, IntPtr nullOptions, out UIntPtr count, out double deviation);
+
         // void tpi_pattern_free(struct TpiPattern *pattern);
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         internal static extern void tpi_pattern_free(IntPtr pattern);

@@ -1,0 +1,198 @@
+using System;
+using System.Collections.Generic;
+using System.Linq;
+using NUnit.Framework;
+using Tpi.Logic;
+using Tpi.Native;
+using Tpi.Native.Interop;
+
+namespace Tpi.Tests
+{
+    /// <summary>
+    /// Patterns made on a surface (issue 15): the binding of tpi_pattern_new_for_surface,
+    /// tpi_pattern_fit_report and tpi_pattern_hex_baseline, checked against what the test can
+    /// compute itself (the sphere's closed-form distance, facet areas from the mesh's vertices,
+    /// the plain generator's points), and the Rhino-free composition of the component's inputs.
+    /// </summary>
+    [TestFixture]
+    public class SurfacePatternTests
+    {
+        const double Radius = 10.0;
+
+        static Surface Sphere() { return Surface.SphereCap(Radius, -3, 3, -3, 3); }
+
+        /// <summary>Largest | |x| - R | over the vertices the facets use: the distance to the whole sphere.</summary>
+        static double WorstSphereDistance(Discretisation mesh)
+        {
+            var v = mesh.GetVertexArray();
+            double worst = 0;
+            foreach (var i in mesh.FacetIndices)
+            {
+                double x = v[3 * i], y = v[3 * i + 1], z = v[3 * i + 2];
+                worst = Math.Max(worst, Math.Abs(Math.Sqrt(x * x + y * y + z * z) - Radius));
+            }
+            return worst;
+        }
+
+        /// <summary>Coefficient of variation of the facet areas (Newell's vector area from the vertices).</summary>
+        static double AreaVariation(Discretisation mesh)
+        {
+            var v = mesh.GetVertexArray();
+            var areas = new List<double>();
+            for (int f = 0; f < mesh.FacetCount; f++)
+            {
+                var loop = mesh.GetFacet(f);
+                double nx = 0, ny = 0, nz = 0;
+                for (int k = 0; k < loop.Length; k++)
+                {
+                    int a = 3 * loop[k], b = 3 * loop[(k + 1) % loop.Length];
+                    nx += v[a + 1] * v[b + 2] - v[a + 2] * v[b + 1];
+                    ny += v[a + 2] * v[b] - v[a] * v[b + 2];
+                    nz += v[a] * v[b + 1] - v[a + 1] * v[b];
+                }
+                areas.Add(0.5 * Math.Sqrt(nx * nx + ny * ny + nz * nz));
+            }
+            double mean = areas.Average();
+            return Math.Sqrt(areas.Select(a => (a - mean) * (a - mean)).Average()) / mean;
+        }
+
+        [Test]
+        public void APlainGeneratorOnASurfaceGivesTheGeneratorsPoints()
+        {
+            using (var sphere = Sphere())
+            using (var onSurface = Pattern.ForSurface(sphere, "hex:6x5"))
+            using (var plain = Pattern.Hex(6, 5))
+            {
+                CollectionAssert.AreEqual(plain.GetPointArray(), onSurface.GetPointArray());
+                Assert.IsNull(onSurface.Fit);
+            }
+        }
+
+        [Test]
+        public void AFitMeetsItsToleranceAtEveryVertexByTheSpheresClosedForm()
+        {
+            const double d = 0.01;
+            using (var sphere = Sphere())
+            using (var pattern = Pattern.ForSurface(sphere, "fit:0.01:seed=2"))
+            {
+                var fit = pattern.Fit;
+                Assert.IsTrue(fit.HasValue);
+                Assert.AreEqual(1u, fit.Value.Met);
+                Assert.AreEqual(d, fit.Value.Tolerance);
+                Assert.AreEqual((uint)FitReport.SizeV1, fit.Value.StructSize);
+                using (var mesh = Discretisation.Create(sphere, pattern))
+                {
+                    double worst = WorstSphereDistance(mesh);
+                    Assert.Greater(worst, 0.0);
+                    Assert.LessOrEqual(worst, d * (1 + 1e-9), "own measure");
+                }
+                double hexDeviation;
+                int hex = Pattern.HexBaseline(sphere, d, 100000, out hexDeviation);
+                Assert.Greater(hex, 0);
+                Assert.LessOrEqual(hexDeviation, d);
+                Assert.AreEqual(0, Pattern.HexBaseline(sphere, d, 10, out hexDeviation));
+                Assert.IsTrue(double.IsNaN(hexDeviation));
+            }
+        }
+
+        [Test]
+        public void RelaxingRandomPointsOnTheSurfaceEvensTheFacetAreas()
+        {
+            using (var sphere = Sphere())
+            using (var start = Pattern.ForSurface(sphere, "random:80:seed=3"))
+            using (var relaxed = Pattern.ForSurface(sphere, "relax:10:random:80:seed=3"))
+            using (var before = Discretisation.Create(sphere, start))
+            using (var after = Discretisation.Create(sphere, relaxed))
+            {
+                Assert.AreEqual(80, relaxed.Count);
+                double cvBefore = AreaVariation(before), cvAfter = AreaVariation(after);
+                Assert.Less(cvAfter, 0.5 * cvBefore, "before " + cvBefore + ", after " + cvAfter);
+            }
+        }
+
+        [Test]
+        public void MalformedSpecsThrowNamingThePiece()
+        {
+            using (var sphere = Sphere())
+            {
+                var cases = new[]
+                {
+                    new[] { "relax:abc:hex:4x4", "relax:abc" },
+                    new[] { "fit:-1", "fit:-1" },
+                    new[] { "density:@graded.json", "inline" },
+                    new[] { "align:random:40:principal", "align:random" },
+                };
+                foreach (var c in cases)
+                {
+                    var e = Assert.Throws<TpiException>(() => Pattern.ForSurface(sphere, c[0]).Dispose(), c[0]);
+                    Assert.AreEqual(Status.InvalidPattern, e.Status, c[0]);
+                    StringAssert.Contains(c[1], e.NativeMessage, c[0]);
+                }
+                var n = Assert.Throws<TpiException>(() => Pattern.ForSurface(null, "hex:4x4").Dispose());
+                Assert.AreEqual(Status.NullPointer, n.Status);
+                var s = Assert.Throws<TpiException>(() => Pattern.ForSurface(sphere, null).Dispose());
+                Assert.AreEqual(Status.NullPointer, s.Status);
+            }
+        }
+
+        [Test]
+        public void TheComponentsInputsComposeOneSpec()
+        {
+            string spec, error;
+            Assert.IsTrue(new SurfacePatternInputs { MaxDeviation = 0.025 }.TryCompose("hex:10x10", out spec, out error));
+            Assert.AreEqual("fit:0.025", spec);
+            Assert.IsTrue(new SurfacePatternInputs { Relax = 20 }.TryCompose("random:500:seed=1", out spec, out error));
+            Assert.AreEqual("relax:20:random:500:seed=1", spec);
+            Assert.IsTrue(new SurfacePatternInputs { Align = " uv:30 " }.TryCompose("grid:8x8", out spec, out error));
+            Assert.AreEqual("align:grid:8x8:uv:30", spec);
+            Assert.IsTrue(new SurfacePatternInputs { Relax = 3, Align = "principal" }.TryCompose("hex:6x6", out spec, out error));
+            Assert.AreEqual("relax:3:align:hex:6x6:principal", spec);
+            Assert.IsTrue(new SurfacePatternInputs { Relax = 2, DensityJson = "{\"spacing\": 1, \"terms\": []}" }.TryCompose("hex:6x6", out spec, out error));
+            Assert.AreEqual("relax:2:density:{\"spacing\": 1, \"terms\": []}", spec);
+            Assert.IsFalse(new SurfacePatternInputs().Any);
+
+            Assert.IsFalse(new SurfacePatternInputs { MaxDeviation = 0.1, Relax = 2 }.TryCompose("hex:4x4", out spec, out error));
+            StringAssert.Contains("tolerance", error);
+            Assert.IsFalse(new SurfacePatternInputs { Align = "principal", DensityJson = "{}" }.TryCompose("hex:4x4", out spec, out error));
+            StringAssert.Contains("not both", error);
+            Assert.IsFalse(new SurfacePatternInputs { Relax = -1 }.TryCompose("hex:4x4", out spec, out error));
+            Assert.IsFalse(new SurfacePatternInputs { MaxDeviation = double.NaN }.TryCompose("hex:4x4", out spec, out error));
+
+            Assert.IsTrue(SurfacePatternInputs.NeedsSurface(" relax:2:hex:4x4"));
+            Assert.IsTrue(SurfacePatternInputs.NeedsSurface("fit:0.1"));
+            Assert.IsFalse(SurfacePatternInputs.NeedsSurface("hex:4x4"));
+            Assert.IsFalse(SurfacePatternInputs.NeedsSurface(null));
+        }
+
+        [Test]
+        public void ThePatternSolverRunsTheComposedSpecOnTheSurface()
+        {
+            var sphere = new AnalyticSurfaceSpec(AnalyticKind.SphereCap, Radius, -3, 3, -3, 3);
+            var output = ComponentSolvers.Pattern(new PatternInput
+            {
+                Generator = new PatternGenerator { Kind = GeneratorKind.Random, CountU = 60, Seed = 4 },
+                Surface = sphere,
+                OnSurface = new SurfacePatternInputs { Relax = 4 },
+            });
+            Assert.IsEmpty(output.Errors);
+            Assert.AreEqual("relax:4:random:60:seed=4", output.Spec);
+            Assert.IsNull(output.Fit);
+            using (var surface = sphere.CreateNative())
+            using (var direct = Pattern.ForSurface(surface, "relax:4:random:60:seed=4"))
+                CollectionAssert.AreEqual(direct.Points.ToArray(), output.Points);
+
+            var fit = ComponentSolvers.Pattern(new PatternInput { Surface = sphere, OnSurface = new SurfacePatternInputs { MaxDeviation = 0.02 } });
+            Assert.IsEmpty(fit.Errors);
+            Assert.AreEqual("fit:0.02", fit.Spec);
+            Assert.IsTrue(fit.Fit.HasValue && fit.Fit.Value.Met == 1);
+            Assert.IsEmpty(fit.Warnings);
+
+            var noSurface = ComponentSolvers.Pattern(new PatternInput { OnSurface = new SurfacePatternInputs { Relax = 3 } });
+            StringAssert.Contains("needs a surface", noSurface.Errors.Single());
+            var specNoSurface = ComponentSolvers.Pattern(new PatternInput { Spec = "fit:0.1" });
+            StringAssert.Contains("needs a surface", specNoSurface.Errors.Single());
+            var bad = ComponentSolvers.Pattern(new PatternInput { Surface = sphere, Spec = "relax:x:hex:4x4" });
+            StringAssert.Contains("relax:x", bad.Errors.Single());
+        }
+    }
+}
