@@ -204,6 +204,10 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// A failed fit whose closest pattern stayed within this factor of the tolerance missed it
+/// narrowly (the refinement stalled), rather than through a vertex that runs away.
+const NEAR_MISS_FACTOR: f64 = 1.5;
+
 /// `tpi pattern hex:...|grid:... --surface S --align FIELD`.
 fn run_align(
     spec: &str,
@@ -495,7 +499,9 @@ fn run_fit(
                  a vertex {} off the surface{}",
                 fitted.uv.len(),
                 fitted.max_deviation,
-                if planes == tpi_core::PlaneMode::Exact {
+                if fitted.max_deviation <= NEAR_MISS_FACTOR * d {
+                    " (a near miss: another --seed, or a slightly larger tolerance, may meet it)"
+                } else if planes == tpi_core::PlaneMode::Exact {
                     " (where exact tangent planes are nearly parallel, vertices run away: \
                      try --planes adjusted)"
                 } else {
