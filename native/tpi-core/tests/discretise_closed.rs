@@ -545,17 +545,7 @@ fn the_reported_deviation_on_a_closed_surface_is_measured_across_the_seam() {
     ] {
         let spec = format!("{spec}:seed={seed}");
         let d = discretise(&surface, &generated(&spec), &DiscretiseOptions::default()).unwrap();
-        let mut used = vec![false; d.vertices.len()];
-        for &v in &d.facet_loops {
-            used[v as usize] = true;
-        }
-        let independent = d
-            .vertices
-            .iter()
-            .zip(&used)
-            .filter(|(_, &u)| u)
-            .map(|(&x, _)| ellipsoid_distance(axes, x))
-            .fold(0.0, f64::max);
+        let independent = max_over_used_vertices(&d, |x| ellipsoid_distance(axes, x));
         let reported = d.quality.as_ref().unwrap().max_deviation;
         let own = tpi_core::vertex_deviations(&surface, &d)
             .into_iter()

@@ -146,20 +146,10 @@ fn a_fit_spec_meets_its_tolerance_at_every_vertex_by_an_independent_projection()
     assert!(fit.met, "{fit:?}");
     assert_eq!(fit.tolerance, d);
     let mesh = discretise(&surface, &made.uv, &DiscretiseOptions::default()).unwrap();
-    let mut used = vec![false; mesh.vertices.len()];
-    for &v in &mesh.facet_loops {
-        used[v as usize] = true;
-    }
-    let worst = mesh
-        .vertices
-        .iter()
-        .zip(&used)
-        .filter(|(_, &u)| u)
-        .map(|(&x, _)| {
-            let [u, v] = closest_parameters(&surface, x, 12);
-            surface.point_at(u, v).distance(x)
-        })
-        .fold(0.0, f64::max);
+    let worst = max_over_used_vertices(&mesh, |x| {
+        let [u, v] = closest_parameters(&surface, x, 12);
+        surface.point_at(u, v).distance(x)
+    });
     println!(
         "fit:{d}: {} points, own max deviation {worst:.5e}, reported {:.5e}",
         made.uv.len(),

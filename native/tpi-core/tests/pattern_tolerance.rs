@@ -14,20 +14,10 @@ use tpi_core::{discretise, fit_pattern, DiscretiseOptions, Generator, Surface};
 fn independent_check(surface: &dyn Surface, uv: &[[f64; 2]]) -> (f64, usize) {
     let d = discretise(surface, uv, &DiscretiseOptions::default()).unwrap();
     d.sanity_check().unwrap();
-    let mut used = vec![false; d.vertices.len()];
-    for &v in &d.facet_loops {
-        used[v as usize] = true;
-    }
-    let max = d
-        .vertices
-        .iter()
-        .zip(&used)
-        .filter(|(_, &u)| u)
-        .map(|(&x, _)| {
-            let [u, v] = closest_parameters(surface, x, 12);
-            surface.point_at(u, v).distance(x)
-        })
-        .fold(0.0, f64::max);
+    let max = max_over_used_vertices(&d, |x| {
+        let [u, v] = closest_parameters(surface, x, 12);
+        surface.point_at(u, v).distance(x)
+    });
     (max, d.quality.unwrap().invalid_facets)
 }
 
@@ -168,11 +158,7 @@ fn a_closed_surface_with_poles_is_fitted() {
     // its closed-form distance (a projection from a grid stalls at the poles).
     let d = discretise(&surface, &fitted.uv, &DiscretiseOptions::default()).unwrap();
     d.sanity_check().unwrap();
-    let dev = d
-        .facet_loops
-        .iter()
-        .map(|&v| ellipsoid_distance([12.0, 8.0, 5.0], d.vertices[v as usize]))
-        .fold(0.0, f64::max);
+    let dev = max_over_used_vertices(&d, |x| ellipsoid_distance([12.0, 8.0, 5.0], x));
     let invalid = d.quality.as_ref().unwrap().invalid_facets;
     println!(
         "ellipsoid D = {tolerance}: {} points, closed-form max deviation {dev:.5e}, {invalid} invalid",

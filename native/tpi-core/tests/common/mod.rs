@@ -992,3 +992,18 @@ pub fn ellipsoid_distance(axes: [f64; 3], x: DVec3) -> f64 {
         .collect();
     ((p[0] - x[0]).powi(2) + (p[1] - x[1]).powi(2) + (p[2] - x[2]).powi(2)).sqrt()
 }
+
+/// The largest `distance(x)` over the mesh vertices that some facet uses (vertices no facet
+/// uses are left out, as the report leaves them out).
+pub fn max_over_used_vertices(d: &Discretisation, distance: impl Fn(DVec3) -> f64) -> f64 {
+    let mut used = vec![false; d.vertices.len()];
+    for &v in &d.facet_loops {
+        used[v as usize] = true;
+    }
+    d.vertices
+        .iter()
+        .zip(&used)
+        .filter(|(_, &u)| u)
+        .map(|(&x, _)| distance(x))
+        .fold(0.0, f64::max)
+}
