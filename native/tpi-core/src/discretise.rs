@@ -40,6 +40,7 @@ use crate::neighbours::{NeighbourStats, SlopeFrame};
 use crate::pattern::validate_uv;
 use crate::planes::Plane;
 use crate::progress::{NoProgress, Progress, Stage, Stages};
+use crate::projection::Wrap;
 use crate::quality::{report, resolve_feet, QualityReport, ReportInput};
 use crate::samples::{bounding_box, sample, Samples};
 use crate::structure::{decide_structure, FacetPlan, StructureInput};
@@ -466,6 +467,8 @@ pub(crate) struct PipelineState {
     pub(crate) diagonal: f64,
     /// Bounding box of the surface points.
     pub(crate) bbox: (DVec3, DVec3),
+    /// How the report's projections continue past the domain's sides.
+    pub(crate) wrap: Wrap,
 }
 
 /// Adds [`Diagnostic::UnexpectedTopology`] when the report's Euler characteristic and
@@ -588,12 +591,16 @@ fn run_within(
     stages.check()?;
     stages.leave();
 
+    // Sampled once: the structure decides by it, the report projects by it.
+    let layout = crate::closed::surface_layout(surface);
+    let wrap = Wrap::from_layout(surface.domain(), &layout);
     let input = StructureInput {
         surface,
         pattern,
         options,
         boundary,
         allow_strips,
+        layout: &layout,
     };
     let structure = decide_structure(&input, &mut samples, &mut timings, stages)?;
     let (topology, strips, neighbours) = (
@@ -678,6 +685,7 @@ fn run_within(
         let feet = if keep {
             resolved = resolve_feet(
                 surface,
+                &wrap,
                 &samples.uv,
                 &result.vertices,
                 &result.facet_offsets,
@@ -689,14 +697,22 @@ fn run_within(
         } else {
             feet
         };
-        measure(surface, &samples, &mut result, neighbours, &feet, stages);
+        measure(
+            surface,
+            &wrap,
+            &samples,
+            &mut result,
+            neighbours,
+            &feet,
+            stages,
+        );
         note_topology(&mut result, boundary.is_trim());
         result.timings.report = ms(stage);
     }
     stages.check()?;
     stages.leave();
     result.timings.total = ms(start);
-    let state = live.map(|live| pipeline_state(samples, &result, live, neighbours, resolved));
+    let state = live.map(|live| pipeline_state(samples, &result, live, neighbours, resolved, wrap));
     Ok((result, state))
 }
 
@@ -743,6 +759,7 @@ fn check_not_developable(facets: &Facets, samples: &Samples, strips: bool) -> Re
 /// its vertices as the facet stage (or live editing) knows them.
 fn measure(
     surface: &dyn Surface,
+    wrap: &Wrap,
     samples: &Samples,
     result: &mut Discretisation,
     neighbours: NeighbourStats,
@@ -764,6 +781,7 @@ fn measure(
             diagnostic_count: result.diagnostics.len(),
             feet,
             convex_side: &samples.convex_side,
+            wrap,
         },
         stages.observer(),
     );
@@ -778,6 +796,7 @@ fn pipeline_state(
     live: LiveParts,
     neighbours: NeighbourStats,
     resolved: Vec<Option<[f64; 2]>>,
+    wrap: Wrap,
 ) -> PipelineState {
     let (lo, hi) = bounding_box(samples.planes.iter().map(|p| p.point));
     let side = samples.convex_side.first().copied().unwrap_or(0);
@@ -800,6 +819,7 @@ fn pipeline_state(
         welded: live.welded,
         diagonal: samples.diagonal,
         bbox: (lo, hi),
+        wrap,
     }
 }
 

@@ -493,8 +493,7 @@ impl LiveSurface {
         )?;
         self.stats.full += 1;
         self.everything_changed = true;
-        let wrap = Wrap::of(self.surface.as_ref());
-        self.state = pipeline.and_then(|p| State::from_pipeline(p, &result, &self.points, wrap));
+        self.state = pipeline.and_then(|p| State::from_pipeline(p, &result, &self.points));
         self.mesh = Some(result);
         Ok(())
     }
@@ -512,7 +511,6 @@ impl State {
         p: PipelineState,
         result: &Discretisation,
         points: &[[f64; 2]],
-        wrap: Wrap,
     ) -> Option<Self> {
         let (frame, slopes) = p.slopes?;
         if p.neighbours.envelope_unresolved > 0 || p.triangulation.is_empty() {
@@ -630,7 +628,7 @@ impl State {
             slope_sign,
             vertex,
             report_foot,
-            wrap,
+            wrap: p.wrap,
             tri,
             free: Vec::new(),
             holder,
@@ -1652,6 +1650,7 @@ impl State {
                     diagnostic_count: result.diagnostics.len(),
                     feet: &feet,
                     convex_side: &self.convex_side,
+                    wrap: &self.wrap,
                 },
                 &NoProgress,
             );

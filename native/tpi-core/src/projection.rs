@@ -106,9 +106,13 @@ impl Wrap {
 
     /// The wrap of `surface`, from its sampled layout ([`crate::closed::surface_layout`]).
     pub(crate) fn of(surface: &dyn Surface) -> Self {
-        let layout = crate::closed::surface_layout(surface);
+        Wrap::from_layout(surface.domain(), &crate::closed::surface_layout(surface))
+    }
+
+    /// The wrap of a surface with this domain and layout.
+    pub(crate) fn from_layout(domain: Domain, layout: &crate::closed::SurfaceLayout) -> Self {
         Wrap {
-            domain: surface.domain(),
+            domain,
             periodic: layout.closed,
             poles: layout.poles,
         }

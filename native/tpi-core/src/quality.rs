@@ -135,6 +135,8 @@ pub(crate) struct ReportInput<'a> {
     /// Per seed, +1/-1 where strictly convex (K > 0), 0 elsewhere: where a non-convex facet is
     /// a defect (empty: nowhere).
     pub convex_side: &'a [i8],
+    /// How the projections continue past the domain's sides (seams, poles).
+    pub wrap: &'a Wrap,
 }
 
 /// Facet `i`'s loop.
@@ -330,9 +332,10 @@ pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (Quali
 
     // Deviation from the surface, per vertex (from its foot, see `resolve_feet`), in vertex
     // order (the order of the sum).
-    let domain = input.surface.domain();
+    let domain = input.wrap.domain;
     let deviations: Vec<f64> = map_feet(
         input.surface,
+        input.wrap,
         input.uv,
         input.vertices,
         input.offsets,
@@ -366,6 +369,7 @@ pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (Quali
 /// facet that holds the vertex. Missing hints count as [`FootHint::FromSeed`].
 pub(crate) fn resolve_feet(
     surface: &dyn Surface,
+    wrap: &Wrap,
     uv: &[[f64; 2]],
     vertices: &[DVec3],
     offsets: &[u32],
@@ -374,6 +378,7 @@ pub(crate) fn resolve_feet(
 ) -> Vec<Option<[f64; 2]>> {
     map_feet(
         surface,
+        wrap,
         uv,
         vertices,
         offsets,
@@ -415,6 +420,7 @@ pub(crate) fn resolve_foot(
 #[allow(clippy::too_many_arguments)]
 fn map_feet<T: Send>(
     surface: &dyn Surface,
+    wrap: &Wrap,
     uv: &[[f64; 2]],
     vertices: &[DVec3],
     offsets: &[u32],
@@ -433,7 +439,6 @@ fn map_feet<T: Send>(
             }
         }
     }
-    let wrap = Wrap::of(surface);
     (0..vertices.len())
         .into_par_iter()
         .map_init(
@@ -442,7 +447,7 @@ fn map_feet<T: Send>(
                 tally.add(1);
                 let seed = *seed_of.get(v).filter(|&&s| s != u32::MAX)?;
                 let hint = hints.get(v).copied().unwrap_or(FootHint::FromSeed);
-                let resolved = resolve_foot(surface, &wrap, vertices[v], hint, uv[seed as usize]);
+                let resolved = resolve_foot(surface, wrap, vertices[v], hint, uv[seed as usize]);
                 Some(f(v, resolved))
             },
         )

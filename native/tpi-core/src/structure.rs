@@ -117,6 +117,8 @@ pub(crate) struct StructureInput<'a> {
     pub(crate) boundary: &'a Boundary,
     /// Whether a developable surface may take the strips.
     pub(crate) allow_strips: bool,
+    /// Which sides of the domain meet or collapse ([`closed::surface_layout`]).
+    pub(crate) layout: &'a SurfaceLayout,
 }
 
 /// Decides the dual structure of the samples (module doc). Adjusted planes replace the
@@ -134,8 +136,9 @@ pub(crate) fn decide_structure(
         options,
         boundary,
         allow_strips,
+        layout,
     } = *input;
-    let layout = closed::surface_layout(surface);
+    let layout = *layout;
     let weld = options.weld_tolerance * samples.diagonal;
     let convex = samples
         .convex_side
