@@ -208,6 +208,30 @@ pub(crate) fn run(args: PatternArgs) -> Result<(), CliError> {
 /// narrowly (the refinement stalled), rather than through a vertex that runs away.
 const NEAR_MISS_FACTOR: f64 = 1.5;
 
+/// Why a fit to `tolerance` is refused: its closest attempt (`points`, `max_deviation`), and
+/// what may help (`reseed`: how this command sets the fit's seed; `planes`: the plane mode).
+pub(crate) fn unmet_fit(
+    tolerance: f64,
+    points: usize,
+    max_deviation: f64,
+    planes: tpi_core::PlaneMode,
+    reseed: &str,
+) -> String {
+    let hint = if max_deviation <= NEAR_MISS_FACTOR * tolerance {
+        format!(" (a near miss: another {reseed}, or a slightly larger tolerance, may meet it)")
+    } else if planes == tpi_core::PlaneMode::Exact {
+        " (where exact tangent planes are nearly parallel, vertices run away: try --planes \
+         adjusted)"
+            .to_string()
+    } else {
+        String::new()
+    };
+    format!(
+        "no pattern found whose mesh stays within {tolerance}: the closest had {points} points \
+         and a vertex {max_deviation} off the surface{hint}"
+    )
+}
+
 /// `tpi pattern hex:...|grid:... --surface S --align FIELD`.
 fn run_align(
     spec: &str,
@@ -494,20 +518,7 @@ fn run_fit(
     if !fitted.met {
         return Err(CliError::input(
             &name,
-            format!(
-                "no pattern found whose mesh stays within {d}: the closest had {} points and \
-                 a vertex {} off the surface{}",
-                fitted.uv.len(),
-                fitted.max_deviation,
-                if fitted.max_deviation <= NEAR_MISS_FACTOR * d {
-                    " (a near miss: another --seed, or a slightly larger tolerance, may meet it)"
-                } else if planes == tpi_core::PlaneMode::Exact {
-                    " (where exact tangent planes are nearly parallel, vertices run away: \
-                     try --planes adjusted)"
-                } else {
-                    ""
-                }
-            ),
+            unmet_fit(d, fitted.uv.len(), fitted.max_deviation, planes, "--seed"),
         ));
     }
     let search_limit = fitted.uv.len() * tpi_core::HEX_BASELINE_SEARCH_FACTOR;

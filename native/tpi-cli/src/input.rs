@@ -94,12 +94,12 @@ pub(crate) fn load_pattern(
     if let Some(fit) = made.fit.filter(|f| !f.met) {
         return Err(CliError::input(
             &label,
-            format!(
-                "no pattern found whose mesh stays within {}: the closest had {} points and a \
-                 vertex {} off the surface",
+            crate::cmd_pattern::unmet_fit(
                 fit.tolerance,
                 made.uv.len(),
-                fit.max_deviation
+                fit.max_deviation,
+                options.planes,
+                "fit:D:seed=S",
             ),
         ));
     }
