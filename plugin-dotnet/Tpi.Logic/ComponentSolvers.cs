@@ -79,6 +79,23 @@ namespace Tpi.Logic
         /// <summary>For a tolerance-driven pattern (fit:D), how the fit went; else null.</summary>
         public FitReport? Fit { get; internal set; }
         internal PatternOutput() { Errors = new List<string>(); Warnings = new List<string>(); Points = new PatternPoint[0]; Spec = string.Empty; }
+
+        /// <summary>
+        /// One line for a command prompt: the point count and the spec, and for a fit the
+        /// largest vertex deviation against the tolerance and whether it was met.
+        /// </summary>
+        public string Summary()
+        {
+            var c = System.Globalization.CultureInfo.InvariantCulture;
+            var line = string.Format(c, "{0} points ({1})", Points.Length, Spec);
+            if (Fit.HasValue)
+            {
+                var f = Fit.Value;
+                line += string.Format(c, "; largest vertex deviation {0:G4} for a tolerance of {1:G4}: {2} ({3} discretisations)",
+                    f.MaxDeviation, f.Tolerance, f.Met == 1 ? "met" : "NOT met", f.Discretisations);
+            }
+            return line;
+        }
     }
 
     /// <summary>Outputs of "TPI Quality" (one entry per facet, plus the report).</summary>

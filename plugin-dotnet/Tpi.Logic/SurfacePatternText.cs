@@ -19,6 +19,28 @@ namespace Tpi.Logic
         /// <summary>A density field's JSON (density:{...}); empty: none.</summary>
         public string DensityJson { get; set; }
 
+        /// <summary>
+        /// The alignment choices a Rhino command offers, in order: not aligned, then the
+        /// library's two curvature fields (principal directions; asymptotic directions where
+        /// K &lt; 0, which keep hexagons valid on saddles).
+        /// </summary>
+        public static readonly string[] AlignChoices = { "None", "Principal", "Asymptotic" };
+
+        /// <summary>The <see cref="Align"/> value of choice <paramref name="index"/> of <see cref="AlignChoices"/>: the field's name in the spec grammar, or null for "None" and an index out of range.</summary>
+        public static string AlignField(int index)
+        {
+            return index > 0 && index < AlignChoices.Length ? AlignChoices[index].ToLowerInvariant() : null;
+        }
+
+        /// <summary>The index in <see cref="AlignChoices"/> of an <see cref="Align"/> value (0, "None", for no alignment or a field the choices do not name).</summary>
+        public static int AlignChoiceOf(string align)
+        {
+            if (string.IsNullOrWhiteSpace(align)) return 0;
+            for (int i = 1; i < AlignChoices.Length; i++)
+                if (string.Equals(AlignChoices[i], align.Trim(), StringComparison.OrdinalIgnoreCase)) return i;
+            return 0;
+        }
+
         /// <summary>True when any input asks for a pattern made on the surface.</summary>
         public bool Any
         {

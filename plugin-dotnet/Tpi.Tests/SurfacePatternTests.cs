@@ -165,6 +165,54 @@ namespace Tpi.Tests
         }
 
         [Test]
+        public void TheCommandsAlignmentChoicesAreFieldsTheLibraryTakes()
+        {
+            // The Rhino commands offer Align as a list; each choice must compose a spec whose
+            // points are those of the spec written by hand in the library's grammar.
+            var sphere = new AnalyticSurfaceSpec(AnalyticKind.SphereCap, Radius, -3, 3, -3, 3);
+            var hex = new PatternGenerator { Kind = GeneratorKind.Hex, CountU = 8, CountV = 8 };
+            Assert.AreEqual("None", SurfacePatternInputs.AlignChoices[0]);
+            Assert.IsNull(SurfacePatternInputs.AlignField(0));
+            Assert.IsNull(SurfacePatternInputs.AlignField(SurfacePatternInputs.AlignChoices.Length));
+            Assert.IsNull(SurfacePatternInputs.AlignField(-1));
+            var byHand = new[] { null, "align:hex:8x8:principal", "align:hex:8x8:asymptotic" };
+            Assert.AreEqual(byHand.Length, SurfacePatternInputs.AlignChoices.Length);
+            for (int i = 0; i < byHand.Length; i++)
+            {
+                var field = SurfacePatternInputs.AlignField(i);
+                Assert.AreEqual(i, SurfacePatternInputs.AlignChoiceOf(field));
+                Assert.AreEqual(i, SurfacePatternInputs.AlignChoiceOf(field == null ? null : " " + field.ToUpperInvariant() + " "));
+                var output = ComponentSolvers.Pattern(new PatternInput
+                {
+                    Generator = hex,
+                    Surface = sphere,
+                    OnSurface = new SurfacePatternInputs { Align = field },
+                });
+                Assert.IsEmpty(output.Errors);
+                Assert.AreEqual(byHand[i] ?? "hex:8x8", output.Spec);
+                using (var surface = sphere.CreateNative())
+                using (var direct = Pattern.ForSurface(surface, byHand[i] ?? "hex:8x8"))
+                    CollectionAssert.AreEqual(direct.Points.ToArray(), output.Points);
+                StringAssert.StartsWith(output.Points.Length + " points (" + output.Spec + ")", output.Summary());
+            }
+            Assert.AreEqual(0, SurfacePatternInputs.AlignChoiceOf("uv:30"));
+        }
+
+        [Test]
+        public void AFitsSummarySaysWhetherTheToleranceWasMet()
+        {
+            var sphere = new AnalyticSurfaceSpec(AnalyticKind.SphereCap, Radius, -3, 3, -3, 3);
+            var fit = ComponentSolvers.Pattern(new PatternInput { Surface = sphere, OnSurface = new SurfacePatternInputs { MaxDeviation = 0.02 } });
+            Assert.IsEmpty(fit.Errors);
+            var f = fit.Fit.Value;
+            var summary = fit.Summary();
+            StringAssert.StartsWith(fit.Points.Length + " points (fit:0.02); largest vertex deviation ", summary);
+            StringAssert.Contains(f.MaxDeviation.ToString("G4", System.Globalization.CultureInfo.InvariantCulture), summary);
+            StringAssert.Contains(f.Met == 1 ? ": met (" : ": NOT met (", summary);
+            StringAssert.Contains(f.Discretisations + " discretisations", summary);
+        }
+
+        [Test]
         public void ThePatternSolverRunsTheComposedSpecOnTheSurface()
         {
             var sphere = new AnalyticSurfaceSpec(AnalyticKind.SphereCap, Radius, -3, 3, -3, 3);

@@ -50,8 +50,9 @@ namespace Tpi.RhinoPlugIn
             }
 
             var generator = new PatternGenerator();
+            var onSurface = new SurfacePatternInputs();
             bool existingPoints;
-            rc = CommandOptions.GetGenerator("Pattern", generator, true, out existingPoints);
+            rc = CommandOptions.GetGenerator("Pattern", generator, true, out existingPoints, null, onSurface);
             if (rc != Result.Success) return rc;
 
             // Exact tangent planes, or adjusted ones where exact planes cannot make a facet valid.
@@ -78,6 +79,7 @@ namespace Tpi.RhinoPlugIn
             }
             if (existingPoints)
             {
+                if (onSurface.Any) RhinoApp.WriteLine("TPI: Tolerance, Relax and Align make their own points: ignored for existing points.");
                 ObjRef[] pointRefs;
                 rc = RhinoGet.GetMultipleObjects("Select pattern points (projected onto the surface)", false, ObjectType.Point, out pointRefs);
                 if (rc != Result.Success) return rc;
@@ -98,8 +100,17 @@ namespace Tpi.RhinoPlugIn
             }
             else
             {
-                var output = ComponentSolvers.Pattern(new PatternInput { Generator = generator });
+                // A pattern made on the surface is made with the chosen planes (they decide what a fit measures).
+                var output = ComponentSolvers.Pattern(new PatternInput
+                {
+                    Generator = generator,
+                    Surface = onSurface.Any ? spec : null,
+                    OnSurface = onSurface,
+                    Options = options,
+                });
                 if (output.Errors.Count > 0) { RhinoApp.WriteLine("TPI: " + output.Errors[0]); return Result.Failure; }
+                foreach (var w in output.Warnings) RhinoApp.WriteLine("TPI: " + w);
+                if (onSurface.Any) RhinoApp.WriteLine("TPI: pattern " + output.Summary());
                 points = new List<PatternPoint>(output.Points);
                 generatorSpec = output.Spec;
             }
@@ -142,11 +153,14 @@ namespace Tpi.RhinoPlugIn
         /// <summary>
         /// Lets the user pick a generator and its parameters (Enter accepts). With
         /// <paramref name="offerExisting"/>, the option "ExistingPoints" ends the prompt with
-        /// <paramref name="existingPoints"/> true. <paramref name="onChange"/> runs after every
-        /// change of an option (for previews).
+        /// <paramref name="existingPoints"/> true. With <paramref name="onSurface"/>, also the
+        /// patterns made on the surface (issue 15): Tolerance (a fit: the fewest points whose
+        /// panels stay within it of the surface; 0 for none), Relax (Lloyd iterations on the
+        /// surface) and Align (the lattice laid along a curvature field). <paramref name="onChange"/>
+        /// runs after every change of an option (for previews).
         /// </summary>
         public static Result GetGenerator(string prompt, PatternGenerator generator, bool offerExisting, out bool existingPoints,
-            Action onChange = null)
+            Action onChange = null, SurfacePatternInputs onSurface = null)
         {
             existingPoints = false;
             var countU = new OptionInteger(generator.CountU, 1, 100000);
@@ -154,10 +168,12 @@ namespace Tpi.RhinoPlugIn
             var amount = new OptionDouble(generator.Amount, 0.0, 1.0);
             var radius = new OptionDouble(generator.Radius, 0.001, 1.0);
             var seed = new OptionInteger((int)generator.Seed, 0, int.MaxValue);
+            var tolerance = new OptionDouble(onSurface == null ? 0.0 : Math.Max(0.0, onSurface.MaxDeviation), 0.0, 1e12);
+            var relax = new OptionInteger(onSurface == null ? 0 : Math.Max(0, onSurface.Relax), 0, 1000);
             while (true)
             {
                 var get = new GetOption();
-                get.SetCommandPrompt(prompt + " (" + generator.ToSpec() + ")");
+                get.SetCommandPrompt(prompt + " (" + ShownSpec(generator, onSurface) + ")");
                 get.AcceptNothing(true);
                 int kindIndex = get.AddOptionList("Generator", Generators, (int)generator.Kind);
                 get.AddOptionInteger("CountU", ref countU);
@@ -165,6 +181,14 @@ namespace Tpi.RhinoPlugIn
                 get.AddOptionDouble("Jitter", ref amount);
                 get.AddOptionDouble("Radius", ref radius);
                 get.AddOptionInteger("Seed", ref seed);
+                int alignIndex = -1;
+                if (onSurface != null)
+                {
+                    get.AddOptionDouble("Tolerance", ref tolerance);
+                    get.AddOptionInteger("Relax", ref relax);
+                    alignIndex = get.AddOptionList("Align", SurfacePatternInputs.AlignChoices,
+                        SurfacePatternInputs.AlignChoiceOf(onSurface.Align));
+                }
                 int existingIndex = offerExisting ? get.AddOption("ExistingPoints") : -1;
                 var result = get.Get();
                 generator.CountU = countU.CurrentValue;
@@ -172,13 +196,27 @@ namespace Tpi.RhinoPlugIn
                 generator.Amount = amount.CurrentValue;
                 generator.Radius = radius.CurrentValue;
                 generator.Seed = (ulong)seed.CurrentValue;
+                if (onSurface != null)
+                {
+                    onSurface.MaxDeviation = tolerance.CurrentValue;
+                    onSurface.Relax = relax.CurrentValue;
+                }
                 if (result == GetResult.Nothing) return Result.Success;
                 if (result != GetResult.Option) return get.CommandResult();
                 var option = get.Option();
                 if (option.Index == kindIndex) generator.Kind = (GeneratorKind)option.CurrentListOptionIndex;
+                else if (option.Index == alignIndex) onSurface.Align = SurfacePatternInputs.AlignField(option.CurrentListOptionIndex);
                 else if (option.Index == existingIndex) { existingPoints = true; return Result.Success; }
                 if (onChange != null) onChange();
             }
+        }
+
+        /// <summary>The spec the options stand for, or why they do not combine.</summary>
+        static string ShownSpec(PatternGenerator generator, SurfacePatternInputs onSurface)
+        {
+            string spec = generator.ToSpec(), error;
+            if (onSurface == null || !onSurface.Any) return spec;
+            return onSurface.TryCompose(spec, out spec, out error) ? spec : error;
         }
     }
 }

@@ -15,7 +15,9 @@ namespace Tpi.RhinoPlugIn
     /// <summary>
     /// TpiPattern: generate a pattern scheme on a surface, previewing the points and their
     /// Voronoi cells (drawn on the surface, as the paper's figure 9a), then add the points to the
-    /// document (for TpiDiscreteSurface's ExistingPoints, or to edit by hand).
+    /// document (for TpiDiscreteSurface's ExistingPoints, or to edit by hand). The options
+    /// Tolerance, Relax and Align make the pattern on the surface (a fit, Lloyd iterations on
+    /// the surface, a lattice along a curvature field), as the TPI Pattern component's inputs.
     /// </summary>
     public sealed class TpiPatternCommand : Command
     {
@@ -31,27 +33,38 @@ namespace Tpi.RhinoPlugIn
             var surface = surfaceRef.Surface();
             if (surface == null) return Result.Failure;
 
+            var surfaceSpec = RhinoConvert.ToSpec(surface);
             var generator = new PatternGenerator();
+            // Tolerance, Relax and Align are offered only where the library can see the surface.
+            var onSurface = surfaceSpec == null ? null : new SurfacePatternInputs();
+            if (surfaceSpec == null)
+                RhinoApp.WriteLine("TPI: the surface has no NURBS form: only patterns in its parameters are offered.");
             var conduit = new PreviewConduit();
             List<Point3d> points = null;
             Action preview = () =>
             {
-                var output = ComponentSolvers.Pattern(new PatternInput { Generator = generator });
+                var output = ComponentSolvers.Pattern(new PatternInput
+                {
+                    Generator = generator,
+                    Surface = onSurface != null && onSurface.Any ? surfaceSpec : null,
+                    OnSurface = onSurface,
+                });
                 if (output.Errors.Count > 0) RhinoApp.WriteLine("TPI: " + output.Errors[0]);
+                foreach (var w in output.Warnings) RhinoApp.WriteLine("TPI: " + w);
                 points = output.Points.Select(p => RhinoConvert.PointAt(surface, p)).ToList();
                 var cells = output.Points.Length <= 5000
                     ? VoronoiCells.Compute(output.Points).Select(c => RhinoConvert.OnSurface(surface, c, 4)).ToList()
                     : new List<List<Point3d>>();
                 conduit.Set(points, cells);
                 doc.Views.Redraw();
-                RhinoApp.WriteLine("TPI: {0} points ({1}).", points.Count, output.Spec);
+                RhinoApp.WriteLine("TPI: " + output.Summary() + ".");
             };
             try
             {
                 conduit.Enabled = true;
                 preview();
                 bool unused;
-                rc = CommandOptions.GetGenerator("Pattern, Enter to add the points", generator, false, out unused, preview);
+                rc = CommandOptions.GetGenerator("Pattern, Enter to add the points", generator, false, out unused, preview, onSurface);
                 if (rc != Result.Success) return rc;
             }
             finally
