@@ -1,9 +1,10 @@
-// Checked against: Grasshopper 8 (grasshopper-stubs-typed 8.20.25157; the nested param managers
-// against the Grasshopper SDK). Members used: read from the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
+// Checked against: Grasshopper 8 (grasshopper-stubs-typed 8.20.25157; GH_TaskCapableComponent<T>
+// and the nested param managers, which the stubs omit, against the Grasshopper SDK). Members used: read from the compiled adapter and checked against the stubs (plugin-dotnet/API-CHECK.md).
 using System;
 using System.Collections.Generic;
 using System.Drawing;
 using System.Linq;
+using System.Threading.Tasks;
 using Grasshopper.Kernel;
 using Rhino.Geometry;
 using Tpi.Logic;
@@ -11,7 +12,7 @@ using Tpi.Logic;
 namespace Tpi.GhComponents
 {
     /// <summary>"TPI Pattern": the pattern generators with their parameters, and the patterns made on a surface (tolerance, relaxation, alignment, density; logic in Tpi.Logic).</summary>
-    public sealed class PatternComponent : GH_Component
+    public sealed class PatternComponent : GH_TaskCapableComponent<PatternOutput>
     {
         /// <summary>Made by Grasshopper.</summary>
         public PatternComponent()
@@ -60,6 +61,44 @@ namespace Tpi.GhComponents
         {
             var problem = Native.Problem;
             if (problem != null) { AddRuntimeMessage(GH_RuntimeMessageLevel.Error, problem); return; }
+            List<string> errors;
+            if (InPreSolve)
+            {
+                // One task per iteration, valid input or not, so GetSolveResults stays in step. A
+                // fit or a relaxation runs many discretisations (seconds on a large surface): on a
+                // worker, so the canvas stays responsive; a task whose solution expired is dropped.
+                var input = CollectInput(DA, out errors);
+                TaskList.Add(input == null
+                    ? Task.FromResult(PatternOutput.Rejected(errors))
+                    : Task.Run(() => ComponentSolvers.Pattern(input), CancelToken));
+                return;
+            }
+
+            PatternOutput output;
+            if (!GetSolveResults(DA, out output))
+            {
+                var input = CollectInput(DA, out errors);
+                output = input == null ? PatternOutput.Rejected(errors) : ComponentSolvers.Pattern(input);
+            }
+            if (output == null) return;
+            foreach (var e in output.Errors) AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e);
+            if (output.Errors.Count > 0) return;
+            foreach (var w in output.Warnings) AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, w);
+            Surface surface = null;
+            DA.GetData(7, ref surface);
+            if (output.Fit.HasValue) DA.SetData(3, output.Fit.Value.MaxDeviation);
+            DA.SetDataList(0, output.Points.Select(p => new Point3d(p.S, p.T, 0)));
+            if (surface != null) DA.SetDataList(1, output.Points.Select(p => GhConvert.PointAt(surface, p)));
+            DA.SetData(2, output.Spec);
+        }
+
+        /// <summary>
+        /// Reads the inputs on the UI thread (RhinoCommon calls stay off the worker); null with
+        /// the reasons in <paramref name="errors"/> when they cannot be used.
+        /// </summary>
+        PatternInput CollectInput(IGH_DataAccess DA, out List<string> errors)
+        {
+            errors = new List<string>();
             string name = "hex", spec = null;
             int countU = 10, countV = 10, seed = 1;
             double amount = 0.5, radius = 0.08;
@@ -86,25 +125,18 @@ namespace Tpi.GhComponents
                 surfaceSpec = GhConvert.ToSpec(surface);
                 if (surfaceSpec == null && (onSurface.Any || SurfacePatternInputs.NeedsSurface(spec)))
                 {
-                    AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "the surface has no NURBS form");
-                    return;
+                    errors.Add("the surface has no NURBS form");
+                    return null;
                 }
             }
             GeneratorKind kind;
             if (!PatternGenerator.TryParseKind(name, out kind) && string.IsNullOrWhiteSpace(spec))
             {
-                AddRuntimeMessage(GH_RuntimeMessageLevel.Error, "unknown generator '" + name + "': use grid, hex, jitter, random or poisson");
-                return;
+                errors.Add("unknown generator '" + name + "': use grid, hex, jitter, random or poisson");
+                return null;
             }
             var generator = new PatternGenerator { Kind = kind, CountU = countU, CountV = countV, Amount = amount, Radius = radius, Seed = (ulong)Math.Max(0, seed) };
-            var output = ComponentSolvers.Pattern(new PatternInput { Generator = generator, Spec = spec, Surface = surfaceSpec, OnSurface = onSurface });
-            foreach (var e in output.Errors) AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e);
-            if (output.Errors.Count > 0) return;
-            foreach (var w in output.Warnings) AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, w);
-            if (output.Fit.HasValue) DA.SetData(3, output.Fit.Value.MaxDeviation);
-            DA.SetDataList(0, output.Points.Select(p => new Point3d(p.S, p.T, 0)));
-            if (surface != null) DA.SetDataList(1, output.Points.Select(p => GhConvert.PointAt(surface, p)));
-            DA.SetData(2, output.Spec);
+            return new PatternInput { Generator = generator, Spec = spec, Surface = surfaceSpec, OnSurface = onSurface };
         }
     }
 }

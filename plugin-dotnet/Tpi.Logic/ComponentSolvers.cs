@@ -80,6 +80,15 @@ namespace Tpi.Logic
         public FitReport? Fit { get; internal set; }
         internal PatternOutput() { Errors = new List<string>(); Warnings = new List<string>(); Points = new PatternPoint[0]; Spec = string.Empty; }
 
+        /// <summary>An output with no points that carries why the inputs could not be used (the task-capable component's result for an iteration it cannot solve).</summary>
+        public static PatternOutput Rejected(IEnumerable<string> errors)
+        {
+            var output = new PatternOutput();
+            if (errors != null) output.Errors.AddRange(errors);
+            if (output.Errors.Count == 0) output.Errors.Add("no pattern: the inputs could not be used");
+            return output;
+        }
+
         /// <summary>
         /// One line for a command prompt: the point count and the spec, and for a fit the
         /// largest vertex deviation against the tolerance and whether it was met.

@@ -213,6 +213,19 @@ namespace Tpi.Tests
         }
 
         [Test]
+        public void ARejectedIterationCarriesItsReasonsAndNoPoints()
+        {
+            var rejected = PatternOutput.Rejected(new[] { "unknown generator 'hexx'", "second" });
+            CollectionAssert.AreEqual(new[] { "unknown generator 'hexx'", "second" }, rejected.Errors);
+            Assert.IsEmpty(rejected.Points);
+            Assert.IsNull(rejected.Fit);
+            Assert.AreEqual(string.Empty, rejected.Spec);
+            // Never an empty error list: the component would otherwise show nothing at all.
+            Assert.AreEqual(1, PatternOutput.Rejected(null).Errors.Count);
+            Assert.AreEqual(1, PatternOutput.Rejected(new string[0]).Errors.Count);
+        }
+
+        [Test]
         public void ThePatternSolverRunsTheComposedSpecOnTheSurface()
         {
             var sphere = new AnalyticSurfaceSpec(AnalyticKind.SphereCap, Radius, -3, 3, -3, 3);
