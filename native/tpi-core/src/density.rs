@@ -24,6 +24,7 @@ use serde::Deserialize;
 
 use crate::diffgeo::LocalGeometry;
 use crate::error::TpiError;
+use crate::progress::{NoProgress, Progress};
 use crate::relax::relax_weighted;
 use crate::sizing::{largest_regular_curvature, metric_poisson, node_geometry, SizingField};
 use crate::surface::Surface;
@@ -480,6 +481,19 @@ pub fn density_pattern(
     max_points: usize,
     options: &DiscretiseOptions,
 ) -> Result<Vec<[f64; 2]>, TpiError> {
+    density_pattern_with_progress(surface, spec, relax, max_points, options, &NoProgress)
+}
+
+/// [`density_pattern`], reporting the stages of the relaxation's discretisations to
+/// `progress`, which can cancel them ([`TpiError::Cancelled`]).
+pub(crate) fn density_pattern_with_progress(
+    surface: &dyn Surface,
+    spec: &DensitySpec,
+    relax: usize,
+    max_points: usize,
+    options: &DiscretiseOptions,
+    progress: &dyn Progress,
+) -> Result<Vec<[f64; 2]>, TpiError> {
     spec.validate()?;
     let field = spec.field(surface)?;
     let points = metric_poisson(&field, 1.0, spec.seed, max_points);
@@ -487,5 +501,5 @@ pub fn density_pattern(
         return Ok(points);
     }
     let density = |st: [f64; 2]| field.lloyd_density(st);
-    relax_weighted(surface, &points, relax, options, Some(&density))
+    relax_weighted(surface, &points, relax, options, Some(&density), progress)
 }

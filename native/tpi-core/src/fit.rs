@@ -33,9 +33,10 @@
 use glam::DVec3;
 use rayon::prelude::*;
 
-use crate::discretise::{discretise, Discretisation, DiscretiseOptions};
+use crate::discretise::{discretise, discretise_with_progress, Discretisation, DiscretiseOptions};
 use crate::error::TpiError;
 use crate::pattern::Generator;
+use crate::progress::{NoProgress, Progress};
 use crate::projection::{distance_foot, Wrap};
 use crate::relax::{relax_weighted, seam_margins};
 use crate::sizing::{metric_poisson, CurvatureFloors, SizingField};
@@ -138,6 +139,20 @@ pub fn fit_pattern(
     seed: u64,
     options: &DiscretiseOptions,
 ) -> Result<FittedPattern, TpiError> {
+    fit_pattern_with_progress(surface, max_deviation, seed, options, &NoProgress)
+}
+
+/// [`fit_pattern`], reporting the stages of every discretisation it runs to `progress`
+/// ([`crate::progress`]; a fit runs tens of them), which can cancel it between stages
+/// ([`TpiError::Cancelled`]: nothing of the fit is kept). The result is the same as without
+/// an observer.
+pub fn fit_pattern_with_progress(
+    surface: &dyn Surface,
+    max_deviation: f64,
+    seed: u64,
+    options: &DiscretiseOptions,
+    progress: &dyn Progress,
+) -> Result<FittedPattern, TpiError> {
     if !(max_deviation.is_finite() && max_deviation > 0.0) {
         return Err(TpiError::InvalidParameter {
             field: "max_deviation".into(),
@@ -189,9 +204,10 @@ pub fn fit_pattern(
             FIT_LLOYD_ITERATIONS,
             &options,
             Some(&density),
+            progress,
         )?;
         runs += FIT_LLOYD_ITERATIONS;
-        let d = discretise(surface, &points, &options)?;
+        let d = discretise_with_progress(surface, &points, &options, progress)?;
         runs += 1;
         let feet = vertex_feet(surface, &d);
         let ratios = facet_ratios(&d, &feet, max_deviation);
@@ -210,6 +226,7 @@ pub fn fit_pattern(
             limit,
             &options,
             &mut runs,
+            progress,
         )?;
         consider(&mut best, &mut closest, finished);
     }
@@ -353,6 +370,7 @@ fn refine(
     limit: usize,
     options: &DiscretiseOptions,
     runs: &mut usize,
+    progress: &dyn Progress,
 ) -> Result<FittedPattern, TpiError> {
     let domain = surface.domain();
     let [margin_s, margin_t] = seam_margins(surface);
@@ -470,7 +488,7 @@ fn refine(
             });
         }
         points.extend(added.into_iter().map(|(p, ..)| p));
-        d = discretise(surface, &points, options)?;
+        d = discretise_with_progress(surface, &points, options, progress)?;
         *runs += 1;
         feet = vertex_feet(surface, &d);
     }

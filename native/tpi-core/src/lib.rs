@@ -87,9 +87,10 @@ pub use fabricate::{
 };
 pub use facets::VertexKind;
 pub use fit::{
-    fit_pattern, hex_baseline, vertex_deviations, FittedPattern, HexBaseline, FIT_LLOYD_ITERATIONS,
-    FIT_MAX_STEP, FIT_POISSON_RADIUS, FIT_REFINE_PASSES, FIT_ROUNDS, FIT_STALLED_PASSES,
-    FIT_TARGET_RATIO, HEX_BASELINE_SEARCH_FACTOR, MAX_FIT_POINTS, MAX_HEX_COLUMNS, MIN_FIT_POINTS,
+    fit_pattern, fit_pattern_with_progress, hex_baseline, vertex_deviations, FittedPattern,
+    HexBaseline, FIT_LLOYD_ITERATIONS, FIT_MAX_STEP, FIT_POISSON_RADIUS, FIT_REFINE_PASSES,
+    FIT_ROUNDS, FIT_STALLED_PASSES, FIT_TARGET_RATIO, HEX_BASELINE_SEARCH_FACTOR, MAX_FIT_POINTS,
+    MAX_HEX_COLUMNS, MIN_FIT_POINTS,
 };
 pub use live::{LiveChanges, LiveStats, LiveSurface};
 pub use nurbs::{NurbsSpec, NurbsSurface};
@@ -102,7 +103,7 @@ pub use quality::{
     QualityReport, FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
     INVALID_FLAGS,
 };
-pub use relax::{relax, MAX_RELAX_ITERATIONS};
+pub use relax::{relax, relax_with_progress, MAX_RELAX_ITERATIONS};
 pub use rulings::ruling_direction;
 pub use sanity::SanityError;
 pub use spec::{sampled_bounding_box, SurfaceModel, SurfaceSpec};

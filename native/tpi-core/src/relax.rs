@@ -21,8 +21,9 @@
 
 use glam::DVec3;
 
-use crate::discretise::{discretise, DiscretiseOptions};
+use crate::discretise::{discretise_with_progress, DiscretiseOptions};
 use crate::error::TpiError;
+use crate::progress::{NoProgress, Progress};
 use crate::projection::foot;
 use crate::quality::INVALID_FLAGS;
 use crate::surface::Surface;
@@ -43,6 +44,19 @@ pub fn relax(
     iterations: usize,
     options: &DiscretiseOptions,
 ) -> Result<Vec<[f64; 2]>, TpiError> {
+    relax_with_progress(surface, pattern, iterations, options, &NoProgress)
+}
+
+/// [`relax`], reporting the stages of every discretisation it runs to `progress`
+/// ([`crate::progress`]), which can cancel it between them ([`TpiError::Cancelled`]); the
+/// result is the same as without an observer.
+pub fn relax_with_progress(
+    surface: &dyn Surface,
+    pattern: &[[f64; 2]],
+    iterations: usize,
+    options: &DiscretiseOptions,
+    progress: &dyn Progress,
+) -> Result<Vec<[f64; 2]>, TpiError> {
     if iterations > MAX_RELAX_ITERATIONS {
         return Err(TpiError::InvalidParameter {
             field: "iterations".into(),
@@ -50,7 +64,7 @@ pub fn relax(
             reason: format!("at most {MAX_RELAX_ITERATIONS} relaxation iterations"),
         });
     }
-    relax_weighted(surface, pattern, iterations, options, None)
+    relax_weighted(surface, pattern, iterations, options, None, progress)
 }
 
 /// A density of points over the normalised square: Lloyd's iteration weighted by it makes
@@ -59,20 +73,22 @@ pub(crate) type Density<'a> = &'a (dyn Fn([f64; 2]) -> f64 + Sync);
 
 /// [`relax`] with an optional `density` (None: uniform): the cell centroids are weighted by
 /// it, and the first spreading follows area times density. Over-relaxed by
-/// [`OVER_RELAXATION`] without a density, plain Lloyd steps with one.
+/// [`OVER_RELAXATION`] without a density, plain Lloyd steps with one. Each step's
+/// discretisation reports to `progress`, which can cancel it.
 pub(crate) fn relax_weighted(
     surface: &dyn Surface,
     pattern: &[[f64; 2]],
     iterations: usize,
     options: &DiscretiseOptions,
     density: Option<Density<'_>>,
+    progress: &dyn Progress,
 ) -> Result<Vec<[f64; 2]>, TpiError> {
     if iterations == 0 {
         return Ok(pattern.to_vec());
     }
     let mut points = spread_by_area(surface, pattern, density);
     for _ in 0..iterations {
-        points = lloyd_step(surface, &points, options, density)?.0;
+        points = lloyd_step(surface, &points, options, density, progress)?.0;
     }
     Ok(points)
 }
@@ -84,6 +100,7 @@ pub(crate) fn lloyd_step(
     points: &[[f64; 2]],
     options: &DiscretiseOptions,
     density: Option<Density<'_>>,
+    progress: &dyn Progress,
 ) -> Result<(Vec<[f64; 2]>, crate::Discretisation), TpiError> {
     let options = DiscretiseOptions {
         quality_report: true,
@@ -96,7 +113,7 @@ pub(crate) fn lloyd_step(
     } else {
         OVER_RELAXATION
     };
-    let d = discretise(surface, points, &options)?;
+    let d = discretise_with_progress(surface, points, &options, progress)?;
     let mut moved: Vec<Option<[f64; 2]>> = vec![None; points.len()];
     for i in 0..d.facet_count() {
         if d.facet_flags

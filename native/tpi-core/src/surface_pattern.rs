@@ -56,12 +56,13 @@
 use std::fmt;
 
 use crate::align::{aligned_pattern, AlignField, DirectionField, Lattice};
-use crate::density::{density_pattern, DensitySpec, GreyImage};
+use crate::density::{density_pattern_with_progress, DensitySpec, GreyImage};
 use crate::discretise::DiscretiseOptions;
 use crate::error::TpiError;
-use crate::fit::fit_pattern;
+use crate::fit::fit_pattern_with_progress;
 use crate::pattern::{Generator, MAX_GENERATED_POINTS};
-use crate::relax::{relax, MAX_RELAX_ITERATIONS};
+use crate::progress::{NoProgress, Progress};
+use crate::relax::{relax_with_progress, MAX_RELAX_ITERATIONS};
 use crate::surface::Surface;
 
 /// A parsed surface-aware pattern spec (module doc). Made by [`SurfacePatternSpec::parse`] or
@@ -233,6 +234,19 @@ impl SurfacePatternSpec {
         surface: &dyn Surface,
         options: &DiscretiseOptions,
     ) -> Result<SurfacePattern, TpiError> {
+        self.generate_with_progress(surface, options, &NoProgress)
+    }
+
+    /// [`SurfacePatternSpec::generate`], reporting the stages of every discretisation the
+    /// form runs (a fit's, a relaxation's) to `progress` ([`crate::progress`]), which can
+    /// cancel it between stages ([`TpiError::Cancelled`]). The points are the same as
+    /// without an observer; a form that runs no discretisation reports nothing.
+    pub fn generate_with_progress(
+        &self,
+        surface: &dyn Surface,
+        options: &DiscretiseOptions,
+        progress: &dyn Progress,
+    ) -> Result<SurfacePattern, TpiError> {
         let plain = |uv| SurfacePattern { uv, fit: None };
         match self {
             SurfacePatternSpec::Generator(g) => {
@@ -243,7 +257,8 @@ impl SurfacePatternSpec {
                 max_deviation,
                 seed,
             } => {
-                let f = fit_pattern(surface, *max_deviation, *seed, options)?;
+                let f =
+                    fit_pattern_with_progress(surface, *max_deviation, *seed, options, progress)?;
                 Ok(SurfacePattern {
                     fit: Some(FitOutcome {
                         tolerance: *max_deviation,
@@ -259,24 +274,32 @@ impl SurfacePatternSpec {
                 let (lattice, count) = aligned_lattice(generator)?;
                 Ok(plain(aligned_pattern(surface, lattice, count, field)?))
             }
-            SurfacePatternSpec::Density(spec) => Ok(plain(density_pattern(
+            SurfacePatternSpec::Density(spec) => Ok(plain(density_pattern_with_progress(
                 surface,
                 spec,
                 0,
                 MAX_GENERATED_POINTS,
                 options,
+                progress,
             )?)),
             SurfacePatternSpec::Relax { iterations, base } => match base.as_ref() {
-                SurfacePatternSpec::Density(spec) => Ok(plain(density_pattern(
+                SurfacePatternSpec::Density(spec) => Ok(plain(density_pattern_with_progress(
                     surface,
                     spec,
                     *iterations,
                     MAX_GENERATED_POINTS,
                     options,
+                    progress,
                 )?)),
                 base => {
-                    let start = base.generate(surface, options)?;
-                    Ok(plain(relax(surface, &start.uv, *iterations, options)?))
+                    let start = base.generate_with_progress(surface, options, progress)?;
+                    Ok(plain(relax_with_progress(
+                        surface,
+                        &start.uv,
+                        *iterations,
+                        options,
+                        progress,
+                    )?))
                 }
             },
         }

@@ -11,7 +11,7 @@ use std::sync::Mutex;
 use common::*;
 use tpi_core::{
     discretise, discretise_with_progress, DiscretiseOptions, PlaneMode, Progress, Stage, Surface,
-    SurfaceSpec, PROGRESS_CHUNK,
+    SurfacePatternSpec, SurfaceSpec, PROGRESS_CHUNK,
 };
 
 /// What the observer saw, in order: (stage, total) when started, (stage, items counted so
@@ -354,4 +354,72 @@ fn a_cancelled_run_stops_in_the_stage_it_was_asked_in() {
     }
     // An observer that never asks changes nothing (the result equals discretise's above).
     observed("nurbs dome, not cancelled", &surface, &pattern, &options);
+}
+
+/// Cancels once the `runs`-th discretisation has started (its samples stage).
+struct CancelAfterRuns {
+    runs: usize,
+    started: std::sync::atomic::AtomicUsize,
+}
+
+impl Progress for CancelAfterRuns {
+    fn stage_started(&self, stage: Stage, _total: Option<usize>) {
+        if stage == Stage::Samples {
+            self.started
+                .fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+        }
+    }
+
+    fn cancelled(&self) -> bool {
+        self.started.load(std::sync::atomic::Ordering::SeqCst) >= self.runs
+    }
+}
+
+/// Patterns made on a surface (issue 15) run many discretisations: a fit and a relaxation
+/// report every one of them (as many as the fit's own count, or one per Lloyd iteration),
+/// give the same points as without an observer, and stop with `Cancelled` as soon as the
+/// observer asks, starting no further discretisation.
+#[test]
+fn a_fit_and_a_relaxation_report_their_discretisations_and_can_be_cancelled() {
+    let surface = sample_surface("nurbs-dome.json");
+    let options = DiscretiseOptions::default();
+    for (text, lloyd) in [("fit:0.05", None), ("relax:3:random:200", Some(3))] {
+        let spec = SurfacePatternSpec::parse(text).unwrap();
+        let plain = spec.generate(&surface, &options).unwrap();
+        let recorder = Recorder::default();
+        let watched = spec
+            .generate_with_progress(&surface, &options, &recorder)
+            .unwrap();
+        assert_eq!(plain.uv, watched.uv, "{text}");
+        assert_eq!(plain.fit, watched.fit, "{text}");
+        let events = recorder.events.into_inner().unwrap();
+        let runs = |stage| {
+            events
+                .iter()
+                .filter(|e| matches!(e, Event::Started(s, _) if *s == stage))
+                .count()
+        };
+        let expected = match (&plain.fit, lloyd) {
+            (Some(fit), None) => fit.discretisations,
+            (None, Some(iterations)) => iterations,
+            _ => panic!("{text}: unexpected outcome"),
+        };
+        assert!(expected >= 3, "{text}: {expected} discretisations");
+        // Every discretisation runs every stage once, the report included.
+        assert_eq!(runs(Stage::Samples), expected, "{text}");
+        assert_eq!(runs(Stage::Report), expected, "{text}");
+
+        let stopper = CancelAfterRuns {
+            runs: 2,
+            started: Default::default(),
+        };
+        match spec.generate_with_progress(&surface, &options, &stopper) {
+            Err(tpi_core::TpiError::Cancelled { stage }) => assert_eq!(stage, "samples", "{text}"),
+            other => panic!(
+                "{text}: expected Cancelled, got {:?}",
+                other.map(|p| p.uv.len())
+            ),
+        }
+        assert_eq!(stopper.started.into_inner(), 2, "{text}");
+    }
 }
