@@ -1604,6 +1604,28 @@ enum TpiStatus tpi_pattern_new_from_spec(const char *spec, struct TpiPattern **o
 enum TpiStatus tpi_pattern_new_for_surface(const struct TpiSurface *surface, const char *spec, const struct TpiOptions *options, struct TpiPattern **out);
 
 /**
+ * `tpi_pattern_new_for_surface`, reporting progress to `callback` (see
+ * `TpiProgressCallback`), which can cancel it by returning nonzero. A fit or a relaxation
+ * runs many discretisations (a fit tens of them, seconds on a large surface): each one's
+ * stages are reported as `tpi_discretise_with_progress` reports them, from TPI_STAGE_SAMPLES
+ * again for the next; a form that runs none (a generator, an aligned lattice, a density
+ * without relaxation) reports nothing.
+ *
+ * `callback` may be NULL (the same as `tpi_pattern_new_for_surface`); `user_data` is handed
+ * to every call of `callback` and never read by the library. The points are the same as
+ * `tpi_pattern_new_for_surface`'s. Once the callback has returned nonzero, the call stops
+ * where the running stage of the running discretisation ends and returns
+ * TPI_STATUS_CANCELLED with `*out` NULL and nothing created.
+ *
+ * Errors: those of `tpi_pattern_new_for_surface`, and TPI_STATUS_CANCELLED.
+ *
+ * # Safety
+ * As `tpi_pattern_new_for_surface`; `callback` is NULL or a function that may be called with
+ * `user_data` on the calling thread until this call returns.
+ */
+enum TpiStatus tpi_pattern_new_for_surface_with_progress(const struct TpiSurface *surface, const char *spec, const struct TpiOptions *options, TpiProgressCallback callback, void *user_data, struct TpiPattern **out);
+
+/**
  * Fills `*out` with how the fit went, for a pattern made by `tpi_pattern_new_for_surface`
  * with a `fit:D` spec (the point count is `tpi_pattern_point_count`). Set
  * `out->struct_size` = sizeof(TpiFitReport) first; only that many bytes are written, and on

@@ -1797,6 +1797,20 @@ static void test_progress(void) {
     tpi_surface_free(surface);
 }
 
+/* Counts the discretisations a pattern runs (a samples-stage call with done 0 starts one)
+ * and cancels once `cancel_at` of them have started (0: never). */
+struct fit_runs {
+    uint64_t started;
+    uint64_t cancel_at;
+};
+
+static int32_t count_fit_runs(void *user_data, uint32_t stage, uint64_t done, uint64_t total) {
+    struct fit_runs *runs = user_data;
+    (void)total;
+    if (stage == TPI_STAGE_SAMPLES && done == 0) runs->started++;
+    return runs->cancel_at != 0 && runs->started >= runs->cancel_at;
+}
+
 /* Patterns made on a surface from a spec (tpi_pattern_new_for_surface): a relaxation gives
  * the Rust API's own relaxed points (from the fixture), and a fit meets its tolerance at every
  * mesh vertex by a check made here, on the sphere cap where the distance from the surface has
@@ -1881,6 +1895,32 @@ static void test_surface_patterns(void) {
     tpi_discretisation_free(mesh);
     tpi_pattern_free(p);
     p = NULL;
+
+    /* The same fit with a progress callback: the same points, one samples-stage start per
+     * discretisation the fit reports having run, and a nonzero return cancels it: no handle,
+     * no further discretisation started. */
+    {
+        TpiPattern *plain = NULL, *watched = NULL, *cancelled = NULL;
+        CHECK_OK(tpi_pattern_new_for_surface(sphere, "fit:0.01:seed=2", NULL, &plain));
+        struct fit_runs counter = {0, 0};
+        CHECK_OK(tpi_pattern_new_for_surface_with_progress(sphere, "fit:0.01:seed=2", NULL, count_fit_runs, &counter, &watched));
+        size_t n = pattern_size(plain);
+        CHECK(n == pattern_size(watched));
+        double *a = malloc(2 * n * sizeof *a), *b = malloc(2 * n * sizeof *b);
+        CHECK(a != NULL && b != NULL);
+        CHECK_OK(tpi_pattern_points(plain, a, 2 * n, NULL));
+        CHECK_OK(tpi_pattern_points(watched, b, 2 * n, NULL));
+        CHECK(memcmp(a, b, 2 * n * sizeof *a) == 0);
+        free(a);
+        free(b);
+        CHECK(counter.started == report.discretisations && counter.started >= 3);
+        struct fit_runs stopper = {0, 2};
+        CHECK_STATUS(tpi_pattern_new_for_surface_with_progress(sphere, "fit:0.01:seed=2", NULL, count_fit_runs, &stopper, &cancelled),
+                     TPI_STATUS_CANCELLED);
+        CHECK(cancelled == NULL && stopper.started == 2 && last_error_contains("cancelled"));
+        tpi_pattern_free(plain);
+        tpi_pattern_free(watched);
+    }
 
     /* The uniform hexagonal baseline of the same tolerance. */
     size_t hex_count = 0;

@@ -456,7 +456,7 @@ struct Reported {
 /// The core's progress observer calling a C callback: one call at a time (under `reported`),
 /// the workers' counts summed in `done`; a nonzero return sets `cancel`, which the core asks
 /// between stages.
-struct CallbackObserver {
+pub(crate) struct CallbackObserver {
     callback: unsafe extern "C" fn(*mut c_void, u32, u64, u64) -> i32,
     user_data: *mut c_void,
     reported: Mutex<Reported>,
@@ -471,6 +471,25 @@ struct CallbackObserver {
 unsafe impl Sync for CallbackObserver {}
 
 impl CallbackObserver {
+    /// The observer of a call made on this thread (the only one that will call back).
+    pub(crate) fn new(
+        callback: unsafe extern "C" fn(*mut c_void, u32, u64, u64) -> i32,
+        user_data: *mut c_void,
+    ) -> Self {
+        CallbackObserver {
+            callback,
+            user_data,
+            reported: Mutex::new(Reported {
+                stage: TPI_STAGE_SAMPLES,
+                total: 0,
+                sent: 0,
+            }),
+            done: AtomicU64::new(0),
+            cancel: AtomicBool::new(false),
+            caller: std::thread::current().id(),
+        }
+    }
+
     /// Calls the callback (the caller holds `reported`).
     fn call(&self, reported: &mut Reported, done: u64) {
         reported.sent = done;
@@ -560,18 +579,7 @@ pub unsafe extern "C" fn tpi_discretise_with_progress(
         let result = match callback {
             None => discretise(&surface.model, &pattern.pattern.uv, &options)?,
             Some(callback) => {
-                let observer = CallbackObserver {
-                    callback,
-                    user_data,
-                    reported: Mutex::new(Reported {
-                        stage: TPI_STAGE_SAMPLES,
-                        total: 0,
-                        sent: 0,
-                    }),
-                    done: AtomicU64::new(0),
-                    cancel: AtomicBool::new(false),
-                    caller: std::thread::current().id(),
-                };
+                let observer = CallbackObserver::new(callback, user_data);
                 discretise_with_progress(&surface.model, &pattern.pattern.uv, &options, &observer)?
             }
         };

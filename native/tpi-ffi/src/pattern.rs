@@ -1,6 +1,6 @@
 //! Pattern handles: points in the normalised square, given or generated.
 
-use std::ffi::c_char;
+use std::ffi::{c_char, c_void};
 
 use std::mem::size_of;
 
@@ -10,6 +10,7 @@ use crate::boundary::{
     copy_out, ffi_boundary, finite, try_handle, try_pairs, try_str, FfiError, FfiResult, OutPtr,
     TpiStatus,
 };
+use crate::discretisation::{CallbackObserver, TpiProgressCallback};
 use crate::options::{read_options, TpiOptions};
 use crate::surface::TpiSurface;
 
@@ -233,6 +234,54 @@ pub unsafe extern "C" fn tpi_pattern_new_for_surface(
         let spec = unsafe { try_str(spec, "spec") }?;
         let options = unsafe { read_options(options) }?;
         let made = SurfacePatternSpec::parse(spec)?.generate(&surface.model, &options)?;
+        let pattern = Pattern::new(made.uv);
+        pattern.validate()?;
+        out.set_boxed(TpiPattern { pattern, fit: made.fit });
+        Ok(())
+    }
+}
+
+/// `tpi_pattern_new_for_surface`, reporting progress to `callback` (see
+/// `TpiProgressCallback`), which can cancel it by returning nonzero. A fit or a relaxation
+/// runs many discretisations (a fit tens of them, seconds on a large surface): each one's
+/// stages are reported as `tpi_discretise_with_progress` reports them, from TPI_STAGE_SAMPLES
+/// again for the next; a form that runs none (a generator, an aligned lattice, a density
+/// without relaxation) reports nothing.
+///
+/// `callback` may be NULL (the same as `tpi_pattern_new_for_surface`); `user_data` is handed
+/// to every call of `callback` and never read by the library. The points are the same as
+/// `tpi_pattern_new_for_surface`'s. Once the callback has returned nonzero, the call stops
+/// where the running stage of the running discretisation ends and returns
+/// TPI_STATUS_CANCELLED with `*out` NULL and nothing created.
+///
+/// Errors: those of `tpi_pattern_new_for_surface`, and TPI_STATUS_CANCELLED.
+///
+/// # Safety
+/// As `tpi_pattern_new_for_surface`; `callback` is NULL or a function that may be called with
+/// `user_data` on the calling thread until this call returns.
+#[no_mangle]
+pub unsafe extern "C" fn tpi_pattern_new_for_surface_with_progress(
+    surface: *const TpiSurface,
+    spec: *const c_char,
+    options: *const TpiOptions,
+    callback: TpiProgressCallback,
+    user_data: *mut c_void,
+    out: *mut *mut TpiPattern,
+) -> TpiStatus {
+    ffi_boundary! {
+        // SAFETY: the caller's contract for every argument.
+        let out = unsafe { OutPtr::handle(out, "out") }?;
+        let surface = unsafe { try_handle(surface, "surface") }?;
+        let spec = unsafe { try_str(spec, "spec") }?;
+        let options = unsafe { read_options(options) }?;
+        let spec = SurfacePatternSpec::parse(spec)?;
+        let made = match callback {
+            None => spec.generate(&surface.model, &options)?,
+            Some(callback) => {
+                let observer = CallbackObserver::new(callback, user_data);
+                spec.generate_with_progress(&surface.model, &options, &observer)?
+            }
+        };
         let pattern = Pattern::new(made.uv);
         pattern.validate()?;
         out.set_boxed(TpiPattern { pattern, fit: made.fit });

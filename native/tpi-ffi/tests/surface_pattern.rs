@@ -184,3 +184,106 @@ fn failures_create_nothing_and_name_the_argument() {
     }
     assert!(p.is_null());
 }
+
+/// Counts the discretisations a pattern runs (a call for the samples stage with `done` 0
+/// starts one) and asks to cancel once `cancel_at` of them have started (0: never).
+struct Runs {
+    started: std::sync::atomic::AtomicU64,
+    cancel_at: u64,
+}
+
+unsafe extern "C" fn count_runs(
+    user_data: *mut std::ffi::c_void,
+    stage: u32,
+    done: u64,
+    _total: u64,
+) -> i32 {
+    // SAFETY: the test passes a &Runs that outlives the call.
+    let runs = unsafe { &*(user_data as *const Runs) };
+    let ordering = std::sync::atomic::Ordering::SeqCst;
+    if stage == TPI_STAGE_SAMPLES && done == 0 {
+        runs.started.fetch_add(1, ordering);
+    }
+    i32::from(runs.cancel_at != 0 && runs.started.load(ordering) >= runs.cancel_at)
+}
+
+fn with_progress(
+    surface: *const TpiSurface,
+    spec: &std::ffi::CStr,
+    runs: Option<&Runs>,
+) -> (TpiStatus, *mut TpiPattern) {
+    let mut p = std::ptr::null_mut();
+    let (callback, user_data): (TpiProgressCallback, *mut std::ffi::c_void) = match runs {
+        Some(r) => (Some(count_runs), r as *const Runs as *mut std::ffi::c_void),
+        None => (None, std::ptr::null_mut()),
+    };
+    // SAFETY: live handle, NUL-terminated spec, a callback that only counts, valid out.
+    let status = unsafe {
+        tpi_pattern_new_for_surface_with_progress(
+            surface,
+            spec.as_ptr(),
+            std::ptr::null(),
+            callback,
+            user_data,
+            &mut p,
+        )
+    };
+    (status, p)
+}
+
+fn fit_report(p: *const TpiPattern) -> Option<TpiFitReport> {
+    let mut report = TpiFitReport {
+        struct_size: size_of::<TpiFitReport>() as u32,
+        ..Default::default()
+    };
+    // SAFETY: live handle, valid report.
+    (unsafe { tpi_pattern_fit_report(p, &mut report) } == TpiStatus::Ok).then_some(report)
+}
+
+/// `tpi_pattern_new_for_surface_with_progress`: the same points and fit report as without a
+/// callback; one samples-stage start per discretisation the form runs (the fit's own count;
+/// one per Lloyd iteration); a nonzero return gives TPI_STATUS_CANCELLED, no handle, a
+/// message saying so, and no further discretisation started.
+#[test]
+fn a_fit_and_a_relaxation_report_each_discretisation_and_can_be_cancelled() {
+    let surface = saddle();
+    for (spec, lloyd) in [(c"fit:0.05", None), (c"relax:3:random:150", Some(3u64))] {
+        let mut plain = std::ptr::null_mut();
+        // SAFETY: live handle, NUL-terminated spec, valid out pointer.
+        ok(unsafe {
+            tpi_pattern_new_for_surface(surface, spec.as_ptr(), std::ptr::null(), &mut plain)
+        });
+        let (status, silent) = with_progress(surface, spec, None);
+        ok(status);
+        let counter = Runs {
+            started: Default::default(),
+            cancel_at: 0,
+        };
+        let (status, watched) = with_progress(surface, spec, Some(&counter));
+        ok(status);
+        assert_eq!(points(plain), points(silent), "{spec:?}");
+        assert_eq!(points(plain), points(watched), "{spec:?}");
+        assert_eq!(fit_report(plain), fit_report(watched), "{spec:?}");
+        let expected = lloyd.unwrap_or_else(|| fit_report(plain).unwrap().discretisations);
+        assert!(expected >= 3, "{spec:?}: {expected}");
+        assert_eq!(counter.started.into_inner(), expected, "{spec:?}");
+
+        let stopper = Runs {
+            started: Default::default(),
+            cancel_at: 2,
+        };
+        let (status, cancelled) = with_progress(surface, spec, Some(&stopper));
+        assert_eq!(status, TpiStatus::Cancelled, "{spec:?}");
+        assert!(cancelled.is_null());
+        assert!(last_error().contains("cancelled"), "{}", last_error());
+        assert_eq!(stopper.started.into_inner(), 2, "{spec:?}");
+        // SAFETY: our handles.
+        unsafe {
+            tpi_pattern_free(plain);
+            tpi_pattern_free(silent);
+            tpi_pattern_free(watched);
+        }
+    }
+    // SAFETY: our handle.
+    unsafe { tpi_surface_free(surface) };
+}
