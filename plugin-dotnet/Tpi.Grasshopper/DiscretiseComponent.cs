@@ -107,8 +107,7 @@ namespace Tpi.GhComponents
         /// </summary>
         void ShowProgress(string text)
         {
-            Message = text;
-            Rhino.RhinoApp.InvokeOnUiThread(new Action(Grasshopper.Instances.RedrawCanvas));
+            SolveProgress.Show(this, text);
         }
 
         /// <summary>Reads the inputs on the UI thread (RhinoCommon calls stay off the worker).</summary>

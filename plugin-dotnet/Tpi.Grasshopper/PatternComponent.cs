@@ -66,11 +66,14 @@ namespace Tpi.GhComponents
             {
                 // One task per iteration, valid input or not, so GetSolveResults stays in step. A
                 // fit or a relaxation runs many discretisations (seconds on a large surface): on a
-                // worker, so the canvas stays responsive; a task whose solution expired is dropped.
+                // worker, so the canvas stays responsive. Grasshopper cancels the token when the
+                // solution is aborted (Escape) or expires again; the library stops where the
+                // running stage of the running discretisation ends.
                 var input = CollectInput(DA, out errors);
+                var cancel = CancelToken;
                 TaskList.Add(input == null
                     ? Task.FromResult(PatternOutput.Rejected(errors))
-                    : Task.Run(() => ComponentSolvers.Pattern(input), CancelToken));
+                    : Task.Run(() => ComponentSolvers.Pattern(input, ShowProgress, cancel), cancel));
                 return;
             }
 
@@ -78,9 +81,12 @@ namespace Tpi.GhComponents
             if (!GetSolveResults(DA, out output))
             {
                 var input = CollectInput(DA, out errors);
-                output = input == null ? PatternOutput.Rejected(errors) : ComponentSolvers.Pattern(input);
+                output = input == null ? PatternOutput.Rejected(errors)
+                    : ComponentSolvers.Pattern(input, ShowProgress, System.Threading.CancellationToken.None);
             }
             if (output == null) return;
+            // Under the component: the progress while it runs, then the count, or that it was cancelled.
+            Message = output.Cancelled ? ProgressText.Cancelled : output.Errors.Count == 0 ? output.Points.Length + " points" : null;
             foreach (var e in output.Errors) AddRuntimeMessage(GH_RuntimeMessageLevel.Error, e);
             if (output.Errors.Count > 0) return;
             foreach (var w in output.Warnings) AddRuntimeMessage(GH_RuntimeMessageLevel.Warning, w);
@@ -90,6 +96,11 @@ namespace Tpi.GhComponents
             DA.SetDataList(0, output.Points.Select(p => new Point3d(p.S, p.T, 0)));
             if (surface != null) DA.SetDataList(1, output.Points.Select(p => GhConvert.PointAt(surface, p)));
             DA.SetData(2, output.Spec);
+        }
+
+        void ShowProgress(string text)
+        {
+            SolveProgress.Show(this, text);
         }
 
         /// <summary>

@@ -78,6 +78,8 @@ namespace Tpi.Logic
         public List<string> Warnings { get; private set; }
         /// <summary>For a tolerance-driven pattern (fit:D), how the fit went; else null.</summary>
         public FitReport? Fit { get; internal set; }
+        /// <summary>True if the solve was cancelled (no points; Errors says where it stopped).</summary>
+        public bool Cancelled { get; internal set; }
         internal PatternOutput() { Errors = new List<string>(); Warnings = new List<string>(); Points = new PatternPoint[0]; Spec = string.Empty; }
 
         /// <summary>An output with no points that carries why the inputs could not be used (the task-capable component's result for an iteration it cannot solve).</summary>
@@ -241,6 +243,18 @@ namespace Tpi.Logic
         /// <summary>"TPI Pattern".</summary>
         public static PatternOutput Pattern(PatternInput input)
         {
+            return Pattern(input, null, CancellationToken.None);
+        }
+
+        /// <summary>
+        /// "TPI Pattern" showing the progress of the discretisations a pattern made on the
+        /// surface runs through <paramref name="progress"/> (texts of
+        /// <see cref="ProgressText.FormatRun"/>, each new one once; may be null) and stopping
+        /// when <paramref name="cancel"/> is cancelled: then the output has no points,
+        /// <see cref="PatternOutput.Cancelled"/> set and an error naming the stage.
+        /// </summary>
+        public static PatternOutput Pattern(PatternInput input, Action<string> progress, CancellationToken cancel)
+        {
             var output = new PatternOutput();
             try
             {
@@ -256,8 +270,10 @@ namespace Tpi.Logic
                 if (input != null && input.Surface != null)
                 {
                     // Any spec, surface-aware or not, through the one entry point that knows the surface.
+                    Action<DiscretisationProgress> report = null;
+                    if (progress != null) report = new ProgressMessages(progress, true).Report;
                     using (var surface = input.Surface.CreateNative())
-                    using (var pattern = Native.Pattern.ForSurface(surface, spec, input.Options))
+                    using (var pattern = Native.Pattern.ForSurface(surface, spec, input.Options, report, cancel))
                     {
                         output.Points = pattern.Points.ToArray();
                         output.Fit = pattern.Fit;
@@ -285,6 +301,13 @@ namespace Tpi.Logic
             catch (TpiException e)
             {
                 output.Errors.Add(TpiLibrary.StatusName(e.Status) + ": " + e.NativeMessage);
+            }
+            catch (OperationCanceledException e)
+            {
+                output.Points = new PatternPoint[0];
+                output.Fit = null;
+                output.Cancelled = true;
+                output.Errors.Add(ProgressText.Cancelled + ": " + e.Message);
             }
             return output;
         }

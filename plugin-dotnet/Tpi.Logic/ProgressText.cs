@@ -43,6 +43,15 @@ namespace Tpi.Logic
             return head + " " + percent + "%";
         }
 
+        /// <summary>
+        /// "run k: " and <see cref="Format"/>: the progress of the k-th of the many
+        /// discretisations a pattern made on a surface runs (a fit, a relaxation).
+        /// </summary>
+        public static string FormatRun(int run, DiscretisationProgress progress)
+        {
+            return "run " + run + ": " + Format(progress);
+        }
+
         /// <summary>The message of a cancelled solve.</summary>
         public const string Cancelled = "cancelled";
     }
@@ -57,12 +66,27 @@ namespace Tpi.Logic
         readonly Action<string> _show;
         string _last;
 
+        readonly bool _countRuns;
+
         /// <summary>Hands new texts to <paramref name="show"/>.</summary>
-        public ProgressMessages(Action<string> show)
+        public ProgressMessages(Action<string> show) : this(show, false)
+        {
+        }
+
+        /// <summary>
+        /// Hands new texts to <paramref name="show"/>; with <paramref name="countRuns"/>, for
+        /// a call that runs many discretisations, each start of a samples stage begins the next
+        /// run and the texts are <see cref="ProgressText.FormatRun"/>'s.
+        /// </summary>
+        public ProgressMessages(Action<string> show, bool countRuns)
         {
             if (show == null) throw new ArgumentNullException("show");
             _show = show;
+            _countRuns = countRuns;
         }
+
+        /// <summary>The discretisations seen to start so far (counted only with countRuns).</summary>
+        public int Runs { get; private set; }
 
         /// <summary>The number of texts handed on so far.</summary>
         public int Shown { get; private set; }
@@ -70,9 +94,11 @@ namespace Tpi.Logic
         /// <summary>Takes one report.</summary>
         public void Report(DiscretisationProgress progress)
         {
-            var text = ProgressText.Format(progress);
+            string text;
             lock (this)
             {
+                if (_countRuns && progress.Stage == Stage.Samples && progress.Done == 0) Runs++;
+                text = _countRuns ? ProgressText.FormatRun(Runs, progress) : ProgressText.Format(progress);
                 if (text == _last) return;
                 _last = text;
                 Shown++;

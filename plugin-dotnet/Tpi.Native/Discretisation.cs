@@ -76,22 +76,8 @@ namespace Tpi.Native
         public static Discretisation Create(Surface surface, Pattern pattern, DiscretisationOptions options, Action<DiscretisationProgress> progress, CancellationToken cancel)
         {
             cancel.ThrowIfCancellationRequested();
-            Exception thrown = null;
-            // Kept alive by the GC.KeepAlive below until the library has returned.
-            UnsafeNativeMethods.ProgressCallback callback = (userData, stage, done, total) =>
-            {
-                // No exception may cross into the library: it is kept and cancels the run.
-                try
-                {
-                    if (progress != null) progress(new DiscretisationProgress((Stage)stage, done, total));
-                    return cancel.IsCancellationRequested ? 1 : 0;
-                }
-                catch (Exception e)
-                {
-                    if (thrown == null) thrown = e;
-                    return 1;
-                }
-            };
+            var relay = new ProgressRelay(progress, cancel);
+            var callback = relay.Callback;
             DiscretisationHandle h;
             Status s;
             if (options == null)
@@ -103,18 +89,7 @@ namespace Tpi.Native
                 var native = options.ToNative();
                 s = UnsafeNativeMethods.tpi_discretise_with_progress(Surface.HandleOf(surface), Pattern.HandleOf(pattern), ref native, callback, IntPtr.Zero, out h);
             }
-            GC.KeepAlive(callback);
-            if (thrown != null)
-            {
-                if (h != null) h.Dispose();
-                throw new InvalidOperationException("the progress handler threw: " + thrown.Message, thrown);
-            }
-            if (s == Status.Cancelled)
-            {
-                var message = TpiLibrary.LastErrorMessage();
-                if (h != null) h.Dispose();
-                throw new OperationCanceledException(message, cancel);
-            }
+            relay.Finish(s, h);
             return Created(s, h, "tpi_discretise_with_progress");
         }
 

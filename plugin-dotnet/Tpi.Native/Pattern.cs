@@ -1,5 +1,6 @@
 using System;
 using System.Collections.Generic;
+using System.Threading;
 using Tpi.Native.Interop;
 
 namespace Tpi.Native
@@ -122,6 +123,38 @@ namespace Tpi.Native
             }
             GC.KeepAlive(surface);
             return Created(s, h, "tpi_pattern_new_for_surface");
+        }
+
+        /// <summary>
+        /// <see cref="ForSurface(Surface, string, DiscretisationOptions)"/> (the same points)
+        /// reporting the stages of every discretisation the spec runs (a fit runs tens of them,
+        /// a relaxation one per iteration; each from <see cref="Stage.Samples"/> again) to
+        /// <paramref name="progress"/> (may be null), and stopping when <paramref name="cancel"/>
+        /// is cancelled: the library asks between stages, so the call returns within one
+        /// stage's time. Then it throws <see cref="OperationCanceledException"/> for
+        /// <paramref name="cancel"/> and nothing is created
+        /// (tpi_pattern_new_for_surface_with_progress). <paramref name="progress"/> is called on
+        /// the calling thread only; an exception it throws cancels the call and is rethrown.
+        /// </summary>
+        public static Pattern ForSurface(Surface surface, string spec, DiscretisationOptions options, Action<DiscretisationProgress> progress, CancellationToken cancel)
+        {
+            cancel.ThrowIfCancellationRequested();
+            var relay = new ProgressRelay(progress, cancel);
+            PatternHandle h;
+            Status s;
+            var text = spec == null ? null : TpiLibrary.EncodeUtf8(spec);
+            if (options == null)
+            {
+                s = UnsafeNativeMethods.tpi_pattern_new_for_surface_with_progress_defaults(Surface.HandleOf(surface), text, IntPtr.Zero, relay.Callback, IntPtr.Zero, out h);
+            }
+            else
+            {
+                var native = options.ToNative();
+                s = UnsafeNativeMethods.tpi_pattern_new_for_surface_with_progress(Surface.HandleOf(surface), text, ref native, relay.Callback, IntPtr.Zero, out h);
+            }
+            GC.KeepAlive(surface);
+            relay.Finish(s, h);
+            return Created(s, h, "tpi_pattern_new_for_surface_with_progress");
         }
 
         /// <summary>How the fit went (tpi_pattern_fit_report), or null when the pattern was not made by a fit:D spec.</summary>

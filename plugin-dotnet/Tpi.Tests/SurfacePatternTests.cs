@@ -213,6 +213,47 @@ namespace Tpi.Tests
         }
 
         [Test]
+        public void AFitShowsTheProgressOfEachRunAndStopsWhenCancelled()
+        {
+            var sphere = new AnalyticSurfaceSpec(AnalyticKind.SphereCap, Radius, -3, 3, -3, 3);
+            var input = new PatternInput { Surface = sphere, OnSurface = new SurfacePatternInputs { MaxDeviation = 0.02 } };
+            var plain = ComponentSolvers.Pattern(input);
+            var texts = new List<string>();
+            var watched = ComponentSolvers.Pattern(input, t => texts.Add(t), System.Threading.CancellationToken.None);
+            Assert.IsEmpty(watched.Errors);
+            Assert.IsFalse(watched.Cancelled);
+            CollectionAssert.AreEqual(plain.Points, watched.Points);
+            // One "run k: 1/6 samples 0%" per discretisation the fit says it ran, in order.
+            var starts = texts.Where(t => t.EndsWith(": 1/6 samples 0%", StringComparison.Ordinal)).ToList();
+            int runs = (int)watched.Fit.Value.Discretisations;
+            Assert.GreaterOrEqual(runs, 3);
+            CollectionAssert.AreEqual(Enumerable.Range(1, runs).Select(k => "run " + k + ": 1/6 samples 0%"), starts);
+            Assert.AreEqual("run " + runs + ": 6/6 report 100%", texts.Last());
+            for (int k = 1; k < texts.Count; k++) Assert.AreNotEqual(texts[k - 1], texts[k]);
+
+            // Cancelled while the third run starts: no points, the flag, an error naming the stage.
+            using (var source = new System.Threading.CancellationTokenSource())
+            {
+                var cancelled = ComponentSolvers.Pattern(input, t => { if (t == "run 3: 1/6 samples 0%") source.Cancel(); }, source.Token);
+                Assert.IsTrue(cancelled.Cancelled);
+                Assert.IsEmpty(cancelled.Points);
+                Assert.IsNull(cancelled.Fit);
+                StringAssert.StartsWith(ProgressText.Cancelled + ": ", cancelled.Errors.Single());
+                StringAssert.Contains("samples", cancelled.Errors.Single());
+            }
+            using (var surface = sphere.CreateNative())
+            using (var source = new System.Threading.CancellationTokenSource())
+            {
+                source.Cancel();
+                Assert.Throws<OperationCanceledException>(() => Pattern.ForSurface(surface, "fit:0.02", null, null, source.Token).Dispose());
+                // A handler that throws stops the fit; its exception comes back wrapped.
+                var thrown = Assert.Throws<InvalidOperationException>(() =>
+                    Pattern.ForSurface(surface, "fit:0.02", null, p => { throw new ArgumentException("boom"); }, System.Threading.CancellationToken.None).Dispose());
+                StringAssert.Contains("boom", thrown.Message);
+            }
+        }
+
+        [Test]
         public void ARejectedIterationCarriesItsReasonsAndNoPoints()
         {
             var rejected = PatternOutput.Rejected(new[] { "unknown generator 'hexx'", "second" });

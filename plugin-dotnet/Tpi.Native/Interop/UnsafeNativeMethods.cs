@@ -167,6 +167,16 @@ namespace Tpi.Native.Interop
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true, EntryPoint = "tpi_pattern_new_for_surface")]
         internal static extern Status tpi_pattern_new_for_surface_defaults(SurfaceHandle surface, byte[] spec, IntPtr nullOptions, out PatternHandle @out);
 
+        // enum TpiStatus tpi_pattern_new_for_surface_with_progress(const struct TpiSurface *surface,
+        //     const char *spec, const struct TpiOptions *options, TpiProgressCallback callback,
+        //     void *user_data, struct TpiPattern **out);
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        internal static extern Status tpi_pattern_new_for_surface_with_progress(SurfaceHandle surface, byte[] spec, ref NativeOptions options, ProgressCallback callback, IntPtr userData, out PatternHandle @out);
+
+        // (the same entry point with options = NULL, for the defaults)
+        [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true, EntryPoint = "tpi_pattern_new_for_surface_with_progress")]
+        internal static extern Status tpi_pattern_new_for_surface_with_progress_defaults(SurfaceHandle surface, byte[] spec, IntPtr nullOptions, ProgressCallback callback, IntPtr userData, out PatternHandle @out);
+
         // enum TpiStatus tpi_pattern_fit_report(const struct TpiPattern *pattern, struct TpiFitReport *out);
         [DllImport(Lib, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         internal static extern Status tpi_pattern_fit_report(PatternHandle pattern, ref FitReport @out);
