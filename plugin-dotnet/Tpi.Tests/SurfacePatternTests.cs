@@ -254,6 +254,48 @@ namespace Tpi.Tests
         }
 
         [Test]
+        public void ACommandsFitRunsOnAWorkerShowsEachTextOnceAndStopsWhenCancelled()
+        {
+            var sphere = new AnalyticSurfaceSpec(AnalyticKind.SphereCap, Radius, -3, 3, -3, 3);
+            var input = new PatternInput { Surface = sphere, OnSurface = new SurfacePatternInputs { MaxDeviation = 0.02 } };
+            int caller = System.Threading.Thread.CurrentThread.ManagedThreadId;
+            var shown = new List<string>();
+            int pumps = 0, workerThread = -1;
+            var output = ForegroundWait.Run((progress, token) =>
+            {
+                workerThread = System.Threading.Thread.CurrentThread.ManagedThreadId;
+                return ComponentSolvers.Pattern(input, progress, token);
+            }, System.Threading.CancellationToken.None, t =>
+            {
+                Assert.AreEqual(caller, System.Threading.Thread.CurrentThread.ManagedThreadId);
+                shown.Add(t);
+            }, () => pumps++);
+            Assert.AreNotEqual(caller, workerThread);
+            Assert.IsEmpty(output.Errors);
+            CollectionAssert.AreEqual(ComponentSolvers.Pattern(input).Points, output.Points);
+            for (int k = 1; k < shown.Count; k++) Assert.AreNotEqual(shown[k - 1], shown[k]);
+            Assert.IsTrue(shown.All(t => t.StartsWith("run ", StringComparison.Ordinal)));
+
+            // The pump is where the host sees Escape: cancelling there stops the work.
+            using (var source = new System.Threading.CancellationTokenSource())
+            {
+                var started = new System.Threading.ManualResetEventSlim();
+                var cancelled = ForegroundWait.Run((progress, token) =>
+                {
+                    started.Set();
+                    // Work that runs until it is cancelled (a fit of a tolerance far too small).
+                    while (!token.IsCancellationRequested) System.Threading.Thread.Sleep(1);
+                    return ComponentSolvers.Pattern(input, progress, token);
+                }, source.Token, null, () => { if (started.IsSet) source.Cancel(); });
+                Assert.IsTrue(cancelled.Cancelled);
+                Assert.IsEmpty(cancelled.Points);
+            }
+            // What the work throws comes back as it was thrown.
+            Assert.Throws<ArgumentException>(() => ForegroundWait.Run<int>((p, t) => { throw new ArgumentException("x"); },
+                System.Threading.CancellationToken.None, null, null));
+        }
+
+        [Test]
         public void ARejectedIterationCarriesItsReasonsAndNoPoints()
         {
             var rejected = PatternOutput.Rejected(new[] { "unknown generator 'hexx'", "second" });

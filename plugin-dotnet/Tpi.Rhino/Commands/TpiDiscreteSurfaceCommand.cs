@@ -101,14 +101,18 @@ namespace Tpi.RhinoPlugIn
             else
             {
                 // A pattern made on the surface is made with the chosen planes (they decide what a fit measures).
-                var output = ComponentSolvers.Pattern(new PatternInput
+                var input = new PatternInput
                 {
                     Generator = generator,
                     Surface = onSurface.Any ? spec : null,
                     OnSurface = onSurface,
                     Options = options,
-                });
-                if (output.Errors.Count > 0) { RhinoApp.WriteLine("TPI: " + output.Errors[0]); return Result.Failure; }
+                };
+                // A fit or a relaxation runs many discretisations: on a worker, Escape cancels it.
+                var output = Escapable.Run("TPI pattern", (progress, cancel) => ComponentSolvers.Pattern(input, progress, cancel));
+                if (output.Errors.Count > 0) RhinoApp.WriteLine("TPI: " + output.Errors[0]);
+                if (output.Cancelled) return Result.Cancel;
+                if (output.Errors.Count > 0) return Result.Failure;
                 foreach (var w in output.Warnings) RhinoApp.WriteLine("TPI: " + w);
                 if (onSurface.Any) RhinoApp.WriteLine("TPI: pattern " + output.Summary());
                 points = new List<PatternPoint>(output.Points);

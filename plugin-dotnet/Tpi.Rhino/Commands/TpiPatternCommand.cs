@@ -43,12 +43,14 @@ namespace Tpi.RhinoPlugIn
             List<Point3d> points = null;
             Action preview = () =>
             {
-                var output = ComponentSolvers.Pattern(new PatternInput
+                var input = new PatternInput
                 {
                     Generator = generator,
                     Surface = onSurface != null && onSurface.Any ? surfaceSpec : null,
                     OnSurface = onSurface,
-                });
+                };
+                // A fit or a relaxation runs many discretisations: on a worker, Escape cancels it.
+                var output = Escapable.Run("TPI pattern", (progress, cancel) => ComponentSolvers.Pattern(input, progress, cancel));
                 if (output.Errors.Count > 0) RhinoApp.WriteLine("TPI: " + output.Errors[0]);
                 foreach (var w in output.Warnings) RhinoApp.WriteLine("TPI: " + w);
                 points = output.Points.Select(p => RhinoConvert.PointAt(surface, p)).ToList();

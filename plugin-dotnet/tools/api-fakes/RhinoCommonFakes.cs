@@ -49,6 +49,9 @@ namespace Rhino
     public static class RhinoApp
     {
         public static event EventHandler Idle;
+        public static event EventHandler EscapeKeyPressed;
+        public static void Wait() { }
+        public static void SetCommandPrompt(string prompt) { }
         public static void WriteLine(string message) { }
         public static void WriteLine(string format, object arg0) { }
         public static void WriteLine(string format, object arg0, object arg1) { }
