@@ -227,17 +227,16 @@ pub unsafe extern "C" fn tpi_pattern_new_for_surface(
     options: *const TpiOptions,
     out: *mut *mut TpiPattern,
 ) -> TpiStatus {
-    ffi_boundary! {
-        // SAFETY: the caller's contract for every argument.
-        let out = unsafe { OutPtr::handle(out, "out") }?;
-        let surface = unsafe { try_handle(surface, "surface") }?;
-        let spec = unsafe { try_str(spec, "spec") }?;
-        let options = unsafe { read_options(options) }?;
-        let made = SurfacePatternSpec::parse(spec)?.generate(&surface.model, &options)?;
-        let pattern = Pattern::new(made.uv);
-        pattern.validate()?;
-        out.set_boxed(TpiPattern { pattern, fit: made.fit });
-        Ok(())
+    // SAFETY: the caller's contract, and no callback.
+    unsafe {
+        tpi_pattern_new_for_surface_with_progress(
+            surface,
+            spec,
+            options,
+            None,
+            std::ptr::null_mut(),
+            out,
+        )
     }
 }
 
