@@ -317,7 +317,9 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
     // A surface-aware spec (relax:, fit:, align:, density:) is made on the surface with the
     // same plane mode.
     progress.stage("pattern", None, opts.pattern.clone());
-    let pattern = load_pattern(&opts.pattern, &surface, &options)?;
+    // A fit or a relaxation runs many discretisations: the spinner's message follows them.
+    let runs = crate::progress::PatternRuns::new(&progress, opts.pattern.clone());
+    let pattern = load_pattern(&opts.pattern, &surface, &options, &runs)?;
     progress.end_stage();
 
     // The core's stages, each reported as it runs.

@@ -280,7 +280,7 @@ pub(crate) fn run(args: FabricateArgs) -> Result<(), CliError> {
         planes: opts.planes,
         ..DiscretiseOptions::default()
     };
-    let pattern = load_pattern(&opts.pattern, &surface, &options)?;
+    let pattern = load_pattern(&opts.pattern, &surface, &options, &tpi_core::NoProgress)?;
     let run_core = || -> Result<Result<Fabrication, FabricationError>, tpi_core::TpiError> {
         let mesh = discretise(&surface, &pattern.pattern.uv, &options)?;
         Ok(fabricate(&mesh, &opts.fab))

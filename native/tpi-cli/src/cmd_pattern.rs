@@ -513,7 +513,11 @@ fn run_fit(
         planes,
         ..Default::default()
     };
-    let fitted = tpi_core::fit_pattern(&surface, d, seed, &options)
+    // Tens of discretisations, then the uniform baseline's: a spinner says how far they are.
+    let progress = crate::progress::Progress::start();
+    progress.stage("fit", None, format!("max deviation {d}"));
+    let runs = crate::progress::PatternRuns::new(&progress, format!("fit:{d}"));
+    let fitted = tpi_core::fit_pattern_with_progress(&surface, d, seed, &options, &runs)
         .map_err(|e| CliError::core(&name, &e))?;
     if !fitted.met {
         return Err(CliError::input(
@@ -522,8 +526,10 @@ fn run_fit(
         ));
     }
     let search_limit = fitted.uv.len() * tpi_core::HEX_BASELINE_SEARCH_FACTOR;
+    progress.stage("baseline", None, format!("uniform hex for {d}"));
     let hex = tpi_core::hex_baseline(&surface, d, search_limit, &options)
         .map_err(|e| CliError::core(&name, &e))?;
+    progress.finish();
     let described = format!("max deviation {d} on {name}");
     let names = write_pattern(
         &fitted.uv,

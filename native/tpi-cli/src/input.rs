@@ -41,6 +41,7 @@ pub(crate) fn load_pattern(
     arg: &str,
     surface: &SurfaceModel,
     options: &DiscretiseOptions,
+    progress: &dyn tpi_core::Progress,
 ) -> Result<PatternSource, CliError> {
     let path = Path::new(arg);
     if path.exists() {
@@ -89,7 +90,7 @@ pub(crate) fn load_pattern(
     }
     let label = spec.to_string();
     let made = spec
-        .generate(surface, options)
+        .generate_with_progress(surface, options, progress)
         .map_err(|e| CliError::core(&label, &e))?;
     if let Some(fit) = made.fit.filter(|f| !f.met) {
         return Err(CliError::input(

@@ -15,6 +15,7 @@
 
 use std::borrow::Cow;
 use std::io::IsTerminal;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex, RwLock};
 use std::thread::JoinHandle;
 use std::time::Duration;
@@ -286,6 +287,39 @@ impl Progress {
 impl Drop for Progress {
     fn drop(&mut self) {
         self.stop();
+    }
+}
+
+/// The discretisations a pattern made on a surface runs (a fit's tens, a relaxation's one per
+/// iteration), shown as the message of the command's current stage (`pattern`, `fit`):
+/// "LABEL: run K, STAGE". A line per run and stage would scroll a fit's hundreds of stages
+/// by; the one line says that it is alive and how far it is.
+pub(crate) struct PatternRuns<'a> {
+    progress: &'a Progress,
+    label: String,
+    runs: AtomicUsize,
+}
+
+impl<'a> PatternRuns<'a> {
+    /// Reports to `progress`'s current stage, each message starting with `label`.
+    pub(crate) fn new(progress: &'a Progress, label: impl Into<String>) -> Self {
+        Self {
+            progress,
+            label: label.into(),
+            runs: AtomicUsize::new(0),
+        }
+    }
+}
+
+impl tpi_core::Progress for PatternRuns<'_> {
+    fn stage_started(&self, stage: Stage, _total: Option<usize>) {
+        let run = if stage == Stage::Samples {
+            self.runs.fetch_add(1, Ordering::SeqCst) + 1
+        } else {
+            self.runs.load(Ordering::SeqCst)
+        };
+        self.progress
+            .message(format!("{}: run {run}, {}", self.label, stage.name()));
     }
 }
 

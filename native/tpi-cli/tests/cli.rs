@@ -697,6 +697,50 @@ fn progress_bars_on_a_terminal() {
     assert!(!after.contains("ETA") && !after.contains("[#"), "{after:?}");
 }
 
+#[test]
+fn a_relaxation_shows_its_runs_on_a_terminal() {
+    // A pattern made on the surface runs a discretisation per Lloyd iteration before the
+    // mesh's own: the `pattern` spinner's message counts them ("SPEC: run K, STAGE"), on a
+    // pseudo-terminal from `script` as in progress_bars_on_a_terminal.
+    assert!(
+        Command::new("script").arg("--version").output().is_ok(),
+        "the `script` command (Debian package bsdutils) is needed to give tpi a terminal"
+    );
+    let dir = scratch("tty-runs");
+    let out = dir.join("relaxed.json");
+    let spec = "relax:3:random:20000:seed=1";
+    let command = format!(
+        "{TPI} discretise --surface {} --pattern {spec} --out {} --threads 1",
+        sample("nurbs-dome.json"),
+        out.display()
+    );
+    let run = Command::new("script")
+        .args(["-qfec", &command, "/dev/null"])
+        .env("TPI_PROGRESS_DELAY_MS", "0")
+        .env("TERM", "xterm")
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", text(&run.stderr));
+    let all = text(&run.stdout);
+    let marker = format!("{spec}: run ");
+    let runs: Vec<u32> = all
+        .match_indices(&marker)
+        .filter_map(|(at, _)| {
+            let rest = &all[at + marker.len()..];
+            rest[..rest.find(',')?].parse().ok()
+        })
+        .collect();
+    // The display redraws at most ten times a second, so not every run need be drawn; but
+    // some are, and none beyond the three iterations.
+    assert!(!runs.is_empty(), "no run counted on a terminal: {all:?}");
+    assert!(runs.iter().all(|&k| (1..=3).contains(&k)), "{runs:?}");
+    let summary = all.find("tpi: ").expect("a summary");
+    assert!(
+        !all[summary..].contains(&marker),
+        "run messages after the summary"
+    );
+}
+
 // ---- pattern and info ----
 
 #[test]
