@@ -642,18 +642,18 @@ fn no_progress_bars_when_stderr_is_not_a_terminal() {
     }
 }
 
-#[test]
-fn progress_bars_on_a_terminal() {
-    // util-linux `script` (Debian package bsdutils, installed by .ci/run) gives the command a
-    // pseudo-terminal. Missing, the test fails: it must not pass without checking anything.
+/// `tpi discretise --surface samples/nurbs-dome.json --pattern PATTERN --out DIR/OUT` on a
+/// pseudo-terminal, progress drawn at once: what the terminal showed. util-linux `script`
+/// (Debian package bsdutils, installed by .ci/run) gives the command its terminal; missing,
+/// the test fails: it must not pass without checking anything.
+fn discretise_on_a_terminal(dir: &str, pattern: &str, out: &str) -> String {
     assert!(
         Command::new("script").arg("--version").output().is_ok(),
         "the `script` command (Debian package bsdutils) is needed to give tpi a terminal"
     );
-    let dir = scratch("tty");
-    let out = dir.join("big.png");
+    let out = scratch(dir).join(out);
     let command = format!(
-        "{TPI} discretise --surface {} --pattern random:20000:seed=1 --out {} --threads 1",
+        "{TPI} discretise --surface {} --pattern {pattern} --out {} --threads 1",
         sample("nurbs-dome.json"),
         out.display()
     );
@@ -665,7 +665,12 @@ fn progress_bars_on_a_terminal() {
         .output()
         .unwrap();
     assert!(run.status.success(), "{}", text(&run.stderr));
-    let all = text(&run.stdout);
+    text(&run.stdout)
+}
+
+#[test]
+fn progress_bars_on_a_terminal() {
+    let all = discretise_on_a_terminal("tty", "random:20000:seed=1", "big.png");
     // One bar per stage that runs, with count/total and percentage; a spinner for the
     // triangulation, which has no total.
     for bar in [
@@ -701,27 +706,9 @@ fn progress_bars_on_a_terminal() {
 fn a_relaxation_shows_its_runs_on_a_terminal() {
     // A pattern made on the surface runs a discretisation per Lloyd iteration before the
     // mesh's own: the `pattern` spinner's message counts them ("SPEC: run K, STAGE"), on a
-    // pseudo-terminal from `script` as in progress_bars_on_a_terminal.
-    assert!(
-        Command::new("script").arg("--version").output().is_ok(),
-        "the `script` command (Debian package bsdutils) is needed to give tpi a terminal"
-    );
-    let dir = scratch("tty-runs");
-    let out = dir.join("relaxed.json");
+    // pseudo-terminal as in progress_bars_on_a_terminal.
     let spec = "relax:3:random:20000:seed=1";
-    let command = format!(
-        "{TPI} discretise --surface {} --pattern {spec} --out {} --threads 1",
-        sample("nurbs-dome.json"),
-        out.display()
-    );
-    let run = Command::new("script")
-        .args(["-qfec", &command, "/dev/null"])
-        .env("TPI_PROGRESS_DELAY_MS", "0")
-        .env("TERM", "xterm")
-        .output()
-        .unwrap();
-    assert!(run.status.success(), "{}", text(&run.stderr));
-    let all = text(&run.stdout);
+    let all = discretise_on_a_terminal("tty-runs", spec, "relaxed.json");
     let marker = format!("{spec}: run ");
     let runs: Vec<u32> = all
         .match_indices(&marker)
