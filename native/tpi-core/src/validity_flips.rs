@@ -173,6 +173,9 @@ pub(crate) struct State<'a> {
     work: u64,
     /// The work at which detours stop, even within one facet's candidates.
     work_budget: u64,
+    /// A fan buffer for the walks around points (taken and put back: no allocation per flip
+    /// tried).
+    fan: Vec<u32>,
 }
 
 /// The old values of what a tentative sequence of changes replaced, in order.
@@ -250,6 +253,7 @@ impl<'a> State<'a> {
             detours: 0,
             work: 0,
             work_budget: u64::MAX,
+            fan: Vec::new(),
         };
         state.invalid = state.initial_verdicts(judged);
         state
@@ -296,7 +300,10 @@ impl<'a> State<'a> {
                 Change::Flip(c, d) => {
                     // Flipped back by its points: triangle labels and rotations need not be
                     // those the flip left once later flips were undone.
-                    if let Some((t, k)) = find_edge(self.tri, &self.incident, c, d) {
+                    let mut fan = std::mem::take(&mut self.fan);
+                    let edge = find_edge(self.tri, &self.incident, c, d, &mut fan);
+                    self.fan = fan;
+                    if let Some((t, k)) = edge {
                         self.flip(t as u32, k);
                     }
                 }
@@ -331,14 +338,15 @@ impl<'a> State<'a> {
         }
         self.planes.to_mut()[j as usize] = plane;
         self.plane_changes += 1;
-        let mut fan = Vec::new();
+        let mut fan = std::mem::take(&mut self.fan);
         self.tri.fan(j, self.incident[j as usize], &mut fan);
-        for t in fan {
+        for &t in &fan {
             self.vertex[t as usize] = triangle_vertex(&self.planes, self.tri.triangles[t as usize]);
             for v in self.tri.triangles[t as usize] {
                 self.forget(v);
             }
         }
+        self.fan = fan;
     }
 
     /// Whether point x keeps the mesh a disc around it: a real point has a real neighbour
@@ -423,7 +431,7 @@ impl<'a> State<'a> {
     /// Builds (or reuses) the facet of point i.
     fn facet(&mut self, i: u32) -> &Facet {
         if self.facets[i as usize].is_none() {
-            let mut fan = Vec::new();
+            let mut fan = std::mem::take(&mut self.fan);
             let polygon = self.polygon(i, &mut fan);
             let tangle = polygon
                 .as_ref()
@@ -445,6 +453,7 @@ impl<'a> State<'a> {
             } else {
                 Vec::new()
             };
+            self.fan = fan;
             self.facets[i as usize] = Some(Facet {
                 polygon,
                 simple,
@@ -579,31 +588,37 @@ impl<'a> State<'a> {
 
     /// The edges a repair of interior facet i tries, as point pairs: its star edges, then its
     /// link edges; None where its fan does not close.
-    fn repair_candidates(&self, i: u32) -> Option<Vec<(u32, u32)>> {
-        let mut fan = Vec::new();
-        if self.tri.fan(i, self.incident[i as usize], &mut fan) != Fan::Closed {
-            return None;
-        }
-        let mut candidates: Vec<(u32, u32)> = Vec::new();
-        for &t in &fan {
-            let v = self.tri.triangles[t as usize];
-            let k = v.iter().position(|&x| x == i).unwrap_or(0);
-            let (j, m) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-            candidates.push((i, j));
-            candidates.push((j, m));
-        }
-        Some(candidates)
+    fn repair_candidates(&mut self, i: u32) -> Option<Vec<(u32, u32)>> {
+        let mut fan = std::mem::take(&mut self.fan);
+        let closed = self.tri.fan(i, self.incident[i as usize], &mut fan) == Fan::Closed;
+        let candidates = closed.then(|| {
+            let mut candidates: Vec<(u32, u32)> = Vec::with_capacity(2 * fan.len());
+            for &t in &fan {
+                let v = self.tri.triangles[t as usize];
+                let k = v.iter().position(|&x| x == i).unwrap_or(0);
+                let (j, m) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+                candidates.push((i, j));
+                candidates.push((j, m));
+            }
+            candidates
+        });
+        self.fan = fan;
+        candidates
     }
 
     /// The interior edge (a, b) as (triangle, opposite position, quad points (c, a, b, d))
     /// where it can be flipped. A flip is a topological move: the structure stays a
     /// triangulated disc whatever the quad's shape in the plane (facet loops follow
     /// adjacency, not positions), unless the new diagonal (c, d) exists already.
-    fn flippable(&self, a: u32, b: u32) -> Option<(usize, usize, [u32; 4])> {
-        let (t, k) = find_edge(self.tri, &self.incident, a, b)?;
-        let quad = quad_points(self.tri, t, k);
-        let [c, _, _, d] = quad;
-        (c != d && !has_edge(self.tri, &self.incident, c, d)).then_some((t, k, quad))
+    fn flippable(&mut self, a: u32, b: u32) -> Option<(usize, usize, [u32; 4])> {
+        let mut fan = std::mem::take(&mut self.fan);
+        let flippable = find_edge(self.tri, &self.incident, a, b, &mut fan).and_then(|(t, k)| {
+            let quad = quad_points(self.tri, t, k);
+            let [c, _, _, d] = quad;
+            (c != d && !has_edge(self.tri, &self.incident, c, d, &mut fan)).then_some((t, k, quad))
+        });
+        self.fan = fan;
+        flippable
     }
 
     /// Where no single flip repairs facet i: a star or link edge of i flipped although it
@@ -630,7 +645,10 @@ impl<'a> State<'a> {
                 self.undo();
                 continue;
             }
-            let mut region = affected_points(self.tri, &self.incident, &quad);
+            let mut region = Vec::new();
+            let mut fan = std::mem::take(&mut self.fan);
+            affected_points_into(self.tri, &self.incident, &quad, &mut region, &mut fan);
+            self.fan = fan;
             region.retain(|&x| (x as usize) < judged);
             let mut targets = Vec::new();
             for &x in &region {
@@ -687,7 +705,10 @@ impl<'a> State<'a> {
                 continue;
             };
             let touches_ghost = quad.iter().any(|&x| x as usize >= judged);
-            let mut affected = affected_points(self.tri, &self.incident, &quad);
+            let mut affected = Vec::new();
+            let mut fan = std::mem::take(&mut self.fan);
+            affected_points_into(self.tri, &self.incident, &quad, &mut affected, &mut fan);
+            self.fan = fan;
             affected.retain(|&x| (x as usize) < judged);
             let before = affected
                 .iter()
@@ -747,27 +768,38 @@ fn triangle_vertex(planes: &[Plane], t: [u32; 3]) -> DVec3 {
     }
 }
 
-/// Whether points a and b are joined by an edge (interior or hull).
-fn has_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32) -> bool {
-    let mut fan = Vec::new();
-    tri.fan(a, incident[a as usize], &mut fan);
+/// Whether points a and b are joined by an edge (interior or hull); `fan` is a buffer.
+fn has_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32, fan: &mut Vec<u32>) -> bool {
+    tri.fan(a, incident[a as usize], fan);
     fan.iter().any(|&t| tri.triangles[t as usize].contains(&b))
 }
 
 /// Points whose validity a flip of the quad's diagonal can change: the quad's four points
 /// (their polygons change) and their neighbours (their overlap with those polygons).
 pub(crate) fn affected_points(tri: &DualTriangulation, incident: &[u32], quad: &[u32]) -> Vec<u32> {
-    let mut out: Vec<u32> = quad.to_vec();
-    let mut fan = Vec::new();
+    let mut out = Vec::new();
+    affected_points_into(tri, incident, quad, &mut out, &mut Vec::new());
+    out
+}
+
+/// [`affected_points`] into `out` (cleared first), with `fan` as a buffer.
+fn affected_points_into(
+    tri: &DualTriangulation,
+    incident: &[u32],
+    quad: &[u32],
+    out: &mut Vec<u32>,
+    fan: &mut Vec<u32>,
+) {
+    out.clear();
+    out.extend_from_slice(quad);
     for &p in quad {
-        tri.fan(p, incident[p as usize], &mut fan);
-        for &t in &fan {
+        tri.fan(p, incident[p as usize], fan);
+        for &t in fan.iter() {
             out.extend_from_slice(&tri.triangles[t as usize]);
         }
     }
     out.sort_unstable();
     out.dedup();
-    out
 }
 
 /// The four points (c, a, b, d) of the quad around the edge opposite vertex k of triangle t.
@@ -782,11 +814,17 @@ fn quad_points(tri: &DualTriangulation, t: usize, k: usize) -> [u32; 4] {
     [c, a, b, tri.triangles[t2][k2]]
 }
 
-/// The interior edge (a, b) as (triangle, opposite position), if it exists.
-fn find_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32) -> Option<(usize, usize)> {
-    let mut fan = Vec::new();
-    tri.fan(a, incident[a as usize], &mut fan);
-    for &t in &fan {
+/// The interior edge (a, b) as (triangle, opposite position), if it exists; `fan` is a
+/// buffer.
+fn find_edge(
+    tri: &DualTriangulation,
+    incident: &[u32],
+    a: u32,
+    b: u32,
+    fan: &mut Vec<u32>,
+) -> Option<(usize, usize)> {
+    tri.fan(a, incident[a as usize], fan);
+    for &t in fan.iter() {
         let v = tri.triangles[t as usize];
         let p = v.iter().position(|&x| x == a)?;
         for (next, opposite) in [((p + 1) % 3, (p + 2) % 3), ((p + 2) % 3, (p + 1) % 3)] {
@@ -806,14 +844,31 @@ fn weld_loop(points: &mut Vec<DVec3>, weld: f64) {
     }
 }
 
+/// Polygons up to this many vertices are flattened into a buffer on the stack.
+const FLAT_STACK: usize = 32;
+
 /// Coordinates in the plane perpendicular to `normal`, frame (e1, e2, normal) right-handed,
-/// relative to `origin` (so that rounding is relative to the polygons' own size).
-fn flatten(points: &[DVec3], normal: DVec3, origin: DVec3) -> Vec<DVec2> {
+/// relative to `origin` (so that rounding is relative to the polygons' own size): into
+/// `stack` where the points fit, else into `heap` (no allocation for the usual facet).
+fn flatten_into<'b>(
+    points: &[DVec3],
+    normal: DVec3,
+    origin: DVec3,
+    stack: &'b mut [DVec2; FLAT_STACK],
+    heap: &'b mut Vec<DVec2>,
+) -> &'b [DVec2] {
     let (e1, e2) = normal.normalize_or(DVec3::Z).any_orthonormal_pair();
-    points
-        .iter()
-        .map(|&x| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2)))
-        .collect()
+    let to2 = |&x: &DVec3| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2));
+    if points.len() <= FLAT_STACK {
+        for (p, x) in stack.iter_mut().zip(points) {
+            *p = to2(x);
+        }
+        &stack[..points.len()]
+    } else {
+        heap.clear();
+        heap.extend(points.iter().map(to2));
+        heap
+    }
 }
 
 /// Longest edge of a closed polygon.
@@ -839,14 +894,15 @@ pub(crate) fn tangle(points: &[DVec3], normal: DVec3) -> usize {
     if !points.iter().all(|x| x.is_finite()) {
         return usize::MAX;
     }
-    let p = flatten(points, normal, origin);
+    let (mut stack, mut heap) = ([DVec2::ZERO; FLAT_STACK], Vec::new());
+    let p = flatten_into(points, normal, origin, &mut stack, &mut heap);
     let n = p.len();
     if n < 3 {
         return usize::MAX;
     }
     let area: f64 = (0..n).map(|k| p[k].perp_dot(p[(k + 1) % n])).sum();
     let not_ccw = if area > 0.0 { 0 } else { n };
-    not_ccw + crossing_edge_pairs(&p)
+    not_ccw + crossing_edge_pairs(p)
 }
 
 /// Polygons with more edges than this count their crossing edge pairs by a sweep in x.
