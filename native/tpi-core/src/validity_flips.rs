@@ -176,6 +176,12 @@ pub(crate) struct State<'a> {
     /// A fan buffer for the walks around points (taken and put back: no allocation per flip
     /// tried).
     fan: Vec<u32>,
+    /// Buffers of forgotten facets, reused by the next facets built.
+    polygon_pool: Vec<Vec<DVec3>>,
+    neighbour_pool: Vec<Vec<(u32, [DVec3; 2])>>,
+    /// Per point, the last `stamp` that collected it ([`State::affected_into`]).
+    seen: Vec<u32>,
+    stamp: u32,
 }
 
 /// The old values of what a tentative sequence of changes replaced, in order.
@@ -254,6 +260,10 @@ impl<'a> State<'a> {
             work: 0,
             work_budget: u64::MAX,
             fan: Vec::new(),
+            polygon_pool: Vec::new(),
+            neighbour_pool: Vec::new(),
+            seen: vec![0; points],
+            stamp: 0,
         };
         state.invalid = state.initial_verdicts(judged);
         state
@@ -422,37 +432,80 @@ impl<'a> State<'a> {
 
     /// Drops the cached facet of point v and every overlap verdict involving it.
     fn forget(&mut self, v: u32) {
-        self.facets[v as usize] = None;
-        for (other, _) in std::mem::take(&mut self.overlaps[v as usize]) {
+        if let Some(facet) = self.facets[v as usize].take() {
+            self.polygon_pool.extend(facet.polygon);
+            self.neighbour_pool.push(facet.neighbours);
+        }
+        let mut list = std::mem::take(&mut self.overlaps[v as usize]);
+        for &(other, _) in &list {
             self.overlaps[other as usize].retain(|&(x, _)| x != v);
         }
+        list.clear();
+        self.overlaps[v as usize] = list;
+    }
+
+    /// [`affected_points`] of `quad` into `out` (cleared first): sorted, each once, collected
+    /// by marks so that only the distinct points are sorted.
+    fn affected_into(&mut self, quad: &[u32], out: &mut Vec<u32>) {
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.seen.iter_mut().for_each(|s| *s = 0);
+            self.stamp = 1;
+        }
+        let stamp = self.stamp;
+        out.clear();
+        let mut fan = std::mem::take(&mut self.fan);
+        for &p in quad {
+            if self.seen[p as usize] != stamp {
+                self.seen[p as usize] = stamp;
+                out.push(p);
+            }
+        }
+        // With the points of the triangles around the quad's points.
+        for &p in quad {
+            self.tri.fan(p, self.incident[p as usize], &mut fan);
+            for &t in &fan {
+                for x in self.tri.triangles[t as usize] {
+                    if self.seen[x as usize] != stamp {
+                        self.seen[x as usize] = stamp;
+                        out.push(x);
+                    }
+                }
+            }
+        }
+        self.fan = fan;
+        out.sort_unstable();
     }
 
     /// Builds (or reuses) the facet of point i.
     fn facet(&mut self, i: u32) -> &Facet {
         if self.facets[i as usize].is_none() {
             let mut fan = std::mem::take(&mut self.fan);
-            let polygon = self.polygon(i, &mut fan);
+            let mut buffer = self.polygon_pool.pop().unwrap_or_default();
+            let polygon = if self.closed_polygon_into(i, &mut fan, &mut buffer) {
+                Some(buffer)
+            } else {
+                self.polygon_pool.push(buffer);
+                None
+            };
             let tangle = polygon
                 .as_ref()
                 .map_or(0, |p| tangle(p, self.planes[i as usize].normal));
             self.work += polygon.as_ref().map_or(0, |p| p.len() as u64);
             let simple = polygon.is_some() && tangle == 0;
-            let neighbours = if polygon.is_some() {
-                (0..fan.len())
-                    .filter_map(|k| {
-                        let v = self.tri.triangles[fan[k] as usize];
-                        let j = v[(v.iter().position(|&x| x == i).unwrap_or(0) + 1) % 3];
-                        let ends = [
-                            self.vertex[fan[(k + fan.len() - 1) % fan.len()] as usize],
-                            self.vertex[fan[k] as usize],
-                        ];
-                        ((j as usize) < self.judged).then_some((j, ends))
-                    })
-                    .collect()
-            } else {
-                Vec::new()
-            };
+            let mut neighbours = self.neighbour_pool.pop().unwrap_or_default();
+            neighbours.clear();
+            if polygon.is_some() {
+                neighbours.extend((0..fan.len()).filter_map(|k| {
+                    let v = self.tri.triangles[fan[k] as usize];
+                    let j = v[(v.iter().position(|&x| x == i).unwrap_or(0) + 1) % 3];
+                    let ends = [
+                        self.vertex[fan[(k + fan.len() - 1) % fan.len()] as usize],
+                        self.vertex[fan[k] as usize],
+                    ];
+                    ((j as usize) < self.judged).then_some((j, ends))
+                }));
+            }
             self.fan = fan;
             self.facets[i as usize] = Some(Facet {
                 polygon,
@@ -466,12 +519,21 @@ impl<'a> State<'a> {
 
     /// Facet i's polygon (welded), None where its fan does not close.
     fn polygon(&self, i: u32, fan: &mut Vec<u32>) -> Option<Vec<DVec3>> {
+        let mut polygon = Vec::new();
+        self.closed_polygon_into(i, fan, &mut polygon)
+            .then_some(polygon)
+    }
+
+    /// Facet i's polygon (welded) into `polygon` (cleared first); false where its fan does
+    /// not close.
+    fn closed_polygon_into(&self, i: u32, fan: &mut Vec<u32>, polygon: &mut Vec<DVec3>) -> bool {
+        polygon.clear();
         if self.tri.fan(i, self.incident[i as usize], fan) != Fan::Closed {
-            return None;
+            return false;
         }
-        let mut polygon: Vec<DVec3> = fan.iter().map(|&t| self.vertex[t as usize]).collect();
-        weld_loop(&mut polygon, self.weld);
-        Some(polygon)
+        polygon.extend(fan.iter().map(|&t| self.vertex[t as usize]));
+        weld_loop(polygon, self.weld);
+        true
     }
 
     /// The verdicts of facets 0..n: every polygon built and tested for simplicity once, then
@@ -645,10 +707,8 @@ impl<'a> State<'a> {
                 self.undo();
                 continue;
             }
-            let mut region = Vec::new();
-            let mut fan = std::mem::take(&mut self.fan);
-            affected_points_into(self.tri, &self.incident, &quad, &mut region, &mut fan);
-            self.fan = fan;
+            let mut region = Vec::with_capacity(AFFECTED_CAPACITY);
+            self.affected_into(&quad, &mut region);
             region.retain(|&x| (x as usize) < judged);
             let mut targets = Vec::new();
             for &x in &region {
@@ -705,10 +765,8 @@ impl<'a> State<'a> {
                 continue;
             };
             let touches_ghost = quad.iter().any(|&x| x as usize >= judged);
-            let mut affected = Vec::new();
-            let mut fan = std::mem::take(&mut self.fan);
-            affected_points_into(self.tri, &self.incident, &quad, &mut affected, &mut fan);
-            self.fan = fan;
+            let mut affected = Vec::with_capacity(AFFECTED_CAPACITY);
+            self.affected_into(&quad, &mut affected);
             affected.retain(|&x| (x as usize) < judged);
             let before = affected
                 .iter()
@@ -777,29 +835,17 @@ fn has_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32, fan: &mut
 /// Points whose validity a flip of the quad's diagonal can change: the quad's four points
 /// (their polygons change) and their neighbours (their overlap with those polygons).
 pub(crate) fn affected_points(tri: &DualTriangulation, incident: &[u32], quad: &[u32]) -> Vec<u32> {
-    let mut out = Vec::new();
-    affected_points_into(tri, incident, quad, &mut out, &mut Vec::new());
-    out
-}
-
-/// [`affected_points`] into `out` (cleared first), with `fan` as a buffer.
-fn affected_points_into(
-    tri: &DualTriangulation,
-    incident: &[u32],
-    quad: &[u32],
-    out: &mut Vec<u32>,
-    fan: &mut Vec<u32>,
-) {
-    out.clear();
-    out.extend_from_slice(quad);
+    let mut out: Vec<u32> = quad.to_vec();
+    let mut fan = Vec::new();
     for &p in quad {
-        tri.fan(p, incident[p as usize], fan);
-        for &t in fan.iter() {
+        tri.fan(p, incident[p as usize], &mut fan);
+        for &t in &fan {
             out.extend_from_slice(&tri.triangles[t as usize]);
         }
     }
     out.sort_unstable();
     out.dedup();
+    out
 }
 
 /// The four points (c, a, b, d) of the quad around the edge opposite vertex k of triangle t.
@@ -843,6 +889,9 @@ fn weld_loop(points: &mut Vec<DVec3>, weld: f64) {
         points.pop();
     }
 }
+
+/// Room for the points a flip can affect around a quad of four usual fans (no regrowth).
+const AFFECTED_CAPACITY: usize = 48;
 
 /// Polygons up to this many vertices are flattened into a buffer on the stack.
 const FLAT_STACK: usize = 32;
