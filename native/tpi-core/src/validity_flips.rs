@@ -968,10 +968,23 @@ fn crossing_edge_pairs(p: &[DVec2]) -> usize {
     let adjacent = |a: usize, b: usize| b == a + 1 || (a == 0 && b == n - 1);
     let meet = |a: usize, b: usize| edges_meet(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n]);
     if n <= SWEEP_MIN_EDGES {
-        return (0..n)
-            .flat_map(|a| (a + 2..n).map(move |b| (a, b)))
-            .filter(|&(a, b)| !adjacent(a, b) && meet(a, b))
-            .count();
+        // Each edge's box once, not once per pair (the same test as `edges_meet`'s).
+        let mut boxes = [[0.0; 4]; SWEEP_MIN_EDGES];
+        for (k, b) in boxes.iter_mut().enumerate().take(n) {
+            *b = edge_box(p[k], p[(k + 1) % n]);
+        }
+        let mut count = 0;
+        for a in 0..n {
+            for b in a + 2..n {
+                if !adjacent(a, b)
+                    && !boxes_apart(boxes[a], boxes[b])
+                    && edges_meet_near(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n])
+                {
+                    count += 1;
+                }
+            }
+        }
+        return count;
     }
     let extent = |k: usize| {
         let (x0, x1) = (p[k].x, p[(k + 1) % n].x);
@@ -1040,15 +1053,27 @@ pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool 
     // Segments (and points) whose bounding boxes miss the other polygon's cannot cross it (or
     // lie inside it): only the few near the shared part are tested pair by pair.
     let (box_a, box_b) = (bounds(pa), bounds(pb));
+    // The boxes of b's edges, once (not once per edge of a).
+    let mut stack_boxes = [(DVec2::ZERO, DVec2::ZERO); 16];
+    let mut heap_boxes = Vec::new();
+    let edge_boxes_b: &mut [(DVec2, DVec2)] = if nb <= 16 {
+        &mut stack_boxes[..nb]
+    } else {
+        heap_boxes.resize(nb, (DVec2::ZERO, DVec2::ZERO));
+        &mut heap_boxes
+    };
+    for (y, edge) in edge_boxes_b.iter_mut().enumerate() {
+        let (r, t) = (pb[y], pb[(y + 1) % nb]);
+        *edge = (r.min(t), r.max(t));
+    }
     for x in 0..na {
         let (p, q) = (pa[x], pa[(x + 1) % na]);
         let edge = (p.min(q), p.max(q));
         if !boxes_meet(edge, box_b) {
             continue;
         }
-        for y in 0..nb {
-            let (r, t) = (pb[y], pb[(y + 1) % nb]);
-            if boxes_meet(edge, (r.min(t), r.max(t))) && proper_crossing(p, q, r, t, eps) {
+        for (y, &edge_b) in edge_boxes_b.iter().enumerate() {
+            if boxes_meet(edge, edge_b) && proper_crossing(p, q, pb[y], pb[(y + 1) % nb], eps) {
                 return true;
             }
         }
@@ -1133,13 +1158,21 @@ fn point_strictly_inside(p: DVec2, poly: &[DVec2], tolerance: f64) -> bool {
 /// rounding decides which side it falls on).
 fn edges_meet(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
     // Disjoint bounding boxes (most pairs of a polygon's edges) cannot meet.
-    if p.x.max(q.x) < r.x.min(s.x)
-        || r.x.max(s.x) < p.x.min(q.x)
-        || p.y.max(q.y) < r.y.min(s.y)
-        || r.y.max(s.y) < p.y.min(q.y)
-    {
-        return false;
-    }
+    !boxes_apart(edge_box(p, q), edge_box(r, s)) && edges_meet_near(p, q, r, s)
+}
+
+/// The box (x min, x max, y min, y max) of segment pq.
+fn edge_box(p: DVec2, q: DVec2) -> [f64; 4] {
+    [p.x.min(q.x), p.x.max(q.x), p.y.min(q.y), p.y.max(q.y)]
+}
+
+/// Whether two boxes of [`edge_box`] are strictly apart along x or y.
+fn boxes_apart(a: [f64; 4], b: [f64; 4]) -> bool {
+    a[1] < b[0] || b[1] < a[0] || a[3] < b[2] || b[3] < a[2]
+}
+
+/// [`edges_meet`] for segments whose boxes are not apart.
+fn edges_meet_near(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
     let (pq, rs) = (q - p, s - r);
     let (d1, d2) = (pq.perp_dot(r - p), pq.perp_dot(s - p));
     let (d3, d4) = (rs.perp_dot(p - r), rs.perp_dot(q - r));
