@@ -1258,4 +1258,234 @@ mod tests {
         }
         assert!(crossings_seen > 1000, "{crossings_seen}");
     }
+
+    /// `polygons_overlap` as it was before its edge boxes were taken once per polygon: the
+    /// oracle of the test below (verbatim).
+    fn polygons_overlap_before(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool {
+        let Some(&origin) = a.first() else {
+            return false;
+        };
+        let (e1, e2) = normal.normalize_or(DVec3::Z).any_orthonormal_pair();
+        let to2 = |x: &DVec3| DVec2::new((*x - origin).dot(e1), (*x - origin).dot(e2));
+        // Small polygons stay on the stack.
+        let mut buffer_a = [DVec2::ZERO; 16];
+        let mut buffer_b = [DVec2::ZERO; 16];
+        let (mut heap_a, mut heap_b) = (Vec::new(), Vec::new());
+        let pa: &mut [DVec2] = if a.len() <= 16 {
+            &mut buffer_a[..a.len()]
+        } else {
+            heap_a.resize(a.len(), DVec2::ZERO);
+            &mut heap_a
+        };
+        let pb: &mut [DVec2] = if b.len() <= 16 {
+            &mut buffer_b[..b.len()]
+        } else {
+            heap_b.resize(b.len(), DVec2::ZERO);
+            &mut heap_b
+        };
+        for (p, x) in pa.iter_mut().zip(a) {
+            *p = to2(x);
+        }
+        for (p, x) in pb.iter_mut().zip(b) {
+            *p = to2(x);
+        }
+        let (pa, pb) = (&*pa, pb);
+        let scale = size(pa).max(size(pb));
+        let tolerance = VALIDITY_TOLERANCE * scale;
+        for q in pb.iter_mut() {
+            if let Some(p) = pa
+                .iter()
+                .find(|p| (**p - *q).length_squared() <= tolerance * tolerance)
+            {
+                *q = *p;
+            }
+        }
+        let pb = &*pb;
+        let eps = VALIDITY_TOLERANCE * scale * scale;
+        let (na, nb) = (pa.len(), pb.len());
+        // Segments (and points) whose bounding boxes miss the other polygon's cannot cross it (or
+        // lie inside it): only the few near the shared part are tested pair by pair.
+        let (box_a, box_b) = (bounds(pa), bounds(pb));
+        for x in 0..na {
+            let (p, q) = (pa[x], pa[(x + 1) % na]);
+            let edge = (p.min(q), p.max(q));
+            if !boxes_meet(edge, box_b) {
+                continue;
+            }
+            for y in 0..nb {
+                let (r, t) = (pb[y], pb[(y + 1) % nb]);
+                if boxes_meet(edge, (r.min(t), r.max(t))) && proper_crossing(p, q, r, t, eps) {
+                    return true;
+                }
+            }
+        }
+        // No proper crossing: overlap means a vertex of one strictly inside the other.
+        let inside = |points: &[DVec2], poly: &[DVec2], poly_box: (DVec2, DVec2)| {
+            points.iter().any(|&p| {
+                boxes_meet((p, p), poly_box)
+                    && !poly
+                        .iter()
+                        .any(|q| (*q - p).length_squared() <= tolerance * tolerance)
+                    && point_strictly_inside(p, poly, tolerance)
+            })
+        };
+        inside(pb, pa, box_a) || inside(pa, pb, box_b)
+    }
+
+    /// `edges_meet` as it was before its box test was split out: the oracle of the tests
+    /// below (verbatim).
+    fn edges_meet_before(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
+        // Disjoint bounding boxes (most pairs of a polygon's edges) cannot meet.
+        if p.x.max(q.x) < r.x.min(s.x)
+            || r.x.max(s.x) < p.x.min(q.x)
+            || p.y.max(q.y) < r.y.min(s.y)
+            || r.y.max(s.y) < p.y.min(q.y)
+        {
+            return false;
+        }
+        let (pq, rs) = (q - p, s - r);
+        let (d1, d2) = (pq.perp_dot(r - p), pq.perp_dot(s - p));
+        let (d3, d4) = (rs.perp_dot(p - r), rs.perp_dot(q - r));
+        if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+            && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+        {
+            return true;
+        }
+        let within = |a: DVec2, b: DVec2, c: DVec2| {
+            c.x >= a.x.min(b.x) && c.x <= a.x.max(b.x) && c.y >= a.y.min(b.y) && c.y <= a.y.max(b.y)
+        };
+        let (t1, t2) = (
+            VALIDITY_TOLERANCE * pq.length_squared(),
+            VALIDITY_TOLERANCE * rs.length_squared(),
+        );
+        (d1.abs() <= t1 && within(p, q, r))
+            || (d2.abs() <= t1 && within(p, q, s))
+            || (d3.abs() <= t2 && within(r, s, p))
+            || (d4.abs() <= t2 && within(r, s, q))
+    }
+
+    /// A polygon generator for the oracle tests: star-shaped polygons around a centre,
+    /// optionally sharing an edge with a given one, with near-degenerate variants (vertices
+    /// snapped to a coarse grid, so that many are collinear or coincide; tiny perturbations).
+    struct Polygons {
+        state: u64,
+    }
+
+    impl Polygons {
+        fn next(&mut self) -> f64 {
+            self.state ^= self.state << 13;
+            self.state ^= self.state >> 7;
+            self.state ^= self.state << 17;
+            (self.state >> 11) as f64 / (1u64 << 53) as f64
+        }
+
+        fn star(&mut self, centre: DVec3, n: usize, radius: f64) -> Vec<DVec3> {
+            let start = self.next() * std::f64::consts::TAU;
+            (0..n)
+                .map(|k| {
+                    let angle =
+                        start + std::f64::consts::TAU * (k as f64 + 0.8 * self.next()) / n as f64;
+                    let r = radius * (0.2 + self.next());
+                    centre + DVec3::new(r * angle.cos(), r * angle.sin(), 0.3 * r * self.next())
+                })
+                .collect()
+        }
+
+        /// Degrades a polygon: snapped to a grid of `step`, or moved by tiny amounts.
+        fn degrade(&mut self, p: &mut [DVec3], kind: u32) {
+            for x in p.iter_mut() {
+                match kind {
+                    1 => *x = (*x / 0.25).round() * 0.25,
+                    2 => *x += DVec3::new(self.next() - 0.5, self.next() - 0.5, 0.0) * 1e-12,
+                    _ => {}
+                }
+            }
+        }
+    }
+
+    /// The overlap test gives the verdicts it gave before its edge boxes were precomputed, on
+    /// polygon pairs sharing an edge (the callers' case, in both orders, either normal), pairs
+    /// sharing a vertex or nothing, and near-degenerate ones (collinear and coincident
+    /// vertices on a grid, perturbations of 1e-12).
+    #[test]
+    fn the_overlap_test_matches_its_former_self() {
+        let mut gen = Polygons {
+            state: 0x2545_f491_4f6c_dd1d,
+        };
+        let (mut overlaps, mut apart) = (0, 0);
+        for case in 0..20_000 {
+            let n = 3 + case % 9;
+            let m = 3 + (case / 9) % 9;
+            let a = gen.star(DVec3::ZERO, n, 1.0);
+            let centre = DVec3::new(gen.next() * 2.0, gen.next() * 2.0, 0.0);
+            let mut b = gen.star(centre, m, 1.0);
+            let mut a = a;
+            match case % 4 {
+                // Share the edge (a[0], a[1]), reversed in b.
+                0 | 1 => {
+                    b[0] = a[1];
+                    b[1] = a[0];
+                }
+                // Share a vertex.
+                2 => b[0] = a[0],
+                _ => {}
+            }
+            gen.degrade(&mut a, (case / 4 % 3) as u32);
+            gen.degrade(&mut b, (case / 12 % 3) as u32);
+            let normal = DVec3::new(gen.next() - 0.5, gen.next() - 0.5, 1.0);
+            for normal in [normal, normal.normalize(), DVec3::ZERO] {
+                for (p, q) in [(&a, &b), (&b, &a)] {
+                    let expected = polygons_overlap_before(p, q, normal);
+                    assert_eq!(
+                        polygons_overlap(p, q, normal),
+                        expected,
+                        "{p:?} {q:?} {normal}"
+                    );
+                    if expected {
+                        overlaps += 1;
+                    } else {
+                        apart += 1;
+                    }
+                }
+            }
+        }
+        assert!(overlaps > 10_000 && apart > 10_000, "{overlaps} {apart}");
+    }
+
+    /// The simplicity count gives the counts it gave before each edge's box was taken once:
+    /// the star, random-walk and grid-snapped polygons of every size up to the sweep's.
+    #[test]
+    fn the_crossing_count_matches_its_former_self() {
+        let mut gen = Polygons {
+            state: 0x9e37_79b9_7f4a_7c15,
+        };
+        let before = |p: &[DVec2]| {
+            let n = p.len();
+            let mut count = 0;
+            for a in 0..n {
+                for b in a + 2..n {
+                    if !(a == 0 && b == n - 1)
+                        && edges_meet_before(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n])
+                    {
+                        count += 1;
+                    }
+                }
+            }
+            count
+        };
+        let mut crossings = 0;
+        for case in 0..20_000 {
+            let n = 3 + case % (SWEEP_MIN_EDGES + 6);
+            let mut p: Vec<DVec2> = (0..n)
+                .map(|_| DVec2::new(gen.next() * 4.0, gen.next() * 4.0))
+                .collect();
+            if case % 3 == 1 {
+                p.iter_mut().for_each(|x| *x = x.round());
+            }
+            let expected = before(&p);
+            assert_eq!(crossing_edge_pairs(&p), expected, "{p:?}");
+            crossings += expected;
+        }
+        assert!(crossings > 10_000, "{crossings}");
+    }
 }
