@@ -30,7 +30,7 @@ use crate::mesh::{
     assemble, drop_coincident_crossings, weld_coincident_crossings, Assembly, FacetMesh, SlopeView,
 };
 use crate::neighbours::SlopeFrame;
-use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane};
+use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane, ThreePlanePoint};
 use crate::progress::{NoProgress, Stage, Stages, Tally};
 use crate::projection::periodic_foot;
 use crate::samples::Samples;
@@ -1748,7 +1748,9 @@ pub(crate) fn build_closed_facets(
 ) -> FacetMesh {
     let observer = stages.observer();
     let real = |t: &[u32; 3]| t.iter().any(|&v| (v as usize) < real_count);
-    let triangle_vertices: Vec<TriangleVertex> = tri
+    // Each triangle's vertex with its meeting point (kept for the diagnostics below, so that
+    // the three planes are solved once).
+    let (triangle_vertices, meetings): (Vec<TriangleVertex>, Vec<ThreePlanePoint>) = tri
         .triangles
         .par_iter()
         .map_init(
@@ -1769,7 +1771,7 @@ pub(crate) fn build_closed_facets(
                 } else {
                     regularised_meeting_point([a, b, c], centroid, 1e-6)
                 };
-                TriangleVertex {
+                let vertex = TriangleVertex {
                     point,
                     foot: [0.0; 2],
                     inside: 1.0,
@@ -1777,19 +1779,20 @@ pub(crate) fn build_closed_facets(
                     exact,
                     measured: true,
                     newton_foot: false,
-                }
+                };
+                (vertex, meeting)
             },
         )
-        .collect();
+        .unzip();
     let mut diagnostics: Vec<Diagnostic> = tri
         .triangles
         .iter()
         .zip(&triangle_vertices)
-        .filter_map(|(ids, v)| {
+        .zip(meetings)
+        .filter_map(|((ids, v), meeting)| {
             let mut sorted = *ids;
             sorted.sort_unstable();
             let [a, b, c] = sorted.map(|i| &planes[i as usize]);
-            let meeting = meeting_point(a, b, c);
             let centroid = (a.point + b.point + c.point) / 3.0;
             let distance = meeting.point.distance(centroid);
             let longest = a

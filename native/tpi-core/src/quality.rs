@@ -229,25 +229,14 @@ pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (Quali
     let simple: Vec<bool> = shapes.iter().map(|s| s.1.simple).collect();
     let overlapping: Vec<(u32, u32)> = {
         use rayon::prelude::*;
+        // One pair of loop buffers per worker: no allocation per pair.
         let mut pairs: Vec<(u32, u32)> = shared_edges
             .par_iter()
-            .filter(|&&(f, g, a, b)| {
-                let (sf, sg) = (&shapes[f as usize], &shapes[g as usize]);
-                if !(sf.1.simple && sg.1.simple) {
-                    return false;
-                }
-                if sf.1.convex && sg.1.convex {
-                    // Two convex polygons sharing the edge (a, b) (convex also seen along the
-                    // mean normal, an affine image) overlap exactly when they lie on the same
-                    // side of its line: their centroids do.
-                    let (pa, pb) = (input.vertices[a as usize], input.vertices[b as usize]);
-                    let normal = input.planes[f as usize].normal + input.planes[g as usize].normal;
-                    let side = |c: DVec3| (pb - pa).cross(c - pa).dot(normal);
-                    return side(sf.0) * side(sg.0) > 0.0;
-                }
-                edge_pair_overlaps(input, f, g, a, b)
+            .map_init(LoopBuffers::default, |buffers, &(f, g, a, b)| {
+                (f, g, pair_overlaps(input, &shapes, buffers, (f, g, a, b)))
             })
-            .map(|&(f, g, _, _)| (f.min(g), f.max(g)))
+            .filter(|&(_, _, overlaps)| overlaps)
+            .map(|(f, g, _)| (f.min(g), f.max(g)))
             .collect();
         pairs.extend(vertex_pairs_overlapping(
             input,
@@ -524,17 +513,64 @@ pub(crate) fn facet_shape_into(
     }
 }
 
+/// Reusable buffers for the loop points of the two facets of a pair.
+#[derive(Default)]
+struct LoopBuffers {
+    f: Vec<DVec3>,
+    g: Vec<DVec3>,
+}
+
+/// Whether the facets f and g sharing the edge (a, b) overlap (both simple; convex pairs by
+/// their centroids' sides, the others by [`edge_pair_overlaps`]).
+fn pair_overlaps(
+    input: &ReportInput<'_>,
+    shapes: &[(DVec3, FacetShape, f64)],
+    buffers: &mut LoopBuffers,
+    (f, g, a, b): (u32, u32, u32, u32),
+) -> bool {
+    let (sf, sg) = (&shapes[f as usize], &shapes[g as usize]);
+    if !(sf.1.simple && sg.1.simple) {
+        return false;
+    }
+    if sf.1.convex && sg.1.convex {
+        // Two convex polygons sharing the edge (a, b) (convex also seen along the mean
+        // normal, an affine image) overlap exactly when they lie on the same side of its
+        // line: their centroids do.
+        let (pa, pb) = (input.vertices[a as usize], input.vertices[b as usize]);
+        let normal = input.planes[f as usize].normal + input.planes[g as usize].normal;
+        let side = |c: DVec3| (pb - pa).cross(c - pa).dot(normal);
+        return side(sf.0) * side(sg.0) > 0.0;
+    }
+    edge_pair_overlaps(input, f, g, a, b, buffers)
+}
+
 /// The points of facet f's loop.
 fn loop_points(input: &ReportInput<'_>, f: u32) -> Vec<DVec3> {
-    facet(input, f as usize)
-        .iter()
-        .map(|&v| input.vertices[v as usize])
-        .collect()
+    let mut out = Vec::new();
+    loop_points_into(input, f, &mut out);
+    out
+}
+
+/// The points of facet f's loop, into `out` (cleared first).
+fn loop_points_into(input: &ReportInput<'_>, f: u32, out: &mut Vec<DVec3>) {
+    out.clear();
+    out.extend(
+        facet(input, f as usize)
+            .iter()
+            .map(|&v| input.vertices[v as usize]),
+    );
 }
 
 /// Whether simple facets f and g, sharing the edge (a, b), overlap seen along their mean
 /// normal (module doc): the line through a and b separates them, or the full test decides.
-fn edge_pair_overlaps(input: &ReportInput<'_>, f: u32, g: u32, a: u32, b: u32) -> bool {
+fn edge_pair_overlaps(
+    input: &ReportInput<'_>,
+    f: u32,
+    g: u32,
+    a: u32,
+    b: u32,
+    buffers: &mut LoopBuffers,
+) -> bool {
     let normal = input.planes[f as usize].normal + input.planes[g as usize].normal;
     let Some(normal) = normal.try_normalize() else {
         return false;
@@ -544,8 +580,13 @@ fn edge_pair_overlaps(input: &ReportInput<'_>, f: u32, g: u32, a: u32, b: u32) -
     let to2 = |x: DVec3| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2));
     let direction = to2(input.vertices[b as usize]);
     let length = direction.length();
+    let overlap = |buffers: &mut LoopBuffers| {
+        loop_points_into(input, f, &mut buffers.f);
+        loop_points_into(input, g, &mut buffers.g);
+        polygons_overlap(&buffers.f, &buffers.g, normal)
+    };
     if !(length > 0.0) {
-        return polygons_overlap(&loop_points(input, f), &loop_points(input, g), normal);
+        return overlap(buffers);
     }
     // Signed distances of the other vertices from the line, beyond a rounding margin.
     let side = |h: u32| {
@@ -563,7 +604,7 @@ fn edge_pair_overlaps(input: &ReportInput<'_>, f: u32, g: u32, a: u32, b: u32) -
     let (fp, fn_) = side(f);
     let (gp, gn) = side(g);
     let separated = (fp && !fn_ && gn && !gp) || (fn_ && !fp && gp && !gn);
-    !separated && polygons_overlap(&loop_points(input, f), &loop_points(input, g), normal)
+    !separated && overlap(buffers)
 }
 
 /// Overlapping pairs of simple facets that share a vertex but no edge (only where four or

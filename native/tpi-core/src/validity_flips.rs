@@ -173,6 +173,15 @@ pub(crate) struct State<'a> {
     work: u64,
     /// The work at which detours stop, even within one facet's candidates.
     work_budget: u64,
+    /// A fan buffer for the walks around points (taken and put back: no allocation per flip
+    /// tried).
+    fan: Vec<u32>,
+    /// Buffers of forgotten facets, reused by the next facets built.
+    polygon_pool: Vec<Vec<DVec3>>,
+    neighbour_pool: Vec<Vec<(u32, [DVec3; 2])>>,
+    /// Per point, the last `stamp` that collected it ([`State::affected_into`]).
+    seen: Vec<u32>,
+    stamp: u32,
 }
 
 /// The old values of what a tentative sequence of changes replaced, in order.
@@ -250,6 +259,11 @@ impl<'a> State<'a> {
             detours: 0,
             work: 0,
             work_budget: u64::MAX,
+            fan: Vec::new(),
+            polygon_pool: Vec::new(),
+            neighbour_pool: Vec::new(),
+            seen: vec![0; points],
+            stamp: 0,
         };
         state.invalid = state.initial_verdicts(judged);
         state
@@ -296,7 +310,10 @@ impl<'a> State<'a> {
                 Change::Flip(c, d) => {
                     // Flipped back by its points: triangle labels and rotations need not be
                     // those the flip left once later flips were undone.
-                    if let Some((t, k)) = find_edge(self.tri, &self.incident, c, d) {
+                    let mut fan = std::mem::take(&mut self.fan);
+                    let edge = find_edge(self.tri, &self.incident, c, d, &mut fan);
+                    self.fan = fan;
+                    if let Some((t, k)) = edge {
                         self.flip(t as u32, k);
                     }
                 }
@@ -331,14 +348,15 @@ impl<'a> State<'a> {
         }
         self.planes.to_mut()[j as usize] = plane;
         self.plane_changes += 1;
-        let mut fan = Vec::new();
+        let mut fan = std::mem::take(&mut self.fan);
         self.tri.fan(j, self.incident[j as usize], &mut fan);
-        for t in fan {
+        for &t in &fan {
             self.vertex[t as usize] = triangle_vertex(&self.planes, self.tri.triangles[t as usize]);
             for v in self.tri.triangles[t as usize] {
                 self.forget(v);
             }
         }
+        self.fan = fan;
     }
 
     /// Whether point x keeps the mesh a disc around it: a real point has a real neighbour
@@ -414,37 +432,81 @@ impl<'a> State<'a> {
 
     /// Drops the cached facet of point v and every overlap verdict involving it.
     fn forget(&mut self, v: u32) {
-        self.facets[v as usize] = None;
-        for (other, _) in std::mem::take(&mut self.overlaps[v as usize]) {
+        if let Some(facet) = self.facets[v as usize].take() {
+            self.polygon_pool.extend(facet.polygon);
+            self.neighbour_pool.push(facet.neighbours);
+        }
+        let mut list = std::mem::take(&mut self.overlaps[v as usize]);
+        for &(other, _) in &list {
             self.overlaps[other as usize].retain(|&(x, _)| x != v);
         }
+        list.clear();
+        self.overlaps[v as usize] = list;
+    }
+
+    /// [`affected_points`] of `quad` into `out` (cleared first): sorted, each once, collected
+    /// by marks so that only the distinct points are sorted.
+    fn affected_into(&mut self, quad: &[u32], out: &mut Vec<u32>) {
+        self.stamp = self.stamp.wrapping_add(1);
+        if self.stamp == 0 {
+            self.seen.iter_mut().for_each(|s| *s = 0);
+            self.stamp = 1;
+        }
+        let stamp = self.stamp;
+        out.clear();
+        let mut fan = std::mem::take(&mut self.fan);
+        for &p in quad {
+            if self.seen[p as usize] != stamp {
+                self.seen[p as usize] = stamp;
+                out.push(p);
+            }
+        }
+        // With the points of the triangles around the quad's points.
+        for &p in quad {
+            self.tri.fan(p, self.incident[p as usize], &mut fan);
+            for &t in &fan {
+                for x in self.tri.triangles[t as usize] {
+                    if self.seen[x as usize] != stamp {
+                        self.seen[x as usize] = stamp;
+                        out.push(x);
+                    }
+                }
+            }
+        }
+        self.fan = fan;
+        out.sort_unstable();
     }
 
     /// Builds (or reuses) the facet of point i.
     fn facet(&mut self, i: u32) -> &Facet {
         if self.facets[i as usize].is_none() {
-            let mut fan = Vec::new();
-            let polygon = self.polygon(i, &mut fan);
+            let mut fan = std::mem::take(&mut self.fan);
+            let mut buffer = self.polygon_pool.pop().unwrap_or_default();
+            let polygon = if self.closed_polygon_into(i, &mut fan, &mut buffer) {
+                Some(buffer)
+            } else {
+                self.polygon_pool.push(buffer);
+                None
+            };
             let tangle = polygon
                 .as_ref()
                 .map_or(0, |p| tangle(p, self.planes[i as usize].normal));
             self.work += polygon.as_ref().map_or(0, |p| p.len() as u64);
             let simple = polygon.is_some() && tangle == 0;
-            let neighbours = if polygon.is_some() {
-                (0..fan.len())
-                    .filter_map(|k| {
-                        let v = self.tri.triangles[fan[k] as usize];
-                        let j = v[(v.iter().position(|&x| x == i).unwrap_or(0) + 1) % 3];
-                        let ends = [
-                            self.vertex[fan[(k + fan.len() - 1) % fan.len()] as usize],
-                            self.vertex[fan[k] as usize],
-                        ];
-                        ((j as usize) < self.judged).then_some((j, ends))
-                    })
-                    .collect()
-            } else {
-                Vec::new()
-            };
+            let mut neighbours = self.neighbour_pool.pop().unwrap_or_default();
+            neighbours.clear();
+            if polygon.is_some() {
+                neighbours.extend((0..fan.len()).filter_map(|k| {
+                    let v = self.tri.triangles[fan[k] as usize];
+                    let j = v[(v.iter().position(|&x| x == i).unwrap_or(0) + 1) % 3];
+                    let ends = [
+                        self.vertex[fan[(k + fan.len() - 1) % fan.len()] as usize],
+                        self.vertex[fan[k] as usize],
+                    ];
+                    ((j as usize) < self.judged).then_some((j, ends))
+                }));
+            }
+            self.fan = fan;
             self.facets[i as usize] = Some(Facet {
                 polygon,
                 simple,
@@ -457,12 +519,21 @@ impl<'a> State<'a> {
 
     /// Facet i's polygon (welded), None where its fan does not close.
     fn polygon(&self, i: u32, fan: &mut Vec<u32>) -> Option<Vec<DVec3>> {
+        let mut polygon = Vec::new();
+        self.closed_polygon_into(i, fan, &mut polygon)
+            .then_some(polygon)
+    }
+
+    /// Facet i's polygon (welded) into `polygon` (cleared first); false where its fan does
+    /// not close.
+    fn closed_polygon_into(&self, i: u32, fan: &mut Vec<u32>, polygon: &mut Vec<DVec3>) -> bool {
+        polygon.clear();
         if self.tri.fan(i, self.incident[i as usize], fan) != Fan::Closed {
-            return None;
+            return false;
         }
-        let mut polygon: Vec<DVec3> = fan.iter().map(|&t| self.vertex[t as usize]).collect();
-        weld_loop(&mut polygon, self.weld);
-        Some(polygon)
+        polygon.extend(fan.iter().map(|&t| self.vertex[t as usize]));
+        weld_loop(polygon, self.weld);
+        true
     }
 
     /// The verdicts of facets 0..n: every polygon built and tested for simplicity once, then
@@ -579,31 +650,37 @@ impl<'a> State<'a> {
 
     /// The edges a repair of interior facet i tries, as point pairs: its star edges, then its
     /// link edges; None where its fan does not close.
-    fn repair_candidates(&self, i: u32) -> Option<Vec<(u32, u32)>> {
-        let mut fan = Vec::new();
-        if self.tri.fan(i, self.incident[i as usize], &mut fan) != Fan::Closed {
-            return None;
-        }
-        let mut candidates: Vec<(u32, u32)> = Vec::new();
-        for &t in &fan {
-            let v = self.tri.triangles[t as usize];
-            let k = v.iter().position(|&x| x == i).unwrap_or(0);
-            let (j, m) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-            candidates.push((i, j));
-            candidates.push((j, m));
-        }
-        Some(candidates)
+    fn repair_candidates(&mut self, i: u32) -> Option<Vec<(u32, u32)>> {
+        let mut fan = std::mem::take(&mut self.fan);
+        let closed = self.tri.fan(i, self.incident[i as usize], &mut fan) == Fan::Closed;
+        let candidates = closed.then(|| {
+            let mut candidates: Vec<(u32, u32)> = Vec::with_capacity(2 * fan.len());
+            for &t in &fan {
+                let v = self.tri.triangles[t as usize];
+                let k = v.iter().position(|&x| x == i).unwrap_or(0);
+                let (j, m) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+                candidates.push((i, j));
+                candidates.push((j, m));
+            }
+            candidates
+        });
+        self.fan = fan;
+        candidates
     }
 
     /// The interior edge (a, b) as (triangle, opposite position, quad points (c, a, b, d))
     /// where it can be flipped. A flip is a topological move: the structure stays a
     /// triangulated disc whatever the quad's shape in the plane (facet loops follow
     /// adjacency, not positions), unless the new diagonal (c, d) exists already.
-    fn flippable(&self, a: u32, b: u32) -> Option<(usize, usize, [u32; 4])> {
-        let (t, k) = find_edge(self.tri, &self.incident, a, b)?;
-        let quad = quad_points(self.tri, t, k);
-        let [c, _, _, d] = quad;
-        (c != d && !has_edge(self.tri, &self.incident, c, d)).then_some((t, k, quad))
+    fn flippable(&mut self, a: u32, b: u32) -> Option<(usize, usize, [u32; 4])> {
+        let mut fan = std::mem::take(&mut self.fan);
+        let flippable = find_edge(self.tri, &self.incident, a, b, &mut fan).and_then(|(t, k)| {
+            let quad = quad_points(self.tri, t, k);
+            let [c, _, _, d] = quad;
+            (c != d && !has_edge(self.tri, &self.incident, c, d, &mut fan)).then_some((t, k, quad))
+        });
+        self.fan = fan;
+        flippable
     }
 
     /// Where no single flip repairs facet i: a star or link edge of i flipped although it
@@ -630,7 +707,8 @@ impl<'a> State<'a> {
                 self.undo();
                 continue;
             }
-            let mut region = affected_points(self.tri, &self.incident, &quad);
+            let mut region = Vec::with_capacity(AFFECTED_CAPACITY);
+            self.affected_into(&quad, &mut region);
             region.retain(|&x| (x as usize) < judged);
             let mut targets = Vec::new();
             for &x in &region {
@@ -687,7 +765,8 @@ impl<'a> State<'a> {
                 continue;
             };
             let touches_ghost = quad.iter().any(|&x| x as usize >= judged);
-            let mut affected = affected_points(self.tri, &self.incident, &quad);
+            let mut affected = Vec::with_capacity(AFFECTED_CAPACITY);
+            self.affected_into(&quad, &mut affected);
             affected.retain(|&x| (x as usize) < judged);
             let before = affected
                 .iter()
@@ -747,10 +826,9 @@ fn triangle_vertex(planes: &[Plane], t: [u32; 3]) -> DVec3 {
     }
 }
 
-/// Whether points a and b are joined by an edge (interior or hull).
-fn has_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32) -> bool {
-    let mut fan = Vec::new();
-    tri.fan(a, incident[a as usize], &mut fan);
+/// Whether points a and b are joined by an edge (interior or hull); `fan` is a buffer.
+fn has_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32, fan: &mut Vec<u32>) -> bool {
+    tri.fan(a, incident[a as usize], fan);
     fan.iter().any(|&t| tri.triangles[t as usize].contains(&b))
 }
 
@@ -782,11 +860,17 @@ fn quad_points(tri: &DualTriangulation, t: usize, k: usize) -> [u32; 4] {
     [c, a, b, tri.triangles[t2][k2]]
 }
 
-/// The interior edge (a, b) as (triangle, opposite position), if it exists.
-fn find_edge(tri: &DualTriangulation, incident: &[u32], a: u32, b: u32) -> Option<(usize, usize)> {
-    let mut fan = Vec::new();
-    tri.fan(a, incident[a as usize], &mut fan);
-    for &t in &fan {
+/// The interior edge (a, b) as (triangle, opposite position), if it exists; `fan` is a
+/// buffer.
+fn find_edge(
+    tri: &DualTriangulation,
+    incident: &[u32],
+    a: u32,
+    b: u32,
+    fan: &mut Vec<u32>,
+) -> Option<(usize, usize)> {
+    tri.fan(a, incident[a as usize], fan);
+    for &t in fan.iter() {
         let v = tri.triangles[t as usize];
         let p = v.iter().position(|&x| x == a)?;
         for (next, opposite) in [((p + 1) % 3, (p + 2) % 3), ((p + 2) % 3, (p + 1) % 3)] {
@@ -806,14 +890,34 @@ fn weld_loop(points: &mut Vec<DVec3>, weld: f64) {
     }
 }
 
+/// Room for the points a flip can affect around a quad of four usual fans (no regrowth).
+const AFFECTED_CAPACITY: usize = 48;
+
+/// Polygons up to this many vertices are flattened into a buffer on the stack.
+const FLAT_STACK: usize = 32;
+
 /// Coordinates in the plane perpendicular to `normal`, frame (e1, e2, normal) right-handed,
-/// relative to `origin` (so that rounding is relative to the polygons' own size).
-fn flatten(points: &[DVec3], normal: DVec3, origin: DVec3) -> Vec<DVec2> {
+/// relative to `origin` (so that rounding is relative to the polygons' own size): into
+/// `stack` where the points fit, else into `heap` (no allocation for the usual facet).
+fn flatten_into<'b>(
+    points: &[DVec3],
+    normal: DVec3,
+    origin: DVec3,
+    stack: &'b mut [DVec2; FLAT_STACK],
+    heap: &'b mut Vec<DVec2>,
+) -> &'b [DVec2] {
     let (e1, e2) = normal.normalize_or(DVec3::Z).any_orthonormal_pair();
-    points
-        .iter()
-        .map(|&x| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2)))
-        .collect()
+    let to2 = |&x: &DVec3| DVec2::new((x - origin).dot(e1), (x - origin).dot(e2));
+    if points.len() <= FLAT_STACK {
+        for (p, x) in stack.iter_mut().zip(points) {
+            *p = to2(x);
+        }
+        &stack[..points.len()]
+    } else {
+        heap.clear();
+        heap.extend(points.iter().map(to2));
+        heap
+    }
 }
 
 /// Longest edge of a closed polygon.
@@ -839,14 +943,15 @@ pub(crate) fn tangle(points: &[DVec3], normal: DVec3) -> usize {
     if !points.iter().all(|x| x.is_finite()) {
         return usize::MAX;
     }
-    let p = flatten(points, normal, origin);
+    let (mut stack, mut heap) = ([DVec2::ZERO; FLAT_STACK], Vec::new());
+    let p = flatten_into(points, normal, origin, &mut stack, &mut heap);
     let n = p.len();
     if n < 3 {
         return usize::MAX;
     }
     let area: f64 = (0..n).map(|k| p[k].perp_dot(p[(k + 1) % n])).sum();
     let not_ccw = if area > 0.0 { 0 } else { n };
-    not_ccw + crossing_edge_pairs(&p)
+    not_ccw + crossing_edge_pairs(p)
 }
 
 /// Polygons with more edges than this count their crossing edge pairs by a sweep in x.
@@ -863,10 +968,23 @@ fn crossing_edge_pairs(p: &[DVec2]) -> usize {
     let adjacent = |a: usize, b: usize| b == a + 1 || (a == 0 && b == n - 1);
     let meet = |a: usize, b: usize| edges_meet(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n]);
     if n <= SWEEP_MIN_EDGES {
-        return (0..n)
-            .flat_map(|a| (a + 2..n).map(move |b| (a, b)))
-            .filter(|&(a, b)| !adjacent(a, b) && meet(a, b))
-            .count();
+        // Each edge's box once, not once per pair (the same test as `edges_meet`'s).
+        let mut boxes = [[0.0; 4]; SWEEP_MIN_EDGES];
+        for (k, b) in boxes.iter_mut().enumerate().take(n) {
+            *b = edge_box(p[k], p[(k + 1) % n]);
+        }
+        let mut count = 0;
+        for a in 0..n {
+            for b in a + 2..n {
+                if !adjacent(a, b)
+                    && !boxes_apart(boxes[a], boxes[b])
+                    && edges_meet_near(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n])
+                {
+                    count += 1;
+                }
+            }
+        }
+        return count;
     }
     let extent = |k: usize| {
         let (x0, x1) = (p[k].x, p[(k + 1) % n].x);
@@ -935,15 +1053,27 @@ pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool 
     // Segments (and points) whose bounding boxes miss the other polygon's cannot cross it (or
     // lie inside it): only the few near the shared part are tested pair by pair.
     let (box_a, box_b) = (bounds(pa), bounds(pb));
+    // The boxes of b's edges, once (not once per edge of a).
+    let mut stack_boxes = [(DVec2::ZERO, DVec2::ZERO); 16];
+    let mut heap_boxes = Vec::new();
+    let edge_boxes_b: &mut [(DVec2, DVec2)] = if nb <= 16 {
+        &mut stack_boxes[..nb]
+    } else {
+        heap_boxes.resize(nb, (DVec2::ZERO, DVec2::ZERO));
+        &mut heap_boxes
+    };
+    for (y, edge) in edge_boxes_b.iter_mut().enumerate() {
+        let (r, t) = (pb[y], pb[(y + 1) % nb]);
+        *edge = (r.min(t), r.max(t));
+    }
     for x in 0..na {
         let (p, q) = (pa[x], pa[(x + 1) % na]);
         let edge = (p.min(q), p.max(q));
         if !boxes_meet(edge, box_b) {
             continue;
         }
-        for y in 0..nb {
-            let (r, t) = (pb[y], pb[(y + 1) % nb]);
-            if boxes_meet(edge, (r.min(t), r.max(t))) && proper_crossing(p, q, r, t, eps) {
+        for (y, &edge_b) in edge_boxes_b.iter().enumerate() {
+            if boxes_meet(edge, edge_b) && proper_crossing(p, q, pb[y], pb[(y + 1) % nb], eps) {
                 return true;
             }
         }
@@ -1028,13 +1158,21 @@ fn point_strictly_inside(p: DVec2, poly: &[DVec2], tolerance: f64) -> bool {
 /// rounding decides which side it falls on).
 fn edges_meet(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
     // Disjoint bounding boxes (most pairs of a polygon's edges) cannot meet.
-    if p.x.max(q.x) < r.x.min(s.x)
-        || r.x.max(s.x) < p.x.min(q.x)
-        || p.y.max(q.y) < r.y.min(s.y)
-        || r.y.max(s.y) < p.y.min(q.y)
-    {
-        return false;
-    }
+    !boxes_apart(edge_box(p, q), edge_box(r, s)) && edges_meet_near(p, q, r, s)
+}
+
+/// The box (x min, x max, y min, y max) of segment pq.
+fn edge_box(p: DVec2, q: DVec2) -> [f64; 4] {
+    [p.x.min(q.x), p.x.max(q.x), p.y.min(q.y), p.y.max(q.y)]
+}
+
+/// Whether two boxes of [`edge_box`] are strictly apart along x or y.
+fn boxes_apart(a: [f64; 4], b: [f64; 4]) -> bool {
+    a[1] < b[0] || b[1] < a[0] || a[3] < b[2] || b[3] < a[2]
+}
+
+/// [`edges_meet`] for segments whose boxes are not apart.
+fn edges_meet_near(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
     let (pq, rs) = (q - p, s - r);
     let (d1, d2) = (pq.perp_dot(r - p), pq.perp_dot(s - p));
     let (d3, d4) = (rs.perp_dot(p - r), rs.perp_dot(q - r));
@@ -1119,5 +1257,235 @@ mod tests {
             }
         }
         assert!(crossings_seen > 1000, "{crossings_seen}");
+    }
+
+    /// `polygons_overlap` as it was before its edge boxes were taken once per polygon: the
+    /// oracle of the test below (verbatim).
+    fn polygons_overlap_before(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool {
+        let Some(&origin) = a.first() else {
+            return false;
+        };
+        let (e1, e2) = normal.normalize_or(DVec3::Z).any_orthonormal_pair();
+        let to2 = |x: &DVec3| DVec2::new((*x - origin).dot(e1), (*x - origin).dot(e2));
+        // Small polygons stay on the stack.
+        let mut buffer_a = [DVec2::ZERO; 16];
+        let mut buffer_b = [DVec2::ZERO; 16];
+        let (mut heap_a, mut heap_b) = (Vec::new(), Vec::new());
+        let pa: &mut [DVec2] = if a.len() <= 16 {
+            &mut buffer_a[..a.len()]
+        } else {
+            heap_a.resize(a.len(), DVec2::ZERO);
+            &mut heap_a
+        };
+        let pb: &mut [DVec2] = if b.len() <= 16 {
+            &mut buffer_b[..b.len()]
+        } else {
+            heap_b.resize(b.len(), DVec2::ZERO);
+            &mut heap_b
+        };
+        for (p, x) in pa.iter_mut().zip(a) {
+            *p = to2(x);
+        }
+        for (p, x) in pb.iter_mut().zip(b) {
+            *p = to2(x);
+        }
+        let (pa, pb) = (&*pa, pb);
+        let scale = size(pa).max(size(pb));
+        let tolerance = VALIDITY_TOLERANCE * scale;
+        for q in pb.iter_mut() {
+            if let Some(p) = pa
+                .iter()
+                .find(|p| (**p - *q).length_squared() <= tolerance * tolerance)
+            {
+                *q = *p;
+            }
+        }
+        let pb = &*pb;
+        let eps = VALIDITY_TOLERANCE * scale * scale;
+        let (na, nb) = (pa.len(), pb.len());
+        // Segments (and points) whose bounding boxes miss the other polygon's cannot cross it (or
+        // lie inside it): only the few near the shared part are tested pair by pair.
+        let (box_a, box_b) = (bounds(pa), bounds(pb));
+        for x in 0..na {
+            let (p, q) = (pa[x], pa[(x + 1) % na]);
+            let edge = (p.min(q), p.max(q));
+            if !boxes_meet(edge, box_b) {
+                continue;
+            }
+            for y in 0..nb {
+                let (r, t) = (pb[y], pb[(y + 1) % nb]);
+                if boxes_meet(edge, (r.min(t), r.max(t))) && proper_crossing(p, q, r, t, eps) {
+                    return true;
+                }
+            }
+        }
+        // No proper crossing: overlap means a vertex of one strictly inside the other.
+        let inside = |points: &[DVec2], poly: &[DVec2], poly_box: (DVec2, DVec2)| {
+            points.iter().any(|&p| {
+                boxes_meet((p, p), poly_box)
+                    && !poly
+                        .iter()
+                        .any(|q| (*q - p).length_squared() <= tolerance * tolerance)
+                    && point_strictly_inside(p, poly, tolerance)
+            })
+        };
+        inside(pb, pa, box_a) || inside(pa, pb, box_b)
+    }
+
+    /// `edges_meet` as it was before its box test was split out: the oracle of the tests
+    /// below (verbatim).
+    fn edges_meet_before(p: DVec2, q: DVec2, r: DVec2, s: DVec2) -> bool {
+        // Disjoint bounding boxes (most pairs of a polygon's edges) cannot meet.
+        if p.x.max(q.x) < r.x.min(s.x)
+            || r.x.max(s.x) < p.x.min(q.x)
+            || p.y.max(q.y) < r.y.min(s.y)
+            || r.y.max(s.y) < p.y.min(q.y)
+        {
+            return false;
+        }
+        let (pq, rs) = (q - p, s - r);
+        let (d1, d2) = (pq.perp_dot(r - p), pq.perp_dot(s - p));
+        let (d3, d4) = (rs.perp_dot(p - r), rs.perp_dot(q - r));
+        if ((d1 > 0.0 && d2 < 0.0) || (d1 < 0.0 && d2 > 0.0))
+            && ((d3 > 0.0 && d4 < 0.0) || (d3 < 0.0 && d4 > 0.0))
+        {
+            return true;
+        }
+        let within = |a: DVec2, b: DVec2, c: DVec2| {
+            c.x >= a.x.min(b.x) && c.x <= a.x.max(b.x) && c.y >= a.y.min(b.y) && c.y <= a.y.max(b.y)
+        };
+        let (t1, t2) = (
+            VALIDITY_TOLERANCE * pq.length_squared(),
+            VALIDITY_TOLERANCE * rs.length_squared(),
+        );
+        (d1.abs() <= t1 && within(p, q, r))
+            || (d2.abs() <= t1 && within(p, q, s))
+            || (d3.abs() <= t2 && within(r, s, p))
+            || (d4.abs() <= t2 && within(r, s, q))
+    }
+
+    /// A polygon generator for the oracle tests: star-shaped polygons around a centre,
+    /// optionally sharing an edge with a given one, with near-degenerate variants (vertices
+    /// snapped to a coarse grid, so that many are collinear or coincide; tiny perturbations).
+    struct Polygons {
+        state: u64,
+    }
+
+    impl Polygons {
+        fn next(&mut self) -> f64 {
+            self.state ^= self.state << 13;
+            self.state ^= self.state >> 7;
+            self.state ^= self.state << 17;
+            (self.state >> 11) as f64 / (1u64 << 53) as f64
+        }
+
+        fn star(&mut self, centre: DVec3, n: usize, radius: f64) -> Vec<DVec3> {
+            let start = self.next() * std::f64::consts::TAU;
+            (0..n)
+                .map(|k| {
+                    let angle =
+                        start + std::f64::consts::TAU * (k as f64 + 0.8 * self.next()) / n as f64;
+                    let r = radius * (0.2 + self.next());
+                    centre + DVec3::new(r * angle.cos(), r * angle.sin(), 0.3 * r * self.next())
+                })
+                .collect()
+        }
+
+        /// Degrades a polygon: snapped to a grid of `step`, or moved by tiny amounts.
+        fn degrade(&mut self, p: &mut [DVec3], kind: u32) {
+            for x in p.iter_mut() {
+                match kind {
+                    1 => *x = (*x / 0.25).round() * 0.25,
+                    2 => *x += DVec3::new(self.next() - 0.5, self.next() - 0.5, 0.0) * 1e-12,
+                    _ => {}
+                }
+            }
+        }
+    }
+
+    /// The overlap test gives the verdicts it gave before its edge boxes were precomputed, on
+    /// polygon pairs sharing an edge (the callers' case, in both orders, either normal), pairs
+    /// sharing a vertex or nothing, and near-degenerate ones (collinear and coincident
+    /// vertices on a grid, perturbations of 1e-12).
+    #[test]
+    fn the_overlap_test_matches_its_former_self() {
+        let mut gen = Polygons {
+            state: 0x2545_f491_4f6c_dd1d,
+        };
+        let (mut overlaps, mut apart) = (0, 0);
+        for case in 0..20_000 {
+            let n = 3 + case % 9;
+            let m = 3 + (case / 9) % 9;
+            let a = gen.star(DVec3::ZERO, n, 1.0);
+            let centre = DVec3::new(gen.next() * 2.0, gen.next() * 2.0, 0.0);
+            let mut b = gen.star(centre, m, 1.0);
+            let mut a = a;
+            match case % 4 {
+                // Share the edge (a[0], a[1]), reversed in b.
+                0 | 1 => {
+                    b[0] = a[1];
+                    b[1] = a[0];
+                }
+                // Share a vertex.
+                2 => b[0] = a[0],
+                _ => {}
+            }
+            gen.degrade(&mut a, (case / 4 % 3) as u32);
+            gen.degrade(&mut b, (case / 12 % 3) as u32);
+            let normal = DVec3::new(gen.next() - 0.5, gen.next() - 0.5, 1.0);
+            for normal in [normal, normal.normalize(), DVec3::ZERO] {
+                for (p, q) in [(&a, &b), (&b, &a)] {
+                    let expected = polygons_overlap_before(p, q, normal);
+                    assert_eq!(
+                        polygons_overlap(p, q, normal),
+                        expected,
+                        "{p:?} {q:?} {normal}"
+                    );
+                    if expected {
+                        overlaps += 1;
+                    } else {
+                        apart += 1;
+                    }
+                }
+            }
+        }
+        assert!(overlaps > 10_000 && apart > 10_000, "{overlaps} {apart}");
+    }
+
+    /// The simplicity count gives the counts it gave before each edge's box was taken once:
+    /// the star, random-walk and grid-snapped polygons of every size up to the sweep's.
+    #[test]
+    fn the_crossing_count_matches_its_former_self() {
+        let mut gen = Polygons {
+            state: 0x9e37_79b9_7f4a_7c15,
+        };
+        let before = |p: &[DVec2]| {
+            let n = p.len();
+            let mut count = 0;
+            for a in 0..n {
+                for b in a + 2..n {
+                    if !(a == 0 && b == n - 1)
+                        && edges_meet_before(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n])
+                    {
+                        count += 1;
+                    }
+                }
+            }
+            count
+        };
+        let mut crossings = 0;
+        for case in 0..20_000 {
+            let n = 3 + case % (SWEEP_MIN_EDGES + 6);
+            let mut p: Vec<DVec2> = (0..n)
+                .map(|_| DVec2::new(gen.next() * 4.0, gen.next() * 4.0))
+                .collect();
+            if case % 3 == 1 {
+                p.iter_mut().for_each(|x| *x = x.round());
+            }
+            let expected = before(&p);
+            assert_eq!(crossing_edge_pairs(&p), expected, "{p:?}");
+            crossings += expected;
+        }
+        assert!(crossings > 10_000, "{crossings}");
     }
 }
