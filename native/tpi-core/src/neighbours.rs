@@ -777,7 +777,11 @@ fn envelope_illegal(
 /// The envelope test on the quad (c, a, b, d) around the edge (a, b): true where T_d cuts
 /// off the vertex T_a ∩ T_b ∩ T_c and T_c the vertex T_a ∩ T_b ∩ T_d (beyond the tolerance).
 /// The three planes of each vertex are taken in ascending index order.
-fn envelope_quad_illegal(planes: &[Plane], convex_side: &[i8], [c, a, b, d]: [u32; 4]) -> bool {
+pub(crate) fn envelope_quad_illegal(
+    planes: &[Plane],
+    convex_side: &[i8],
+    [c, a, b, d]: [u32; 4],
+) -> bool {
     let side = convex_side[c as usize];
     if side == 0 || [a, b, d].iter().any(|&i| convex_side[i as usize] != side) {
         return false;

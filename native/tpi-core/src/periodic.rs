@@ -27,14 +27,20 @@
 
 use std::collections::HashMap;
 
+use glam::DVec3;
+
 use crate::diffgeo::LocalGeometry;
 use crate::error::TpiError;
 use crate::ghosts::{augment, Augmented};
-use crate::neighbours::{decide, NeighbourInput, NeighbourStats};
-use crate::planes::Plane;
+use crate::hull::convex_hull;
+use crate::neighbours::{decide, envelope_quad_illegal, NeighbourInput, NeighbourStats};
+use crate::planes::{intersect_three, Plane};
 use crate::predicates::orient2d;
 use crate::surface::Surface;
-use crate::tolerance::{PERIODIC_BAND, PERIODIC_CUTS, PERIODIC_TIE, PERIODIC_TIE_ROUNDS};
+use crate::tolerance::{
+    PERIODIC_BAND, PERIODIC_CUTS, PERIODIC_TIE, PERIODIC_TIE_ROUNDS, POLE_CAP_COSINE,
+    POLE_CAP_FLIPS,
+};
 use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
 use crate::validity_flips::validity_flips;
 
@@ -252,7 +258,12 @@ fn fold(
             .collect();
         let mut folded = DualTriangulation::from_triangles(triangles)?;
         if poles > 0 {
-            folded = cap_poles(folded, &augmented.planes[..seeds], poles)?;
+            folded = cap_poles(
+                folded,
+                &augmented.planes[..seeds],
+                &augmented.convex_side[..seeds],
+                poles,
+            )?;
         }
         // Only ghosts may end the structure: an open edge at a seed is a gap at the seam.
         let gap = folded
@@ -369,6 +380,7 @@ fn canonical_ties<K: Ord + Copy>(
 fn cap_poles(
     folded: DualTriangulation,
     planes: &[Plane],
+    convex_side: &[i8],
     poles: usize,
 ) -> Option<DualTriangulation> {
     let seeds = planes.len();
@@ -411,25 +423,226 @@ fn cap_poles(
         return None;
     }
     let mut triangles = folded.triangles;
+    let mut axes = Vec::with_capacity(cycles.len());
     for cycle in &cycles {
         // The cap runs each boundary edge the other way.
         let ring: Vec<u32> = cycle.iter().rev().copied().collect();
-        triangles.extend(ear_clipping(&ring, planes)?);
+        match envelope_cap(&ring, planes) {
+            Some(cap) => triangles.extend(cap),
+            None => triangles.extend(ear_clipping(&ring, planes)?),
+        }
+        axes.extend(ring_sides(&ring, planes).map(|(normal, _)| normal));
     }
-    DualTriangulation::from_triangles(triangles)
+    let mut capped = DualTriangulation::from_triangles(triangles)?;
+    for axis in axes {
+        pole_envelope_flips(&mut capped, planes, convex_side, axis);
+    }
+    Some(capped)
+}
+
+/// Around a pole, the general path's structure was decided in parameters, which a pole
+/// distorts without bound (a ring of seeds round it spans the whole closed direction). Where
+/// the surface there is convex, its facets are the envelope of the tangent planes, whatever
+/// the parameters: Lawson flips with the envelope test
+/// ([`crate::neighbours::envelope_quad_illegal`]: T_d cuts off T_a ∩ T_b ∩ T_c and T_c cuts
+/// off T_a ∩ T_b ∩ T_d, for four seeds on one convex side) on the edges whose four seeds
+/// face the pole's axis (n . axis >= [`POLE_CAP_COSINE`]), a flip made where the quad is strictly convex in
+/// the plane normal to the axis (the seeds' projections). Each flip lowers the envelope, so
+/// the flips end; [`POLE_CAP_FLIPS`] per triangle bounds them all the same.
+fn pole_envelope_flips(
+    tri: &mut DualTriangulation,
+    planes: &[Plane],
+    convex_side: &[i8],
+    axis: DVec3,
+) {
+    let seeds = planes.len();
+    let e1 = axis.any_orthonormal_vector();
+    let e2 = axis.cross(e1);
+    let chart = |i: u32| {
+        let p = planes[i as usize].point;
+        [p.dot(e1), p.dot(e2)]
+    };
+    let on_cap =
+        |i: u32| (i as usize) < seeds && planes[i as usize].normal.dot(axis) >= POLE_CAP_COSINE;
+    let mut stack: Vec<(u32, u32)> = Vec::new();
+    for (t, nb) in tri.neighbours.iter().enumerate() {
+        for &across in nb {
+            if across != NO_TRIANGLE && (t as u32) < across {
+                stack.push((t as u32, across));
+            }
+        }
+    }
+    let mut budget = POLE_CAP_FLIPS * tri.triangles.len();
+    while let Some((t, across)) = stack.pop() {
+        if budget == 0 {
+            return;
+        }
+        let Some(k) = tri.neighbours[t as usize].iter().position(|&x| x == across) else {
+            continue;
+        };
+        let t1 = tri.triangles[t as usize];
+        let [c, a, b] = [t1[k], t1[(k + 1) % 3], t1[(k + 2) % 3]];
+        let Some(d) = tri.opposite(across as usize, t) else {
+            continue;
+        };
+        if ![a, b, c, d].into_iter().all(on_cap) {
+            continue;
+        }
+        let [pa, pb, pc, pd] = [a, b, c, d].map(chart);
+        let strictly_convex = orient2d(pa, pb, pc) * orient2d(pa, pb, pd) < 0.0
+            && orient2d(pc, pd, pa) * orient2d(pc, pd, pb) < 0.0;
+        if !strictly_convex || !envelope_quad_illegal(planes, convex_side, [c, a, b, d]) {
+            continue;
+        }
+        budget -= 1;
+        let (t1, t2) = tri.flip(t, k);
+        for x in [t1, t2] {
+            for &y in &tri.neighbours[x as usize] {
+                if y != NO_TRIANGLE && y != t1 && y != t2 {
+                    stack.push((x, y));
+                }
+            }
+        }
+    }
+}
+
+/// The mean normal N of a pole's ring of seeds, and how the surface bends there: per ordered
+/// pair (i, j) of ring seeds, the side of seed i's plane (normal turned towards N) on which
+/// seed j lies, counted [behind, in front] (module doc of [`envelope_cap`]).
+fn ring_sides(ring: &[u32], planes: &[Plane]) -> Option<(DVec3, [usize; 2])> {
+    let normal = ring
+        .iter()
+        .map(|&i| planes[i as usize].normal)
+        .sum::<DVec3>()
+        .try_normalize()?;
+    let mut sides = [0usize; 2];
+    for &i in ring {
+        let plane = &planes[i as usize];
+        let towards = plane.normal.dot(normal).signum();
+        for &j in ring {
+            if i != j {
+                let d = towards * plane.signed_distance(planes[j as usize].point);
+                sides[usize::from(d > 0.0)] += usize::from(d != 0.0);
+            }
+        }
+    }
+    Some((normal, sides))
+}
+
+/// The cap of a pole where the surface there is convex: the triangles of the polygon `ring`
+/// (seed indices, in the order the triangles must keep) whose vertices are those of the
+/// envelope of the ring's tangent planes, as on the convex path (module doc of
+/// [`crate::closed`]). In the frame (e1, e2, N) of the ring's mean normal N, plane i,
+/// n_i . x = n_i . p_i, is the graph z = s_i . (x, y) + h_i with slope
+/// s_i = -(n_i . e1, n_i . e2) / (n_i . N) and height h_i = n_i . p_i / (n_i . N). Where every
+/// seed of the ring lies behind every other seed's plane (the surface bends away from N), the
+/// facets around the pole are the lower envelope min_i (s_i . (x, y) + h_i), whose triples
+/// meeting at a vertex are the lower convex hull of the lifted points (s_i, h_i); in front of
+/// them all (bending towards N), the upper envelope and the upper hull. The hull's exact
+/// orientation tests and symbolic perturbation decide near-ties (a ring of cocircular seeds)
+/// consistently. None where the ring does not bend one way, the hull does not exist, or its
+/// lower (upper) faces do not triangulate exactly the ring polygon (the ring's slopes not in
+/// convex position): the caller clips ears instead ([`ear_clipping`]).
+fn envelope_cap(ring: &[u32], planes: &[Plane]) -> Option<Vec<[u32; 3]>> {
+    if ring.len() < 4 {
+        return None;
+    }
+    let (normal, sides) = ring_sides(ring, planes)?;
+    let lower = match sides {
+        [_, 0] => true,
+        [0, _] => false,
+        _ => return None,
+    };
+    let e1 = normal.any_orthonormal_vector();
+    let e2 = normal.cross(e1);
+    let mut lifted = Vec::with_capacity(ring.len());
+    for &i in ring {
+        let plane = &planes[i as usize];
+        let along = plane.normal.dot(normal);
+        let point = [
+            -plane.normal.dot(e1) / along,
+            -plane.normal.dot(e2) / along,
+            plane.normal.dot(plane.point) / along,
+        ];
+        if !point.iter().all(|x| x.is_finite()) {
+            return None;
+        }
+        lifted.push(point);
+    }
+    let (faces, _, _) = convex_hull(&lifted).ok()?;
+    // Faces are counter-clockwise seen from outside: a lower face turns clockwise seen from
+    // above (orient2d of its slopes < 0), an upper face counter-clockwise.
+    let slope = |k: u32| [lifted[k as usize][0], lifted[k as usize][1]];
+    let mut cap: Vec<[u32; 3]> = faces
+        .iter()
+        .filter(|f| {
+            let turn = orient2d(slope(f[0]), slope(f[1]), slope(f[2]));
+            if lower {
+                turn < 0.0
+            } else {
+                turn > 0.0
+            }
+        })
+        .map(|f| f.map(|k| ring[k as usize]))
+        .collect();
+    // The cap's boundary must be the ring: each ring edge on one cap triangle and no other
+    // edge without its twin; the triangles turned to run the ring's edges its own way.
+    let mut edges: HashMap<(u32, u32), usize> = HashMap::new();
+    for t in &cap {
+        for k in 0..3 {
+            *edges.entry((t[k], t[(k + 1) % 3])).or_default() += 1;
+        }
+    }
+    let m = ring.len();
+    let ring_edges = || (0..m).map(|k| (ring[k], ring[(k + 1) % m]));
+    let same = ring_edges().all(|e| edges.contains_key(&e));
+    let reversed = ring_edges().all(|(a, b)| edges.contains_key(&(b, a)));
+    let open = edges
+        .keys()
+        .filter(|&&(a, b)| !edges.contains_key(&(b, a)))
+        .count();
+    if !(same || reversed) || open != m || edges.values().any(|&c| c != 1) {
+        return None;
+    }
+    if reversed {
+        for t in &mut cap {
+            t.swap(1, 2);
+        }
+    }
+    Some(cap)
 }
 
 /// Triangles of the polygon `ring` (seed indices, in the order the triangles must keep), its
 /// points projected into the plane of their mean normal; None where it is not simple there.
+/// Of the ears, the one clipped first is the one whose three planes meet nearest to the
+/// envelope of the ring's planes, on the side most seeds lie ([`ring_sides`]): the vertex x
+/// of planes (a, b, c) is scored by max_i of the signed distance of x from ring plane i,
+/// turned so that the envelope's vertices have none positive. Where the envelope
+/// triangulates the ring, every ear clipped is one of its triangles (removing one leaves the
+/// others on it); elsewhere the ears keep each cap vertex as near to it as they can, instead
+/// of fanning the cap out from one seed.
 fn ear_clipping(ring: &[u32], planes: &[Plane]) -> Option<Vec<[u32; 3]>> {
     if ring.len() < 3 {
         return None;
     }
-    let normal = ring
-        .iter()
-        .map(|&i| planes[i as usize].normal)
-        .sum::<glam::DVec3>()
-        .try_normalize()?;
+    let (normal, sides) = ring_sides(ring, planes)?;
+    let behind = if sides[1] > sides[0] { -1.0 } else { 1.0 };
+    let outside = |a: u32, b: u32, c: u32| {
+        let [a, b, c] = [a, b, c].map(|i| &planes[i as usize]);
+        let corner = intersect_three(a, b, c).point;
+        let reach = ring
+            .iter()
+            .map(|&i| {
+                let plane = &planes[i as usize];
+                behind * plane.normal.dot(normal).signum() * plane.signed_distance(corner)
+            })
+            .fold(f64::NEG_INFINITY, f64::max);
+        if reach.is_nan() {
+            f64::INFINITY
+        } else {
+            reach
+        }
+    };
     let e1 = normal.any_orthonormal_vector();
     let e2 = normal.cross(e1);
     let mut at: HashMap<u32, [f64; 2]> = HashMap::new();
@@ -452,16 +665,27 @@ fn ear_clipping(ring: &[u32], planes: &[Plane]) -> Option<Vec<[u32; 3]>> {
     let mut triangles = Vec::with_capacity(ring.len() - 2);
     while polygon.len() > 3 {
         let m = polygon.len();
-        let ear = (0..m).find(|&k| {
-            let (a, b, c) = (polygon[(k + m - 1) % m], polygon[k], polygon[(k + 1) % m]);
-            turn(a, b, c) > 0.0
-                && polygon.iter().all(|&x| {
-                    x == a
-                        || x == b
-                        || x == c
-                        || !(turn(a, b, x) >= 0.0 && turn(b, c, x) >= 0.0 && turn(c, a, x) >= 0.0)
-                })
-        })?;
+        let corners = |k: usize| (polygon[(k + m - 1) % m], polygon[k], polygon[(k + 1) % m]);
+        let ear = (0..m)
+            .filter(|&k| {
+                let (a, b, c) = corners(k);
+                turn(a, b, c) > 0.0
+                    && polygon.iter().all(|&x| {
+                        x == a
+                            || x == b
+                            || x == c
+                            || !(turn(a, b, x) >= 0.0
+                                && turn(b, c, x) >= 0.0
+                                && turn(c, a, x) >= 0.0)
+                    })
+            })
+            .map(|k| {
+                let (a, b, c) = corners(k);
+                (outside(a, b, c), k)
+            })
+            // The first of equal scores: deterministic, as the ring's order is.
+            .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))?
+            .1;
         triangles.push([
             polygon[(ear + m - 1) % m],
             polygon[ear],

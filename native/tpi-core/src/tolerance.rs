@@ -64,6 +64,15 @@ pub const PERIODIC_TIE: f64 = 1e-10;
 /// Rounds of the tie breaking over all edges (each round flips only ties).
 pub const PERIODIC_TIE_ROUNDS: usize = 8;
 
+/// Seeds whose normal makes at most acos of this with a pole's axis (the mean normal of the
+/// ring of seeds round it) take part in the envelope flips around the pole (`periodic.rs`):
+/// within 60 degrees, the plane normal to the axis charts a convex cap one to one.
+pub const POLE_CAP_COSINE: f64 = 0.5;
+
+/// Envelope flips allowed around a pole, per triangle of the structure: a bound that the
+/// flips (each lowering the envelope) never reach, kept so that rounding cannot loop them.
+pub const POLE_CAP_FLIPS: usize = 4;
+
 // ---- read by rulings.rs ----
 
 /// A surface's parameter lines are its rulings when, at the layout samples, the normals along

@@ -316,7 +316,7 @@ fn closed_discretisation(
 /// boundary loops), every vertex in its seed's tangent plane, facets of seeds on either side
 /// of the seam sharing edges, and the independent validity checks (at most a few flagged
 /// facets: exact planes on the saddle vase, adjusted planes on the mixed ones; up to 8 on the
-/// peanut, at its parabolic lines and pole caps).
+/// peanut, at its parabolic lines).
 #[test]
 fn closed_surfaces_that_are_not_convex_close_their_seam_and_poles() {
     let saddle = [(3.0, 0.0), (1.0, 2.0), (3.0, 4.0)];
@@ -371,7 +371,7 @@ fn closed_surfaces_that_are_not_convex_close_their_seam_and_poles() {
                 v.topology_problems
             );
             assert!(
-                v.invalid_facets().len() <= if *sname == "peanut" { 8 } else { 3 },
+                v.invalid_facets().len() <= 3,
                 "{name}: invalid facets {:?}",
                 v.invalid_facets()
             );
@@ -507,8 +507,9 @@ fn a_closed_surface_convex_at_every_seed_but_not_as_a_whole_closes() {
                 unflagged.is_empty(),
                 "{name}: invalid, not flagged: {unflagged:?}"
             );
-            // Most facets are valid panels (measured: 3-44 invalid of 400-576, most with
-            // random points and exact planes, at the creases).
+            // Most facets are valid panels (measured: 0-36 invalid of 400-576, most with
+            // random points and exact planes, at the creases; 0 with grids and adjusted hex,
+            // since the pole caps are the envelope there; 3-49 before).
             assert!(
                 v.invalid_facets().len() * 10 <= pattern.len(),
                 "{name}: {} invalid facets",
@@ -561,4 +562,99 @@ fn the_reported_deviation_on_a_closed_surface_is_measured_across_the_seam() {
             );
         }
     }
+}
+
+/// Issue 16, item 2: where a closed surface that is not convex as a whole (a peanut: poles
+/// at both ends, K > 0 on the caps, K < 0 at the waist) is convex around a pole, the facets
+/// around the pole are the envelope of the tangent planes there, as on a convex surface: no
+/// facet fanned out from one seed of the ring nearest the pole. Oracle from the surface's
+/// points alone (normals by central differences, not the pipeline's derivatives): every mesh
+/// vertex within `near` of a pole lies on or behind the tangent plane of every seed within
+/// `cap` of it (the cap is convex there), and every facet with such a vertex is valid by the
+/// independent checks; the mesh is a closed sphere. Uniform random seeds (clusters and gaps
+/// around the pole) keep a little: measured 9 vertex uses in front of a plane by at most 1 %
+/// of the spacing and 2 invalid facets (7 before the caps were the envelope), bounded here.
+#[test]
+fn pole_caps_of_a_surface_not_convex_are_the_envelope_there() {
+    let peanut = vase(
+        &[
+            (0.0, -2.0),
+            (1.5, -2.0),
+            (1.5, -0.8),
+            (0.6, 0.0),
+            (1.5, 0.8),
+            (1.5, 2.0),
+            (0.0, 2.0),
+        ],
+        false,
+    );
+    let poles = [DVec3::new(0.0, 0.0, -2.0), DVec3::new(0.0, 0.0, 2.0)];
+    let (near, cap) = (0.5, 1.0);
+    let normal_at = |uv: [f64; 2]| {
+        let h = 1e-6;
+        let d = peanut.domain();
+        let (u, v) = (uv[0], uv[1].clamp(d.v.min + h, d.v.max - h));
+        let su =
+            peanut.point_at((u + h).min(d.u.max), v) - peanut.point_at((u - h).max(d.u.min), v);
+        let sv = peanut.point_at(u, v + h) - peanut.point_at(u, v - h);
+        su.cross(sv).normalize()
+    };
+    let mut rng = Rng::new(1627);
+    let patterns = [
+        ("random:400", uniform_pattern(&mut rng, 400)),
+        ("poisson:0.05", generated("poisson:0.05:seed=5")),
+        ("poisson:0.04", generated("poisson:0.04:seed=8")),
+        ("hex:20x14", generated("hex:20x14")),
+        ("grid:16x16", generated("grid:16x16")),
+    ];
+    let mut failures = Vec::new();
+    for (pname, pattern) in &patterns {
+        let (d, v) = closed_discretisation(pname, &peanut, pattern, &DiscretiseOptions::default());
+        assert_eq!(
+            (v.euler, v.boundary_loops, v.topology_problems),
+            (2, 0, 0),
+            "{pname}"
+        );
+        let diagonal = seed_diagonal(&d);
+        let mut in_front = 0;
+        let mut checked = 0;
+        let mut facets_near = std::collections::BTreeSet::new();
+        for pole in poles {
+            let planes: Vec<(DVec3, DVec3)> = d
+                .seeds
+                .iter()
+                .filter(|s| s.point.distance(pole) <= cap)
+                .map(|s| (s.point, normal_at(s.uv)))
+                .collect();
+            for (i, _) in d.seeds.iter().enumerate() {
+                for &k in d.facet(i) {
+                    let x = d.vertices[k as usize];
+                    if x.distance(pole) > near {
+                        continue;
+                    }
+                    facets_near.insert(i);
+                    checked += 1;
+                    // Outward normals: the surface bends away from them at a convex cap.
+                    if planes.iter().any(|&(p, n)| n.dot(x - p) > 1e-7 * diagonal) {
+                        in_front += 1;
+                    }
+                }
+            }
+        }
+        let invalid: Vec<usize> = v
+            .invalid_facets()
+            .into_iter()
+            .filter(|i| facets_near.contains(i))
+            .collect();
+        assert!(checked > 0, "{pname}: no vertex near a pole");
+        let (front_allowed, invalid_allowed) = if *pname == "random:400" {
+            (9, 2)
+        } else {
+            (0, 0)
+        };
+        if in_front > front_allowed || invalid.len() > invalid_allowed {
+            failures.push(format!("{pname}: {in_front} of {checked} uses of cap vertices in front of a cap seed's plane, invalid facets at the poles {invalid:?}"));
+        }
+    }
+    assert!(failures.is_empty(), "{failures:#?}");
 }
