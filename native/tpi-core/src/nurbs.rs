@@ -890,6 +890,65 @@ fn bernstein(p: usize, t: f64) -> [f64; BEZIER_MAX_DEGREE + 1] {
     }
 }
 
+/// The non-rational bicubic patch's point and derivatives from the Bernstein rows `nu`, `nv`
+/// ([`bernstein_derivatives`]): the contraction of [`NurbsSurface::evaluate_bezier`] with
+/// constant loop bounds (unrolled), the same operations in the same order.
+// Indices, not iterators: the sums run over rows and columns of three tables at once.
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn bicubic_derivatives(
+    patch: &[DVec3; 16],
+    nu: &[[f64; BEZIER_MAX_DEGREE + 1]; 3],
+    nv: &[[f64; BEZIER_MAX_DEGREE + 1]; 3],
+) -> SurfaceDerivatives {
+    let (mut point, mut su, mut sv) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+    let (mut suu, mut suv, mut svv) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+    for k in 0..4 {
+        let (mut t0, mut t1, mut t2) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+        for l in 0..4 {
+            let cp = patch[4 * k + l];
+            t0 += nv[0][l] * cp;
+            t1 += nv[1][l] * cp;
+            t2 += nv[2][l] * cp;
+        }
+        let (n0, n1, n2) = (nu[0][k], nu[1][k], nu[2][k]);
+        point += n0 * t0;
+        su += n1 * t0;
+        suu += n2 * t0;
+        sv += n0 * t1;
+        suv += n1 * t1;
+        svv += n0 * t2;
+    }
+    SurfaceDerivatives {
+        point,
+        su,
+        sv,
+        suu,
+        suv,
+        svv,
+    }
+}
+
+/// The non-rational bicubic patch's point from the Bernstein values `nu`, `nv`: the
+/// contraction of [`NurbsSurface::point_bezier`] with constant loop bounds.
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn bicubic_point(
+    patch: &[DVec3; 16],
+    nu: &[f64; BEZIER_MAX_DEGREE + 1],
+    nv: &[f64; BEZIER_MAX_DEGREE + 1],
+) -> DVec3 {
+    let mut point = DVec3::ZERO;
+    for k in 0..4 {
+        let mut t0 = DVec3::ZERO;
+        for l in 0..4 {
+            t0 += nv[l] * patch[4 * k + l];
+        }
+        point += nu[k] * t0;
+    }
+    point
+}
+
 /// Values, first and second derivatives (with respect to the knot parameter, through the
 /// span's inverse width `scale`) of the Bernstein polynomials of degree p (<= 3) at t:
 /// B'_k = p (B^(p-1)_(k-1) - B^(p-1)_k), B''_k = p (p-1) (B^(p-2)_(k-2) - 2 B^(p-2)_(k-1) + B^(p-2)_k).
@@ -999,6 +1058,9 @@ impl NurbsSurface {
             let patch = self
                 .bezier
                 .euclidean_patch(&self.basis_u, &self.basis_v, span_u, span_v);
+            if let (3, 3, Ok(cubic)) = (pu, pv, <&[DVec3; 16]>::try_from(patch)) {
+                return bicubic_derivatives(cubic, &nu, &nv);
+            }
             let (mut point, mut su, mut sv) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
             let (mut suu, mut suv, mut svv) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
             for k in 0..=pu {
@@ -1062,6 +1124,9 @@ impl NurbsSurface {
             let patch = self
                 .bezier
                 .euclidean_patch(&self.basis_u, &self.basis_v, span_u, span_v);
+            if let (3, 3, Ok(cubic)) = (pu, pv, <&[DVec3; 16]>::try_from(patch)) {
+                return bicubic_point(cubic, &nu, &nv);
+            }
             let mut point = DVec3::ZERO;
             for k in 0..=pu {
                 let row = &patch[k * (pv + 1)..(k + 1) * (pv + 1)];

@@ -293,13 +293,7 @@ pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (Quali
         r.max_planarity_error = r.max_planarity_error.max(planarity);
         r.min_facet_area = r.min_facet_area.min(shape.area);
         r.max_facet_area = r.max_facet_area.max(shape.area);
-        let distinct = {
-            let mut v = l.to_vec();
-            v.sort_unstable();
-            v.dedup();
-            v.len()
-        };
-        if distinct < 3 {
+        if !three_distinct(l) {
             flags[i] |= FLAG_OPEN;
             r.open_facets += 1;
         } else if !shape.simple {
@@ -350,6 +344,21 @@ pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (Quali
         r.min_edge_length = 0.0;
     }
     (r, flags)
+}
+
+/// Whether `l` holds at least three distinct vertices (one pass, no copy of the loop).
+fn three_distinct(l: &[u32]) -> bool {
+    let mut first = None;
+    let mut second = None;
+    for &v in l {
+        match (first, second) {
+            (None, _) => first = Some(v),
+            (Some(a), None) if v != a => second = Some(v),
+            (Some(a), Some(b)) if v != a && v != b => return true,
+            _ => {}
+        }
+    }
+    false
 }
 
 /// The foot (closest point's parameters) of every vertex used by a facet, None for unused
@@ -615,10 +624,28 @@ fn vertex_pairs_overlapping(
     simple: &[bool],
     shared_edges: &[(u32, u32, u32, u32)],
 ) -> Vec<(u32, u32)> {
-    let mut facets_of: Vec<Vec<u32>> = vec![Vec::new(); input.vertices.len()];
+    // Each vertex's facets (in facet order) by a counting sort: one flat array, no list per
+    // vertex.
+    let vertex_count = input.vertices.len();
+    let mut start = vec![0u32; vertex_count + 1];
     for f in 0..facet_count {
         for &v in facet(input, f) {
-            facets_of[v as usize].push(f as u32);
+            start[v as usize + 1] += 1;
+        }
+    }
+    if start.iter().all(|&c| c <= 3) {
+        // No vertex where four or more facets meet (the usual case): no pair to test.
+        return Vec::new();
+    }
+    for v in 0..vertex_count {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut incident = vec![0u32; start[vertex_count] as usize];
+    for f in 0..facet_count {
+        for &v in facet(input, f) {
+            incident[fill[v as usize] as usize] = f as u32;
+            fill[v as usize] += 1;
         }
     }
     let adjacent: std::collections::HashSet<(u32, u32)> = shared_edges
@@ -626,7 +653,8 @@ fn vertex_pairs_overlapping(
         .map(|&(f, g, _, _)| (f.min(g), f.max(g)))
         .collect();
     let mut out = Vec::new();
-    for list in facets_of.iter().filter(|l| l.len() > 3) {
+    let lists = (0..vertex_count).map(|v| &incident[start[v] as usize..start[v + 1] as usize]);
+    for list in lists.filter(|l| l.len() > 3) {
         for (k, &f) in list.iter().enumerate() {
             for &g in &list[k + 1..] {
                 let pair = (f.min(g), f.max(g));
