@@ -33,7 +33,7 @@ use tpi_core::{discretise, DiscretiseOptions, Generator, NurbsSurface, PlaneMode
 /// angle, the sum of a crest a cos(k x'), a quadratic b y'^2 + c x' y', and a Gaussian bump
 /// (or dip) of height h; drawn again until K takes both signs on a 24 x 24 grid.
 pub fn mixed_surface(seed: u64) -> NurbsSurface {
-    let mut rng = Rng::new(0x6d69_7865_64 ^ seed.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+    let mut rng = Rng::new(0x6d_6978_6564 ^ seed.wrapping_mul(0x9e37_79b9_7f4a_7c15));
     loop {
         let angle = rng.range(0.0, std::f64::consts::PI);
         let a = rng.range(1.0, 2.5) * if rng.f64() < 0.5 { 1.0 } else { -1.0 };
