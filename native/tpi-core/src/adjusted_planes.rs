@@ -36,7 +36,15 @@
 //! - then, around each facet still invalid, random restarts ([`PLANE_KICKS`]): random tilts
 //!   followed by greedy tilts and flips, kept only when they leave fewer invalid facets,
 //!   undone otherwise (seeded by the facet's index, so the result is deterministic); passes
-//!   over the facets still invalid while one is kept, at most [`KICK_ROUNDS`].
+//!   over the facets still invalid while one is kept, at most [`KICK_ROUNDS`];
+//! - where only a few facets are left invalid ([`ESCALATION_MAX_INVALID`]), longer series of
+//!   restarts around each ([`escalate`]), drawn afresh per round and every other round
+//!   tilting up to four planes of two rings at once, within [`ESCALATION_BUDGET_PER_INVALID`]
+//!   plane changes per facet left (a mesh the kick rounds made valid is not touched); each
+//!   round first tries [`restructure`]: flips of the facet's star and link edges towards the
+//!   isotropic Delaunay triangulation of the seeds (near a parabolic line the |II| metric
+//!   degenerates and gives neighbours several spacings away, which no tilt repairs), then
+//!   greedy tilts and flips, kept only when fewer facets are left invalid.
 //!
 //! With adjusted planes a facet whose vertices lie farther than [`MAX_REACH`] local spacings
 //! from its seed also counts as invalid, so that runaway vertices at parabolic lines are
@@ -52,9 +60,11 @@ use glam::DVec3;
 use crate::pattern::SplitMix64;
 use crate::planes::Plane;
 use crate::tolerance::{
+    ESCALATION_BUDGET_PER_INVALID, ESCALATION_KICKS, ESCALATION_MAX_INVALID, ESCALATION_ROUNDS,
     KICK_REPAIR_PASSES, KICK_ROUNDS, MAX_PLANE_ADJUST_ROUNDS, MAX_PLANE_TILT_DEGREES, MAX_REACH,
     PLANE_ADJUST_BUDGET, PLANE_ADJUST_BUDGET_PER_INVALID, PLANE_KICKS, PLANE_OFFSET_STEPS,
     PLANE_TILT_DIRECTIONS, PLANE_TILT_STEPS_DEGREES, REACH_GAIN, RESCUE_TILT_STEPS_DEGREES,
+    RESTRUCTURE_FLIPS,
 };
 use crate::triangulation::DualTriangulation;
 use crate::validity_flips::{affected_points, Journal, State};
@@ -127,7 +137,7 @@ pub(crate) fn adjust_planes(
             if state.plane_changes > budget {
                 break 'kicks;
             }
-            if state.invalid[i as usize] && kick(&mut state, &exact, &spacing, i, budget) {
+            if state.invalid[i as usize] && kick(&mut state, &exact, &spacing, i, budget, &KICK) {
                 stats.tilts += 1;
                 kept = true;
             }
@@ -136,6 +146,7 @@ pub(crate) fn adjust_planes(
             break;
         }
     }
+    escalate(&mut state, &exact, &spacing, &mut stats);
     stats.unresolved = state.invalid.iter().filter(|&&x| x).count();
     *planes = state.planes.into_owned();
     stats
@@ -394,23 +405,36 @@ fn commit(state: &mut State<'_>, verdicts: Vec<(u32, bool)>) {
 /// [`MAX_PLANE_TILT_DEGREES`]), let the greedy moves (tilts, then flips with rescue tilts)
 /// repair what that broke, and keep the whole when it leaves fewer invalid facets than
 /// before; otherwise undo it (the journal logs flips as well as planes).
-fn kick(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32, budget: usize) -> bool {
-    let mut rng = SplitMix64::new(0x7469_6c74 ^ u64::from(i));
-    for _ in 0..PLANE_KICKS {
+fn kick(
+    state: &mut State<'_>,
+    exact: &[Plane],
+    spacing: &[f64],
+    i: u32,
+    budget: usize,
+    plan: &KickPlan,
+) -> bool {
+    let mut rng = SplitMix64::new(0x7469_6c74 ^ u64::from(i) ^ plan.salt);
+    for _ in 0..plan.kicks {
         if state.plane_changes > budget {
             return false;
         }
         let ring = polygons_of_plane(state, i);
+        // The planes a restart may tilt: i's ring, or (wide) the ring of that ring.
+        let pool = if plan.wide {
+            affected_points(state.tri, &state.incident, &ring)
+        } else {
+            ring
+        };
         state.journal = Some(Journal::default());
-        for _ in 0..1 + rng.below(3) {
-            let j = ring[rng.below(ring.len())];
+        for _ in 0..1 + rng.below(plan.most_planes) {
+            let j = pool[rng.below(pool.len())];
             let degrees = MAX_PLANE_TILT_DEGREES * (0.2 + 0.8 * rng.next_f64());
             let phi = std::f64::consts::TAU * rng.next_f64();
             state.set_plane(j, tilted(&exact[j as usize], degrees, phi));
         }
-        // The tilted planes are in i's ring: their polygons reach two rings from i, the
-        // verdicts that can change three.
-        let changed = affected_points(state.tri, &state.incident, &ring);
+        // The tilted planes are in the pool: their polygons reach one ring beyond it, the
+        // verdicts that can change two (three rings from i, four when wide).
+        let changed = affected_points(state.tri, &state.incident, &pool);
         let points = judged_around(state, &changed);
         let verdicts: Vec<(u32, bool)> = points
             .iter()
@@ -442,6 +466,120 @@ fn kick(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32, budget:
         }
         state.undo();
     }
+    false
+}
+
+/// How a series of random restarts around one facet is drawn ([`kick`]).
+struct KickPlan {
+    /// Restarts tried.
+    kicks: usize,
+    /// Mixed into the seed of the restarts, so that another series draws other tilts.
+    salt: u64,
+    /// Planes tilted at random per restart: 1 to this many.
+    most_planes: usize,
+    /// Whether the tilted planes are drawn from two rings around the facet, not one.
+    wide: bool,
+}
+
+/// The restarts of the kick rounds.
+const KICK: KickPlan = KickPlan {
+    kicks: PLANE_KICKS,
+    salt: 0,
+    most_planes: 3,
+    wide: false,
+};
+
+/// The last resort for the few facets the kick rounds leave invalid (at most
+/// [`ESCALATION_MAX_INVALID`]; more means a surface where tilts cannot help): further series
+/// of restarts around each, drawn afresh in each round (a new salt), every other round from
+/// two rings around the facet with up to four planes tilted at once (a cluster at a
+/// parabolic line whose facets need several planes moved together), until none is left,
+/// [`ESCALATION_ROUNDS`] rounds have run or [`ESCALATION_BUDGET_PER_INVALID`] plane changes
+/// per facet left have been spent. Where the kick rounds left nothing, nothing changes.
+fn escalate(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], stats: &mut PlaneAdjustStats) {
+    let left = state.invalid.iter().filter(|&&x| x).count();
+    if left == 0 || left > ESCALATION_MAX_INVALID {
+        return;
+    }
+    let budget = state.plane_changes + ESCALATION_BUDGET_PER_INVALID * left;
+    for round in 0..ESCALATION_ROUNDS {
+        let wide = round % 2 == 1;
+        let plan = KickPlan {
+            kicks: ESCALATION_KICKS,
+            salt: 0x6573_6361_6c61_7465_u64.wrapping_mul(round as u64 + 1),
+            most_planes: if wide { 4 } else { 3 },
+            wide,
+        };
+        let queue: Vec<u32> = (0..state.invalid.len() as u32)
+            .filter(|&i| state.invalid[i as usize])
+            .collect();
+        if queue.is_empty() {
+            return;
+        }
+        for i in queue {
+            if state.plane_changes > budget {
+                return;
+            }
+            if state.invalid[i as usize] && restructure(state, exact, spacing, i) {
+                stats.tilts += 1;
+            }
+            if state.invalid[i as usize] && kick(state, exact, spacing, i, budget, &plan) {
+                stats.tilts += 1;
+            }
+        }
+    }
+}
+
+/// A targeted move for facet i where its neighbours are wrong, not its planes: near a
+/// parabolic line the |II| metric degenerates and the neighbours of a facet may include
+/// seeds several spacings away (a hex facet of 12 to 18 sides), which no tilt within
+/// [`MAX_PLANE_TILT_DEGREES`] can make valid. The star and link edges of i are flipped
+/// towards the isotropic Delaunay triangulation of the seeds seen along i's normal
+/// ([`State::isotropic_flips_around`], at most [`RESTRUCTURE_FLIPS`]), the region's
+/// verdicts renewed, and the greedy moves (tilts, flips with rescue tilts) given
+/// [`KICK_REPAIR_PASSES`] passes over its invalid facets; the whole is kept when it leaves
+/// no more invalid facets than before (whether fewer is returned), undone otherwise.
+fn restructure(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32) -> bool {
+    let seeds: Vec<DVec3> = exact.iter().map(|p| p.point).collect();
+    state.journal = Some(Journal::default());
+    let flips =
+        state.isotropic_flips_around(i, &seeds, exact[i as usize].normal, RESTRUCTURE_FLIPS);
+    if flips == 0 {
+        state.undo();
+        return false;
+    }
+    // The flipped quads lie within two rings of i (as it stands now); the verdicts that can
+    // change, one ring further.
+    let ring = polygons_of_plane(state, i);
+    let changed = affected_points(state.tri, &state.incident, &ring);
+    let points = judged_around(state, &changed);
+    let verdicts: Vec<(u32, bool)> = points
+        .iter()
+        .map(|&x| (x, state.facet_invalid(x)))
+        .collect();
+    commit(state, verdicts);
+    for _ in 0..KICK_REPAIR_PASSES {
+        let mut any = false;
+        for &x in &points {
+            if state.invalid[x as usize] {
+                any |= try_move(state, exact, spacing, x);
+            }
+        }
+        if !any {
+            break;
+        }
+    }
+    let gain = state
+        .journal
+        .as_ref()
+        .map_or(0, |journal| journal.invalid_gain(&state.invalid));
+    // As many invalid facets with neighbours closer to the isotropic ones is kept too: the
+    // restarts that follow then start from the better structure.
+    if gain <= 0 {
+        state.journal = None;
+        return gain < 0;
+    }
+    state.undo();
     false
 }
 

@@ -334,6 +334,26 @@ pub const PLANE_ADJUST_BUDGET: usize = 1000;
 /// 30 s to repair 8 of them.
 pub const PLANE_ADJUST_BUDGET_PER_INVALID: usize = 20_000;
 
+/// The escalated restarts ([`crate::adjusted_planes`]) run only where the kick rounds leave at
+/// most this many facets invalid: a few stubborn facets at a parabolic line (the mixed roof
+/// with hex 300 at 30 degrees, 2 left), not a surface where tilts cannot help (a mug's nearly
+/// cylindrical body leaves dozens).
+pub const ESCALATION_MAX_INVALID: usize = 8;
+
+/// Rounds of escalated restarts at most (each a new series per facet still invalid).
+pub const ESCALATION_ROUNDS: usize = 8;
+
+/// Random restarts per facet and escalation round.
+pub const ESCALATION_KICKS: usize = 16;
+
+/// The escalated restarts stop after this many plane changes per facet invalid when they
+/// begin, on top of what the kick rounds spent.
+pub const ESCALATION_BUDGET_PER_INVALID: usize = 150_000;
+
+/// Flips towards the isotropic Delaunay triangulation around a facet at most, per
+/// restructuring move of the escalation ([`crate::adjusted_planes`]).
+pub const RESTRUCTURE_FLIPS: usize = 24;
+
 // ---- read by validity_flips.rs ----
 
 /// Rounds of validity flips at most (each round visits every invalid facet once).

@@ -744,6 +744,70 @@ impl<'a> State<'a> {
         false
     }
 
+    /// Lawson flips of the star and link edges of point i by the Euclidean in-circle test of
+    /// the points `seeds` projected on the plane perpendicular to `normal`: the isotropic
+    /// Delaunay triangulation around i, which is what the neighbours tend to where the
+    /// curvature vanishes (a parabolic line, where the |II| metric degenerates and its
+    /// Delaunay edges run long). Only convex quads are flipped, around a ghost only where the
+    /// ghosts stay in one run; at most `most` flips. Verdicts are not renewed (the caller
+    /// judges the region). Returns the flips made.
+    pub(crate) fn isotropic_flips_around(
+        &mut self,
+        i: u32,
+        seeds: &[DVec3],
+        normal: DVec3,
+        most: usize,
+    ) -> usize {
+        let (e1, e2) = normal.any_orthonormal_pair();
+        let origin = seeds[i as usize];
+        let at = |x: u32| {
+            let d = seeds[x as usize] - origin;
+            DVec2::new(d.dot(e1), d.dot(e2))
+        };
+        let mut flips = 0;
+        'passes: while flips < most {
+            let Some(candidates) = self.repair_candidates(i) else {
+                break;
+            };
+            for (a, b) in candidates {
+                let Some((t, k, quad)) = self.flippable(a, b) else {
+                    continue;
+                };
+                let [c, a, b, d] = quad;
+                let (pc, pa, pb, pd) = (at(c), at(a), at(b), at(d));
+                let cross = |o: DVec2, p: DVec2, q: DVec2| (p - o).perp_dot(q - o);
+                // Convex quad: c and d strictly on opposite sides of ab, a and b of cd.
+                let convex = cross(pa, pb, pc) * cross(pa, pb, pd) < 0.0
+                    && cross(pc, pd, pa) * cross(pc, pd, pb) < 0.0;
+                if !convex {
+                    continue;
+                }
+                // d strictly inside the circle through c, a, b (orientation-corrected).
+                let lift = |p: DVec2| {
+                    let q = p - pd;
+                    DVec3::new(q.x, q.y, q.length_squared())
+                };
+                let (qc, qa, qb) = (lift(pc), lift(pa), lift(pb));
+                let in_circle = qc.dot(qa.cross(qb)) * cross(pc, pa, pb).signum();
+                let scale = (pa - pb).length_squared().powi(2);
+                if !(in_circle > 1e-9 * scale) {
+                    continue;
+                }
+                let (t1, _) = self.flip(t as u32, k);
+                if quad.iter().any(|&x| x as usize >= self.judged)
+                    && !quad.iter().all(|&x| self.one_ghost_arc(x))
+                {
+                    self.flip(t1, 1);
+                    continue;
+                }
+                flips += 1;
+                continue 'passes;
+            }
+            break;
+        }
+        flips
+    }
+
     /// Tries the star and link edges of facet i; keeps the first flip that lowers the number
     /// of invalid facets around it and returns the points whose verdicts it renewed.
     fn try_repair(&mut self, i: u32, judged: usize) -> Option<Vec<u32>> {
