@@ -423,14 +423,30 @@ fn cap_poles(
         return None;
     }
     let mut triangles = folded.triangles;
+    let mut directed: std::collections::HashSet<(u32, u32)> = triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3])))
+        .collect();
     let mut axes = Vec::with_capacity(cycles.len());
     for cycle in &cycles {
         // The cap runs each boundary edge the other way.
         let ring: Vec<u32> = cycle.iter().rev().copied().collect();
-        match envelope_cap(&ring, planes) {
-            Some(cap) => triangles.extend(cap),
-            None => triangles.extend(ear_clipping(&ring, planes)?),
-        }
+        // The envelope, else ears nearest to it, else the first ears: the first whose chords
+        // are not edges of the structure already (a ring pinched round the pole), which
+        // would join two facets twice.
+        let fits = |cap: &Vec<[u32; 3]>| {
+            cap.iter()
+                .all(|t| (0..3).all(|k| !directed.contains(&(t[k], t[(k + 1) % 3]))))
+        };
+        let cap = envelope_cap(&ring, planes)
+            .filter(fits)
+            .or_else(|| ear_clipping(&ring, planes, true).filter(fits))
+            .or_else(|| ear_clipping(&ring, planes, false))?;
+        directed.extend(
+            cap.iter()
+                .flat_map(|t| (0..3).map(move |k| (t[k], t[(k + 1) % 3]))),
+        );
+        triangles.extend(cap);
         axes.extend(ring_sides(&ring, planes).map(|(normal, _)| normal));
     }
     let mut capped = DualTriangulation::from_triangles(triangles)?;
@@ -464,6 +480,14 @@ fn pole_envelope_flips(
     };
     let on_cap =
         |i: u32| (i as usize) < seeds && planes[i as usize].normal.dot(axis) >= POLE_CAP_COSINE;
+    let key = |a: u32, b: u32| (a.min(b), a.max(b));
+    // On a closed structure the new diagonal may already be an edge elsewhere (a tangle the
+    // parameters left round the pole): such a flip would join two facets twice.
+    let mut edges: std::collections::HashSet<(u32, u32)> = tri
+        .triangles
+        .iter()
+        .flat_map(|t| (0..3).map(move |k| key(t[k], t[(k + 1) % 3])))
+        .collect();
     let mut stack: Vec<(u32, u32)> = Vec::new();
     for (t, nb) in tri.neighbours.iter().enumerate() {
         for &across in nb {
@@ -491,9 +515,14 @@ fn pole_envelope_flips(
         let [pa, pb, pc, pd] = [a, b, c, d].map(chart);
         let strictly_convex = orient2d(pa, pb, pc) * orient2d(pa, pb, pd) < 0.0
             && orient2d(pc, pd, pa) * orient2d(pc, pd, pb) < 0.0;
-        if !strictly_convex || !envelope_quad_illegal(planes, convex_side, [c, a, b, d]) {
+        if !strictly_convex
+            || edges.contains(&key(c, d))
+            || !envelope_quad_illegal(planes, convex_side, [c, a, b, d])
+        {
             continue;
         }
+        edges.remove(&key(a, b));
+        edges.insert(key(c, d));
         budget -= 1;
         let (t1, t2) = tri.flip(t, k);
         for x in [t1, t2] {
@@ -614,14 +643,14 @@ fn envelope_cap(ring: &[u32], planes: &[Plane]) -> Option<Vec<[u32; 3]>> {
 
 /// Triangles of the polygon `ring` (seed indices, in the order the triangles must keep), its
 /// points projected into the plane of their mean normal; None where it is not simple there.
-/// Of the ears, the one clipped first is the one whose three planes meet nearest to the
+/// With `scored`, of the ears, the one clipped first is the one whose three planes meet nearest to the
 /// envelope of the ring's planes, on the side most seeds lie ([`ring_sides`]): the vertex x
 /// of planes (a, b, c) is scored by max_i of the signed distance of x from ring plane i,
 /// turned so that the envelope's vertices have none positive. Where the envelope
 /// triangulates the ring, every ear clipped is one of its triangles (removing one leaves the
 /// others on it); elsewhere the ears keep each cap vertex as near to it as they can, instead
-/// of fanning the cap out from one seed.
-fn ear_clipping(ring: &[u32], planes: &[Plane]) -> Option<Vec<[u32; 3]>> {
+/// of fanning the cap out from one seed. Without, the first ear in the ring's order.
+fn ear_clipping(ring: &[u32], planes: &[Plane], scored: bool) -> Option<Vec<[u32; 3]>> {
     if ring.len() < 3 {
         return None;
     }
@@ -681,7 +710,7 @@ fn ear_clipping(ring: &[u32], planes: &[Plane]) -> Option<Vec<[u32; 3]>> {
             })
             .map(|k| {
                 let (a, b, c) = corners(k);
-                (outside(a, b, c), k)
+                (if scored { outside(a, b, c) } else { 0.0 }, k)
             })
             // The first of equal scores: deterministic, as the ring's order is.
             .min_by(|x, y| x.0.total_cmp(&y.0).then(x.1.cmp(&y.1)))?
