@@ -193,6 +193,10 @@ pub fn fit_pattern_with_progress(
     let mut closest: Option<FittedPattern> = None;
     let mut runs = 0usize;
     let margins = seam_margins(surface);
+    // A lattice far larger than the field predicts is not worth discretising: across a
+    // parabolic line a vertex runs away whatever the spacing (samples/mixed-roof.json).
+    let lattice_limit = (FIT_LATTICE_FACTOR * base.expected_poisson_count(FIT_POISSON_RADIUS))
+        .min(MAX_FIT_POINTS as f64) as usize;
     if margins == [0.0, 0.0] {
         for grading in [Grading::of(&base), Grading::uniform(&base)] {
             if best
@@ -205,6 +209,7 @@ pub fn fit_pattern_with_progress(
                 surface,
                 &grading,
                 max_deviation,
+                lattice_limit,
                 &options,
                 &mut runs,
                 progress,
@@ -409,12 +414,14 @@ impl Grading {
 /// doc), its rows and columns in the ratio of the grading's metric lengths (cells regular in
 /// the metric |II| where it is largest): the first size predicted by the field, the next ones
 /// from the measured deviation (it goes as the square of the spacing), down to a size next to
-/// one that fails or until the prediction saves less than [`FIT_LATTICE_SLACK`]. None when no lattice of at most [`MAX_FIT_POINTS`] points was found that meets
-/// it within [`FIT_LATTICE_TRIES`] discretisations.
+/// one that fails or until the prediction saves less than [`FIT_LATTICE_SLACK`]. None when no lattice of at most `limit` points was found that meets it
+/// within [`FIT_LATTICE_TRIES`] discretisations.
+#[allow(clippy::too_many_arguments)]
 fn wall_lattice(
     surface: &dyn Surface,
     grading: &Grading,
     tolerance: f64,
+    limit: usize,
     options: &DiscretiseOptions,
     runs: &mut usize,
     progress: &dyn Progress,
@@ -431,7 +438,7 @@ fn wall_lattice(
     let mut met: Option<FittedPattern> = None;
     let mut failed_below = 1usize; // the most columns known to fail
     for _ in 0..FIT_LATTICE_TRIES {
-        if size(columns) > MAX_FIT_POINTS {
+        if size(columns) > limit {
             break;
         }
         let uv = wall_hex(columns, rows_of(columns), grading);
@@ -472,7 +479,8 @@ fn wall_lattice(
             // Aim a little finer than predicted, so a large lattice does not creep up on the
             // tolerance a column at a time.
             let aimed = (predicted as f64 * (1.0 + 0.5 * FIT_LATTICE_SLACK)).ceil() as usize;
-            let next = aimed.max(columns + 1);
+            // At most twice the columns: a runaway vertex predicts any size.
+            let next = aimed.clamp(columns + 1, 2 * columns);
             columns = match &met {
                 Some(m) if size(next) >= m.uv.len() => break,
                 _ => next,
@@ -484,6 +492,10 @@ fn wall_lattice(
 
 /// Largest lattice (points) that the adaptive rounds try to improve on.
 pub const FIT_ADAPTIVE_POINTS: usize = 30_000;
+
+/// Most points of a lattice [`fit_pattern`] tries, in multiples of the count the curvature
+/// field predicts.
+const FIT_LATTICE_FACTOR: f64 = 4.0;
 
 /// Fraction of its columns by which [`wall_lattice`] stops trying smaller lattices.
 const FIT_LATTICE_SLACK: f64 = 0.01;
