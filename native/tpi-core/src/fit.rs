@@ -10,7 +10,26 @@
 //! (cells long along the weakly curved direction) and with its curvatures floored so flat
 //! places keep a finite spacing.
 //!
-//! [`fit_pattern`] runs, for a bounded number of rounds:
+//! Where a facet edge meets the boundary wall, its vertex stands off more than the interior
+//! ones: two seeds a apart along a side, half a row (sqrt(3) a / 4) inside it, put the
+//! vertex at R^2 = a^2 / 4 + 3 a^2 / 16 = 0.44 a^2 from both, against a^2 / 3 inside, and a
+//! domain corner half a column beyond the last seed of a row at 0.75 a^2. So uniform hex
+//! patterns, whose rows keep half a row from the sides, are set by their boundary and corners
+//! (samples/nurbs-dome.json at D = 0.01: the largest deviation at a boundary vertex). Seeds
+//! on the sides (points at s or t = 0 or 1) put the boundary vertices halfway between two
+//! seeds of the side, at R^2 = a^2 / 4, and a seed on each corner puts the corner vertex on
+//! it.
+//!
+//! [`fit_pattern`] first tries hexagonal lattices with rows on the sides t = 0, 1 and points
+//! on the sides s = 0, 1 ([`wall_lattice`]), their steps in s and t graded by the field (even
+//! in the largest metric length across each line) or uniform: the size the field predicts,
+//! then sizes predicted from the measured deviation, which goes as the square of the
+//! spacing. Lattices of regular cells pay: the irregular cells of a Poisson-disk sampling
+//! relaxed by Lloyd's iteration have larger circumcircles than a lattice of the same count
+//! (samples/nurbs-dome.json at D = 0.0099: 512 points from the rounds below against 390 for
+//! the uniform lattice). Unless the lattice already has more than [`FIT_ADAPTIVE_POINTS`]
+//! points, it then runs for a bounded number of rounds (which serve saddles, whose
+//! deviation the metric |II| overestimates):
 //!
 //! 1. a Poisson-disk sampling in the field's metric at radius [`FIT_POISSON_RADIUS`] (a
 //!    maximal Poisson-disk set of radius 0.78 a has about as many points as a hexagonal
@@ -26,9 +45,9 @@
 //! and keeps the pattern of each round finished by local refinement: while some vertex
 //! deviates more than D, a pattern point is added at the foot of each offending vertex
 //! (worst first, one per neighbourhood), which splits the circle that vertex is the centre of.
-//! The answer is the smallest finished pattern that meets D (with no invalid facet when one
-//! was found without); when no round meets D within [`FIT_REFINE_PASSES`] refinements, the
-//! result says so ([`FittedPattern::met`]) and carries the closest attempt.
+//! The answer is the smallest finished pattern or lattice that meets D (with no invalid facet
+//! when one was found without); when none meets D within [`FIT_REFINE_PASSES`] refinements,
+//! the result says so ([`FittedPattern::met`]) and carries the closest attempt.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -55,6 +74,9 @@ pub const FIT_POISSON_RADIUS: f64 = 0.78;
 pub const FIT_TARGET_RATIO: f64 = 0.8;
 /// Largest change of the spacing at one node in one round (factor, and its inverse).
 pub const FIT_MAX_STEP: f64 = 1.5;
+/// Column spacing of the first lattice [`fit_pattern`] tries, in the field's metric (the
+/// hexagonal spacing is 1).
+pub const FIT_WALL_SPACING: f64 = 1.0;
 /// Refinement passes (points added at offending vertices) that finish each round.
 pub const FIT_REFINE_PASSES: usize = 12;
 /// Refinement passes in a row that may lower neither the largest deviation nor the number
@@ -170,7 +192,40 @@ pub fn fit_pattern_with_progress(
     let mut best: Option<FittedPattern> = None;
     let mut closest: Option<FittedPattern> = None;
     let mut runs = 0usize;
-    for _round in 0..FIT_ROUNDS {
+    let margins = seam_margins(surface);
+    // A lattice far larger than the field predicts is not worth discretising: across a
+    // parabolic line a vertex runs away whatever the spacing (samples/mixed-roof.json).
+    let lattice_limit = (FIT_LATTICE_FACTOR * base.expected_poisson_count(FIT_POISSON_RADIUS))
+        .min(MAX_FIT_POINTS as f64) as usize;
+    if margins == [0.0, 0.0] {
+        for grading in [Grading::of(&base), Grading::uniform(&base)] {
+            if best
+                .as_ref()
+                .is_some_and(|b| b.uv.len() > FIT_ADAPTIVE_POINTS)
+            {
+                break;
+            }
+            let lattice = wall_lattice(
+                surface,
+                &grading,
+                max_deviation,
+                lattice_limit,
+                &options,
+                &mut runs,
+                progress,
+            )?;
+            if let Some(lattice) = lattice {
+                consider(&mut best, &mut closest, lattice);
+            }
+        }
+    }
+    // Above FIT_ADAPTIVE_POINTS the rounds (each tens of discretisations) would take far
+    // longer than the lattice's few.
+    let rounds = match &best {
+        Some(b) if b.uv.len() > FIT_ADAPTIVE_POINTS => 0,
+        _ => FIT_ROUNDS,
+    };
+    for _round in 0..rounds {
         let mut field = base.clone();
         field.scale_spacing(&multiplier);
         let expected = field.expected_poisson_count(FIT_POISSON_RADIUS);
@@ -240,6 +295,213 @@ pub fn fit_pattern_with_progress(
     result.discretisations = runs;
     Ok(result)
 }
+
+/// A hexagonal lattice with rows on the sides t = 0 and t = 1 and points on the sides s = 0
+/// and s = 1: `rows + 1` rows t = j / rows, even rows s = i / columns (i = 0..=columns),
+/// odd rows s = (i + 1/2) / columns and both ends.
+/// The lattice is laid in graded coordinates: s = grade_s(i / columns), t = grade_t(j / rows).
+fn wall_hex(columns: usize, rows: usize, grading: &Grading) -> Vec<[f64; 2]> {
+    let mut points = Vec::with_capacity((columns + 2) * (rows + 1));
+    let s_at = |x: f64| grading.s.at(x);
+    for j in 0..=rows {
+        let t = grading.t.at(j as f64 / rows as f64);
+        if j % 2 == 0 {
+            points.extend((0..=columns).map(|i| [s_at(i as f64 / columns as f64), t]));
+        } else {
+            points.push([0.0, t]);
+            points.extend((0..columns).map(|i| [s_at((i as f64 + 0.5) / columns as f64), t]));
+            points.push([1.0, t]);
+        }
+    }
+    points
+}
+
+/// A monotone map of [0, 1] onto itself: the inverse of the normalised cumulative of a
+/// positive weight, tabulated; the lattice's steps in s (or t) are then even in the weight.
+struct Grade {
+    /// The cumulative of the weight at k / (n - 1), normalised to end at 1.
+    cumulative: Vec<f64>,
+    /// The weight's integral over [0, 1].
+    total: f64,
+}
+
+impl Grade {
+    fn new(weight: impl Fn(f64) -> f64) -> Grade {
+        const STEPS: usize = 512;
+        let mut cumulative = vec![0.0f64; STEPS + 1];
+        for k in 0..STEPS {
+            let w = weight((k as f64 + 0.5) / STEPS as f64);
+            let w = if w.is_finite() && w > 0.0 { w } else { 0.0 };
+            cumulative[k + 1] = cumulative[k] + w / STEPS as f64;
+        }
+        let total = cumulative[STEPS];
+        if !(total > 0.0 && total.is_finite()) {
+            // No usable weight: the identity.
+            let cumulative = (0..=STEPS).map(|k| k as f64 / STEPS as f64).collect();
+            return Grade {
+                cumulative,
+                total: 0.0,
+            };
+        }
+        for c in &mut cumulative {
+            *c /= total;
+        }
+        Grade { cumulative, total }
+    }
+
+    /// The x whose cumulative is q (ends exact).
+    fn at(&self, q: f64) -> f64 {
+        let n = self.cumulative.len() - 1;
+        if q <= 0.0 {
+            return 0.0;
+        }
+        if q >= 1.0 {
+            return 1.0;
+        }
+        let k = self.cumulative.partition_point(|&c| c < q).clamp(1, n);
+        let (a, b) = (self.cumulative[k - 1], self.cumulative[k]);
+        let f = if b > a { (q - a) / (b - a) } else { 0.5 };
+        ((k - 1) as f64 + f) / n as f64
+    }
+}
+
+/// The largest of sqrt(M_ss) over the line s = x (`component` 0), or of sqrt(M_tt) over the
+/// line t = x (`component` 2), sampled at 65 points.
+fn envelope(field: &SizingField, component: usize, x: f64) -> f64 {
+    const ACROSS: usize = 65;
+    (0..ACROSS)
+        .map(|k| {
+            let y = k as f64 / (ACROSS - 1) as f64;
+            let st = if component == 0 { [x, y] } else { [y, x] };
+            field.metric_at(st)[component].max(0.0).sqrt()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The grading of [`wall_hex`] in s and in t.
+struct Grading {
+    s: Grade,
+    t: Grade,
+}
+
+impl Grading {
+    /// Steps even in the largest metric length across each line: in s by
+    /// w(s) = max over t of sqrt(M_ss(s, t)), in t likewise (so every place gets at least
+    /// the spacing the most demanding place on its lines asks for).
+    fn of(field: &SizingField) -> Grading {
+        Grading {
+            s: Grade::new(|x| envelope(field, 0, x)),
+            t: Grade::new(|x| envelope(field, 2, x)),
+        }
+    }
+
+    /// Even steps, as long in the metric as the largest of [`Grading::of`]'s.
+    fn uniform(field: &SizingField) -> Grading {
+        let top = |component: usize| {
+            (0..=64)
+                .map(|k| envelope(field, component, k as f64 / 64.0))
+                .fold(0.0, f64::max)
+        };
+        let (s, t) = (top(0), top(2));
+        Grading {
+            s: Grade::new(|_| s),
+            t: Grade::new(|_| t),
+        }
+    }
+}
+
+/// The smallest [`wall_hex`] lattice graded by `grading` meeting the tolerance (module
+/// doc), its rows and columns in the ratio of the grading's metric lengths (cells regular in
+/// the metric |II| where it is largest): the first size predicted by the field, the next ones
+/// from the measured deviation (it goes as the square of the spacing), down to a size next to
+/// one that fails or until the prediction saves less than [`FIT_LATTICE_SLACK`]. None when no lattice of at most `limit` points was found that meets it
+/// within [`FIT_LATTICE_TRIES`] discretisations.
+#[allow(clippy::too_many_arguments)]
+fn wall_lattice(
+    surface: &dyn Surface,
+    grading: &Grading,
+    tolerance: f64,
+    limit: usize,
+    options: &DiscretiseOptions,
+    runs: &mut usize,
+    progress: &dyn Progress,
+) -> Result<Option<FittedPattern>, TpiError> {
+    let (l_s, l_t) = (grading.s.total, grading.t.total);
+    if !(l_s > 0.0 && l_t > 0.0 && l_s.is_finite() && l_t.is_finite()) {
+        return Ok(None);
+    }
+    // Columns of spacing 1 in the metric, rows sqrt(3) / 2 of it apart.
+    let aspect = 2.0 / 3f64.sqrt() * (l_t / l_s);
+    let rows_of = |columns: usize| ((columns as f64 * aspect).round() as usize).max(1);
+    let size = |columns: usize| (columns + 2) * (rows_of(columns) + 1);
+    let mut columns = (l_s / FIT_WALL_SPACING).ceil().clamp(2.0, 1e7) as usize;
+    let mut met: Option<FittedPattern> = None;
+    let mut failed_below = 1usize; // the most columns known to fail
+    for _ in 0..FIT_LATTICE_TRIES {
+        if size(columns) > limit {
+            break;
+        }
+        let uv = wall_hex(columns, rows_of(columns), grading);
+        let d = discretise_with_progress(surface, &uv, options, progress)?;
+        *runs += 1;
+        let own = vertex_deviations(surface, &d)
+            .into_iter()
+            .fold(0.0, f64::max);
+        let q = d.quality.as_ref();
+        let deviation = own.max(q.map_or(0.0, |q| q.max_deviation));
+        let invalid = q.map_or(0, |q| q.invalid_facets);
+        let ok = deviation <= tolerance;
+        let predicted = if deviation > 0.0 && deviation.is_finite() {
+            (columns as f64 * (deviation / tolerance).sqrt()).ceil() as usize
+        } else {
+            columns + 1
+        };
+        if ok {
+            met = Some(FittedPattern {
+                uv,
+                met: true,
+                max_deviation: deviation,
+                invalid_facets: invalid,
+                discretisations: 0,
+            });
+            // Done next to a size known to fail, or when the prediction saves less than
+            // FIT_LATTICE_SLACK of the columns (a large lattice is not worth a
+            // discretisation per column).
+            if columns <= failed_below + 1
+                || predicted as f64 >= columns as f64 * (1.0 - FIT_LATTICE_SLACK)
+            {
+                break;
+            }
+            // Fewer columns, but never back to a size known to fail.
+            columns = predicted.clamp(failed_below + 1, columns - 1);
+        } else {
+            failed_below = failed_below.max(columns);
+            // Aim a little finer than predicted, so a large lattice does not creep up on the
+            // tolerance a column at a time.
+            let aimed = (predicted as f64 * (1.0 + 0.5 * FIT_LATTICE_SLACK)).ceil() as usize;
+            // At most twice the columns: a runaway vertex predicts any size.
+            let next = aimed.clamp(columns + 1, 2 * columns);
+            columns = match &met {
+                Some(m) if size(next) >= m.uv.len() => break,
+                _ => next,
+            };
+        }
+    }
+    Ok(met)
+}
+
+/// Largest lattice (points) that the adaptive rounds try to improve on.
+pub const FIT_ADAPTIVE_POINTS: usize = 30_000;
+
+/// Most points of a lattice [`fit_pattern`] tries, in multiples of the count the curvature
+/// field predicts.
+const FIT_LATTICE_FACTOR: f64 = 4.0;
+
+/// Fraction of its columns by which [`wall_lattice`] stops trying smaller lattices.
+const FIT_LATTICE_SLACK: f64 = 0.01;
+
+/// Discretisations [`wall_lattice`] may run.
+const FIT_LATTICE_TRIES: usize = 8;
 
 /// Keeps the better pattern: among those that meet the tolerance the one with no invalid
 /// facet, then the fewest points; else the one closest to the tolerance.
@@ -505,7 +767,8 @@ fn unreachable_result() -> Result<FittedPattern, TpiError> {
 }
 
 /// The smallest uniform hexagonal pattern `hex:NxM` (`hex:spacing=1/N`) whose mesh keeps
-/// every vertex within the tolerance, by doubling N and then bisection on it.
+/// every vertex within the tolerance, by doubling N, bisection on it, and every N down to
+/// 0.85 of the bisection's (the deviation is not monotone in N).
 #[derive(Clone, Debug, PartialEq)]
 pub struct HexBaseline {
     /// The generator found.
@@ -582,8 +845,21 @@ pub fn hex_baseline(
             lo = mid;
         }
     }
+    // The deviation is not monotone in N (where the rows meet the sides and corners changes
+    // with N: on samples/nurbs-dome.json at D = 0.01, 1/25 meets D, 1/26 does not, 1/27
+    // does): a few sizes below the bisection's are tried too.
+    let floor = (hi as f64 * HEX_BASELINE_SCAN).ceil() as usize;
+    for n in (floor.max(3)..hi).rev() {
+        let h = try_columns(n)?;
+        if h.max_deviation <= max_deviation {
+            found = h;
+        }
+    }
     Ok(Some(found))
 }
+
+/// Fraction of the bisection's N down to which [`hex_baseline`] tries every N.
+const HEX_BASELINE_SCAN: f64 = 0.85;
 
 /// How many times a fitted pattern's count the CLI lets [`hex_baseline`] search: a ratio
 /// below 1 / 8 is reported as such rather than measured.

@@ -1,35 +1,61 @@
 //! Issue 15, item 1: tolerance-driven patterns. Every mesh vertex is checked against the
-//! tolerance by this file's own projection (`common::closest_parameters`: brute force on a
-//! grid, then Newton on |S - x|^2 inside the closed domain), not by the report's number or
-//! the crate's projection; the uniform hexagonal baseline is found here by bisection on
-//! `hex:spacing=1/N` with the same independent measure.
+//! tolerance independently of the crate: on the two quadrics of this file (a dome and a
+//! saddle, neither among the samples, principal directions turned off the parameter lines)
+//! by the closed-form distance to a quadric (`TurnedQuadric::distance`), on the samples by
+//! this file's own projection (`common::closest_parameters`: brute force on a grid, then
+//! Newton on |S - x|^2 inside the closed domain); never by the report's number or the crate's
+//! projection. The uniform hexagonal baseline is found here by bisection on
+//! `hex:spacing=1/N` with the same independent measure, as the issue's acceptance reads.
 
 mod common;
 
 use common::*;
-use tpi_core::{discretise, fit_pattern, DiscretiseOptions, Generator, Surface};
+use glam::DVec3;
+use tpi_core::{
+    discretise, fit_pattern, DiscretiseOptions, Domain, Generator, Interval, Surface,
+    SurfaceDerivatives,
+};
+
+/// The largest distance of a mesh vertex from the surface (by `distance`) and the mesh's
+/// invalid facets.
+fn independent_check_by(
+    surface: &dyn Surface,
+    uv: &[[f64; 2]],
+    distance: &dyn Fn(DVec3) -> f64,
+) -> (f64, usize) {
+    let d = discretise(surface, uv, &DiscretiseOptions::default()).unwrap();
+    d.sanity_check().unwrap();
+    let max = max_over_used_vertices(&d, distance);
+    (max, d.quality.unwrap().invalid_facets)
+}
+
+/// The distance to the surface by this file's own projection (grid, then Newton).
+fn projected_distance(surface: &dyn Surface) -> impl Fn(DVec3) -> f64 + '_ {
+    move |x| {
+        let [u, v] = closest_parameters(surface, x, 12);
+        surface.point_at(u, v).distance(x)
+    }
+}
 
 /// The largest distance of a mesh vertex from the surface (own projection) and the mesh's
 /// invalid facets.
 fn independent_check(surface: &dyn Surface, uv: &[[f64; 2]]) -> (f64, usize) {
-    let d = discretise(surface, uv, &DiscretiseOptions::default()).unwrap();
-    d.sanity_check().unwrap();
-    let max = max_over_used_vertices(&d, |x| {
-        let [u, v] = closest_parameters(surface, x, 12);
-        surface.point_at(u, v).distance(x)
-    });
-    (max, d.quality.unwrap().invalid_facets)
+    independent_check_by(surface, uv, &projected_distance(surface))
 }
 
 /// The smallest `hex:spacing=1/N` meeting the tolerance by the independent measure: N
 /// doubled from 4 until it does, then bisected. (count, invalid facets).
-fn hex_bisection(surface: &dyn Surface, tolerance: f64) -> (usize, usize) {
+fn hex_bisection(
+    surface: &dyn Surface,
+    tolerance: f64,
+    distance: &dyn Fn(DVec3) -> f64,
+) -> (usize, usize) {
     let hex = |n: usize| {
         let uv = Generator::parse(&format!("hex:spacing={}", 1.0 / n as f64))
             .unwrap()
             .generate()
             .uv;
-        let (dev, invalid) = independent_check(surface, &uv);
+        let (dev, invalid) = independent_check_by(surface, &uv, distance);
         println!("  hex 1/{n}: {} points, max deviation {dev:.5e}", uv.len());
         (dev <= tolerance, uv.len(), invalid)
     };
@@ -41,7 +67,7 @@ fn hex_bisection(surface: &dyn Surface, tolerance: f64) -> (usize, usize) {
         }
         lo = hi;
         hi *= 2;
-        assert!(hi <= 64, "no hex pattern up to 1/64 meets {tolerance}");
+        assert!(hi <= 128, "no hex pattern up to 1/128 meets {tolerance}");
     };
     while hi - lo > 1 {
         let mid = (lo + hi) / 2;
@@ -56,14 +82,18 @@ fn hex_bisection(surface: &dyn Surface, tolerance: f64) -> (usize, usize) {
     (found.1, found.2)
 }
 
-/// Fits, checks every vertex independently, compares with the hex baseline; returns the
-/// ratio of counts.
-fn fit_and_compare(name: &str, tolerance: f64) -> f64 {
-    let surface = sample_surface(name);
-    let fitted = fit_pattern(&surface, tolerance, 0, &DiscretiseOptions::default()).unwrap();
+/// Fits, checks every vertex by `distance`, compares with the hex baseline measured the same
+/// way; returns the ratio of counts.
+fn fit_and_compare_by(
+    name: &str,
+    surface: &dyn Surface,
+    tolerance: f64,
+    distance: &dyn Fn(DVec3) -> f64,
+) -> f64 {
+    let fitted = fit_pattern(surface, tolerance, 0, &DiscretiseOptions::default()).unwrap();
     assert!(fitted.met, "{name}: {fitted:?}");
-    let (dev, invalid) = independent_check(&surface, &fitted.uv);
-    let (hex_count, hex_invalid) = hex_bisection(&surface, tolerance);
+    let (dev, invalid) = independent_check_by(surface, &fitted.uv, distance);
+    let (hex_count, hex_invalid) = hex_bisection(surface, tolerance, distance);
     let ratio = fitted.uv.len() as f64 / hex_count as f64;
     println!(
         "{name} D = {tolerance}: fitted {} points (independent max deviation {dev:.5e}, \
@@ -85,6 +115,178 @@ fn fit_and_compare(name: &str, tolerance: f64) -> f64 {
     ratio
 }
 
+/// [`fit_and_compare_by`] on a sample, measured by this file's own projection.
+fn fit_and_compare(name: &str, tolerance: f64) -> f64 {
+    let surface = sample_surface(name);
+    let distance = projected_distance(&surface);
+    fit_and_compare_by(name, &surface, tolerance, &distance)
+}
+
+/// The quadric z = 1/2 (k1 X^2 + k2 Y^2) in a frame turned by `angle` about z
+/// (X = c x + s y, Y = -s x + c y), over [-hx, hx] x [-hy, hy] in (x, y): a dome for
+/// k1, k2 > 0 (its principal directions across the parameter lines), a saddle for k2 < 0.
+struct TurnedQuadric {
+    k: [f64; 2],
+    angle: f64,
+    half: [f64; 2],
+}
+
+impl TurnedQuadric {
+    /// z and its derivatives at (x, y): (z, [zx, zy], [zxx, zxy, zyy]).
+    fn height(&self, x: f64, y: f64) -> (f64, [f64; 2], [f64; 3]) {
+        let (s, c) = self.angle.sin_cos();
+        let (bx, by) = (c * x + s * y, -s * x + c * y);
+        let [k1, k2] = self.k;
+        let z = 0.5 * (k1 * bx * bx + k2 * by * by);
+        let zx = k1 * bx * c - k2 * by * s;
+        let zy = k1 * bx * s + k2 * by * c;
+        let zxx = k1 * c * c + k2 * s * s;
+        let zxy = (k1 - k2) * s * c;
+        let zyy = k1 * s * s + k2 * c * c;
+        (z, [zx, zy], [zxx, zxy, zyy])
+    }
+
+    /// The distance from p to the quadric patch in closed form: in the principal frame the
+    /// foot is X = Px / (1 + k1 m), Y = Py / (1 + k2 m), m the root of
+    /// g(m) = 1/2 (k1 X^2 + k2 Y^2) - Pz - m on the interval where 1 + k_i m > 0 (g falls
+    /// there from +inf to -inf: one root, found by bisection to the last bit). When that
+    /// foot lies outside the patch, the nearest point of the patch is on its boundary, and
+    /// this file's projection is used instead.
+    fn distance(&self, p: DVec3) -> Option<f64> {
+        let (s, c) = self.angle.sin_cos();
+        let (px, py) = (c * p.x + s * p.y, -s * p.x + c * p.y);
+        let [k1, k2] = self.k;
+        let foot = |m: f64| (px / (1.0 + k1 * m), py / (1.0 + k2 * m));
+        let g = |m: f64| {
+            let (x, y) = foot(m);
+            0.5 * (k1 * x * x + k2 * y * y) - p.z - m
+        };
+        let bound = |k: f64| if k > 0.0 { -1.0 / k } else { 1.0 / -k };
+        let (mut lo, mut hi) = (f64::NEG_INFINITY, f64::INFINITY);
+        for k in [k1, k2] {
+            if k > 0.0 {
+                lo = lo.max(bound(k));
+            } else if k < 0.0 {
+                hi = hi.min(bound(k));
+            }
+        }
+        // Finite ends: step in from the poles.
+        let mut a = if lo.is_finite() { lo } else { -1.0 };
+        let mut b = if hi.is_finite() { hi } else { 1.0 };
+        while !lo.is_finite() && g(a) < 0.0 {
+            a *= 2.0;
+        }
+        while !hi.is_finite() && g(b) > 0.0 {
+            b *= 2.0;
+        }
+        for _ in 0..2000 {
+            let mid = 0.5 * (a + b);
+            if !(mid > a && mid < b) {
+                break;
+            }
+            if g(mid) > 0.0 {
+                a = mid;
+            } else {
+                b = mid;
+            }
+        }
+        let (fx, fy) = foot(0.5 * (a + b));
+        let (x, y) = (c * fx - s * fy, s * fx + c * fy);
+        let slack = 1e-9 * (self.half[0] + self.half[1]);
+        if x.abs() > self.half[0] + slack || y.abs() > self.half[1] + slack {
+            return None;
+        }
+        let z = 0.5 * (k1 * fx * fx + k2 * fy * fy);
+        Some(DVec3::new(x, y, z).distance(p))
+    }
+}
+
+impl Surface for TurnedQuadric {
+    fn domain(&self) -> Domain {
+        Domain::new(
+            Interval::new(-self.half[0], self.half[0]),
+            Interval::new(-self.half[1], self.half[1]),
+        )
+    }
+
+    fn evaluate(&self, x: f64, y: f64) -> SurfaceDerivatives {
+        let (z, [zx, zy], [zxx, zxy, zyy]) = self.height(x, y);
+        SurfaceDerivatives {
+            point: DVec3::new(x, y, z),
+            su: DVec3::new(1.0, 0.0, zx),
+            sv: DVec3::new(0.0, 1.0, zy),
+            suu: DVec3::new(0.0, 0.0, zxx),
+            suv: DVec3::new(0.0, 0.0, zxy),
+            svv: DVec3::new(0.0, 0.0, zyy),
+        }
+    }
+}
+
+/// A quadric's distance: its closed form, this file's projection where the foot leaves the
+/// patch (boundary vertices).
+fn quadric_distance(q: &TurnedQuadric) -> impl Fn(DVec3) -> f64 + '_ {
+    move |x| {
+        q.distance(x).unwrap_or_else(|| {
+            let [u, v] = closest_parameters(q, x, 24);
+            q.point_at(u, v).distance(x)
+        })
+    }
+}
+
+/// The closed form is the distance: at points placed along the normal of the quadric at
+/// known heights, it gives the height back (and this file's projection agrees).
+#[test]
+fn the_quadric_oracle_gives_the_height_along_the_normal() {
+    for q in [DOME, SADDLE] {
+        for (x, y, h) in [(0.3, -1.2, 0.01), (-2.0, 1.5, -0.02), (1.0, 0.5, 0.005)] {
+            let d = q.evaluate(x, y);
+            let n = d.su.cross(d.sv).normalize();
+            let p = d.point + h * n;
+            let closed = q.distance(p).unwrap();
+            assert!((closed - f64::abs(h)).abs() < 1e-12, "{closed} vs {h}");
+            let [u, v] = closest_parameters(&q, p, 24);
+            assert!((q.point_at(u, v).distance(p) - closed).abs() < 1e-10);
+        }
+    }
+}
+
+/// A dome not among the samples: curvatures 0.12 and 0.05 with principal directions at
+/// 30 degrees to the parameter lines, over 12 x 8.
+const DOME: TurnedQuadric = TurnedQuadric {
+    k: [0.12, 0.05],
+    angle: 0.5235987755982988,
+    half: [6.0, 4.0],
+};
+
+/// A saddle not among the samples: curvatures 0.1 and -0.06 turned by 20 degrees, over
+/// 10 x 10.
+const SADDLE: TurnedQuadric = TurnedQuadric {
+    k: [0.1, -0.06],
+    angle: 0.3490658503988659,
+    half: [5.0, 5.0],
+};
+
+#[test]
+fn a_turned_anisotropic_dome_needs_at_most_60_percent_of_the_uniform_hex_points() {
+    for tolerance in [0.01, 0.003] {
+        let ratio = fit_and_compare_by("turned dome", &DOME, tolerance, &quadric_distance(&DOME));
+        assert!(ratio <= 0.6, "{tolerance}: {ratio}");
+    }
+}
+
+#[test]
+fn a_turned_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
+    for tolerance in [0.01, 0.003] {
+        let ratio = fit_and_compare_by(
+            "turned saddle",
+            &SADDLE,
+            tolerance,
+            &quadric_distance(&SADDLE),
+        );
+        assert!(ratio <= 0.6, "{tolerance}: {ratio}");
+    }
+}
+
 #[test]
 fn a_free_form_dome_needs_at_most_60_percent_of_the_uniform_hex_points() {
     let ratio = fit_and_compare("nurbs-dome.json", 0.01);
@@ -97,15 +299,16 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
     assert!(ratio <= 0.6, "{ratio}");
 }
 
-/// The paraboloid of revolution is nearly the worst case for any adaptive pattern: its
-/// curvature and parametrisation are nearly uniform, so the ideal count (the integral of
-/// sqrt(K) over the area, over 3 sqrt(3) D) is about 0.75 of the uniform hex's.
-/// The 60 % of the issue does not hold here; the pattern still does better than hex.
+/// The paraboloid of revolution and the hypar have nearly uniform curvature and
+/// parametrisation: what a pattern saves there is mostly at the boundary (uniform hex is set
+/// by its corners and boundary vertices), and the issue's 60 % does not hold: measured 0.66
+/// on the paraboloid and about 0.67..0.70 on the hypar at D = 0.01. Asserted: clearly better
+/// than uniform hex.
 #[test]
 fn on_nearly_uniform_surfaces_the_pattern_still_beats_uniform_hex() {
-    for name in ["paraboloid.json", "hypar.json"] {
+    for (name, bound) in [("paraboloid.json", 0.7), ("hypar.json", 0.75)] {
         let ratio = fit_and_compare(name, 0.01);
-        assert!(ratio < 0.9, "{name}: {ratio}");
+        assert!(ratio <= bound, "{name}: {ratio}");
     }
 }
 

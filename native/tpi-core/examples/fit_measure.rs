@@ -1,0 +1,131 @@
+//! Measures tolerance-driven patterns against the smallest uniform hexagonal pattern meeting
+//! the same tolerance (issue 15, item 1):
+//!
+//! `cargo run --release -p tpi-core --example fit_measure -- SAMPLE FRACTION...`
+//!
+//! For each fraction f of the surface's bounding diagonal, D = f * diagonal: the fit's count,
+//! its time and where its largest deviation sits (interior, boundary or corner vertex), and
+//! the smallest `hex:spacing=1/N` and `hex:NxN` meeting D (doubling, then bisection on N),
+//! with the same facts. Deviations are the crate's projection ([`tpi_core::vertex_deviations`]).
+
+use std::time::Instant;
+
+use tpi_core::{
+    discretise, fit_pattern, vertex_deviations, DiscretiseOptions, Generator, Surface, SurfaceSpec,
+    VertexKind,
+};
+
+/// The largest deviation of the mesh of `uv` and the kind of vertex where it sits.
+fn worst(surface: &dyn Surface, uv: &[[f64; 2]]) -> (f64, &'static str, usize) {
+    let d = discretise(surface, uv, &DiscretiseOptions::default()).expect("discretise");
+    let dev = vertex_deviations(surface, &d);
+    let (mut best, mut at) = (0.0, 0usize);
+    for (v, &x) in dev.iter().enumerate() {
+        if x > best {
+            best = x;
+            at = v;
+        }
+    }
+    let kind = match d.vertex_kinds[at] {
+        VertexKind::Interior => "interior",
+        VertexKind::Boundary => "boundary",
+        VertexKind::Corner => "corner",
+    };
+    let invalid = d.quality.map_or(0, |q| q.invalid_facets);
+    (best, kind, invalid)
+}
+
+/// The smallest N of `spec(N)` meeting D by doubling from 4 and bisection.
+fn bisect(
+    surface: &dyn Surface,
+    tolerance: f64,
+    spec: impl Fn(usize) -> String,
+) -> Option<(String, usize, f64, &'static str, usize)> {
+    let run = |n: usize| {
+        let uv = Generator::parse(&spec(n)).ok()?.generate().uv;
+        let (dev, kind, _) = worst(surface, &uv);
+        Some((spec(n), uv.len(), dev, kind, n))
+    };
+    let (mut lo, mut hi) = (2usize, 4usize);
+    let mut found = loop {
+        let h = run(hi)?;
+        if h.2 <= tolerance {
+            break h;
+        }
+        lo = hi;
+        hi *= 2;
+        if hi > 1024 {
+            return None;
+        }
+    };
+    while hi - lo > 1 {
+        let mid = (lo + hi) / 2;
+        let h = run(mid)?;
+        if h.2 <= tolerance {
+            hi = mid;
+            found = h;
+        } else {
+            lo = mid;
+        }
+    }
+    // Bisection assumes that a finer hex always does as well; look below for a smaller one.
+    if std::env::var("FIT_SCAN").is_ok() {
+        for n in (found.4 * 3 / 4..found.4).rev() {
+            let h = run(n)?;
+            if h.2 <= tolerance {
+                println!("    smaller hex meets D: {} {} pts", h.0, h.1);
+            }
+        }
+    }
+    Some(found)
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let name = &args[0];
+    let path = format!("{}/../../samples/{name}.json", env!("CARGO_MANIFEST_DIR"));
+    let text = std::fs::read_to_string(&path).expect("sample");
+    let surface = SurfaceSpec::from_json(&text, name)
+        .expect("spec")
+        .build()
+        .expect("surface");
+    let [lo, hi] = tpi_core::sampled_bounding_box(&surface, 64);
+    let diagonal = lo.distance(hi);
+    for fraction in &args[1..] {
+        let f: f64 = fraction.parse().expect("fraction");
+        let tolerance = f * diagonal;
+        let start = Instant::now();
+        let fitted =
+            fit_pattern(&surface, tolerance, 0, &DiscretiseOptions::default()).expect("fit");
+        let seconds = start.elapsed().as_secs_f64();
+        let (dev, kind, invalid) = worst(&surface, &fitted.uv);
+        println!(
+            "{name} D={tolerance:.4e} ({f}): fit {} pts met={} dev/D={:.3} at {kind} \
+             invalid={invalid} runs={} {seconds:.2}s",
+            fitted.uv.len(),
+            fitted.met,
+            dev / tolerance,
+            fitted.discretisations
+        );
+        if std::env::var("FIT_ONLY").is_ok() {
+            continue;
+        }
+        for (label, spec) in [
+            (
+                "hex:spacing",
+                Box::new(|n: usize| format!("hex:spacing={}", 1.0 / n as f64))
+                    as Box<dyn Fn(usize) -> String>,
+            ),
+            ("hex:NxN", Box::new(|n: usize| format!("hex:{n}x{n}"))),
+        ] {
+            match bisect(&surface, tolerance, spec) {
+                Some((g, count, dev, kind, _)) => println!(
+                    "  {label}: {g} {count} pts dev/D={:.3} at {kind}; ratio {:.3}",
+                    dev / tolerance,
+                    fitted.uv.len() as f64 / count as f64
+                ),
+                None => println!("  {label}: none up to 1024"),
+            }
+        }
+    }
+}
