@@ -1642,9 +1642,10 @@ enum TpiStatus tpi_pattern_fit_report(const struct TpiPattern *pattern, struct T
 
 /**
  * The smallest uniform hexagonal pattern `hex:spacing=1/N` whose mesh on `surface` keeps
- * every vertex within `max_deviation` (model units, > 0) of the surface, found by doubling N
- * and bisection, looking at patterns of at most `max_points` points (the baseline a fitted
- * pattern is compared with). `options`: NULL for the defaults.
+ * every vertex within `max_deviation` (model units, > 0) of the surface, found by doubling N,
+ * bisection, and every N down to 0.85 of the bisection's (the deviation is not monotone in
+ * N), looking at patterns of at most `max_points` points (the baseline a fitted pattern is
+ * compared with). `options`: NULL for the defaults.
  *
  * On success `*count` is its number of points and `*deviation` its mesh's largest vertex
  * deviation; when no such pattern has at most `max_points` points, `*count` is 0 and
