@@ -435,31 +435,7 @@ fn kick(
         // The tilted planes are in the pool: their polygons reach one ring beyond it, the
         // verdicts that can change two (three rings from i, four when wide).
         let changed = affected_points(state.tri, &state.incident, &pool);
-        let points = judged_around(state, &changed);
-        let verdicts: Vec<(u32, bool)> = points
-            .iter()
-            .map(|&x| (x, state.facet_invalid(x)))
-            .collect();
-        commit(state, verdicts);
-        for _ in 0..KICK_REPAIR_PASSES {
-            // Past the budget the restart is judged as it stands.
-            if state.plane_changes > budget {
-                break;
-            }
-            let mut any = false;
-            for &x in &points {
-                if state.invalid[x as usize] {
-                    any |= try_move(state, exact, spacing, x);
-                }
-            }
-            if !any {
-                break;
-            }
-        }
-        let gain = state
-            .journal
-            .as_ref()
-            .map_or(0, |journal| journal.invalid_gain(&state.invalid));
+        let gain = judge_and_repair(state, exact, spacing, &changed, budget);
         if gain < 0 {
             state.journal = None;
             return true;
@@ -467,6 +443,44 @@ fn kick(
         state.undo();
     }
     false
+}
+
+/// After a journalled change (a restart's tilts, a restructure's flips) whose polygons lie
+/// among `changed`: the verdicts around them renewed, then [`KICK_REPAIR_PASSES`] greedy
+/// passes ([`try_move`]) over the facets there still invalid, stopping once `budget` plane
+/// changes are spent (past it the change is judged as it stands). Returns the change in the
+/// number of invalid facets since the journal began (negative: fewer).
+fn judge_and_repair(
+    state: &mut State<'_>,
+    exact: &[Plane],
+    spacing: &[f64],
+    changed: &[u32],
+    budget: usize,
+) -> isize {
+    let points = judged_around(state, changed);
+    let verdicts: Vec<(u32, bool)> = points
+        .iter()
+        .map(|&x| (x, state.facet_invalid(x)))
+        .collect();
+    commit(state, verdicts);
+    for _ in 0..KICK_REPAIR_PASSES {
+        if state.plane_changes > budget {
+            break;
+        }
+        let mut any = false;
+        for &x in &points {
+            if state.invalid[x as usize] {
+                any |= try_move(state, exact, spacing, x);
+            }
+        }
+        if !any {
+            break;
+        }
+    }
+    state
+        .journal
+        .as_ref()
+        .map_or(0, |journal| journal.invalid_gain(&state.invalid))
 }
 
 /// How a series of random restarts around one facet is drawn ([`kick`]).
@@ -552,27 +566,7 @@ fn restructure(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], i: u32) 
     // change, one ring further.
     let ring = polygons_of_plane(state, i);
     let changed = affected_points(state.tri, &state.incident, &ring);
-    let points = judged_around(state, &changed);
-    let verdicts: Vec<(u32, bool)> = points
-        .iter()
-        .map(|&x| (x, state.facet_invalid(x)))
-        .collect();
-    commit(state, verdicts);
-    for _ in 0..KICK_REPAIR_PASSES {
-        let mut any = false;
-        for &x in &points {
-            if state.invalid[x as usize] {
-                any |= try_move(state, exact, spacing, x);
-            }
-        }
-        if !any {
-            break;
-        }
-    }
-    let gain = state
-        .journal
-        .as_ref()
-        .map_or(0, |journal| journal.invalid_gain(&state.invalid));
+    let gain = judge_and_repair(state, exact, spacing, &changed, usize::MAX);
     // As many invalid facets with neighbours closer to the isotropic ones is kept too: the
     // restarts that follow then start from the better structure.
     if gain <= 0 {

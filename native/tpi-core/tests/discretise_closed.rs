@@ -289,6 +289,18 @@ fn vase(profile: &[(f64, f64)], transposed: bool) -> NurbsSurface {
     }
 }
 
+/// A peanut's profile (radius, height): poles at both ends, K > 0 at the caps and K < 0 at
+/// the waist.
+const PEANUT: [(f64, f64); 7] = [
+    (0.0, -2.0),
+    (1.5, -2.0),
+    (1.5, -0.8),
+    (0.6, 0.0),
+    (1.5, 0.8),
+    (1.5, 2.0),
+    (0.0, 2.0),
+];
+
 /// The discretisation of a closed surface, with one facet per seed and no seam left open
 /// asserted, and its independent validity checks.
 fn closed_discretisation(
@@ -321,16 +333,6 @@ fn closed_discretisation(
 fn closed_surfaces_that_are_not_convex_close_their_seam_and_poles() {
     let saddle = [(3.0, 0.0), (1.0, 2.0), (3.0, 4.0)];
     let mixed = [(2.0, 0.0), (3.0, 1.0), (1.2, 2.0), (2.5, 3.0), (2.0, 4.0)];
-    // Poles at both ends, K > 0 at the caps and K < 0 at the waist.
-    let peanut = [
-        (0.0, -2.0),
-        (1.5, -2.0),
-        (1.5, -0.8),
-        (0.6, 0.0),
-        (1.5, 0.8),
-        (1.5, 2.0),
-        (0.0, 2.0),
-    ];
     let cases = [
         ("saddle vase", vase(&saddle, false), false, PlaneMode::Exact),
         (
@@ -345,7 +347,7 @@ fn closed_surfaces_that_are_not_convex_close_their_seam_and_poles() {
             false,
             PlaneMode::Adjusted,
         ),
-        ("peanut", vase(&peanut, false), false, PlaneMode::Adjusted),
+        ("peanut", vase(&PEANUT, false), false, PlaneMode::Adjusted),
     ];
     let mut rng = Rng::new(1620);
     for (sname, surface, transposed, planes) in &cases {
@@ -576,18 +578,7 @@ fn the_reported_deviation_on_a_closed_surface_is_measured_across_the_seam() {
 /// of the spacing and 2 invalid facets (7 before the caps were the envelope), bounded here.
 #[test]
 fn pole_caps_of_a_surface_not_convex_are_the_envelope_there() {
-    let peanut = vase(
-        &[
-            (0.0, -2.0),
-            (1.5, -2.0),
-            (1.5, -0.8),
-            (0.6, 0.0),
-            (1.5, 0.8),
-            (1.5, 2.0),
-            (0.0, 2.0),
-        ],
-        false,
-    );
+    let peanut = vase(&PEANUT, false);
     let poles = [DVec3::new(0.0, 0.0, -2.0), DVec3::new(0.0, 0.0, 2.0)];
     let (near, cap) = (0.5, 1.0);
     let normal_at = |uv: [f64; 2]| {
