@@ -354,6 +354,11 @@ pub const ESCALATION_BUDGET_PER_INVALID: usize = 150_000;
 /// restructuring move of the escalation ([`crate::adjusted_planes`]).
 pub const RESTRUCTURE_FLIPS: usize = 24;
 
+/// The restructuring flips ([`RESTRUCTURE_FLIPS`]) leave four points alone whose in-circle
+/// determinant is at most this times the quad's edge length to the fourth power: cocircular
+/// up to rounding (a square grid), where a flip would only follow rounding.
+pub const ISOTROPIC_FLIP_TIE: f64 = 1e-9;
+
 // ---- read by validity_flips.rs ----
 
 /// Rounds of validity flips at most (each round visits every invalid facet once).

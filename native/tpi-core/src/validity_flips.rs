@@ -55,7 +55,7 @@ use crate::facets::reachable;
 use crate::planes::{meeting_point, Plane};
 use crate::tolerance::{
     DETOUR_BUDGET, DETOUR_BUDGET_FLOOR, DETOUR_REPAIR_PASSES, DETOUR_WORK_BUDGET,
-    DETOUR_WORK_BUDGET_FLOOR, MAX_VALIDITY_ROUNDS, VALIDITY_TOLERANCE,
+    DETOUR_WORK_BUDGET_FLOOR, ISOTROPIC_FLIP_TIE, MAX_VALIDITY_ROUNDS, VALIDITY_TOLERANCE,
 };
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
@@ -790,7 +790,7 @@ impl<'a> State<'a> {
                 let (qc, qa, qb) = (lift(pc), lift(pa), lift(pb));
                 let in_circle = qc.dot(qa.cross(qb)) * cross(pc, pa, pb).signum();
                 let scale = (pa - pb).length_squared().powi(2);
-                if !(in_circle > 1e-9 * scale) {
+                if !(in_circle > ISOTROPIC_FLIP_TIE * scale) {
                     continue;
                 }
                 let (t1, _) = self.flip(t as u32, k);
