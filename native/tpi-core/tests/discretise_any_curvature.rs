@@ -22,28 +22,6 @@ use tpi_core::{
 };
 use tpi_core::{FLAG_NON_SIMPLE, FLAG_OVERLAP};
 
-/// A hex (triangular-lattice) pattern of about `n` points in the unit square, rotated by
-/// `degrees` about the square's centre.
-fn rotated_hex(n: usize, degrees: f64) -> Vec<[f64; 2]> {
-    let h = (2.0 / (3f64.sqrt() * n as f64)).sqrt();
-    let (s, c) = degrees.to_radians().sin_cos();
-    let reach = (0.75f64).sqrt() + 2.0 * h;
-    let rows = (2.0 * reach / (h * 0.75f64.sqrt())).ceil() as i64;
-    let cols = (2.0 * reach / h).ceil() as i64;
-    let mut out = Vec::new();
-    for r in -rows..=rows {
-        for q in -cols..=cols {
-            let x = (q as f64 + 0.5 * (r.rem_euclid(2)) as f64) * h + 0.25 * h;
-            let y = r as f64 * h * 0.75f64.sqrt() + 0.2 * h;
-            let (u, v) = (0.5 + c * x - s * y, 0.5 + s * x + c * y);
-            if (0.0..=1.0).contains(&u) && (0.0..=1.0).contains(&v) {
-                out.push([u, v]);
-            }
-        }
-    }
-    out
-}
-
 /// A square grid of about `n` cell centres.
 fn grid(n: usize) -> Vec<[f64; 2]> {
     let k = (n as f64).sqrt().round() as usize;
