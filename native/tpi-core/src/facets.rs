@@ -298,7 +298,9 @@ pub(crate) fn build_stage(
                     stages,
                 )
             } else {
-                build_closed_facets(&triangulation, planes, n, source, params, stages)
+                // Not strips: the convex hull of the dual points, the envelope itself.
+                let envelope = !*strips;
+                build_closed_facets(&triangulation, planes, n, source, envelope, params, stages)
             };
             (mesh, planes.len() > n, *strips)
         }
@@ -311,6 +313,7 @@ pub(crate) fn build_stage(
                 &seeds.planes,
                 n,
                 &seeds.source,
+                false,
                 params,
                 if *on_wall { &unreported } else { stages },
             );
@@ -1738,11 +1741,19 @@ fn seed_part(
 /// plane of the wall at the boundary point nearest to the ghost's seed. `source` maps every
 /// point to its real seed (for diagnostics). Ill-conditioned vertices are replaced by their
 /// closest points on the facets' edge lines, as in [`build_facets`].
+///
+/// `envelope`: `tri` is the envelope's own structure (the convex hull of a closed convex
+/// surface's dual points), whose vertices are exact however far from their triangle's
+/// points; as on the open convex path, only a vertex beyond [`UNREACHABLE_VERTEX_FACTOR`]
+/// times the triangle's longest side is then diagnosed (three seeds a few nanometres apart
+/// in a random pattern of millions have a vertex many times their distance away, and it is
+/// right).
 pub(crate) fn build_closed_facets(
     tri: &DualTriangulation,
     planes: &[Plane],
     real_count: usize,
     source: &[u32],
+    envelope: bool,
     params: &FacetParams,
     stages: &Stages<'_>,
 ) -> FacetMesh {
@@ -1800,7 +1811,12 @@ pub(crate) fn build_closed_facets(
                 .distance(b.point)
                 .max(b.point.distance(c.point))
                 .max(c.point.distance(a.point));
-            let far = !v.exact || !(distance <= params.far_vertex_factor * longest);
+            let factor = if envelope {
+                UNREACHABLE_VERTEX_FACTOR
+            } else {
+                params.far_vertex_factor
+            };
+            let far = !v.exact || !(distance <= factor * longest);
             (far && real(ids)).then_some((sorted, meeting, distance))
         })
         .map(|(sorted, meeting, distance)| {

@@ -170,6 +170,45 @@ fn ellipsoid_gives_the_closed_envelope() {
     }
 }
 
+/// Three seeds a few micrometres apart and nearly in a row (as in a random pattern of
+/// millions) have a dual triangle whose vertex, an exact vertex of the envelope, lies
+/// hundreds of times their distance away: right, so neither replaced nor diagnosed.
+#[test]
+fn a_far_vertex_of_the_closed_envelope_is_exact_and_not_flagged() {
+    let axes = [3.0, 2.0, 1.2];
+    let surface = ellipsoid(axes[0], axes[1], axes[2]);
+    let mut pattern = generated("hex:14x14");
+    let (u, v) = (0.4137, 0.3611);
+    pattern.extend([[u, v], [u + 2e-6, v + 1e-9], [u + 4e-6, v]]);
+    let d = discretise(&surface, &pattern, &DiscretiseOptions::default()).unwrap();
+    // The closed form's envelope: every vertex on or behind every tangent plane.
+    check_envelope("hex + row", &d, axes, pattern.len(), MeshTopology::SPHERE);
+    let n = pattern.len() as u32;
+    let row = [n - 3, n - 2, n - 1];
+    let ill: Vec<_> = d
+        .diagnostics
+        .iter()
+        .filter(|g| matches!(g, Diagnostic::IllConditionedVertex { .. }))
+        .collect();
+    assert!(ill.is_empty(), "diagnosed: {ill:?}");
+    let quality = d.quality.as_ref().unwrap();
+    assert_eq!(quality.flagged_facets, 0);
+    // The row's vertex really is far: its three facets share a vertex hundreds of times
+    // their seeds' distance from them.
+    let shared: Vec<u32> = d
+        .facet(row[0] as usize)
+        .iter()
+        .copied()
+        .filter(|x| row[1..].iter().all(|&r| d.facet(r as usize).contains(x)))
+        .collect();
+    assert_eq!(shared.len(), 1, "the row's three facets meet in one vertex");
+    let far = d.vertices[shared[0] as usize].distance(d.seeds[row[1] as usize].point);
+    let apart = d.seeds[row[0] as usize]
+        .point
+        .distance(d.seeds[row[2] as usize].point);
+    assert!(far > 100.0 * apart, "vertex {far} from seeds {apart} apart");
+}
+
 #[test]
 fn closed_surface_seeds_on_the_seam_or_a_pole_are_named() {
     let surface = ellipsoid(2.0, 2.0, 2.0);
