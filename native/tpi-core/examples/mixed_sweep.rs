@@ -12,7 +12,10 @@
 //! cargo run --release -p tpi-core --example mixed_sweep -- 20 1 300,2000
 //! ```
 //!
-//! With `SWEEP_DETAIL=1` each facet still invalid after adjustment is listed with its seed,
+//! With `SWEEP_SAVE=DIR` each surface and pattern is also written to DIR/mixedSEED.json and
+//! DIR/mixedSEED-PATTERN.json (surface and pattern files for `tpi discretise`); with `SWEEP_PARABOLIC=1` the invalid facets of the exact planes are
+//! counted by their distance from the nearest parabolic line (in pattern spacings), and those
+//! beyond 2 spacings listed. With `SWEEP_DETAIL=1` each facet still invalid after adjustment is listed with its seed,
 //! the Gaussian curvature there and the tilts of its plane and its neighbours'.
 #![allow(
     dead_code,
@@ -123,6 +126,9 @@ fn main() {
         .unwrap_or_else(|| vec![300, 2000]);
     let only: Option<String> = args.get(3).cloned();
     let detail = std::env::var_os("SWEEP_DETAIL").is_some();
+    let parabolic = std::env::var_os("SWEEP_PARABOLIC").is_some();
+    let bands = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0];
+    let mut histogram = [0usize; 7];
     let adjusted = DiscretiseOptions {
         planes: PlaneMode::Adjusted,
         ..DiscretiseOptions::default()
@@ -139,11 +145,24 @@ fn main() {
         } else {
             Box::new(mixed_surface(seed))
         };
+        if let (Some(dir), true) = (std::env::var_os("SWEEP_SAVE"), seed > 0) {
+            // The surface as a surface file (docs/formats.md), for the CLI.
+            let spec = mixed_surface(seed).to_spec();
+            let mut json = serde_json::to_value(&spec).expect("a NURBS record");
+            json["type"] = "nurbs".into();
+            let path = std::path::Path::new(&dir).join(format!("mixed{seed}.json"));
+            std::fs::write(&path, json.to_string()).expect("writable SWEEP_SAVE");
+        }
         let surface = surface.as_ref();
         for &n in &sizes {
             for (name, pattern) in sweep_patterns(n, seed) {
                 if only.as_ref().is_some_and(|o| !name.starts_with(o.as_str())) {
                     continue;
+                }
+                if let Some(dir) = std::env::var_os("SWEEP_SAVE") {
+                    let path = std::path::Path::new(&dir).join(format!("mixed{seed}-{name}.json"));
+                    let json = serde_json::json!({ "uv": pattern });
+                    std::fs::write(&path, json.to_string()).expect("writable SWEEP_SAVE");
                 }
                 let start = Instant::now();
                 let exact = discretise(surface, &pattern, &DiscretiseOptions::default())
@@ -163,6 +182,25 @@ fn main() {
                 tilted.sort_by(f64::total_cmp);
                 let invalid = v.invalid_facets();
                 total_exact += v_exact.invalid_facets().len();
+                if parabolic {
+                    let spacing = 1.0 / (n as f64).sqrt();
+                    for i in v_exact.invalid_facets() {
+                        let r = parabolic_distance(surface, pattern[i], spacing);
+                        let band = bands.iter().position(|&b| r <= b).unwrap_or(bands.len());
+                        histogram[band] += 1;
+                        if r > 2.0 {
+                            let [s, t] = pattern[i];
+                            let (gauss, _) = gaussian_and_mean(surface, s, t);
+                            println!(
+                                "    far: {name} facet {i} at ({s:.4}, {t:.4}) K {gauss:+.2e}: \
+                                 {r:.2} spacings, sides {}, non-simple {}, boundary {}",
+                                exact.facet(i).len(),
+                                v_exact.non_simple.contains(&i),
+                                touches_boundary(&exact, i)
+                            );
+                        }
+                    }
+                }
                 total_adjusted += invalid.len();
                 time_adjusted += t_adjusted;
                 println!(
@@ -203,7 +241,33 @@ fn main() {
             }
         }
     }
+    if parabolic {
+        println!("exact planes' invalid facets by distance from a parabolic line (spacings): <= {bands:?}, beyond: {histogram:?}");
+    }
     println!(
         "total invalid exact {total_exact}, adjusted {total_adjusted}; adjusted time {time_adjusted:.2} s"
     );
+}
+
+/// Distance (in pattern spacings, normalised parameters) from `st` to the nearest place where
+/// the Gaussian curvature changes sign against its value at `st`, searched on rings of 24
+/// points every quarter spacing up to 8 spacings (infinity beyond).
+fn parabolic_distance(surface: &dyn Surface, st: [f64; 2], spacing: f64) -> f64 {
+    let dom = surface.domain();
+    let k = |s: f64, t: f64| {
+        let [u, v] = dom.from_normalised([s.clamp(0.0, 1.0), t.clamp(0.0, 1.0)]);
+        gaussian_and_mean(surface, u, v).0
+    };
+    let centre = k(st[0], st[1]);
+    for r in 1..=32 {
+        let radius = spacing * r as f64 / 4.0;
+        let hit = (0..24).any(|a| {
+            let angle = a as f64 * std::f64::consts::TAU / 24.0;
+            k(st[0] + radius * angle.cos(), st[1] + radius * angle.sin()) * centre <= 0.0
+        });
+        if hit {
+            return r as f64 / 4.0;
+        }
+    }
+    f64::INFINITY
 }
