@@ -674,6 +674,15 @@ fn run_within(
         // everywhere on convex surfaces).
         result.plane_adjustments = plane_adjustments(&result.seeds, &samples.planes);
     }
+    // What no later stage reads is let go before the report too (live editing keeps the
+    // tangents and the slopes).
+    samples.plane_uv = Vec::new();
+    samples.lifted = None;
+    samples.geometry = Vec::new();
+    if !keep {
+        samples.tangents = Vec::new();
+        samples.slopes = None;
+    }
     stages.check()?;
     let mut resolved = Vec::new();
     if options.quality_report {

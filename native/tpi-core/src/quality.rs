@@ -196,7 +196,9 @@ pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (Quali
             )
             .collect()
     };
-    let mut shared_edges: Vec<(u32, u32, u32, u32)> = Vec::new();
+    // At most one shared edge per two entries: sized once, not grown by doubling (at a
+    // million facets the doubling's copies were the report's peak of memory).
+    let mut shared_edges: Vec<(u32, u32, u32, u32)> = Vec::with_capacity(edges.len() / 2);
     let mut on_boundary = vec![false; input.vertices.len()];
     let mut boundary_parent: Vec<u32> = (0..input.vertices.len() as u32).collect();
     let mut k = 0;
@@ -224,6 +226,7 @@ pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (Quali
         }
         k = m;
     }
+    drop(edges);
     // Overlaps: pairs sharing an edge, then pairs sharing only a vertex (where four or more
     // facets meet), both facets simple.
     let simple: Vec<bool> = shapes.iter().map(|s| s.1.simple).collect();
@@ -248,6 +251,8 @@ pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (Quali
         pairs.dedup();
         pairs
     };
+    drop(shared_edges);
+    drop(simple);
     r.overlapping_pairs = overlapping.len();
     for &(f, g) in &overlapping {
         flags[f as usize] |= FLAG_OVERLAP;
@@ -309,6 +314,15 @@ pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (Quali
             flags[i] |= FLAG_DIAGNOSTIC;
         }
     }
+    // Freed before the deviations' projections, the report's largest allocation.
+    drop((
+        shapes,
+        used,
+        valence,
+        on_boundary,
+        boundary_parent,
+        overlapping,
+    ));
     r.non_simple_facets = flags.iter().filter(|&&f| f & FLAG_NON_SIMPLE != 0).count();
     r.invalid_facets = flags.iter().filter(|&&f| f & INVALID_FLAGS != 0).count();
     r.flagged_facets = flags.iter().filter(|&&f| f != 0).count();
