@@ -603,6 +603,10 @@ fn run_within(
         layout: &layout,
     };
     let structure = decide_structure(&input, &mut samples, &mut timings, stages)?;
+    // Only the structure reads these: let go before the facets, the pipeline's peak.
+    samples.plane_uv = Vec::new();
+    samples.lifted = None;
+    samples.geometry = Vec::new();
     let (topology, strips, neighbours) = (
         structure.topology,
         structure.is_strips(),
@@ -674,11 +678,8 @@ fn run_within(
         // everywhere on convex surfaces).
         result.plane_adjustments = plane_adjustments(&result.seeds, &samples.planes);
     }
-    // What no later stage reads is let go before the report too (live editing keeps the
-    // tangents and the slopes).
-    samples.plane_uv = Vec::new();
-    samples.lifted = None;
-    samples.geometry = Vec::new();
+    // The tangents and slopes are let go before the report too, unless live editing keeps
+    // them.
     if !keep {
         samples.tangents = Vec::new();
         samples.slopes = None;
