@@ -848,7 +848,16 @@ impl<'a> State<'a> {
             }
             // Those invalid before first (most stay so: a futile flip is known soonest), the
             // quad's points (their polygons changed) next; stop once no gain is possible.
-            affected.sort_by_key(|&x| (!self.invalid[x as usize], !quad.contains(&x)));
+            // (Four stable passes: the order of a stable sort by that key, without its
+            // comparisons.)
+            let key = |x: u32| {
+                2 * usize::from(!self.invalid[x as usize]) + usize::from(!quad.contains(&x))
+            };
+            let mut ordered = Vec::with_capacity(affected.len());
+            for k in 0..4 {
+                ordered.extend(affected.iter().copied().filter(|&x| key(x) == k));
+            }
+            let affected = ordered;
             let mut verdicts = Vec::with_capacity(affected.len());
             let mut count = 0;
             for &x in &affected {
@@ -984,11 +993,13 @@ fn flatten_into<'b>(
     }
 }
 
-/// Longest edge of a closed polygon.
+/// Longest edge of a closed polygon. One square root, of the largest squared length: the
+/// same value as the largest length (the square root is monotonic and correctly rounded).
 fn size(p: &[DVec2]) -> f64 {
     (0..p.len())
-        .map(|k| (p[(k + 1) % p.len()] - p[k]).length())
+        .map(|k| (p[(k + 1) % p.len()] - p[k]).length_squared())
         .fold(0.0, f64::max)
+        .sqrt()
 }
 
 /// Simple and counter-clockwise seen from `normal`, at least three distinct vertices.
@@ -1103,7 +1114,17 @@ pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool 
     let (pa, pb) = (&*pa, pb);
     let scale = size(pa).max(size(pb));
     let tolerance = VALIDITY_TOLERANCE * scale;
+    let box_a = bounds(pa);
+    // A vertex of b farther than twice the tolerance outside a's box is within the tolerance
+    // of no vertex of a (the margin covers the rounding of the box test): it is not searched.
+    let (near_lo, near_hi) = (
+        box_a.0 - DVec2::splat(2.0 * tolerance),
+        box_a.1 + DVec2::splat(2.0 * tolerance),
+    );
     for q in pb.iter_mut() {
+        if q.x < near_lo.x || q.x > near_hi.x || q.y < near_lo.y || q.y > near_hi.y {
+            continue;
+        }
         if let Some(p) = pa
             .iter()
             .find(|p| (**p - *q).length_squared() <= tolerance * tolerance)
@@ -1116,7 +1137,7 @@ pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool 
     let (na, nb) = (pa.len(), pb.len());
     // Segments (and points) whose bounding boxes miss the other polygon's cannot cross it (or
     // lie inside it): only the few near the shared part are tested pair by pair.
-    let (box_a, box_b) = (bounds(pa), bounds(pb));
+    let box_b = bounds(pb);
     // The boxes of b's edges, once (not once per edge of a).
     let mut stack_boxes = [(DVec2::ZERO, DVec2::ZERO); 16];
     let mut heap_boxes = Vec::new();
@@ -1142,14 +1163,16 @@ pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool 
             }
         }
     }
-    // No proper crossing: overlap means a vertex of one strictly inside the other.
+    // No proper crossing: overlap means a vertex of one strictly inside the other. The
+    // crossing number first (most vertices tested are outside), then the distances.
     let inside = |points: &[DVec2], poly: &[DVec2], poly_box: (DVec2, DVec2)| {
         points.iter().any(|&p| {
             boxes_meet((p, p), poly_box)
+                && odd_crossing_number(p, poly)
                 && !poly
                     .iter()
                     .any(|q| (*q - p).length_squared() <= tolerance * tolerance)
-                && point_strictly_inside(p, poly, tolerance)
+                && clear_of_edges(p, poly, tolerance)
         })
     };
     inside(pb, pa, box_a) || inside(pa, pb, box_b)
@@ -1196,7 +1219,13 @@ fn separated(a: &[DVec3], b: &[DVec3], ends: [DVec3; 2], normal: DVec3) -> bool 
 /// Whether `p` lies strictly inside the polygon: inside by the crossing number and farther than
 /// `tolerance` from every edge (a point on the boundary is not inside). The crossing number
 /// comes first: most points tested are outside, and then no distance is needed.
+#[cfg(test)]
 fn point_strictly_inside(p: DVec2, poly: &[DVec2], tolerance: f64) -> bool {
+    odd_crossing_number(p, poly) && clear_of_edges(p, poly, tolerance)
+}
+
+/// Whether a ray from `p` along +x crosses the closed polygon an odd number of times.
+fn odd_crossing_number(p: DVec2, poly: &[DVec2]) -> bool {
     let n = poly.len();
     let mut inside = false;
     for k in 0..n {
@@ -1206,12 +1235,17 @@ fn point_strictly_inside(p: DVec2, poly: &[DVec2], tolerance: f64) -> bool {
         }
     }
     inside
-        && (0..n).all(|k| {
-            let (a, b) = (poly[k], poly[(k + 1) % n]);
-            let ab = b - a;
-            let t = ((p - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
-            (a + ab * t - p).length_squared() > tolerance * tolerance
-        })
+}
+
+/// Whether `p` lies farther than `tolerance` from every edge of the closed polygon.
+fn clear_of_edges(p: DVec2, poly: &[DVec2], tolerance: f64) -> bool {
+    let n = poly.len();
+    (0..n).all(|k| {
+        let (a, b) = (poly[k], poly[(k + 1) % n]);
+        let ab = b - a;
+        let t = ((p - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+        (a + ab * t - p).length_squared() > tolerance * tolerance
+    })
 }
 
 /// The segments ab and cd cross properly: each strictly (beyond `eps`, an area) on both
