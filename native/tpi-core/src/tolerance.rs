@@ -387,6 +387,22 @@ pub const DETOUR_BUDGET_FLOOR: usize = 100;
 /// per point (16 s for 4,249 points).
 pub const DETOUR_WORK_BUDGET: u64 = 4_000;
 
+/// Pair detours (two star or link edges of an invalid facet flipped together, then repairs)
+/// the validity repair may try after the single detours: this many per judged point plus
+/// [`PAIR_DETOUR_BUDGET_FLOOR`] (counted; the detours' work budget binds them too). Poisson-disk
+/// patterns on saddles leave a few facets, mostly within a few spacings of the boundary, that
+/// need two flips before any repair pays.
+pub const PAIR_DETOUR_BUDGET: f64 = 0.5;
+
+/// Pair detours every run may try whatever its size.
+pub const PAIR_DETOUR_BUDGET_FLOOR: usize = 400;
+
+/// Pair detours run only where the single detours leave at most this many invalid facets:
+/// on uniform random points (dozens left) pair detours on the mixed roof traded invalid
+/// facets for facets reaching beyond 3 spacings that the plane adjustment then could not
+/// pull in (7 of them at random:1000).
+pub const PAIR_DETOUR_MAX_INVALID: usize = 8;
+
 /// Detour work every run may spend whatever its size.
 pub const DETOUR_WORK_BUDGET_FLOOR: u64 = 2_000_000;
 

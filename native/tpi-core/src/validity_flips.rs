@@ -55,7 +55,8 @@ use crate::facets::reachable;
 use crate::planes::{meeting_point, Plane};
 use crate::tolerance::{
     DETOUR_BUDGET, DETOUR_BUDGET_FLOOR, DETOUR_REPAIR_PASSES, DETOUR_WORK_BUDGET,
-    DETOUR_WORK_BUDGET_FLOOR, ISOTROPIC_FLIP_TIE, MAX_VALIDITY_ROUNDS, VALIDITY_TOLERANCE,
+    DETOUR_WORK_BUDGET_FLOOR, ISOTROPIC_FLIP_TIE, MAX_VALIDITY_ROUNDS, PAIR_DETOUR_BUDGET,
+    PAIR_DETOUR_BUDGET_FLOOR, PAIR_DETOUR_MAX_INVALID, VALIDITY_TOLERANCE,
 };
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
@@ -124,6 +125,33 @@ pub(crate) fn validity_flips(
                 break 'detours;
             }
             if state.invalid[i as usize] && state.try_detour(i, n) {
+                kept += 1;
+            }
+        }
+        stats.flips += kept;
+        if kept == 0 {
+            break;
+        }
+    }
+    // What one detour cannot repair, two flips together may (pair detours: bounded apart),
+    // where only a few facets are left (hex, grid and Poisson-disk patterns; not the many of
+    // uniform random points, whose pair detours would trade invalid facets for runaway ones).
+    let pairs = (PAIR_DETOUR_BUDGET * n as f64).ceil() as usize + PAIR_DETOUR_BUDGET_FLOOR;
+    let left = state.invalid.iter().filter(|&&x| x).count();
+    let rounds = if left <= PAIR_DETOUR_MAX_INVALID {
+        MAX_VALIDITY_ROUNDS
+    } else {
+        0
+    };
+    let mut tried = 0;
+    'pairs: for _ in 0..rounds {
+        let mut kept = 0;
+        for i in 0..n as u32 {
+            if tried >= pairs || state.work >= state.work_budget {
+                stats.flips += kept;
+                break 'pairs;
+            }
+            if state.invalid[i as usize] && state.try_pair_detour(i, n, pairs, &mut tried) {
                 kept += 1;
             }
         }
@@ -740,6 +768,95 @@ impl<'a> State<'a> {
                 return true;
             }
             self.undo();
+        }
+        false
+    }
+
+    /// Where no detour repairs facet i: two of its star and link edges flipped together (the
+    /// second chosen among the edges of i after the first), then single-flip repairs of the
+    /// invalid facets around both quads ([`DETOUR_REPAIR_PASSES`] passes); kept when the whole
+    /// leaves fewer invalid facets than before, undone otherwise. Each pair tried counts
+    /// against `budget` (through `tried`).
+    fn try_pair_detour(&mut self, i: u32, judged: usize, budget: usize, tried: &mut usize) -> bool {
+        let Some(firsts) = self.repair_candidates(i) else {
+            return false;
+        };
+        for (a, b) in firsts {
+            // The edges of i once (a, b) is flipped.
+            let Some((t, k, _)) = self.flippable(a, b) else {
+                continue;
+            };
+            self.journal = Some(Journal::default());
+            self.flip(t as u32, k);
+            let seconds = self.repair_candidates(i);
+            self.undo();
+            let Some(seconds) = seconds else {
+                continue;
+            };
+            for (c, d) in seconds {
+                if *tried >= budget || self.work >= self.work_budget {
+                    return false;
+                }
+                if (c, d) == (a, b) || (d, c) == (a, b) {
+                    continue;
+                }
+                let Some((t, k, first)) = self.flippable(a, b) else {
+                    break;
+                };
+                self.journal = Some(Journal::default());
+                self.flip(t as u32, k);
+                let Some((t2, k2, second)) = self.flippable(c, d) else {
+                    self.undo();
+                    continue;
+                };
+                *tried += 1;
+                self.flip(t2 as u32, k2);
+                let quads = [first, second];
+                if quads.iter().flatten().any(|&x| x as usize >= judged)
+                    && !quads.iter().flatten().all(|&x| self.one_ghost_arc(x))
+                {
+                    self.undo();
+                    continue;
+                }
+                let mut region = Vec::with_capacity(2 * AFFECTED_CAPACITY);
+                let mut more = Vec::with_capacity(AFFECTED_CAPACITY);
+                self.affected_into(&first, &mut region);
+                self.affected_into(&second, &mut more);
+                region.extend(more);
+                region.sort_unstable();
+                region.dedup();
+                region.retain(|&x| (x as usize) < judged);
+                let mut targets = Vec::new();
+                for &x in &region {
+                    let v = self.facet_invalid(x);
+                    if v != self.invalid[x as usize] {
+                        self.set_verdict(x, v);
+                    }
+                    if v {
+                        targets.push(x);
+                    }
+                }
+                for _ in 0..DETOUR_REPAIR_PASSES {
+                    let mut any = false;
+                    for &x in &targets {
+                        if self.invalid[x as usize] && self.try_repair(x, judged).is_some() {
+                            any = true;
+                        }
+                    }
+                    if !any {
+                        break;
+                    }
+                }
+                let gain = self
+                    .journal
+                    .as_ref()
+                    .map_or(0, |journal| journal.invalid_gain(&self.invalid));
+                if gain < 0 {
+                    self.journal = None;
+                    return true;
+                }
+                self.undo();
+            }
         }
         false
     }

@@ -17,8 +17,9 @@ use std::collections::{BTreeMap, BTreeSet, HashMap};
 
 use glam::{DVec2, DVec3};
 use tpi_core::VertexKind;
-use tpi_core::{Discretisation, NurbsSurface, Surface};
+use tpi_core::{Discretisation, Generator, NurbsSurface, Surface};
 
+pub mod saddles;
 pub mod validity;
 
 // ---------------------------------------------------------------------------------------
@@ -1028,4 +1029,92 @@ pub fn rotated_hex(n: usize, degrees: f64) -> Vec<[f64; 2]> {
         }
     }
     out
+}
+
+// ---------------------------------------------------------------------------------------
+// Sweeps (examples mixed_sweep and saddle_sweep)
+// ---------------------------------------------------------------------------------------
+
+/// One random mixed surface: z(x, y) over [-5, 5] x [-4, 4], in a frame turned by a random
+/// angle, the sum of a crest a cos(k x'), a quadratic b y'^2 + c x' y', and a Gaussian bump
+/// (or dip) of height h; drawn again until K takes both signs on a 24 x 24 grid.
+pub fn mixed_surface(seed: u64) -> NurbsSurface {
+    let mut rng = Rng::new(0x6d_6978_6564 ^ seed.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+    loop {
+        let angle = rng.range(0.0, std::f64::consts::PI);
+        let a = rng.range(1.0, 2.5) * if rng.f64() < 0.5 { 1.0 } else { -1.0 };
+        let k = rng.range(0.3, 0.6);
+        let phase = rng.range(-0.8, 0.8);
+        let b = rng.range(-0.08, 0.08);
+        let c = rng.range(-0.05, 0.05);
+        let h = rng.range(-1.5, 1.5);
+        let (x0, y0) = (rng.range(-3.0, 3.0), rng.range(-2.5, 2.5));
+        let r = rng.range(1.5, 3.0);
+        let (sn, cs) = (angle.sin(), angle.cos());
+        let z = move |x: f64, y: f64| {
+            let (xr, yr) = (cs * x + sn * y, -sn * x + cs * y);
+            a * (k * xr + phase).cos()
+                + b * yr * yr
+                + c * xr * yr
+                + h * (-((x - x0).powi(2) + (y - y0).powi(2)) / (r * r)).exp()
+        };
+        let knots = [
+            0.0, 0.0, 0.0, 0.125, 0.25, 0.375, 0.5, 0.625, 0.75, 0.875, 1.0, 1.0, 1.0,
+        ];
+        let surface = lifted_net(
+            [3, 3],
+            &knots,
+            &knots,
+            |s, t| (-5.0 + 10.0 * s, -4.0 + 8.0 * t),
+            |x, y, _, _| z(x, y),
+            None,
+        );
+        let (mut positive, mut negative) = (0, 0);
+        for i in 0..24 {
+            for j in 0..24 {
+                let (u, v) = ((i as f64 + 0.5) / 24.0, (j as f64 + 0.5) / 24.0);
+                let (gauss, _) = gaussian_and_mean(&surface, u, v);
+                if gauss > 1e-4 {
+                    positive += 1;
+                } else if gauss < -1e-4 {
+                    negative += 1;
+                }
+            }
+        }
+        // Both signs over a sizeable share of the surface: a truly mixed roof.
+        if positive >= 60 && negative >= 60 {
+            return surface;
+        }
+    }
+}
+
+/// The patterns of the sweep at size `n`: hex at 0, 30 and 72 degrees, a square grid, a
+/// Poisson-disk pattern and uniform random points (seeded by `seed`).
+pub fn sweep_patterns(n: usize, seed: u64) -> Vec<(String, Vec<[f64; 2]>)> {
+    let k = (n as f64).sqrt().round() as usize;
+    let grid: Vec<[f64; 2]> = (0..k)
+        .flat_map(|i| {
+            (0..k).map(move |j| [(i as f64 + 0.5) / k as f64, (j as f64 + 0.5) / k as f64])
+        })
+        .collect();
+    let poisson = Generator::Poisson {
+        radius: (0.7 / n as f64).sqrt(),
+        seed: seed + n as u64,
+    }
+    .generate()
+    .uv;
+    let random = Generator::Random {
+        count: n,
+        seed: seed + 1000 + n as u64,
+    }
+    .generate()
+    .uv;
+    vec![
+        (format!("hex{n}@0"), rotated_hex(n, 0.0)),
+        (format!("hex{n}@30"), rotated_hex(n, 30.0)),
+        (format!("hex{n}@72"), rotated_hex(n, 72.0)),
+        (format!("grid{n}"), grid),
+        (format!("poisson{n}"), poisson),
+        (format!("random{n}"), random),
+    ]
 }
