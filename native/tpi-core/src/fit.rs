@@ -199,11 +199,14 @@ pub fn fit_pattern_with_progress(
     let lattice_limit = (FIT_LATTICE_FACTOR * base.expected_poisson_count(FIT_POISSON_RADIUS))
         .min(MAX_FIT_POINTS as f64) as usize;
     if margins == [0.0, 0.0] {
+        // Every row closed first: above FIT_ADAPTIVE_POINTS only the first is tried, and on
+        // samples/saddle.json at D = 1.56e-5 the sparser sides need 117,527 points against
+        // 101,061 (on the domes they save a few per cent at the counts of the tests).
         let variants = [
-            Grading::of(&base).sparse(),
             Grading::of(&base),
-            Grading::uniform(&base).sparse(),
+            Grading::of(&base).sparse(),
             Grading::uniform(&base),
+            Grading::uniform(&base).sparse(),
         ];
         for grading in variants {
             if best
