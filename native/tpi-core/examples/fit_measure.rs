@@ -7,6 +7,9 @@
 //! its time and where its largest deviation sits (interior, boundary or corner vertex), and
 //! the smallest `hex:spacing=1/N` and `hex:NxN` meeting D (doubling, then bisection on N),
 //! with the same facts. Deviations are the crate's projection ([`tpi_core::vertex_deviations`]).
+//! Environment: FIT_ONLY=1 skips the hex search, FIT_NO_CHECK=1 also the check of the fit
+//! (only the fit runs: for timing the process), FIT_TIMINGS=1 prints the check's stage
+//! timings, FIT_SCAN=1 looks below the bisection's hex.
 
 use std::time::Instant;
 
@@ -18,7 +21,16 @@ use tpi_core::{
 /// The largest deviation of the mesh of `uv` and the kind of vertex where it sits.
 fn worst(surface: &dyn Surface, uv: &[[f64; 2]]) -> (f64, &'static str, usize) {
     let d = discretise(surface, uv, &DiscretiseOptions::default()).expect("discretise");
+    let feet_start = Instant::now();
     let dev = vertex_deviations(surface, &d);
+    if std::env::var("FIT_TIMINGS").is_ok() {
+        println!(
+            "    {} points: {:?}; vertex deviations {:.1} ms",
+            uv.len(),
+            d.timings,
+            feet_start.elapsed().as_secs_f64() * 1e3
+        );
+    }
     let (mut best, mut at) = (0.0, 0usize);
     for (v, &x) in dev.iter().enumerate() {
         if x > best {
@@ -98,6 +110,16 @@ fn main() {
         let fitted =
             fit_pattern(&surface, tolerance, 0, &DiscretiseOptions::default()).expect("fit");
         let seconds = start.elapsed().as_secs_f64();
+        if std::env::var("FIT_NO_CHECK").is_ok() {
+            // Only the fit (for timing the whole process).
+            println!(
+                "{name} D={tolerance:.4e} ({f}): fit {} pts met={} runs={} {seconds:.2}s",
+                fitted.uv.len(),
+                fitted.met,
+                fitted.discretisations
+            );
+            continue;
+        }
         let (dev, kind, invalid) = worst(&surface, &fitted.uv);
         println!(
             "{name} D={tolerance:.4e} ({f}): fit {} pts met={} dev/D={:.3} at {kind} \

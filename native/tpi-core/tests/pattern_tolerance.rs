@@ -301,12 +301,20 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 
 /// The paraboloid of revolution and the hypar have nearly uniform curvature and
 /// parametrisation: what a pattern saves there is mostly at the boundary (uniform hex is set
-/// by its corners and boundary vertices), and the 60 % does not hold: measured 0.66
-/// on the paraboloid and about 0.67..0.70 on the hypar at D = 0.01. Asserted: clearly better
-/// than uniform hex.
+/// by its corners and boundary vertices), and the 60 % does not hold: measured 0.623
+/// on the paraboloid (314 points against 504; 0.659 before the lattices with sparser sides)
+/// and 0.702 on the hypar (179 against 255) at D = 0.01. On the paraboloid the lattice's
+/// cells are already as regular as cells can be (a hexagonal lattice is the thinnest
+/// covering: at a given count no pattern has smaller circumcircles); what is left is the
+/// fall of the curvature away from the apex (sqrt(k1 k2) dA goes as
+/// (1 + 0.0256 r^2)^(-1/2) dx dy): a pattern with a perfect hexagon everywhere, each sized by
+/// its own curvature, would have 0.848 of a uniform lattice's points and 0.928 of a lattice
+/// graded along s and t, i.e. a ratio of 0.53..0.58, which only a varying yet regular
+/// lattice could approach (the relaxed Poisson patterns of the rounds lose about 30 % to
+/// their irregular cells). Asserted: the measured ratios, with a little room.
 #[test]
 fn on_nearly_uniform_surfaces_the_pattern_still_beats_uniform_hex() {
-    for (name, bound) in [("paraboloid.json", 0.7), ("hypar.json", 0.75)] {
+    for (name, bound) in [("paraboloid.json", 0.64), ("hypar.json", 0.72)] {
         let ratio = fit_and_compare(name, 0.01);
         assert!(ratio <= bound, "{name}: {ratio}");
     }
