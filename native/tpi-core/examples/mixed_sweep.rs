@@ -89,13 +89,7 @@ fn main() {
                 let t_adjusted = start.elapsed().as_secs_f64();
                 let v_exact = check(&exact);
                 let v = check(&d);
-                let mut tilted: Vec<f64> = d
-                    .plane_adjustments
-                    .iter()
-                    .map(|a| a.tilt_degrees)
-                    .filter(|&t| t > 0.0)
-                    .collect();
-                tilted.sort_by(f64::total_cmp);
+                let tilted = sorted_tilts(&d);
                 let invalid = v.invalid_facets();
                 total_exact += v_exact.invalid_facets().len();
                 if parabolic {

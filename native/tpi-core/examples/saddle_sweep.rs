@@ -109,13 +109,7 @@ fn detail(surface: &dyn Surface, pattern: &[[f64; 2]], d: &Discretisation, v: &V
 }
 
 fn tilts(d: &Discretisation) -> (f64, f64, usize) {
-    let mut tilted: Vec<f64> = d
-        .plane_adjustments
-        .iter()
-        .map(|a| a.tilt_degrees)
-        .filter(|&t| t > 0.0)
-        .collect();
-    tilted.sort_by(f64::total_cmp);
+    let tilted = sorted_tilts(d);
     (
         tilted.last().copied().unwrap_or(0.0),
         tilted.get(tilted.len() / 2).copied().unwrap_or(0.0),

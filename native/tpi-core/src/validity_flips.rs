@@ -738,37 +738,48 @@ impl<'a> State<'a> {
             let mut region = Vec::with_capacity(AFFECTED_CAPACITY);
             self.affected_into(&quad, &mut region);
             region.retain(|&x| (x as usize) < judged);
-            let mut targets = Vec::new();
-            for &x in &region {
-                let v = self.facet_invalid(x);
-                if v != self.invalid[x as usize] {
-                    self.set_verdict(x, v);
-                }
-                if v {
-                    targets.push(x);
-                }
-            }
-            for _ in 0..DETOUR_REPAIR_PASSES {
-                let mut any = false;
-                for &x in &targets {
-                    if self.invalid[x as usize] && self.try_repair(x, judged).is_some() {
-                        any = true;
-                    }
-                }
-                if !any {
-                    break;
-                }
-            }
-            let gain = self
-                .journal
-                .as_ref()
-                .map_or(0, |journal| journal.invalid_gain(&self.invalid));
-            if gain < 0 {
-                self.journal = None;
+            if self.settle_detour(&region, judged) {
                 return true;
             }
-            self.undo();
         }
+        false
+    }
+
+    /// The end of a detour whose flips are made (in the journal): the facets of `region` are
+    /// judged again, the invalid ones get [`DETOUR_REPAIR_PASSES`] passes of single-flip
+    /// repairs, and the whole is kept (true) when it leaves fewer invalid facets than before,
+    /// undone (false) otherwise.
+    fn settle_detour(&mut self, region: &[u32], judged: usize) -> bool {
+        let mut targets = Vec::new();
+        for &x in region {
+            let v = self.facet_invalid(x);
+            if v != self.invalid[x as usize] {
+                self.set_verdict(x, v);
+            }
+            if v {
+                targets.push(x);
+            }
+        }
+        for _ in 0..DETOUR_REPAIR_PASSES {
+            let mut any = false;
+            for &x in &targets {
+                if self.invalid[x as usize] && self.try_repair(x, judged).is_some() {
+                    any = true;
+                }
+            }
+            if !any {
+                break;
+            }
+        }
+        let gain = self
+            .journal
+            .as_ref()
+            .map_or(0, |journal| journal.invalid_gain(&self.invalid));
+        if gain < 0 {
+            self.journal = None;
+            return true;
+        }
+        self.undo();
         false
     }
 
@@ -826,36 +837,9 @@ impl<'a> State<'a> {
                 region.sort_unstable();
                 region.dedup();
                 region.retain(|&x| (x as usize) < judged);
-                let mut targets = Vec::new();
-                for &x in &region {
-                    let v = self.facet_invalid(x);
-                    if v != self.invalid[x as usize] {
-                        self.set_verdict(x, v);
-                    }
-                    if v {
-                        targets.push(x);
-                    }
-                }
-                for _ in 0..DETOUR_REPAIR_PASSES {
-                    let mut any = false;
-                    for &x in &targets {
-                        if self.invalid[x as usize] && self.try_repair(x, judged).is_some() {
-                            any = true;
-                        }
-                    }
-                    if !any {
-                        break;
-                    }
-                }
-                let gain = self
-                    .journal
-                    .as_ref()
-                    .map_or(0, |journal| journal.invalid_gain(&self.invalid));
-                if gain < 0 {
-                    self.journal = None;
+                if self.settle_detour(&region, judged) {
                     return true;
                 }
-                self.undo();
             }
         }
         false

@@ -722,13 +722,7 @@ fn adjusted_planes_give_valid_meshes_on_any_curvature() {
                 tilts.push(tilt);
             }
             if std::env::var_os("TPI_TABLE").is_some() {
-                let mut tilted: Vec<f64> = d
-                    .plane_adjustments
-                    .iter()
-                    .map(|a| a.tilt_degrees)
-                    .filter(|&t| t > 0.0)
-                    .collect();
-                tilted.sort_by(f64::total_cmp);
+                let tilted = sorted_tilts(&d);
                 let exact = check(
                     &discretise(surface.as_ref(), &pattern, &DiscretiseOptions::default()).unwrap(),
                 );

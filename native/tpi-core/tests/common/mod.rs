@@ -1118,3 +1118,15 @@ pub fn sweep_patterns(n: usize, seed: u64) -> Vec<(String, Vec<[f64; 2]>)> {
         (format!("random{n}"), random),
     ]
 }
+
+/// The tilts (degrees) of the adjusted facets' planes, those above 0, in increasing order.
+pub fn sorted_tilts(d: &Discretisation) -> Vec<f64> {
+    let mut tilted: Vec<f64> = d
+        .plane_adjustments
+        .iter()
+        .map(|a| a.tilt_degrees)
+        .filter(|&t| t > 0.0)
+        .collect();
+    tilted.sort_by(f64::total_cmp);
+    tilted
+}
