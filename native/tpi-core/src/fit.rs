@@ -448,7 +448,7 @@ impl Grading {
 /// doc), its rows and columns in the ratio of the grading's metric lengths (cells regular in
 /// the metric |II| where it is largest): the first size predicted by the field, the next ones
 /// from the measured deviation (it goes as the square of the spacing), down to a size next to
-/// /// one that fails or until the prediction saves less than [`FIT_LATTICE_SLACK`]. A lattice
+/// one that fails or until the prediction saves less than [`FIT_LATTICE_SLACK`]. A lattice
 /// of more than [`FIT_CALIBRATION_POINTS`] points is first aimed by a lattice of about that
 /// many (the same grading), so that the large one is discretised once in most cases (at
 /// 100k points a discretisation with its report takes most of a second): the search then
@@ -476,10 +476,11 @@ fn wall_lattice(
     let mut columns = (l_s / FIT_WALL_SPACING).ceil().clamp(2.0, 1e7) as usize;
     let mut met: Option<FittedPattern> = None;
     let mut failed_below = 1usize; // the most columns known to fail
-                                   // A large lattice is first calibrated on a small one of the same grading: the
-                                   // deviation goes as the square of the spacing (interior, boundary and corner vertices
-                                   // alike), so the small lattice's deviation predicts the columns that meet the tolerance,
-                                   // and the large one is discretised once or twice instead of at every step of the search.
+
+    // A large lattice is first calibrated on a small one of the same grading: the deviation
+    // goes as the square of the spacing (interior, boundary and corner vertices alike), so
+    // the small lattice's deviation predicts the columns that meet the tolerance, and the
+    // large one is discretised once or twice instead of at every step of the search.
     let mut slack = FIT_LATTICE_SLACK;
     if size(columns) > FIT_CALIBRATION_POINTS && size(columns) <= limit {
         let scale = (FIT_CALIBRATION_POINTS as f64 / size(columns) as f64).sqrt();
@@ -840,9 +841,9 @@ fn unreachable_result() -> Result<FittedPattern, TpiError> {
 }
 
 /// The smallest uniform hexagonal pattern `hex:NxM` (`hex:spacing=1/N`) whose mesh keeps
-/// every vertex within the tolerance, by doubling N (before it reaches large patterns,
-/// a bracket aimed by the last one's deviation, which goes as 1 / N^2), bisection on it, and every N down to
-/// 0.85 of the bisection's (the deviation is not monotone in N).
+/// every vertex within the tolerance, by doubling N (before it reaches large patterns, a
+/// bracket aimed by the last one's deviation, which goes as 1 / N^2), bisection on it, and
+/// every N down to 0.85 of the bisection's (the deviation is not monotone in N).
 #[derive(Clone, Debug, PartialEq)]
 pub struct HexBaseline {
     /// The generator found.
