@@ -124,6 +124,13 @@ pub fn vertex_deviations(surface: &dyn Surface, d: &Discretisation) -> Vec<f64> 
         .collect()
 }
 
+/// The largest of [`vertex_deviations`] (0 for a mesh without vertices).
+fn largest_vertex_deviation(surface: &dyn Surface, d: &Discretisation) -> f64 {
+    vertex_deviations(surface, d)
+        .into_iter()
+        .fold(0.0, f64::max)
+}
+
 /// Per vertex, its deviation and its foot's parameters (the surface's own), None if unused.
 fn vertex_feet(surface: &dyn Surface, d: &Discretisation) -> Vec<Option<(f64, [f64; 2])>> {
     let mut first = vec![u32::MAX; d.vertices.len()];
@@ -492,9 +499,7 @@ fn wall_lattice(
         };
         let d = discretise_with_progress(surface, &uv, &quick, progress)?;
         *runs += 1;
-        let deviation = vertex_deviations(surface, &d)
-            .into_iter()
-            .fold(0.0, f64::max);
+        let deviation = largest_vertex_deviation(surface, &d);
         if deviation > 0.0 && deviation.is_finite() {
             let aimed =
                 small as f64 * (deviation / tolerance).sqrt() * (1.0 + FIT_CALIBRATION_MARGIN);
@@ -511,9 +516,7 @@ fn wall_lattice(
         let uv = wall_hex(columns, rows_of(columns), grading);
         let d = discretise_with_progress(surface, &uv, options, progress)?;
         *runs += 1;
-        let own = vertex_deviations(surface, &d)
-            .into_iter()
-            .fold(0.0, f64::max);
+        let own = largest_vertex_deviation(surface, &d);
         let q = d.quality.as_ref();
         let deviation = own.max(q.map_or(0.0, |q| q.max_deviation));
         let invalid = q.map_or(0, |q| q.invalid_facets);
@@ -886,9 +889,7 @@ pub fn hex_baseline(
         let generator = Generator::Hex(crate::pattern::GridSize::Spacing(1.0 / n as f64));
         let uv = generator.generate().uv;
         let first = discretise(surface, &uv, &quick)?;
-        let own = vertex_deviations(surface, &first)
-            .into_iter()
-            .fold(0.0, f64::max);
+        let own = largest_vertex_deviation(surface, &first);
         if own > max_deviation || own.is_nan() {
             return Ok(HexBaseline {
                 generator,

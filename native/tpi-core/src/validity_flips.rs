@@ -387,6 +387,14 @@ impl<'a> State<'a> {
         self.fan = fan;
     }
 
+    /// Whether a flip just made among `points` touches a ghost (an index from `judged` on)
+    /// and leaves one of them without its ghost neighbours in one run ([`Self::one_ghost_arc`]):
+    /// such a flip would open a hole in the mesh and is undone.
+    fn breaks_ghost_run(&self, points: &[u32], judged: usize) -> bool {
+        points.iter().any(|&x| x as usize >= judged)
+            && !points.iter().all(|&x| self.one_ghost_arc(x))
+    }
+
     /// Whether point x keeps the mesh a disc around it: a real point has a real neighbour
     /// and its ghost neighbours in one run around it; a ghost's real neighbours are in one run.
     fn one_ghost_arc(&self, x: u32) -> bool {
@@ -729,9 +737,7 @@ impl<'a> State<'a> {
             self.detours += 1;
             self.journal = Some(Journal::default());
             self.flip(t as u32, k);
-            if quad.iter().any(|&x| x as usize >= judged)
-                && !quad.iter().all(|&x| self.one_ghost_arc(x))
-            {
+            if self.breaks_ghost_run(&quad, judged) {
                 self.undo();
                 continue;
             }
@@ -823,9 +829,7 @@ impl<'a> State<'a> {
                 *tried += 1;
                 self.flip(t2 as u32, k2);
                 let quads = [first, second];
-                if quads.iter().flatten().any(|&x| x as usize >= judged)
-                    && !quads.iter().flatten().all(|&x| self.one_ghost_arc(x))
-                {
+                if self.breaks_ghost_run(quads.as_flattened(), judged) {
                     self.undo();
                     continue;
                 }
@@ -895,9 +899,7 @@ impl<'a> State<'a> {
                     continue;
                 }
                 let (t1, _) = self.flip(t as u32, k);
-                if quad.iter().any(|&x| x as usize >= self.judged)
-                    && !quad.iter().all(|&x| self.one_ghost_arc(x))
-                {
+                if self.breaks_ghost_run(&quad, self.judged) {
                     self.flip(t1, 1);
                     continue;
                 }
