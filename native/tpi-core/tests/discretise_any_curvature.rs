@@ -522,6 +522,47 @@ fn mixed_surfaces_stay_discs_and_flag_every_invalid_facet() {
     }
 }
 
+/// A seed a small fraction of a spacing from a corner of a mixed surface: its ghosts across
+/// both sides stand closer to it than any real seed, and in the |II| metric the flips once
+/// took every real neighbour from it, leaving its facet closed by ghost planes alone, a panel
+/// apart from the mesh (Euler characteristic 2, two boundary loops). Every seed must share an
+/// edge with another facet, and the mesh must be a disc, by the independent topology.
+#[test]
+fn a_seed_at_a_corner_of_a_mixed_surface_stays_joined_to_the_mesh() {
+    let corners = [
+        [0.0014, 0.0054],
+        [0.9986, 0.0041],
+        [0.9981, 0.9960],
+        [0.0033, 0.9974],
+    ];
+    let options = DiscretiseOptions::default();
+    for seed in [7, 1, 2, 3] {
+        let surface = mixed_surface(seed);
+        for degrees in [0.0, 30.0] {
+            let mut pattern = rotated_hex(300, degrees);
+            // The hex pattern's own points near the corners give way to the corner seeds.
+            pattern.retain(|p| {
+                corners
+                    .iter()
+                    .all(|c| (p[0] - c[0]).hypot(p[1] - c[1]) > 0.03)
+            });
+            pattern.extend_from_slice(&corners);
+            let d = discretise(&surface, &pattern, &options).expect("a mixed surface");
+            let v = check(&d);
+            let name = format!("mixed{seed} hex300@{degrees} with corner seeds");
+            assert!(v.is_disc(), "{name}: not a disc: {v:?}");
+            let t = topology(&d);
+            for i in 0..d.facet_count() {
+                assert!(
+                    !t.neighbours[i].is_empty(),
+                    "{name}: facet {i} (seed {:?}) shares no edge with another facet",
+                    d.seeds[i].uv
+                );
+            }
+        }
+    }
+}
+
 /// An egg crate (bumps, dips and saddles packed closely, parabolic lines everywhere): every
 /// invalid facet is flagged; where three tangent planes share a direction exactly (the
 /// crate's symmetry) their vertex is unreachable and the mesh keeps a small hole there,
