@@ -287,6 +287,30 @@ fn a_turned_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
     }
 }
 
+/// A hyperbolic paraboloid with its principal directions along the parameter lines, as the
+/// uniform hex pattern's rows are (so the hex's interior vertices stand off only a quarter
+/// of a dome's of the same curvature, and it is set by its walls and corners), its
+/// asymptotic directions at 45 degrees: curvatures 0.12 and -0.12 over 12 x 9, not among
+/// the samples (samples/hypar.json is 0.16 and -0.16 over 10 x 10).
+const ALIGNED_SADDLE: TurnedQuadric = TurnedQuadric {
+    k: [0.12, -0.12],
+    angle: 0.0,
+    half: [6.0, 4.5],
+};
+
+#[test]
+fn an_aligned_hypar_needs_at_most_60_percent_of_the_uniform_hex_points() {
+    for tolerance in [0.01, 0.003] {
+        let ratio = fit_and_compare_by(
+            "aligned hypar",
+            &ALIGNED_SADDLE,
+            tolerance,
+            &quadric_distance(&ALIGNED_SADDLE),
+        );
+        assert!(ratio <= 0.6, "{tolerance}: {ratio}");
+    }
+}
+
 #[test]
 fn a_free_form_dome_needs_at_most_60_percent_of_the_uniform_hex_points() {
     let ratio = fit_and_compare("nurbs-dome.json", 0.01);
@@ -301,9 +325,11 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 
 /// The paraboloid of revolution and the hypar have nearly uniform curvature and
 /// parametrisation: what a pattern saves there is mostly at the boundary (uniform hex is set
-/// by its corners and boundary vertices), and the 60 % does not hold: measured 0.623
-/// on the paraboloid (314 points against 504; 0.659 before the lattices with sparser sides)
-/// and 0.702 on the hypar (179 against 255) at D = 0.01. On the paraboloid the lattice's
+/// by its corners and boundary vertices). On the hypar the 60 % holds since the
+/// lattices refined at their walls and the lattices with 1.2 times the rows on saddles
+/// (`fit.rs`): 0.529 (135 points against 255; 0.702 with 179 before) at D = 0.01. On the
+/// paraboloid it does not: measured 0.623 (314 points against 504; 0.659 before the lattices
+/// with sparser sides). On the paraboloid the lattice's
 /// cells are already as regular as cells can be (a hexagonal lattice is the thinnest
 /// covering: at a given count no pattern has smaller circumcircles); what is left is the
 /// fall of the curvature away from the apex (sqrt(k1 k2) dA goes as
@@ -314,7 +340,7 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 /// their irregular cells). Asserted: the measured ratios, with a little room.
 #[test]
 fn on_nearly_uniform_surfaces_the_pattern_still_beats_uniform_hex() {
-    for (name, bound) in [("paraboloid.json", 0.64), ("hypar.json", 0.72)] {
+    for (name, bound) in [("paraboloid.json", 0.64), ("hypar.json", 0.6)] {
         let ratio = fit_and_compare(name, 0.01);
         assert!(ratio <= bound, "{name}: {ratio}");
     }
