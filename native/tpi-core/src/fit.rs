@@ -630,7 +630,13 @@ fn wall_lattice(
     let Some(bulk) = bulk_columns else {
         return Ok(Some(m));
     };
-    if bulk as f64 > met_columns as f64 * (1.0 - FIT_BULK_SAVING) || bulk < 2 {
+    // Above FIT_ADAPTIVE_POINTS the refinement's passes (each a discretisation of the whole
+    // lattice) would take far longer than the search (samples/saddle.json at 100k points:
+    // 10.5 s against 1.2 s).
+    if m.uv.len() > FIT_ADAPTIVE_POINTS
+        || bulk as f64 > met_columns as f64 * (1.0 - FIT_BULK_SAVING)
+        || bulk < 2
+    {
         return Ok(Some(m));
     }
     let uv = wall_hex(bulk, rows_of(bulk), grading);
