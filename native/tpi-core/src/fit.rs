@@ -25,7 +25,22 @@
 //! in the largest metric length across each line) or uniform, each with every row closed on
 //! s = 0, 1 or only the even ones (sparser sides, [`wall_hex`]): the size the field predicts,
 //! then sizes predicted from the measured deviation, which goes as the square of the
-//! spacing. Lattices of regular cells pay: the irregular cells of a Poisson-disk sampling
+//! spacing. Two more graded lattices have their outer rows and columns [`FIT_WALL_INSET`]
+//! columns inside the walls (a dome's wall vertex between two seeds a apart at e from the
+//! wall is at R^2 = a^2 / 4 + e^2, the interior's a^2 / 3 at e = a / sqrt(12)); where the
+//! surface has negative Gaussian curvature, four more have [`FIT_SADDLE_ROW_DENSITY`] times
+//! the rows. On a saddle the vertex of three seeds is their circumcentre c in the indefinite
+//! II and stands off |II(c)| / 2: in the metric |II| along the principal directions
+//! (II = diag(1, -1)) the triangle 0, (a, 0), (a / 2, h) gives |II(c)| = (h^2 - a^2 / 4)^2 /
+//! (4 h^2), a^2 / 12 for the regular hexagon (h = sqrt(3) a / 2, a quarter of a dome's a^2 / 3)
+//! and 0 when its edges run along the asymptotic directions (h = a / 2, four planes in a
+//! point): rows closer than the regular ones give cells longer along the asymptotic
+//! directions for the same deviation. Up to [`FIT_ADAPTIVE_POINTS`] points, each lattice
+//! found is also tried coarser, at the size where all but as many vertices as lie on the
+//! boundary meet D, refined at its offending vertices as the rounds below are: a lattice is
+//! often set by a few vertices along the walls or at the corners (on samples/hypar.json the
+//! walls t = 0, 1, where seeds a apart on a wall of positive normal curvature put the vertex
+//! between them at a^2 / 4, three times the saddle's interior a^2 / 12). Lattices of regular cells pay: the irregular cells of a Poisson-disk sampling
 //! relaxed by Lloyd's iteration have larger circumcircles than a lattice of the same count
 //! (samples/nurbs-dome.json at D = 0.0099: 512 points from the rounds below against 390 for
 //! the uniform lattice). Unless the lattice already has more than [`FIT_ADAPTIVE_POINTS`]
@@ -325,7 +340,9 @@ pub fn fit_pattern_with_progress(
 /// and s = 1: `rows + 1` rows t = j / rows, even rows s = i / columns (i = 0..=columns),
 /// odd rows s = (i + 1/2) / columns and both ends (with [`Grading::sparse`], only the last
 /// row's ends, the corners).
-/// The lattice is laid in graded coordinates: s = grade_s(i / columns), t = grade_t(j / rows).
+/// The lattice is laid in graded coordinates: s = grade_s(i / columns), t = grade_t(j / rows);
+/// with an inset e ([`Grading::inset`]), the walls' rows and columns e columns inside:
+/// s = grade_s((i + e) / (columns + 2 e)), and likewise in t with e in rows.
 ///
 /// The ends of the odd rows put a seed on the sides s = 0, 1 every row, sqrt(3) a / 2 apart,
 /// and the boundary vertices between them at R^2 = 3 a^2 / 16, far below the interior's
@@ -502,14 +519,14 @@ impl Grading {
 /// (1.2 times the rows). Measured on samples/hypar.json (`fit_measure`, FIT_ABSOLUTE=1):
 /// 1.2 times the rows 135 points at D = 0.01 and 316 at 0.003, against 151 and 454 with only
 /// the regular lattices; 1.35 and more lose to the walls and corners.
-const FIT_SADDLE_ROW_DENSITY: f64 = 1.2;
+pub const FIT_SADDLE_ROW_DENSITY: f64 = 1.2;
 
 /// Distance of the outer seeds from the walls in the lattices with an inset, in columns:
 /// on a dome (metric |II| isotropic), two seeds a apart at a distance e from a wall put the
 /// vertex on the wall between them at R^2 = a^2 / 4 + e^2, at most the interior's a^2 / 3
 /// for e = a / sqrt(12) = 0.29 a; the lattice then spans 0.58 columns and rows less than one
 /// with seeds on the walls.
-const FIT_WALL_INSET: f64 = 0.29;
+pub const FIT_WALL_INSET: f64 = 0.29;
 
 /// Whether the surface has negative Gaussian curvature at some point of a 9 x 9 grid over
 /// its domain (LN - M^2 < 0 with the unnormalised normal su x sv, whose sign does not matter).
