@@ -105,7 +105,12 @@ fn main() {
     let diagonal = lo.distance(hi);
     for fraction in &args[1..] {
         let f: f64 = fraction.parse().expect("fraction");
-        let tolerance = f * diagonal;
+        // FIT_ABSOLUTE=1: the arguments are tolerances in model units.
+        let tolerance = if std::env::var("FIT_ABSOLUTE").is_ok() {
+            f
+        } else {
+            f * diagonal
+        };
         let start = Instant::now();
         let fitted =
             fit_pattern(&surface, tolerance, 0, &DiscretiseOptions::default()).expect("fit");

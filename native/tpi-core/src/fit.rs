@@ -25,7 +25,22 @@
 //! in the largest metric length across each line) or uniform, each with every row closed on
 //! s = 0, 1 or only the even ones (sparser sides, [`wall_hex`]): the size the field predicts,
 //! then sizes predicted from the measured deviation, which goes as the square of the
-//! spacing. Lattices of regular cells pay: the irregular cells of a Poisson-disk sampling
+//! spacing. Two more graded lattices have their outer rows and columns [`FIT_WALL_INSET`]
+//! columns inside the walls (a dome's wall vertex between two seeds a apart at e from the
+//! wall is at R^2 = a^2 / 4 + e^2, the interior's a^2 / 3 at e = a / sqrt(12)); where the
+//! surface has negative Gaussian curvature, four more have [`FIT_SADDLE_ROW_DENSITY`] times
+//! the rows. On a saddle the vertex of three seeds is their circumcentre c in the indefinite
+//! II and stands off |II(c)| / 2: in the metric |II| along the principal directions
+//! (II = diag(1, -1)) the triangle 0, (a, 0), (a / 2, h) gives |II(c)| = (h^2 - a^2 / 4)^2 /
+//! (4 h^2), a^2 / 12 for the regular hexagon (h = sqrt(3) a / 2, a quarter of a dome's a^2 / 3)
+//! and 0 when its edges run along the asymptotic directions (h = a / 2, four planes in a
+//! point): rows closer than the regular ones give cells longer along the asymptotic
+//! directions for the same deviation. Up to [`FIT_ADAPTIVE_POINTS`] points, each lattice
+//! found is also tried coarser, at the size where all but as many vertices as lie on the
+//! boundary meet D, refined at its offending vertices as the rounds below are: a lattice is
+//! often set by a few vertices along the walls or at the corners (on samples/hypar.json the
+//! walls t = 0, 1, where seeds a apart on a wall of positive normal curvature put the vertex
+//! between them at a^2 / 4, three times the saddle's interior a^2 / 12). Lattices of regular cells pay: the irregular cells of a Poisson-disk sampling
 //! relaxed by Lloyd's iteration have larger circumcircles than a lattice of the same count
 //! (samples/nurbs-dome.json at D = 0.0099: 512 points from the rounds below against 390 for
 //! the uniform lattice). Unless the lattice already has more than [`FIT_ADAPTIVE_POINTS`]
@@ -209,12 +224,20 @@ pub fn fit_pattern_with_progress(
         // Every row closed first: above FIT_ADAPTIVE_POINTS only the first is tried, and on
         // samples/saddle.json at D = 1.56e-5 the sparser sides need 117,527 points against
         // 101,061 (on the domes they save a few per cent at the counts of the tests).
-        let variants = [
+        let mut variants = vec![
             Grading::of(&base),
             Grading::of(&base).sparse(),
             Grading::uniform(&base),
             Grading::uniform(&base).sparse(),
+            Grading::of(&base).inset(),
+            Grading::of(&base).sparse().inset(),
         ];
+        if has_saddle_points(surface) {
+            variants.push(Grading::of(&base).saddle_rows());
+            variants.push(Grading::of(&base).sparse().saddle_rows());
+            variants.push(Grading::uniform(&base).saddle_rows());
+            variants.push(Grading::uniform(&base).sparse().saddle_rows());
+        }
         for grading in variants {
             if best
                 .as_ref()
@@ -317,7 +340,9 @@ pub fn fit_pattern_with_progress(
 /// and s = 1: `rows + 1` rows t = j / rows, even rows s = i / columns (i = 0..=columns),
 /// odd rows s = (i + 1/2) / columns and both ends (with [`Grading::sparse`], only the last
 /// row's ends, the corners).
-/// The lattice is laid in graded coordinates: s = grade_s(i / columns), t = grade_t(j / rows).
+/// The lattice is laid in graded coordinates: s = grade_s(i / columns), t = grade_t(j / rows);
+/// with an inset e ([`Grading::inset`]), the walls' rows and columns e columns inside:
+/// s = grade_s((i + e) / (columns + 2 e)), and likewise in t with e in rows.
 ///
 /// The ends of the odd rows put a seed on the sides s = 0, 1 every row, sqrt(3) a / 2 apart,
 /// and the boundary vertices between them at R^2 = 3 a^2 / 16, far below the interior's
@@ -326,19 +351,26 @@ pub fn fit_pattern_with_progress(
 /// from that seed, at R^2 = a^2 / 3, as in the interior; two points fewer per odd row.
 fn wall_hex(columns: usize, rows: usize, grading: &Grading) -> Vec<[f64; 2]> {
     let mut points = Vec::with_capacity((columns + 2) * (rows + 1));
-    let s_at = |x: f64| grading.s.at(x);
+    // With an inset, lattice coordinate x (0 on one wall, 1 on the other) is taken as
+    // x + inset steps inside the span of columns + 2 insets.
+    let (inset_s, inset_t) = (grading.inset, grading.inset / (3f64.sqrt() / 2.0));
+    let s_at = |x: f64| {
+        let n = columns as f64;
+        grading.s.at((x * n + inset_s) / (n + 2.0 * inset_s))
+    };
     for j in 0..=rows {
-        let t = grading.t.at(j as f64 / rows as f64);
+        let n = rows as f64;
+        let t = grading.t.at((j as f64 + inset_t) / (n + 2.0 * inset_t));
         if j % 2 == 0 {
             points.extend((0..=columns).map(|i| [s_at(i as f64 / columns as f64), t]));
         } else {
             let ends = !grading.sparse_sides || j == rows;
             if ends {
-                points.push([0.0, t]);
+                points.push([s_at(0.0), t]);
             }
             points.extend((0..columns).map(|i| [s_at((i as f64 + 0.5) / columns as f64), t]));
             if ends {
-                points.push([1.0, t]);
+                points.push([s_at(1.0), t]);
             }
         }
     }
@@ -413,6 +445,11 @@ struct Grading {
     t: Grade,
     /// Whether the odd rows but the last go without their ends on s = 0, 1 ([`wall_hex`]).
     sparse_sides: bool,
+    /// Rows per row of a lattice regular in the metric (1; [`FIT_SADDLE_ROW_DENSITY`]).
+    row_density: f64,
+    /// Distance of the outer rows and columns from the walls, in columns (0 or
+    /// [`FIT_WALL_INSET`]).
+    inset: f64,
 }
 
 impl Grading {
@@ -424,6 +461,8 @@ impl Grading {
             s: Grade::new(|x| envelope(field, 0, x)),
             t: Grade::new(|x| envelope(field, 2, x)),
             sparse_sides: false,
+            row_density: 1.0,
+            inset: 0.0,
         }
     }
 
@@ -439,6 +478,8 @@ impl Grading {
             s: Grade::new(|_| s),
             t: Grade::new(|_| t),
             sparse_sides: false,
+            row_density: 1.0,
+            inset: 0.0,
         }
     }
 
@@ -449,6 +490,58 @@ impl Grading {
             ..self
         }
     }
+
+    /// The same grading with the outer rows and columns [`FIT_WALL_INSET`] inside the walls.
+    fn inset(self) -> Grading {
+        Grading {
+            inset: FIT_WALL_INSET,
+            ..self
+        }
+    }
+
+    /// The same grading with [`FIT_SADDLE_ROW_DENSITY`] times the rows.
+    fn saddle_rows(self) -> Grading {
+        Grading {
+            row_density: FIT_SADDLE_ROW_DENSITY,
+            ..self
+        }
+    }
+}
+
+/// Rows per row of the metric-regular lattice in the lattices [`fit_pattern`] adds where the
+/// surface has negative Gaussian curvature. In the metric |II| laid along the principal
+/// directions of a saddle, II = diag(1, -1), and the triangle of seeds 0, (a, 0),
+/// (a / 2, h) of a lattice of columns a and rows h has its vertex (the circumcentre in II)
+/// at |II(c)| = (h^2 - a^2 / 4)^2 / (4 h^2): a^2 / 12 for the regular h = sqrt(3) a / 2, and
+/// 0 at h = a / 2, where the edges run along the asymptotic directions (and four planes meet
+/// in a point). Between them the cells get longer along the asymptotic directions for the
+/// same deviation: per point, |II(c)| / (a h) is 0.096 at h = 0.866 a, 0.034 at 0.72 a
+/// (1.2 times the rows). Measured on samples/hypar.json (`fit_measure`, FIT_ABSOLUTE=1):
+/// 1.2 times the rows 135 points at D = 0.01 and 316 at 0.003, against 151 and 454 with only
+/// the regular lattices; 1.35 and more lose to the walls and corners.
+pub const FIT_SADDLE_ROW_DENSITY: f64 = 1.2;
+
+/// Distance of the outer seeds from the walls in the lattices with an inset, in columns:
+/// on a dome (metric |II| isotropic), two seeds a apart at a distance e from a wall put the
+/// vertex on the wall between them at R^2 = a^2 / 4 + e^2, at most the interior's a^2 / 3
+/// for e = a / sqrt(12) = 0.29 a; the lattice then spans 0.58 columns and rows less than one
+/// with seeds on the walls.
+pub const FIT_WALL_INSET: f64 = 0.29;
+
+/// Whether the surface has negative Gaussian curvature at some point of a 9 x 9 grid over
+/// its domain (LN - M^2 < 0 with the unnormalised normal su x sv, whose sign does not matter).
+fn has_saddle_points(surface: &dyn Surface) -> bool {
+    let domain = surface.domain();
+    (0..9).any(|i| {
+        (0..9).any(|j| {
+            let [u, v] = domain.from_normalised([i as f64 / 8.0, j as f64 / 8.0]);
+            let d = surface.evaluate(u, v);
+            let n = d.su.cross(d.sv);
+            let (l, m, nn) = (d.suu.dot(n), d.suv.dot(n), d.svv.dot(n));
+            let k = l * nn - m * m;
+            k < -1e-12 * (l * l + 2.0 * m * m + nn * nn)
+        })
+    })
 }
 
 /// The smallest [`wall_hex`] lattice graded by `grading` meeting the tolerance (module
@@ -477,12 +570,16 @@ fn wall_lattice(
         return Ok(None);
     }
     // Columns of spacing 1 in the metric, rows sqrt(3) / 2 of it apart.
-    let aspect = 2.0 / 3f64.sqrt() * (l_t / l_s);
+    let aspect = 2.0 / 3f64.sqrt() * (l_t / l_s) * grading.row_density;
     let rows_of = |columns: usize| ((columns as f64 * aspect).round() as usize).max(1);
     let size = |columns: usize| (columns + 2) * (rows_of(columns) + 1);
     let mut columns = (l_s / FIT_WALL_SPACING).ceil().clamp(2.0, 1e7) as usize;
     let mut met: Option<FittedPattern> = None;
     let mut failed_below = 1usize; // the most columns known to fail
+    let mut met_columns = 0usize;
+    // The columns at which all but the boundary's share of the vertices meet the tolerance
+    // (from the last lattice discretised): see the refinement after the search.
+    let mut bulk_columns: Option<usize> = None;
 
     // A large lattice is first calibrated on a small one of the same grading: the deviation
     // goes as the square of the spacing (interior, boundary and corner vertices alike), so
@@ -516,7 +613,18 @@ fn wall_lattice(
         let uv = wall_hex(columns, rows_of(columns), grading);
         let d = discretise_with_progress(surface, &uv, options, progress)?;
         *runs += 1;
-        let own = largest_vertex_deviation(surface, &d);
+        let feet = vertex_feet(surface, &d);
+        let own = feet
+            .iter()
+            .filter_map(|f| f.map(|(dev, _)| dev))
+            .fold(0.0, f64::max);
+        let bulk = bulk_deviation(&d, &feet);
+        if bulk > 0.0 && bulk.is_finite() {
+            bulk_columns = Some(
+                ((columns as f64 * (bulk / tolerance).sqrt()) * (1.0 + FIT_CALIBRATION_MARGIN))
+                    .ceil() as usize,
+            );
+        }
         let q = d.quality.as_ref();
         let deviation = own.max(q.map_or(0.0, |q| q.max_deviation));
         let invalid = q.map_or(0, |q| q.invalid_facets);
@@ -527,6 +635,7 @@ fn wall_lattice(
             columns + 1
         };
         if ok {
+            met_columns = columns;
             met = Some(FittedPattern {
                 uv,
                 met: true,
@@ -555,7 +664,68 @@ fn wall_lattice(
             };
         }
     }
-    Ok(met)
+    // A lattice is set by its worst vertices, often a few along the walls or at the corners
+    // (on samples/hypar.json the walls t = 0, 1, where the seeds a apart along a wall of
+    // positive normal curvature put the vertex between them at a^2 / 4 in the metric, three
+    // times the interior's a^2 / 12 of a hexagonal lattice along the principal directions of
+    // a saddle). The lattice at which all but as many vertices as lie on the boundary meet
+    // the tolerance, refined at its offending vertices, may then have fewer points.
+    let Some(m) = met else {
+        return Ok(None);
+    };
+    let Some(bulk) = bulk_columns else {
+        return Ok(Some(m));
+    };
+    // Above FIT_ADAPTIVE_POINTS the refinement's passes (each a discretisation of the whole
+    // lattice) would take far longer than the search (samples/saddle.json at 100k points:
+    // 10.5 s against 1.2 s).
+    if m.uv.len() > FIT_ADAPTIVE_POINTS
+        || bulk as f64 > met_columns as f64 * (1.0 - FIT_BULK_SAVING)
+        || bulk < 2
+    {
+        return Ok(Some(m));
+    }
+    let uv = wall_hex(bulk, rows_of(bulk), grading);
+    let d = discretise_with_progress(surface, &uv, options, progress)?;
+    *runs += 1;
+    let feet = vertex_feet(surface, &d);
+    let refined = refine(
+        surface,
+        uv,
+        d,
+        feet,
+        tolerance,
+        m.uv.len() - 1,
+        options,
+        runs,
+        progress,
+    )?;
+    let better = refined.met
+        && refined.uv.len() < m.uv.len()
+        && (refined.invalid_facets == 0 || m.invalid_facets > 0);
+    Ok(Some(if better { refined } else { m }))
+}
+
+/// Least saving (fraction of the columns) for which [`wall_lattice`] tries a coarser lattice
+/// refined at its offending vertices.
+const FIT_BULK_SAVING: f64 = 0.05;
+
+/// The deviation that all but the worst vertices meet, as many of them left out as the mesh
+/// has boundary and corner vertices (unused vertices count as meeting any tolerance).
+fn bulk_deviation(d: &Discretisation, feet: &[Option<(f64, [f64; 2])>]) -> f64 {
+    let on_boundary = d
+        .vertex_kinds
+        .iter()
+        .zip(feet)
+        .filter(|(k, f)| f.is_some() && **k != crate::facets::VertexKind::Interior)
+        .count();
+    let mut devs: Vec<f64> = feet.iter().filter_map(|f| f.map(|(dev, _)| dev)).collect();
+    if devs.is_empty() {
+        return 0.0;
+    }
+    let k = on_boundary.min(devs.len() - 1);
+    let (_, kth, _) = devs.select_nth_unstable_by(k, |a, b| b.total_cmp(a));
+    *kth
 }
 
 /// Largest lattice (points) that the adaptive rounds try to improve on.

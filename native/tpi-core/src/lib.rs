@@ -89,8 +89,9 @@ pub use facets::VertexKind;
 pub use fit::{
     fit_pattern, fit_pattern_with_progress, hex_baseline, vertex_deviations, FittedPattern,
     HexBaseline, FIT_ADAPTIVE_POINTS, FIT_LLOYD_ITERATIONS, FIT_MAX_STEP, FIT_POISSON_RADIUS,
-    FIT_REFINE_PASSES, FIT_ROUNDS, FIT_STALLED_PASSES, FIT_TARGET_RATIO, FIT_WALL_SPACING,
-    HEX_BASELINE_SEARCH_FACTOR, MAX_FIT_POINTS, MAX_HEX_COLUMNS, MIN_FIT_POINTS,
+    FIT_REFINE_PASSES, FIT_ROUNDS, FIT_SADDLE_ROW_DENSITY, FIT_STALLED_PASSES, FIT_TARGET_RATIO,
+    FIT_WALL_INSET, FIT_WALL_SPACING, HEX_BASELINE_SEARCH_FACTOR, MAX_FIT_POINTS, MAX_HEX_COLUMNS,
+    MIN_FIT_POINTS,
 };
 pub use live::{LiveChanges, LiveStats, LiveSurface};
 pub use nurbs::{NurbsSpec, NurbsSurface};
