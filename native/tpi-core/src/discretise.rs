@@ -650,7 +650,8 @@ fn run_within(
         vertex_kinds,
         facet_offsets: offsets,
         facet_loops: loops,
-        seeds: std::mem::take(&mut samples.seeds),
+        // Built at the end from the samples (Samples::seeds).
+        seeds: Vec::new(),
         pattern_indices: Vec::new(),
         outside_trim: 0,
         dual_triangles: Vec::new(),
@@ -673,11 +674,6 @@ fn run_within(
     });
     result.dual_triangles = triangulation.triangles;
     drop(triangulation.neighbours);
-    if options.planes == PlaneMode::Adjusted {
-        // Every facet says how its plane differs (0 where it is the exact tangent plane, as
-        // everywhere on convex surfaces).
-        result.plane_adjustments = plane_adjustments(&result.seeds, &samples.planes);
-    }
     // The tangents and slopes are let go before the report too, unless live editing keeps
     // them.
     if !keep {
@@ -690,7 +686,7 @@ fn run_within(
         let stage = Instant::now();
         stages.enter(
             Stage::Report,
-            Some(result.facet_count() + result.vertices.len()),
+            Some(samples.uv.len() + result.vertices.len()),
         );
         let feet = if keep {
             resolved = resolve_feet(
@@ -721,6 +717,13 @@ fn run_within(
     }
     stages.check()?;
     stages.leave();
+    // The seeds last, when the facet stage's and the report's temporaries are gone.
+    result.seeds = samples.seeds();
+    if options.planes == PlaneMode::Adjusted {
+        // Every facet says how its plane differs (0 where it is the exact tangent plane, as
+        // everywhere on convex surfaces).
+        result.plane_adjustments = plane_adjustments(&result.seeds, &samples.planes);
+    }
     result.timings.total = ms(start);
     let state = live.map(|live| pipeline_state(samples, &result, live, neighbours, resolved, wrap));
     Ok((result, state))
@@ -749,9 +752,9 @@ fn check_not_developable(facets: &Facets, samples: &Samples, strips: bool) -> Re
         // Curved at the seeds, the planes fail to meet because of the pattern (issue 14: four
         // random points nearly on one line on a saddle were said to make it developable).
         let flat_seeds = samples
-            .seeds
+            .curvatures
             .iter()
-            .all(|s| flat_curvatures(s.curvatures[0], s.curvatures[1]));
+            .all(|&[k1, k2]| flat_curvatures(k1, k2));
         let reason = if flat_seeds {
             "every triple of neighbouring tangent planes is (nearly) parallel: the surface is developable".to_string()
         } else {
@@ -899,7 +902,7 @@ pub(crate) fn check_closed_seeds(
     surface: &dyn Surface,
     layout: &SurfaceLayout,
     uv: &[[f64; 2]],
-    seeds: &[Seed],
+    planes: &[Plane],
     regular: &[bool],
     closing: bool,
     tolerance: f64,
@@ -915,8 +918,10 @@ pub(crate) fn check_closed_seeds(
     if !closing {
         return Ok(());
     }
-    let mut order: Vec<usize> = (0..seeds.len()).collect();
-    let key = |i: usize| seeds[i].point.to_array();
+    // The seeds' surface points are their tangent planes'.
+    let point = |i: usize| planes[i].point;
+    let mut order: Vec<usize> = (0..planes.len()).collect();
+    let key = |i: usize| point(i).to_array();
     order.sort_unstable_by(|&a, &b| {
         key(a)
             .partial_cmp(&key(b))
@@ -924,10 +929,10 @@ pub(crate) fn check_closed_seeds(
     });
     for (k, &i) in order.iter().enumerate() {
         for &j in &order[k + 1..] {
-            if seeds[j].point.x - seeds[i].point.x > tolerance {
+            if point(j).x - point(i).x > tolerance {
                 break;
             }
-            if seeds[i].point.distance(seeds[j].point) <= tolerance {
+            if point(i).distance(point(j)) <= tolerance {
                 return Err(TpiError::SameSurfacePoint {
                     index: i.max(j),
                     duplicate_of: i.min(j),
