@@ -34,7 +34,9 @@ use crate::closed::SurfaceLayout;
 use crate::diagnostics::{diagnosed_points, Diagnostic};
 use crate::diffgeo::flat_curvatures;
 use crate::error::TpiError;
-use crate::facets::{build_stage, FacetParams, Facets, FootHint, TriangleVertex, VertexKind};
+use crate::facets::{
+    build_stage, FacetParams, Facets, FootHint, FootHints, TriangleVertex, VertexKind,
+};
 use crate::mesh::FacetMesh;
 use crate::neighbours::{NeighbourStats, SlopeFrame};
 use crate::pattern::validate_uv;
@@ -636,7 +638,7 @@ fn run_within(
         vertex_kinds,
         offsets,
         loops,
-        feet,
+        known_feet,
         triangle_vertices,
         vertex_source,
         facet_simple,
@@ -664,16 +666,38 @@ fn run_within(
         units: surface.units(),
         topology,
     };
-    // What only live editing reads is let go now (the report's peak is the pipeline's).
-    let live = keep.then(|| LiveParts {
-        triangulation: triangulation.clone(),
-        triangle_vertices,
-        vertex_source,
-        facet_simple,
-        welded,
-    });
+    let live_triangulation = keep.then(|| triangulation.clone());
     result.dual_triangles = triangulation.triangles;
     drop(triangulation.neighbours);
+    // What the report knows of each vertex's foot. Without live editing the triangle
+    // vertices' hints are listed per vertex and the triangle vertices let go (they are twice
+    // the list); with it they are kept and read where they are.
+    let (live, mut listed): (Option<LiveParts>, Vec<FootHint>) = match live_triangulation {
+        Some(triangulation) => {
+            let live = LiveParts {
+                triangulation,
+                triangle_vertices,
+                vertex_source,
+                facet_simple,
+                welded,
+            };
+            (Some(live), Vec::new())
+        }
+        None if options.quality_report => {
+            let hints = FootHints::Mesh {
+                triangle_vertices: &triangle_vertices,
+                vertex_source: &vertex_source,
+                known: &known_feet,
+            };
+            let listed = (0..result.vertices.len()).map(|v| hints.get(v)).collect();
+            drop((triangle_vertices, vertex_source, facet_simple, welded));
+            (None, listed)
+        }
+        None => {
+            drop((triangle_vertices, vertex_source, facet_simple, welded));
+            (None, Vec::new())
+        }
+    };
     // The tangents and slopes are let go before the report too, unless live editing keeps
     // them.
     if !keep {
@@ -688,7 +712,7 @@ fn run_within(
             Stage::Report,
             Some(samples.uv.len() + result.vertices.len()),
         );
-        let feet = if keep {
+        if let Some(live) = &live {
             resolved = resolve_feet(
                 surface,
                 &wrap,
@@ -696,20 +720,22 @@ fn run_within(
                 &result.vertices,
                 &result.facet_offsets,
                 &result.facet_loops,
-                &feet,
+                FootHints::Mesh {
+                    triangle_vertices: &live.triangle_vertices,
+                    vertex_source: &live.vertex_source,
+                    known: &known_feet,
+                },
             );
             let known = |f: &Option<[f64; 2]>| f.map_or(FootHint::FromSeed, FootHint::Known);
-            resolved.iter().map(known).collect()
-        } else {
-            feet
-        };
+            listed = resolved.iter().map(known).collect();
+        }
         measure(
             surface,
             &wrap,
             &samples,
             &mut result,
             neighbours,
-            &feet,
+            FootHints::Listed(&listed),
             stages,
         );
         note_topology(&mut result, boundary.is_trim());
@@ -717,6 +743,7 @@ fn run_within(
     }
     stages.check()?;
     stages.leave();
+    drop((listed, known_feet));
     // The seeds last, when the facet stage's and the report's temporaries are gone.
     result.seeds = samples.seeds();
     if options.planes == PlaneMode::Adjusted {
@@ -776,7 +803,7 @@ fn measure(
     samples: &Samples,
     result: &mut Discretisation,
     neighbours: NeighbourStats,
-    feet: &[FootHint],
+    feet: FootHints<'_>,
     stages: &Stages<'_>,
 ) {
     let diagnosed = diagnosed_points(&result.diagnostics, samples.uv.len());

@@ -88,6 +88,46 @@ pub(crate) enum FootHint {
     FromSeed,
 }
 
+/// Every mesh vertex's [`FootHint`], as the report reads them.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum FootHints<'a> {
+    /// One per vertex (a vertex beyond the list: [`FootHint::FromSeed`]).
+    Listed(&'a [FootHint]),
+    /// As the facet stage's mesh knows them without a list of its own (which would copy
+    /// every triangle vertex's): a triangle's vertex its [`TriangleVertex::hint`], a vertex
+    /// listed in `known` that foot, any other [`FootHint::FromSeed`].
+    Mesh {
+        /// Per triangle of the dual structure, its vertex; empty where the facet stage let
+        /// them go (the closed facets', every one [`FootHint::FromSeed`]).
+        triangle_vertices: &'a [TriangleVertex],
+        /// Per mesh vertex, its triangle, or `u32::MAX` ([`crate::mesh::FacetMesh`]).
+        vertex_source: &'a [u32],
+        /// The Newton feet of the other vertices where known, by vertex, ascending.
+        known: &'a [(u32, [f64; 2])],
+    },
+}
+
+impl FootHints<'_> {
+    /// Vertex v's hint.
+    pub(crate) fn get(&self, v: usize) -> FootHint {
+        match *self {
+            FootHints::Listed(list) => list.get(v).copied().unwrap_or(FootHint::FromSeed),
+            FootHints::Mesh {
+                triangle_vertices,
+                vertex_source,
+                known,
+            } => match vertex_source.get(v) {
+                Some(&t) if t != u32::MAX => triangle_vertices
+                    .get(t as usize)
+                    .map_or(FootHint::FromSeed, TriangleVertex::hint),
+                _ => known
+                    .binary_search_by_key(&(v as u32), |&(w, _)| w)
+                    .map_or(FootHint::FromSeed, |k| FootHint::Known(known[k].1)),
+            },
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Crossing {
     pub(crate) point: DVec3,
@@ -1900,7 +1940,8 @@ pub(crate) fn build_closed_facets(
         diagnostics: std::mem::take(&mut diagnostics),
         stages,
     });
-    // Live editing never runs on this path: what only it reads is let go.
+    // Live editing never runs on this path: what only it reads is let go (every vertex's foot
+    // hint is FootHint::FromSeed, as FootHints::Mesh reads an empty list).
     mesh.triangle_vertices = Vec::new();
     mesh
 }

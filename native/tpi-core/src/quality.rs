@@ -24,7 +24,7 @@ use std::collections::BTreeMap;
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
-use crate::facets::{accept_newton, FootHint};
+use crate::facets::{accept_newton, FootHint, FootHints};
 use crate::mesh::find;
 use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
@@ -129,9 +129,9 @@ pub(crate) struct ReportInput<'a> {
     pub neighbours: NeighbourStats,
     /// Number of diagnostics.
     pub diagnostic_count: usize,
-    /// Per vertex, what the facet stage knows about its foot (empty: project every vertex
-    /// from its first facet's seed).
-    pub feet: &'a [FootHint],
+    /// Per vertex, what the facet stage knows about its foot (an empty list: project every
+    /// vertex from its first facet's seed).
+    pub feet: FootHints<'a>,
     /// Per seed, +1/-1 where strictly convex (K > 0), 0 elsewhere: where a non-convex facet is
     /// a defect (empty: nowhere).
     pub convex_side: &'a [i8],
@@ -386,7 +386,7 @@ pub(crate) fn resolve_feet(
     vertices: &[DVec3],
     offsets: &[u32],
     loops: &[u32],
-    hints: &[FootHint],
+    hints: FootHints<'_>,
 ) -> Vec<Option<[f64; 2]>> {
     map_feet(
         surface,
@@ -437,7 +437,7 @@ fn map_feet<T: Send>(
     vertices: &[DVec3],
     offsets: &[u32],
     loops: &[u32],
-    hints: &[FootHint],
+    hints: FootHints<'_>,
     f: impl Fn(usize, [f64; 2]) -> T + Sync,
     progress: &dyn Progress,
 ) -> Vec<Option<T>> {
@@ -458,7 +458,7 @@ fn map_feet<T: Send>(
             |tally, v| {
                 tally.add(1);
                 let seed = *seed_of.get(v).filter(|&&s| s != u32::MAX)?;
-                let hint = hints.get(v).copied().unwrap_or(FootHint::FromSeed);
+                let hint = hints.get(v);
                 let resolved = resolve_foot(surface, wrap, vertices[v], hint, uv[seed as usize]);
                 Some(f(v, resolved))
             },
