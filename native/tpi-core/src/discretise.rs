@@ -669,6 +669,12 @@ fn run_within(
     let live_triangulation = keep.then(|| triangulation.clone());
     result.dual_triangles = triangulation.triangles;
     drop(triangulation.neighbours);
+    // The tangents and slopes are let go before the hints are listed and the report runs,
+    // unless live editing keeps them.
+    if !keep {
+        samples.tangents = Vec::new();
+        samples.slopes = None;
+    }
     // What the report knows of each vertex's foot. Without live editing the triangle
     // vertices' hints are listed per vertex and the triangle vertices let go (they are twice
     // the list); with it they are kept and read where they are.
@@ -698,12 +704,6 @@ fn run_within(
             (None, Vec::new())
         }
     };
-    // The tangents and slopes are let go before the report too, unless live editing keeps
-    // them.
-    if !keep {
-        samples.tangents = Vec::new();
-        samples.slopes = None;
-    }
     stages.check()?;
     let mut resolved = Vec::new();
     if options.quality_report {
@@ -735,7 +735,7 @@ fn run_within(
             &samples,
             &mut result,
             neighbours,
-            FootHints::Listed(&listed),
+            std::mem::take(&mut listed),
             stages,
         );
         note_topology(&mut result, boundary.is_trim());
@@ -803,7 +803,7 @@ fn measure(
     samples: &Samples,
     result: &mut Discretisation,
     neighbours: NeighbourStats,
-    feet: FootHints<'_>,
+    feet: Vec<FootHint>,
     stages: &Stages<'_>,
 ) {
     let diagnosed = diagnosed_points(&result.diagnostics, samples.uv.len());
@@ -819,10 +819,10 @@ fn measure(
             diagnosed: &diagnosed,
             neighbours,
             diagnostic_count: result.diagnostics.len(),
-            feet,
             convex_side: &samples.convex_side,
             wrap,
         },
+        feet,
         stages.observer(),
     );
     result.quality = Some(quality);

@@ -120,12 +120,18 @@ impl FootHints<'_> {
                 Some(&t) if t != u32::MAX => triangle_vertices
                     .get(t as usize)
                     .map_or(FootHint::FromSeed, TriangleVertex::hint),
-                _ => known
-                    .binary_search_by_key(&(v as u32), |&(w, _)| w)
-                    .map_or(FootHint::FromSeed, |k| FootHint::Known(known[k].1)),
+                _ => known_foot(known, v),
             },
         }
     }
+}
+
+/// Vertex v's Newton foot if `known` (by vertex, ascending) holds it, else
+/// [`FootHint::FromSeed`].
+fn known_foot(known: &[(u32, [f64; 2])], v: usize) -> FootHint {
+    known
+        .binary_search_by_key(&(v as u32), |&(w, _)| w)
+        .map_or(FootHint::FromSeed, |k| FootHint::Known(known[k].1))
 }
 
 #[derive(Clone, Copy, Debug)]

@@ -57,7 +57,7 @@ use crate::discretise::{
     PlaneMode, Seed, Timings,
 };
 use crate::error::TpiError;
-use crate::facets::{single_triangle_vertex, FootHint, FootHints, TriangleVertex, VertexKind};
+use crate::facets::{single_triangle_vertex, FootHint, TriangleVertex, VertexKind};
 use crate::mesh::edge_reversed;
 use crate::neighbours::{slope_repairs, NeighbourStats, SlopeFrame};
 use crate::planes::Plane;
@@ -1648,10 +1648,10 @@ impl State {
                     diagnosed: &diagnosed,
                     neighbours: stats,
                     diagnostic_count: result.diagnostics.len(),
-                    feet: FootHints::Listed(&feet),
                     convex_side: &self.convex_side,
                     wrap: &self.wrap,
                 },
+                feet,
                 &NoProgress,
             );
             result.quality = Some(quality);
