@@ -690,13 +690,19 @@ fn run_within(
             (Some(live), Vec::new())
         }
         None if options.quality_report => {
-            let hints = FootHints::Mesh {
-                triangle_vertices: &triangle_vertices,
+            // The triangle vertices' hints in the triangle vertices' buffer (collected in
+            // place, then shrunk to their size), so that the triangle vertices and the list
+            // are not held at once.
+            let mut by_triangle: Vec<FootHint> =
+                triangle_vertices.into_iter().map(|t| t.hint()).collect();
+            by_triangle.shrink_to_fit();
+            let hints = FootHints::ByTriangle {
+                hints: &by_triangle,
                 vertex_source: &vertex_source,
                 known: &known_feet,
             };
             let listed = (0..result.vertices.len()).map(|v| hints.get(v)).collect();
-            drop((triangle_vertices, vertex_source, facet_simple, welded));
+            drop((by_triangle, vertex_source, facet_simple, welded));
             (None, listed)
         }
         None => {

@@ -105,6 +105,15 @@ pub(crate) enum FootHints<'a> {
         /// The Newton feet of the other vertices where known, by vertex, ascending.
         known: &'a [(u32, [f64; 2])],
     },
+    /// As `Mesh`, the triangle vertices' hints in place of the triangle vertices.
+    ByTriangle {
+        /// Per triangle of the dual structure, its vertex's hint (empty: as in `Mesh`).
+        hints: &'a [FootHint],
+        /// Per mesh vertex, its triangle, or `u32::MAX`.
+        vertex_source: &'a [u32],
+        /// The Newton feet of the other vertices where known, by vertex, ascending.
+        known: &'a [(u32, [f64; 2])],
+    },
 }
 
 impl FootHints<'_> {
@@ -120,6 +129,16 @@ impl FootHints<'_> {
                 Some(&t) if t != u32::MAX => triangle_vertices
                     .get(t as usize)
                     .map_or(FootHint::FromSeed, TriangleVertex::hint),
+                _ => known_foot(known, v),
+            },
+            FootHints::ByTriangle {
+                hints,
+                vertex_source,
+                known,
+            } => match vertex_source.get(v) {
+                Some(&t) if t != u32::MAX => {
+                    hints.get(t as usize).copied().unwrap_or(FootHint::FromSeed)
+                }
                 _ => known_foot(known, v),
             },
         }
