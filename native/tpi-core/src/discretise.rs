@@ -623,7 +623,15 @@ fn run_within(
         reversal_distance: REVERSAL_CHECK_TOLERANCE * samples.diagonal,
         exact_dual: matches!(structure.plan, FacetPlan::Clipped { band: Some(_) }),
     };
-    let facets = build_stage(surface, boundary, &samples, structure, &params, stages);
+    let facets = build_stage(
+        surface,
+        boundary,
+        &mut samples,
+        structure,
+        &params,
+        !keep,
+        stages,
+    );
     check_not_developable(&facets, &samples, strips)?;
     timings.facets = ms(stage) - facets.mesh.assembly_ms;
     timings.mesh = facets.mesh.assembly_ms;
