@@ -34,7 +34,9 @@ use crate::closed::SurfaceLayout;
 use crate::diagnostics::{diagnosed_points, Diagnostic};
 use crate::diffgeo::flat_curvatures;
 use crate::error::TpiError;
-use crate::facets::{build_stage, FacetParams, Facets, FootHint, TriangleVertex, VertexKind};
+use crate::facets::{
+    build_stage, FacetParams, Facets, FootHint, FootHints, TriangleVertex, VertexKind,
+};
 use crate::mesh::FacetMesh;
 use crate::neighbours::{NeighbourStats, SlopeFrame};
 use crate::pattern::validate_uv;
@@ -621,7 +623,15 @@ fn run_within(
         reversal_distance: REVERSAL_CHECK_TOLERANCE * samples.diagonal,
         exact_dual: matches!(structure.plan, FacetPlan::Clipped { band: Some(_) }),
     };
-    let facets = build_stage(surface, boundary, &samples, structure, &params, stages);
+    let facets = build_stage(
+        surface,
+        boundary,
+        &mut samples,
+        structure,
+        &params,
+        !keep,
+        stages,
+    );
     check_not_developable(&facets, &samples, strips)?;
     timings.facets = ms(stage) - facets.mesh.assembly_ms;
     timings.mesh = facets.mesh.assembly_ms;
@@ -636,7 +646,7 @@ fn run_within(
         vertex_kinds,
         offsets,
         loops,
-        feet,
+        known_feet,
         triangle_vertices,
         vertex_source,
         facet_simple,
@@ -650,7 +660,8 @@ fn run_within(
         vertex_kinds,
         facet_offsets: offsets,
         facet_loops: loops,
-        seeds: std::mem::take(&mut samples.seeds),
+        // Built at the end from the samples (Samples::seeds).
+        seeds: Vec::new(),
         pattern_indices: Vec::new(),
         outside_trim: 0,
         dual_triangles: Vec::new(),
@@ -663,36 +674,59 @@ fn run_within(
         units: surface.units(),
         topology,
     };
-    // What only live editing reads is let go now (the report's peak is the pipeline's).
-    let live = keep.then(|| LiveParts {
-        triangulation: triangulation.clone(),
-        triangle_vertices,
-        vertex_source,
-        facet_simple,
-        welded,
-    });
+    let live_triangulation = keep.then(|| triangulation.clone());
     result.dual_triangles = triangulation.triangles;
     drop(triangulation.neighbours);
-    if options.planes == PlaneMode::Adjusted {
-        // Every facet says how its plane differs (0 where it is the exact tangent plane, as
-        // everywhere on convex surfaces).
-        result.plane_adjustments = plane_adjustments(&result.seeds, &samples.planes);
-    }
-    // The tangents and slopes are let go before the report too, unless live editing keeps
-    // them.
+    // The tangents and slopes are let go before the hints are listed and the report runs,
+    // unless live editing keeps them.
     if !keep {
         samples.tangents = Vec::new();
         samples.slopes = None;
     }
+    // What the report knows of each vertex's foot. Without live editing the triangle
+    // vertices' hints are listed per vertex and the triangle vertices let go (they are twice
+    // the list); with it they are kept and read where they are.
+    let (live, mut listed): (Option<LiveParts>, Vec<FootHint>) = match live_triangulation {
+        Some(triangulation) => {
+            let live = LiveParts {
+                triangulation,
+                triangle_vertices,
+                vertex_source,
+                facet_simple,
+                welded,
+            };
+            (Some(live), Vec::new())
+        }
+        None if options.quality_report => {
+            // The triangle vertices' hints in the triangle vertices' buffer (collected in
+            // place, then shrunk to their size), so that the triangle vertices and the list
+            // are not held at once.
+            let mut by_triangle: Vec<FootHint> =
+                triangle_vertices.into_iter().map(|t| t.hint()).collect();
+            by_triangle.shrink_to_fit();
+            let hints = FootHints::ByTriangle {
+                hints: &by_triangle,
+                vertex_source: &vertex_source,
+                known: &known_feet,
+            };
+            let listed = (0..result.vertices.len()).map(|v| hints.get(v)).collect();
+            drop((by_triangle, vertex_source, facet_simple, welded));
+            (None, listed)
+        }
+        None => {
+            drop((triangle_vertices, vertex_source, facet_simple, welded));
+            (None, Vec::new())
+        }
+    };
     stages.check()?;
     let mut resolved = Vec::new();
     if options.quality_report {
         let stage = Instant::now();
         stages.enter(
             Stage::Report,
-            Some(result.facet_count() + result.vertices.len()),
+            Some(samples.uv.len() + result.vertices.len()),
         );
-        let feet = if keep {
+        if let Some(live) = &live {
             resolved = resolve_feet(
                 surface,
                 &wrap,
@@ -700,20 +734,22 @@ fn run_within(
                 &result.vertices,
                 &result.facet_offsets,
                 &result.facet_loops,
-                &feet,
+                FootHints::Mesh {
+                    triangle_vertices: &live.triangle_vertices,
+                    vertex_source: &live.vertex_source,
+                    known: &known_feet,
+                },
             );
             let known = |f: &Option<[f64; 2]>| f.map_or(FootHint::FromSeed, FootHint::Known);
-            resolved.iter().map(known).collect()
-        } else {
-            feet
-        };
+            listed = resolved.iter().map(known).collect();
+        }
         measure(
             surface,
             &wrap,
             &samples,
             &mut result,
             neighbours,
-            &feet,
+            std::mem::take(&mut listed),
             stages,
         );
         note_topology(&mut result, boundary.is_trim());
@@ -721,6 +757,14 @@ fn run_within(
     }
     stages.check()?;
     stages.leave();
+    drop((listed, known_feet));
+    // The seeds last, when the facet stage's and the report's temporaries are gone.
+    result.seeds = samples.seeds();
+    if options.planes == PlaneMode::Adjusted {
+        // Every facet says how its plane differs (0 where it is the exact tangent plane, as
+        // everywhere on convex surfaces).
+        result.plane_adjustments = plane_adjustments(&result.seeds, &samples.planes);
+    }
     result.timings.total = ms(start);
     let state = live.map(|live| pipeline_state(samples, &result, live, neighbours, resolved, wrap));
     Ok((result, state))
@@ -749,9 +793,9 @@ fn check_not_developable(facets: &Facets, samples: &Samples, strips: bool) -> Re
         // Curved at the seeds, the planes fail to meet because of the pattern (issue 14: four
         // random points nearly on one line on a saddle were said to make it developable).
         let flat_seeds = samples
-            .seeds
+            .curvatures
             .iter()
-            .all(|s| flat_curvatures(s.curvatures[0], s.curvatures[1]));
+            .all(|&[k1, k2]| flat_curvatures(k1, k2));
         let reason = if flat_seeds {
             "every triple of neighbouring tangent planes is (nearly) parallel: the surface is developable".to_string()
         } else {
@@ -773,7 +817,7 @@ fn measure(
     samples: &Samples,
     result: &mut Discretisation,
     neighbours: NeighbourStats,
-    feet: &[FootHint],
+    feet: Vec<FootHint>,
     stages: &Stages<'_>,
 ) {
     let diagnosed = diagnosed_points(&result.diagnostics, samples.uv.len());
@@ -789,10 +833,10 @@ fn measure(
             diagnosed: &diagnosed,
             neighbours,
             diagnostic_count: result.diagnostics.len(),
-            feet,
             convex_side: &samples.convex_side,
             wrap,
         },
+        feet,
         stages.observer(),
     );
     result.quality = Some(quality);
@@ -899,7 +943,7 @@ pub(crate) fn check_closed_seeds(
     surface: &dyn Surface,
     layout: &SurfaceLayout,
     uv: &[[f64; 2]],
-    seeds: &[Seed],
+    planes: &[Plane],
     regular: &[bool],
     closing: bool,
     tolerance: f64,
@@ -915,8 +959,10 @@ pub(crate) fn check_closed_seeds(
     if !closing {
         return Ok(());
     }
-    let mut order: Vec<usize> = (0..seeds.len()).collect();
-    let key = |i: usize| seeds[i].point.to_array();
+    // The seeds' surface points are their tangent planes'.
+    let point = |i: usize| planes[i].point;
+    let mut order: Vec<usize> = (0..planes.len()).collect();
+    let key = |i: usize| point(i).to_array();
     order.sort_unstable_by(|&a, &b| {
         key(a)
             .partial_cmp(&key(b))
@@ -924,10 +970,10 @@ pub(crate) fn check_closed_seeds(
     });
     for (k, &i) in order.iter().enumerate() {
         for &j in &order[k + 1..] {
-            if seeds[j].point.x - seeds[i].point.x > tolerance {
+            if point(j).x - point(i).x > tolerance {
                 break;
             }
-            if seeds[i].point.distance(seeds[j].point) <= tolerance {
+            if point(i).distance(point(j)) <= tolerance {
                 return Err(TpiError::SameSurfacePoint {
                     index: i.max(j),
                     duplicate_of: i.min(j),

@@ -88,6 +88,71 @@ pub(crate) enum FootHint {
     FromSeed,
 }
 
+/// Every mesh vertex's [`FootHint`], as the report reads them.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum FootHints<'a> {
+    /// One per vertex (a vertex beyond the list: [`FootHint::FromSeed`]).
+    Listed(&'a [FootHint]),
+    /// As the facet stage's mesh knows them without a list of its own (which would copy
+    /// every triangle vertex's): a triangle's vertex its [`TriangleVertex::hint`], a vertex
+    /// listed in `known` that foot, any other [`FootHint::FromSeed`].
+    Mesh {
+        /// Per triangle of the dual structure, its vertex; empty where the facet stage let
+        /// them go (the closed facets', every one [`FootHint::FromSeed`]).
+        triangle_vertices: &'a [TriangleVertex],
+        /// Per mesh vertex, its triangle, or `u32::MAX` ([`crate::mesh::FacetMesh`]).
+        vertex_source: &'a [u32],
+        /// The Newton feet of the other vertices where known, by vertex, ascending.
+        known: &'a [(u32, [f64; 2])],
+    },
+    /// As `Mesh`, the triangle vertices' hints in place of the triangle vertices.
+    ByTriangle {
+        /// Per triangle of the dual structure, its vertex's hint (empty: as in `Mesh`).
+        hints: &'a [FootHint],
+        /// Per mesh vertex, its triangle, or `u32::MAX`.
+        vertex_source: &'a [u32],
+        /// The Newton feet of the other vertices where known, by vertex, ascending.
+        known: &'a [(u32, [f64; 2])],
+    },
+}
+
+impl FootHints<'_> {
+    /// Vertex v's hint.
+    pub(crate) fn get(&self, v: usize) -> FootHint {
+        match *self {
+            FootHints::Listed(list) => list.get(v).copied().unwrap_or(FootHint::FromSeed),
+            FootHints::Mesh {
+                triangle_vertices,
+                vertex_source,
+                known,
+            } => match vertex_source.get(v) {
+                Some(&t) if t != u32::MAX => triangle_vertices
+                    .get(t as usize)
+                    .map_or(FootHint::FromSeed, TriangleVertex::hint),
+                _ => known_foot(known, v),
+            },
+            FootHints::ByTriangle {
+                hints,
+                vertex_source,
+                known,
+            } => match vertex_source.get(v) {
+                Some(&t) if t != u32::MAX => {
+                    hints.get(t as usize).copied().unwrap_or(FootHint::FromSeed)
+                }
+                _ => known_foot(known, v),
+            },
+        }
+    }
+}
+
+/// Vertex v's Newton foot if `known` (by vertex, ascending) holds it, else
+/// [`FootHint::FromSeed`].
+fn known_foot(known: &[(u32, [f64; 2])], v: usize) -> FootHint {
+    known
+        .binary_search_by_key(&(v as u32), |&(w, _)| w)
+        .map_or(FootHint::FromSeed, |k| FootHint::Known(known[k].1))
+}
+
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Crossing {
     pub(crate) point: DVec3,
@@ -243,13 +308,15 @@ pub(crate) struct Facets {
 
 /// Stage 3 of the pipeline: dual structure -> facets, as its [`FacetPlan`] says: clipped on
 /// `boundary` (or the plan's band), or closed by the ghosts' planes (clipped on a trim where
-/// there is one).
+/// there is one). With `release_tangents` (no live editing) the clipped facets let the
+/// samples' tangents go before their assembly.
 pub(crate) fn build_stage(
     surface: &dyn Surface,
     boundary: &Boundary,
-    samples: &Samples,
+    samples: &mut Samples,
     structure: DualStructure,
     params: &FacetParams,
+    release_tangents: bool,
     stages: &Stages<'_>,
 ) -> Facets {
     let n = samples.uv.len();
@@ -262,20 +329,13 @@ pub(crate) fn build_stage(
     // `ghosts`: the structure holds more points than the real seeds.
     let (mesh, ghosts, strips) = match &plan {
         FacetPlan::Clipped { band } => {
-            let slopes = samples.slopes.as_ref().zip(samples.frame);
             let mesh = build_facets(
                 surface,
                 band.as_ref().unwrap_or(boundary),
-                &samples.uv,
-                &samples.tangents,
-                &samples.planes,
-                &samples.convex_side,
+                samples,
                 &triangulation,
                 params,
-                slopes.map(|(slopes, normal)| SlopeView {
-                    axes: SlopeFrame::new(normal, samples.convex_side[0]).axes,
-                    slopes,
-                }),
+                release_tangents,
                 stages,
             );
             (mesh, false, false)
@@ -484,33 +544,42 @@ fn mesh_shape(
 }
 
 /// Builds the facets of all pattern points from the dual triangulation, ending them on
-/// `boundary` (the domain rectangle, or a trim's loops).
-// The stage's inputs, each a slice of the samples; one typed input struct is still owed.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn build_facets(
+/// `boundary` (the domain rectangle, or a trim's loops). With `release_tangents` the samples'
+/// tangents, which only the walk reads, are let go before the assembly.
+fn build_facets(
     surface: &dyn Surface,
     boundary: &Boundary,
-    uv: &[[f64; 2]],
-    tangents: &[[DVec3; 2]],
-    planes: &[Plane],
-    convex_side: &[i8],
+    samples: &mut Samples,
     tri: &DualTriangulation,
     params: &FacetParams,
-    slopes: Option<SlopeView<'_>>,
+    release_tangents: bool,
     stages: &Stages<'_>,
 ) -> FacetMesh {
+    let regular = samples.slopes.is_some() && samples.frame.is_some();
     let ctx = Context {
         surface,
         domain: surface.domain(),
         boundary,
-        planes,
-        uv,
-        tangents,
-        convex_side,
-        regular: slopes.is_some() || params.exact_dual,
+        planes: &samples.planes,
+        uv: &samples.uv,
+        tangents: &samples.tangents,
+        convex_side: &samples.convex_side,
+        regular: regular || params.exact_dual,
         long_edges: false,
     };
-    clip_facets(&ctx, uv.len(), tri, params, slopes, stages)
+    let walk = walk_facets(&ctx, samples.uv.len(), tri, params, stages);
+    if release_tangents {
+        samples.tangents = Vec::new();
+    }
+    let slopes = samples
+        .slopes
+        .as_ref()
+        .zip(samples.frame)
+        .map(|(slopes, normal)| SlopeView {
+            axes: SlopeFrame::new(normal, samples.convex_side[0]).axes,
+            slopes,
+        });
+    assemble_walk(walk, tri, &samples.planes, params, slopes, stages)
 }
 
 /// The facets of the real seeds `0..uv.len()` of a triangulation closed by ghosts beyond the
@@ -572,7 +641,31 @@ fn clip_facets(
     slopes: Option<SlopeView<'_>>,
     stages: &Stages<'_>,
 ) -> FacetMesh {
-    let (surface, boundary, planes) = (ctx.surface, ctx.boundary, ctx.planes);
+    let walk = walk_facets(ctx, real_count, tri, params, stages);
+    assemble_walk(walk, tri, ctx.planes, params, slopes, stages)
+}
+
+/// What the walk of [`clip_facets`] hands to the assembly.
+struct Walk {
+    triangle_vertices: Vec<TriangleVertex>,
+    chunks: Vec<FacetChunk>,
+    crossings: Vec<Crossing>,
+    corners: Vec<(DVec3, DVec3)>,
+    diagnostics: Vec<Diagnostic>,
+    /// Per trim corner, whether a crossing sits on it (empty without a trim).
+    absorbed: Vec<bool>,
+}
+
+/// Steps 1 to 3 of [`clip_facets`]: triangle vertices, boundary crossings, facet loops as
+/// items.
+fn walk_facets(
+    ctx: &Context<'_>,
+    real_count: usize,
+    tri: &DualTriangulation,
+    params: &FacetParams,
+    stages: &Stages<'_>,
+) -> Walk {
+    let (surface, boundary) = (ctx.surface, ctx.boundary);
     let observer = stages.observer();
     let mut diagnostics = Vec::new();
 
@@ -685,7 +778,33 @@ fn clip_facets(
             },
         )
         .collect();
+    Walk {
+        triangle_vertices,
+        chunks,
+        crossings,
+        corners,
+        diagnostics,
+        absorbed,
+    }
+}
 
+/// Step 4 of [`clip_facets`]: the walk's items assembled into the mesh.
+fn assemble_walk(
+    walk: Walk,
+    tri: &DualTriangulation,
+    planes: &[Plane],
+    params: &FacetParams,
+    slopes: Option<SlopeView<'_>>,
+    stages: &Stages<'_>,
+) -> FacetMesh {
+    let Walk {
+        triangle_vertices,
+        chunks,
+        crossings,
+        corners,
+        diagnostics,
+        absorbed,
+    } = walk;
     let mut mesh = assemble(Assembly {
         tri,
         triangle_vertices,
@@ -1900,7 +2019,8 @@ pub(crate) fn build_closed_facets(
         diagnostics: std::mem::take(&mut diagnostics),
         stages,
     });
-    // Live editing never runs on this path: what only it reads is let go.
+    // Live editing never runs on this path: what only it reads is let go (every vertex's foot
+    // hint is FootHint::FromSeed, as FootHints::Mesh reads an empty list).
     mesh.triangle_vertices = Vec::new();
     mesh
 }

@@ -1648,10 +1648,10 @@ impl State {
                     diagnosed: &diagnosed,
                     neighbours: stats,
                     diagnostic_count: result.diagnostics.len(),
-                    feet: &feet,
                     convex_side: &self.convex_side,
                     wrap: &self.wrap,
                 },
+                feet,
                 &NoProgress,
             );
             result.quality = Some(quality);

@@ -25,8 +25,7 @@ use rayon::prelude::*;
 
 use crate::diagnostics::Diagnostic;
 use crate::facets::{
-    edge_point, Crossing, FacetChunk, FacetParams, FootHint, Item, TriangleVertex, VertexKind,
-    ITEM_INDEX,
+    edge_point, Crossing, FacetChunk, FacetParams, Item, TriangleVertex, VertexKind, ITEM_INDEX,
 };
 use crate::planes::Plane;
 use crate::progress::{Stage, Stages, Tally};
@@ -47,9 +46,11 @@ pub(crate) struct FacetMesh {
     pub diagnostics: Vec<Diagnostic>,
     /// Wall-clock time of the assembly (welding, numbering, loops) in milliseconds.
     pub assembly_ms: f64,
-    /// Per vertex, what is known about its foot on the surface (for the quality report's
-    /// deviation, so that no projection is done twice).
-    pub feet: Vec<FootHint>,
+    /// The Newton feet of the vertices that are no triangle's (boundary crossings) where the
+    /// facet stage computed them, by vertex, ascending: with the triangle vertices' hints
+    /// what the quality report's deviation starts from ([`FootHints::Mesh`]), so that no
+    /// projection is done twice.
+    pub known_feet: Vec<(u32, [f64; 2])>,
     /// Per triangle of the dual structure, its vertex (for live editing).
     pub(crate) triangle_vertices: Vec<TriangleVertex>,
     /// Per mesh vertex, the triangle it is the meeting point of (welds resolved to the
@@ -192,7 +193,6 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
     let vertex_estimate = tri.len() + crossings.len() + 4;
     mesh.vertices.reserve(vertex_estimate);
     mesh.vertex_kinds.reserve(vertex_estimate);
-    mesh.feet.reserve(vertex_estimate);
     mesh.loops
         .reserve(chunks.iter().map(|c| c.items.len()).sum());
     debug_assert!(tri.len() < ITEM_INDEX as usize);
@@ -232,8 +232,7 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
                             } else {
                                 VertexKind::Interior
                             };
-                            triangle_id[r] =
-                                push_vertex(&mut mesh, v.point, kind, v.hint(), r as u32);
+                            triangle_id[r] = push_vertex(&mut mesh, v.point, kind, None, r as u32);
                         }
                         triangle_id[r]
                     }
@@ -251,7 +250,7 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
                                         &mut mesh,
                                         position,
                                         VertexKind::Interior,
-                                        FootHint::FromSeed,
+                                        None,
                                         u32::MAX,
                                     )
                                 })
@@ -265,7 +264,7 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
                                     &mut mesh,
                                     position,
                                     VertexKind::Interior,
-                                    FootHint::FromSeed,
+                                    None,
                                     u32::MAX,
                                 )
                             }
@@ -274,12 +273,11 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
                     Item::Crossing(c) => {
                         if crossing_id[c as usize] == u32::MAX {
                             let crossing = &crossings[c as usize];
-                            let hint = crossing.foot.map_or(FootHint::FromSeed, FootHint::Known);
                             crossing_id[c as usize] = push_vertex(
                                 &mut mesh,
                                 crossing.point,
                                 VertexKind::Boundary,
-                                hint,
+                                crossing.foot,
                                 u32::MAX,
                             );
                         }
@@ -300,13 +298,7 @@ pub(crate) fn assemble(a: Assembly<'_>) -> FacetMesh {
                             });
                             continue;
                         }
-                        push_vertex(
-                            &mut mesh,
-                            position,
-                            VertexKind::Corner,
-                            FootHint::FromSeed,
-                            u32::MAX,
-                        )
+                        push_vertex(&mut mesh, position, VertexKind::Corner, None, u32::MAX)
                     }
                 };
                 if mesh.loops.len() == start || mesh.loops[mesh.loops.len() - 1] != id {
@@ -505,7 +497,11 @@ fn apply_merges(mesh: &mut FacetMesh, merged: &mut [u32]) {
     }
     retain_indexed(&mut mesh.vertices, &drop);
     retain_indexed(&mut mesh.vertex_kinds, &drop);
-    retain_indexed(&mut mesh.feet, &drop);
+    // Kept vertices keep their order: the feet stay ascending.
+    mesh.known_feet.retain(|&(v, _)| !drop[v as usize]);
+    for (v, _) in &mut mesh.known_feet {
+        *v = renumber[*v as usize];
+    }
     retain_indexed(&mut mesh.vertex_source, &drop);
     mesh.loops = loops;
     mesh.offsets = offsets;
@@ -520,18 +516,23 @@ fn retain_indexed<T>(values: &mut Vec<T>, drop: &[bool]) {
     });
 }
 
+/// Adds a vertex: the vertex of triangle `source` (its foot hint is the triangle vertex's), or
+/// with `source` `u32::MAX` another, whose Newton foot is `known` where computed.
 fn push_vertex(
     mesh: &mut FacetMesh,
     position: DVec3,
     kind: VertexKind,
-    foot: FootHint,
+    known: Option<[f64; 2]>,
     source: u32,
 ) -> u32 {
+    let v = mesh.vertices.len() as u32;
     mesh.vertex_source.push(source);
     mesh.vertices.push(position);
     mesh.vertex_kinds.push(kind);
-    mesh.feet.push(foot);
-    (mesh.vertices.len() - 1) as u32
+    if let Some(foot) = known.filter(|_| source == u32::MAX) {
+        mesh.known_feet.push((v, foot));
+    }
+    v
 }
 
 /// The root of x in a union-find forest (`parent[r] == r` at a root), halving the path.

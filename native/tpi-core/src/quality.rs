@@ -24,7 +24,7 @@ use std::collections::BTreeMap;
 use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
-use crate::facets::{accept_newton, FootHint};
+use crate::facets::{accept_newton, FootHint, FootHints};
 use crate::mesh::find;
 use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
@@ -129,9 +129,6 @@ pub(crate) struct ReportInput<'a> {
     pub neighbours: NeighbourStats,
     /// Number of diagnostics.
     pub diagnostic_count: usize,
-    /// Per vertex, what the facet stage knows about its foot (empty: project every vertex
-    /// from its first facet's seed).
-    pub feet: &'a [FootHint],
     /// Per seed, +1/-1 where strictly convex (K > 0), 0 elsewhere: where a non-convex facet is
     /// a defect (empty: nowhere).
     pub convex_side: &'a [i8],
@@ -144,9 +141,15 @@ fn facet<'a>(input: &ReportInput<'a>, i: usize) -> &'a [u32] {
     &input.loops[input.offsets[i] as usize..input.offsets[i + 1] as usize]
 }
 
-/// Computes the report and the per-facet flags, counting each facet's shape and then each
-/// vertex's deviation as an item of [`Stage::Report`].
-pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (QualityReport, Vec<u8>) {
+/// Computes the report and the per-facet flags, counting each vertex's deviation and then
+/// each facet's shape as an item of [`Stage::Report`]. `feet` holds, per vertex, what the
+/// facet stage knows about its foot (an empty list: project every vertex from its first
+/// facet's seed); it is let go once the deviations are measured.
+pub(crate) fn report(
+    input: &ReportInput<'_>,
+    feet: Vec<FootHint>,
+    progress: &dyn Progress,
+) -> (QualityReport, Vec<u8>) {
     let facet_count = input.offsets.len().saturating_sub(1);
     let mut r = QualityReport {
         facet_count,
@@ -160,6 +163,37 @@ pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (Quali
         ..QualityReport::default()
     };
     let mut flags = vec![0u8; facet_count];
+
+    // Deviation from the surface first, so that the feet's hints are let go before the edges
+    // and shapes are built. Per vertex (from its foot, see `resolve_feet`), in vertex
+    // order (the order of the sum).
+    let domain = input.wrap.domain;
+    // One value per vertex, UNUSED where no facet holds it (no distance is -inf): no copy of
+    // the used ones is made.
+    const UNUSED: f64 = f64::NEG_INFINITY;
+    let deviations: Vec<f64> = map_feet(
+        input.surface,
+        input.wrap,
+        input.uv,
+        input.vertices,
+        input.offsets,
+        input.loops,
+        FootHints::Listed(&feet),
+        UNUSED,
+        |v, [u, w]| {
+            let (cu, cw) = domain.clamp(u, w);
+            input.surface.point_at(cu, cw).distance(input.vertices[v])
+        },
+        progress,
+    );
+    drop(feet);
+    let used = || deviations.iter().copied().filter(|&d| d != UNUSED);
+    let used_count = used().count();
+    if used_count > 0 {
+        r.max_deviation = used().fold(0.0, f64::max);
+        r.mean_deviation = used().sum::<f64>() / used_count as f64;
+    }
+    drop(deviations);
 
     // Edges: (lo, hi, facet) sorted, by a counting sort on lo and a sort of each (short) run.
     let edges = sorted_edges(input, facet_count);
@@ -327,30 +361,6 @@ pub(crate) fn report(input: &ReportInput<'_>, progress: &dyn Progress) -> (Quali
     r.invalid_facets = flags.iter().filter(|&&f| f & INVALID_FLAGS != 0).count();
     r.flagged_facets = flags.iter().filter(|&&f| f != 0).count();
 
-    // Deviation from the surface, per vertex (from its foot, see `resolve_feet`), in vertex
-    // order (the order of the sum).
-    let domain = input.wrap.domain;
-    let deviations: Vec<f64> = map_feet(
-        input.surface,
-        input.wrap,
-        input.uv,
-        input.vertices,
-        input.offsets,
-        input.loops,
-        input.feet,
-        |v, [u, w]| {
-            let (cu, cw) = domain.clamp(u, w);
-            input.surface.point_at(cu, cw).distance(input.vertices[v])
-        },
-        progress,
-    )
-    .into_iter()
-    .flatten()
-    .collect();
-    if !deviations.is_empty() {
-        r.max_deviation = deviations.iter().copied().fold(0.0, f64::max);
-        r.mean_deviation = deviations.iter().sum::<f64>() / deviations.len() as f64;
-    }
     if facet_count == 0 {
         r.min_facet_area = 0.0;
     }
@@ -386,7 +396,7 @@ pub(crate) fn resolve_feet(
     vertices: &[DVec3],
     offsets: &[u32],
     loops: &[u32],
-    hints: &[FootHint],
+    hints: FootHints<'_>,
 ) -> Vec<Option<[f64; 2]>> {
     map_feet(
         surface,
@@ -396,7 +406,8 @@ pub(crate) fn resolve_feet(
         offsets,
         loops,
         hints,
-        |_, f| f,
+        None,
+        |_, f| Some(f),
         &NoProgress,
     )
 }
@@ -426,21 +437,22 @@ pub(crate) fn resolve_foot(
     }
 }
 
-/// `f(vertex, foot)` for every vertex used by a facet (None for the others), in parallel,
+/// `f(vertex, foot)` for every vertex used by a facet (`unused` for the others), in parallel,
 /// with the feet of [`resolve_feet`]; each vertex counts as an item of [`Stage::Report`].
-// The mesh's arrays, the feet's hints, the map and the observer.
+// The mesh's arrays, the feet's hints, the value of unused vertices, the map and the observer.
 #[allow(clippy::too_many_arguments)]
-fn map_feet<T: Send>(
+fn map_feet<T: Send + Sync + Copy>(
     surface: &dyn Surface,
     wrap: &Wrap,
     uv: &[[f64; 2]],
     vertices: &[DVec3],
     offsets: &[u32],
     loops: &[u32],
-    hints: &[FootHint],
+    hints: FootHints<'_>,
+    unused: T,
     f: impl Fn(usize, [f64; 2]) -> T + Sync,
     progress: &dyn Progress,
-) -> Vec<Option<T>> {
+) -> Vec<T> {
     use rayon::prelude::*;
     let facet_count = offsets.len().saturating_sub(1);
     let mut seed_of = vec![u32::MAX; vertices.len()];
@@ -457,10 +469,12 @@ fn map_feet<T: Send>(
             || Tally::new(progress, Stage::Report),
             |tally, v| {
                 tally.add(1);
-                let seed = *seed_of.get(v).filter(|&&s| s != u32::MAX)?;
-                let hint = hints.get(v).copied().unwrap_or(FootHint::FromSeed);
+                let Some(&seed) = seed_of.get(v).filter(|&&s| s != u32::MAX) else {
+                    return unused;
+                };
+                let hint = hints.get(v);
                 let resolved = resolve_foot(surface, wrap, vertices[v], hint, uv[seed as usize]);
-                Some(f(v, resolved))
+                f(v, resolved)
             },
         )
         .collect()

@@ -38,8 +38,13 @@ pub(crate) struct Samples {
     pub(crate) convex_side: Vec<i8>,
     /// Normalised pattern coordinates scaled by the surface's mean extents.
     pub(crate) plane_uv: Vec<[f64; 2]>,
-    /// The seeds reported with the facets.
-    pub(crate) seeds: Vec<Seed>,
+    /// Per point, the principal curvatures k1 <= k2 (zero where planar): with `uv` and the
+    /// tangent planes what the seeds reported with the facets are built from at the end
+    /// ([`Samples::seeds`]), so that no copy of each point and normal is held meanwhile.
+    pub(crate) curvatures: Vec<[f64; 2]>,
+    /// The tangent planes, where adjusted planes have replaced `planes` (None: `planes` are
+    /// the tangent planes).
+    pub(crate) tangent_planes: Option<Vec<Plane>>,
     /// The slope frame's normal N where the surface is convex on one side.
     pub(crate) frame: Option<DVec3>,
     /// The lifted points of the convex path.
@@ -88,16 +93,7 @@ pub(crate) fn sample(
     let mut diagnostics = Vec::new();
     let convex_side = classify_curvature(&mut geometry, diagonal, options, &mut diagnostics);
     let plane_uv = scaled_parameters(pattern, &geometry, &domain);
-    let seeds: Vec<Seed> = geometry
-        .par_iter()
-        .zip(&uv)
-        .map(|(g, &uv)| Seed {
-            uv,
-            point: g.point,
-            normal: g.normal,
-            curvatures: [g.k1, g.k2],
-        })
-        .collect();
+    let curvatures: Vec<[f64; 2]> = geometry.iter().map(|g| [g.k1, g.k2]).collect();
     let frame = if options.envelope_repair && convex_side.iter().all(|&s| s != 0) {
         slope_frame(surface)
     } else {
@@ -121,12 +117,32 @@ pub(crate) fn sample(
         diagonal,
         convex_side,
         plane_uv,
-        seeds,
+        curvatures,
+        tangent_planes: None,
         frame,
         lifted,
         slopes,
         diagnostics,
     })
+}
+
+impl Samples {
+    /// The seeds reported with the facets: each point's parameters, surface point, unit normal
+    /// (those of its tangent plane) and principal curvatures.
+    pub(crate) fn seeds(&self) -> Vec<Seed> {
+        let tangent = self.tangent_planes.as_ref().unwrap_or(&self.planes);
+        self.uv
+            .iter()
+            .zip(tangent)
+            .zip(&self.curvatures)
+            .map(|((&uv, plane), &curvatures)| Seed {
+                uv,
+                point: plane.point,
+                normal: plane.normal,
+                curvatures,
+            })
+            .collect()
+    }
 }
 
 /// The points' axis-aligned bounding box (min, max corners).

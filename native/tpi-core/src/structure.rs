@@ -157,7 +157,7 @@ pub(crate) fn decide_structure(
             surface,
             &layout,
             &samples.uv,
-            &samples.seeds,
+            &samples.planes,
             &regular,
             closable,
             weld,
@@ -206,9 +206,9 @@ pub(crate) fn decide_structure(
     // Path 2: strips of a developable surface. Rulings are sampled only where every seed is
     // flat (K ~ 0): elsewhere they cannot be.
     let flat_seeds = samples
-        .seeds
+        .curvatures
         .iter()
-        .all(|s| flat_curvatures(s.curvatures[0], s.curvatures[1]));
+        .all(|&[k1, k2]| flat_curvatures(k1, k2));
     let rulings = flat_seeds.then(|| rulings::find_rulings(surface)).flatten();
     let trimmed = boundary.is_trim();
     if let Some(r) = rulings.filter(|_| allow_strips) {
@@ -382,7 +382,7 @@ fn check_seam(
         surface,
         layout,
         &samples.uv,
-        &samples.seeds,
+        &samples.planes,
         &regular,
         true,
         weld,
@@ -550,7 +550,11 @@ fn any_curvature(
         let adjust = Instant::now();
         let stats = adjust_planes(&mut triangulation, &mut augmented.planes, n);
         timings.neighbours += ms(adjust);
-        samples.planes.copy_from_slice(&augmented.planes[..n]);
+        // The seeds are the tangent planes' (Samples::seeds).
+        samples.tangent_planes = Some(std::mem::replace(
+            &mut samples.planes,
+            augmented.planes[..n].to_vec(),
+        ));
         neighbours.plane_tilts = stats.tilts;
         neighbours.validity_unresolved = stats.unresolved;
     }
