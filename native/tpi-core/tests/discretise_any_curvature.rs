@@ -535,10 +535,15 @@ fn a_seed_at_a_corner_of_a_mixed_surface_stays_joined_to_the_mesh() {
         [0.9981, 0.9960],
         [0.0033, 0.9974],
     ];
-    let options = DiscretiseOptions::default();
+    let exact = DiscretiseOptions::default();
+    // The adjusted planes flip edges too, from the same structure.
+    let adjusted = DiscretiseOptions {
+        planes: PlaneMode::Adjusted,
+        ..DiscretiseOptions::default()
+    };
     for seed in [7, 1, 2, 3] {
         let surface = mixed_surface(seed);
-        for degrees in [0.0, 30.0] {
+        for (degrees, options) in [(0.0, &exact), (30.0, &exact), (0.0, &adjusted)] {
             let mut pattern = rotated_hex(300, degrees);
             // The hex pattern's own points near the corners give way to the corner seeds.
             pattern.retain(|p| {
@@ -547,9 +552,12 @@ fn a_seed_at_a_corner_of_a_mixed_surface_stays_joined_to_the_mesh() {
                     .all(|c| (p[0] - c[0]).hypot(p[1] - c[1]) > 0.03)
             });
             pattern.extend_from_slice(&corners);
-            let d = discretise(&surface, &pattern, &options).expect("a mixed surface");
+            let d = discretise(&surface, &pattern, options).expect("a mixed surface");
             let v = check(&d);
-            let name = format!("mixed{seed} hex300@{degrees} with corner seeds");
+            let name = format!(
+                "mixed{seed} hex300@{degrees} with corner seeds, {:?} planes",
+                options.planes
+            );
             assert!(v.is_disc(), "{name}: not a disc: {v:?}");
             let t = topology(&d);
             for i in 0..d.facet_count() {
