@@ -141,8 +141,13 @@ pub fn vertex_deviations(surface: &dyn Surface, d: &Discretisation) -> Vec<f64> 
 
 /// The largest of [`vertex_deviations`] (0 for a mesh without vertices).
 fn largest_vertex_deviation(surface: &dyn Surface, d: &Discretisation) -> f64 {
-    vertex_deviations(surface, d)
-        .into_iter()
+    largest_foot_deviation(&vertex_feet(surface, d))
+}
+
+/// The largest deviation among the feet of [`vertex_feet`] (0 where there is none).
+fn largest_foot_deviation(feet: &[Option<(f64, [f64; 2])>]) -> f64 {
+    feet.iter()
+        .filter_map(|f| f.map(|(dev, _)| dev))
         .fold(0.0, f64::max)
 }
 
@@ -614,10 +619,7 @@ fn wall_lattice(
         let d = discretise_with_progress(surface, &uv, options, progress)?;
         *runs += 1;
         let feet = vertex_feet(surface, &d);
-        let own = feet
-            .iter()
-            .filter_map(|f| f.map(|(dev, _)| dev))
-            .fold(0.0, f64::max);
+        let own = largest_foot_deviation(&feet);
         let bulk = bulk_deviation(&d, &feet);
         if bulk > 0.0 && bulk.is_finite() {
             bulk_columns = Some(
@@ -888,10 +890,7 @@ fn refine(
     let mut stalled = 0usize;
     for pass in 0..=FIT_REFINE_PASSES {
         let report = d.quality.as_ref();
-        let own = feet
-            .iter()
-            .filter_map(|f| f.map(|(dev, _)| dev))
-            .fold(0.0, f64::max);
+        let own = largest_foot_deviation(&feet);
         let max_deviation = own.max(report.map_or(0.0, |q| q.max_deviation));
         let invalid = report.map_or(0, |q| q.invalid_facets);
         let offending_count = feet
