@@ -125,32 +125,33 @@ impl FootHints<'_> {
                 triangle_vertices,
                 vertex_source,
                 known,
-            } => match vertex_source.get(v) {
-                Some(&t) if t != u32::MAX => triangle_vertices
-                    .get(t as usize)
-                    .map_or(FootHint::FromSeed, TriangleVertex::hint),
-                _ => known_foot(known, v),
-            },
+            } => mesh_hint(vertex_source, known, v, |t| {
+                triangle_vertices.get(t).map(TriangleVertex::hint)
+            }),
             FootHints::ByTriangle {
                 hints,
                 vertex_source,
                 known,
-            } => match vertex_source.get(v) {
-                Some(&t) if t != u32::MAX => {
-                    hints.get(t as usize).copied().unwrap_or(FootHint::FromSeed)
-                }
-                _ => known_foot(known, v),
-            },
+            } => mesh_hint(vertex_source, known, v, |t| hints.get(t).copied()),
         }
     }
 }
 
-/// Vertex v's Newton foot if `known` (by vertex, ascending) holds it, else
-/// [`FootHint::FromSeed`].
-fn known_foot(known: &[(u32, [f64; 2])], v: usize) -> FootHint {
-    known
-        .binary_search_by_key(&(v as u32), |&(w, _)| w)
-        .map_or(FootHint::FromSeed, |k| FootHint::Known(known[k].1))
+/// Vertex v's hint in the facet stage's mesh: that of its triangle t (`of_triangle(t)`) where
+/// it is a triangle's vertex, else its Newton foot if `known` (by vertex, ascending) holds it;
+/// otherwise (or where `of_triangle` has none) [`FootHint::FromSeed`].
+fn mesh_hint(
+    vertex_source: &[u32],
+    known: &[(u32, [f64; 2])],
+    v: usize,
+    of_triangle: impl FnOnce(usize) -> Option<FootHint>,
+) -> FootHint {
+    match vertex_source.get(v) {
+        Some(&t) if t != u32::MAX => of_triangle(t as usize).unwrap_or(FootHint::FromSeed),
+        _ => known
+            .binary_search_by_key(&(v as u32), |&(w, _)| w)
+            .map_or(FootHint::FromSeed, |k| FootHint::Known(known[k].1)),
+    }
 }
 
 #[derive(Clone, Copy, Debug)]
