@@ -40,6 +40,7 @@ use crate::tolerance::{
     CORNER_ON_CROSSING, CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE,
     DEFAULT_FAR_VERTEX_FACTOR, GRAZING_CROSSING_SLACK, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES,
     RAY_DOUBLINGS, RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR, WALL_CLIP_SHORT_EDGE,
+    WALL_EXTENSION_MIN_DEPTH, WALL_EXTENSION_ROUNDS, WALL_EXTENSION_STEPS,
 };
 use crate::triangulation::{real_pairs, triangle_edges, DualTriangulation, Edge, Fan, NO_TRIANGLE};
 
@@ -199,6 +200,10 @@ struct Context<'a> {
     /// searched for crossings where its feet's segment crosses a loop, not only edges with
     /// an outside end.
     long_edges: bool,
+    /// Vertices of triangles with a ghost that lie inside the region are moved out past the
+    /// wall along their real facets' common line ([`extend_to_wall`]), except where the
+    /// triangle holds a real seed marked here (Some: the any-curvature path's clip).
+    extend_to_wall: Option<&'a [bool]>,
 }
 
 impl Context<'_> {
@@ -356,6 +361,7 @@ pub(crate) fn build_stage(
                     source,
                     &triangulation,
                     params,
+                    None,
                     stages,
                 )
             } else {
@@ -379,38 +385,62 @@ pub(crate) fn build_stage(
                 if *on_wall { &unreported } else { stages },
             );
             let mesh = if *on_wall {
-                let mut clipped = build_ghost_clipped_facets(
-                    surface,
-                    boundary,
-                    &samples.uv,
-                    &samples.tangents,
-                    &seeds.planes,
-                    &seeds.source,
-                    &triangulation,
-                    params,
-                    stages,
-                );
+                let clip = |blocked: &[bool]| {
+                    build_ghost_clipped_facets(
+                        surface,
+                        boundary,
+                        &samples.uv,
+                        &samples.tangents,
+                        &seeds.planes,
+                        &seeds.source,
+                        &triangulation,
+                        params,
+                        Some(blocked),
+                        stages,
+                    )
+                };
                 let spacing = samples.diagonal / (2.0 * n as f64).sqrt();
-                weld_coincident_crossings(&mut clipped, params.weld_distance);
-                drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
-                start_loops_at_lowest_triangle(&mut clipped);
-                // One edge count serves both: marking changes kinds, not loops.
-                let clipped_edges = crate::sanity::edges(&clipped.offsets, &clipped.loops).ok();
-                if let Some((_, boundary)) = &clipped_edges {
-                    mark_boundary_vertices(&mut clipped, boundary);
+                // The clipped facets in their final form, if they keep the closed ones' shape.
+                let finish = |mut clipped: FacetMesh| {
+                    weld_coincident_crossings(&mut clipped, params.weld_distance);
+                    drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
+                    start_loops_at_lowest_triangle(&mut clipped);
+                    // One edge count serves both: marking changes kinds, not loops.
+                    let clipped_edges = crate::sanity::edges(&clipped.offsets, &clipped.loops).ok();
+                    if let Some((_, boundary)) = &clipped_edges {
+                        mark_boundary_vertices(&mut clipped, boundary);
+                    }
+                    wall_clip_keeps_shape(&closed, &clipped, clipped_edges, &seeds.planes[..n])
+                        .then_some(clipped)
+                };
+                let mut blocked = vec![false; n];
+                let mut clipped = clip(&blocked);
+                // Facets extended to the wall that came out invalid keep their ghost's end.
+                for _ in 0..WALL_EXTENSION_ROUNDS {
+                    let invalid = invalid_wall_facets(&clipped, &seeds.planes[..n], &triangulation);
+                    let fresh = invalid
+                        .into_iter()
+                        .filter(|&f| !std::mem::replace(&mut blocked[f], true))
+                        .count();
+                    if fresh == 0 {
+                        break;
+                    }
+                    clipped = clip(&blocked);
                 }
-                if wall_clip_keeps_shape(&closed, &clipped, clipped_edges, &seeds.planes[..n]) {
-                    // The count of coincident neighbour planes is the structure's, not the
-                    // clip's: it is kept.
-                    clipped.diagnostics.extend(
-                        closed
-                            .diagnostics
-                            .into_iter()
-                            .filter(|d| matches!(d, Diagnostic::CoincidentPlanes { .. })),
-                    );
-                    clipped
-                } else {
-                    closed
+                let kept = finish(clipped).or_else(|| finish(clip(&vec![true; n])));
+                match kept {
+                    Some(mut clipped) => {
+                        // The count of coincident neighbour planes is the structure's, not the
+                        // clip's: it is kept.
+                        clipped.diagnostics.extend(
+                            closed
+                                .diagnostics
+                                .into_iter()
+                                .filter(|d| matches!(d, Diagnostic::CoincidentPlanes { .. })),
+                        );
+                        clipped
+                    }
+                    None => closed,
                 }
             } else {
                 closed
@@ -501,6 +531,55 @@ fn start_loops_at_lowest_triangle(mesh: &mut FacetMesh) {
     }
 }
 
+/// The facets next to a ghost in `tri` (the only ones [`extend_to_wall`] changes) that are
+/// not simple in their plane or overlap a real neighbour's facet seen along their mean normal
+/// (the report's tests, [`crate::quality`]), both of each overlapping pair; ascending.
+fn invalid_wall_facets(mesh: &FacetMesh, planes: &[Plane], tri: &DualTriangulation) -> Vec<usize> {
+    let n = planes.len();
+    let mut at_wall = vec![false; n];
+    let mut pairs = Vec::new();
+    for ids in &tri.triangles {
+        let ghost = ids.iter().any(|&p| p as usize >= n);
+        for k in 0..3 {
+            let (a, b) = (ids[k] as usize, ids[(k + 1) % 3] as usize);
+            if a < n && ghost {
+                at_wall[a] = true;
+            }
+            if a < n && b < n {
+                pairs.push((a.min(b), a.max(b)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    let polygon = |f: usize| -> Vec<DVec3> {
+        mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize]
+            .iter()
+            .map(|&v| mesh.vertices[v as usize])
+            .collect()
+    };
+    let mut buffer = Vec::new();
+    let simple: Vec<bool> = (0..n)
+        .map(|f| {
+            !at_wall[f]
+                || crate::quality::facet_shape_into(&planes[f], polygon(f).into_iter(), &mut buffer)
+                    .simple
+        })
+        .collect();
+    let mut invalid: Vec<bool> = simple.iter().map(|&s| !s).collect();
+    for (f, g) in pairs {
+        if !(at_wall[f] || at_wall[g]) || !(simple[f] && simple[g]) {
+            continue;
+        }
+        let normal = planes[f].normal + planes[g].normal;
+        if crate::validity_flips::polygons_overlap(&polygon(f), &polygon(g), normal) {
+            invalid[f] = true;
+            invalid[g] = true;
+        }
+    }
+    (0..n).filter(|&f| invalid[f]).collect()
+}
+
 /// What [`wall_clip_keeps_shape`] compares.
 struct MeshShape {
     euler: i64,
@@ -567,6 +646,7 @@ fn build_facets(
         convex_side: &samples.convex_side,
         regular: regular || params.exact_dual,
         long_edges: false,
+        extend_to_wall: None,
     };
     let walk = walk_facets(&ctx, samples.uv.len(), tri, params, stages);
     if release_tangents {
@@ -598,6 +678,7 @@ pub(crate) fn build_ghost_clipped_facets(
     source: &[u32],
     tri: &DualTriangulation,
     params: &FacetParams,
+    extend_to_wall: Option<&[bool]>,
     stages: &Stages<'_>,
 ) -> FacetMesh {
     let real_count = uv.len();
@@ -614,6 +695,7 @@ pub(crate) fn build_ghost_clipped_facets(
         convex_side: &convex_side,
         regular: true,
         long_edges: true,
+        extend_to_wall,
     };
     // A ghost's parameters are the first-order foot of its point seen from its seed: only a
     // start for the projections of the vertices around it.
@@ -671,7 +753,7 @@ fn walk_facets(
     let mut diagnostics = Vec::new();
 
     // 1. Triangle vertices, their conditioning and whether they lie inside.
-    let triangle_vertices: Vec<TriangleVertex> = tri
+    let mut triangle_vertices: Vec<TriangleVertex> = tri
         .triangles
         .par_iter()
         .map_init(
@@ -689,6 +771,9 @@ fn walk_facets(
             .filter(|(v, _)| !v.exact)
             .map(|(v, &ids)| ill_conditioned(ctx, ids, v)),
     );
+    if let Some(blocked) = ctx.extend_to_wall {
+        extend_to_wall(ctx, real_count, tri, blocked, &mut triangle_vertices);
+    }
 
     // 2. Boundary crossings, only on the edges where they can be: a hull edge, or an edge
     // with an outside vertex at either end (in the order of `DualTriangulation::edges`).
@@ -787,6 +872,126 @@ fn walk_facets(
         diagnostics,
         absorbed,
     }
+}
+
+/// Moves the vertices of triangles with a ghost that lie inside the region out past the wall.
+///
+/// Such a vertex V = T_i ∩ T_j ∩ T_g (g a ghost) would end facets i and j on the ghost's
+/// plane T_g, short of the wall: the part of the ghost's facet inside the region is a notch
+/// in the mesh's edge (the saw-tooth along a saddle's sides), the wedge at V between i's edge
+/// on T_i ∩ T_g and j's edge on T_j ∩ T_g. Where the line T_i ∩ T_j runs on into that wedge
+/// (direction w = ±(n_i × n_j) strictly between the two edges, seen along n_g, and away from
+/// the edge's other end A unless A lies within a quarter side of V), V moves along w to the
+/// first V' = V + k (h/4) w (k = 1..=[`WALL_EXTENSION_STEPS`], h the triangle's longest side)
+/// whose foot lies outside. V' is in both T_i and T_j: the two facets meet along their common
+/// line out to the wall, where the clip cuts them and follows the wall, and both stay exactly
+/// planar. Where the line misses the wedge (one facet reflex at V, or four planes through
+/// nearly one point) the notch stays: i and j cannot share an edge through it.
+///
+/// With two ghosts, V is a vertex of one real facet i only; it moves within T_i along the
+/// bisector of the ghosts' wedge (the outside of i's corner at V). A vertex within
+/// [`WALL_EXTENSION_MIN_DEPTH`] of the wall, one the steps do not bring outside, and every
+/// vertex of a triangle holding a seed marked in `blocked` (the caller's retry for facets that
+/// came out invalid) stay where they are.
+fn extend_to_wall(
+    ctx: &Context<'_>,
+    real_count: usize,
+    tri: &DualTriangulation,
+    blocked: &[bool],
+    triangle_vertices: &mut [TriangleVertex],
+) {
+    let moved: Vec<(usize, TriangleVertex)> = tri
+        .triangles
+        .par_iter()
+        .enumerate()
+        .filter_map(|(t, &ids)| {
+            let v = &triangle_vertices[t];
+            let ghosts = ids.iter().filter(|&&p| p as usize >= real_count).count();
+            // A vertex on the wall (a grid on a hypar) or within rounding of it leaves no notch
+            // worth a move, and its side would be decided by rounding.
+            if !(1..=2).contains(&ghosts)
+                || !v.exact
+                || v.inside <= WALL_EXTENSION_MIN_DEPTH * v.reach
+            {
+                return None;
+            }
+            if ids
+                .iter()
+                .any(|&p| (p as usize) < real_count && blocked[p as usize])
+            {
+                return None;
+            }
+            let plane = |p: u32| &ctx.planes[p as usize];
+            // The vertex across the edge opposite position k, as the walk left it.
+            let across = |k: usize| {
+                let other = tri.neighbours[t][k];
+                (other != NO_TRIANGLE).then(|| triangle_vertices[other as usize].point)
+            };
+            let [a, b, c] = ids.map(|p| plane(p).point);
+            let step = 0.25 * a.distance(b).max(b.distance(c)).max(c.distance(a));
+            let direction = if ghosts == 1 {
+                // ids[k] = g, ids[k + 1] = i, ids[k + 2] = j (counter-clockwise).
+                let k = ids.iter().position(|&p| p as usize >= real_count)?;
+                let (i, j) = (ids[(k + 1) % 3], ids[(k + 2) % 3]);
+                let u = plane(i).normal.cross(plane(j).normal).try_normalize()?;
+                let apart = v.point - across(k)?;
+                // Facet i's edge on T_g runs to the vertex across (g, i), j's to that across
+                // (j, g): the ghost's wedge at V lies between them.
+                let [ri, rj] = [
+                    across((k + 2) % 3)? - v.point,
+                    across((k + 1) % 3)? - v.point,
+                ];
+                let normal = plane(ids[k]).normal;
+                [u, -u].into_iter().find(|&w| {
+                    within_wedge(normal, ri, rj, w) && (w.dot(apart) > 0.0 || apart.length() < step)
+                })?
+            } else {
+                // ids[k] = the real seed, its facet's only vertex here: V goes out through the
+                // wedge of the ghosts, along its bisector in T_k.
+                let k = ids.iter().position(|&p| (p as usize) < real_count)?;
+                let previous = across((k + 2) % 3)?;
+                let next = across((k + 1) % 3)?;
+                let n = plane(ids[k]).normal;
+                let convex = n.dot((v.point - previous).cross(next - v.point)) > 0.0;
+                let sum =
+                    (previous - v.point).try_normalize()? + (next - v.point).try_normalize()?;
+                let outward = if convex { -sum } else { sum };
+                (outward - n * n.dot(outward)).try_normalize()?
+            };
+            let mut guess = v.foot;
+            for k in 1..=WALL_EXTENSION_STEPS {
+                let point = v.point + direction * (step * k as f64);
+                let (foot, inside) = ctx.measure(point, guess);
+                if inside <= 0.0 {
+                    return Some((
+                        t,
+                        TriangleVertex {
+                            point,
+                            foot,
+                            inside,
+                            reach: v.reach,
+                            exact: true,
+                            measured: true,
+                            newton_foot: true,
+                        },
+                    ));
+                }
+                guess = foot;
+            }
+            None
+        })
+        .collect();
+    for (t, vertex) in moved {
+        triangle_vertices[t] = vertex;
+    }
+}
+
+/// Whether the direction w lies strictly inside the wedge between the rays a and b (under
+/// 180 degrees), seen along `normal`: w = alpha a + beta b with alpha, beta > 0.
+fn within_wedge(normal: DVec3, a: DVec3, b: DVec3, w: DVec3) -> bool {
+    let turn = |x: DVec3, y: DVec3| normal.dot(x.cross(y));
+    let (ab, aw, wb) = (turn(a, b), turn(a, w), turn(w, b));
+    ab != 0.0 && aw * ab > 0.0 && wb * ab > 0.0
 }
 
 /// Step 4 of [`clip_facets`]: the walk's items assembled into the mesh.
@@ -1109,6 +1314,7 @@ pub(crate) fn single_triangle_vertex(
         convex_side,
         regular: true,
         long_edges: false,
+        extend_to_wall: None,
     };
     triangle_vertex_ordered(&ctx, ids, far_factor)
 }

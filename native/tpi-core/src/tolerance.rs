@@ -178,6 +178,26 @@ pub const GRAZING_CROSSING_SLACK: f64 = 1e-9;
 /// the spacing, which the panels' offset (fabrication) cannot follow.
 pub const WALL_CLIP_SHORT_EDGE: f64 = 0.01;
 
+/// Quarter-side steps a vertex of a triangle with a ghost that lies inside the region may be
+/// moved along its real facets' common line to get past the wall (`facets::extend_to_wall`):
+/// at most three quarters of the triangle's longest side. A line that needs farther runs
+/// nearly along the wall, and its crossing would be near another side or corner, not at the
+/// notch (on samples/saddle.json, moves of 2.5 and 3 sides sent facets around a corner).
+pub const WALL_EXTENSION_STEPS: usize = 3;
+
+/// A vertex of a triangle with a ghost is moved out past the wall (`facets::extend_to_wall`)
+/// only when its foot lies deeper inside than this fraction of the triangle's reach (the
+/// normalised distance of its points from the vertex's first-order foot, about one spacing):
+/// nearer the wall the notch is negligible, and whether the vertex is inside at all is decided
+/// by rounding (a grid on a hypar puts vertices on the wall), which must not change the mesh
+/// between one face and the same face split into a polysurface.
+pub const WALL_EXTENSION_MIN_DEPTH: f64 = 0.05;
+
+/// Rounds of facets extended to the wall (`facets::extend_to_wall`) that came out invalid
+/// getting their ghost's end back: each round blocks the moves at the facets still invalid
+/// and clips again.
+pub const WALL_EXTENSION_ROUNDS: usize = 3;
+
 /// Doublings of the step when following a hull ray outwards.
 pub const RAY_DOUBLINGS: usize = 60;
 

@@ -956,3 +956,62 @@ fn sweep_saddles_give_valid_discs_with_exact_planes() {
     }
     report(&table);
 }
+
+/// Where a triangle with a ghost has its vertex inside the region, its two real facets are
+/// carried along their common line out to the wall (`facets::extend_to_wall`) instead of
+/// ending on the ghost's plane short of it. Measured independently: the distance from the
+/// surface's boundary curve to the mesh's edges (edges held by one facet), in spacings, on the
+/// 17 analytic saddles with hex (0 and 30 degrees), grid and Poisson patterns of about 400
+/// points. Before the extension the mean was 0.0427 and the 90th percentiles of hp-ab-long
+/// (hex) and skew1 (grid) 0.125 and 0.146; with it 0.0369, 0.083 and 0.098.
+#[test]
+fn saddle_meshes_reach_the_wall() {
+    let patterns: Vec<(&str, Vec<[f64; 2]>)> = vec![
+        ("hex@0", rotated_hex(400, 0.0)),
+        ("hex@30", rotated_hex(400, 30.0)),
+        ("grid", grid(400)),
+        (
+            "poisson",
+            Generator::Poisson {
+                radius: 0.03,
+                seed: 0,
+            }
+            .generate()
+            .uv,
+        ),
+    ];
+    let (mut sum, mut count) = (0.0, 0);
+    for (name, surface) in saddles::saddles() {
+        for (pattern, uv) in &patterns {
+            let d = discretise(surface.as_ref(), uv, &DiscretiseOptions::default())
+                .unwrap_or_else(|e| panic!("{name} {pattern}: {e}"));
+            let validity = check(&d);
+            assert!(
+                validity.is_disc() && validity.invalid_facets().is_empty(),
+                "{name} {pattern}: {validity:?}"
+            );
+            let gaps = boundary_gaps(surface.as_ref(), &d, 300);
+            let mean = gaps.iter().sum::<f64>() / gaps.len() as f64;
+            let p90 = gaps[gaps.len() * 9 / 10];
+            if std::env::var("TPI_TABLE").is_ok() {
+                println!("{name:12} {pattern:8} mean {mean:.4} p90 {p90:.3}");
+            }
+            if matches!(
+                (name.as_str(), *pattern),
+                ("hp-ab-long", "hex@0") | ("skew1", "grid")
+            ) {
+                assert!(
+                    p90 <= 0.11,
+                    "{name} {pattern}: 90 % of the edge within {p90:.3} spacings"
+                );
+            }
+            sum += mean;
+            count += 1;
+        }
+    }
+    let mean = sum / count as f64;
+    assert!(
+        mean <= 0.039,
+        "mean distance of the mesh's edge from the wall: {mean:.4} spacings"
+    );
+}

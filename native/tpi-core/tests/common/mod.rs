@@ -1130,3 +1130,44 @@ pub fn sorted_tilts(d: &Discretisation) -> Vec<f64> {
     tilted.sort_by(f64::total_cmp);
     tilted
 }
+
+/// How far the mesh's edge stays from the surface's edge: for `samples` points per side of
+/// the domain rectangle's boundary curve, the distance of the surface point to the nearest
+/// mesh boundary edge (an edge held by one facet, from the loops), over the mean seed spacing
+/// (seed bounding diagonal / sqrt(2 n)); ascending.
+pub fn boundary_gaps(surface: &dyn Surface, d: &Discretisation, samples: usize) -> Vec<f64> {
+    let t = topology(d);
+    let edges: Vec<(DVec3, DVec3)> = t
+        .edge_facets
+        .iter()
+        .filter(|(_, f)| f.len() == 1)
+        .map(|(&(a, b), _)| (d.vertices[a as usize], d.vertices[b as usize]))
+        .collect();
+    let spacing = seed_diagonal(d) / (2.0 * d.facet_count() as f64).sqrt();
+    let segment_distance = |p: DVec3, a: DVec3, b: DVec3| {
+        let ab = b - a;
+        let t = ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+        (a + ab * t - p).length()
+    };
+    let dom = surface.domain();
+    let (u, v) = (dom.u, dom.v);
+    let mut gaps = Vec::with_capacity(4 * samples);
+    for k in 0..samples {
+        let s = k as f64 / samples as f64;
+        for [a, b] in [
+            [u.min + s * u.length(), v.min],
+            [u.max, v.min + s * v.length()],
+            [u.max - s * u.length(), v.max],
+            [u.min, v.max - s * v.length()],
+        ] {
+            let p = surface.point_at(a, b);
+            let nearest = edges
+                .iter()
+                .map(|&(e0, e1)| segment_distance(p, e0, e1))
+                .fold(f64::INFINITY, f64::min);
+            gaps.push(nearest / spacing);
+        }
+    }
+    gaps.sort_by(f64::total_cmp);
+    gaps
+}
