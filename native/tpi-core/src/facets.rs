@@ -19,8 +19,6 @@
 //!   [`crate::mesh`], which welds the vertices where four or more planes meet in one point,
 //!   numbers them and writes the loops.
 
-use std::collections::HashMap;
-
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -41,7 +39,9 @@ use crate::tolerance::{
     DEFAULT_FAR_VERTEX_FACTOR, GRAZING_CROSSING_SLACK, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES,
     RAY_DOUBLINGS, RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR, WALL_CLIP_SHORT_EDGE,
 };
-use crate::triangulation::{real_pairs, triangle_edges, DualTriangulation, Edge, Fan, NO_TRIANGLE};
+use crate::triangulation::{
+    real_pairs, triangle_edges, DualTriangulation, Edge, Fan, IndexMap, NO_TRIANGLE,
+};
 
 /// What a mesh vertex is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -704,7 +704,8 @@ fn walk_facets(
             }
         })
         .collect();
-    let mut crossing_ranges: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(edges.len());
+    let mut crossing_ranges: IndexMap<(u32, u32), (u32, u32)> =
+        IndexMap::with_capacity_and_hasher(edges.len(), Default::default());
     let mut crossings = Vec::new();
     for (edge, (list, diagnostic)) in edges.iter().zip(per_edge) {
         let first = crossings.len() as u32;
@@ -905,7 +906,7 @@ impl PackedItems {
 struct ItemContext<'a> {
     tri: &'a DualTriangulation,
     incident: &'a [u32],
-    crossing_ranges: &'a HashMap<(u32, u32), (u32, u32)>,
+    crossing_ranges: &'a IndexMap<(u32, u32), (u32, u32)>,
     crossings: &'a [Crossing],
     corner_owner: &'a [Option<u32>],
     corners: &'a [([f64; 2], Position)],
