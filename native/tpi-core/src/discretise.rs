@@ -321,15 +321,10 @@ impl Serialize for ContractView<'_> {
     }
 }
 
-/// From this many pattern points on, [`validate_pattern`] finds duplicates by the grid of
-/// `validate_large` instead of `validate_uv`'s hash (the same errors; at 1,000 points the grid
-/// costs 0.42M instructions against the hash's 0.70M).
-const GRID_VALIDATION_FROM: usize = 64;
-
 /// Checks normalised pattern points: finite, inside [0, 1]^2, no duplicates
 /// (`validate_uv` in the pattern module), and at least three of them.
 pub fn validate_pattern(points: &[[f64; 2]]) -> Result<(), TpiError> {
-    if points.len() < GRID_VALIDATION_FROM {
+    if points.len() < 4096 {
         validate_uv(points)?;
     } else {
         validate_large(points)?;
@@ -343,7 +338,7 @@ pub fn validate_pattern(points: &[[f64; 2]]) -> Result<(), TpiError> {
     Ok(())
 }
 
-/// [`validate_uv`] for all but the smallest patterns, with the same errors: the range check, then for
+/// [`validate_uv`] for large patterns, with the same errors: the range check, then for
 /// every point in parallel its nearest earlier point closer than the duplicate tolerance
 /// (ties: the smaller index; the same distance formula), found in a grid of about one point
 /// per cell (a duplicate lies in the point's cell or a neighbour, the cells being larger than
