@@ -19,8 +19,6 @@
 //!   [`crate::mesh`], which welds the vertices where four or more planes meet in one point,
 //!   numbers them and writes the loops.
 
-use std::collections::HashMap;
-
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -42,7 +40,9 @@ use crate::tolerance::{
     RAY_DOUBLINGS, RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR, WALL_CLIP_SHORT_EDGE,
     WALL_EXTENSION_MIN_DEPTH, WALL_EXTENSION_ROUNDS, WALL_EXTENSION_STEPS,
 };
-use crate::triangulation::{real_pairs, triangle_edges, DualTriangulation, Edge, Fan, NO_TRIANGLE};
+use crate::triangulation::{
+    real_pairs, triangle_edges, DualTriangulation, Edge, Fan, IndexMap, NO_TRIANGLE,
+};
 
 /// What a mesh vertex is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -789,7 +789,8 @@ fn walk_facets(
             }
         })
         .collect();
-    let mut crossing_ranges: HashMap<(u32, u32), (u32, u32)> = HashMap::with_capacity(edges.len());
+    let mut crossing_ranges: IndexMap<(u32, u32), (u32, u32)> =
+        IndexMap::with_capacity_and_hasher(edges.len(), Default::default());
     let mut crossings = Vec::new();
     for (edge, (list, diagnostic)) in edges.iter().zip(per_edge) {
         let first = crossings.len() as u32;
@@ -1110,7 +1111,7 @@ impl PackedItems {
 struct ItemContext<'a> {
     tri: &'a DualTriangulation,
     incident: &'a [u32],
-    crossing_ranges: &'a HashMap<(u32, u32), (u32, u32)>,
+    crossing_ranges: &'a IndexMap<(u32, u32), (u32, u32)>,
     crossings: &'a [Crossing],
     corner_owner: &'a [Option<u32>],
     corners: &'a [([f64; 2], Position)],

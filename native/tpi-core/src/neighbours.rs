@@ -42,7 +42,7 @@ use crate::tolerance::{
     METRIC_REGULARISATION, SLOPE_FRAME_SAMPLES,
 };
 
-use crate::triangulation::{orient, DualTriangulation, NO_TRIANGLE};
+use crate::triangulation::{orient, DualTriangulation, IndexMap, NO_TRIANGLE};
 use crate::validity_flips::validity_flips;
 
 /// Counts of what the neighbour decision did.
@@ -385,11 +385,11 @@ fn trim_hull(tri: &mut DualTriangulation, input: &NeighbourInput<'_>) -> usize {
 #[derive(Default)]
 struct Rings {
     /// Sorted neighbour lists of the points asked for.
-    lists: std::collections::HashMap<u32, Vec<u32>>,
+    lists: IndexMap<u32, Vec<u32>>,
     /// A triangle holding each point met so far.
-    holder: std::collections::HashMap<u32, u32>,
+    holder: IndexMap<u32, u32>,
     /// Neighbours of changed triangles before their first change.
-    original: std::collections::HashMap<u32, [u32; 3]>,
+    original: IndexMap<u32, [u32; 3]>,
 }
 
 impl Rings {
@@ -562,7 +562,7 @@ fn flip_until_stable(
     };
     let mut dirty = vec![false; tri.len()];
     // The vertices of changed triangles before their first change.
-    let mut original: std::collections::HashMap<u32, [u32; 3]> = std::collections::HashMap::new();
+    let mut original: IndexMap<u32, [u32; 3]> = IndexMap::default();
     let budget = 20 * tri.len() + 100;
     let mut flips = 0;
     let mut unresolved = 0;

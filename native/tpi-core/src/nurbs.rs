@@ -929,6 +929,31 @@ fn bicubic_derivatives(
     }
 }
 
+/// The point and first derivatives of [`bicubic_derivatives`]: the same sums in the same
+/// order, without the second derivatives' (bit for bit its `point`, `su` and `sv`).
+#[allow(clippy::needless_range_loop)]
+#[inline(always)]
+fn bicubic_first_derivatives(
+    patch: &[DVec3; 16],
+    nu: &[[f64; BEZIER_MAX_DEGREE + 1]; 3],
+    nv: &[[f64; BEZIER_MAX_DEGREE + 1]; 3],
+) -> [DVec3; 3] {
+    let (mut point, mut su, mut sv) = (DVec3::ZERO, DVec3::ZERO, DVec3::ZERO);
+    for k in 0..4 {
+        let (mut t0, mut t1) = (DVec3::ZERO, DVec3::ZERO);
+        for l in 0..4 {
+            let cp = patch[4 * k + l];
+            t0 += nv[0][l] * cp;
+            t1 += nv[1][l] * cp;
+        }
+        let (n0, n1) = (nu[0][k], nu[1][k]);
+        point += n0 * t0;
+        su += n1 * t0;
+        sv += n0 * t1;
+    }
+    [point, su, sv]
+}
+
 /// The non-rational bicubic patch's point from the Bernstein values `nu`, `nv`: the
 /// contraction of [`NurbsSurface::point_bezier`] with constant loop bounds.
 #[allow(clippy::needless_range_loop)]
@@ -1025,6 +1050,28 @@ impl Surface for NurbsSurface {
         } else {
             self.evaluate_with::<BASIS_LEN>(u, v)
         }
+    }
+
+    fn first_derivatives(&self, u: f64, v: f64) -> [DVec3; 3] {
+        let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
+        if (pu, pv) == (3, 3) && !self.bezier.euclidean.is_empty() {
+            // The non-rational bicubic patch (as `evaluate_bezier`), rows 0 and 1 only.
+            let (span_u, u) = self.basis_u.span(u);
+            let (span_v, v) = self.basis_v.span(v);
+            let (_, su, sv) = self
+                .bezier
+                .patch(&self.basis_u, &self.basis_v, span_u, span_v);
+            let nu = bernstein_derivatives(pu, (u - self.basis_u.knots[span_u]) * su, su);
+            let nv = bernstein_derivatives(pv, (v - self.basis_v.knots[span_v]) * sv, sv);
+            let patch = self
+                .bezier
+                .euclidean_patch(&self.basis_u, &self.basis_v, span_u, span_v);
+            if let Ok(cubic) = <&[DVec3; 16]>::try_from(patch) {
+                return bicubic_first_derivatives(cubic, &nu, &nv);
+            }
+        }
+        let d = self.evaluate(u, v);
+        [d.point, d.su, d.sv]
     }
 
     fn point_at(&self, u: f64, v: f64) -> DVec3 {

@@ -188,21 +188,34 @@ fn newton_foot(
     };
     let [mut u, mut v] = wrap(guess);
     let (du_scale, dv_scale) = (domain.u.length(), domain.v.length());
+    // Outside the domain the step is Gauss-Newton's on the tangent-plane extension, which reads
+    // the first derivatives alone; they are kept for the next iteration, which often clamps to
+    // the same boundary point (beyond a corner always).
+    // (Compared bit for bit: -0.0 and 0.0 are different arguments.)
+    let mut outside: Option<([u64; 2], [DVec3; 3])> = None;
     for _ in 0..MAX_PROJECTION_ITERATIONS {
         let (cu, cv) = domain.clamp(u, v);
-        let d = surface.evaluate(cu, cv);
         let inside = cu == u && cv == v;
-        let s = d.point + d.su * (u - cu) + d.sv * (v - cv);
+        let (point, su, sv, second) = if inside {
+            let d = surface.evaluate(cu, cv);
+            (d.point, d.su, d.sv, Some([d.suu, d.suv, d.svv]))
+        } else {
+            let at = [cu.to_bits(), cv.to_bits()];
+            let first = match outside {
+                Some((last, first)) if last == at => first,
+                _ => surface.first_derivatives(cu, cv),
+            };
+            outside = Some((at, first));
+            let [point, su, sv] = first;
+            (point, su, sv, None)
+        };
+        let s = point + su * (u - cu) + sv * (v - cv);
         let r = x - s;
-        let g = [d.su.dot(r), d.sv.dot(r)];
-        let mut h = [d.su.dot(d.su), d.su.dot(d.sv), d.sv.dot(d.sv)];
+        let g = [su.dot(r), sv.dot(r)];
+        let mut h = [su.dot(su), su.dot(sv), sv.dot(sv)];
         let mut quadratic = false;
-        if inside {
-            let full = [
-                h[0] - r.dot(d.suu),
-                h[1] - r.dot(d.suv),
-                h[2] - r.dot(d.svv),
-            ];
+        if let Some([suu, suv, svv]) = second {
+            let full = [h[0] - r.dot(suu), h[1] - r.dot(suv), h[2] - r.dot(svv)];
             let full_det = full[0] * full[2] - full[1] * full[1];
             if full[0] > 0.0 && full_det > 0.0 {
                 // det(J^T J - r.II) / det(J^T J) = (1 - k1 d)(1 - k2 d): near the focal

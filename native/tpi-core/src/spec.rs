@@ -863,6 +863,15 @@ impl Surface for SurfaceModel {
         }
     }
 
+    fn first_derivatives(&self, u: f64, v: f64) -> [DVec3; 3] {
+        match self {
+            SurfaceModel::Nurbs(n) => n.first_derivatives(u, v),
+            SurfaceModel::Analytic(a) => a.first_derivatives(u, v),
+            SurfaceModel::Polysurface(p) => p.first_derivatives(u, v),
+            SurfaceModel::Trimmed { surface, .. } => surface.first_derivatives(u, v),
+        }
+    }
+
     fn trim(&self) -> Option<&Trim> {
         match self {
             SurfaceModel::Trimmed { trim, .. } => Some(trim),

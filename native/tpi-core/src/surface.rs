@@ -131,6 +131,15 @@ pub trait Surface: Send + Sync {
         self.evaluate(u, v).point
     }
 
+    /// The point and first partial derivatives (S, Su, Sv) at (u, v), clamped into the
+    /// domain: bit for bit those of [`Surface::evaluate`], without the second derivatives
+    /// (for Gauss-Newton steps, which never read them); implementations may override with a
+    /// cheaper path that computes the same sums in the same order.
+    fn first_derivatives(&self, u: f64, v: f64) -> [DVec3; 3] {
+        let d = self.evaluate(u, v);
+        [d.point, d.su, d.sv]
+    }
+
     /// The model's length units (the surface file's `"units"`), `None` when unitless: carried
     /// to the discretisation and every output, never used to rescale.
     fn units(&self) -> Option<crate::units::Units> {

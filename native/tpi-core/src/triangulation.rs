@@ -22,6 +22,36 @@ use crate::error::TpiError;
 /// Marks a missing neighbour (a hull edge) or an unset index.
 pub(crate) const NO_TRIANGLE: u32 = u32::MAX;
 
+/// A hash map keyed by point or triangle indices (or tuples of them), hashed by
+/// [`IndexHasher`] instead of SipHash: the keys are the pipeline's own indices, looked up far
+/// more often than the maps are built, and no map keyed this way is iterated, so the hasher
+/// changes no result.
+pub(crate) type IndexMap<K, V> = HashMap<K, V, std::hash::BuildHasherDefault<IndexHasher>>;
+
+/// A multiply-rotate hasher for integer keys (as rustc's FxHasher).
+#[derive(Default)]
+pub(crate) struct IndexHasher(u64);
+
+impl std::hash::Hasher for IndexHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(u64::from(b));
+        }
+    }
+
+    fn write_u32(&mut self, x: u32) {
+        self.write_u64(u64::from(x));
+    }
+
+    fn write_u64(&mut self, x: u64) {
+        self.0 = (self.0.rotate_left(5) ^ x).wrapping_mul(0x517C_C1B7_2722_0A95);
+    }
+
+    fn finish(&self) -> u64 {
+        self.0
+    }
+}
+
 #[derive(Clone, Copy)]
 struct Site {
     position: Point2<f64>,

@@ -400,6 +400,36 @@ fn point_at_agrees_with_evaluate() {
     }
 }
 
+/// `first_derivatives` gives `evaluate`'s point and first derivatives bit for bit (projections
+/// mix the two, and their results must not depend on which was called), inside the domain,
+/// on its sides and beyond them (clamped), on random surfaces and the benchmark dome (the
+/// non-rational bicubic path).
+#[test]
+fn first_derivatives_are_those_of_evaluate_bit_for_bit() {
+    let mut rng = Rng(0x00F1_257D);
+    let mut surfaces: Vec<NurbsSurface> = (0..100)
+        .map(|index| random_surface(&mut rng, index).surface)
+        .collect();
+    surfaces.push(tpi_core::benchmark::nurbs_dome());
+    surfaces.push(tpi_core::benchmark::saddle());
+    for surface in &surfaces {
+        let domain = surface.domain();
+        for _ in 0..200 {
+            // Parameters up to a fifth of the domain beyond each side.
+            let (s, t) = (1.4 * rng.unit() - 0.2, 1.4 * rng.unit() - 0.2);
+            let (u, v) = (domain.u.lerp(s), domain.v.lerp(t));
+            let d = surface.evaluate(u, v);
+            let [point, su, sv] = surface.first_derivatives(u, v);
+            for (a, b) in [(point, d.point), (su, d.su), (sv, d.sv)] {
+                assert_eq!(
+                    a.to_array().map(f64::to_bits),
+                    b.to_array().map(f64::to_bits)
+                );
+            }
+        }
+    }
+}
+
 /// The surface is continuous across interior knots (multiplicity <= degree): the limits from
 /// both sides agree with the value at the knot.
 #[test]
