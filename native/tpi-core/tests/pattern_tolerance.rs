@@ -335,8 +335,18 @@ fn aligned_hypars_need_at_most_60_percent_of_the_uniform_hex_points() {
             let name = format!("aligned hypar k = {}", q.k[0]);
             let ratios = fit_and_compare_by(&name, q, tolerance, &quadric_distance(q));
             // Against hex:NxN (rows a column apart, which suits the walls of a hypar) the
-            // 60 % is not met at k = 0.24, D = 0.01: 157 points against 225 (0.698).
-            assert!(ratios[0] <= 0.6, "{name}, {tolerance}: {ratios:?}");
+            // 60 % is not met at k = 0.24, D = 0.01: 153 points against 225 (0.680; 157,
+            // 0.698 before the lattices of FIT_SADDLE_EXTRA_ROW_DENSITIES, which took
+            // k = 0.24, D = 0.003 from 487 points, 0.720, to 373, 0.552).
+            let nxn_bound = if q.k[0] == 0.24 && tolerance == 0.01 {
+                0.7
+            } else {
+                0.6
+            };
+            assert!(
+                ratios[0] <= 0.6 && ratios[1] <= nxn_bound,
+                "{name}, {tolerance}: {ratios:?}"
+            );
         }
     }
 }
@@ -371,11 +381,12 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 #[test]
 fn on_nearly_uniform_surfaces_the_pattern_still_beats_uniform_hex() {
     // Bounds against hex:spacing and hex:NxN: measured 0.619 and 0.645 on the paraboloid
-    // (312 points against 504 and 484), 0.529 and 0.689 on the hypar (135 against 255 and
-    // 196: hex:NxN's rows a column apart suit the hypar's walls).
+    // (312 points against 504 and 484), 0.431 and 0.561 on the hypar (110 against 255 and
+    // 196; 135 points, 0.529 and 0.689, before the lattices of other row densities:
+    // hex:NxN's rows a column apart suit the hypar's walls).
     for (name, bounds) in [
         ("paraboloid.json", [0.63, 0.66]),
-        ("hypar.json", [0.6, 0.7]),
+        ("hypar.json", [0.6, 0.6]),
     ] {
         let ratios = fit_and_compare(name, 0.01);
         assert!(
