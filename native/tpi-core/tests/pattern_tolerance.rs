@@ -366,10 +366,11 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 /// The paraboloid of revolution and the hypar have nearly uniform curvature and
 /// parametrisation: what a pattern saves there is mostly at the boundary (uniform hex is set
 /// by its corners and boundary vertices). On the hypar the 60 % holds since the
-/// lattices refined at their walls and the lattices with 1.2 times the rows on saddles
-/// (`fit.rs`): 0.529 (135 points against 255; 0.702 with 179 before) at D = 0.01. On the
-/// paraboloid it does not: measured 0.623 (314 points against 504; 0.659 before the lattices
-/// with sparser sides). On the paraboloid the lattice's
+/// lattices refined at their walls and the lattices with other row densities on saddles
+/// (`fit.rs`): 0.431 (110 points against 255; 0.702 with 179 before) at D = 0.01. On the
+/// paraboloid it holds against hex:spacing only just: 0.593 (299 points against 504; 0.659
+/// before the lattices with sparser sides, 0.623 before the steeper grading), and against
+/// hex:NxN not (0.618). On the paraboloid the lattice's
 /// cells are already as regular as cells can be (a hexagonal lattice is the thinnest
 /// covering: at a given count no pattern has smaller circumcircles); what is left is the
 /// fall of the curvature away from the apex (sqrt(k1 k2) dA goes as
@@ -380,14 +381,12 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 /// their irregular cells). Asserted: the measured ratios, with a little room.
 #[test]
 fn on_nearly_uniform_surfaces_the_pattern_still_beats_uniform_hex() {
-    // Bounds against hex:spacing and hex:NxN: measured 0.619 and 0.645 on the paraboloid
-    // (312 points against 504 and 484), 0.431 and 0.561 on the hypar (110 against 255 and
+    // Bounds against hex:spacing and hex:NxN: measured 0.593 and 0.618 on the paraboloid
+    // (299 points against 504 and 484; 312, 0.619 and 0.645, before the steeper grading of
+    // FIT_STEEP_GRADING), 0.431 and 0.561 on the hypar (110 against 255 and
     // 196; 135 points, 0.529 and 0.689, before the lattices of other row densities:
     // hex:NxN's rows a column apart suit the hypar's walls).
-    for (name, bounds) in [
-        ("paraboloid.json", [0.63, 0.66]),
-        ("hypar.json", [0.6, 0.6]),
-    ] {
+    for (name, bounds) in [("paraboloid.json", [0.6, 0.63]), ("hypar.json", [0.6, 0.6])] {
         let ratios = fit_and_compare(name, 0.01);
         assert!(
             ratios.iter().zip(bounds).all(|(&r, b)| r <= b),
