@@ -26,8 +26,11 @@
 //! s = 0, 1 or only the even ones (sparser sides, [`wall_hex`]): the size the field predicts,
 //! then sizes predicted from the measured deviation, which goes as the square of the
 //! spacing, and the lattices one row or one column off the one found (the rows follow the
-//! columns by a rounded aspect). Two more graded lattices have their outer rows and columns [`FIT_WALL_INSET`]
-//! columns inside the walls (a dome's wall vertex between two seeds a apart at e from the
+//! columns by a rounded aspect). While the best pattern is small ([`FIT_NEIGHBOUR_POINTS`]),
+//! two more lattices are graded by the envelope to the power [`FIT_STEEP_GRADING`], and on
+//! saddles uniform ones have the row densities [`FIT_SADDLE_EXTRA_ROW_DENSITIES`]. Two
+//! more graded lattices have their outer rows and columns [`FIT_WALL_INSET`] columns inside
+//! the walls (a dome's wall vertex between two seeds a apart at e from the
 //! wall is at R^2 = a^2 / 4 + e^2, the interior's a^2 / 3 at e = a / sqrt(12)); where the
 //! surface has negative Gaussian curvature, four more have [`FIT_SADDLE_ROW_DENSITY`] times
 //! the rows. On a saddle the vertex of three seeds is their circumcentre c in the indefinite
