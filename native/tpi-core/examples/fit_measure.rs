@@ -14,7 +14,7 @@
 //! (only the fit runs: for timing the process), FIT_TIMINGS=1 prints the check's stage
 //! timings, FIT_SCAN=1 looks below the bisection's hex, FIT_DEBUG=1 prints the mean
 //! deviation of the interior, boundary and corner vertices of every mesh checked (how much
-//! slack a pattern leaves below D, and where).
+//! slack a pattern leaves below D, and where), FIT_WORST=1 its eight worst vertices.
 
 use std::time::Instant;
 
@@ -56,6 +56,16 @@ fn worst(surface: &dyn Surface, uv: &[[f64; 2]]) -> (f64, &'static str, usize) {
             by_kind[1].1,
             mean(2)
         );
+    }
+    if std::env::var("FIT_WORST").is_ok() {
+        let mut order: Vec<usize> = (0..dev.len()).collect();
+        order.sort_by(|&a, &b| dev[b].total_cmp(&dev[a]));
+        for &v in order.iter().take(8) {
+            println!(
+                "    {:.4e} at {:?} {:?}",
+                dev[v], d.vertices[v], d.vertex_kinds[v]
+            );
+        }
     }
     let (mut best, mut at) = (0.0, 0usize);
     for (v, &x) in dev.iter().enumerate() {
