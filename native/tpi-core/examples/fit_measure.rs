@@ -6,10 +6,15 @@
 //! For each fraction f of the surface's bounding diagonal, D = f * diagonal: the fit's count,
 //! its time and where its largest deviation sits (interior, boundary or corner vertex), and
 //! the smallest `hex:spacing=1/N` and `hex:NxN` meeting D (doubling, then bisection on N),
-//! with the same facts. Deviations are the crate's projection ([`tpi_core::vertex_deviations`]).
+//! with the same facts, and where the domain is not square on the surface `hex:NxM` with
+//! M = round(N 2 / sqrt(3) L_t / L_s), L_s and L_t the lengths of the middle parameter lines
+//! (cells regular on the surface). Deviations are the crate's projection
+//! ([`tpi_core::vertex_deviations`]).
 //! Environment: FIT_ONLY=1 skips the hex search, FIT_NO_CHECK=1 also the check of the fit
 //! (only the fit runs: for timing the process), FIT_TIMINGS=1 prints the check's stage
-//! timings, FIT_SCAN=1 looks below the bisection's hex.
+//! timings, FIT_SCAN=1 looks below the bisection's hex, FIT_DEBUG=1 prints the mean
+//! deviation of the interior, boundary and corner vertices of every mesh checked (how much
+//! slack a pattern leaves below D, and where), FIT_WORST=1 its eight worst vertices.
 
 use std::time::Instant;
 
@@ -30,6 +35,37 @@ fn worst(surface: &dyn Surface, uv: &[[f64; 2]]) -> (f64, &'static str, usize) {
             d.timings,
             feet_start.elapsed().as_secs_f64() * 1e3
         );
+    }
+    if std::env::var("FIT_DEBUG").is_ok() {
+        let mut by_kind = [(0.0, 0usize); 3];
+        for (v, &x) in dev.iter().enumerate() {
+            let k = match d.vertex_kinds[v] {
+                VertexKind::Interior => 0,
+                VertexKind::Boundary => 1,
+                VertexKind::Corner => 2,
+            };
+            by_kind[k].0 += x;
+            by_kind[k].1 += 1;
+        }
+        let mean = |k: usize| by_kind[k].0 / by_kind[k].1.max(1) as f64;
+        println!(
+            "    mean deviation: interior {:.3e} ({}), boundary {:.3e} ({}), corner {:.3e}",
+            mean(0),
+            by_kind[0].1,
+            mean(1),
+            by_kind[1].1,
+            mean(2)
+        );
+    }
+    if std::env::var("FIT_WORST").is_ok() {
+        let mut order: Vec<usize> = (0..dev.len()).collect();
+        order.sort_by(|&a, &b| dev[b].total_cmp(&dev[a]));
+        for &v in order.iter().take(8) {
+            println!(
+                "    {:.4e} at {:?} {:?}",
+                dev[v], d.vertices[v], d.vertex_kinds[v]
+            );
+        }
     }
     let (mut best, mut at) = (0.0, 0usize);
     for (v, &x) in dev.iter().enumerate() {
@@ -92,6 +128,22 @@ fn bisect(
     Some(found)
 }
 
+/// A baseline's generator spec for N.
+type SpecOf = Box<dyn Fn(usize) -> String>;
+
+/// The length on the surface of the middle parameter line along s (`along` 0) or t (1).
+fn iso_length(surface: &dyn Surface, along: usize) -> f64 {
+    let domain = surface.domain();
+    let at = |x: f64| {
+        let st = if along == 0 { [x, 0.5] } else { [0.5, x] };
+        let [u, v] = domain.from_normalised(st);
+        surface.point_at(u, v)
+    };
+    (0..256)
+        .map(|k| at(k as f64 / 256.0).distance(at((k + 1) as f64 / 256.0)))
+        .sum()
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let name = &args[0];
@@ -137,14 +189,25 @@ fn main() {
         if std::env::var("FIT_ONLY").is_ok() {
             continue;
         }
-        for (label, spec) in [
+        // hex:NxM with M chosen for cells regular on the surface: the lengths of the middle
+        // parameter lines give the aspect of the domain on the surface.
+        let m_per_n = 2.0 / 3f64.sqrt() * iso_length(&surface, 1) / iso_length(&surface, 0);
+        let mut rows: Vec<(&str, SpecOf)> = vec![
             (
                 "hex:spacing",
-                Box::new(|n: usize| format!("hex:spacing={}", 1.0 / n as f64))
-                    as Box<dyn Fn(usize) -> String>,
+                Box::new(|n: usize| format!("hex:spacing={}", 1.0 / n as f64)) as SpecOf,
             ),
             ("hex:NxN", Box::new(|n: usize| format!("hex:{n}x{n}"))),
-        ] {
+        ];
+        if (m_per_n - 2.0 / 3f64.sqrt()).abs() > 0.02 {
+            rows.push((
+                "hex:NxM",
+                Box::new(move |n: usize| {
+                    format!("hex:{n}x{}", ((n as f64 * m_per_n).round() as usize).max(1))
+                }),
+            ));
+        }
+        for (label, spec) in rows {
             match bisect(&surface, tolerance, spec) {
                 Some((g, count, dev, kind, _)) => println!(
                     "  {label}: {g} {count} pts dev/D={:.3} at {kind}; ratio {:.3}",

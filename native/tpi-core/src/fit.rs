@@ -25,8 +25,12 @@
 //! in the largest metric length across each line) or uniform, each with every row closed on
 //! s = 0, 1 or only the even ones (sparser sides, [`wall_hex`]): the size the field predicts,
 //! then sizes predicted from the measured deviation, which goes as the square of the
-//! spacing. Two more graded lattices have their outer rows and columns [`FIT_WALL_INSET`]
-//! columns inside the walls (a dome's wall vertex between two seeds a apart at e from the
+//! spacing, and the lattices one row or one column off the one found (the rows follow the
+//! columns by a rounded aspect). While the best pattern is small ([`FIT_NEIGHBOUR_POINTS`]),
+//! two more lattices are graded by the envelope to the power [`FIT_STEEP_GRADING`], and on
+//! saddles uniform ones have the row densities [`FIT_SADDLE_EXTRA_ROW_DENSITIES`]. Two
+//! more graded lattices have their outer rows and columns [`FIT_WALL_INSET`] columns inside
+//! the walls (a dome's wall vertex between two seeds a apart at e from the
 //! wall is at R^2 = a^2 / 4 + e^2, the interior's a^2 / 3 at e = a / sqrt(12)); where the
 //! surface has negative Gaussian curvature, four more have [`FIT_SADDLE_ROW_DENSITY`] times
 //! the rows. On a saddle the vertex of three seeds is their circumcentre c in the indefinite
@@ -243,10 +247,29 @@ pub fn fit_pattern_with_progress(
             variants.push(Grading::uniform(&base).saddle_rows());
             variants.push(Grading::uniform(&base).sparse().saddle_rows());
         }
-        for grading in variants {
+        // Lattices from here on only while the best is small (FIT_NEIGHBOUR_POINTS).
+        let small_only = variants.len();
+        variants.push(Grading::steep(&base));
+        variants.push(Grading::steep(&base).sparse());
+        if has_saddle_points(surface) {
+            for density in FIT_SADDLE_EXTRA_ROW_DENSITIES {
+                let g = [Grading::uniform(&base), Grading::uniform(&base).sparse()];
+                for grading in g {
+                    variants.push(grading.rows(density));
+                }
+            }
+        }
+        for (k, grading) in variants.into_iter().enumerate() {
             if best
                 .as_ref()
                 .is_some_and(|b| b.uv.len() > FIT_ADAPTIVE_POINTS)
+            {
+                break;
+            }
+            if k >= small_only
+                && best
+                    .as_ref()
+                    .is_some_and(|b| b.uv.len() > FIT_NEIGHBOUR_POINTS)
             {
                 break;
             }
@@ -471,6 +494,23 @@ impl Grading {
         }
     }
 
+    /// Steps even in the envelope of [`Grading::of`] raised to [`FIT_STEEP_GRADING`] (finer
+    /// where the metric is large, coarser where it is small than [`Grading::of`]), with the
+    /// rows and columns of [`Grading::of`] (its metric lengths).
+    fn steep(field: &SizingField) -> Grading {
+        let of = Grading::of(field);
+        let steep = |component: usize, total: f64| {
+            let mut g = Grade::new(|x| envelope(field, component, x).powf(FIT_STEEP_GRADING));
+            g.total = total;
+            g
+        };
+        Grading {
+            s: steep(0, of.s.total),
+            t: steep(2, of.t.total),
+            ..of
+        }
+    }
+
     /// Even steps, as long in the metric as the largest of [`Grading::of`]'s.
     fn uniform(field: &SizingField) -> Grading {
         let top = |component: usize| {
@@ -506,8 +546,13 @@ impl Grading {
 
     /// The same grading with [`FIT_SADDLE_ROW_DENSITY`] times the rows.
     fn saddle_rows(self) -> Grading {
+        self.rows(FIT_SADDLE_ROW_DENSITY)
+    }
+
+    /// The same grading with `density` times the rows.
+    fn rows(self, density: f64) -> Grading {
         Grading {
-            row_density: FIT_SADDLE_ROW_DENSITY,
+            row_density: density,
             ..self
         }
     }
@@ -525,6 +570,25 @@ impl Grading {
 /// 1.2 times the rows 135 points at D = 0.01 and 316 at 0.003, against 151 and 454 with only
 /// the regular lattices; 1.35 and more lose to the walls and corners.
 pub const FIT_SADDLE_ROW_DENSITY: f64 = 1.2;
+
+/// Power of the envelope in the steeper grading of the further lattices [`fit_pattern`]
+/// tries while its best pattern has at most [`FIT_NEIGHBOUR_POINTS`] points
+/// ([`Grading::steep`]). The envelope of a line is its largest metric length, so where the
+/// curvature falls away in both s and t (a paraboloid's corners) the separable grading keeps
+/// cells finer than the curvature asks for; a steeper grading moves points from there to the
+/// middle. Measured on samples/paraboloid.json (`fit_measure`, FIT_ABSOLUTE=1, D = 0.003,
+/// 0.01, 0.03): 998, 312, 114 points -> 971, 299, 109 with 1.75 (971, 299, 111 with 1.5;
+/// 0.5, 2 and 3 gain nothing); the NURBS dome and the rational dome unchanged.
+const FIT_STEEP_GRADING: f64 = 1.75;
+
+/// Row densities of the further lattices [`fit_pattern`] tries on surfaces with negative
+/// Gaussian curvature while its best pattern has at most [`FIT_NEIGHBOUR_POINTS`] points (each
+/// uniform, with every row closed on the sides or the sparser sides: the graded ones gained
+/// nothing on samples/hypar.json and cost as many discretisations). Which lattice
+/// the walls and corners of a saddle let through is not smooth in the row density: on
+/// samples/hypar.json (`fit_measure`, FIT_ABSOLUTE=1) 1.05 gives 110 points at D = 0.01
+/// (135 with 1 and 1.2 only; 1.25 and 1.3 give 135 too), 1.1 gives 306 at D = 0.003 (316).
+const FIT_SADDLE_EXTRA_ROW_DENSITIES: [f64; 3] = [1.05, 1.1, 1.15];
 
 /// Distance of the outer seeds from the walls in the lattices with an inset, in columns:
 /// on a dome (metric |II| isotropic), two seeds a apart at a distance e from a wall put the
@@ -672,9 +736,45 @@ fn wall_lattice(
     // times the interior's a^2 / 12 of a hexagonal lattice along the principal directions of
     // a saddle). The lattice at which all but as many vertices as lie on the boundary meet
     // the tolerance, refined at its offending vertices, may then have fewer points.
-    let Some(m) = met else {
+    let Some(mut m) = met else {
         return Ok(None);
     };
+    // The rows follow the columns by a rounded aspect, so a lattice one row or one column
+    // smaller than the one found may meet the tolerance too: on samples/rational-dome.json at
+    // D = 0.01 a lattice of one row less (409 points against 429).
+    if m.uv.len() <= FIT_NEIGHBOUR_POINTS {
+        let (c, r) = (met_columns, rows_of(met_columns));
+        let neighbours = [
+            (c, r - 1),
+            (c - 1, r),
+            (c - 1, r + 1),
+            (c + 1, r.saturating_sub(2)),
+        ];
+        for (c, r) in neighbours {
+            if c < 2 || r < 1 {
+                continue;
+            }
+            let uv = wall_hex(c, r, grading);
+            if uv.len() >= m.uv.len() {
+                continue;
+            }
+            let d = discretise_with_progress(surface, &uv, options, progress)?;
+            *runs += 1;
+            let own = largest_vertex_deviation(surface, &d);
+            let q = d.quality.as_ref();
+            let deviation = own.max(q.map_or(0.0, |q| q.max_deviation));
+            let invalid = q.map_or(0, |q| q.invalid_facets);
+            if deviation <= tolerance && (invalid == 0 || m.invalid_facets > 0) {
+                m = FittedPattern {
+                    uv,
+                    met: true,
+                    max_deviation: deviation,
+                    invalid_facets: invalid,
+                    discretisations: 0,
+                };
+            }
+        }
+    }
     let Some(bulk) = bulk_columns else {
         return Ok(Some(m));
     };
@@ -707,6 +807,12 @@ fn wall_lattice(
         && (refined.invalid_facets == 0 || m.invalid_facets > 0);
     Ok(Some(if better { refined } else { m }))
 }
+
+/// Largest lattice (points) whose neighbours one row or one column smaller [`wall_lattice`]
+/// tries: a row is then at least about 1.5 % of the points, and the four discretisations per
+/// lattice stay cheap (on samples/nurbs-dome.json at D = 2e-4, 15,916 points, trying them
+/// for every lattice added 12 discretisations and about a third to the fit's time).
+const FIT_NEIGHBOUR_POINTS: usize = 4_000;
 
 /// Least saving (fraction of the columns) for which [`wall_lattice`] tries a coarser lattice
 /// refined at its offending vertices.

@@ -43,20 +43,38 @@ fn independent_check(surface: &dyn Surface, uv: &[[f64; 2]]) -> (f64, usize) {
     independent_check_by(surface, uv, &projected_distance(surface))
 }
 
-/// The smallest `hex:spacing=1/N` meeting the tolerance by the independent measure: N
-/// doubled from 4 until it does, then bisected. (count, invalid facets).
+/// The two uniform hexagonal baselines: `hex:spacing=1/N` (rows sqrt(3) / 2 of a column
+/// apart, regular cells on a square domain) and `hex:NxN` (N columns and N rows).
+const HEX_BASELINES: [&str; 2] = ["hex:spacing", "hex:NxN"];
+
+/// The generator of a baseline at N.
+fn hex_spec(baseline: &str, n: usize) -> String {
+    match baseline {
+        "hex:spacing" => format!("hex:spacing={}", 1.0 / n as f64),
+        _ => format!("hex:{n}x{n}"),
+    }
+}
+
+/// The smallest pattern of a baseline ([`HEX_BASELINES`]) meeting the tolerance by the
+/// independent measure: N doubled from 4 until it does, then bisected. (count, invalid
+/// facets).
 fn hex_bisection(
     surface: &dyn Surface,
     tolerance: f64,
     distance: &dyn Fn(DVec3) -> f64,
+    baseline: &str,
 ) -> (usize, usize) {
     let hex = |n: usize| {
-        let uv = Generator::parse(&format!("hex:spacing={}", 1.0 / n as f64))
+        let uv = Generator::parse(&hex_spec(baseline, n))
             .unwrap()
             .generate()
             .uv;
         let (dev, invalid) = independent_check_by(surface, &uv, distance);
-        println!("  hex 1/{n}: {} points, max deviation {dev:.5e}", uv.len());
+        println!(
+            "  {} {n}: {} points, max deviation {dev:.5e}",
+            baseline,
+            uv.len()
+        );
         (dev <= tolerance, uv.len(), invalid)
     };
     let (mut lo, mut hi) = (2, 4);
@@ -67,7 +85,7 @@ fn hex_bisection(
         }
         lo = hi;
         hi *= 2;
-        assert!(hi <= 128, "no hex pattern up to 1/128 meets {tolerance}");
+        assert!(hi <= 128, "no {baseline} up to 128 meets {tolerance}");
     };
     while hi - lo > 1 {
         let mid = (lo + hi) / 2;
@@ -82,41 +100,44 @@ fn hex_bisection(
     (found.1, found.2)
 }
 
-/// Fits, checks every vertex by `distance`, compares with the hex baseline measured the same
-/// way; returns the ratio of counts.
+/// Fits, checks every vertex by `distance`, compares with each of the [`HEX_BASELINES`]
+/// measured the same way; returns the ratios of counts (fitted over baseline), in the order
+/// of [`HEX_BASELINES`].
 fn fit_and_compare_by(
     name: &str,
     surface: &dyn Surface,
     tolerance: f64,
     distance: &dyn Fn(DVec3) -> f64,
-) -> f64 {
+) -> [f64; 2] {
     let fitted = fit_pattern(surface, tolerance, 0, &DiscretiseOptions::default()).unwrap();
     assert!(fitted.met, "{name}: {fitted:?}");
     let (dev, invalid) = independent_check_by(surface, &fitted.uv, distance);
-    let (hex_count, hex_invalid) = hex_bisection(surface, tolerance, distance);
-    let ratio = fitted.uv.len() as f64 / hex_count as f64;
-    println!(
-        "{name} D = {tolerance}: fitted {} points (independent max deviation {dev:.5e}, \
-         {invalid} invalid), smallest hex meeting D {hex_count} ({hex_invalid} invalid): \
-         ratio {ratio:.3}",
-        fitted.uv.len()
-    );
     // Rounding of the two projections apart, every vertex within D.
     assert!(
         dev <= tolerance * (1.0 + 1e-9),
         "{name}: {dev} > {tolerance}"
     );
-    if hex_invalid == 0 {
-        assert_eq!(
-            invalid, 0,
-            "{name}: invalid facets where uniform hex has none"
+    HEX_BASELINES.map(|baseline| {
+        let (hex_count, hex_invalid) = hex_bisection(surface, tolerance, distance, baseline);
+        let ratio = fitted.uv.len() as f64 / hex_count as f64;
+        println!(
+            "{name} D = {tolerance}: fitted {} points (independent max deviation {dev:.5e}, \
+             {invalid} invalid), smallest {baseline} meeting D {hex_count} ({hex_invalid} \
+             invalid): ratio {ratio:.3}",
+            fitted.uv.len()
         );
-    }
-    ratio
+        if hex_invalid == 0 {
+            assert_eq!(
+                invalid, 0,
+                "{name}: invalid facets where uniform hex has none"
+            );
+        }
+        ratio
+    })
 }
 
 /// [`fit_and_compare_by`] on a sample, measured by this file's own projection.
-fn fit_and_compare(name: &str, tolerance: f64) -> f64 {
+fn fit_and_compare(name: &str, tolerance: f64) -> [f64; 2] {
     let surface = sample_surface(name);
     let distance = projected_distance(&surface);
     fit_and_compare_by(name, &surface, tolerance, &distance)
@@ -269,21 +290,21 @@ const SADDLE: TurnedQuadric = TurnedQuadric {
 #[test]
 fn a_turned_anisotropic_dome_needs_at_most_60_percent_of_the_uniform_hex_points() {
     for tolerance in [0.01, 0.003] {
-        let ratio = fit_and_compare_by("turned dome", &DOME, tolerance, &quadric_distance(&DOME));
-        assert!(ratio <= 0.6, "{tolerance}: {ratio}");
+        let ratios = fit_and_compare_by("turned dome", &DOME, tolerance, &quadric_distance(&DOME));
+        assert!(ratios.iter().all(|&r| r <= 0.6), "{tolerance}: {ratios:?}");
     }
 }
 
 #[test]
 fn a_turned_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
     for tolerance in [0.01, 0.003] {
-        let ratio = fit_and_compare_by(
+        let ratios = fit_and_compare_by(
             "turned saddle",
             &SADDLE,
             tolerance,
             &quadric_distance(&SADDLE),
         );
-        assert!(ratio <= 0.6, "{tolerance}: {ratio}");
+        assert!(ratios.iter().all(|&r| r <= 0.6), "{tolerance}: {ratios:?}");
     }
 }
 
@@ -312,31 +333,44 @@ fn aligned_hypars_need_at_most_60_percent_of_the_uniform_hex_points() {
     for q in &ALIGNED_HYPARS {
         for tolerance in [0.01, 0.003] {
             let name = format!("aligned hypar k = {}", q.k[0]);
-            let ratio = fit_and_compare_by(&name, q, tolerance, &quadric_distance(q));
-            assert!(ratio <= 0.6, "{name}, {tolerance}: {ratio}");
+            let ratios = fit_and_compare_by(&name, q, tolerance, &quadric_distance(q));
+            // Against hex:NxN (rows a column apart, which suits the walls of a hypar) the
+            // 60 % is not met at k = 0.24, D = 0.01: 153 points against 225 (0.680; 157,
+            // 0.698 before the lattices of FIT_SADDLE_EXTRA_ROW_DENSITIES, which took
+            // k = 0.24, D = 0.003 from 487 points, 0.720, to 373, 0.552).
+            let nxn_bound = if q.k[0] == 0.24 && tolerance == 0.01 {
+                0.7
+            } else {
+                0.6
+            };
+            assert!(
+                ratios[0] <= 0.6 && ratios[1] <= nxn_bound,
+                "{name}, {tolerance}: {ratios:?}"
+            );
         }
     }
 }
 
 #[test]
 fn a_free_form_dome_needs_at_most_60_percent_of_the_uniform_hex_points() {
-    let ratio = fit_and_compare("nurbs-dome.json", 0.01);
-    assert!(ratio <= 0.6, "{ratio}");
+    let ratios = fit_and_compare("nurbs-dome.json", 0.01);
+    assert!(ratios.iter().all(|&r| r <= 0.6), "{ratios:?}");
 }
 
 #[test]
 fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
-    let ratio = fit_and_compare("saddle.json", 0.01);
-    assert!(ratio <= 0.6, "{ratio}");
+    let ratios = fit_and_compare("saddle.json", 0.01);
+    assert!(ratios.iter().all(|&r| r <= 0.6), "{ratios:?}");
 }
 
 /// The paraboloid of revolution and the hypar have nearly uniform curvature and
 /// parametrisation: what a pattern saves there is mostly at the boundary (uniform hex is set
 /// by its corners and boundary vertices). On the hypar the issue's 60 % holds since the
-/// lattices refined at their walls and the lattices with 1.2 times the rows on saddles
-/// (`fit.rs`): 0.529 (135 points against 255; 0.702 with 179 before) at D = 0.01. On the
-/// paraboloid it does not: measured 0.623 (314 points against 504; 0.659 before the lattices
-/// with sparser sides). On the paraboloid the lattice's
+/// lattices refined at their walls and the lattices with other row densities on saddles
+/// (`fit.rs`): 0.431 (110 points against 255; 0.702 with 179 before) at D = 0.01. On the
+/// paraboloid it holds against hex:spacing only just: 0.593 (299 points against 504; 0.659
+/// before the lattices with sparser sides, 0.623 before the steeper grading), and against
+/// hex:NxN not (0.618). On the paraboloid the lattice's
 /// cells are already as regular as cells can be (a hexagonal lattice is the thinnest
 /// covering: at a given count no pattern has smaller circumcircles); what is left is the
 /// fall of the curvature away from the apex (sqrt(k1 k2) dA goes as
@@ -347,9 +381,17 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 /// their irregular cells). Asserted: the measured ratios, with a little room.
 #[test]
 fn on_nearly_uniform_surfaces_the_pattern_still_beats_uniform_hex() {
-    for (name, bound) in [("paraboloid.json", 0.64), ("hypar.json", 0.6)] {
-        let ratio = fit_and_compare(name, 0.01);
-        assert!(ratio <= bound, "{name}: {ratio}");
+    // Bounds against hex:spacing and hex:NxN: measured 0.593 and 0.618 on the paraboloid
+    // (299 points against 504 and 484; 312, 0.619 and 0.645, before the steeper grading of
+    // FIT_STEEP_GRADING), 0.431 and 0.561 on the hypar (110 against 255 and
+    // 196; 135 points, 0.529 and 0.689, before the lattices of other row densities:
+    // hex:NxN's rows a column apart suit the hypar's walls).
+    for (name, bounds) in [("paraboloid.json", [0.6, 0.63]), ("hypar.json", [0.6, 0.6])] {
+        let ratios = fit_and_compare(name, 0.01);
+        assert!(
+            ratios.iter().zip(bounds).all(|(&r, b)| r <= b),
+            "{name}: {ratios:?}"
+        );
     }
 }
 
@@ -457,10 +499,18 @@ fn an_isolated_singular_curvature_does_not_set_the_spacing() {
     let smooth = fit_pattern(&sample_surface("paraboloid.json"), tolerance, 0, &options).unwrap();
     let bumped = fit_pattern(&Bumped, tolerance, 0, &options).unwrap();
     assert!(bumped.met, "{bumped:?}");
-    // The bumped surface lies within HEIGHT of the smooth paraboloid, so a vertex's distance
-    // to it is within HEIGHT of its distance to the paraboloid (projected independently).
-    let (smooth_dev, invalid) = independent_check(&sample_surface("paraboloid.json"), &bumped.uv);
-    let dev = smooth_dev + HEIGHT;
+    // A vertex's distance to the bumped surface is at most its distance to the bumped
+    // surface's point above its foot on the smooth paraboloid (projected independently; the
+    // two surfaces share their parameters x, y), which is within HEIGHT exp(-r^2 / w^2) of
+    // the smooth distance.
+    let paraboloid = sample_surface("paraboloid.json");
+    let bound = |x: DVec3| {
+        let [u, v] = closest_parameters(&paraboloid, x, 12);
+        let [a, b] = paraboloid.domain().to_normalised([u, v]);
+        let [bu, bv] = Bumped.domain().from_normalised([a, b]);
+        Bumped.point_at(bu, bv).distance(x)
+    };
+    let (dev, invalid) = independent_check_by(&Bumped, &bumped.uv, &bound);
     println!(
         "bumped paraboloid: {} points (smooth {}), independent max deviation {dev:.5e}",
         bumped.uv.len(),
