@@ -364,6 +364,7 @@ pub(crate) fn build_stage(
                     None,
                     stages,
                 )
+                .0
             } else {
                 // Not strips: the convex hull of the dual points, the envelope itself.
                 let envelope = !*strips;
@@ -385,7 +386,8 @@ pub(crate) fn build_stage(
                 if *on_wall { &unreported } else { stages },
             );
             let mesh = if *on_wall {
-                let clip = |blocked: &[bool]| {
+                // Only the first clip reports progress: the retries redo the same stage.
+                let clip = |blocked: &[bool], stages: &Stages<'_>| {
                     build_ghost_clipped_facets(
                         surface,
                         boundary,
@@ -414,20 +416,29 @@ pub(crate) fn build_stage(
                         .then_some(clipped)
                 };
                 let mut blocked = vec![false; n];
-                let mut clipped = clip(&blocked);
+                let (mut clipped, mut extended) = clip(&blocked, stages);
                 // Facets extended to the wall that came out invalid keep their ghost's end.
                 for _ in 0..WALL_EXTENSION_ROUNDS {
-                    let invalid = invalid_wall_facets(&clipped, &seeds.planes[..n], &triangulation);
-                    let fresh = invalid
-                        .into_iter()
-                        .filter(|&f| !std::mem::replace(&mut blocked[f], true))
-                        .count();
-                    if fresh == 0 {
+                    let invalid = invalid_extended_facets(
+                        &clipped,
+                        &seeds.planes[..n],
+                        &triangulation,
+                        &extended,
+                    );
+                    if invalid.is_empty() {
                         break;
                     }
-                    clipped = clip(&blocked);
+                    for f in invalid {
+                        blocked[f] = true;
+                    }
+                    (clipped, extended) = clip(&blocked, &unreported);
                 }
-                let kept = finish(clipped).or_else(|| finish(clip(&vec![true; n])));
+                let kept = finish(clipped).or_else(|| {
+                    extended
+                        .contains(&true)
+                        .then(|| finish(clip(&vec![true; n], &unreported).0))
+                        .flatten()
+                });
                 match kept {
                     Some(mut clipped) => {
                         // The count of coincident neighbour planes is the structure's, not the
@@ -531,27 +542,17 @@ fn start_loops_at_lowest_triangle(mesh: &mut FacetMesh) {
     }
 }
 
-/// The facets next to a ghost in `tri` (the only ones [`extend_to_wall`] changes) that are
-/// not simple in their plane or overlap a real neighbour's facet seen along their mean normal
-/// (the report's tests, [`crate::quality`]), both of each overlapping pair; ascending.
-fn invalid_wall_facets(mesh: &FacetMesh, planes: &[Plane], tri: &DualTriangulation) -> Vec<usize> {
+/// The facets marked in `extended` (those [`extend_to_wall`] changed) that are not simple in
+/// their plane or overlap a real neighbour's facet in `tri` seen along their mean normal (the
+/// report's tests, [`crate::quality`]); ascending. A neighbour that overlaps one is not
+/// named: blocking the extended facet undoes the move that made the overlap.
+fn invalid_extended_facets(
+    mesh: &FacetMesh,
+    planes: &[Plane],
+    tri: &DualTriangulation,
+    extended: &[bool],
+) -> Vec<usize> {
     let n = planes.len();
-    let mut at_wall = vec![false; n];
-    let mut pairs = Vec::new();
-    for ids in &tri.triangles {
-        let ghost = ids.iter().any(|&p| p as usize >= n);
-        for k in 0..3 {
-            let (a, b) = (ids[k] as usize, ids[(k + 1) % 3] as usize);
-            if a < n && ghost {
-                at_wall[a] = true;
-            }
-            if a < n && b < n {
-                pairs.push((a.min(b), a.max(b)));
-            }
-        }
-    }
-    pairs.sort_unstable();
-    pairs.dedup();
     let polygon = |f: usize| -> Vec<DVec3> {
         mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize]
             .iter()
@@ -559,22 +560,31 @@ fn invalid_wall_facets(mesh: &FacetMesh, planes: &[Plane], tri: &DualTriangulati
             .collect()
     };
     let mut buffer = Vec::new();
-    let simple: Vec<bool> = (0..n)
-        .map(|f| {
-            !at_wall[f]
-                || crate::quality::facet_shape_into(&planes[f], polygon(f).into_iter(), &mut buffer)
-                    .simple
-        })
-        .collect();
-    let mut invalid: Vec<bool> = simple.iter().map(|&s| !s).collect();
+    let mut simple = |f: usize| {
+        crate::quality::facet_shape_into(&planes[f], polygon(f).into_iter(), &mut buffer).simple
+    };
+    let mut pairs = Vec::new();
+    for ids in &tri.triangles {
+        for k in 0..3 {
+            let (a, b) = (ids[k] as usize, ids[(k + 1) % 3] as usize);
+            if a < n && b < n && (extended[a] || extended[b]) {
+                pairs.push((a.min(b), a.max(b)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    let mut invalid: Vec<bool> = (0..n).map(|f| extended[f] && !simple(f)).collect();
+    let mut shape = vec![None; n];
     for (f, g) in pairs {
-        if !(at_wall[f] || at_wall[g]) || !(simple[f] && simple[g]) {
+        let mut is_simple = |x: usize| *shape[x].get_or_insert_with(|| simple(x));
+        if invalid[f] && invalid[g] || !(is_simple(f) && is_simple(g)) {
             continue;
         }
         let normal = planes[f].normal + planes[g].normal;
         if crate::validity_flips::polygons_overlap(&polygon(f), &polygon(g), normal) {
-            invalid[f] = true;
-            invalid[g] = true;
+            invalid[f] |= extended[f];
+            invalid[g] |= extended[g];
         }
     }
     (0..n).filter(|&f| invalid[f]).collect()
@@ -680,7 +690,7 @@ pub(crate) fn build_ghost_clipped_facets(
     params: &FacetParams,
     extend_to_wall: Option<&[bool]>,
     stages: &Stages<'_>,
-) -> FacetMesh {
+) -> (FacetMesh, Vec<bool>) {
     let real_count = uv.len();
     let mut all_uv = uv.to_vec();
     let mut all_tangents = tangents.to_vec();
@@ -706,26 +716,31 @@ pub(crate) fn build_ghost_clipped_facets(
     }
     ctx.uv = &all_uv;
     ctx.tangents = &all_tangents;
-    let mut mesh = clip_facets(&ctx, real_count, tri, params, None, stages);
+    let (mut mesh, extended) = clip_facets(&ctx, real_count, tri, params, stages);
     // Diagnostics name pattern points: a ghost stands for its seed.
     for diagnostic in &mut mesh.diagnostics {
         diagnostic.map_points(|p| source[p as usize]);
     }
-    mesh
+    (mesh, extended)
 }
 
 /// The facets of the points `0..real_count` of `tri`, ending on `ctx.boundary` (module doc);
 /// points from `real_count` on are ghosts, which get no facet and no crossings of their own.
+/// Also, per real seed, whether its facet was extended to the wall (empty without
+/// `ctx.extend_to_wall`).
 fn clip_facets(
     ctx: &Context<'_>,
     real_count: usize,
     tri: &DualTriangulation,
     params: &FacetParams,
-    slopes: Option<SlopeView<'_>>,
     stages: &Stages<'_>,
-) -> FacetMesh {
-    let walk = walk_facets(ctx, real_count, tri, params, stages);
-    assemble_walk(walk, tri, ctx.planes, params, slopes, stages)
+) -> (FacetMesh, Vec<bool>) {
+    let mut walk = walk_facets(ctx, real_count, tri, params, stages);
+    let extended = std::mem::take(&mut walk.extended);
+    (
+        assemble_walk(walk, tri, ctx.planes, params, None, stages),
+        extended,
+    )
 }
 
 /// What the walk of [`clip_facets`] hands to the assembly.
@@ -737,6 +752,9 @@ struct Walk {
     diagnostics: Vec<Diagnostic>,
     /// Per trim corner, whether a crossing sits on it (empty without a trim).
     absorbed: Vec<bool>,
+    /// Per real seed, whether [`extend_to_wall`] moved a vertex of its facet (empty without
+    /// the extension).
+    extended: Vec<bool>,
 }
 
 /// Steps 1 to 3 of [`clip_facets`]: triangle vertices, boundary crossings, facet loops as
@@ -771,9 +789,10 @@ fn walk_facets(
             .filter(|(v, _)| !v.exact)
             .map(|(v, &ids)| ill_conditioned(ctx, ids, v)),
     );
-    if let Some(blocked) = ctx.extend_to_wall {
-        extend_to_wall(ctx, real_count, tri, blocked, &mut triangle_vertices);
-    }
+    let extended = match ctx.extend_to_wall {
+        Some(blocked) => extend_to_wall(ctx, real_count, tri, blocked, &mut triangle_vertices),
+        None => Vec::new(),
+    };
 
     // 2. Boundary crossings, only on the edges where they can be: a hull edge, or an edge
     // with an outside vertex at either end (in the order of `DualTriangulation::edges`).
@@ -872,6 +891,7 @@ fn walk_facets(
         corners,
         diagnostics,
         absorbed,
+        extended,
     }
 }
 
@@ -900,7 +920,7 @@ fn extend_to_wall(
     tri: &DualTriangulation,
     blocked: &[bool],
     triangle_vertices: &mut [TriangleVertex],
-) {
+) -> Vec<bool> {
     let moved: Vec<(usize, TriangleVertex)> = tri
         .triangles
         .par_iter()
@@ -982,9 +1002,16 @@ fn extend_to_wall(
             None
         })
         .collect();
+    let mut extended = vec![false; real_count];
     for (t, vertex) in moved {
         triangle_vertices[t] = vertex;
+        for p in tri.triangles[t] {
+            if (p as usize) < real_count {
+                extended[p as usize] = true;
+            }
+        }
     }
+    extended
 }
 
 /// Whether the direction w lies strictly inside the wedge between the rays a and b (under
@@ -1011,6 +1038,7 @@ fn assemble_walk(
         corners,
         diagnostics,
         absorbed,
+        extended: _,
     } = walk;
     let mut mesh = assemble(Assembly {
         tri,
