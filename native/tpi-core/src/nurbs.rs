@@ -1056,16 +1056,12 @@ impl Surface for NurbsSurface {
         let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
         if (pu, pv) == (3, 3) && !self.bezier.euclidean.is_empty() {
             // The non-rational bicubic patch (as `evaluate_bezier`), rows 0 and 1 only.
-            let (span_u, u) = self.basis_u.span(u);
-            let (span_v, v) = self.basis_v.span(v);
-            let (_, su, sv) = self
-                .bezier
-                .patch(&self.basis_u, &self.basis_v, span_u, span_v);
-            let nu = bernstein_derivatives(pu, (u - self.basis_u.knots[span_u]) * su, su);
-            let nv = bernstein_derivatives(pv, (v - self.basis_v.knots[span_v]) * sv, sv);
-            let patch = self
-                .bezier
-                .euclidean_patch(&self.basis_u, &self.basis_v, span_u, span_v);
+            let site = self.bezier_site(u, v);
+            let nu = bernstein_derivatives(pu, site.local[0], site.scale[0]);
+            let nv = bernstein_derivatives(pv, site.local[1], site.scale[1]);
+            let patch =
+                self.bezier
+                    .euclidean_patch(&self.basis_u, &self.basis_v, site.span_u, site.span_v);
             if let Ok(cubic) = <&[DVec3; 16]>::try_from(patch) {
                 return bicubic_first_derivatives(cubic, &nu, &nv);
             }
@@ -1086,20 +1082,50 @@ impl Surface for NurbsSurface {
     }
 }
 
+/// Where (u, v) falls among the Bezier patches ([`NurbsSurface::bezier_site`]).
+struct BezierSite<'a> {
+    span_u: usize,
+    span_v: usize,
+    /// The patch's homogeneous control points.
+    patch: &'a [DVec4],
+    /// The local parameters (u - u_s) / (u_{s+1} - u_s) and the same in v, in [0, 1].
+    local: [f64; 2],
+    /// The inverse span widths: the chain-rule factors of the derivatives.
+    scale: [f64; 2],
+}
+
 impl NurbsSurface {
+    /// The span pair of (u, v) (clamped to the domain), its Bezier patch and (u, v)'s local
+    /// parameters in it: what every Bezier evaluation starts from.
+    #[inline]
+    fn bezier_site(&self, u: f64, v: f64) -> BezierSite<'_> {
+        let (span_u, u) = self.basis_u.span(u);
+        let (span_v, v) = self.basis_v.span(v);
+        let (patch, su, sv) = self
+            .bezier
+            .patch(&self.basis_u, &self.basis_v, span_u, span_v);
+        BezierSite {
+            span_u,
+            span_v,
+            patch,
+            local: [
+                (u - self.basis_u.knots[span_u]) * su,
+                (v - self.basis_v.knots[span_v]) * sv,
+            ],
+            scale: [su, sv],
+        }
+    }
+
     /// [`Surface::evaluate`] on the Bezier patch of (u, v)'s span pair: Bernstein values and
     /// derivatives (no division), then the same contraction and quotient rule as
     /// [`NurbsSurface::evaluate_with`].
     #[inline]
     fn evaluate_bezier(&self, u: f64, v: f64) -> SurfaceDerivatives {
         let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
-        let (span_u, u) = self.basis_u.span(u);
-        let (span_v, v) = self.basis_v.span(v);
-        let (patch, su, sv) = self
-            .bezier
-            .patch(&self.basis_u, &self.basis_v, span_u, span_v);
-        let nu = bernstein_derivatives(pu, (u - self.basis_u.knots[span_u]) * su, su);
-        let nv = bernstein_derivatives(pv, (v - self.basis_v.knots[span_v]) * sv, sv);
+        let site = self.bezier_site(u, v);
+        let (span_u, span_v, patch) = (site.span_u, site.span_v, site.patch);
+        let nu = bernstein_derivatives(pu, site.local[0], site.scale[0]);
+        let nv = bernstein_derivatives(pv, site.local[1], site.scale[1]);
         if !self.bezier.euclidean.is_empty() {
             // Non-rational: S itself is the polynomial, w = 1.
             let patch = self
@@ -1160,13 +1186,10 @@ impl NurbsSurface {
     #[inline]
     fn point_bezier(&self, u: f64, v: f64) -> DVec3 {
         let (pu, pv) = (self.basis_u.degree, self.basis_v.degree);
-        let (span_u, u) = self.basis_u.span(u);
-        let (span_v, v) = self.basis_v.span(v);
-        let (patch, su, sv) = self
-            .bezier
-            .patch(&self.basis_u, &self.basis_v, span_u, span_v);
-        let nu = bernstein(pu, (u - self.basis_u.knots[span_u]) * su);
-        let nv = bernstein(pv, (v - self.basis_v.knots[span_v]) * sv);
+        let site = self.bezier_site(u, v);
+        let (span_u, span_v, patch) = (site.span_u, site.span_v, site.patch);
+        let nu = bernstein(pu, site.local[0]);
+        let nv = bernstein(pv, site.local[1]);
         if !self.bezier.euclidean.is_empty() {
             let patch = self
                 .bezier
