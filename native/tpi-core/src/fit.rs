@@ -148,6 +148,17 @@ fn largest_vertex_deviation(surface: &dyn Surface, d: &Discretisation) -> f64 {
     largest_foot_deviation(&vertex_feet(surface, d))
 }
 
+/// How a mesh whose vertices stand at most `own` off the surface ([`vertex_feet`]) is judged:
+/// the larger of that and the report's largest deviation, and the report's invalid facets
+/// (0 and 0 without a report).
+fn judged(own: f64, d: &Discretisation) -> (f64, usize) {
+    let q = d.quality.as_ref();
+    (
+        own.max(q.map_or(0.0, |q| q.max_deviation)),
+        q.map_or(0, |q| q.invalid_facets),
+    )
+}
+
 /// The largest deviation among the feet of [`vertex_feet`] (0 where there is none).
 fn largest_foot_deviation(feet: &[Option<(f64, [f64; 2])>]) -> f64 {
     feet.iter()
@@ -691,9 +702,7 @@ fn wall_lattice(
                     .ceil() as usize,
             );
         }
-        let q = d.quality.as_ref();
-        let deviation = own.max(q.map_or(0.0, |q| q.max_deviation));
-        let invalid = q.map_or(0, |q| q.invalid_facets);
+        let (deviation, invalid) = judged(own, &d);
         let ok = deviation <= tolerance;
         let predicted = if deviation > 0.0 && deviation.is_finite() {
             (columns as f64 * (deviation / tolerance).sqrt()).ceil() as usize
@@ -760,10 +769,7 @@ fn wall_lattice(
             }
             let d = discretise_with_progress(surface, &uv, options, progress)?;
             *runs += 1;
-            let own = largest_vertex_deviation(surface, &d);
-            let q = d.quality.as_ref();
-            let deviation = own.max(q.map_or(0.0, |q| q.max_deviation));
-            let invalid = q.map_or(0, |q| q.invalid_facets);
+            let (deviation, invalid) = judged(largest_vertex_deviation(surface, &d), &d);
             if deviation <= tolerance && (invalid == 0 || m.invalid_facets > 0) {
                 m = FittedPattern {
                     uv,
@@ -995,10 +1001,7 @@ fn refine(
     let mut last_offending = usize::MAX;
     let mut stalled = 0usize;
     for pass in 0..=FIT_REFINE_PASSES {
-        let report = d.quality.as_ref();
-        let own = largest_foot_deviation(&feet);
-        let max_deviation = own.max(report.map_or(0.0, |q| q.max_deviation));
-        let invalid = report.map_or(0, |q| q.invalid_facets);
+        let (max_deviation, invalid) = judged(largest_foot_deviation(&feet), &d);
         let offending_count = feet
             .iter()
             .filter(|f| f.is_some_and(|(dev, _)| dev > tolerance))
@@ -1175,12 +1178,12 @@ pub fn hex_baseline(
         }
         drop(first);
         let d = discretise(surface, &uv, &options)?;
-        let q = d.quality.as_ref();
+        let (max_deviation, invalid_facets) = judged(own, &d);
         Ok(HexBaseline {
             generator,
             count: uv.len(),
-            max_deviation: own.max(q.map_or(0.0, |q| q.max_deviation)),
-            invalid_facets: q.map_or(0, |q| q.invalid_facets),
+            max_deviation,
+            invalid_facets,
         })
     };
     let points_of = |n: usize| {
