@@ -39,7 +39,7 @@ use crate::progress::{NoProgress, Stage, Stages, Tally};
 use crate::tolerance::{
     COMPENSATION_TIE_TOLERANCE, CONVEX_METRIC_REGULARISATION, DEGENERATE_SLIVER_FACTOR,
     DEVELOPABLE_METRIC_REGULARISATION, ENVELOPE_FLIP_TOLERANCE, GRADIENT_MIN_COS,
-    METRIC_REGULARISATION, SLOPE_FRAME_SAMPLES,
+    SLOPE_FRAME_SAMPLES,
 };
 
 use crate::triangulation::{orient, DualTriangulation, IndexMap, NO_TRIANGLE};
@@ -86,9 +86,14 @@ pub(crate) struct NeighbourInput<'a> {
     /// curvature relative to the normal; 0 elsewhere.
     pub convex_side: &'a [i8],
     /// The any-curvature path (saddles, mixed surfaces): the compensation metric gets the
-    /// isotropic term [`METRIC_REGULARISATION`] and the tie tolerance, and the validity flips
+    /// isotropic term `metric_regularisation` and the tie tolerance, and the validity flips
     /// run. False on strictly convex surfaces, where the envelope test decides anyway.
     pub any_curvature: bool,
+    /// The weight of the isotropic term on the any-curvature path:
+    /// [`crate::tolerance::METRIC_REGULARISATION`], or one of
+    /// [`crate::tolerance::METRIC_REGULARISATION_RETRIES`] when adjusted
+    /// planes left facets invalid with it (`structure::retry_adjusted`).
+    pub metric_regularisation: f64,
 }
 
 /// Runs both criteria to convergence, then the validity flips of the facets of points
@@ -720,7 +725,7 @@ fn compensation_illegal(
         let weight = if developable {
             DEVELOPABLE_METRIC_REGULARISATION
         } else {
-            METRIC_REGULARISATION
+            input.metric_regularisation
         };
         g[0] += 4.0 * weight * largest;
         g[2] += 4.0 * weight * largest;

@@ -38,8 +38,8 @@ use crate::planes::{intersect_three, Plane};
 use crate::predicates::orient2d;
 use crate::surface::Surface;
 use crate::tolerance::{
-    PERIODIC_BAND, PERIODIC_CUTS, PERIODIC_TIE, PERIODIC_TIE_ROUNDS, POLE_CAP_COSINE,
-    POLE_CAP_FLIPS,
+    METRIC_REGULARISATION, PERIODIC_BAND, PERIODIC_CUTS, PERIODIC_TIE, PERIODIC_TIE_ROUNDS,
+    POLE_CAP_COSINE, POLE_CAP_FLIPS,
 };
 use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
 use crate::validity_flips::validity_flips;
@@ -126,6 +126,7 @@ pub(crate) fn decide_folded(
         planes: &augmented.planes,
         convex_side: &augmented.convex_side,
         any_curvature: true,
+        metric_regularisation: METRIC_REGULARISATION,
     };
     // No facet judged yet: the validity flips, greedy in facet order, would decide the two
     // sides of the seam differently; they run on the fold.

@@ -33,7 +33,7 @@
 
 use std::time::Instant;
 
-use crate::adjusted_planes::adjust_planes;
+use crate::adjusted_planes::{adjust_planes, PlaneAdjustStats};
 use crate::boundary::Boundary;
 use crate::closed::{self, SurfaceLayout};
 use crate::diagnostics::Diagnostic;
@@ -52,7 +52,9 @@ use crate::progress::{Stage, Stages};
 use crate::rulings;
 use crate::samples::Samples;
 use crate::surface::Surface;
-use crate::tolerance::STRIP_TRIM_MARGIN;
+use crate::tolerance::{
+    ESCALATION_MAX_INVALID, METRIC_REGULARISATION, METRIC_REGULARISATION_RETRIES, STRIP_TRIM_MARGIN,
+};
 use crate::triangulation::{real_pairs, DualTriangulation};
 
 /// How the facet stage builds the facets of a [`DualStructure`].
@@ -271,6 +273,7 @@ pub(crate) fn decide_structure(
         planes: &samples.planes,
         convex_side: &samples.convex_side,
         any_curvature: false,
+        metric_regularisation: METRIC_REGULARISATION,
     };
     // Each path with whether it closed the seam of a closed surface.
     let (structure, seam_closed) = match (&samples.slopes, &samples.lifted) {
@@ -404,6 +407,56 @@ fn clipped(
     }
 }
 
+/// One decision of the neighbours with adjusted planes: the structure, the planes and the
+/// two stages' figures.
+type AdjustedAttempt = (
+    DualTriangulation,
+    Vec<Plane>,
+    NeighbourStats,
+    PlaneAdjustStats,
+);
+
+/// The neighbours decided and the planes adjusted again from the Delaunay triangulation of
+/// the seeds and ghosts `augmented` with their exact planes `exact`, with each weight of
+/// [`METRIC_REGULARISATION_RETRIES`] in turn, for a structure whose adjustment with
+/// [`METRIC_REGULARISATION`] left facets invalid. Near a parabolic line the isotropic term
+/// decides how far the facets run along it, and a facet that no tilt within 5 degrees
+/// repairs with one weight is often valid with another. Returns the attempt that left the
+/// fewest facets invalid (the first of equals; it stops at none), or None without weights.
+fn retry_adjusted(
+    augmented: &Augmented,
+    exact: Vec<Plane>,
+    envelope_repair: bool,
+    n: usize,
+) -> Result<Option<AdjustedAttempt>, TpiError> {
+    let mut best: Option<AdjustedAttempt> = None;
+    for &weight in METRIC_REGULARISATION_RETRIES {
+        let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
+        let input = NeighbourInput {
+            plane_uv: &augmented.plane_uv,
+            geometry: &augmented.geometry,
+            planes: &exact,
+            convex_side: &augmented.convex_side,
+            any_curvature: true,
+            metric_regularisation: weight,
+        };
+        let decided = decide(&mut triangulation, &input, envelope_repair, n);
+        let mut planes = exact.clone();
+        let adjusted = adjust_planes(&mut triangulation, &mut planes, n);
+        let better = best
+            .as_ref()
+            .map_or(true, |b| adjusted.unresolved < b.3.unresolved);
+        if better {
+            let done = adjusted.unresolved == 0;
+            best = Some((triangulation, planes, decided, adjusted));
+            if done {
+                break;
+            }
+        }
+    }
+    Ok(best)
+}
+
 /// The real seeds' own planes as the ghosts' plan of a structure without ghosts.
 fn identity_ghosts(planes: &[Plane]) -> (Vec<Plane>, Vec<u32>) {
     (planes.to_vec(), (0..planes.len() as u32).collect())
@@ -534,6 +587,7 @@ fn any_curvature(
                 planes: &augmented.planes,
                 convex_side: &augmented.convex_side,
                 any_curvature: true,
+                metric_regularisation: METRIC_REGULARISATION,
             };
             let neighbours = decide(
                 &mut triangulation,
@@ -548,7 +602,23 @@ fn any_curvature(
     if options.planes == PlaneMode::Adjusted {
         // The plane adjustment decides planes and flips edges: its time counts as neighbours'.
         let adjust = Instant::now();
-        let stats = adjust_planes(&mut triangulation, &mut augmented.planes, n);
+        // Folded structures are decided with the fold; only open ones are retried.
+        let exact = (!seam_closed).then(|| augmented.planes.clone());
+        let mut stats = adjust_planes(&mut triangulation, &mut augmented.planes, n);
+        if let Some(exact) = exact {
+            // Many left (a nearly developable surface, where no tilt helps) are not retried.
+            if (1..=ESCALATION_MAX_INVALID).contains(&stats.unresolved) {
+                let retried = retry_adjusted(&augmented, exact, options.envelope_repair, n)?;
+                if let Some((tri, planes, decided, adjusted)) = retried {
+                    if adjusted.unresolved < stats.unresolved {
+                        triangulation = tri;
+                        augmented.planes = planes;
+                        neighbours = decided;
+                        stats = adjusted;
+                    }
+                }
+            }
+        }
         timings.neighbours += ms(adjust);
         // The seeds are the tangent planes' (Samples::seeds).
         samples.tangent_planes = Some(std::mem::replace(
