@@ -53,7 +53,7 @@ use crate::rulings;
 use crate::samples::Samples;
 use crate::surface::Surface;
 use crate::tolerance::{
-    ESCALATION_MAX_INVALID, METRIC_REGULARISATION, METRIC_REGULARISATION_RETRIES, STRIP_TRIM_MARGIN,
+    METRIC_REGULARISATION, METRIC_REGULARISATION_RETRIES, RETRY_MAX_INVALID, STRIP_TRIM_MARGIN,
 };
 use crate::triangulation::{real_pairs, DualTriangulation};
 
@@ -407,29 +407,40 @@ fn clipped(
     }
 }
 
-/// One decision of the neighbours with adjusted planes: the structure, the planes and the
-/// two stages' figures.
-type AdjustedAttempt = (
-    DualTriangulation,
-    Vec<Plane>,
-    NeighbourStats,
-    PlaneAdjustStats,
-);
+/// One decision of the neighbours (and with adjusted planes, of the planes).
+struct Attempt {
+    triangulation: DualTriangulation,
+    planes: Vec<Plane>,
+    neighbours: NeighbourStats,
+    adjusted: Option<PlaneAdjustStats>,
+}
 
-/// The neighbours decided and the planes adjusted again from the Delaunay triangulation of
-/// the seeds and ghosts `augmented` with their exact planes `exact`, with each weight of
-/// [`METRIC_REGULARISATION_RETRIES`] in turn, for a structure whose adjustment with
-/// [`METRIC_REGULARISATION`] left facets invalid. Near a parabolic line the isotropic term
-/// decides how far the facets run along it, and a facet that no tilt within 5 degrees
-/// repairs with one weight is often valid with another. Returns the attempt that left the
-/// fewest facets invalid (the first of equals; it stops at none), or None without weights.
-fn retry_adjusted(
+impl Attempt {
+    /// Facets left invalid by the local test: after the plane adjustment, or after the
+    /// validity flips with exact planes.
+    fn left(&self) -> usize {
+        self.adjusted
+            .map_or(self.neighbours.validity_unresolved, |a| a.unresolved)
+    }
+}
+
+/// The neighbours decided (and with `adjust` the planes adjusted) again from the Delaunay
+/// triangulation of the seeds and ghosts `augmented` with their exact planes `exact`, with
+/// each weight of [`METRIC_REGULARISATION_RETRIES`] in turn, for a structure whose decision
+/// with [`METRIC_REGULARISATION`] left 1 to [`RETRY_MAX_INVALID`] facets invalid. Near a
+/// parabolic line, and where the saddle's metric is strongly anisotropic, the isotropic term
+/// decides how far the facets run along the flat direction, and a facet that neither flips
+/// nor tilts within 5 degrees repair with one weight is often valid with another. Returns the
+/// attempt that left the fewest facets invalid (the first of equals; it stops at none), or
+/// None without weights.
+fn decide_again(
     augmented: &Augmented,
     exact: Vec<Plane>,
     envelope_repair: bool,
     n: usize,
-) -> Result<Option<AdjustedAttempt>, TpiError> {
-    let mut best: Option<AdjustedAttempt> = None;
+    adjust: bool,
+) -> Result<Option<Attempt>, TpiError> {
+    let mut best: Option<Attempt> = None;
     for &weight in METRIC_REGULARISATION_RETRIES {
         let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
         let input = NeighbourInput {
@@ -440,15 +451,18 @@ fn retry_adjusted(
             any_curvature: true,
             metric_regularisation: weight,
         };
-        let decided = decide(&mut triangulation, &input, envelope_repair, n);
+        let neighbours = decide(&mut triangulation, &input, envelope_repair, n);
         let mut planes = exact.clone();
-        let adjusted = adjust_planes(&mut triangulation, &mut planes, n);
-        let better = best
-            .as_ref()
-            .map_or(true, |b| adjusted.unresolved < b.3.unresolved);
-        if better {
-            let done = adjusted.unresolved == 0;
-            best = Some((triangulation, planes, decided, adjusted));
+        let adjusted = adjust.then(|| adjust_planes(&mut triangulation, &mut planes, n));
+        let attempt = Attempt {
+            triangulation,
+            planes,
+            neighbours,
+            adjusted,
+        };
+        if best.as_ref().map_or(true, |b| attempt.left() < b.left()) {
+            let done = attempt.left() == 0;
+            best = Some(attempt);
             if done {
                 break;
             }
@@ -599,34 +613,36 @@ fn any_curvature(
             (triangulation, augmented, neighbours)
         }
     };
-    if options.planes == PlaneMode::Adjusted {
-        // The plane adjustment decides planes and flips edges: its time counts as neighbours'.
-        let adjust = Instant::now();
-        // Folded structures are decided with the fold; only open ones are retried.
-        let exact = (!seam_closed).then(|| augmented.planes.clone());
-        let mut stats = adjust_planes(&mut triangulation, &mut augmented.planes, n);
-        if let Some(exact) = exact {
-            // Many left (a nearly developable surface, where no tilt helps) are not retried.
-            if (1..=ESCALATION_MAX_INVALID).contains(&stats.unresolved) {
-                let retried = retry_adjusted(&augmented, exact, options.envelope_repair, n)?;
-                if let Some((tri, planes, decided, adjusted)) = retried {
-                    if adjusted.unresolved < stats.unresolved {
-                        triangulation = tri;
-                        augmented.planes = planes;
-                        neighbours = decided;
-                        stats = adjusted;
-                    }
-                }
-            }
+    let adjusted = options.planes == PlaneMode::Adjusted;
+    // The plane adjustment and a second decision decide planes and flip edges: their time
+    // counts as the neighbours'.
+    let adjust = Instant::now();
+    // The exact planes, kept where the adjustment may need them again.
+    let exact = (adjusted && !seam_closed).then(|| augmented.planes.clone());
+    let mut stats = adjusted.then(|| adjust_planes(&mut triangulation, &mut augmented.planes, n));
+    let mut left = stats.map_or(neighbours.validity_unresolved, |s| s.unresolved);
+    // Many left (a nearly developable surface, where neither flips nor tilts help) are not
+    // decided again; folded structures are decided with the fold, and not again.
+    if !seam_closed && (1..=RETRY_MAX_INVALID).contains(&left) {
+        let exact = exact.unwrap_or_else(|| augmented.planes.clone());
+        let retried = decide_again(&augmented, exact, options.envelope_repair, n, adjusted)?;
+        if let Some(attempt) = retried.filter(|a| a.left() < left) {
+            left = attempt.left();
+            triangulation = attempt.triangulation;
+            augmented.planes = attempt.planes;
+            neighbours = attempt.neighbours;
+            stats = attempt.adjusted;
         }
-        timings.neighbours += ms(adjust);
+    }
+    timings.neighbours += ms(adjust);
+    if let Some(stats) = stats {
         // The seeds are the tangent planes' (Samples::seeds).
         samples.tangent_planes = Some(std::mem::replace(
             &mut samples.planes,
             augmented.planes[..n].to_vec(),
         ));
         neighbours.plane_tilts = stats.tilts;
-        neighbours.validity_unresolved = stats.unresolved;
+        neighbours.validity_unresolved = left;
     }
     let structure = DualStructure {
         triangulation,

@@ -231,12 +231,20 @@ pub const GHOST_FLAT_MIRROR: f64 = 0.02;
 /// that the metric never degenerates where one principal curvature vanishes.
 pub const METRIC_REGULARISATION: f64 = 0.05;
 
-/// With adjusted planes, where 1 to [`ESCALATION_MAX_INVALID`] facets are left invalid after
-/// the plane adjustment, the neighbours are decided and the planes adjusted again with these
-/// weights of the isotropic term in turn, until none is left; the attempt with the fewest left is kept (the first of
-/// equals). Near a parabolic line the weight decides how long the facets run along it, and
-/// which facets no tilt of 5 degrees repairs (`structure::retry_adjusted`).
-pub const METRIC_REGULARISATION_RETRIES: &[f64] = &[0.15, 0.3];
+/// Where 1 to [`RETRY_MAX_INVALID`] facets are left invalid on an open patch or a trim
+/// (after the validity flips with exact planes, after the plane adjustment with adjusted
+/// ones), the neighbours are decided (and the planes adjusted) again with these weights of
+/// the isotropic term in turn, until none is left; the attempt with the fewest left is kept
+/// (the first of equals). Near a parabolic line, and on strongly anisotropic saddles, the
+/// weight decides how long the facets run along the flat direction, and which facets neither
+/// flips nor tilts of 5 degrees repair (`structure::decide_again`).
+pub const METRIC_REGULARISATION_RETRIES: &[f64] = &[0.15, 0.3, 0.5];
+
+/// The most facets left invalid for which the neighbours are decided again
+/// ([`METRIC_REGULARISATION_RETRIES`]): more are left where neither flips nor tilts help (a
+/// nearly developable band, exact planes across a parabolic line), and another weight does
+/// not change that.
+pub const RETRY_MAX_INVALID: usize = 8;
 
 /// The isotropic term where all four points of a quad are flat (K = 0 with one curvature
 /// left: a developable surface). Small, so that the triangulation follows the limit of TPI as

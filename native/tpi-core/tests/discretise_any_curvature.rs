@@ -926,7 +926,8 @@ fn saddle_meshes_end_on_the_wall() {
 /// whose curvature varies tenfold), with hex patterns at odd rotations, a square grid and
 /// Poisson-disk patterns: with exact planes every mesh is a disc without an invalid facet by
 /// the independent check. The Poisson cases are those the example `saddle_sweep` found
-/// failing before the pair detours of `validity_flips` (1, 2 and 1 invalid facets).
+/// failing before the pair detours of `validity_flips` (1, 2 and 1 invalid facets), and
+/// the two it found failing before a second decision of the neighbours (1 each).
 #[test]
 fn sweep_saddles_give_valid_discs_with_exact_planes() {
     use common::saddles::{
@@ -978,6 +979,20 @@ fn sweep_saddles_give_valid_discs_with_exact_planes() {
             Box::new(helicoid(1.5, [0.0, 240.0], [-3.0, 3.0])),
             "grid400".into(),
             grid(400),
+        ),
+        // Two the pair detours left with one invalid boundary facet each, valid with a
+        // second decision of the neighbours (structure::decide_again).
+        (
+            "hp-ab-long",
+            Box::new(hypar_ab(5.0, 2.5, 10.0, 2.5, 70.0)),
+            "poisson1000#0".into(),
+            poisson_seeded(1000, 1007),
+        ),
+        (
+            "skew2",
+            Box::new(skewed_saddle(2)),
+            "poisson1000#1".into(),
+            poisson_seeded(1000, 1107),
         ),
     ];
     let mut table = Vec::new();
