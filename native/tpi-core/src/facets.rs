@@ -30,7 +30,7 @@ use crate::mesh::{
 use crate::neighbours::SlopeFrame;
 use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane, ThreePlanePoint};
 use crate::progress::{NoProgress, Stage, Stages, Tally};
-use crate::projection::periodic_foot;
+use crate::projection::{outside_foot, periodic_foot};
 use crate::samples::Samples;
 use crate::structure::{DualStructure, FacetPlan};
 use crate::surface::{Domain, Surface};
@@ -215,6 +215,21 @@ impl Context<'_> {
             guess,
             self.boundary.periodic(),
             self.boundary.poles(),
+        );
+        (uv, self.boundary.inside_measure(uv))
+    }
+
+    /// [`Context::measure`] where only the side matters and the foot serves as a guess: a
+    /// foot decided outside may stop short of Newton's convergence
+    /// ([`crate::projection::outside_foot`]); inside, the same foot as `measure`.
+    fn measure_side(&self, x: DVec3, guess: [f64; 2]) -> ([f64; 2], f64) {
+        let uv = outside_foot(
+            self.surface,
+            &self.domain,
+            x,
+            guess,
+            (self.boundary.periodic(), self.boundary.poles()),
+            &|uv| self.boundary.inside_measure(uv),
         );
         (uv, self.boundary.inside_measure(uv))
     }
@@ -1694,7 +1709,7 @@ fn outside_segment_crossings(
     for &lambda in &lambdas {
         let point = start.point + direction * lambda;
         let guess = lerp2(start.guess, end.guess, lambda / length);
-        let (foot_uv, inside) = ctx.measure(point, guess);
+        let (foot_uv, inside) = ctx.measure_side(point, guess);
         if inside > 0.0 {
             let (u, v) = ctx.domain.clamp(foot_uv[0], foot_uv[1]);
             let off_surface = ctx.surface.point_at(u, v).distance(point);
@@ -1740,7 +1755,7 @@ fn march_out(
     let mut guess = from.guess;
     for _ in 0..RAY_DOUBLINGS {
         let point = from.point + direction * step;
-        let (foot_uv, inside) = ctx.measure(point, guess);
+        let (foot_uv, inside) = ctx.measure_side(point, guess);
         if inside <= 0.0 {
             return Some((
                 step,
