@@ -286,7 +286,8 @@ pub const DISTANCE_FOOT_MIN_FOCAL_FACTOR: f64 = 0.25;
 
 /// A projection that only decides whether a point's foot is outside the domain
 /// (`projection::outside_foot`: the facet stage's samples of an edge both of whose ends are
-/// outside, and its march out along a hull ray) stops once two consecutive Newton steps
+/// outside, the far end of an edge leaving the domain, and the march out along a hull ray;
+/// there the foot serves only as the next projection's start) stops once two consecutive Newton steps
 /// shrink at least by this factor, q = s_k / s_(k-1) <= 1/2 (the iterates then move by at
 /// most s_k q / (1 - q) <= s_k more, for a contraction that holds on) ...
 pub const SIDE_DECISION_MAX_CONTRACTION: f64 = 0.5;
