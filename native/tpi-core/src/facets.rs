@@ -11,7 +11,11 @@
 //!   crossing is found by regula falsi on the inside measure: a point of the line T_i ∩ T_j
 //!   whose foot is on the domain boundary, i.e. where the edge meets the ruled surface of the
 //!   normals along the boundary curve. It is computed once per edge and shared by both
-//!   facets. Between leaving and re-entering the domain, a facet follows the boundary
+//!   facets. Where only the side of a point
+//!   matters (the samples of an edge with both ends outside, the far end of an edge leaving
+//!   the domain, the march along a ray) Newton stops once two steps s_(k-1), s_k contract,
+//!   s_k <= s_(k-1) / 2, and the iterate is outside by more than 4 s_k (the iterates move by
+//!   at most s_k q / (1 - q) <= s_k more: [`crate::projection::outside_foot`]). Between leaving and re-entering the domain, a facet follows the boundary
 //!   counter-clockwise and picks up the domain corners it passes; corner c contributes the
 //!   point where the corner's normal line meets T_i. Every vertex of facet i lies in T_i by
 //!   construction, so every facet is exactly planar.
@@ -30,7 +34,7 @@ use crate::mesh::{
 use crate::neighbours::SlopeFrame;
 use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane, ThreePlanePoint};
 use crate::progress::{NoProgress, Stage, Stages, Tally};
-use crate::projection::periodic_foot;
+use crate::projection::{outside_foot, periodic_foot};
 use crate::samples::Samples;
 use crate::structure::{DualStructure, FacetPlan};
 use crate::surface::{Domain, Surface};
@@ -215,6 +219,24 @@ impl Context<'_> {
             guess,
             self.boundary.periodic(),
             self.boundary.poles(),
+        );
+        (uv, self.boundary.inside_measure(uv))
+    }
+
+    /// [`Context::measure`] where only the side matters and the foot serves as a guess (the
+    /// samples of an edge whose ends are both outside, the far end of an edge leaving the
+    /// domain, the march out along a ray): a foot decided outside may stop short of Newton's
+    /// convergence ([`crate::projection::outside_foot`]); its inside measure is then off by at
+    /// most the estimated remaining movement, a quarter of its size, so the side is right and
+    /// a regula falsi bracketed by it stays bracketed. Inside, the same foot as `measure`.
+    fn measure_side(&self, x: DVec3, guess: [f64; 2]) -> ([f64; 2], f64) {
+        let uv = outside_foot(
+            self.surface,
+            &self.domain,
+            x,
+            guess,
+            (self.boundary.periodic(), self.boundary.poles()),
+            &|uv| self.boundary.inside_measure(uv),
         );
         (uv, self.boundary.inside_measure(uv))
     }
@@ -1519,7 +1541,7 @@ fn edge_crossings(
             let outside = match target {
                 Some(length) => {
                     let point = from.point + direction * length;
-                    let (foot_uv, inside) = ctx.measure(point, from.guess);
+                    let (foot_uv, inside) = ctx.measure_side(point, from.guess);
                     if inside > 0.0 {
                         march_out(ctx, &from, direction, spacing)
                     } else {
@@ -1694,7 +1716,7 @@ fn outside_segment_crossings(
     for &lambda in &lambdas {
         let point = start.point + direction * lambda;
         let guess = lerp2(start.guess, end.guess, lambda / length);
-        let (foot_uv, inside) = ctx.measure(point, guess);
+        let (foot_uv, inside) = ctx.measure_side(point, guess);
         if inside > 0.0 {
             let (u, v) = ctx.domain.clamp(foot_uv[0], foot_uv[1]);
             let off_surface = ctx.surface.point_at(u, v).distance(point);
@@ -1740,7 +1762,7 @@ fn march_out(
     let mut guess = from.guess;
     for _ in 0..RAY_DOUBLINGS {
         let point = from.point + direction * step;
-        let (foot_uv, inside) = ctx.measure(point, guess);
+        let (foot_uv, inside) = ctx.measure_side(point, guess);
         if inside <= 0.0 {
             return Some((
                 step,

@@ -16,7 +16,8 @@ use glam::DVec3;
 use crate::surface::{Domain, Surface};
 use crate::tolerance::{
     DISTANCE_FOOT_MIN_FOCAL_FACTOR, DISTANCE_FOOT_STEP_TOLERANCE, MAX_PROJECTION_ITERATIONS,
-    POLE_RESTART_BAND, PROJECTION_STEP_TOLERANCE,
+    POLE_RESTART_BAND, PROJECTION_STEP_TOLERANCE, SIDE_DECISION_MAX_CONTRACTION,
+    SIDE_DECISION_SAFETY,
 };
 
 /// The foot of `x` on the (extended) surface, starting from `guess`.
@@ -55,6 +56,7 @@ pub(crate) fn distance_foot(
             wrap.periodic,
             wrap.poles,
             DISTANCE_FOOT_STEP_TOLERANCE,
+            None,
         )
     };
     let foot = newton(guess);
@@ -141,11 +143,44 @@ pub(crate) fn periodic_foot(
         periodic,
         poles,
         PROJECTION_STEP_TOLERANCE,
+        None,
+    )
+}
+
+/// [`periodic_foot`] where only the side of the boundary the foot lies on matters, and the
+/// foot itself only as a guess for later projections: Newton stops as soon as the iterates
+/// show the foot outside (`inside_measure` negative, 1-Lipschitz in normalised parameters)
+/// by more than their remaining error can reach, by the a-posteriori estimate of a
+/// contracting iteration. After steps s_(k-1), s_k (normalised, L1) with contraction
+/// q = s_k / s_(k-1) <= [`SIDE_DECISION_MAX_CONTRACTION`], the iterates still move by at
+/// most s_k q / (1 - q) <= s_k; Newton stops when the measure of the current iterate is
+/// below -[`SIDE_DECISION_SAFETY`] s_k. A foot inside, or not decided so, is converged as by
+/// [`periodic_foot`].
+pub(crate) fn outside_foot(
+    surface: &dyn Surface,
+    domain: &Domain,
+    x: DVec3,
+    guess: [f64; 2],
+    (periodic, poles): ([bool; 2], [bool; 4]),
+    inside_measure: &dyn Fn([f64; 2]) -> f64,
+) -> [f64; 2] {
+    newton_foot(
+        surface,
+        domain,
+        x,
+        guess,
+        periodic,
+        poles,
+        PROJECTION_STEP_TOLERANCE,
+        Some(inside_measure),
     )
 }
 
 /// [`periodic_foot`], stopping after a full-Hessian step shorter than `quadratic_stop`
-/// (normalised) or any step shorter than [`PROJECTION_STEP_TOLERANCE`].
+/// (normalised) or any step shorter than [`PROJECTION_STEP_TOLERANCE`], or, given
+/// `outside_by`, as soon as the foot is decided outside ([`outside_foot`]).
+// The surface, its domain and wrap, the point, the start and the two stopping rules.
+#[allow(clippy::too_many_arguments)]
 fn newton_foot(
     surface: &dyn Surface,
     domain: &Domain,
@@ -154,6 +189,7 @@ fn newton_foot(
     periodic: [bool; 2],
     poles: [bool; 4],
     quadratic_stop: f64,
+    outside_by: Option<&dyn Fn([f64; 2]) -> f64>,
 ) -> [f64; 2] {
     let interval = |k: usize| if k == 0 { domain.u } else { domain.v };
     let wrap = |[mut u, mut v]: [f64; 2]| {
@@ -193,6 +229,7 @@ fn newton_foot(
     // the same boundary point (beyond a corner always).
     // (Compared bit for bit: -0.0 and 0.0 are different arguments.)
     let mut outside: Option<([u64; 2], [DVec3; 3])> = None;
+    let mut previous_step = f64::INFINITY;
     for _ in 0..MAX_PROJECTION_ITERATIONS {
         let (cu, cv) = domain.clamp(u, v);
         let inside = cu == u && cv == v;
@@ -239,6 +276,14 @@ fn newton_foot(
         if step < PROJECTION_STEP_TOLERANCE || (quadratic && step < quadratic_stop) {
             break;
         }
+        if let Some(measure) = outside_by {
+            if step <= SIDE_DECISION_MAX_CONTRACTION * previous_step
+                && measure([u, v]) < -SIDE_DECISION_SAFETY * step
+            {
+                break;
+            }
+        }
+        previous_step = step;
     }
     [u, v]
 }

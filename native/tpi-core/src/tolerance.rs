@@ -299,6 +299,19 @@ pub const DISTANCE_FOOT_STEP_TOLERANCE: f64 = 1e-5;
 /// ratio of the full Newton Hessian's determinant to the metric's, at least this.
 pub const DISTANCE_FOOT_MIN_FOCAL_FACTOR: f64 = 0.25;
 
+/// A projection that only decides whether a point's foot is outside the domain
+/// (`projection::outside_foot`: the facet stage's samples of an edge both of whose ends are
+/// outside, the far end of an edge leaving the domain, and the march out along a hull ray;
+/// there the foot serves only as the next projection's start) stops once two consecutive Newton steps
+/// shrink at least by this factor, q = s_k / s_(k-1) <= 1/2 (the iterates then move by at
+/// most s_k q / (1 - q) <= s_k more, for a contraction that holds on) ...
+pub const SIDE_DECISION_MAX_CONTRACTION: f64 = 0.5;
+
+/// ... and the current iterate lies outside the domain by more than this multiple of the last
+/// step s_k (normalised): four times the estimated remaining movement, so that the estimate
+/// may be off by that factor before a sign could change.
+pub const SIDE_DECISION_SAFETY: f64 = 4.0;
+
 /// Normalised distance from a pole side within which the report's projection, having
 /// stopped there, starts again half a turn round the pole and keeps the nearer foot
 /// (`projection::Wrap::across_pole`): the Jacobian vanishes at a pole, and Newton may stop
