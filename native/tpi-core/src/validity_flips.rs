@@ -60,6 +60,10 @@ use crate::tolerance::{
 };
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
+/// A score of a flip's neighbourhood ([`State::try_flip_scored`]): of the triangulation, its
+/// incident triangle per point and the flip's quad points.
+pub(crate) type FlipScore<'s> = dyn FnMut(&DualTriangulation, &[u32], &[u32; 4]) -> f64 + 's;
+
 /// What the validity flips did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct ValidityFlipStats {
@@ -909,6 +913,57 @@ impl<'a> State<'a> {
             break;
         }
         flips
+    }
+
+    /// Flips the edge (a, b) where it can be flipped and keeps the flip when `score` (of the
+    /// triangulation, the incident triangles and the quad's points (c, a, b, d)) drops by
+    /// more than `margin` and no judged facet among those the flip can change turns invalid
+    /// (verdicts renewed); otherwise the flip is undone. A flip touching a ghost must leave
+    /// the ghosts in one run around every point of the quad. Returns whether it was kept.
+    pub(crate) fn try_flip_scored(
+        &mut self,
+        a: u32,
+        b: u32,
+        margin: f64,
+        blocked: &[bool],
+        score: &mut FlipScore<'_>,
+    ) -> Option<([u32; 4], Vec<u32>)> {
+        let (t, k, quad) = self.flippable(a, b)?;
+        if quad
+            .iter()
+            .any(|&x| (x as usize) < self.judged && blocked[x as usize])
+        {
+            return None;
+        }
+        let before = score(self.tri, &self.incident, &quad);
+        self.journal = Some(Journal::default());
+        self.flip(t as u32, k);
+        if self.breaks_ghost_run(&quad, self.judged) {
+            self.undo();
+            return None;
+        }
+        let after = score(self.tri, &self.incident, &quad);
+        if !(after < before - margin) {
+            self.undo();
+            return None;
+        }
+        let mut region = Vec::with_capacity(AFFECTED_CAPACITY);
+        self.affected_into(&quad, &mut region);
+        region.retain(|&x| (x as usize) < self.judged);
+        let mut verdicts = Vec::with_capacity(region.len());
+        for &x in &region {
+            let v = self.facet_invalid(x);
+            if v && !self.invalid[x as usize] {
+                self.undo();
+                return None;
+            }
+            verdicts.push(v);
+        }
+        for (&x, v) in region.iter().zip(verdicts) {
+            self.set_verdict(x, v);
+        }
+        self.journal = None;
+        Some((quad, region))
     }
 
     /// Tries the star and link edges of facet i; keeps the first flip that lowers the number
