@@ -207,7 +207,7 @@ pub(super) fn wall_flips(
         return Vec::new();
     }
     let points = planes.len();
-    let mut state = State::new(tri, points, Cow::Borrowed(planes), real_count);
+    let mut state = State::unjudged(tri, points, Cow::Borrowed(planes), real_count);
     let mut kept = Vec::new();
     let mut targets = targets;
     for _ in 0..WALL_FLIP_ROUNDS {
