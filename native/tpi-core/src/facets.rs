@@ -730,15 +730,10 @@ fn invalid_extended_facets(
     extended: &[bool],
 ) -> Vec<usize> {
     let n = planes.len();
-    let polygon = |f: usize| -> Vec<DVec3> {
-        mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize]
-            .iter()
-            .map(|&v| mesh.vertices[v as usize])
-            .collect()
-    };
     let mut buffer = Vec::new();
     let mut simple = |f: usize| {
-        crate::quality::facet_shape_into(&planes[f], polygon(f).into_iter(), &mut buffer).simple
+        crate::quality::facet_shape_into(&planes[f], mesh.polygon(f).into_iter(), &mut buffer)
+            .simple
     };
     let mut pairs = Vec::new();
     for ids in &tri.triangles {
@@ -759,7 +754,7 @@ fn invalid_extended_facets(
             continue;
         }
         let normal = planes[f].normal + planes[g].normal;
-        if crate::validity_flips::polygons_overlap(&polygon(f), &polygon(g), normal) {
+        if crate::validity_flips::polygons_overlap(&mesh.polygon(f), &mesh.polygon(g), normal) {
             invalid[f] |= extended[f];
             invalid[g] |= extended[g];
         }
@@ -780,15 +775,9 @@ fn invalid_marked_facets(
     least_area: f64,
 ) -> Vec<usize> {
     let n = planes.len();
-    let polygon = |f: usize| -> Vec<DVec3> {
-        mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize]
-            .iter()
-            .map(|&v| mesh.vertices[v as usize])
-            .collect()
-    };
     let mut holders: Vec<Vec<u32>> = vec![Vec::new(); mesh.vertices.len()];
     for f in 0..n {
-        for &v in &mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize] {
+        for &v in mesh.facet_loop(f) {
             let list = &mut holders[v as usize];
             if list.last() != Some(&(f as u32)) {
                 list.push(f as u32);
@@ -799,12 +788,13 @@ fn invalid_marked_facets(
     let mut simple = vec![None; n];
     let mut is_simple = |f: usize| {
         *simple[f].get_or_insert_with(|| {
-            crate::quality::facet_shape_into(&planes[f], polygon(f).into_iter(), &mut buffer).simple
+            crate::quality::facet_shape_into(&planes[f], mesh.polygon(f).into_iter(), &mut buffer)
+                .simple
         })
     };
     let mut invalid = Vec::new();
     for f in (0..n).filter(|&f| marked[f]) {
-        let own = polygon(f);
+        let own = mesh.polygon(f);
         // Newell's vector area.
         let area = (0..own.len())
             .map(|k| own[k].cross(own[(k + 1) % own.len()]))
@@ -828,7 +818,7 @@ fn invalid_marked_facets(
             is_simple(g)
                 && crate::validity_flips::polygons_overlap(
                     &own,
-                    &polygon(g),
+                    &mesh.polygon(g),
                     planes[f].normal + planes[g].normal,
                 )
         }) {

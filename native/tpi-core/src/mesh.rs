@@ -63,6 +63,21 @@ pub(crate) struct FacetMesh {
     pub(crate) welded: Vec<u32>,
 }
 
+impl FacetMesh {
+    /// Facet f's loop of vertex indices.
+    pub(crate) fn facet_loop(&self, f: usize) -> &[u32] {
+        &self.loops[self.offsets[f] as usize..self.offsets[f + 1] as usize]
+    }
+
+    /// Facet f's polygon: the positions of its loop's vertices.
+    pub(crate) fn polygon(&self, f: usize) -> Vec<DVec3> {
+        self.facet_loop(f)
+            .iter()
+            .map(|&v| self.vertices[v as usize])
+            .collect()
+    }
+}
+
 /// The slope frame's tangent axes and the points' slopes, where the dual structure is the
 /// regular triangulation of the slopes (the convex path): what [`edge_reversed`] reads.
 #[derive(Clone, Copy, Debug)]
@@ -350,13 +365,11 @@ pub(crate) fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
         VertexKind::Interior => false,
     };
     let facets = mesh.offsets.len() - 1;
-    let loop_of = |mesh: &FacetMesh, f: usize| {
-        mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize].to_vec()
-    };
+    let loop_of = |mesh: &FacetMesh, f: usize| mesh.facet_loop(f).to_vec();
     // Candidate pairs (v, w), in loop order (read in place: this runs on every mesh).
     let mut candidates: Vec<(u32, u32)> = Vec::new();
     for f in 0..facets {
-        let lp = &mesh.loops[mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize];
+        let lp = mesh.facet_loop(f);
         let n = lp.len();
         for k in 0..n {
             let v = lp[k];
