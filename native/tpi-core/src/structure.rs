@@ -432,16 +432,18 @@ impl Attempt {
 /// decides how far the facets run along the flat direction, and a facet that neither flips
 /// nor tilts within 5 degrees repair with one weight is often valid with another. Returns the
 /// attempt that left the fewest facets invalid (the first of equals; it stops at none), or
-/// None without weights.
+/// None without weights. A cancellation seen by `stages` is answered between attempts.
 fn decide_again(
     augmented: &Augmented,
     exact: Vec<Plane>,
     envelope_repair: bool,
     n: usize,
     adjust: bool,
+    stages: &Stages<'_>,
 ) -> Result<Option<Attempt>, TpiError> {
     let mut best: Option<Attempt> = None;
     for &weight in METRIC_REGULARISATION_RETRIES {
+        stages.check()?;
         let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
         let input = NeighbourInput {
             plane_uv: &augmented.plane_uv,
@@ -625,7 +627,14 @@ fn any_curvature(
     // decided again; folded structures are decided with the fold, and not again.
     if !seam_closed && (1..=RETRY_MAX_INVALID).contains(&left) {
         let exact = exact.unwrap_or_else(|| augmented.planes.clone());
-        let retried = decide_again(&augmented, exact, options.envelope_repair, n, adjusted)?;
+        let retried = decide_again(
+            &augmented,
+            exact,
+            options.envelope_repair,
+            n,
+            adjusted,
+            stages,
+        )?;
         if let Some(attempt) = retried.filter(|a| a.left() < left) {
             left = attempt.left();
             triangulation = attempt.triangulation;
