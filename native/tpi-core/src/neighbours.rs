@@ -91,8 +91,8 @@ pub(crate) struct NeighbourInput<'a> {
     pub any_curvature: bool,
     /// The weight of the isotropic term on the any-curvature path:
     /// [`crate::tolerance::METRIC_REGULARISATION`], or one of
-    /// [`crate::tolerance::METRIC_REGULARISATION_RETRIES`] when adjusted
-    /// planes left facets invalid with it (`structure::retry_adjusted`).
+    /// [`crate::tolerance::METRIC_REGULARISATION_RETRIES`] when a first decision left a few
+    /// facets invalid (`structure::decide_again`).
     pub metric_regularisation: f64,
 }
 
