@@ -15,7 +15,8 @@
 //! With `SWEEP_SAVE=DIR` each surface and pattern is also written to DIR/mixedSEED.json and
 //! DIR/mixedSEED-PATTERN.json (surface and pattern files for `tpi discretise`); with `SWEEP_PARABOLIC=1` the invalid facets of the exact planes are
 //! counted by their distance from the nearest parabolic line (in pattern spacings), and those
-//! beyond 2 spacings listed. With `SWEEP_DETAIL=1` each facet still invalid after adjustment is listed with its seed,
+//! beyond 2 spacings listed; with `SWEEP_EXACT_ONLY=1` the adjusted run is skipped (its
+//! columns repeat the exact one). With `SWEEP_DETAIL=1` each facet still invalid after adjustment is listed with its seed,
 //! the Gaussian curvature there and the tilts of its plane and its neighbours'.
 #![allow(
     dead_code,
@@ -43,6 +44,7 @@ fn main() {
     let only: Option<String> = args.get(3).cloned();
     let detail = std::env::var_os("SWEEP_DETAIL").is_some();
     let parabolic = std::env::var_os("SWEEP_PARABOLIC").is_some();
+    let exact_only = std::env::var_os("SWEEP_EXACT_ONLY").is_some();
     let bands = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0];
     let mut histogram = [0usize; 7];
     let adjusted = DiscretiseOptions {
@@ -85,7 +87,11 @@ fn main() {
                     .expect("exact planes");
                 let t_exact = start.elapsed().as_secs_f64();
                 let start = Instant::now();
-                let d = discretise(surface, &pattern, &adjusted).expect("adjusted planes");
+                let d = if exact_only {
+                    exact.clone()
+                } else {
+                    discretise(surface, &pattern, &adjusted).expect("adjusted planes")
+                };
                 let t_adjusted = start.elapsed().as_secs_f64();
                 let v_exact = check(&exact);
                 let v = check(&d);
