@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs every test of the project:
-#   0. formatting (rustfmt --check) and lints (clippy, every target, warnings are errors);
+#   0. formatting (rustfmt --check), lints (clippy, every target, warnings are errors) and
+#      the API docs (rustdoc, private items too, warnings such as broken links are errors);
 #   1. the Rust workspace (unit, integration and doc tests, including the openNURBS
 #      conformance tests that drive rhino3dm from Python, the CLI's end-to-end tests, the C
 #      ABI's Rust tests and the header check);
@@ -43,6 +44,7 @@ if command -v rustup >/dev/null 2>&1; then
 fi
 cargo fmt --all -- --check
 cargo clippy --workspace --all-targets --locked -- -D warnings
+RUSTDOCFLAGS='-D warnings' cargo doc --workspace --no-deps --document-private-items --locked
 cargo test --workspace --locked
 bash tests/run_c_tests.sh
 bash tests/run_dotnet_tests.sh

@@ -9,6 +9,10 @@
 //! Exit codes: 0 success, 1 bad input or output (one line on stderr, `tpi: error: FILE:
 //! PROBLEM`), 2 usage, 3 invalid facets under `tpi discretise --strict`. See docs/cli.md.
 
+// The doc comments of the argument structs are clap's help text, where `[required]` and
+// `[:seed=S]` are what the user reads, not rustdoc links.
+#![allow(rustdoc::broken_intra_doc_links)]
+
 mod bench;
 mod cmd_discretise;
 mod cmd_fabricate;

@@ -153,8 +153,8 @@ impl Lattice {
 }
 
 /// A direction field given in a file: line directions in normalised parameters (ds, dt) on
-/// a grid of `size[0]` x `size[1]` nodes, node (i, j) at (i / (size[0] - 1), j / (size[1] - 1))
-/// with index i * size[1] + j (u-major, as grid patterns). Directions are lines (d and -d
+/// a grid of `size[0]` x `size[1]` nodes, node (i, j) at `(i / (size[0] - 1), j / (size[1] - 1))`
+/// with index `i * size[1] + j` (u-major, as grid patterns). Directions are lines (d and -d
 /// are the same); a zero vector means no preference there (filled by the smoothing).
 #[derive(Clone, Debug, PartialEq, serde::Serialize, serde::Deserialize)]
 #[serde(deny_unknown_fields)]

@@ -473,7 +473,7 @@ fn polyline_distance<const N: usize>(p: &[f64; N], line: &[[f64; N]]) -> f64 {
 /// spacing (at most `max_points`), then `relax` Lloyd iterations weighted by the same
 /// density (0: none).
 ///
-/// Errors: those of [`DensitySpec::field`] and of the discretisations of the relaxation.
+/// Errors: those of `DensitySpec::field` and of the discretisations of the relaxation.
 pub fn density_pattern(
     surface: &dyn Surface,
     spec: &DensitySpec,

@@ -438,7 +438,7 @@ pub fn discretise(
 }
 
 /// [`discretise`], reporting each stage's start, work items done and end to `progress`
-/// ([`crate::progress`]); the result is the same as without an observer.
+/// ([`crate::Progress`]); the result is the same as without an observer.
 pub fn discretise_with_progress(
     surface: &dyn Surface,
     pattern: &[[f64; 2]],
@@ -921,7 +921,7 @@ pub(crate) fn ms(since: Instant) -> f64 {
 }
 
 /// The size of the triangulation plane's rectangle: the scale factors that
-/// [`scaled_parameters`] applied to the normalised pattern coordinates.
+/// `samples::scaled_parameters` applied to the normalised pattern coordinates.
 pub(crate) fn plane_extent(plane_uv: &[[f64; 2]], pattern: &[[f64; 2]]) -> [f64; 2] {
     let mut extent = [1.0, 1.0];
     for axis in 0..2 {

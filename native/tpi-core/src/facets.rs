@@ -1167,7 +1167,7 @@ struct ItemContext<'a> {
     long_edges: Option<&'a [[f64; 2]]>,
 }
 
-/// The edges that can hold boundary crossings, in the order of [`DualTriangulation::edges`]:
+/// The edges that can hold boundary crossings, in triangle order (each edge once, from its lower triangle):
 /// hull edges, and edges with an outside (or stand-in) vertex at either end; with `all`,
 /// every edge.
 fn crossing_edges(tri: &DualTriangulation, tv: &[TriangleVertex], all: bool) -> Vec<Edge> {

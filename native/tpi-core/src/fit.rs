@@ -135,7 +135,7 @@ pub struct FittedPattern {
 
 /// The deviation of every mesh vertex from the surface (model units), as the quality report
 /// measures it: the distance to the foot found by Newton's method from the parameters of the
-/// first facet holding the vertex ([`crate::projection`]); 0 for vertices no facet uses.
+/// first facet holding the vertex (`crate::projection`); 0 for vertices no facet uses.
 pub fn vertex_deviations(surface: &dyn Surface, d: &Discretisation) -> Vec<f64> {
     vertex_feet(surface, d)
         .into_iter()
@@ -197,7 +197,7 @@ fn vertex_feet(surface: &dyn Surface, d: &Discretisation) -> Vec<Option<(f64, [f
 ///
 /// Errors: [`TpiError::InvalidParameter`] for a tolerance that is not a positive finite
 /// number, or one so small that the pattern would need more than [`MAX_FIT_POINTS`] points;
-/// those of [`crate::discretise`].
+/// those of [`crate::discretise()`].
 pub fn fit_pattern(
     surface: &dyn Surface,
     max_deviation: f64,
@@ -208,7 +208,7 @@ pub fn fit_pattern(
 }
 
 /// [`fit_pattern`], reporting the stages of every discretisation it runs to `progress`
-/// ([`crate::progress`]; a fit runs tens of them), which can cancel it between stages
+/// ([`crate::Progress`]; a fit runs tens of them), which can cancel it between stages
 /// ([`TpiError::Cancelled`]: nothing of the fit is kept). The result is the same as without
 /// an observer.
 pub fn fit_pattern_with_progress(
@@ -1143,7 +1143,7 @@ pub struct HexBaseline {
 /// tolerance (exact planes across a parabolic line): a caller comparing with a fitted
 /// pattern of n points needs to look no further than a few times n.
 ///
-/// Errors: those of [`crate::discretise`].
+/// Errors: those of [`crate::discretise()`].
 pub fn hex_baseline(
     surface: &dyn Surface,
     max_deviation: f64,

@@ -96,7 +96,7 @@ fn continued(surface: &dyn Surface, at: [f64; 2], offset: [f64; 2]) -> Option<Lo
 
 /// The seeds with their ghosts appended (module doc), across the sides marked in `open`
 /// (u0, u1, v0, v1; the others are seams or poles of a closed surface). `extent` is the size
-/// of the triangulation's plane rectangle [0, extent[0]] x [0, extent[1]]; `uv` the seeds'
+/// of the triangulation's plane rectangle `[0, extent[0]] x [0, extent[1]]`; `uv` the seeds'
 /// domain parameters. Ghosts where the continued surface is not regular (a degenerate boundary,
 /// such as a pole) are left out.
 pub(crate) fn augment(

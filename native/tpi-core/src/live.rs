@@ -3,7 +3,7 @@
 //! [`LiveSurface`] holds a surface, its pattern and what the pipeline computed for them. Moving,
 //! adding or removing one pattern point updates the dual structure where it changed and
 //! recomputes only the facets around it; [`LiveSurface::discretisation`] then assembles the
-//! result, which is the [`crate::discretise`] of the edited pattern, bit for bit (the same
+//! result, which is the [`crate::discretise()`] of the edited pattern, bit for bit (the same
 //! facets in the same order, the same vertex positions and numbering, the same report).
 //!
 //! # The incremental path
@@ -309,8 +309,8 @@ enum Location {
 }
 
 impl LiveSurface {
-    /// Discretises `surface` with `pattern` (normalised, as [`crate::discretise`]) and keeps
-    /// what the pipeline computed for later edits. Errors as [`crate::discretise`].
+    /// Discretises `surface` with `pattern` (normalised, as [`crate::discretise()`]) and keeps
+    /// what the pipeline computed for later edits. Errors as [`crate::discretise()`].
     pub fn new(
         surface: Box<dyn Surface>,
         pattern: Vec<[f64; 2]>,

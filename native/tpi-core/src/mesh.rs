@@ -48,7 +48,7 @@ pub(crate) struct FacetMesh {
     pub assembly_ms: f64,
     /// The Newton feet of the vertices that are no triangle's (boundary crossings) where the
     /// facet stage computed them, by vertex, ascending: with the triangle vertices' hints
-    /// what the quality report's deviation starts from ([`FootHints::Mesh`]), so that no
+    /// what the quality report's deviation starts from (`FootHints::Mesh`), so that no
     /// projection is done twice.
     pub known_feet: Vec<(u32, [f64; 2])>,
     /// Per triangle of the dual structure, its vertex (for live editing).

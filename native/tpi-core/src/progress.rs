@@ -36,7 +36,7 @@
 //!
 //! Every count reaches its total when the stage finishes normally. Observing never changes the
 //! result: the counters are written by the workers and read by nobody in the pipeline.
-//! [`NoProgress`], what [`crate::discretise`] uses, ignores everything.
+//! [`NoProgress`], what [`crate::discretise()`] uses, ignores everything.
 
 use std::cell::Cell;
 
@@ -118,7 +118,7 @@ pub trait Progress: Sync {
     }
 }
 
-/// The observer that ignores everything (what [`crate::discretise`] uses).
+/// The observer that ignores everything (what [`crate::discretise()`] uses).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct NoProgress;
 

@@ -32,12 +32,12 @@ use crate::tolerance::DUPLICATE_UV_TOLERANCE;
 /// Most relaxation iterations accepted in one call.
 pub const MAX_RELAX_ITERATIONS: usize = 1000;
 
-/// `pattern` (normalised, as [`crate::discretise`]) after `iterations` Lloyd iterations on
+/// `pattern` (normalised, as [`crate::discretise()`]) after `iterations` Lloyd iterations on
 /// `surface` (see the module doc); `options` are those of each discretisation (the quality
 /// report is switched on, its flags decide which points move).
 ///
 /// Errors: [`TpiError::InvalidParameter`] for more than [`MAX_RELAX_ITERATIONS`]; those of
-/// [`crate::discretise`] for the pattern and the surface.
+/// [`crate::discretise()`] for the pattern and the surface.
 pub fn relax(
     surface: &dyn Surface,
     pattern: &[[f64; 2]],
@@ -48,7 +48,7 @@ pub fn relax(
 }
 
 /// [`relax`], reporting the stages of every discretisation it runs to `progress`
-/// ([`crate::progress`]), which can cancel it between them ([`TpiError::Cancelled`]); the
+/// ([`crate::Progress`]), which can cancel it between them ([`TpiError::Cancelled`]); the
 /// result is the same as without an observer.
 pub fn relax_with_progress(
     surface: &dyn Surface,

@@ -327,7 +327,7 @@ pub(crate) fn largest_regular_curvature(surface: &dyn Surface, n: usize) -> f64 
         .fold(0.0, f64::max)
 }
 
-/// Quantile of the nodes' largest curvatures that [`curvature_ceiling`] scales.
+/// Quantile of the nodes' largest curvatures that [`largest_regular_curvature`] scales.
 pub(crate) const CURVATURE_CEILING_QUANTILE: f64 = 0.999;
 /// Factor over that quantile beyond which a node's curvature is taken as singular.
 pub(crate) const CURVATURE_CEILING_FACTOR: f64 = 10.0;

@@ -21,7 +21,7 @@
 //! |------|--------|
 //! | `GENERATOR` | the generator's points (`hex:24x20`, `random:500:seed=7`, ...), blind to the surface |
 //! | `fit:D[:seed=S]` | [`crate::fit_pattern`]: few points whose TPI mesh keeps every vertex within D model units of the surface; S seeds its sampling (default 0). Whether D was met comes back in [`SurfacePattern::fit`] |
-//! | `relax:N:BASE` | BASE's points after N Lloyd iterations on the surface ([`crate::relax`], areas measured on the surface), N from 0 to [`crate::MAX_RELAX_ITERATIONS`]; for `density:` the iterations follow the density ([`crate::density_pattern`]). Not of `fit:` (the fit already relaxes, and a relaxed fit would no longer be checked against D) and not of `relax:` (give the sum) |
+//! | `relax:N:BASE` | BASE's points after N Lloyd iterations on the surface ([`crate::relax()`], areas measured on the surface), N from 0 to [`crate::MAX_RELAX_ITERATIONS`]; for `density:` the iterations follow the density ([`crate::density_pattern`]). Not of `fit:` (the fit already relaxes, and a relaxed fit would no longer be checked against D) and not of `relax:` (give the sum) |
 //! | `align:LATTICE:FIELD` | [`crate::aligned_pattern`]: the hex or grid lattice of about as many points as LATTICE makes, laid along FIELD: `principal` (curvature directions), `asymptotic` (where K < 0), `uv:ANGLE` (degrees from the u axis, in parameters), or a direction field ([`DirectionField`] JSON) |
 //! | `density:DATA` | [`crate::density_pattern`]: a Poisson-disk sampling following the density field DATA ([`DensitySpec`] JSON) |
 //!
@@ -226,7 +226,7 @@ impl SurfacePatternSpec {
     /// runs (relaxation, fit). Deterministic: the same spec, surface and options give the
     /// same points.
     ///
-    /// Errors: those of the form's function ([`crate::fit_pattern`], [`crate::relax`],
+    /// Errors: those of the form's function ([`crate::fit_pattern`], [`crate::relax()`],
     /// [`crate::aligned_pattern`], [`crate::density_pattern`]). A fit that does not meet its
     /// tolerance is not an error: see [`FitOutcome::met`].
     pub fn generate(
@@ -238,7 +238,7 @@ impl SurfacePatternSpec {
     }
 
     /// [`SurfacePatternSpec::generate`], reporting the stages of every discretisation the
-    /// form runs (a fit's, a relaxation's) to `progress` ([`crate::progress`]), which can
+    /// form runs (a fit's, a relaxation's) to `progress` ([`crate::Progress`]), which can
     /// cancel it between stages ([`TpiError::Cancelled`]). The points are the same as
     /// without an observer; a form that runs no discretisation reports nothing.
     pub fn generate_with_progress(

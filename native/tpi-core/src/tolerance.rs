@@ -382,7 +382,7 @@ pub const PLANE_ADJUST_BUDGET: usize = 1000;
 /// 30 s to repair 8 of them.
 pub const PLANE_ADJUST_BUDGET_PER_INVALID: usize = 20_000;
 
-/// The escalated restarts ([`crate::adjusted_planes`]) run only where the kick rounds leave at
+/// The escalated restarts (`crate::adjusted_planes`) run only where the kick rounds leave at
 /// most this many facets invalid: a few stubborn facets at a parabolic line (the mixed roof
 /// with hex 300 at 30 degrees, 2 left), not a surface where tilts cannot help (a mug's nearly
 /// cylindrical body leaves dozens).
@@ -399,7 +399,7 @@ pub const ESCALATION_KICKS: usize = 16;
 pub const ESCALATION_BUDGET_PER_INVALID: usize = 150_000;
 
 /// Flips towards the isotropic Delaunay triangulation around a facet at most, per
-/// restructuring move of the escalation ([`crate::adjusted_planes`]).
+/// restructuring move of the escalation (`crate::adjusted_planes`).
 pub const RESTRUCTURE_FLIPS: usize = 24;
 
 /// The restructuring flips ([`RESTRUCTURE_FLIPS`]) leave four points alone whose in-circle

@@ -408,7 +408,7 @@ impl<T: Handle> OutPtr<*mut T> {
     }
 }
 
-/// The opaque handle types. Every handle the library hands out points to a [`Tagged`] value:
+/// The opaque handle types. Every handle the library hands out points to a `Tagged` value:
 /// its first 8 bytes are the tag of its kind while it is alive and [`FREED_TAG`] after its
 /// `*_free` call, so that a handle of the wrong kind (or a freed one whose memory still
 /// reads as freed) is refused with [`TpiStatus::InvalidHandle`] instead of being read as
@@ -492,7 +492,7 @@ unsafe fn check_tag<T: Handle>(ptr: *const T, name: &str) -> FfiResult {
 /// [`TpiStatus::InvalidHandle`] for a handle of another kind or a freed one.
 ///
 /// # Safety
-/// `ptr` is NULL or a handle from this library (see [`check_tag`]); a live one of kind `T` is
+/// `ptr` is NULL or a handle from this library (see `check_tag`); a live one of kind `T` is
 /// not freed during the returned lifetime.
 pub unsafe fn try_handle<'a, T: Handle>(ptr: *const T, name: &str) -> FfiResult<&'a T> {
     // SAFETY: forwarded contract.
