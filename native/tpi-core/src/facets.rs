@@ -23,6 +23,8 @@
 //!   [`crate::mesh`], which welds the vertices where four or more planes meet in one point,
 //!   numbers them and writes the loops.
 
+mod wall_flips;
+
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -42,7 +44,8 @@ use crate::tolerance::{
     CORNER_ON_CROSSING, CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE,
     DEFAULT_FAR_VERTEX_FACTOR, GRAZING_CROSSING_SLACK, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES,
     RAY_DOUBLINGS, RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR, WALL_CLIP_SHORT_EDGE,
-    WALL_EXTENSION_MIN_DEPTH, WALL_EXTENSION_ROUNDS, WALL_EXTENSION_STEPS,
+    WALL_EXTENSION_MIN_DEPTH, WALL_EXTENSION_ROUNDS, WALL_EXTENSION_STEPS, WALL_FLIP_MIN_AREA,
+    WALL_FLIP_RETRIES,
 };
 use crate::triangulation::{
     real_pairs, triangle_edges, DualTriangulation, Edge, Fan, IndexMap, NO_TRIANGLE,
@@ -349,7 +352,7 @@ pub(crate) fn build_stage(
 ) -> Facets {
     let n = samples.uv.len();
     let DualStructure {
-        triangulation,
+        mut triangulation,
         plan,
         ..
     } = structure;
@@ -395,88 +398,29 @@ pub(crate) fn build_stage(
             (mesh, planes.len() > n, *strips)
         }
         FacetPlan::Augmented { seeds, on_wall } => {
-            // Clipped on the wall, the closed facets are only the yardstick of the clipped
-            // ones: the progress reported is the clipped build's.
-            let unreported = Stages::new(&NoProgress);
-            let closed = build_closed_facets(
-                &triangulation,
-                &seeds.planes,
-                n,
-                &seeds.source,
-                false,
-                params,
-                if *on_wall { &unreported } else { stages },
-            );
             let mesh = if *on_wall {
-                // Only the first clip reports progress: the retries redo the same stage.
-                let clip = |blocked: &[bool], stages: &Stages<'_>| {
-                    build_ghost_clipped_facets(
-                        surface,
-                        boundary,
-                        &samples.uv,
-                        &samples.tangents,
-                        &seeds.planes,
-                        &seeds.source,
-                        &triangulation,
-                        params,
-                        Some(blocked),
-                        stages,
-                    )
+                let wall = WallClip {
+                    surface,
+                    boundary,
+                    samples,
+                    seeds,
+                    params,
                 };
-                let spacing = samples.diagonal / (2.0 * n as f64).sqrt();
-                // The clipped facets in their final form, if they keep the closed ones' shape.
-                let finish = |mut clipped: FacetMesh| {
-                    weld_coincident_crossings(&mut clipped, params.weld_distance);
-                    drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
-                    start_loops_at_lowest_triangle(&mut clipped);
-                    // One edge count serves both: marking changes kinds, not loops.
-                    let clipped_edges = crate::sanity::edges(&clipped.offsets, &clipped.loops).ok();
-                    if let Some((_, boundary)) = &clipped_edges {
-                        mark_boundary_vertices(&mut clipped, boundary);
-                    }
-                    wall_clip_keeps_shape(&closed, &clipped, clipped_edges, &seeds.planes[..n])
-                        .then_some(clipped)
-                };
-                let mut blocked = vec![false; n];
-                let (mut clipped, mut extended) = clip(&blocked, stages);
-                // Facets extended to the wall that came out invalid keep their ghost's end.
-                for _ in 0..WALL_EXTENSION_ROUNDS {
-                    let invalid = invalid_extended_facets(
-                        &clipped,
-                        &seeds.planes[..n],
-                        &triangulation,
-                        &extended,
-                    );
-                    if invalid.is_empty() {
-                        break;
-                    }
-                    for f in invalid {
-                        blocked[f] = true;
-                    }
-                    (clipped, extended) = clip(&blocked, &unreported);
+                let (flipped, mesh) = wall.flipped_and_clipped(&triangulation, stages);
+                if let Some(flipped) = flipped {
+                    triangulation = flipped;
                 }
-                let kept = finish(clipped).or_else(|| {
-                    extended
-                        .contains(&true)
-                        .then(|| finish(clip(&vec![true; n], &unreported).0))
-                        .flatten()
-                });
-                match kept {
-                    Some(mut clipped) => {
-                        // The count of coincident neighbour planes is the structure's, not the
-                        // clip's: it is kept.
-                        clipped.diagnostics.extend(
-                            closed
-                                .diagnostics
-                                .into_iter()
-                                .filter(|d| matches!(d, Diagnostic::CoincidentPlanes { .. })),
-                        );
-                        clipped
-                    }
-                    None => closed,
-                }
+                mesh
             } else {
-                closed
+                build_closed_facets(
+                    &triangulation,
+                    &seeds.planes,
+                    n,
+                    &seeds.source,
+                    false,
+                    params,
+                    stages,
+                )
             };
             (mesh, true, false)
         }
@@ -497,6 +441,217 @@ pub(crate) fn build_stage(
         mesh,
         triangulation: real,
         ghost_neighbours,
+    }
+}
+
+/// What the any-curvature path's clip on the wall reads.
+struct WallClip<'a> {
+    surface: &'a dyn Surface,
+    boundary: &'a Boundary,
+    samples: &'a Samples,
+    seeds: &'a crate::ghosts::Augmented,
+    params: &'a FacetParams,
+}
+
+/// The outcome of one clip on the wall ([`WallClip::clip`]).
+struct WallOutcome {
+    /// The clipped facets when they keep the closed facets' shape, else the closed facets.
+    mesh: FacetMesh,
+    /// Whether the clipped facets were kept.
+    clipped: bool,
+    /// The facets among those marked that came out of the clip invalid (ascending), or
+    /// whose extension to the wall was taken back.
+    culprits: Vec<usize>,
+}
+
+impl WallClip<'_> {
+    /// The facets of `tri` clipped on the wall, after the wall flips
+    /// ([`wall_flips::wall_flips`]) where they keep the clip sound: the flipped
+    /// triangulation (None where no flip is kept) and the mesh.
+    fn flipped_and_clipped(
+        &self,
+        tri: &DualTriangulation,
+        stages: &Stages<'_>,
+    ) -> (Option<DualTriangulation>, FacetMesh) {
+        let n = self.samples.uv.len();
+        let unreported = Stages::new(&NoProgress);
+        let mut blocked = vec![false; n];
+        let mut reported = false;
+        // Exact planes only: with adjusted ones (`samples.tangent_planes` set) a flip left a
+        // facet thin enough on a rotated hypar (grid, 300 points) that its vertices gave a
+        // plane 4.5 degrees off its reported tilt of 0.
+        let tries = if self.samples.tangent_planes.is_none() {
+            WALL_FLIP_RETRIES
+        } else {
+            0
+        };
+        for _ in 0..tries {
+            let mut flipped = tri.clone();
+            let ghost_seeds = self.ghost_seeds();
+            let flips =
+                with_ghost_context(self.surface, self.boundary, &ghost_seeds, None, |ctx| {
+                    wall_flips::wall_flips(
+                        ctx,
+                        n,
+                        &mut flipped,
+                        &self.seeds.planes,
+                        self.params.far_vertex_factor,
+                        &blocked,
+                    )
+                });
+            if flips.is_empty() {
+                break;
+            }
+            let mut marked = vec![false; n];
+            for flip in &flips {
+                for &x in &flip.region {
+                    marked[x as usize] = true;
+                }
+            }
+            let outcome = self.clip(
+                &flipped,
+                &marked,
+                if reported { &unreported } else { stages },
+            );
+            reported = true;
+            if outcome.clipped && outcome.culprits.is_empty() {
+                return (Some(flipped), outcome.mesh);
+            }
+            let mut any = false;
+            for flip in &flips {
+                if flip
+                    .region
+                    .iter()
+                    .any(|x| outcome.culprits.binary_search(&(*x as usize)).is_ok())
+                    || outcome.culprits.is_empty()
+                {
+                    for &x in &flip.quad {
+                        if (x as usize) < n && !blocked[x as usize] {
+                            blocked[x as usize] = true;
+                            any = true;
+                        }
+                    }
+                }
+            }
+            if !any {
+                break;
+            }
+        }
+        let outcome = self.clip(
+            tri,
+            &vec![false; n],
+            if reported { &unreported } else { stages },
+        );
+        (None, outcome.mesh)
+    }
+
+    fn ghost_seeds(&self) -> GhostSeeds<'_> {
+        GhostSeeds {
+            uv: &self.samples.uv,
+            tangents: &self.samples.tangents,
+            planes: &self.seeds.planes,
+            source: &self.seeds.source,
+        }
+    }
+
+    /// The facets of `tri` clipped on the wall (module doc, the clip's retries included), or
+    /// the closed facets where the clipped ones do not keep their shape; the culprits among
+    /// the facets `marked`.
+    fn clip(&self, tri: &DualTriangulation, marked: &[bool], stages: &Stages<'_>) -> WallOutcome {
+        let (samples, seeds, params) = (self.samples, self.seeds, self.params);
+        let n = samples.uv.len();
+        let unreported = Stages::new(&NoProgress);
+        let closed = build_closed_facets(
+            tri,
+            &seeds.planes,
+            n,
+            &seeds.source,
+            false,
+            params,
+            &unreported,
+        );
+        // Only the first clip reports progress: the retries redo the same stage.
+        let clip = |blocked: &[bool], stages: &Stages<'_>| {
+            build_ghost_clipped_facets(
+                self.surface,
+                self.boundary,
+                &samples.uv,
+                &samples.tangents,
+                &seeds.planes,
+                &seeds.source,
+                tri,
+                params,
+                Some(blocked),
+                stages,
+            )
+        };
+        let spacing = samples.diagonal / (2.0 * n as f64).sqrt();
+        // The clipped facets in their final form, if they keep the closed ones' shape.
+        let finish = |mut clipped: FacetMesh| {
+            weld_coincident_crossings(&mut clipped, params.weld_distance);
+            drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
+            start_loops_at_lowest_triangle(&mut clipped);
+            // One edge count serves both: marking changes kinds, not loops.
+            let clipped_edges = crate::sanity::edges(&clipped.offsets, &clipped.loops).ok();
+            if let Some((_, boundary)) = &clipped_edges {
+                mark_boundary_vertices(&mut clipped, boundary);
+            }
+            wall_clip_keeps_shape(&closed, &clipped, clipped_edges, &seeds.planes[..n])
+                .then_some(clipped)
+        };
+        let mut blocked = vec![false; n];
+        let (mut clipped, mut extended) = clip(&blocked, stages);
+        let mut culprits = Vec::new();
+        // Facets extended to the wall that came out invalid keep their ghost's end.
+        for _ in 0..WALL_EXTENSION_ROUNDS {
+            let invalid = invalid_extended_facets(&clipped, &seeds.planes[..n], tri, &extended);
+            if invalid.is_empty() {
+                break;
+            }
+            culprits.extend(invalid.iter().copied().filter(|&f| marked[f]));
+            for f in invalid {
+                blocked[f] = true;
+            }
+            (clipped, extended) = clip(&blocked, &unreported);
+        }
+        if marked.contains(&true) {
+            culprits.extend(invalid_marked_facets(
+                &clipped,
+                &seeds.planes[..n],
+                marked,
+                WALL_FLIP_MIN_AREA * spacing * spacing,
+            ));
+        }
+        culprits.sort_unstable();
+        culprits.dedup();
+        let kept = finish(clipped).or_else(|| {
+            extended
+                .contains(&true)
+                .then(|| finish(clip(&vec![true; n], &unreported).0))
+                .flatten()
+        });
+        match kept {
+            Some(mut clipped) => {
+                // The count of coincident neighbour planes is the structure's, not the
+                // clip's: it is kept.
+                clipped.diagnostics.extend(
+                    closed
+                        .diagnostics
+                        .into_iter()
+                        .filter(|d| matches!(d, Diagnostic::CoincidentPlanes { .. })),
+                );
+                WallOutcome {
+                    mesh: clipped,
+                    clipped: true,
+                    culprits,
+                }
+            }
+            None => WallOutcome {
+                mesh: closed,
+                clipped: false,
+                culprits,
+            },
+        }
     }
 }
 
@@ -607,6 +762,72 @@ fn invalid_extended_facets(
     (0..n).filter(|&f| invalid[f]).collect()
 }
 
+/// The facets marked in `marked` that are not simple in their plane, have an area below
+/// `least_area` (a facet collapsed onto a line, as where the planes along a hypar's ruling
+/// meet in it), or overlap a facet sharing a vertex with them, seen along their mean normal
+/// (the report's tests, [`crate::quality`]); ascending. Unlike [`invalid_extended_facets`]
+/// the pairs are those of the mesh, not of the triangulation: a flip can bring two facets to
+/// one vertex.
+fn invalid_marked_facets(
+    mesh: &FacetMesh,
+    planes: &[Plane],
+    marked: &[bool],
+    least_area: f64,
+) -> Vec<usize> {
+    let n = planes.len();
+    let mut holders: Vec<Vec<u32>> = vec![Vec::new(); mesh.vertices.len()];
+    for f in 0..n {
+        for &v in mesh.facet_loop(f) {
+            let list = &mut holders[v as usize];
+            if list.last() != Some(&(f as u32)) {
+                list.push(f as u32);
+            }
+        }
+    }
+    let mut buffer = Vec::new();
+    let mut simple = vec![None; n];
+    let mut is_simple = |f: usize| {
+        *simple[f].get_or_insert_with(|| {
+            crate::quality::facet_shape_into(&planes[f], mesh.polygon(f).into_iter(), &mut buffer)
+                .simple
+        })
+    };
+    let mut invalid = Vec::new();
+    for f in (0..n).filter(|&f| marked[f]) {
+        let own = mesh.polygon(f);
+        // Newell's vector area.
+        let area = (0..own.len())
+            .map(|k| own[k].cross(own[(k + 1) % own.len()]))
+            .sum::<DVec3>()
+            .length()
+            / 2.0;
+        if !is_simple(f) || !(area >= least_area) {
+            invalid.push(f);
+            continue;
+        }
+        let mut others: Vec<u32> = mesh.loops
+            [mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize]
+            .iter()
+            .flat_map(|&v| holders[v as usize].iter().copied())
+            .filter(|&g| g as usize != f)
+            .collect();
+        others.sort_unstable();
+        others.dedup();
+        if others.into_iter().any(|g| {
+            let g = g as usize;
+            is_simple(g)
+                && crate::validity_flips::polygons_overlap(
+                    &own,
+                    &mesh.polygon(g),
+                    planes[f].normal + planes[g].normal,
+                )
+        }) {
+            invalid.push(f);
+        }
+    }
+    invalid
+}
+
 /// What [`wall_clip_keeps_shape`] compares.
 struct MeshShape {
     euler: i64,
@@ -709,6 +930,47 @@ pub(crate) fn build_ghost_clipped_facets(
     stages: &Stages<'_>,
 ) -> (FacetMesh, Vec<bool>) {
     let real_count = uv.len();
+    let seeds = GhostSeeds {
+        uv,
+        tangents,
+        planes,
+        source,
+    };
+    with_ghost_context(surface, boundary, &seeds, extend_to_wall, |ctx| {
+        let (mut mesh, extended) = clip_facets(ctx, real_count, tri, params, stages);
+        // Diagnostics name pattern points: a ghost stands for its seed.
+        for diagnostic in &mut mesh.diagnostics {
+            diagnostic.map_points(|p| source[p as usize]);
+        }
+        (mesh, extended)
+    })
+}
+
+/// The real seeds (`uv`, `tangents`) and the planes and sources of all points, ghosts
+/// included, of a triangulation closed by ghosts.
+struct GhostSeeds<'a> {
+    uv: &'a [[f64; 2]],
+    tangents: &'a [[DVec3; 2]],
+    planes: &'a [Plane],
+    source: &'a [u32],
+}
+
+/// Runs `f` with the clip's [`Context`] of a triangulation closed by ghosts: a ghost's
+/// parameters are the first-order foot of its point seen from its seed, its tangents its
+/// seed's.
+fn with_ghost_context<R>(
+    surface: &dyn Surface,
+    boundary: &Boundary,
+    seeds: &GhostSeeds<'_>,
+    extend_to_wall: Option<&[bool]>,
+    f: impl FnOnce(&Context<'_>) -> R,
+) -> R {
+    let GhostSeeds {
+        uv,
+        tangents,
+        planes,
+        source,
+    } = *seeds;
     let mut all_uv = uv.to_vec();
     let mut all_tangents = tangents.to_vec();
     let convex_side = vec![0i8; planes.len()];
@@ -726,19 +988,14 @@ pub(crate) fn build_ghost_clipped_facets(
     };
     // A ghost's parameters are the first-order foot of its point seen from its seed: only a
     // start for the projections of the vertices around it.
-    for (g, plane) in planes.iter().enumerate().skip(real_count) {
+    for (g, plane) in planes.iter().enumerate().skip(uv.len()) {
         let seed = source[g];
         all_uv.push(ctx.linear_foot(seed, plane.point));
         all_tangents.push(tangents[seed as usize]);
     }
     ctx.uv = &all_uv;
     ctx.tangents = &all_tangents;
-    let (mut mesh, extended) = clip_facets(&ctx, real_count, tri, params, stages);
-    // Diagnostics name pattern points: a ghost stands for its seed.
-    for diagnostic in &mut mesh.diagnostics {
-        diagnostic.map_points(|p| source[p as usize]);
-    }
-    (mesh, extended)
+    f(&ctx)
 }
 
 /// The facets of the points `0..real_count` of `tri`, ending on `ctx.boundary` (module doc);
@@ -943,80 +1200,18 @@ fn extend_to_wall(
         .par_iter()
         .enumerate()
         .filter_map(|(t, &ids)| {
-            let v = &triangle_vertices[t];
-            let ghosts = ids.iter().filter(|&&p| p as usize >= real_count).count();
-            // A vertex on the wall (a grid on a hypar) or within rounding of it leaves no notch
-            // worth a move, and its side would be decided by rounding.
-            if !(1..=2).contains(&ghosts)
-                || !v.exact
-                || v.inside <= WALL_EXTENSION_MIN_DEPTH * v.reach
-            {
-                return None;
-            }
             if ids
                 .iter()
                 .any(|&p| (p as usize) < real_count && blocked[p as usize])
             {
                 return None;
             }
-            let plane = |p: u32| &ctx.planes[p as usize];
             // The vertex across the edge opposite position k, as the walk left it.
             let across = |k: usize| {
                 let other = tri.neighbours[t][k];
                 (other != NO_TRIANGLE).then(|| triangle_vertices[other as usize].point)
             };
-            let [a, b, c] = ids.map(|p| plane(p).point);
-            let step = 0.25 * a.distance(b).max(b.distance(c)).max(c.distance(a));
-            let direction = if ghosts == 1 {
-                // ids[k] = g, ids[k + 1] = i, ids[k + 2] = j (counter-clockwise).
-                let k = ids.iter().position(|&p| p as usize >= real_count)?;
-                let (i, j) = (ids[(k + 1) % 3], ids[(k + 2) % 3]);
-                let u = plane(i).normal.cross(plane(j).normal).try_normalize()?;
-                let apart = v.point - across(k)?;
-                // Facet i's edge on T_g runs to the vertex across (g, i), j's to that across
-                // (j, g): the ghost's wedge at V lies between them.
-                let [ri, rj] = [
-                    across((k + 2) % 3)? - v.point,
-                    across((k + 1) % 3)? - v.point,
-                ];
-                let normal = plane(ids[k]).normal;
-                [u, -u].into_iter().find(|&w| {
-                    within_wedge(normal, ri, rj, w) && (w.dot(apart) > 0.0 || apart.length() < step)
-                })?
-            } else {
-                // ids[k] = the real seed, its facet's only vertex here: V goes out through the
-                // wedge of the ghosts, along its bisector in T_k.
-                let k = ids.iter().position(|&p| (p as usize) < real_count)?;
-                let previous = across((k + 2) % 3)?;
-                let next = across((k + 1) % 3)?;
-                let n = plane(ids[k]).normal;
-                let convex = n.dot((v.point - previous).cross(next - v.point)) > 0.0;
-                let sum =
-                    (previous - v.point).try_normalize()? + (next - v.point).try_normalize()?;
-                let outward = if convex { -sum } else { sum };
-                (outward - n * n.dot(outward)).try_normalize()?
-            };
-            let mut guess = v.foot;
-            for k in 1..=WALL_EXTENSION_STEPS {
-                let point = v.point + direction * (step * k as f64);
-                let (foot, inside) = ctx.measure(point, guess);
-                if inside <= 0.0 {
-                    return Some((
-                        t,
-                        TriangleVertex {
-                            point,
-                            foot,
-                            inside,
-                            reach: v.reach,
-                            exact: true,
-                            measured: true,
-                            newton_foot: true,
-                        },
-                    ));
-                }
-                guess = foot;
-            }
-            None
+            extension(ctx, real_count, ids, &triangle_vertices[t], across).map(|v| (t, v))
         })
         .collect();
     let mut extended = vec![false; real_count];
@@ -1029,6 +1224,74 @@ fn extend_to_wall(
         }
     }
     extended
+}
+
+/// Where [`extend_to_wall`] moves the vertex `v` of the triangle `ids` (points from
+/// `real_count` on are ghosts): the first point past the wall along its real facets' common
+/// line, or along the bisector of the ghosts' wedge (that function's doc); None where it
+/// stays. `across(k)` is the vertex of the triangle across the edge opposite position k.
+fn extension(
+    ctx: &Context<'_>,
+    real_count: usize,
+    ids: [u32; 3],
+    v: &TriangleVertex,
+    across: impl Fn(usize) -> Option<DVec3>,
+) -> Option<TriangleVertex> {
+    let ghosts = ids.iter().filter(|&&p| p as usize >= real_count).count();
+    // A vertex on the wall (a grid on a hypar) or within rounding of it leaves no notch
+    // worth a move, and its side would be decided by rounding.
+    if !(1..=2).contains(&ghosts) || !v.exact || v.inside <= WALL_EXTENSION_MIN_DEPTH * v.reach {
+        return None;
+    }
+    let plane = |p: u32| &ctx.planes[p as usize];
+    let [a, b, c] = ids.map(|p| plane(p).point);
+    let step = 0.25 * a.distance(b).max(b.distance(c)).max(c.distance(a));
+    let direction = if ghosts == 1 {
+        // ids[k] = g, ids[k + 1] = i, ids[k + 2] = j (counter-clockwise).
+        let k = ids.iter().position(|&p| p as usize >= real_count)?;
+        let (i, j) = (ids[(k + 1) % 3], ids[(k + 2) % 3]);
+        let u = plane(i).normal.cross(plane(j).normal).try_normalize()?;
+        let apart = v.point - across(k)?;
+        // Facet i's edge on T_g runs to the vertex across (g, i), j's to that across
+        // (j, g): the ghost's wedge at V lies between them.
+        let [ri, rj] = [
+            across((k + 2) % 3)? - v.point,
+            across((k + 1) % 3)? - v.point,
+        ];
+        let normal = plane(ids[k]).normal;
+        [u, -u].into_iter().find(|&w| {
+            within_wedge(normal, ri, rj, w) && (w.dot(apart) > 0.0 || apart.length() < step)
+        })?
+    } else {
+        // ids[k] = the real seed, its facet's only vertex here: V goes out through the
+        // wedge of the ghosts, along its bisector in T_k.
+        let k = ids.iter().position(|&p| (p as usize) < real_count)?;
+        let previous = across((k + 2) % 3)?;
+        let next = across((k + 1) % 3)?;
+        let n = plane(ids[k]).normal;
+        let convex = n.dot((v.point - previous).cross(next - v.point)) > 0.0;
+        let sum = (previous - v.point).try_normalize()? + (next - v.point).try_normalize()?;
+        let outward = if convex { -sum } else { sum };
+        (outward - n * n.dot(outward)).try_normalize()?
+    };
+    let mut guess = v.foot;
+    for k in 1..=WALL_EXTENSION_STEPS {
+        let point = v.point + direction * (step * k as f64);
+        let (foot, inside) = ctx.measure(point, guess);
+        if inside <= 0.0 {
+            return Some(TriangleVertex {
+                point,
+                foot,
+                inside,
+                reach: v.reach,
+                exact: true,
+                measured: true,
+                newton_foot: true,
+            });
+        }
+        guess = foot;
+    }
+    None
 }
 
 /// Whether the direction w lies strictly inside the wedge between the rays a and b (under

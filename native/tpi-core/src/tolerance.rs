@@ -198,6 +198,21 @@ pub const WALL_EXTENSION_MIN_DEPTH: f64 = 0.05;
 /// and clips again.
 pub const WALL_EXTENSION_ROUNDS: usize = 3;
 
+/// Rounds of wall flips (`facets::wall_flips`): each visits every triangle with a ghost whose
+/// vertex stays inside the region.
+pub const WALL_FLIP_ROUNDS: usize = 4;
+
+/// Tries of the wall flips (`facets::wall_flips`) before the triangulation is clipped as the
+/// validity flips left it: after each try whose clip does not keep the closed facets' shape
+/// or leaves a facet near a flip invalid, the flips near those facets are refused.
+pub const WALL_FLIP_RETRIES: usize = 3;
+
+/// A facet near a wall flip whose clipped polygon's area is below this fraction of the
+/// squared mean spacing (diagonal / sqrt(2 n)) counts as invalid, and the flips near it are
+/// refused (`facets::WallClip`): on a hypar the planes along a ruling meet in it, and a flip
+/// there can leave a facet collapsed onto the ruling (three collinear vertices).
+pub const WALL_FLIP_MIN_AREA: f64 = 1e-3;
+
 /// Doublings of the step when following a hull ray outwards.
 pub const RAY_DOUBLINGS: usize = 60;
 

@@ -1023,7 +1023,9 @@ fn sweep_saddles_give_valid_discs_with_exact_planes() {
 /// surface's boundary curve to the mesh's edges (edges held by one facet), in spacings, on the
 /// 17 analytic saddles with hex (0 and 30 degrees), grid and Poisson patterns of about 400
 /// points. Before the extension the mean was 0.0427 and the 90th percentiles of hp-ab-long
-/// (hex) and skew1 (grid) 0.125 and 0.146; with it 0.0369, 0.083 and 0.098.
+/// (hex) and skew1 (grid) 0.125 and 0.146; with it 0.0369, 0.083 and 0.098. The wall flips
+/// (`facets::wall_flips`) close notches the extension cannot: mean 0.0295, mean of the 90th
+/// percentiles 0.110 to 0.069, those two cases 0.009 and 0.043.
 #[test]
 fn saddle_meshes_reach_the_wall() {
     let patterns: Vec<(&str, Vec<[f64; 2]>)> = vec![
@@ -1040,7 +1042,7 @@ fn saddle_meshes_reach_the_wall() {
             .uv,
         ),
     ];
-    let (mut sum, mut count) = (0.0, 0);
+    let (mut sum, mut p90_sum, mut count) = (0.0, 0.0, 0);
     for (name, surface) in saddles::saddles() {
         for (pattern, uv) in &patterns {
             let d = discretise(surface.as_ref(), uv, &DiscretiseOptions::default())
@@ -1061,17 +1063,23 @@ fn saddle_meshes_reach_the_wall() {
                 ("hp-ab-long", "hex@0") | ("skew1", "grid")
             ) {
                 assert!(
-                    p90 <= 0.11,
+                    p90 <= 0.06,
                     "{name} {pattern}: 90 % of the edge within {p90:.3} spacings"
                 );
             }
             sum += mean;
+            p90_sum += p90;
             count += 1;
         }
     }
     let mean = sum / count as f64;
     assert!(
-        mean <= 0.039,
+        mean <= 0.032,
         "mean distance of the mesh's edge from the wall: {mean:.4} spacings"
+    );
+    let p90 = p90_sum / count as f64;
+    assert!(
+        p90 <= 0.08,
+        "mean 90th percentile of the mesh's edge from the wall: {p90:.4} spacings"
     );
 }
