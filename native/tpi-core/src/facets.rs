@@ -621,6 +621,14 @@ impl WallClip<'_> {
                 marked,
                 WALL_FLIP_MIN_AREA * spacing * spacing,
             ));
+            // A marked facet the wall cuts into parts loses all but one: a gap beside the
+            // wall, which the flips are to close, not open.
+            culprits.extend(clipped.diagnostics.iter().filter_map(|d| match *d {
+                Diagnostic::FacetPartsLeftOut { point, .. } if marked[point as usize] => {
+                    Some(point as usize)
+                }
+                _ => None,
+            }));
         }
         culprits.sort_unstable();
         culprits.dedup();
