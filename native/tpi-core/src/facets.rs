@@ -25,6 +25,8 @@
 
 mod wall_flips;
 
+use std::collections::HashSet;
+
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -44,7 +46,8 @@ use crate::tolerance::{
     CORNER_ON_CROSSING, CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE,
     DEFAULT_FAR_VERTEX_FACTOR, GRAZING_CROSSING_SLACK, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES,
     RAY_DOUBLINGS, RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR, WALL_CLIP_SHORT_EDGE,
-    WALL_EXTENSION_MIN_DEPTH, WALL_EXTENSION_ROUNDS, WALL_EXTENSION_STEPS, WALL_FLIP_MIN_AREA,
+    WALL_EXTENSION_MIN_DEPTH, WALL_EXTENSION_ROUNDS, WALL_EXTENSION_STEPS, WALL_FLIP_CORNER_REACH,
+    WALL_FLIP_DEVIATION_SLACK, WALL_FLIP_MIN_AREA, WALL_FLIP_NOTCH_SAMPLES, WALL_FLIP_NOTCH_SLACK,
     WALL_FLIP_RETRIES,
 };
 use crate::triangulation::{
@@ -453,6 +456,36 @@ struct WallClip<'a> {
     params: &'a FacetParams,
 }
 
+/// How far a part of the mesh's edge (edges held by one facet) stands inside the region, in
+/// normalised parameters: each edge sampled at [`WALL_FLIP_NOTCH_SAMPLES`] + 1 points x_k
+/// with feet u_k and depths d_k = max(0, inside measure of u_k),
+///
+///   area = sum_k (d_k + d_(k+1)) / 2 |u_(k+1) - u_k|,   depth = max_k d_k,
+///
+/// the area between the mesh's edge and the wall, and its deepest point.
+#[derive(Clone, Copy, Debug, Default)]
+struct Notch {
+    area: f64,
+    depth: f64,
+}
+
+impl Notch {
+    /// Two parts of the mesh's edge together.
+    fn join(self, other: Notch) -> Notch {
+        Notch {
+            area: self.area + other.area,
+            depth: self.depth.max(other.depth),
+        }
+    }
+
+    /// Whether this notch is larger than `before` in area or depth by more than
+    /// [`WALL_FLIP_NOTCH_SLACK`].
+    fn exceeds(self, before: Notch) -> bool {
+        self.area > before.area + WALL_FLIP_NOTCH_SLACK
+            || self.depth > before.depth + WALL_FLIP_NOTCH_SLACK
+    }
+}
+
 /// The outcome of one clip on the wall ([`WallClip::clip`]).
 struct WallOutcome {
     /// The clipped facets when they keep the closed facets' shape, else the closed facets.
@@ -466,8 +499,22 @@ struct WallOutcome {
 
 impl WallClip<'_> {
     /// The facets of `tri` clipped on the wall, after the wall flips
-    /// ([`wall_flips::wall_flips`]) where they keep the clip sound: the flipped
-    /// triangulation (None where no flip is kept) and the mesh.
+    /// ([`wall_flips::wall_flips`]) where they keep the clip sound and no vertex farther
+    /// from the surface than before: the flipped triangulation (None where no flip is kept)
+    /// and the mesh.
+    ///
+    /// Each try clips the flipped triangulation and compares it with the unflipped clip over
+    /// every flip's region (the facets it can change). A flip is refused (its quad's points
+    /// blocked, the flips redone) when its region comes out of the clip invalid, or when,
+    /// against the unflipped clip ([`WallClip::measure`]),
+    /// - its region's deviation, the largest distance of the vertices from the surface,
+    ///   grows by more than [`WALL_FLIP_DEVIATION_SLACK`] spacings: the flips' score weighs
+    ///   the area between the chain and the wall, not how far the new vertices stand off the
+    ///   surface (on samples/saddle.json, hex:spacing=0.0714, a flip handed a domain corner
+    ///   to another facet, whose plane stands 0.0433 off the surface there; 0.0193 at most
+    ///   without the flips);
+    /// - its region's part of the mesh's edge ([`Notch`]) grows in area or depth;
+    /// - a corner near its region lies farther from the mesh's edge ([`corner_cut`]).
     fn flipped_and_clipped(
         &self,
         tri: &DualTriangulation,
@@ -485,6 +532,16 @@ impl WallClip<'_> {
         } else {
             0
         };
+        let spacing = self.samples.diagonal / (2.0 * n as f64).sqrt();
+        // The unflipped clip, made once where a flip is kept, with its marked facets measured.
+        let mut unflipped: Option<Measured> = None;
+        // The boundary's corners on the surface.
+        let corners: Vec<DVec3> = self
+            .boundary
+            .corners()
+            .iter()
+            .map(|&([u, v], _)| self.surface.point_at(u, v))
+            .collect();
         for _ in 0..tries {
             let mut flipped = tri.clone();
             let ghost_seeds = self.ghost_seeds();
@@ -508,22 +565,55 @@ impl WallClip<'_> {
                     marked[x as usize] = true;
                 }
             }
+            let before = unflipped.get_or_insert_with(|| {
+                let outcome = self.clip(tri, &vec![false; n], stages);
+                reported = true;
+                Measured::new(outcome)
+            });
+            self.measure(before, &marked);
             let outcome = self.clip(
                 &flipped,
                 &marked,
                 if reported { &unreported } else { stages },
             );
             reported = true;
-            if outcome.clipped && outcome.culprits.is_empty() {
+            let mut after = Measured::new(outcome);
+            self.measure(&mut after, &marked);
+            let region_notch = |notch: &[Option<Notch>], flip: &wall_flips::WallFlip| {
+                flip.region
+                    .iter()
+                    .filter_map(|&x| notch.get(x as usize).copied().flatten())
+                    .fold(Notch::default(), Notch::join)
+            };
+            let region_deviation = |deviation: &[f64], flip: &wall_flips::WallFlip| {
+                flip.region
+                    .iter()
+                    .filter_map(|&x| deviation.get(x as usize).copied())
+                    .fold(0.0, f64::max)
+            };
+            let raised: Vec<bool> = flips
+                .iter()
+                .map(|flip| {
+                    region_deviation(&after.deviation, flip)
+                        > region_deviation(&before.deviation, flip)
+                            + WALL_FLIP_DEVIATION_SLACK * spacing
+                        || region_notch(&after.notch, flip)
+                            .exceeds(region_notch(&before.notch, flip))
+                        || corner_cut(before, &after, &flip.region, &corners, spacing)
+                })
+                .collect();
+            let outcome = after.outcome;
+            if outcome.clipped && outcome.culprits.is_empty() && !raised.contains(&true) {
                 return (Some(flipped), outcome.mesh);
             }
             let mut any = false;
-            for flip in &flips {
-                if flip
-                    .region
-                    .iter()
-                    .any(|x| outcome.culprits.binary_search(&(*x as usize)).is_ok())
-                    || outcome.culprits.is_empty()
+            for (flip, &raised) in flips.iter().zip(&raised) {
+                if raised
+                    || flip
+                        .region
+                        .iter()
+                        .any(|x| outcome.culprits.binary_search(&(*x as usize)).is_ok())
+                    || (outcome.culprits.is_empty() && !outcome.clipped)
                 {
                     for &x in &flip.quad {
                         if (x as usize) < n && !blocked[x as usize] {
@@ -537,12 +627,70 @@ impl WallClip<'_> {
                 break;
             }
         }
-        let outcome = self.clip(
-            tri,
-            &vec![false; n],
-            if reported { &unreported } else { stages },
-        );
+        let outcome = match unflipped {
+            Some(measured) => measured.outcome,
+            None => self.clip(
+                tri,
+                &vec![false; n],
+                if reported { &unreported } else { stages },
+            ),
+        };
         (None, outcome.mesh)
+    }
+
+    /// Measures, where not yet measured, every facet f `marked` of `m`'s mesh: its deviation,
+    /// the largest distance of its vertices from the surface, each projected by Newton from
+    /// f's seed ([`crate::projection::distance_foot`], as the report's deviation), and the
+    /// notch of its edges that no other facet holds ([`Notch`]).
+    fn measure(&self, m: &mut Measured, marked: &[bool]) {
+        let wrap = crate::projection::Wrap {
+            domain: self.surface.domain(),
+            periodic: self.boundary.periodic(),
+            poles: self.boundary.poles(),
+        };
+        let mesh = &m.outcome.mesh;
+        let facets = mesh.offsets.len().saturating_sub(1);
+        for (f, _) in marked.iter().enumerate().take(facets).filter(|x| *x.1) {
+            if m.notch[f].is_some() {
+                continue;
+            }
+            let seed = self.samples.uv[f];
+            m.deviation[f] = mesh
+                .polygon(f)
+                .into_iter()
+                .map(|x| {
+                    let foot = crate::projection::distance_foot(self.surface, &wrap, x, seed);
+                    let (u, v) = wrap.domain.clamp(foot[0], foot[1]);
+                    self.surface.point_at(u, v).distance(x)
+                })
+                .fold(0.0, f64::max);
+            let mut total = Notch::default();
+            let mut guess = seed;
+            for (p, q) in edge_segments(mesh, &m.held, f) {
+                let mut previous: Option<([f64; 2], f64)> = None;
+                for j in 0..=WALL_FLIP_NOTCH_SAMPLES {
+                    let x = p.lerp(q, j as f64 / WALL_FLIP_NOTCH_SAMPLES as f64);
+                    let foot = periodic_foot(
+                        self.surface,
+                        &wrap.domain,
+                        x,
+                        guess,
+                        wrap.periodic,
+                        wrap.poles,
+                    );
+                    guess = foot;
+                    let depth = self.boundary.inside_measure(foot).max(0.0);
+                    let st = wrap.domain.to_normalised(foot);
+                    if let Some((prev_st, prev_depth)) = previous {
+                        let step = (st[0] - prev_st[0]).hypot(st[1] - prev_st[1]);
+                        total.area += 0.5 * (prev_depth + depth) * step;
+                    }
+                    total.depth = total.depth.max(depth);
+                    previous = Some((st, depth));
+                }
+            }
+            m.notch[f] = Some(total);
+        }
     }
 
     fn ghost_seeds(&self) -> GhostSeeds<'_> {
@@ -661,6 +809,100 @@ impl WallClip<'_> {
             },
         }
     }
+}
+
+/// A clip on the wall with its marked facets measured ([`WallClip::measure`]).
+struct Measured {
+    outcome: WallOutcome,
+    /// The mesh's edges held by one facet ([`held_once`]).
+    held: HashSet<(u32, u32)>,
+    /// Per facet, the largest distance of its vertices from the surface (0 until measured).
+    deviation: Vec<f64>,
+    /// Per facet, the notch of its part of the mesh's edge (None until measured).
+    notch: Vec<Option<Notch>>,
+}
+
+impl Measured {
+    /// The clip `outcome`, no facet measured yet.
+    fn new(outcome: WallOutcome) -> Measured {
+        let n = outcome.mesh.offsets.len().saturating_sub(1);
+        Measured {
+            held: held_once(&outcome.mesh),
+            deviation: vec![0.0; n],
+            notch: vec![None; n],
+            outcome,
+        }
+    }
+}
+
+/// Whether a corner of the boundary (`corners`, on the surface) within
+/// [`WALL_FLIP_CORNER_REACH`] spacings of the mesh's edge along the facets `region` lies
+/// farther from that edge in `after`'s mesh than in `before`'s: the wall flips' notch scores,
+/// measured along the chain or the mesh's edge by the depth inside the region, see little
+/// of a corner cut off (a square hypar with hex patterns lost a corner to a flip that
+/// closed a notch beside it). As the rest of the mesh's edge is the same in both, a
+/// corner farther from the mesh's edge is farther from this part of it.
+fn corner_cut(
+    before: &Measured,
+    after: &Measured,
+    region: &[u32],
+    corners: &[DVec3],
+    spacing: f64,
+) -> bool {
+    if corners.is_empty() {
+        return false;
+    }
+    let edges = |m: &Measured| -> Vec<(DVec3, DVec3)> {
+        let (mesh, held) = (&m.outcome.mesh, &m.held);
+        region
+            .iter()
+            .filter(|&&f| (f as usize) + 1 < mesh.offsets.len())
+            .flat_map(|&f| edge_segments(mesh, held, f as usize))
+            .collect()
+    };
+    let distance = |edges: &[(DVec3, DVec3)], c: DVec3| {
+        edges
+            .iter()
+            .map(|&(a, b)| {
+                let ab = b - a;
+                let t =
+                    ((c - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+                (a + ab * t).distance(c)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let (old, new) = (edges(before), edges(after));
+    corners.iter().any(|&c| {
+        let (d_old, d_new) = (distance(&old, c), distance(&new, c));
+        d_old.min(d_new) <= WALL_FLIP_CORNER_REACH * spacing
+            && d_new > d_old + WALL_FLIP_DEVIATION_SLACK * spacing
+    })
+}
+
+/// The edges of `mesh` that one facet holds (the mesh's edge), each as (lower, higher) vertex;
+/// none where an edge is held wrongly.
+fn held_once(mesh: &FacetMesh) -> HashSet<(u32, u32)> {
+    crate::sanity::edges(&mesh.offsets, &mesh.loops)
+        .map(|(_, edges)| {
+            edges
+                .into_iter()
+                .map(|(a, b)| (a.min(b), a.max(b)))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// The edges of facet f of `mesh` in `held` ([`held_once`]), as their ends' positions.
+fn edge_segments<'m>(
+    mesh: &'m FacetMesh,
+    held: &'m HashSet<(u32, u32)>,
+    f: usize,
+) -> impl Iterator<Item = (DVec3, DVec3)> + 'm {
+    let facet = mesh.facet_loop(f);
+    (0..facet.len())
+        .map(move |k| (facet[k], facet[(k + 1) % facet.len()]))
+        .filter(move |&(a, b)| held.contains(&(a.min(b), a.max(b))))
+        .map(move |(a, b)| (mesh.vertices[a as usize], mesh.vertices[b as usize]))
 }
 
 /// Whether the facets clipped on the wall (`clipped`) keep the shape of the facets closed by

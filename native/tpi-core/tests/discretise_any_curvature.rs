@@ -1048,8 +1048,11 @@ fn sweep_saddles_give_valid_discs_with_exact_planes() {
 /// 17 analytic saddles with hex (0 and 30 degrees), grid and Poisson patterns of about 400
 /// points. Before the extension the mean was 0.0427 and the 90th percentiles of hp-ab-long
 /// (hex) and skew1 (grid) 0.125 and 0.146; with it 0.0369, 0.083 and 0.098. The wall flips
-/// (`facets::wall_flips`) close notches the extension cannot: mean 0.0295, mean of the 90th
-/// percentiles 0.110 to 0.069, those two cases 0.009 and 0.043.
+/// (`facets::wall_flips`) close notches the extension cannot; refusing those that raise the
+/// deviation of the facets they change, cut a corner off or deepen the mesh's edge, the mean
+/// is 0.0337, the mean of the 90th percentiles 0.110 to 0.097, those two cases 0.067 and
+/// 0.076 (all flips kept: 0.0295, 0.069, 0.009 and 0.043, but the largest deviation of hex
+/// meshes on samples/saddle.json doubled).
 #[test]
 fn saddle_meshes_reach_the_wall() {
     let patterns: Vec<(&str, Vec<[f64; 2]>)> = vec![
@@ -1087,7 +1090,7 @@ fn saddle_meshes_reach_the_wall() {
                 ("hp-ab-long", "hex@0") | ("skew1", "grid")
             ) {
                 assert!(
-                    p90 <= 0.06,
+                    p90 <= 0.08,
                     "{name} {pattern}: 90 % of the edge within {p90:.3} spacings"
                 );
             }
@@ -1098,12 +1101,12 @@ fn saddle_meshes_reach_the_wall() {
     }
     let mean = sum / count as f64;
     assert!(
-        mean <= 0.032,
+        mean <= 0.035,
         "mean distance of the mesh's edge from the wall: {mean:.4} spacings"
     );
     let p90 = p90_sum / count as f64;
     assert!(
-        p90 <= 0.08,
+        p90 <= 0.1,
         "mean 90th percentile of the mesh's edge from the wall: {p90:.4} spacings"
     );
 }
