@@ -23,6 +23,10 @@
 //!   [`crate::mesh`], which welds the vertices where four or more planes meet in one point,
 //!   numbers them and writes the loops.
 
+mod wall_flips;
+
+use std::collections::HashSet;
+
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -42,7 +46,9 @@ use crate::tolerance::{
     CORNER_ON_CROSSING, CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE,
     DEFAULT_FAR_VERTEX_FACTOR, GRAZING_CROSSING_SLACK, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES,
     RAY_DOUBLINGS, RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR, WALL_CLIP_SHORT_EDGE,
-    WALL_EXTENSION_MIN_DEPTH, WALL_EXTENSION_ROUNDS, WALL_EXTENSION_STEPS,
+    WALL_EXTENSION_MIN_DEPTH, WALL_EXTENSION_ROUNDS, WALL_EXTENSION_STEPS, WALL_FLIP_CORNER_REACH,
+    WALL_FLIP_DEVIATION_SLACK, WALL_FLIP_MIN_AREA, WALL_FLIP_NOTCH_SAMPLES, WALL_FLIP_NOTCH_SLACK,
+    WALL_FLIP_RETRIES,
 };
 use crate::triangulation::{
     real_pairs, triangle_edges, DualTriangulation, Edge, Fan, IndexMap, NO_TRIANGLE,
@@ -349,7 +355,7 @@ pub(crate) fn build_stage(
 ) -> Facets {
     let n = samples.uv.len();
     let DualStructure {
-        triangulation,
+        mut triangulation,
         plan,
         ..
     } = structure;
@@ -395,88 +401,29 @@ pub(crate) fn build_stage(
             (mesh, planes.len() > n, *strips)
         }
         FacetPlan::Augmented { seeds, on_wall } => {
-            // Clipped on the wall, the closed facets are only the yardstick of the clipped
-            // ones: the progress reported is the clipped build's.
-            let unreported = Stages::new(&NoProgress);
-            let closed = build_closed_facets(
-                &triangulation,
-                &seeds.planes,
-                n,
-                &seeds.source,
-                false,
-                params,
-                if *on_wall { &unreported } else { stages },
-            );
             let mesh = if *on_wall {
-                // Only the first clip reports progress: the retries redo the same stage.
-                let clip = |blocked: &[bool], stages: &Stages<'_>| {
-                    build_ghost_clipped_facets(
-                        surface,
-                        boundary,
-                        &samples.uv,
-                        &samples.tangents,
-                        &seeds.planes,
-                        &seeds.source,
-                        &triangulation,
-                        params,
-                        Some(blocked),
-                        stages,
-                    )
+                let wall = WallClip {
+                    surface,
+                    boundary,
+                    samples,
+                    seeds,
+                    params,
                 };
-                let spacing = samples.diagonal / (2.0 * n as f64).sqrt();
-                // The clipped facets in their final form, if they keep the closed ones' shape.
-                let finish = |mut clipped: FacetMesh| {
-                    weld_coincident_crossings(&mut clipped, params.weld_distance);
-                    drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
-                    start_loops_at_lowest_triangle(&mut clipped);
-                    // One edge count serves both: marking changes kinds, not loops.
-                    let clipped_edges = crate::sanity::edges(&clipped.offsets, &clipped.loops).ok();
-                    if let Some((_, boundary)) = &clipped_edges {
-                        mark_boundary_vertices(&mut clipped, boundary);
-                    }
-                    wall_clip_keeps_shape(&closed, &clipped, clipped_edges, &seeds.planes[..n])
-                        .then_some(clipped)
-                };
-                let mut blocked = vec![false; n];
-                let (mut clipped, mut extended) = clip(&blocked, stages);
-                // Facets extended to the wall that came out invalid keep their ghost's end.
-                for _ in 0..WALL_EXTENSION_ROUNDS {
-                    let invalid = invalid_extended_facets(
-                        &clipped,
-                        &seeds.planes[..n],
-                        &triangulation,
-                        &extended,
-                    );
-                    if invalid.is_empty() {
-                        break;
-                    }
-                    for f in invalid {
-                        blocked[f] = true;
-                    }
-                    (clipped, extended) = clip(&blocked, &unreported);
+                let (flipped, mesh) = wall.flipped_and_clipped(&triangulation, stages);
+                if let Some(flipped) = flipped {
+                    triangulation = flipped;
                 }
-                let kept = finish(clipped).or_else(|| {
-                    extended
-                        .contains(&true)
-                        .then(|| finish(clip(&vec![true; n], &unreported).0))
-                        .flatten()
-                });
-                match kept {
-                    Some(mut clipped) => {
-                        // The count of coincident neighbour planes is the structure's, not the
-                        // clip's: it is kept.
-                        clipped.diagnostics.extend(
-                            closed
-                                .diagnostics
-                                .into_iter()
-                                .filter(|d| matches!(d, Diagnostic::CoincidentPlanes { .. })),
-                        );
-                        clipped
-                    }
-                    None => closed,
-                }
+                mesh
             } else {
-                closed
+                build_closed_facets(
+                    &triangulation,
+                    &seeds.planes,
+                    n,
+                    &seeds.source,
+                    false,
+                    params,
+                    stages,
+                )
             };
             (mesh, true, false)
         }
@@ -498,6 +445,464 @@ pub(crate) fn build_stage(
         triangulation: real,
         ghost_neighbours,
     }
+}
+
+/// What the any-curvature path's clip on the wall reads.
+struct WallClip<'a> {
+    surface: &'a dyn Surface,
+    boundary: &'a Boundary,
+    samples: &'a Samples,
+    seeds: &'a crate::ghosts::Augmented,
+    params: &'a FacetParams,
+}
+
+/// How far a part of the mesh's edge (edges held by one facet) stands inside the region, in
+/// normalised parameters: each edge sampled at [`WALL_FLIP_NOTCH_SAMPLES`] + 1 points x_k
+/// with feet u_k and depths d_k = max(0, inside measure of u_k),
+///
+///   area = sum_k (d_k + d_(k+1)) / 2 |u_(k+1) - u_k|,   depth = max_k d_k,
+///
+/// the area between the mesh's edge and the wall, and its deepest point.
+#[derive(Clone, Copy, Debug, Default)]
+struct Notch {
+    area: f64,
+    depth: f64,
+}
+
+impl Notch {
+    /// Two parts of the mesh's edge together.
+    fn join(self, other: Notch) -> Notch {
+        Notch {
+            area: self.area + other.area,
+            depth: self.depth.max(other.depth),
+        }
+    }
+
+    /// Whether this notch is larger than `before` in area or depth by more than
+    /// [`WALL_FLIP_NOTCH_SLACK`].
+    fn exceeds(self, before: Notch) -> bool {
+        self.area > before.area + WALL_FLIP_NOTCH_SLACK
+            || self.depth > before.depth + WALL_FLIP_NOTCH_SLACK
+    }
+}
+
+/// The outcome of one clip on the wall ([`WallClip::clip`]).
+struct WallOutcome {
+    /// The clipped facets when they keep the closed facets' shape, else the closed facets.
+    mesh: FacetMesh,
+    /// Whether the clipped facets were kept.
+    clipped: bool,
+    /// The facets among those marked that came out of the clip invalid (ascending), or
+    /// whose extension to the wall was taken back.
+    culprits: Vec<usize>,
+}
+
+impl WallClip<'_> {
+    /// The facets of `tri` clipped on the wall, after the wall flips
+    /// ([`wall_flips::wall_flips`]) where they keep the clip sound and no vertex farther
+    /// from the surface than before: the flipped triangulation (None where no flip is kept)
+    /// and the mesh.
+    ///
+    /// Each try clips the flipped triangulation and compares it with the unflipped clip over
+    /// every flip's region (the facets it can change). A flip is refused (its quad's points
+    /// blocked, the flips redone) when its region comes out of the clip invalid, or when,
+    /// against the unflipped clip ([`WallClip::measure`]),
+    /// - its region's deviation, the largest distance of the vertices from the surface,
+    ///   grows by more than [`WALL_FLIP_DEVIATION_SLACK`] spacings: the flips' score weighs
+    ///   the area between the chain and the wall, not how far the new vertices stand off the
+    ///   surface (on samples/saddle.json, hex:spacing=0.0714, a flip handed a domain corner
+    ///   to another facet, whose plane stands 0.0433 off the surface there; 0.0193 at most
+    ///   without the flips);
+    /// - its region's part of the mesh's edge ([`Notch`]) grows in area or depth;
+    /// - a corner near its region lies farther from the mesh's edge ([`corner_cut`]).
+    fn flipped_and_clipped(
+        &self,
+        tri: &DualTriangulation,
+        stages: &Stages<'_>,
+    ) -> (Option<DualTriangulation>, FacetMesh) {
+        let n = self.samples.uv.len();
+        let unreported = Stages::new(&NoProgress);
+        let mut blocked = vec![false; n];
+        let mut reported = false;
+        // Exact planes only: with adjusted ones (`samples.tangent_planes` set) a flip left a
+        // facet thin enough on a rotated hypar (grid, 300 points) that its vertices gave a
+        // plane 4.5 degrees off its reported tilt of 0.
+        let tries = if self.samples.tangent_planes.is_none() {
+            WALL_FLIP_RETRIES
+        } else {
+            0
+        };
+        let spacing = self.samples.diagonal / (2.0 * n as f64).sqrt();
+        // The unflipped clip, made once where a flip is kept, with its marked facets measured.
+        let mut unflipped: Option<Measured> = None;
+        // The boundary's corners on the surface.
+        let corners: Vec<DVec3> = self
+            .boundary
+            .corners()
+            .iter()
+            .map(|&([u, v], _)| self.surface.point_at(u, v))
+            .collect();
+        for _ in 0..tries {
+            let mut flipped = tri.clone();
+            let ghost_seeds = self.ghost_seeds();
+            let flips =
+                with_ghost_context(self.surface, self.boundary, &ghost_seeds, None, |ctx| {
+                    wall_flips::wall_flips(
+                        ctx,
+                        n,
+                        &mut flipped,
+                        &self.seeds.planes,
+                        self.params.far_vertex_factor,
+                        &blocked,
+                    )
+                });
+            if flips.is_empty() {
+                break;
+            }
+            let mut marked = vec![false; n];
+            for flip in &flips {
+                for &x in &flip.region {
+                    marked[x as usize] = true;
+                }
+            }
+            let before = unflipped.get_or_insert_with(|| {
+                let outcome = self.clip(tri, &vec![false; n], stages);
+                reported = true;
+                Measured::new(outcome)
+            });
+            self.measure(before, &marked);
+            let outcome = self.clip(
+                &flipped,
+                &marked,
+                if reported { &unreported } else { stages },
+            );
+            reported = true;
+            let mut after = Measured::new(outcome);
+            self.measure(&mut after, &marked);
+            let region_notch = |notch: &[Option<Notch>], flip: &wall_flips::WallFlip| {
+                flip.region
+                    .iter()
+                    .filter_map(|&x| notch.get(x as usize).copied().flatten())
+                    .fold(Notch::default(), Notch::join)
+            };
+            let region_deviation = |deviation: &[f64], flip: &wall_flips::WallFlip| {
+                flip.region
+                    .iter()
+                    .filter_map(|&x| deviation.get(x as usize).copied())
+                    .fold(0.0, f64::max)
+            };
+            let raised: Vec<bool> = flips
+                .iter()
+                .map(|flip| {
+                    region_deviation(&after.deviation, flip)
+                        > region_deviation(&before.deviation, flip)
+                            + WALL_FLIP_DEVIATION_SLACK * spacing
+                        || region_notch(&after.notch, flip)
+                            .exceeds(region_notch(&before.notch, flip))
+                        || corner_cut(before, &after, &flip.region, &corners, spacing)
+                })
+                .collect();
+            let outcome = after.outcome;
+            if outcome.clipped && outcome.culprits.is_empty() && !raised.contains(&true) {
+                return (Some(flipped), outcome.mesh);
+            }
+            let mut any = false;
+            for (flip, &raised) in flips.iter().zip(&raised) {
+                if raised
+                    || flip
+                        .region
+                        .iter()
+                        .any(|x| outcome.culprits.binary_search(&(*x as usize)).is_ok())
+                    || (outcome.culprits.is_empty() && !outcome.clipped)
+                {
+                    for &x in &flip.quad {
+                        if (x as usize) < n && !blocked[x as usize] {
+                            blocked[x as usize] = true;
+                            any = true;
+                        }
+                    }
+                }
+            }
+            if !any {
+                break;
+            }
+        }
+        let outcome = match unflipped {
+            Some(measured) => measured.outcome,
+            None => self.clip(
+                tri,
+                &vec![false; n],
+                if reported { &unreported } else { stages },
+            ),
+        };
+        (None, outcome.mesh)
+    }
+
+    /// Measures, where not yet measured, every facet f `marked` of `m`'s mesh: its deviation,
+    /// the largest distance of its vertices from the surface, each projected by Newton from
+    /// f's seed ([`crate::projection::distance_foot`], as the report's deviation), and the
+    /// notch of its edges that no other facet holds ([`Notch`]).
+    fn measure(&self, m: &mut Measured, marked: &[bool]) {
+        let wrap = crate::projection::Wrap {
+            domain: self.surface.domain(),
+            periodic: self.boundary.periodic(),
+            poles: self.boundary.poles(),
+        };
+        let mesh = &m.outcome.mesh;
+        let facets = mesh.offsets.len().saturating_sub(1);
+        for (f, _) in marked.iter().enumerate().take(facets).filter(|x| *x.1) {
+            if m.notch[f].is_some() {
+                continue;
+            }
+            let seed = self.samples.uv[f];
+            m.deviation[f] = mesh
+                .polygon(f)
+                .into_iter()
+                .map(|x| {
+                    let foot = crate::projection::distance_foot(self.surface, &wrap, x, seed);
+                    let (u, v) = wrap.domain.clamp(foot[0], foot[1]);
+                    self.surface.point_at(u, v).distance(x)
+                })
+                .fold(0.0, f64::max);
+            let mut total = Notch::default();
+            let mut guess = seed;
+            for (p, q) in edge_segments(mesh, &m.held, f) {
+                let mut previous: Option<([f64; 2], f64)> = None;
+                for j in 0..=WALL_FLIP_NOTCH_SAMPLES {
+                    let x = p.lerp(q, j as f64 / WALL_FLIP_NOTCH_SAMPLES as f64);
+                    let foot = periodic_foot(
+                        self.surface,
+                        &wrap.domain,
+                        x,
+                        guess,
+                        wrap.periodic,
+                        wrap.poles,
+                    );
+                    guess = foot;
+                    let depth = self.boundary.inside_measure(foot).max(0.0);
+                    let st = wrap.domain.to_normalised(foot);
+                    if let Some((prev_st, prev_depth)) = previous {
+                        let step = (st[0] - prev_st[0]).hypot(st[1] - prev_st[1]);
+                        total.area += 0.5 * (prev_depth + depth) * step;
+                    }
+                    total.depth = total.depth.max(depth);
+                    previous = Some((st, depth));
+                }
+            }
+            m.notch[f] = Some(total);
+        }
+    }
+
+    fn ghost_seeds(&self) -> GhostSeeds<'_> {
+        GhostSeeds {
+            uv: &self.samples.uv,
+            tangents: &self.samples.tangents,
+            planes: &self.seeds.planes,
+            source: &self.seeds.source,
+        }
+    }
+
+    /// The facets of `tri` clipped on the wall (module doc, the clip's retries included), or
+    /// the closed facets where the clipped ones do not keep their shape; the culprits among
+    /// the facets `marked`.
+    fn clip(&self, tri: &DualTriangulation, marked: &[bool], stages: &Stages<'_>) -> WallOutcome {
+        let (samples, seeds, params) = (self.samples, self.seeds, self.params);
+        let n = samples.uv.len();
+        let unreported = Stages::new(&NoProgress);
+        let closed = build_closed_facets(
+            tri,
+            &seeds.planes,
+            n,
+            &seeds.source,
+            false,
+            params,
+            &unreported,
+        );
+        // Only the first clip reports progress: the retries redo the same stage.
+        let clip = |blocked: &[bool], stages: &Stages<'_>| {
+            build_ghost_clipped_facets(
+                self.surface,
+                self.boundary,
+                &samples.uv,
+                &samples.tangents,
+                &seeds.planes,
+                &seeds.source,
+                tri,
+                params,
+                Some(blocked),
+                stages,
+            )
+        };
+        let spacing = samples.diagonal / (2.0 * n as f64).sqrt();
+        // The clipped facets in their final form, if they keep the closed ones' shape.
+        let finish = |mut clipped: FacetMesh| {
+            weld_coincident_crossings(&mut clipped, params.weld_distance);
+            drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
+            start_loops_at_lowest_triangle(&mut clipped);
+            // One edge count serves both: marking changes kinds, not loops.
+            let clipped_edges = crate::sanity::edges(&clipped.offsets, &clipped.loops).ok();
+            if let Some((_, boundary)) = &clipped_edges {
+                mark_boundary_vertices(&mut clipped, boundary);
+            }
+            wall_clip_keeps_shape(&closed, &clipped, clipped_edges, &seeds.planes[..n])
+                .then_some(clipped)
+        };
+        let mut blocked = vec![false; n];
+        let (mut clipped, mut extended) = clip(&blocked, stages);
+        let mut culprits = Vec::new();
+        // Facets extended to the wall that came out invalid keep their ghost's end.
+        for _ in 0..WALL_EXTENSION_ROUNDS {
+            let invalid = invalid_extended_facets(&clipped, &seeds.planes[..n], tri, &extended);
+            if invalid.is_empty() {
+                break;
+            }
+            culprits.extend(invalid.iter().copied().filter(|&f| marked[f]));
+            for f in invalid {
+                blocked[f] = true;
+            }
+            (clipped, extended) = clip(&blocked, &unreported);
+        }
+        if marked.contains(&true) {
+            culprits.extend(invalid_marked_facets(
+                &clipped,
+                &seeds.planes[..n],
+                marked,
+                WALL_FLIP_MIN_AREA * spacing * spacing,
+            ));
+            // A marked facet the wall cuts into parts loses all but one: a gap beside the
+            // wall, which the flips are to close, not open.
+            culprits.extend(clipped.diagnostics.iter().filter_map(|d| match *d {
+                Diagnostic::FacetPartsLeftOut { point, .. } if marked[point as usize] => {
+                    Some(point as usize)
+                }
+                _ => None,
+            }));
+        }
+        culprits.sort_unstable();
+        culprits.dedup();
+        let kept = finish(clipped).or_else(|| {
+            extended
+                .contains(&true)
+                .then(|| finish(clip(&vec![true; n], &unreported).0))
+                .flatten()
+        });
+        match kept {
+            Some(mut clipped) => {
+                // The count of coincident neighbour planes is the structure's, not the
+                // clip's: it is kept.
+                clipped.diagnostics.extend(
+                    closed
+                        .diagnostics
+                        .into_iter()
+                        .filter(|d| matches!(d, Diagnostic::CoincidentPlanes { .. })),
+                );
+                WallOutcome {
+                    mesh: clipped,
+                    clipped: true,
+                    culprits,
+                }
+            }
+            None => WallOutcome {
+                mesh: closed,
+                clipped: false,
+                culprits,
+            },
+        }
+    }
+}
+
+/// A clip on the wall with its marked facets measured ([`WallClip::measure`]).
+struct Measured {
+    outcome: WallOutcome,
+    /// The mesh's edges held by one facet ([`held_once`]).
+    held: HashSet<(u32, u32)>,
+    /// Per facet, the largest distance of its vertices from the surface (0 until measured).
+    deviation: Vec<f64>,
+    /// Per facet, the notch of its part of the mesh's edge (None until measured).
+    notch: Vec<Option<Notch>>,
+}
+
+impl Measured {
+    /// The clip `outcome`, no facet measured yet.
+    fn new(outcome: WallOutcome) -> Measured {
+        let n = outcome.mesh.offsets.len().saturating_sub(1);
+        Measured {
+            held: held_once(&outcome.mesh),
+            deviation: vec![0.0; n],
+            notch: vec![None; n],
+            outcome,
+        }
+    }
+}
+
+/// Whether a corner of the boundary (`corners`, on the surface) within
+/// [`WALL_FLIP_CORNER_REACH`] spacings of the mesh's edge along the facets `region` lies
+/// farther from that edge in `after`'s mesh than in `before`'s: the wall flips' notch scores,
+/// measured along the chain or the mesh's edge by the depth inside the region, see little
+/// of a corner cut off (a square hypar with hex patterns lost a corner to a flip that
+/// closed a notch beside it). As the rest of the mesh's edge is the same in both, a
+/// corner farther from the mesh's edge is farther from this part of it.
+fn corner_cut(
+    before: &Measured,
+    after: &Measured,
+    region: &[u32],
+    corners: &[DVec3],
+    spacing: f64,
+) -> bool {
+    if corners.is_empty() {
+        return false;
+    }
+    let edges = |m: &Measured| -> Vec<(DVec3, DVec3)> {
+        let (mesh, held) = (&m.outcome.mesh, &m.held);
+        region
+            .iter()
+            .filter(|&&f| (f as usize) + 1 < mesh.offsets.len())
+            .flat_map(|&f| edge_segments(mesh, held, f as usize))
+            .collect()
+    };
+    let distance = |edges: &[(DVec3, DVec3)], c: DVec3| {
+        edges
+            .iter()
+            .map(|&(a, b)| {
+                let ab = b - a;
+                let t =
+                    ((c - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+                (a + ab * t).distance(c)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let (old, new) = (edges(before), edges(after));
+    corners.iter().any(|&c| {
+        let (d_old, d_new) = (distance(&old, c), distance(&new, c));
+        d_old.min(d_new) <= WALL_FLIP_CORNER_REACH * spacing
+            && d_new > d_old + WALL_FLIP_DEVIATION_SLACK * spacing
+    })
+}
+
+/// The edges of `mesh` that one facet holds (the mesh's edge), each as (lower, higher) vertex;
+/// none where an edge is held wrongly.
+fn held_once(mesh: &FacetMesh) -> HashSet<(u32, u32)> {
+    crate::sanity::edges(&mesh.offsets, &mesh.loops)
+        .map(|(_, edges)| {
+            edges
+                .into_iter()
+                .map(|(a, b)| (a.min(b), a.max(b)))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// The edges of facet f of `mesh` in `held` ([`held_once`]), as their ends' positions.
+fn edge_segments<'m>(
+    mesh: &'m FacetMesh,
+    held: &'m HashSet<(u32, u32)>,
+    f: usize,
+) -> impl Iterator<Item = (DVec3, DVec3)> + 'm {
+    let facet = mesh.facet_loop(f);
+    (0..facet.len())
+        .map(move |k| (facet[k], facet[(k + 1) % facet.len()]))
+        .filter(move |&(a, b)| held.contains(&(a.min(b), a.max(b))))
+        .map(move |(a, b)| (mesh.vertices[a as usize], mesh.vertices[b as usize]))
 }
 
 /// Whether the facets clipped on the wall (`clipped`) keep the shape of the facets closed by
@@ -607,6 +1012,72 @@ fn invalid_extended_facets(
     (0..n).filter(|&f| invalid[f]).collect()
 }
 
+/// The facets marked in `marked` that are not simple in their plane, have an area below
+/// `least_area` (a facet collapsed onto a line, as where the planes along a hypar's ruling
+/// meet in it), or overlap a facet sharing a vertex with them, seen along their mean normal
+/// (the report's tests, [`crate::quality`]); ascending. Unlike [`invalid_extended_facets`]
+/// the pairs are those of the mesh, not of the triangulation: a flip can bring two facets to
+/// one vertex.
+fn invalid_marked_facets(
+    mesh: &FacetMesh,
+    planes: &[Plane],
+    marked: &[bool],
+    least_area: f64,
+) -> Vec<usize> {
+    let n = planes.len();
+    let mut holders: Vec<Vec<u32>> = vec![Vec::new(); mesh.vertices.len()];
+    for f in 0..n {
+        for &v in mesh.facet_loop(f) {
+            let list = &mut holders[v as usize];
+            if list.last() != Some(&(f as u32)) {
+                list.push(f as u32);
+            }
+        }
+    }
+    let mut buffer = Vec::new();
+    let mut simple = vec![None; n];
+    let mut is_simple = |f: usize| {
+        *simple[f].get_or_insert_with(|| {
+            crate::quality::facet_shape_into(&planes[f], mesh.polygon(f).into_iter(), &mut buffer)
+                .simple
+        })
+    };
+    let mut invalid = Vec::new();
+    for f in (0..n).filter(|&f| marked[f]) {
+        let own = mesh.polygon(f);
+        // Newell's vector area.
+        let area = (0..own.len())
+            .map(|k| own[k].cross(own[(k + 1) % own.len()]))
+            .sum::<DVec3>()
+            .length()
+            / 2.0;
+        if !is_simple(f) || !(area >= least_area) {
+            invalid.push(f);
+            continue;
+        }
+        let mut others: Vec<u32> = mesh.loops
+            [mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize]
+            .iter()
+            .flat_map(|&v| holders[v as usize].iter().copied())
+            .filter(|&g| g as usize != f)
+            .collect();
+        others.sort_unstable();
+        others.dedup();
+        if others.into_iter().any(|g| {
+            let g = g as usize;
+            is_simple(g)
+                && crate::validity_flips::polygons_overlap(
+                    &own,
+                    &mesh.polygon(g),
+                    planes[f].normal + planes[g].normal,
+                )
+        }) {
+            invalid.push(f);
+        }
+    }
+    invalid
+}
+
 /// What [`wall_clip_keeps_shape`] compares.
 struct MeshShape {
     euler: i64,
@@ -709,6 +1180,47 @@ pub(crate) fn build_ghost_clipped_facets(
     stages: &Stages<'_>,
 ) -> (FacetMesh, Vec<bool>) {
     let real_count = uv.len();
+    let seeds = GhostSeeds {
+        uv,
+        tangents,
+        planes,
+        source,
+    };
+    with_ghost_context(surface, boundary, &seeds, extend_to_wall, |ctx| {
+        let (mut mesh, extended) = clip_facets(ctx, real_count, tri, params, stages);
+        // Diagnostics name pattern points: a ghost stands for its seed.
+        for diagnostic in &mut mesh.diagnostics {
+            diagnostic.map_points(|p| source[p as usize]);
+        }
+        (mesh, extended)
+    })
+}
+
+/// The real seeds (`uv`, `tangents`) and the planes and sources of all points, ghosts
+/// included, of a triangulation closed by ghosts.
+struct GhostSeeds<'a> {
+    uv: &'a [[f64; 2]],
+    tangents: &'a [[DVec3; 2]],
+    planes: &'a [Plane],
+    source: &'a [u32],
+}
+
+/// Runs `f` with the clip's [`Context`] of a triangulation closed by ghosts: a ghost's
+/// parameters are the first-order foot of its point seen from its seed, its tangents its
+/// seed's.
+fn with_ghost_context<R>(
+    surface: &dyn Surface,
+    boundary: &Boundary,
+    seeds: &GhostSeeds<'_>,
+    extend_to_wall: Option<&[bool]>,
+    f: impl FnOnce(&Context<'_>) -> R,
+) -> R {
+    let GhostSeeds {
+        uv,
+        tangents,
+        planes,
+        source,
+    } = *seeds;
     let mut all_uv = uv.to_vec();
     let mut all_tangents = tangents.to_vec();
     let convex_side = vec![0i8; planes.len()];
@@ -726,19 +1238,14 @@ pub(crate) fn build_ghost_clipped_facets(
     };
     // A ghost's parameters are the first-order foot of its point seen from its seed: only a
     // start for the projections of the vertices around it.
-    for (g, plane) in planes.iter().enumerate().skip(real_count) {
+    for (g, plane) in planes.iter().enumerate().skip(uv.len()) {
         let seed = source[g];
         all_uv.push(ctx.linear_foot(seed, plane.point));
         all_tangents.push(tangents[seed as usize]);
     }
     ctx.uv = &all_uv;
     ctx.tangents = &all_tangents;
-    let (mut mesh, extended) = clip_facets(&ctx, real_count, tri, params, stages);
-    // Diagnostics name pattern points: a ghost stands for its seed.
-    for diagnostic in &mut mesh.diagnostics {
-        diagnostic.map_points(|p| source[p as usize]);
-    }
-    (mesh, extended)
+    f(&ctx)
 }
 
 /// The facets of the points `0..real_count` of `tri`, ending on `ctx.boundary` (module doc);
@@ -943,80 +1450,18 @@ fn extend_to_wall(
         .par_iter()
         .enumerate()
         .filter_map(|(t, &ids)| {
-            let v = &triangle_vertices[t];
-            let ghosts = ids.iter().filter(|&&p| p as usize >= real_count).count();
-            // A vertex on the wall (a grid on a hypar) or within rounding of it leaves no notch
-            // worth a move, and its side would be decided by rounding.
-            if !(1..=2).contains(&ghosts)
-                || !v.exact
-                || v.inside <= WALL_EXTENSION_MIN_DEPTH * v.reach
-            {
-                return None;
-            }
             if ids
                 .iter()
                 .any(|&p| (p as usize) < real_count && blocked[p as usize])
             {
                 return None;
             }
-            let plane = |p: u32| &ctx.planes[p as usize];
             // The vertex across the edge opposite position k, as the walk left it.
             let across = |k: usize| {
                 let other = tri.neighbours[t][k];
                 (other != NO_TRIANGLE).then(|| triangle_vertices[other as usize].point)
             };
-            let [a, b, c] = ids.map(|p| plane(p).point);
-            let step = 0.25 * a.distance(b).max(b.distance(c)).max(c.distance(a));
-            let direction = if ghosts == 1 {
-                // ids[k] = g, ids[k + 1] = i, ids[k + 2] = j (counter-clockwise).
-                let k = ids.iter().position(|&p| p as usize >= real_count)?;
-                let (i, j) = (ids[(k + 1) % 3], ids[(k + 2) % 3]);
-                let u = plane(i).normal.cross(plane(j).normal).try_normalize()?;
-                let apart = v.point - across(k)?;
-                // Facet i's edge on T_g runs to the vertex across (g, i), j's to that across
-                // (j, g): the ghost's wedge at V lies between them.
-                let [ri, rj] = [
-                    across((k + 2) % 3)? - v.point,
-                    across((k + 1) % 3)? - v.point,
-                ];
-                let normal = plane(ids[k]).normal;
-                [u, -u].into_iter().find(|&w| {
-                    within_wedge(normal, ri, rj, w) && (w.dot(apart) > 0.0 || apart.length() < step)
-                })?
-            } else {
-                // ids[k] = the real seed, its facet's only vertex here: V goes out through the
-                // wedge of the ghosts, along its bisector in T_k.
-                let k = ids.iter().position(|&p| (p as usize) < real_count)?;
-                let previous = across((k + 2) % 3)?;
-                let next = across((k + 1) % 3)?;
-                let n = plane(ids[k]).normal;
-                let convex = n.dot((v.point - previous).cross(next - v.point)) > 0.0;
-                let sum =
-                    (previous - v.point).try_normalize()? + (next - v.point).try_normalize()?;
-                let outward = if convex { -sum } else { sum };
-                (outward - n * n.dot(outward)).try_normalize()?
-            };
-            let mut guess = v.foot;
-            for k in 1..=WALL_EXTENSION_STEPS {
-                let point = v.point + direction * (step * k as f64);
-                let (foot, inside) = ctx.measure(point, guess);
-                if inside <= 0.0 {
-                    return Some((
-                        t,
-                        TriangleVertex {
-                            point,
-                            foot,
-                            inside,
-                            reach: v.reach,
-                            exact: true,
-                            measured: true,
-                            newton_foot: true,
-                        },
-                    ));
-                }
-                guess = foot;
-            }
-            None
+            extension(ctx, real_count, ids, &triangle_vertices[t], across).map(|v| (t, v))
         })
         .collect();
     let mut extended = vec![false; real_count];
@@ -1029,6 +1474,74 @@ fn extend_to_wall(
         }
     }
     extended
+}
+
+/// Where [`extend_to_wall`] moves the vertex `v` of the triangle `ids` (points from
+/// `real_count` on are ghosts): the first point past the wall along its real facets' common
+/// line, or along the bisector of the ghosts' wedge (that function's doc); None where it
+/// stays. `across(k)` is the vertex of the triangle across the edge opposite position k.
+fn extension(
+    ctx: &Context<'_>,
+    real_count: usize,
+    ids: [u32; 3],
+    v: &TriangleVertex,
+    across: impl Fn(usize) -> Option<DVec3>,
+) -> Option<TriangleVertex> {
+    let ghosts = ids.iter().filter(|&&p| p as usize >= real_count).count();
+    // A vertex on the wall (a grid on a hypar) or within rounding of it leaves no notch
+    // worth a move, and its side would be decided by rounding.
+    if !(1..=2).contains(&ghosts) || !v.exact || v.inside <= WALL_EXTENSION_MIN_DEPTH * v.reach {
+        return None;
+    }
+    let plane = |p: u32| &ctx.planes[p as usize];
+    let [a, b, c] = ids.map(|p| plane(p).point);
+    let step = 0.25 * a.distance(b).max(b.distance(c)).max(c.distance(a));
+    let direction = if ghosts == 1 {
+        // ids[k] = g, ids[k + 1] = i, ids[k + 2] = j (counter-clockwise).
+        let k = ids.iter().position(|&p| p as usize >= real_count)?;
+        let (i, j) = (ids[(k + 1) % 3], ids[(k + 2) % 3]);
+        let u = plane(i).normal.cross(plane(j).normal).try_normalize()?;
+        let apart = v.point - across(k)?;
+        // Facet i's edge on T_g runs to the vertex across (g, i), j's to that across
+        // (j, g): the ghost's wedge at V lies between them.
+        let [ri, rj] = [
+            across((k + 2) % 3)? - v.point,
+            across((k + 1) % 3)? - v.point,
+        ];
+        let normal = plane(ids[k]).normal;
+        [u, -u].into_iter().find(|&w| {
+            within_wedge(normal, ri, rj, w) && (w.dot(apart) > 0.0 || apart.length() < step)
+        })?
+    } else {
+        // ids[k] = the real seed, its facet's only vertex here: V goes out through the
+        // wedge of the ghosts, along its bisector in T_k.
+        let k = ids.iter().position(|&p| (p as usize) < real_count)?;
+        let previous = across((k + 2) % 3)?;
+        let next = across((k + 1) % 3)?;
+        let n = plane(ids[k]).normal;
+        let convex = n.dot((v.point - previous).cross(next - v.point)) > 0.0;
+        let sum = (previous - v.point).try_normalize()? + (next - v.point).try_normalize()?;
+        let outward = if convex { -sum } else { sum };
+        (outward - n * n.dot(outward)).try_normalize()?
+    };
+    let mut guess = v.foot;
+    for k in 1..=WALL_EXTENSION_STEPS {
+        let point = v.point + direction * (step * k as f64);
+        let (foot, inside) = ctx.measure(point, guess);
+        if inside <= 0.0 {
+            return Some(TriangleVertex {
+                point,
+                foot,
+                inside,
+                reach: v.reach,
+                exact: true,
+                measured: true,
+                newton_foot: true,
+            });
+        }
+        guess = foot;
+    }
+    None
 }
 
 /// Whether the direction w lies strictly inside the wedge between the rays a and b (under

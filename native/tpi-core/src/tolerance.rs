@@ -198,6 +198,45 @@ pub const WALL_EXTENSION_MIN_DEPTH: f64 = 0.05;
 /// and clips again.
 pub const WALL_EXTENSION_ROUNDS: usize = 3;
 
+/// Rounds of wall flips (`facets::wall_flips`): each visits every triangle with a ghost whose
+/// vertex stays inside the region.
+pub const WALL_FLIP_ROUNDS: usize = 4;
+
+/// Tries of the wall flips (`facets::wall_flips`) before the triangulation is clipped as the
+/// validity flips left it: after each try whose clip does not keep the closed facets' shape
+/// or leaves a facet near a flip invalid, the flips near those facets are refused.
+pub const WALL_FLIP_RETRIES: usize = 3;
+
+/// A wall flip (`facets::wall_flips`) is refused when the largest distance from the surface
+/// of the vertices of the facets it can change, clipped on the wall with the flips, exceeds
+/// the same facets' largest distance in the unflipped clip by more than this many mean
+/// spacings (diagonal / sqrt(2 n)): rounding only, no flip may raise the deviation.
+pub const WALL_FLIP_DEVIATION_SLACK: f64 = 1e-9;
+
+/// A wall flip (`facets::wall_flips`) is refused when a corner of the boundary within this
+/// many mean spacings of the mesh's edge along the facets it can change lies farther from
+/// that edge after the flips than before (by more than [`WALL_FLIP_DEVIATION_SLACK`]
+/// spacings): the corner cut off.
+pub const WALL_FLIP_CORNER_REACH: f64 = 1.0;
+
+/// Pieces each edge of the mesh's edge is sampled in for its notch after a wall flip
+/// (`facets::Notch`: the area between it and the wall, and its depth).
+pub const WALL_FLIP_NOTCH_SAMPLES: usize = 4;
+
+/// A wall flip (`facets::wall_flips`) is refused when the notch of the mesh's edge along the
+/// facets it can change, clipped with the flips, exceeds the unflipped clip's in area or
+/// depth by more than this (normalised parameters): rounding only. The flips' own score is
+/// the notch of the chain before the clip, which does not see what the clip does at a
+/// corner (on a square hypar, hex patterns, a flip that closed a notch beside a corner cut
+/// the corner off).
+pub const WALL_FLIP_NOTCH_SLACK: f64 = 1e-12;
+
+/// A facet near a wall flip whose clipped polygon's area is below this fraction of the
+/// squared mean spacing (diagonal / sqrt(2 n)) counts as invalid, and the flips near it are
+/// refused (`facets::WallClip`): on a hypar the planes along a ruling meet in it, and a flip
+/// there can leave a facet collapsed onto the ruling (three collinear vertices).
+pub const WALL_FLIP_MIN_AREA: f64 = 1e-3;
+
 /// Doublings of the step when following a hull ray outwards.
 pub const RAY_DOUBLINGS: usize = 60;
 

@@ -60,6 +60,10 @@ use crate::tolerance::{
 };
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
+/// A score of a flip's neighbourhood ([`State::try_flip_scored`]): of the triangulation, its
+/// incident triangle per point and the flip's quad points.
+pub(crate) type FlipScore<'s> = dyn FnMut(&DualTriangulation, &[u32], &[u32; 4]) -> f64 + 's;
+
 /// What the validity flips did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct ValidityFlipStats {
@@ -176,6 +180,9 @@ pub(crate) struct State<'a> {
     vertex: Vec<DVec3>,
     /// The verdict of every judged facet.
     pub(crate) invalid: Vec<bool>,
+    /// Per judged facet, whether `invalid` holds its verdict (all but with
+    /// [`State::unjudged`]).
+    known: Vec<bool>,
     /// Vertices closer than this become one, as in the facet stage's welding.
     weld: f64,
     /// Points from this index on are ghosts: not judged, and not part of the mesh.
@@ -262,6 +269,19 @@ impl<'a> State<'a> {
         planes: Cow<'a, [Plane]>,
         judged: usize,
     ) -> Self {
+        let mut state = Self::new_with(tri, points, planes, judged);
+        state.invalid = state.initial_verdicts(judged);
+        state.known = vec![true; judged];
+        state
+    }
+
+    /// The state with every vertex computed and no verdict.
+    fn new_with(
+        tri: &'a mut DualTriangulation,
+        points: usize,
+        planes: Cow<'a, [Plane]>,
+        judged: usize,
+    ) -> Self {
         use rayon::prelude::*;
         let (lo, hi) = crate::samples::bounding_box(planes[..judged].iter().map(|p| p.point));
         let weld = crate::tolerance::DEFAULT_WELD_TOLERANCE * (hi - lo).length();
@@ -271,12 +291,13 @@ impl<'a> State<'a> {
             .map(|&t| triangle_vertex(&planes, t))
             .collect();
         let incident = tri.incident_triangles(points);
-        let mut state = State {
+        State {
             tri,
             incident,
             planes,
             vertex,
             invalid: Vec::new(),
+            known: Vec::new(),
             weld,
             judged,
             facets: (0..points).map(|_| None).collect(),
@@ -292,9 +313,31 @@ impl<'a> State<'a> {
             neighbour_pool: Vec::new(),
             seen: vec![0; points],
             stamp: 0,
-        };
-        state.invalid = state.initial_verdicts(judged);
+        }
+    }
+
+    /// As [`State::new`], but no facet judged yet: a verdict is made where a move first
+    /// needs it ([`State::try_flip_scored`]), so that a few moves cost only their regions.
+    pub(crate) fn unjudged(
+        tri: &'a mut DualTriangulation,
+        points: usize,
+        planes: Cow<'a, [Plane]>,
+        judged: usize,
+    ) -> Self {
+        let mut state = Self::new_with(tri, points, planes, judged);
+        state.invalid = vec![false; judged];
+        state.known = vec![false; judged];
         state
+    }
+
+    /// Facet x's verdict, judged now if it is not known.
+    fn verdict(&mut self, x: u32) -> bool {
+        if !self.known[x as usize] {
+            let v = self.facet_invalid(x);
+            self.invalid[x as usize] = v;
+            self.known[x as usize] = true;
+        }
+        self.invalid[x as usize]
     }
 
     /// From now on a facet whose vertices lie farther from its seed than `limits[i]` counts as
@@ -909,6 +952,62 @@ impl<'a> State<'a> {
             break;
         }
         flips
+    }
+
+    /// Flips the edge (a, b) where it can be flipped and keeps the flip when `score` (of the
+    /// triangulation, the incident triangles and the quad's points (c, a, b, d)) drops by
+    /// more than `margin` and no judged facet among those the flip can change turns invalid
+    /// (verdicts renewed); otherwise the flip is undone. A flip touching a ghost must leave
+    /// the ghosts in one run around every point of the quad. Returns whether it was kept.
+    pub(crate) fn try_flip_scored(
+        &mut self,
+        a: u32,
+        b: u32,
+        margin: f64,
+        blocked: &[bool],
+        score: &mut FlipScore<'_>,
+    ) -> Option<([u32; 4], Vec<u32>)> {
+        let (t, k, quad) = self.flippable(a, b)?;
+        if quad
+            .iter()
+            .any(|&x| (x as usize) < self.judged && blocked[x as usize])
+        {
+            return None;
+        }
+        let before = score(self.tri, &self.incident, &quad);
+        // The facets a flip can change are the same points before and after it.
+        let mut region = Vec::with_capacity(AFFECTED_CAPACITY);
+        self.affected_into(&quad, &mut region);
+        region.retain(|&x| (x as usize) < self.judged);
+        for &x in &region {
+            self.verdict(x);
+        }
+        self.journal = Some(Journal::default());
+        self.flip(t as u32, k);
+        if self.breaks_ghost_run(&quad, self.judged) {
+            self.undo();
+            return None;
+        }
+        let after = score(self.tri, &self.incident, &quad);
+        if !(after < before - margin) {
+            self.undo();
+            return None;
+        }
+        let mut verdicts = Vec::with_capacity(region.len());
+        for &x in &region {
+            let v = self.facet_invalid(x);
+            if v && !self.invalid[x as usize] {
+                self.undo();
+                return None;
+            }
+            verdicts.push(v);
+        }
+        self.journal = None;
+        for (&x, v) in region.iter().zip(verdicts) {
+            self.invalid[x as usize] = v;
+            self.known[x as usize] = true;
+        }
+        Some((quad, region))
     }
 
     /// Tries the star and link edges of facet i; keeps the first flip that lowers the number

@@ -848,6 +848,30 @@ fn adjusted_planes_leave_no_invalid_facet_where_a_first_decision_did() {
     }
 }
 
+/// A wall flip that leaves a facet cut by the wall into parts (all but the one around the
+/// seed left out, a gap beside the wall) is refused: `samples/saddle.json` with 12,697
+/// Poisson-disk points (radius 0.007) has no such facet and no invalid one, as without the
+/// wall flips (with them, before the refusal, facet 11793 lost a part).
+#[test]
+fn wall_flips_cut_no_facet_into_parts() {
+    let surface = sample_surface("saddle.json");
+    let pattern = Generator::Poisson {
+        radius: 0.007,
+        seed: 0,
+    }
+    .generate()
+    .uv;
+    let d = discretise(&surface, &pattern, &DiscretiseOptions::default()).unwrap();
+    let cut: Vec<_> = d
+        .diagnostics
+        .iter()
+        .filter(|g| matches!(g, tpi_core::Diagnostic::FacetPartsLeftOut { .. }))
+        .collect();
+    assert!(cut.is_empty(), "facets cut into parts: {cut:?}");
+    let v = check(&d);
+    assert!(v.is_disc() && v.invalid_facets().is_empty(), "{v:?}");
+}
+
 /// Where a boundary vertex of a saddle mesh stands, by an independent projection: on the
 /// boundary's wall (the ruled surface S(b) + t n(b) of the normals along the boundary curve),
 /// beyond it, or short of it inside the domain (normalised distance from the boundary).
@@ -1023,7 +1047,12 @@ fn sweep_saddles_give_valid_discs_with_exact_planes() {
 /// surface's boundary curve to the mesh's edges (edges held by one facet), in spacings, on the
 /// 17 analytic saddles with hex (0 and 30 degrees), grid and Poisson patterns of about 400
 /// points. Before the extension the mean was 0.0427 and the 90th percentiles of hp-ab-long
-/// (hex) and skew1 (grid) 0.125 and 0.146; with it 0.0369, 0.083 and 0.098.
+/// (hex) and skew1 (grid) 0.125 and 0.146; with it 0.0369, 0.083 and 0.098. The wall flips
+/// (`facets::wall_flips`) close notches the extension cannot; refusing those that raise the
+/// deviation of the facets they change, cut a corner off or deepen the mesh's edge, the mean
+/// is 0.0337, the mean of the 90th percentiles 0.110 to 0.097, those two cases 0.067 and
+/// 0.076 (all flips kept: 0.0295, 0.069, 0.009 and 0.043, but the largest deviation of hex
+/// meshes on samples/saddle.json doubled).
 #[test]
 fn saddle_meshes_reach_the_wall() {
     let patterns: Vec<(&str, Vec<[f64; 2]>)> = vec![
@@ -1040,7 +1069,7 @@ fn saddle_meshes_reach_the_wall() {
             .uv,
         ),
     ];
-    let (mut sum, mut count) = (0.0, 0);
+    let (mut sum, mut p90_sum, mut count) = (0.0, 0.0, 0);
     for (name, surface) in saddles::saddles() {
         for (pattern, uv) in &patterns {
             let d = discretise(surface.as_ref(), uv, &DiscretiseOptions::default())
@@ -1061,17 +1090,23 @@ fn saddle_meshes_reach_the_wall() {
                 ("hp-ab-long", "hex@0") | ("skew1", "grid")
             ) {
                 assert!(
-                    p90 <= 0.11,
+                    p90 <= 0.08,
                     "{name} {pattern}: 90 % of the edge within {p90:.3} spacings"
                 );
             }
             sum += mean;
+            p90_sum += p90;
             count += 1;
         }
     }
     let mean = sum / count as f64;
     assert!(
-        mean <= 0.039,
+        mean <= 0.035,
         "mean distance of the mesh's edge from the wall: {mean:.4} spacings"
+    );
+    let p90 = p90_sum / count as f64;
+    assert!(
+        p90 <= 0.1,
+        "mean 90th percentile of the mesh's edge from the wall: {p90:.4} spacings"
     );
 }
