@@ -29,8 +29,8 @@
 //! columns by a rounded aspect). On surfaces without saddle points one more lattice grades
 //! each row along itself ([`Grading::rowwise`]: rows near a dome's walls carry fewer
 //! points than its middle row), cut by the walls s = 0, 1 and scanned over real column
-//! counts. While the best pattern is small ([`FIT_NEIGHBOUR_POINTS`]), two more lattices
-//! are graded by the envelope to the power [`FIT_STEEP_GRADING`], and on
+//! counts, and one more lays the steeper grading's rows so ([`Grading::cut`]). While the
+//! best pattern is small ([`FIT_NEIGHBOUR_POINTS`]), two more lattices are graded by the envelope to the power [`FIT_STEEP_GRADING`], and on
 //! saddles uniform ones have the row densities [`FIT_SADDLE_EXTRA_ROW_DENSITIES`]. Two
 //! more graded lattices have their outer rows and columns [`FIT_WALL_INSET`] columns inside
 //! the walls (a dome's wall vertex between two seeds a apart at e from the
@@ -258,8 +258,12 @@ pub fn fit_pattern_with_progress(
         let saddle = has_saddle_points(surface);
         if !saddle {
             // On saddles the rows graded along themselves gained nothing
-            // (samples/hypar.json, samples/saddle.json at D = 0.003, 0.01, 0.03).
+            // (samples/hypar.json, samples/saddle.json at D = 0.003, 0.01, 0.03). The
+            // steeper grading's rows cut by the walls: samples/paraboloid.json at D = 0.03
+            // 109 -> 108 points, samples/anisotropic-dome.json at 0.003 672 -> 655 (the
+            // envelope's grading cut so gained nothing).
             variants.push(Grading::of(&base).rowwise(&base));
+            variants.push(Grading::steep(&base).cut(&base));
         }
         if saddle {
             variants.push(Grading::of(&base).saddle_rows());
@@ -477,7 +481,13 @@ fn rowwise_positions(
     let t = ts[j];
     // The lattice's column step in the metric (the envelope's).
     let step = grading.s.total / columns;
-    let grade = Grade::new(|s| field.metric_at([s, t])[0].max(0.0).sqrt());
+    let own;
+    let grade = if grading.row_own {
+        own = Grade::new(|s| field.metric_at([s, t])[0].max(0.0).sqrt());
+        &own
+    } else {
+        &grading.s
+    };
     if !(grade.total > 0.0 && grade.total.is_finite()) {
         return Vec::new();
     }
@@ -635,6 +645,9 @@ struct Grading {
     /// The field by which each row is graded along itself ([`Grading::rowwise`]), or None
     /// (every row graded by `s`).
     row_field: Option<SizingField>,
+    /// With `row_field`, whether each row is graded by its own metric length (else by `s`,
+    /// the rows only cut by the walls).
+    row_own: bool,
 }
 
 impl Grading {
@@ -649,6 +662,7 @@ impl Grading {
             row_density: 1.0,
             inset: 0.0,
             row_field: None,
+            row_own: false,
         }
     }
 
@@ -684,6 +698,7 @@ impl Grading {
             row_density: 1.0,
             inset: 0.0,
             row_field: None,
+            row_own: false,
         }
     }
 
@@ -712,7 +727,18 @@ impl Grading {
     fn rowwise(self, field: &SizingField) -> Grading {
         Grading {
             row_field: Some(field.clone()),
+            row_own: true,
             ..self
+        }
+    }
+
+    /// The same grading, its rows laid as [`Grading::rowwise`]'s (from the middle, cut by
+    /// the walls, scanned over real column counts) but by this grading's steps in s: the
+    /// separable lattice without a whole number of columns.
+    fn cut(self, field: &SizingField) -> Grading {
+        Grading {
+            row_own: false,
+            ..self.rowwise(field)
         }
     }
 
