@@ -26,8 +26,11 @@
 //! s = 0, 1 or only the even ones (sparser sides, [`wall_hex`]): the size the field predicts,
 //! then sizes predicted from the measured deviation, which goes as the square of the
 //! spacing, and the lattices one row or one column off the one found (the rows follow the
-//! columns by a rounded aspect). While the best pattern is small ([`FIT_NEIGHBOUR_POINTS`]),
-//! two more lattices are graded by the envelope to the power [`FIT_STEEP_GRADING`], and on
+//! columns by a rounded aspect). On surfaces without saddle points one more lattice grades
+//! each row along itself ([`Grading::rowwise`]: rows near a dome's walls carry fewer
+//! points than its middle row), cut by the walls s = 0, 1 and scanned over real column
+//! counts, and one more lays the steeper grading's rows so ([`Grading::cut`]). While the
+//! best pattern is small ([`FIT_NEIGHBOUR_POINTS`]), two more lattices are graded by the envelope to the power [`FIT_STEEP_GRADING`], and on
 //! saddles uniform ones have the row densities [`FIT_SADDLE_EXTRA_ROW_DENSITIES`]. Two
 //! more graded lattices have their outer rows and columns [`FIT_WALL_INSET`] columns inside
 //! the walls (a dome's wall vertex between two seeds a apart at e from the
@@ -252,7 +255,17 @@ pub fn fit_pattern_with_progress(
             Grading::of(&base).inset(),
             Grading::of(&base).sparse().inset(),
         ];
-        if has_saddle_points(surface) {
+        let saddle = has_saddle_points(surface);
+        if !saddle {
+            // On saddles the rows graded along themselves gained nothing
+            // (samples/hypar.json, samples/saddle.json at D = 0.003, 0.01, 0.03). The
+            // steeper grading's rows cut by the walls: samples/paraboloid.json at D = 0.03
+            // 109 -> 108 points, samples/anisotropic-dome.json at 0.003 672 -> 655 (the
+            // envelope's grading cut so gained nothing).
+            variants.push(Grading::of(&base).rowwise(&base));
+            variants.push(Grading::steep(&base).cut(&base));
+        }
+        if saddle {
             variants.push(Grading::of(&base).saddle_rows());
             variants.push(Grading::of(&base).sparse().saddle_rows());
             variants.push(Grading::uniform(&base).saddle_rows());
@@ -393,17 +406,26 @@ fn wall_hex(columns: usize, rows: usize, grading: &Grading) -> Vec<[f64; 2]> {
     // With an inset, lattice coordinate x (0 on one wall, 1 on the other) is taken as
     // x + inset steps inside the span of columns + 2 insets.
     let (inset_s, inset_t) = (grading.inset, grading.inset / (3f64.sqrt() / 2.0));
-    let s_at = |x: f64| {
-        let n = columns as f64;
-        grading.s.at((x * n + inset_s) / (n + 2.0 * inset_s))
-    };
-    for j in 0..=rows {
-        let n = rows as f64;
-        let t = grading.t.at((j as f64 + inset_t) / (n + 2.0 * inset_t));
+    let ts: Vec<f64> = (0..=rows)
+        .map(|j| {
+            let n = rows as f64;
+            grading.t.at((j as f64 + inset_t) / (n + 2.0 * inset_t))
+        })
+        .collect();
+    for (j, &t) in ts.iter().enumerate() {
+        let ends = j % 2 == 0 || !grading.sparse_sides || j == rows;
+        if let Some(field) = &grading.row_field {
+            let row = rowwise_positions(field, grading, columns as f64, &ts, j, ends);
+            points.extend(row.into_iter().map(|s| [s, t]));
+            continue;
+        }
+        let s_at = |x: f64| {
+            let n = columns as f64;
+            grading.s.at((x * n + inset_s) / (n + 2.0 * inset_s))
+        };
         if j % 2 == 0 {
             points.extend((0..=columns).map(|i| [s_at(i as f64 / columns as f64), t]));
         } else {
-            let ends = !grading.sparse_sides || j == rows;
             if ends {
                 points.push([s_at(0.0), t]);
             }
@@ -415,6 +437,128 @@ fn wall_hex(columns: usize, rows: usize, grading: &Grading) -> Vec<[f64; 2]> {
     }
     points
 }
+
+/// A [`Grading::rowwise`] lattice of `rows + 1` rows graded by `grading.t` and a real
+/// number of `columns` (the column step is the envelope's length over it: rows cut by the
+/// walls need no whole number of steps).
+fn rowwise_hex(columns: f64, rows: usize, grading: &Grading) -> Vec<[f64; 2]> {
+    let Some(field) = &grading.row_field else {
+        return Vec::new();
+    };
+    let ts: Vec<f64> = (0..=rows)
+        .map(|j| grading.t.at(j as f64 / rows as f64))
+        .collect();
+    let mut points = Vec::new();
+    for (j, &t) in ts.iter().enumerate() {
+        let row = rowwise_positions(field, grading, columns, &ts, j, true);
+        points.extend(row.into_iter().map(|s| [s, t]));
+    }
+    points
+}
+
+/// The s of the points of row `j` (at t = `ts[j]`) of a [`Grading::rowwise`] lattice of
+/// `columns` columns (real). The row is laid by its own metric length y along it (the
+/// integral of sqrt(M_ss(s, t)) ds from the middle s = 1/2), in steps of the lattice's
+/// column step: even rows at y = 0, +-1, +-2, ..., odd rows at +-1/2, +-3/2,
+/// ..., so that neighbouring rows are offset by half a step in the middle and drift apart
+/// only as much as their metric profiles differ. Rows laid end to end by their own rounded
+/// counts drift by a whole step across the row where the counts differ and pass through an
+/// alignment of seeds, whose triangles stand off 1.3 times the regular lattice's (measured:
+/// samples/paraboloid.json at D = 0.01, 16 columns, 1.23 to 1.29 D against 0.98 D for the
+/// separable lattice); shrinking or stretching the last three steps of each half row to a
+/// whole count moves that alignment next to the walls (1.18 to 1.25 D). Here the lattice
+/// is cut by the walls instead: a row ends on a wall when its last point is at least
+/// [`ROWWISE_WALL_GAP`] steps from it (always on the rows t = 0, 1, which keep their
+/// corners); with `ends` false only the even rows do.
+fn rowwise_positions(
+    field: &SizingField,
+    grading: &Grading,
+    columns: f64,
+    ts: &[f64],
+    j: usize,
+    ends: bool,
+) -> Vec<f64> {
+    let t = ts[j];
+    // The lattice's column step in the metric (the envelope's).
+    let step = grading.s.total / columns;
+    let own;
+    let grade = if grading.row_own {
+        own = Grade::new(|s| field.metric_at([s, t])[0].max(0.0).sqrt());
+        &own
+    } else {
+        &grading.s
+    };
+    if !(grade.total > 0.0 && grade.total.is_finite()) {
+        return Vec::new();
+    }
+    let total = grade.total / step;
+    let middle = grade.cumulative_at(0.5) * total;
+    let odd = j % 2 == 1;
+    let wall_row = j == 0 || j + 1 == ts.len();
+    // One half row of metric length `length` (steps): the offsets of its points from the
+    // middle (none at the middle), the lattice cut by the wall.
+    let half = |length: f64| -> Vec<f64> {
+        let first = if odd { 0.5 } else { 1.0 };
+        let mut xs: Vec<f64> = (0..)
+            .map(|i| first + i as f64)
+            .take_while(|&x| x < length)
+            .collect();
+        let gap = length - xs.last().copied().unwrap_or(0.0);
+        if wall_row {
+            // The rows on the walls t = 0, 1 keep their corners.
+            if gap < ROWWISE_CORNER_GAP && !xs.is_empty() {
+                xs.pop();
+            }
+            xs.push(length);
+        } else if gap >= ROWWISE_WALL_GAP && ends {
+            xs.push(length);
+        }
+        xs
+    };
+    let to_s = |y: f64| grade.at((middle + y) / total);
+    let mut row: Vec<f64> = half(middle).into_iter().rev().map(|x| to_s(-x)).collect();
+    if !odd {
+        row.push(to_s(0.0));
+    }
+    row.extend(half(total - middle).into_iter().map(to_s));
+    row
+}
+
+/// Real column counts, evenly spaced from the one found down to [`ROWWISE_SCAN_SPAN`] less,
+/// that [`wall_lattice`] tries for a [`Grading::rowwise`] lattice (each with the row
+/// counts from two less to one more than the one found), and only those lattices with at
+/// least [`ROWWISE_SCAN_FLOOR`] of its points.
+const ROWWISE_SCAN_STEPS: usize = 8;
+
+/// Fewest points of a lattice in the scan of [`ROWWISE_SCAN_STEPS`], as a fraction of the
+/// lattice found (the scan's tries go to the lattices likeliest to meet the tolerance).
+const ROWWISE_SCAN_FLOOR: f64 = 0.93;
+
+/// How far below the columns found (in columns) the scan of [`ROWWISE_SCAN_STEPS`] reaches.
+const ROWWISE_SCAN_SPAN: f64 = 2.0;
+
+/// Most lattices of the scan discretised (fewest points first; the first meeting the
+/// tolerance with no invalid facet is kept).
+const ROWWISE_SCAN_TRIES: usize = 10;
+
+/// A [`Grading::rowwise`] row, the lattice cut by a wall s = 0 or 1, ends on the wall when
+/// its last point is at least this far (column steps) from it: just above half a step, so
+/// that where the rows' lengths are whole steps the odd rows end half a step from the walls
+/// without a point on them, as the separable lattices' sparser sides do ([`wall_hex`]).
+/// Covering radii of a hexagonal lattice of unit steps cut by a straight wall at any offset
+/// with a row on the wall t = 0, each row closed by this rule (the largest distance from a
+/// point of the domain to its nearest seed, squared, over the regular lattice's 1 / 3; a
+/// grid search in a Python model, the wall at 41 offsets): 1.014 with a straight wall,
+/// 1.061 with a wall slanted by 0.1 step per row (neighbouring rows of different metric
+/// lengths); a gap of 0.4 gives 1.014 and 1.016 but closes the odd rows of whole-step
+/// lengths too, and as a second lattice gained nothing on the domes of `fit_measure`
+/// (samples/nurbs-dome, paraboloid, rational-dome, anisotropic-dome at D = 0.003, 0.01,
+/// 0.03, FIT_ABSOLUTE=1). Closing no row leaves gaps of almost a step.
+const ROWWISE_WALL_GAP: f64 = 0.52;
+
+/// A row on the walls t = 0, 1 of a [`Grading::rowwise`] lattice always ends on the corner;
+/// its last point before the corner goes when it is nearer than this (column steps).
+const ROWWISE_CORNER_GAP: f64 = 0.05;
 
 /// A monotone map of [0, 1] onto itself: the inverse of the normalised cumulative of a
 /// positive weight, tabulated; the lattice's steps in s (or t) are then even in the weight.
@@ -447,6 +591,15 @@ impl Grade {
             *c /= total;
         }
         Grade { cumulative, total }
+    }
+
+    /// The normalised cumulative at x (linear between the tabulated values).
+    fn cumulative_at(&self, x: f64) -> f64 {
+        let n = self.cumulative.len() - 1;
+        let f = (x.clamp(0.0, 1.0) * n as f64).min(n as f64);
+        let k = (f.floor() as usize).min(n - 1);
+        let w = f - k as f64;
+        self.cumulative[k] * (1.0 - w) + self.cumulative[k + 1] * w
     }
 
     /// The x whose cumulative is q (ends exact).
@@ -489,6 +642,12 @@ struct Grading {
     /// Distance of the outer rows and columns from the walls, in columns (0 or
     /// [`FIT_WALL_INSET`]).
     inset: f64,
+    /// The field by which each row is graded along itself ([`Grading::rowwise`]), or None
+    /// (every row graded by `s`).
+    row_field: Option<SizingField>,
+    /// With `row_field`, whether each row is graded by its own metric length (else by `s`,
+    /// the rows only cut by the walls).
+    row_own: bool,
 }
 
 impl Grading {
@@ -502,6 +661,8 @@ impl Grading {
             sparse_sides: false,
             row_density: 1.0,
             inset: 0.0,
+            row_field: None,
+            row_own: false,
         }
     }
 
@@ -536,6 +697,8 @@ impl Grading {
             sparse_sides: false,
             row_density: 1.0,
             inset: 0.0,
+            row_field: None,
+            row_own: false,
         }
     }
 
@@ -552,6 +715,30 @@ impl Grading {
         Grading {
             inset: FIT_WALL_INSET,
             ..self
+        }
+    }
+
+    /// The same rows, each row graded along itself by `field` ([`rowwise_positions`]):
+    /// steps even in the row's own metric length sqrt(M_ss(s, t)) instead of the envelope
+    /// over all rows, the lattice cut by the walls s = 0, 1 ([`ROWWISE_WALL_GAP`]). Where
+    /// the curvature falls in both s and t (a dome's corners) the separable grading spaces
+    /// every row as its most demanding place; graded along itself a row near a wall carries
+    /// fewer points than the middle row.
+    fn rowwise(self, field: &SizingField) -> Grading {
+        Grading {
+            row_field: Some(field.clone()),
+            row_own: true,
+            ..self
+        }
+    }
+
+    /// The same grading, its rows laid as [`Grading::rowwise`]'s (from the middle, cut by
+    /// the walls, scanned over real column counts) but by this grading's steps in s: the
+    /// separable lattice without a whole number of columns.
+    fn cut(self, field: &SizingField) -> Grading {
+        Grading {
+            row_own: false,
+            ..self.rowwise(field)
         }
     }
 
@@ -652,7 +839,15 @@ fn wall_lattice(
     // Columns of spacing 1 in the metric, rows sqrt(3) / 2 of it apart.
     let aspect = 2.0 / 3f64.sqrt() * (l_t / l_s) * grading.row_density;
     let rows_of = |columns: usize| ((columns as f64 * aspect).round() as usize).max(1);
-    let size = |columns: usize| (columns + 2) * (rows_of(columns) + 1);
+    // Rows graded along themselves have fewer points than the separable lattice's bound
+    // (counted when that bound is within the limit: a lattice beyond it is never built).
+    let size = |columns: usize| {
+        let bound = (columns + 2) * (rows_of(columns) + 1);
+        match grading.row_field {
+            Some(_) if bound <= limit => wall_hex(columns, rows_of(columns), grading).len(),
+            _ => bound,
+        }
+    };
     let mut columns = (l_s / FIT_WALL_SPACING).ceil().clamp(2.0, 1e7) as usize;
     let mut met: Option<FittedPattern> = None;
     let mut failed_below = 1usize; // the most columns known to fail
@@ -778,6 +973,43 @@ fn wall_lattice(
                     invalid_facets: invalid,
                     discretisations: 0,
                 };
+            }
+        }
+    }
+    // Rows cut by the walls take any column step: a window of real column counts and of
+    // row counts around the one found, fewest points first.
+    if grading.row_field.is_some() && m.uv.len() <= FIT_NEIGHBOUR_POINTS {
+        let (c, r) = (met_columns as f64, rows_of(met_columns));
+        let mut window: Vec<(f64, usize, Vec<[f64; 2]>)> = Vec::new();
+        for rows in r.saturating_sub(2).max(1)..=r + 1 {
+            for k in 0..ROWWISE_SCAN_STEPS {
+                let columns = c - ROWWISE_SCAN_SPAN * k as f64 / ROWWISE_SCAN_STEPS as f64;
+                if columns < 1.0 {
+                    break;
+                }
+                let uv = rowwise_hex(columns, rows, grading);
+                if uv.len() < m.uv.len()
+                    && uv.len() as f64 >= ROWWISE_SCAN_FLOOR * m.uv.len() as f64
+                {
+                    window.push((columns, rows, uv));
+                }
+            }
+        }
+        window.sort_by_key(|w| w.2.len());
+        window.dedup_by(|a, b| a.2 == b.2);
+        for (_, _, uv) in window.into_iter().take(ROWWISE_SCAN_TRIES) {
+            let d = discretise_with_progress(surface, &uv, options, progress)?;
+            *runs += 1;
+            let (deviation, invalid) = judged(largest_vertex_deviation(surface, &d), &d);
+            if deviation <= tolerance && invalid == 0 {
+                m = FittedPattern {
+                    uv,
+                    met: true,
+                    max_deviation: deviation,
+                    invalid_facets: invalid,
+                    discretisations: 0,
+                };
+                break;
             }
         }
     }
