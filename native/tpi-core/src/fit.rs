@@ -811,6 +811,38 @@ fn has_saddle_points(surface: &dyn Surface) -> bool {
     })
 }
 
+/// What a candidate lattice of the search is discretised with and measured against.
+struct Trial<'a> {
+    surface: &'a dyn Surface,
+    options: &'a DiscretiseOptions,
+    progress: &'a dyn Progress,
+    tolerance: f64,
+}
+
+impl Trial<'_> {
+    /// The pattern `uv` as a fit, when its mesh meets the tolerance with no invalid facet
+    /// (or with some, where `invalid_allowed`: the lattice it would replace has some too);
+    /// counts the discretisation in `runs`.
+    fn meets(
+        &self,
+        uv: Vec<[f64; 2]>,
+        invalid_allowed: bool,
+        runs: &mut usize,
+    ) -> Result<Option<FittedPattern>, TpiError> {
+        let d = discretise_with_progress(self.surface, &uv, self.options, self.progress)?;
+        *runs += 1;
+        let (deviation, invalid) = judged(largest_vertex_deviation(self.surface, &d), &d);
+        let met = deviation <= self.tolerance && (invalid == 0 || invalid_allowed);
+        Ok(met.then_some(FittedPattern {
+            uv,
+            met: true,
+            max_deviation: deviation,
+            invalid_facets: invalid,
+            discretisations: 0,
+        }))
+    }
+}
+
 /// The smallest [`wall_hex`] lattice graded by `grading` meeting the tolerance (module
 /// doc), its rows and columns in the ratio of the grading's metric lengths (cells regular in
 /// the metric |II| where it is largest): the first size predicted by the field, the next ones
@@ -943,6 +975,12 @@ fn wall_lattice(
     let Some(mut m) = met else {
         return Ok(None);
     };
+    let trial = Trial {
+        surface,
+        options,
+        progress,
+        tolerance,
+    };
     // The rows follow the columns by a rounded aspect, so a lattice one row or one column
     // smaller than the one found may meet the tolerance too: on samples/rational-dome.json at
     // D = 0.01 a lattice of one row less (409 points against 429).
@@ -962,17 +1000,8 @@ fn wall_lattice(
             if uv.len() >= m.uv.len() {
                 continue;
             }
-            let d = discretise_with_progress(surface, &uv, options, progress)?;
-            *runs += 1;
-            let (deviation, invalid) = judged(largest_vertex_deviation(surface, &d), &d);
-            if deviation <= tolerance && (invalid == 0 || m.invalid_facets > 0) {
-                m = FittedPattern {
-                    uv,
-                    met: true,
-                    max_deviation: deviation,
-                    invalid_facets: invalid,
-                    discretisations: 0,
-                };
+            if let Some(met) = trial.meets(uv, m.invalid_facets > 0, runs)? {
+                m = met;
             }
         }
     }
@@ -998,17 +1027,8 @@ fn wall_lattice(
         window.sort_by_key(|w| w.2.len());
         window.dedup_by(|a, b| a.2 == b.2);
         for (_, _, uv) in window.into_iter().take(ROWWISE_SCAN_TRIES) {
-            let d = discretise_with_progress(surface, &uv, options, progress)?;
-            *runs += 1;
-            let (deviation, invalid) = judged(largest_vertex_deviation(surface, &d), &d);
-            if deviation <= tolerance && invalid == 0 {
-                m = FittedPattern {
-                    uv,
-                    met: true,
-                    max_deviation: deviation,
-                    invalid_facets: invalid,
-                    discretisations: 0,
-                };
+            if let Some(met) = trial.meets(uv, false, runs)? {
+                m = met;
                 break;
             }
         }
