@@ -108,7 +108,7 @@ fn main() {
                         invalid
                             .iter()
                             .copied()
-                            .filter(|&i| d.facet_flags[i] & INVALID_FLAGS == 0),
+                            .filter(|&i| !exact_only && d.facet_flags[i] & INVALID_FLAGS == 0),
                     )
                     .collect();
                 if !unflagged.is_empty() {
