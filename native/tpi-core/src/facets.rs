@@ -25,6 +25,7 @@
 
 mod wall_flips;
 
+use std::cell::RefCell;
 use std::collections::HashSet;
 
 use glam::DVec3;
@@ -390,6 +391,7 @@ pub(crate) fn build_stage(
                     &triangulation,
                     params,
                     None,
+                    None,
                     stages,
                 )
                 .0
@@ -408,6 +410,7 @@ pub(crate) fn build_stage(
                     samples,
                     seeds,
                     params,
+                    vertices: RefCell::new(VertexCache::default()),
                 };
                 let (flipped, mesh) = wall.flipped_and_clipped(&triangulation, stages);
                 if let Some(flipped) = flipped {
@@ -454,6 +457,35 @@ struct WallClip<'a> {
     samples: &'a Samples,
     seeds: &'a crate::ghosts::Augmented,
     params: &'a FacetParams,
+    /// The triangle vertices computed so far, shared by the wall flips' tries and every
+    /// clip: all in one ghost context ([`with_ghost_context`]), so a triangle's vertex is
+    /// the same wherever it is asked for ([`VertexCache`]).
+    vertices: RefCell<VertexCache>,
+}
+
+/// Triangle vertices and their extensions to the wall, all computed in one context, so that
+/// a triangle that several triangulations share (the unflipped and flipped ones of the wall
+/// flips, [`WallClip`]) is computed once. Only looked up, never iterated: the cache changes
+/// no result.
+#[derive(Default)]
+pub(crate) struct VertexCache {
+    /// [`triangle_vertex`] by the triangle's points in ascending order: a vertex depends only
+    /// on its three points' planes, parameters and tangents, and on the boundary.
+    vertices: IndexMap<[u32; 3], TriangleVertex>,
+    /// [`extension`] by [`extension_key`]: it depends only on the triangle's points in their
+    /// order, its vertex (given by the points) and the vertices across its edges.
+    extensions: IndexMap<ExtensionKey, Option<TriangleVertex>>,
+}
+
+/// A triangle's points in their order and the bits of the vertices across its edges.
+type ExtensionKey = ([u32; 3], [Option<[u64; 3]>; 3]);
+
+/// The key of [`extension`] of the triangle `ids` with the vertices `across` its edges.
+fn extension_key(ids: [u32; 3], across: [Option<DVec3>; 3]) -> ExtensionKey {
+    (
+        ids,
+        across.map(|x| x.map(|p| p.to_array().map(f64::to_bits))),
+    )
 }
 
 /// How far a part of the mesh's edge (edges held by one facet) stands inside the region, in
@@ -554,6 +586,7 @@ impl WallClip<'_> {
                         &self.seeds.planes,
                         self.params.far_vertex_factor,
                         &blocked,
+                        &mut self.vertices.borrow_mut(),
                     )
                 });
             if flips.is_empty() {
@@ -730,6 +763,7 @@ impl WallClip<'_> {
                 tri,
                 params,
                 Some(blocked),
+                Some(&mut self.vertices.borrow_mut()),
                 stages,
             )
         };
@@ -1146,7 +1180,7 @@ fn build_facets(
         long_edges: false,
         extend_to_wall: None,
     };
-    let walk = walk_facets(&ctx, samples.uv.len(), tri, params, stages);
+    let walk = walk_facets(&ctx, samples.uv.len(), tri, params, None, stages);
     if release_tangents {
         samples.tangents = Vec::new();
     }
@@ -1177,6 +1211,7 @@ pub(crate) fn build_ghost_clipped_facets(
     tri: &DualTriangulation,
     params: &FacetParams,
     extend_to_wall: Option<&[bool]>,
+    vertices: Option<&mut VertexCache>,
     stages: &Stages<'_>,
 ) -> (FacetMesh, Vec<bool>) {
     let real_count = uv.len();
@@ -1187,7 +1222,7 @@ pub(crate) fn build_ghost_clipped_facets(
         source,
     };
     with_ghost_context(surface, boundary, &seeds, extend_to_wall, |ctx| {
-        let (mut mesh, extended) = clip_facets(ctx, real_count, tri, params, stages);
+        let (mut mesh, extended) = clip_facets(ctx, real_count, tri, params, vertices, stages);
         // Diagnostics name pattern points: a ghost stands for its seed.
         for diagnostic in &mut mesh.diagnostics {
             diagnostic.map_points(|p| source[p as usize]);
@@ -1251,15 +1286,17 @@ fn with_ghost_context<R>(
 /// The facets of the points `0..real_count` of `tri`, ending on `ctx.boundary` (module doc);
 /// points from `real_count` on are ghosts, which get no facet and no crossings of their own.
 /// Also, per real seed, whether its facet was extended to the wall (empty without
-/// `ctx.extend_to_wall`).
+/// `ctx.extend_to_wall`). Triangle vertices found in `vertices` are taken from it, and those
+/// computed are added to it.
 fn clip_facets(
     ctx: &Context<'_>,
     real_count: usize,
     tri: &DualTriangulation,
     params: &FacetParams,
+    vertices: Option<&mut VertexCache>,
     stages: &Stages<'_>,
 ) -> (FacetMesh, Vec<bool>) {
-    let mut walk = walk_facets(ctx, real_count, tri, params, stages);
+    let mut walk = walk_facets(ctx, real_count, tri, params, vertices, stages);
     let extended = std::mem::take(&mut walk.extended);
     (
         assemble_walk(walk, tri, ctx.planes, params, None, stages),
@@ -1281,13 +1318,14 @@ struct Walk {
     extended: Vec<bool>,
 }
 
-/// Steps 1 to 3 of [`clip_facets`]: triangle vertices, boundary crossings, facet loops as
-/// items.
+/// Steps 1 to 3 of [`clip_facets`]: triangle vertices (taken from `vertices` where there,
+/// the others added to it), boundary crossings, facet loops as items.
 fn walk_facets(
     ctx: &Context<'_>,
     real_count: usize,
     tri: &DualTriangulation,
     params: &FacetParams,
+    vertices: Option<&mut VertexCache>,
     stages: &Stages<'_>,
 ) -> Walk {
     let (surface, boundary) = (ctx.surface, ctx.boundary);
@@ -1295,6 +1333,7 @@ fn walk_facets(
     let mut diagnostics = Vec::new();
 
     // 1. Triangle vertices, their conditioning and whether they lie inside.
+    let known = vertices.as_deref();
     let mut triangle_vertices: Vec<TriangleVertex> = tri
         .triangles
         .par_iter()
@@ -1302,10 +1341,23 @@ fn walk_facets(
             || Tally::new(observer, Stage::Facets),
             |tally, &ids| {
                 tally.add(1);
-                triangle_vertex(ctx, ids, params.far_vertex_factor)
+                let mut key = ids;
+                key.sort_unstable();
+                match known.and_then(|known| known.vertices.get(&key)) {
+                    Some(&vertex) => vertex,
+                    None => triangle_vertex_ordered(ctx, key, params.far_vertex_factor),
+                }
             },
         )
         .collect();
+    let mut vertices = vertices;
+    if let Some(cache) = vertices.as_deref_mut() {
+        for (&vertex, &ids) in triangle_vertices.iter().zip(&tri.triangles) {
+            let mut key = ids;
+            key.sort_unstable();
+            cache.vertices.entry(key).or_insert(vertex);
+        }
+    }
     diagnostics.extend(
         triangle_vertices
             .iter()
@@ -1314,7 +1366,14 @@ fn walk_facets(
             .map(|(v, &ids)| ill_conditioned(ctx, ids, v)),
     );
     let extended = match ctx.extend_to_wall {
-        Some(blocked) => extend_to_wall(ctx, real_count, tri, blocked, &mut triangle_vertices),
+        Some(blocked) => extend_to_wall(
+            ctx,
+            real_count,
+            tri,
+            blocked,
+            &mut triangle_vertices,
+            vertices,
+        ),
         None => Vec::new(),
     };
 
@@ -1437,15 +1496,20 @@ fn walk_facets(
 /// bisector of the ghosts' wedge (the outside of i's corner at V). A vertex within
 /// [`WALL_EXTENSION_MIN_DEPTH`] of the wall, one the steps do not bring outside, and every
 /// vertex of a triangle holding a seed marked in `blocked` (the caller's retry for facets that
-/// came out invalid) stay where they are.
+/// came out invalid) stay where they are. Extensions found in `cache` are taken from it, and
+/// those computed are added to it.
 fn extend_to_wall(
     ctx: &Context<'_>,
     real_count: usize,
     tri: &DualTriangulation,
     blocked: &[bool],
     triangle_vertices: &mut [TriangleVertex],
+    mut cache: Option<&mut VertexCache>,
 ) -> Vec<bool> {
-    let moved: Vec<(usize, TriangleVertex)> = tri
+    let known = cache.as_deref();
+    let vertices = &*triangle_vertices;
+    // Per triangle that may move: its extension, and its key where computed now.
+    let found: Vec<(usize, Option<TriangleVertex>, Option<ExtensionKey>)> = tri
         .triangles
         .par_iter()
         .enumerate()
@@ -1456,16 +1520,32 @@ fn extend_to_wall(
             {
                 return None;
             }
+            // Without one or two ghosts the vertex stays ([`extension`]).
+            let ghosts = ids.iter().filter(|&&p| p as usize >= real_count).count();
+            if !(1..=2).contains(&ghosts) {
+                return None;
+            }
             // The vertex across the edge opposite position k, as the walk left it.
-            let across = |k: usize| {
+            let across: [Option<DVec3>; 3] = std::array::from_fn(|k| {
                 let other = tri.neighbours[t][k];
-                (other != NO_TRIANGLE).then(|| triangle_vertices[other as usize].point)
-            };
-            extension(ctx, real_count, ids, &triangle_vertices[t], across).map(|v| (t, v))
+                (other != NO_TRIANGLE).then(|| vertices[other as usize].point)
+            });
+            let key = extension_key(ids, across);
+            if let Some(&moved) = known.and_then(|known| known.extensions.get(&key)) {
+                return Some((t, moved, None));
+            }
+            let moved = extension(ctx, real_count, ids, &vertices[t], |k| across[k]);
+            Some((t, moved, Some(key)))
         })
         .collect();
     let mut extended = vec![false; real_count];
-    for (t, vertex) in moved {
+    for (t, moved, key) in found {
+        if let (Some(cache), Some(key)) = (cache.as_deref_mut(), key) {
+            cache.extensions.insert(key, moved);
+        }
+        let Some(vertex) = moved else {
+            continue;
+        };
         triangle_vertices[t] = vertex;
         for p in tri.triangles[t] {
             if (p as usize) < real_count {
