@@ -475,17 +475,56 @@ pub(crate) struct VertexCache {
     /// [`extension`] by [`extension_key`]: it depends only on the triangle's points in their
     /// order, its vertex (given by the points) and the vertices across its edges.
     extensions: IndexMap<ExtensionKey, Option<TriangleVertex>>,
+    /// [`long_edge_crossings`] by [`crossing_key`] of the edge's two triangle vertices: it
+    /// depends only on them.
+    crossings: IndexMap<Bits<16>, Vec<Crossing>>,
 }
 
-/// A triangle's points in their order and the bits of the vertices across its edges.
-type ExtensionKey = ([u32; 3], [Option<[u64; 3]>; 3]);
+/// Bits of floats as a hash key, hashed word by word.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Bits<const N: usize>([u64; N]);
+
+impl<const N: usize> std::hash::Hash for Bits<N> {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        for &x in &self.0 {
+            state.write_u64(x);
+        }
+    }
+}
+
+/// The key of [`long_edge_crossings`] of the edge from the vertex `right` to `left`: every
+/// field of theirs it reads.
+fn crossing_key(right: &TriangleVertex, left: &TriangleVertex) -> Bits<16> {
+    let mut bits = [0u64; 16];
+    for (k, v) in [right, left].into_iter().enumerate() {
+        let words = [
+            v.point.x, v.point.y, v.point.z, v.foot[0], v.foot[1], v.inside, v.reach,
+        ];
+        for (j, w) in words.into_iter().enumerate() {
+            bits[8 * k + j] = w.to_bits();
+        }
+        bits[8 * k + 7] = u64::from(v.measured);
+    }
+    Bits(bits)
+}
+
+/// A triangle's points in their order, the bits of the vertices across its edges (0 where
+/// none) and which of those there are.
+type ExtensionKey = Bits<13>;
 
 /// The key of [`extension`] of the triangle `ids` with the vertices `across` its edges.
 fn extension_key(ids: [u32; 3], across: [Option<DVec3>; 3]) -> ExtensionKey {
-    (
-        ids,
-        across.map(|x| x.map(|p| p.to_array().map(f64::to_bits))),
-    )
+    let mut bits = [0u64; 13];
+    for k in 0..3 {
+        bits[k] = u64::from(ids[k]);
+        if let Some(p) = across[k] {
+            for (j, w) in p.to_array().into_iter().enumerate() {
+                bits[3 + 3 * k + j] = w.to_bits();
+            }
+            bits[12] |= 1 << k;
+        }
+    }
+    Bits(bits)
 }
 
 /// How far a part of the mesh's edge (edges held by one facet) stands inside the region, in
@@ -1372,7 +1411,7 @@ fn walk_facets(
             tri,
             blocked,
             &mut triangle_vertices,
-            vertices,
+            vertices.as_deref_mut(),
         ),
         None => Vec::new(),
     };
@@ -1381,16 +1420,28 @@ fn walk_facets(
     // with an outside vertex at either end (in the order of `DualTriangulation::edges`).
     let mut edges: Vec<Edge> = crossing_edges(tri, &triangle_vertices, ctx.long_edges);
     edges.retain(|e| (e.lo as usize) < real_count);
+    // Crossings found in the cache are taken from it; those computed are added to it.
+    let known = vertices.as_deref();
     let per_edge: Vec<(Vec<Crossing>, Option<Diagnostic>)> = edges
         .par_iter()
         .map(|edge| {
             if ctx.long_edges {
-                (long_edge_crossings(ctx, edge, &triangle_vertices), None)
+                (
+                    long_edge_crossings(ctx, edge, &triangle_vertices, known),
+                    None,
+                )
             } else {
                 edge_crossings(ctx, tri, edge, &triangle_vertices)
             }
         })
         .collect();
+    if let Some(cache) = vertices.filter(|_| ctx.long_edges) {
+        for (edge, (list, _)) in edges.iter().zip(&per_edge) {
+            if let Some(key) = long_edge_key(ctx, edge, &triangle_vertices) {
+                cache.crossings.entry(key).or_insert_with(|| list.clone());
+            }
+        }
+    }
     let mut crossing_ranges: IndexMap<(u32, u32), (u32, u32)> =
         IndexMap::with_capacity_and_hasher(edges.len(), Default::default());
     let mut crossings = Vec::new();
@@ -2205,20 +2256,18 @@ fn edge_crossings(
 /// the segment is sampled once between each two consecutive points where the segment of its
 /// ends' feet crosses a boundary loop in parameter space, and each change of side between
 /// samples is refined on the segment itself.
+/// With `known`, the crossings are taken from its cache where there ([`long_edge_key`]).
 fn long_edge_crossings(
     ctx: &Context<'_>,
     edge: &Edge,
     triangle_vertices: &[TriangleVertex],
+    known: Option<&VertexCache>,
 ) -> Vec<Crossing> {
-    if edge.right == NO_TRIANGLE || edge.left == NO_TRIANGLE {
+    let Some(key) = long_edge_key(ctx, edge, triangle_vertices) else {
         return Vec::new();
-    }
-    // Both ends decided inside from their first-order feet (`surely_inside`): their measured
-    // feet would lie inside too, within the margin, and on a convex region so does the
-    // segment between them, which then crosses nothing. No projection needed.
-    let unmeasured = |t: u32| !triangle_vertices[t as usize].measured;
-    if ctx.boundary.is_convex() && unmeasured(edge.right) && unmeasured(edge.left) {
-        return Vec::new();
+    };
+    if let Some(found) = known.and_then(|known| known.crossings.get(&key)) {
+        return found.clone();
     }
     let end_of = |t: u32| {
         let v = &triangle_vertices[t as usize];
@@ -2268,6 +2317,28 @@ fn long_edge_crossings(
         }
     }
     found
+}
+
+/// The cache key of [`long_edge_crossings`] of `edge` ([`crossing_key`]), or None where the
+/// edge has no crossings without a projection: on the hull, or, on a convex region, both
+/// ends decided inside from their first-order feet (`surely_inside`: their measured feet
+/// would lie inside too, within the margin, and so does the segment between them).
+fn long_edge_key(
+    ctx: &Context<'_>,
+    edge: &Edge,
+    triangle_vertices: &[TriangleVertex],
+) -> Option<Bits<16>> {
+    if edge.right == NO_TRIANGLE || edge.left == NO_TRIANGLE {
+        return None;
+    }
+    let unmeasured = |t: u32| !triangle_vertices[t as usize].measured;
+    if ctx.boundary.is_convex() && unmeasured(edge.right) && unmeasured(edge.left) {
+        return None;
+    }
+    Some(crossing_key(
+        &triangle_vertices[edge.right as usize],
+        &triangle_vertices[edge.left as usize],
+    ))
 }
 
 /// Crossings of a segment whose two ends are outside the domain, in order from `start`.

@@ -36,7 +36,9 @@ use std::borrow::Cow;
 
 use glam::DVec3;
 
-use super::{extension, extension_key, triangle_vertex, Context, TriangleVertex, VertexCache};
+use super::{
+    extension, extension_key, triangle_vertex, Bits, Context, TriangleVertex, VertexCache,
+};
 use crate::planes::Plane;
 use crate::tolerance::{WALL_EXTENSION_MIN_DEPTH, WALL_FLIP_ROUNDS};
 use crate::triangulation::{DualTriangulation, IndexMap, NO_TRIANGLE};
@@ -54,7 +56,7 @@ struct Notches<'c, 'a> {
     /// The triangle vertices and their extensions: the caller's, shared with its clips.
     vertices: &'c mut VertexCache,
     /// The notch of every segment sampled, by its ends' bits.
-    segments: IndexMap<[[u64; 3]; 2], f64>,
+    segments: IndexMap<Bits<6>, f64>,
 }
 
 impl Notches<'_, '_> {
@@ -107,7 +109,8 @@ impl Notches<'_, '_> {
     /// between it and the wall, the depth inside the region integrated over the signed
     /// advance along the wall (module doc).
     fn segment_notch(&mut self, p: &TriangleVertex, q: &TriangleVertex) -> f64 {
-        let key = [p.point, q.point].map(|x| x.to_array().map(f64::to_bits));
+        let [a, b] = [p.point, q.point].map(|x| x.to_array().map(f64::to_bits));
+        let key = Bits([a[0], a[1], a[2], b[0], b[1], b[2]]);
         if let Some(&area) = self.segments.get(&key) {
             return area;
         }
