@@ -606,6 +606,8 @@ impl WallClip<'_> {
         let spacing = self.samples.diagonal / (2.0 * n as f64).sqrt();
         // The unflipped clip, made once where a flip is kept, with its marked facets measured.
         let mut unflipped: Option<Measured> = None;
+        // The measures taken so far, by facet and shape ([`measure_key`]).
+        let mut measures = IndexMap::default();
         // The boundary's corners on the surface.
         let corners: Vec<DVec3> = self
             .boundary
@@ -642,7 +644,7 @@ impl WallClip<'_> {
                 reported = true;
                 Measured::new(outcome)
             });
-            self.measure(before, &marked);
+            self.measure(before, &marked, &mut measures);
             let outcome = self.clip(
                 &flipped,
                 &marked,
@@ -650,7 +652,7 @@ impl WallClip<'_> {
             );
             reported = true;
             let mut after = Measured::new(outcome);
-            self.measure(&mut after, &marked);
+            self.measure(&mut after, &marked, &mut measures);
             let region_notch = |notch: &[Option<Notch>], flip: &wall_flips::WallFlip| {
                 flip.region
                     .iter()
@@ -713,8 +715,15 @@ impl WallClip<'_> {
     /// Measures, where not yet measured, every facet f `marked` of `m`'s mesh: its deviation,
     /// the largest distance of its vertices from the surface, each projected by Newton from
     /// f's seed ([`crate::projection::distance_foot`], as the report's deviation), and the
-    /// notch of its edges that no other facet holds ([`Notch`]).
-    fn measure(&self, m: &mut Measured, marked: &[bool]) {
+    /// notch of its edges that no other facet holds ([`Notch`]). A facet of the same seed,
+    /// polygon and edges held once as one measured before (in `measures`, by
+    /// [`measure_key`]) takes that one's measure: it depends on nothing else.
+    fn measure(
+        &self,
+        m: &mut Measured,
+        marked: &[bool],
+        measures: &mut IndexMap<Vec<u64>, (f64, Notch)>,
+    ) {
         let wrap = crate::projection::Wrap {
             domain: self.surface.domain(),
             periodic: self.boundary.periodic(),
@@ -724,6 +733,12 @@ impl WallClip<'_> {
         let facets = mesh.offsets.len().saturating_sub(1);
         for (f, _) in marked.iter().enumerate().take(facets).filter(|x| *x.1) {
             if m.notch[f].is_some() {
+                continue;
+            }
+            let key = measure_key(mesh, &m.held, f);
+            if let Some(&(deviation, notch)) = measures.get(&key) {
+                m.deviation[f] = deviation;
+                m.notch[f] = Some(notch);
                 continue;
             }
             let seed = self.samples.uv[f];
@@ -762,6 +777,7 @@ impl WallClip<'_> {
                 }
             }
             m.notch[f] = Some(total);
+            measures.insert(key, (m.deviation[f], total));
         }
     }
 
@@ -966,6 +982,24 @@ fn held_once(mesh: &FacetMesh) -> HashSet<(u32, u32)> {
 }
 
 /// The edges of facet f of `mesh` in `held` ([`held_once`]), as their ends' positions.
+/// What [`WallClip::measure`] of facet f reads of the mesh: f, the bits of its polygon's
+/// vertices in loop order, and which of its edges `held` holds (one bit per edge after the
+/// vertices).
+fn measure_key(mesh: &FacetMesh, held: &HashSet<(u32, u32)>, f: usize) -> Vec<u64> {
+    let facet = mesh.facet_loop(f);
+    let mut key = Vec::with_capacity(2 + 4 * facet.len());
+    key.push(f as u64);
+    key.push(facet.len() as u64);
+    for &a in facet {
+        key.extend(mesh.vertices[a as usize].to_array().map(f64::to_bits));
+    }
+    for k in 0..facet.len() {
+        let (a, b) = (facet[k], facet[(k + 1) % facet.len()]);
+        key.push(u64::from(held.contains(&(a.min(b), a.max(b)))));
+    }
+    key
+}
+
 fn edge_segments<'m>(
     mesh: &'m FacetMesh,
     held: &'m HashSet<(u32, u32)>,
