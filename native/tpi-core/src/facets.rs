@@ -25,6 +25,7 @@
 
 mod wall_flips;
 
+use std::cell::RefCell;
 use std::collections::HashSet;
 
 use glam::DVec3;
@@ -390,6 +391,7 @@ pub(crate) fn build_stage(
                     &triangulation,
                     params,
                     None,
+                    None,
                     stages,
                 )
                 .0
@@ -408,6 +410,7 @@ pub(crate) fn build_stage(
                     samples,
                     seeds,
                     params,
+                    vertices: RefCell::new(VertexCache::default()),
                 };
                 let (flipped, mesh) = wall.flipped_and_clipped(&triangulation, stages);
                 if let Some(flipped) = flipped {
@@ -454,6 +457,74 @@ struct WallClip<'a> {
     samples: &'a Samples,
     seeds: &'a crate::ghosts::Augmented,
     params: &'a FacetParams,
+    /// The triangle vertices computed so far, shared by the wall flips' tries and every
+    /// clip: all in one ghost context ([`with_ghost_context`]), so a triangle's vertex is
+    /// the same wherever it is asked for ([`VertexCache`]).
+    vertices: RefCell<VertexCache>,
+}
+
+/// Triangle vertices and their extensions to the wall, all computed in one context, so that
+/// a triangle that several triangulations share (the unflipped and flipped ones of the wall
+/// flips, [`WallClip`]) is computed once. Only looked up, never iterated: the cache changes
+/// no result.
+#[derive(Default)]
+pub(crate) struct VertexCache {
+    /// [`triangle_vertex`] by the triangle's points in ascending order: a vertex depends only
+    /// on its three points' planes, parameters and tangents, and on the boundary.
+    vertices: IndexMap<[u32; 3], TriangleVertex>,
+    /// [`extension`] by [`extension_key`]: it depends only on the triangle's points in their
+    /// order, its vertex (given by the points) and the vertices across its edges.
+    extensions: IndexMap<ExtensionKey, Option<TriangleVertex>>,
+    /// [`long_edge_crossings`] by [`crossing_key`] of the edge's two triangle vertices: it
+    /// depends only on them.
+    crossings: IndexMap<Bits<16>, Vec<Crossing>>,
+}
+
+/// Bits of floats as a hash key, hashed word by word.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(crate) struct Bits<const N: usize>([u64; N]);
+
+impl<const N: usize> std::hash::Hash for Bits<N> {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        for &x in &self.0 {
+            state.write_u64(x);
+        }
+    }
+}
+
+/// The key of [`long_edge_crossings`] of the edge from the vertex `right` to `left`: every
+/// field of theirs it reads.
+fn crossing_key(right: &TriangleVertex, left: &TriangleVertex) -> Bits<16> {
+    let mut bits = [0u64; 16];
+    for (k, v) in [right, left].into_iter().enumerate() {
+        let words = [
+            v.point.x, v.point.y, v.point.z, v.foot[0], v.foot[1], v.inside, v.reach,
+        ];
+        for (j, w) in words.into_iter().enumerate() {
+            bits[8 * k + j] = w.to_bits();
+        }
+        bits[8 * k + 7] = u64::from(v.measured);
+    }
+    Bits(bits)
+}
+
+/// A triangle's points in their order, the bits of the vertices across its edges (0 where
+/// none) and which of those there are.
+type ExtensionKey = Bits<13>;
+
+/// The key of [`extension`] of the triangle `ids` with the vertices `across` its edges.
+fn extension_key(ids: [u32; 3], across: [Option<DVec3>; 3]) -> ExtensionKey {
+    let mut bits = [0u64; 13];
+    for k in 0..3 {
+        bits[k] = u64::from(ids[k]);
+        if let Some(p) = across[k] {
+            for (j, w) in p.to_array().into_iter().enumerate() {
+                bits[3 + 3 * k + j] = w.to_bits();
+            }
+            bits[12] |= 1 << k;
+        }
+    }
+    Bits(bits)
 }
 
 /// How far a part of the mesh's edge (edges held by one facet) stands inside the region, in
@@ -535,6 +606,8 @@ impl WallClip<'_> {
         let spacing = self.samples.diagonal / (2.0 * n as f64).sqrt();
         // The unflipped clip, made once where a flip is kept, with its marked facets measured.
         let mut unflipped: Option<Measured> = None;
+        // The measures taken so far, by facet and shape ([`measure_key`]).
+        let mut measures = IndexMap::default();
         // The boundary's corners on the surface.
         let corners: Vec<DVec3> = self
             .boundary
@@ -554,6 +627,7 @@ impl WallClip<'_> {
                         &self.seeds.planes,
                         self.params.far_vertex_factor,
                         &blocked,
+                        &mut self.vertices.borrow_mut(),
                     )
                 });
             if flips.is_empty() {
@@ -570,7 +644,7 @@ impl WallClip<'_> {
                 reported = true;
                 Measured::new(outcome)
             });
-            self.measure(before, &marked);
+            self.measure(before, &marked, &mut measures);
             let outcome = self.clip(
                 &flipped,
                 &marked,
@@ -578,7 +652,7 @@ impl WallClip<'_> {
             );
             reported = true;
             let mut after = Measured::new(outcome);
-            self.measure(&mut after, &marked);
+            self.measure(&mut after, &marked, &mut measures);
             let region_notch = |notch: &[Option<Notch>], flip: &wall_flips::WallFlip| {
                 flip.region
                     .iter()
@@ -641,8 +715,15 @@ impl WallClip<'_> {
     /// Measures, where not yet measured, every facet f `marked` of `m`'s mesh: its deviation,
     /// the largest distance of its vertices from the surface, each projected by Newton from
     /// f's seed ([`crate::projection::distance_foot`], as the report's deviation), and the
-    /// notch of its edges that no other facet holds ([`Notch`]).
-    fn measure(&self, m: &mut Measured, marked: &[bool]) {
+    /// notch of its edges that no other facet holds ([`Notch`]). A facet of the same seed,
+    /// polygon and edges held once as one measured before (in `measures`, by
+    /// [`measure_key`]) takes that one's measure: it depends on nothing else.
+    fn measure(
+        &self,
+        m: &mut Measured,
+        marked: &[bool],
+        measures: &mut IndexMap<Vec<u64>, (f64, Notch)>,
+    ) {
         let wrap = crate::projection::Wrap {
             domain: self.surface.domain(),
             periodic: self.boundary.periodic(),
@@ -652,6 +733,12 @@ impl WallClip<'_> {
         let facets = mesh.offsets.len().saturating_sub(1);
         for (f, _) in marked.iter().enumerate().take(facets).filter(|x| *x.1) {
             if m.notch[f].is_some() {
+                continue;
+            }
+            let key = measure_key(mesh, &m.held, f);
+            if let Some(&(deviation, notch)) = measures.get(&key) {
+                m.deviation[f] = deviation;
+                m.notch[f] = Some(notch);
                 continue;
             }
             let seed = self.samples.uv[f];
@@ -690,6 +777,7 @@ impl WallClip<'_> {
                 }
             }
             m.notch[f] = Some(total);
+            measures.insert(key, (m.deviation[f], total));
         }
     }
 
@@ -730,6 +818,7 @@ impl WallClip<'_> {
                 tri,
                 params,
                 Some(blocked),
+                Some(&mut self.vertices.borrow_mut()),
                 stages,
             )
         };
@@ -893,6 +982,24 @@ fn held_once(mesh: &FacetMesh) -> HashSet<(u32, u32)> {
 }
 
 /// The edges of facet f of `mesh` in `held` ([`held_once`]), as their ends' positions.
+/// What [`WallClip::measure`] of facet f reads of the mesh: f, the bits of its polygon's
+/// vertices in loop order, and which of its edges `held` holds (one bit per edge after the
+/// vertices).
+fn measure_key(mesh: &FacetMesh, held: &HashSet<(u32, u32)>, f: usize) -> Vec<u64> {
+    let facet = mesh.facet_loop(f);
+    let mut key = Vec::with_capacity(2 + 4 * facet.len());
+    key.push(f as u64);
+    key.push(facet.len() as u64);
+    for &a in facet {
+        key.extend(mesh.vertices[a as usize].to_array().map(f64::to_bits));
+    }
+    for k in 0..facet.len() {
+        let (a, b) = (facet[k], facet[(k + 1) % facet.len()]);
+        key.push(u64::from(held.contains(&(a.min(b), a.max(b)))));
+    }
+    key
+}
+
 fn edge_segments<'m>(
     mesh: &'m FacetMesh,
     held: &'m HashSet<(u32, u32)>,
@@ -1146,7 +1253,7 @@ fn build_facets(
         long_edges: false,
         extend_to_wall: None,
     };
-    let walk = walk_facets(&ctx, samples.uv.len(), tri, params, stages);
+    let walk = walk_facets(&ctx, samples.uv.len(), tri, params, None, stages);
     if release_tangents {
         samples.tangents = Vec::new();
     }
@@ -1177,6 +1284,7 @@ pub(crate) fn build_ghost_clipped_facets(
     tri: &DualTriangulation,
     params: &FacetParams,
     extend_to_wall: Option<&[bool]>,
+    vertices: Option<&mut VertexCache>,
     stages: &Stages<'_>,
 ) -> (FacetMesh, Vec<bool>) {
     let real_count = uv.len();
@@ -1187,7 +1295,7 @@ pub(crate) fn build_ghost_clipped_facets(
         source,
     };
     with_ghost_context(surface, boundary, &seeds, extend_to_wall, |ctx| {
-        let (mut mesh, extended) = clip_facets(ctx, real_count, tri, params, stages);
+        let (mut mesh, extended) = clip_facets(ctx, real_count, tri, params, vertices, stages);
         // Diagnostics name pattern points: a ghost stands for its seed.
         for diagnostic in &mut mesh.diagnostics {
             diagnostic.map_points(|p| source[p as usize]);
@@ -1251,15 +1359,17 @@ fn with_ghost_context<R>(
 /// The facets of the points `0..real_count` of `tri`, ending on `ctx.boundary` (module doc);
 /// points from `real_count` on are ghosts, which get no facet and no crossings of their own.
 /// Also, per real seed, whether its facet was extended to the wall (empty without
-/// `ctx.extend_to_wall`).
+/// `ctx.extend_to_wall`). Triangle vertices found in `vertices` are taken from it, and those
+/// computed are added to it.
 fn clip_facets(
     ctx: &Context<'_>,
     real_count: usize,
     tri: &DualTriangulation,
     params: &FacetParams,
+    vertices: Option<&mut VertexCache>,
     stages: &Stages<'_>,
 ) -> (FacetMesh, Vec<bool>) {
-    let mut walk = walk_facets(ctx, real_count, tri, params, stages);
+    let mut walk = walk_facets(ctx, real_count, tri, params, vertices, stages);
     let extended = std::mem::take(&mut walk.extended);
     (
         assemble_walk(walk, tri, ctx.planes, params, None, stages),
@@ -1281,13 +1391,14 @@ struct Walk {
     extended: Vec<bool>,
 }
 
-/// Steps 1 to 3 of [`clip_facets`]: triangle vertices, boundary crossings, facet loops as
-/// items.
+/// Steps 1 to 3 of [`clip_facets`]: triangle vertices (taken from `vertices` where there,
+/// the others added to it), boundary crossings, facet loops as items.
 fn walk_facets(
     ctx: &Context<'_>,
     real_count: usize,
     tri: &DualTriangulation,
     params: &FacetParams,
+    vertices: Option<&mut VertexCache>,
     stages: &Stages<'_>,
 ) -> Walk {
     let (surface, boundary) = (ctx.surface, ctx.boundary);
@@ -1295,6 +1406,7 @@ fn walk_facets(
     let mut diagnostics = Vec::new();
 
     // 1. Triangle vertices, their conditioning and whether they lie inside.
+    let known = vertices.as_deref();
     let mut triangle_vertices: Vec<TriangleVertex> = tri
         .triangles
         .par_iter()
@@ -1302,10 +1414,23 @@ fn walk_facets(
             || Tally::new(observer, Stage::Facets),
             |tally, &ids| {
                 tally.add(1);
-                triangle_vertex(ctx, ids, params.far_vertex_factor)
+                let mut key = ids;
+                key.sort_unstable();
+                match known.and_then(|known| known.vertices.get(&key)) {
+                    Some(&vertex) => vertex,
+                    None => triangle_vertex_ordered(ctx, key, params.far_vertex_factor),
+                }
             },
         )
         .collect();
+    let mut vertices = vertices;
+    if let Some(cache) = vertices.as_deref_mut() {
+        for (&vertex, &ids) in triangle_vertices.iter().zip(&tri.triangles) {
+            let mut key = ids;
+            key.sort_unstable();
+            cache.vertices.entry(key).or_insert(vertex);
+        }
+    }
     diagnostics.extend(
         triangle_vertices
             .iter()
@@ -1314,7 +1439,14 @@ fn walk_facets(
             .map(|(v, &ids)| ill_conditioned(ctx, ids, v)),
     );
     let extended = match ctx.extend_to_wall {
-        Some(blocked) => extend_to_wall(ctx, real_count, tri, blocked, &mut triangle_vertices),
+        Some(blocked) => extend_to_wall(
+            ctx,
+            real_count,
+            tri,
+            blocked,
+            &mut triangle_vertices,
+            vertices.as_deref_mut(),
+        ),
         None => Vec::new(),
     };
 
@@ -1322,16 +1454,28 @@ fn walk_facets(
     // with an outside vertex at either end (in the order of `DualTriangulation::edges`).
     let mut edges: Vec<Edge> = crossing_edges(tri, &triangle_vertices, ctx.long_edges);
     edges.retain(|e| (e.lo as usize) < real_count);
+    // Crossings found in the cache are taken from it; those computed are added to it.
+    let known = vertices.as_deref();
     let per_edge: Vec<(Vec<Crossing>, Option<Diagnostic>)> = edges
         .par_iter()
         .map(|edge| {
             if ctx.long_edges {
-                (long_edge_crossings(ctx, edge, &triangle_vertices), None)
+                (
+                    long_edge_crossings(ctx, edge, &triangle_vertices, known),
+                    None,
+                )
             } else {
                 edge_crossings(ctx, tri, edge, &triangle_vertices)
             }
         })
         .collect();
+    if let Some(cache) = vertices.filter(|_| ctx.long_edges) {
+        for (edge, (list, _)) in edges.iter().zip(&per_edge) {
+            if let Some(key) = long_edge_key(ctx, edge, &triangle_vertices) {
+                cache.crossings.entry(key).or_insert_with(|| list.clone());
+            }
+        }
+    }
     let mut crossing_ranges: IndexMap<(u32, u32), (u32, u32)> =
         IndexMap::with_capacity_and_hasher(edges.len(), Default::default());
     let mut crossings = Vec::new();
@@ -1437,15 +1581,20 @@ fn walk_facets(
 /// bisector of the ghosts' wedge (the outside of i's corner at V). A vertex within
 /// [`WALL_EXTENSION_MIN_DEPTH`] of the wall, one the steps do not bring outside, and every
 /// vertex of a triangle holding a seed marked in `blocked` (the caller's retry for facets that
-/// came out invalid) stay where they are.
+/// came out invalid) stay where they are. Extensions found in `cache` are taken from it, and
+/// those computed are added to it.
 fn extend_to_wall(
     ctx: &Context<'_>,
     real_count: usize,
     tri: &DualTriangulation,
     blocked: &[bool],
     triangle_vertices: &mut [TriangleVertex],
+    mut cache: Option<&mut VertexCache>,
 ) -> Vec<bool> {
-    let moved: Vec<(usize, TriangleVertex)> = tri
+    let known = cache.as_deref();
+    let vertices = &*triangle_vertices;
+    // Per triangle that may move: its extension, and its key where computed now.
+    let found: Vec<(usize, Option<TriangleVertex>, Option<ExtensionKey>)> = tri
         .triangles
         .par_iter()
         .enumerate()
@@ -1456,16 +1605,32 @@ fn extend_to_wall(
             {
                 return None;
             }
+            // Without one or two ghosts the vertex stays ([`extension`]).
+            let ghosts = ids.iter().filter(|&&p| p as usize >= real_count).count();
+            if !(1..=2).contains(&ghosts) {
+                return None;
+            }
             // The vertex across the edge opposite position k, as the walk left it.
-            let across = |k: usize| {
+            let across: [Option<DVec3>; 3] = std::array::from_fn(|k| {
                 let other = tri.neighbours[t][k];
-                (other != NO_TRIANGLE).then(|| triangle_vertices[other as usize].point)
-            };
-            extension(ctx, real_count, ids, &triangle_vertices[t], across).map(|v| (t, v))
+                (other != NO_TRIANGLE).then(|| vertices[other as usize].point)
+            });
+            let key = extension_key(ids, across);
+            if let Some(&moved) = known.and_then(|known| known.extensions.get(&key)) {
+                return Some((t, moved, None));
+            }
+            let moved = extension(ctx, real_count, ids, &vertices[t], |k| across[k]);
+            Some((t, moved, Some(key)))
         })
         .collect();
     let mut extended = vec![false; real_count];
-    for (t, vertex) in moved {
+    for (t, moved, key) in found {
+        if let (Some(cache), Some(key)) = (cache.as_deref_mut(), key) {
+            cache.extensions.insert(key, moved);
+        }
+        let Some(vertex) = moved else {
+            continue;
+        };
         triangle_vertices[t] = vertex;
         for p in tri.triangles[t] {
             if (p as usize) < real_count {
@@ -2125,20 +2290,18 @@ fn edge_crossings(
 /// the segment is sampled once between each two consecutive points where the segment of its
 /// ends' feet crosses a boundary loop in parameter space, and each change of side between
 /// samples is refined on the segment itself.
+/// With `known`, the crossings are taken from its cache where there ([`long_edge_key`]).
 fn long_edge_crossings(
     ctx: &Context<'_>,
     edge: &Edge,
     triangle_vertices: &[TriangleVertex],
+    known: Option<&VertexCache>,
 ) -> Vec<Crossing> {
-    if edge.right == NO_TRIANGLE || edge.left == NO_TRIANGLE {
+    let Some(key) = long_edge_key(ctx, edge, triangle_vertices) else {
         return Vec::new();
-    }
-    // Both ends decided inside from their first-order feet (`surely_inside`): their measured
-    // feet would lie inside too, within the margin, and on a convex region so does the
-    // segment between them, which then crosses nothing. No projection needed.
-    let unmeasured = |t: u32| !triangle_vertices[t as usize].measured;
-    if ctx.boundary.is_convex() && unmeasured(edge.right) && unmeasured(edge.left) {
-        return Vec::new();
+    };
+    if let Some(found) = known.and_then(|known| known.crossings.get(&key)) {
+        return found.clone();
     }
     let end_of = |t: u32| {
         let v = &triangle_vertices[t as usize];
@@ -2188,6 +2351,28 @@ fn long_edge_crossings(
         }
     }
     found
+}
+
+/// The cache key of [`long_edge_crossings`] of `edge` ([`crossing_key`]), or None where the
+/// edge has no crossings without a projection: on the hull, or, on a convex region, both
+/// ends decided inside from their first-order feet (`surely_inside`: their measured feet
+/// would lie inside too, within the margin, and so does the segment between them).
+fn long_edge_key(
+    ctx: &Context<'_>,
+    edge: &Edge,
+    triangle_vertices: &[TriangleVertex],
+) -> Option<Bits<16>> {
+    if edge.right == NO_TRIANGLE || edge.left == NO_TRIANGLE {
+        return None;
+    }
+    let unmeasured = |t: u32| !triangle_vertices[t as usize].measured;
+    if ctx.boundary.is_convex() && unmeasured(edge.right) && unmeasured(edge.left) {
+        return None;
+    }
+    Some(crossing_key(
+        &triangle_vertices[edge.right as usize],
+        &triangle_vertices[edge.left as usize],
+    ))
 }
 
 /// Crossings of a segment whose two ends are outside the domain, in order from `start`.

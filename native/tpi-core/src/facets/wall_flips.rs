@@ -33,14 +33,15 @@
 //! come out of the clip invalid ([`super::WallClip`]).
 
 use std::borrow::Cow;
-use std::collections::HashMap;
 
 use glam::DVec3;
 
-use super::{extension, triangle_vertex, Context, TriangleVertex};
+use super::{
+    extension, extension_key, triangle_vertex, Bits, Context, TriangleVertex, VertexCache,
+};
 use crate::planes::Plane;
 use crate::tolerance::{WALL_EXTENSION_MIN_DEPTH, WALL_FLIP_ROUNDS};
-use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
+use crate::triangulation::{DualTriangulation, IndexMap, NO_TRIANGLE};
 use crate::validity_flips::State;
 
 /// Pieces of a segment sampled for its notch (module doc).
@@ -52,9 +53,10 @@ struct Notches<'c, 'a> {
     ctx: &'c Context<'a>,
     real_count: usize,
     far_factor: f64,
-    vertices: HashMap<[u32; 3], TriangleVertex>,
+    /// The triangle vertices and their extensions: the caller's, shared with its clips.
+    vertices: &'c mut VertexCache,
     /// The notch of every segment sampled, by its ends' bits.
-    segments: HashMap<[[u64; 3]; 2], f64>,
+    segments: IndexMap<Bits<6>, f64>,
 }
 
 impl Notches<'_, '_> {
@@ -64,6 +66,7 @@ impl Notches<'_, '_> {
         key.sort_unstable();
         let (ctx, far) = (self.ctx, self.far_factor);
         *self
+            .vertices
             .vertices
             .entry(key)
             .or_insert_with(|| triangle_vertex(ctx, key, far))
@@ -78,7 +81,13 @@ impl Notches<'_, '_> {
             let other = tri.neighbours[t][k];
             (other != NO_TRIANGLE).then(|| self.vertex(tri.triangles[other as usize]).point)
         });
-        extension(self.ctx, self.real_count, ids, &v, |k| across[k]).unwrap_or(v)
+        let key = extension_key(ids, across);
+        if let Some(&moved) = self.vertices.extensions.get(&key) {
+            return moved.unwrap_or(v);
+        }
+        let moved = extension(self.ctx, self.real_count, ids, &v, |k| across[k]);
+        self.vertices.extensions.insert(key, moved);
+        moved.unwrap_or(v)
     }
 
     /// Whether triangle t's vertex stays inside the region deeper than the extension's
@@ -100,7 +109,8 @@ impl Notches<'_, '_> {
     /// between it and the wall, the depth inside the region integrated over the signed
     /// advance along the wall (module doc).
     fn segment_notch(&mut self, p: &TriangleVertex, q: &TriangleVertex) -> f64 {
-        let key = [p.point, q.point].map(|x| x.to_array().map(f64::to_bits));
+        let [a, b] = [p.point, q.point].map(|x| x.to_array().map(f64::to_bits));
+        let key = Bits([a[0], a[1], a[2], b[0], b[1], b[2]]);
         if let Some(&area) = self.segments.get(&key) {
             return area;
         }
@@ -182,8 +192,9 @@ pub(super) struct WallFlip {
 
 /// Flips edges of the triangles whose vertex stays inside the region (module doc), keeping
 /// a flip when the notches around it shrink and no facet turns invalid; no flip touches a
-/// real point marked in `blocked`. `planes` are all points' (ghosts included). Returns the
-/// flips kept, in order.
+/// real point marked in `blocked`. `planes` are all points' (ghosts included). Triangle
+/// vertices and their extensions are taken from `vertices` (computed in `ctx`) where there,
+/// and those computed are added to it. Returns the flips kept, in order.
 pub(super) fn wall_flips(
     ctx: &Context<'_>,
     real_count: usize,
@@ -191,13 +202,14 @@ pub(super) fn wall_flips(
     planes: &[Plane],
     far_factor: f64,
     blocked: &[bool],
+    vertices: &mut VertexCache,
 ) -> Vec<WallFlip> {
     let mut notches = Notches {
         ctx,
         real_count,
         far_factor,
-        vertices: HashMap::new(),
-        segments: HashMap::new(),
+        vertices,
+        segments: IndexMap::default(),
     };
     let targets: Vec<[u32; 3]> = (0..tri.len())
         .filter(|&t| notches.notched(tri, t))
