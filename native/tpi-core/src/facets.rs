@@ -747,8 +747,7 @@ impl WallClip<'_> {
                 .into_iter()
                 .map(|x| {
                     let foot = crate::projection::distance_foot(self.surface, &wrap, x, seed);
-                    let (u, v) = wrap.domain.clamp(foot[0], foot[1]);
-                    self.surface.point_at(u, v).distance(x)
+                    crate::projection::deviation_at(self.surface, &wrap.domain, x, foot).0
                 })
                 .fold(0.0, f64::max);
             let mut total = Notch::default();
@@ -981,7 +980,6 @@ fn held_once(mesh: &FacetMesh) -> HashSet<(u32, u32)> {
         .unwrap_or_default()
 }
 
-/// The edges of facet f of `mesh` in `held` ([`held_once`]), as their ends' positions.
 /// What [`WallClip::measure`] of facet f reads of the mesh: f, the bits of its polygon's
 /// vertices in loop order, and which of its edges `held` holds (one bit per edge after the
 /// vertices).
@@ -1000,6 +998,7 @@ fn measure_key(mesh: &FacetMesh, held: &HashSet<(u32, u32)>, f: usize) -> Vec<u6
     key
 }
 
+/// The edges of facet f of `mesh` in `held` ([`held_once`]), as their ends' positions.
 fn edge_segments<'m>(
     mesh: &'m FacetMesh,
     held: &'m HashSet<(u32, u32)>,

@@ -79,7 +79,7 @@ use crate::discretise::{discretise, discretise_with_progress, Discretisation, Di
 use crate::error::TpiError;
 use crate::pattern::Generator;
 use crate::progress::{NoProgress, Progress};
-use crate::projection::{distance_foot, Wrap};
+use crate::projection::{deviation_at, distance_foot, Wrap};
 use crate::relax::{relax_weighted, seam_margins};
 use crate::sizing::{metric_poisson, CurvatureFloors, SizingField};
 use crate::surface::Surface;
@@ -186,10 +186,9 @@ fn vertex_feet(surface: &dyn Surface, d: &Discretisation) -> Vec<Option<(f64, [f
         .map(|v| {
             let i = *first.get(v).filter(|&&i| i != u32::MAX)?;
             let x = d.vertices[v];
-            let [u, w] = distance_foot(surface, &wrap, x, d.seeds[i as usize].uv);
-            let (cu, cw) = domain.clamp(u, w);
-            let dev = surface.point_at(cu, cw).distance(x);
-            Some((if dev.is_finite() { dev } else { f64::INFINITY }, [cu, cw]))
+            let foot = distance_foot(surface, &wrap, x, d.seeds[i as usize].uv);
+            let (dev, foot) = deviation_at(surface, &domain, x, foot);
+            Some((if dev.is_finite() { dev } else { f64::INFINITY }, foot))
         })
         .collect()
 }

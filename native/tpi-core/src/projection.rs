@@ -75,6 +75,19 @@ pub(crate) fn distance_foot(
     }
 }
 
+/// The deviation of `x` as the quality report measures it, given its `foot` (from
+/// [`distance_foot`]): the distance from x to the surface at the foot clamped into the
+/// domain. Also returns the clamped foot.
+pub(crate) fn deviation_at(
+    surface: &dyn Surface,
+    domain: &Domain,
+    x: DVec3,
+    foot: [f64; 2],
+) -> (f64, [f64; 2]) {
+    let (u, v) = domain.clamp(foot[0], foot[1]);
+    (surface.point_at(u, v).distance(x), [u, v])
+}
+
 /// How a projection continues beyond the sides of a surface's domain: across the seam of a
 /// closed direction and past a pole ([`periodic_foot`]), by the tangent plane elsewhere.
 #[derive(Clone, Copy, Debug, PartialEq)]

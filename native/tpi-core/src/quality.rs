@@ -29,7 +29,7 @@ use crate::mesh::find;
 use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
 use crate::progress::{NoProgress, Progress, Stage, Tally};
-use crate::projection::{distance_foot, Wrap};
+use crate::projection::{deviation_at, distance_foot, Wrap};
 use crate::surface::Surface;
 use crate::tolerance::SEPARATION_MARGIN;
 use crate::validity_flips::polygons_overlap;
@@ -167,7 +167,6 @@ pub(crate) fn report(
     // Deviation from the surface first, so that the feet's hints are let go before the edges
     // and shapes are built. Per vertex (from its foot, see `resolve_feet`), in vertex
     // order (the order of the sum).
-    let domain = input.wrap.domain;
     // One value per vertex, UNUSED where no facet holds it (no distance is -inf): no copy of
     // the used ones is made.
     const UNUSED: f64 = f64::NEG_INFINITY;
@@ -180,10 +179,7 @@ pub(crate) fn report(
         input.loops,
         FootHints::Listed(&feet),
         UNUSED,
-        |v, [u, w]| {
-            let (cu, cw) = domain.clamp(u, w);
-            input.surface.point_at(cu, cw).distance(input.vertices[v])
-        },
+        |v, foot| deviation_at(input.surface, &input.wrap.domain, input.vertices[v], foot).0,
         progress,
     );
     drop(feet);
