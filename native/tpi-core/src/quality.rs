@@ -640,8 +640,9 @@ fn edge_pair_overlaps(
     !separated && overlap(buffers)
 }
 
-/// Overlapping pairs of simple facets that share a vertex but no edge (only where four or
-/// more facets meet at a vertex).
+/// Overlapping pairs of simple facets that share a vertex but no edge: where four or more
+/// facets meet at a vertex, and at a boundary vertex whose fan of facets (the first and the
+/// last share no edge) may wrap past a full turn.
 fn vertex_pairs_overlapping(
     input: &ReportInput<'_>,
     facet_count: usize,
@@ -657,10 +658,23 @@ fn vertex_pairs_overlapping(
             start[v as usize + 1] += 1;
         }
     }
-    if start.iter().all(|&c| c <= 3) {
-        // No vertex where four or more facets meet (the usual case): no pair to test.
+    // A vertex of k facets has k (k - 1) / 2 pairs; where fewer edges of two facets end
+    // there, some pair shares only the vertex (usually k = 3 on an interior vertex: three
+    // edges, no such pair).
+    let mut shared_at = vec![0u32; vertex_count];
+    for &(_, _, a, b) in shared_edges {
+        shared_at[a as usize] += 1;
+        shared_at[b as usize] += 1;
+    }
+    let loose = |v: usize| {
+        let k = start[v + 1];
+        k * k.saturating_sub(1) / 2 > shared_at[v]
+    };
+    if !(0..vertex_count).any(loose) {
         return Vec::new();
     }
+    let loose: Vec<bool> = (0..vertex_count).map(loose).collect();
+    drop(shared_at);
     for v in 0..vertex_count {
         start[v + 1] += start[v];
     }
@@ -677,8 +691,10 @@ fn vertex_pairs_overlapping(
         .map(|&(f, g, _, _)| (f.min(g), f.max(g)))
         .collect();
     let mut out = Vec::new();
-    let lists = (0..vertex_count).map(|v| &incident[start[v] as usize..start[v + 1] as usize]);
-    for list in lists.filter(|l| l.len() > 3) {
+    let lists = (0..vertex_count)
+        .filter(|&v| loose[v])
+        .map(|v| &incident[start[v] as usize..start[v + 1] as usize]);
+    for list in lists {
         for (k, &f) in list.iter().enumerate() {
             for &g in &list[k + 1..] {
                 let pair = (f.min(g), f.max(g));
