@@ -46,9 +46,14 @@
 //!   degenerates and gives neighbours several spacings away, which no tilt repairs), then
 //!   greedy tilts and flips, kept only when fewer facets are left invalid.
 //!
-//! With adjusted planes a facet whose vertices lie farther than [`MAX_REACH`] local spacings
+//! With adjusted planes a facet whose vertices lie farther than
+//! [`MAX_REACH`](crate::tolerance::MAX_REACH) local spacings
 //! from its seed also counts as invalid, so that runaway vertices at parabolic lines are
-//! pulled in, not only folds repaired.
+//! pulled in, not only folds repaired. Where facets are still invalid after the second
+//! decisions, the whole adjustment runs again with
+//! [`FALLBACK_REACH`](crate::tolerance::FALLBACK_REACH) and is kept only if it leaves none
+//! (`structure.rs`): on a nearly developable band the facets run along the rulings by
+//! several spacings, and the shorter reach forbids the simple, long facet that is there.
 //!
 //! Facets stay exactly planar: every vertex is the meeting point of three (adjusted) planes,
 //! computed once and shared by the three facets.
@@ -61,7 +66,7 @@ use crate::pattern::SplitMix64;
 use crate::planes::Plane;
 use crate::tolerance::{
     ESCALATION_BUDGET_PER_INVALID, ESCALATION_KICKS, ESCALATION_MAX_INVALID, ESCALATION_ROUNDS,
-    KICK_REPAIR_PASSES, KICK_ROUNDS, MAX_PLANE_ADJUST_ROUNDS, MAX_PLANE_TILT_DEGREES, MAX_REACH,
+    KICK_REPAIR_PASSES, KICK_ROUNDS, MAX_PLANE_ADJUST_ROUNDS, MAX_PLANE_TILT_DEGREES,
     PLANE_ADJUST_BUDGET, PLANE_ADJUST_BUDGET_PER_INVALID, PLANE_KICKS, PLANE_OFFSET_STEPS,
     PLANE_TILT_DIRECTIONS, PLANE_TILT_STEPS_DEGREES, REACH_GAIN, RESCUE_TILT_STEPS_DEGREES,
     RESTRUCTURE_FLIPS,
@@ -80,17 +85,20 @@ pub(crate) struct PlaneAdjustStats {
 
 /// Tilts the planes of points around invalid facets of the points `0..judged` (module doc).
 /// `planes` holds the planes of every point of the triangulation (ghosts from `judged` on)
-/// and is replaced by the adjusted planes.
+/// and is replaced by the adjusted planes. A facet with a vertex farther than `reach` local
+/// spacings from its seed counts as invalid ([`crate::tolerance::MAX_REACH`], or
+/// [`crate::tolerance::FALLBACK_REACH`] on a second try).
 pub(crate) fn adjust_planes(
     tri: &mut DualTriangulation,
     planes: &mut Vec<Plane>,
     judged: usize,
+    reach: f64,
 ) -> PlaneAdjustStats {
     let exact = planes.clone();
     let points = planes.len();
     let mut state = State::new(tri, points, Cow::Owned(std::mem::take(planes)), judged);
     let spacing = local_spacing(&state, points);
-    state.impose_reach_limit(spacing.iter().map(|&h| MAX_REACH * h).collect());
+    state.impose_reach_limit(spacing.iter().map(|&h| reach * h).collect());
     let mut stats = PlaneAdjustStats::default();
     // A facet whose repair failed is tried again only after a kept move changed its
     // neighbourhood.

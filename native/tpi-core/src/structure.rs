@@ -53,7 +53,8 @@ use crate::rulings;
 use crate::samples::Samples;
 use crate::surface::Surface;
 use crate::tolerance::{
-    METRIC_REGULARISATION, METRIC_REGULARISATION_RETRIES, RETRY_MAX_INVALID, STRIP_TRIM_MARGIN,
+    FALLBACK_REACH, MAX_REACH, METRIC_REGULARISATION, METRIC_REGULARISATION_RETRIES,
+    RETRY_MAX_INVALID, STRIP_TRIM_MARGIN,
 };
 use crate::triangulation::{real_pairs, DualTriangulation};
 
@@ -424,25 +425,28 @@ impl Attempt {
     }
 }
 
-/// The neighbours decided (and with `adjust` the planes adjusted) again from the Delaunay
-/// triangulation of the seeds and ghosts `augmented` with their exact planes `exact`, with
-/// each weight of [`METRIC_REGULARISATION_RETRIES`] in turn, for a structure whose decision
-/// with [`METRIC_REGULARISATION`] left 1 to [`RETRY_MAX_INVALID`] facets invalid. Near a
-/// parabolic line, and where the saddle's metric is strongly anisotropic, the isotropic term
-/// decides how far the facets run along the flat direction, and a facet that neither flips
-/// nor tilts within 5 degrees repair with one weight is often valid with another. Returns the
-/// attempt that left the fewest facets invalid (the first of equals; it stops at none), or
-/// None without weights. A cancellation seen by `stages` is answered between attempts.
+/// The neighbours decided (and with `adjust`, a reach, the planes adjusted with that reach)
+/// again from the Delaunay triangulation of the seeds and ghosts `augmented` with their exact
+/// planes `exact`, with each of the isotropic terms' `weights` in turn: for a structure whose
+/// decision with [`METRIC_REGULARISATION`] left 1 to [`RETRY_MAX_INVALID`] facets invalid,
+/// the weights of [`METRIC_REGULARISATION_RETRIES`]; for adjusted planes still invalid after
+/// that, every weight with [`FALLBACK_REACH`]. Near a parabolic line, and where the saddle's
+/// metric is strongly anisotropic, the isotropic term decides how far the facets run along
+/// the flat direction, and a facet that neither flips nor tilts within 5 degrees repair with
+/// one weight is often valid with another. Returns the attempt that left the fewest facets
+/// invalid (the first of equals; it stops at none), or None without weights. A cancellation
+/// seen by `stages` is answered between attempts.
 fn decide_again(
     augmented: &Augmented,
     exact: Vec<Plane>,
     envelope_repair: bool,
     n: usize,
-    adjust: bool,
+    adjust: Option<f64>,
+    weights: &[f64],
     stages: &Stages<'_>,
 ) -> Result<Option<Attempt>, TpiError> {
     let mut best: Option<Attempt> = None;
-    for &weight in METRIC_REGULARISATION_RETRIES {
+    for &weight in weights {
         stages.check()?;
         let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
         let input = NeighbourInput {
@@ -455,7 +459,7 @@ fn decide_again(
         };
         let neighbours = decide(&mut triangulation, &input, envelope_repair, n);
         let mut planes = exact.clone();
-        let adjusted = adjust.then(|| adjust_planes(&mut triangulation, &mut planes, n));
+        let adjusted = adjust.map(|reach| adjust_planes(&mut triangulation, &mut planes, n, reach));
         let attempt = Attempt {
             triangulation,
             planes,
@@ -621,22 +625,49 @@ fn any_curvature(
     let adjust = Instant::now();
     // The exact planes, kept where the adjustment may need them again.
     let exact = (adjusted && !seam_closed).then(|| augmented.planes.clone());
-    let mut stats = adjusted.then(|| adjust_planes(&mut triangulation, &mut augmented.planes, n));
+    let mut stats =
+        adjusted.then(|| adjust_planes(&mut triangulation, &mut augmented.planes, n, MAX_REACH));
     let mut left = stats.map_or(neighbours.validity_unresolved, |s| s.unresolved);
     // Many left (a nearly developable surface, where neither flips nor tilts help) are not
     // decided again; folded structures are decided with the fold, and not again.
     if !seam_closed && (1..=RETRY_MAX_INVALID).contains(&left) {
-        let exact = exact.unwrap_or_else(|| augmented.planes.clone());
+        let exact = exact.clone().unwrap_or_else(|| augmented.planes.clone());
         let retried = decide_again(
             &augmented,
             exact,
             options.envelope_repair,
             n,
-            adjusted,
+            adjusted.then_some(MAX_REACH),
+            METRIC_REGULARISATION_RETRIES,
             stages,
         )?;
         if let Some(attempt) = retried.filter(|a| a.left() < left) {
             left = attempt.left();
+            triangulation = attempt.triangulation;
+            augmented.planes = attempt.planes;
+            neighbours = attempt.neighbours;
+            stats = attempt.adjusted;
+        }
+    }
+    // Adjusted planes that still leave facets invalid: the whole adjustment again with the
+    // longer reach of a nearly developable band, kept only where it leaves none (so a mesh
+    // the first adjustment made valid is never touched, and one it did not is replaced only
+    // by a valid one).
+    if let (Some(exact), false, true) = (exact, seam_closed, left > 0) {
+        let weights: Vec<f64> = std::iter::once(METRIC_REGULARISATION)
+            .chain(METRIC_REGULARISATION_RETRIES.iter().copied())
+            .collect();
+        let retried = decide_again(
+            &augmented,
+            exact,
+            options.envelope_repair,
+            n,
+            Some(FALLBACK_REACH),
+            &weights,
+            stages,
+        )?;
+        if let Some(attempt) = retried.filter(|a| a.left() == 0) {
+            left = 0;
             triangulation = attempt.triangulation;
             augmented.planes = attempt.planes;
             neighbours = attempt.neighbours;

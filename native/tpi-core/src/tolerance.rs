@@ -392,6 +392,15 @@ pub const REACH_GAIN: f64 = 0.9;
 /// runaway vertices at parabolic lines are pulled in too.
 pub const MAX_REACH: f64 = 2.5;
 
+/// Where the adjustment with [`MAX_REACH`] (and its second decisions) leaves facets invalid,
+/// the whole adjustment is tried again with this reach, and kept only if it leaves none.
+/// On a nearly developable band (K ~ 0 with one principal curvature left) exact TPI facets
+/// run along the rulings by several spacings, the flat direction of the |II| metric, and
+/// such a long facet lies close to the surface; holding its vertices within 2.5 spacings
+/// asks tilts of at most 5 degrees for what they cannot do, and the search then misses the
+/// simple, long facet that is there.
+pub const FALLBACK_REACH: f64 = 6.0;
+
 /// Random restarts tried around each facet the greedy plane adjustment left invalid.
 pub const PLANE_KICKS: usize = 24;
 
