@@ -29,7 +29,10 @@
 //! columns by a rounded aspect). On surfaces without saddle points one more lattice grades
 //! each row along itself ([`Grading::rowwise`]: rows near a dome's walls carry fewer
 //! points than its middle row), cut by the walls s = 0, 1 and scanned over real column
-//! counts, and one more lays the steeper grading's rows so ([`Grading::cut`]). While the
+//! counts (below the best pattern found so far), and one more lays the steeper grading's
+//! rows so ([`Grading::cut`]); three more there have only their outer rows
+//! [`FIT_WALL_INSET`] columns inside the walls t = 0, 1 ([`Grading::inset_rows`]: the
+//! envelope's and the steeper grading with sparser sides, and the rowwise one). While the
 //! best pattern is small ([`FIT_NEIGHBOUR_POINTS`]), two more lattices are graded by the envelope to the power [`FIT_STEEP_GRADING`], and on
 //! saddles uniform ones have the row densities [`FIT_SADDLE_EXTRA_ROW_DENSITIES`]. Two
 //! more graded lattices have their outer rows and columns [`FIT_WALL_INSET`] columns inside
