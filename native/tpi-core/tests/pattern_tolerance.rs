@@ -291,7 +291,9 @@ const SADDLE: TurnedQuadric = TurnedQuadric {
 fn a_turned_anisotropic_dome_needs_at_most_60_percent_of_the_uniform_hex_points() {
     for tolerance in [0.01, 0.003] {
         let ratios = fit_and_compare_by("turned dome", &DOME, tolerance, &quadric_distance(&DOME));
-        assert!(ratios.iter().all(|&r| r <= 0.6), "{tolerance}: {ratios:?}");
+        // Measured 0.419 / 0.438 (D = 0.01) and 0.386 / 0.467 (0.003): the 0.60 with
+        // room, tightened to catch a loss.
+        assert!(ratios.iter().all(|&r| r <= 0.5), "{tolerance}: {ratios:?}");
     }
 }
 
@@ -304,7 +306,8 @@ fn a_turned_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
             tolerance,
             &quadric_distance(&SADDLE),
         );
-        assert!(ratios.iter().all(|&r| r <= 0.6), "{tolerance}: {ratios:?}");
+        // Measured 0.312 / 0.400 (D = 0.01) and 0.231 / 0.284 (0.003).
+        assert!(ratios.iter().all(|&r| r <= 0.45), "{tolerance}: {ratios:?}");
     }
 }
 
@@ -314,7 +317,9 @@ fn a_turned_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 /// by its walls and corners), asymptotic directions at 45 degrees: curvatures 0.24 and 0.1,
 /// not among the samples (samples/hypar.json is 0.16). Before the lattices refined at their
 /// walls and the saddle rows (fit.rs) the ratios were 0.858 and 0.492 (k = 0.24, D = 0.01 and
-/// 0.003) and 0.415 and 0.736 (k = 0.1); after, 0.545, 0.291, 0.415, 0.374.
+/// 0.003) and 0.415 and 0.736 (k = 0.1); after, 0.545, 0.291, 0.415, 0.374. Against
+/// hex:spacing / hex:NxN now (2026-11-28): k = 0.24 0.406 / 0.520 (117 points) and 0.199 /
+/// 0.491, k = 0.1 0.364 / 0.493 and 0.341 / 0.481.
 const ALIGNED_HYPARS: [TurnedQuadric; 2] = [
     TurnedQuadric {
         k: [0.24, -0.24],
@@ -335,16 +340,10 @@ fn aligned_hypars_need_at_most_60_percent_of_the_uniform_hex_points() {
             let name = format!("aligned hypar k = {}", q.k[0]);
             let ratios = fit_and_compare_by(&name, q, tolerance, &quadric_distance(q));
             // Against hex:NxN (rows a column apart, which suits the walls of a hypar) the
-            // 60 % is not met at k = 0.24, D = 0.01: 153 points against 225 (0.680; 157,
-            // 0.698 before the lattices of FIT_SADDLE_EXTRA_ROW_DENSITIES, which took
-            // k = 0.24, D = 0.003 from 487 points, 0.720, to 373, 0.552).
-            let nxn_bound = if q.k[0] == 0.24 && tolerance == 0.01 {
-                0.7
-            } else {
-                0.6
-            };
+            // 60 % was not met at k = 0.24, D = 0.01 with 153 points against 225 (0.680);
+            // 117 points now (0.520).
             assert!(
-                ratios[0] <= 0.6 && ratios[1] <= nxn_bound,
+                ratios[0] <= 0.45 && ratios[1] <= 0.6,
                 "{name}, {tolerance}: {ratios:?}"
             );
         }
@@ -354,13 +353,15 @@ fn aligned_hypars_need_at_most_60_percent_of_the_uniform_hex_points() {
 #[test]
 fn a_free_form_dome_needs_at_most_60_percent_of_the_uniform_hex_points() {
     let ratios = fit_and_compare("nurbs-dome.json", 0.01);
-    assert!(ratios.iter().all(|&r| r <= 0.6), "{ratios:?}");
+    // Measured 0.395 / 0.454 (331 points against 837 and 729).
+    assert!(ratios.iter().all(|&r| r <= 0.5), "{ratios:?}");
 }
 
 #[test]
 fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
     let ratios = fit_and_compare("saddle.json", 0.01);
-    assert!(ratios.iter().all(|&r| r <= 0.6), "{ratios:?}");
+    // Measured 0.296 / 0.282 (149 points against 504 and 529).
+    assert!(ratios.iter().all(|&r| r <= 0.35), "{ratios:?}");
 }
 
 /// The paraboloid of revolution and the hypar have nearly uniform curvature and
@@ -368,9 +369,10 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 /// by its corners and boundary vertices). On the hypar the 60 % holds since the
 /// lattices refined at their walls and the lattices with other row densities on saddles
 /// (`fit.rs`): 0.431 (110 points against 255; 0.702 with 179 before) at D = 0.01. On the
-/// paraboloid it holds against hex:spacing only just: 0.593 (299 points against 504; 0.659
-/// before the lattices with sparser sides, 0.623 before the steeper grading), and against
-/// hex:NxN not (0.618). On the paraboloid the lattice's
+/// paraboloid it holds against hex:spacing only just: 0.585 (295 points against 504; 0.593
+/// before the lattices with rows inset from the walls, 0.659 before the lattices with
+/// sparser sides, 0.623 before the steeper grading), and against hex:NxN not (0.610 against
+/// 484; 0.618 before the inset rows). On the paraboloid the lattice's
 /// cells are already as regular as cells can be (a hexagonal lattice is the thinnest
 /// covering: at a given count no pattern has smaller circumcircles); what is left is the
 /// fall of the curvature away from the apex (sqrt(k1 k2) dA goes as
@@ -381,12 +383,13 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 /// their irregular cells). Asserted: the measured ratios, with a little room.
 #[test]
 fn on_nearly_uniform_surfaces_the_pattern_still_beats_uniform_hex() {
-    // Bounds against hex:spacing and hex:NxN: measured 0.593 and 0.618 on the paraboloid
-    // (299 points against 504 and 484; 312, 0.619 and 0.645, before the steeper grading of
+    // Bounds against hex:spacing and hex:NxN: measured 0.585 and 0.610 on the paraboloid
+    // (295 points against 504 and 484; 299, 0.593 and 0.618, before the rows inset from the
+    // walls; 312, 0.619 and 0.645, before the steeper grading of
     // FIT_STEEP_GRADING), 0.431 and 0.561 on the hypar (110 against 255 and
     // 196; 135 points, 0.529 and 0.689, before the lattices of other row densities:
     // hex:NxN's rows a column apart suit the hypar's walls).
-    for (name, bounds) in [("paraboloid.json", [0.6, 0.63]), ("hypar.json", [0.6, 0.6])] {
+    for (name, bounds) in [("paraboloid.json", [0.6, 0.62]), ("hypar.json", [0.5, 0.6])] {
         let ratios = fit_and_compare(name, 0.01);
         assert!(
             ratios.iter().zip(bounds).all(|(&r, b)| r <= b),
