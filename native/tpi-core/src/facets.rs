@@ -411,6 +411,7 @@ pub(crate) fn build_stage(
                     seeds,
                     params,
                     vertices: RefCell::new(VertexCache::default()),
+                    shapes: RefCell::new(ShapeMemo::default()),
                 };
                 let (flipped, mesh) = wall.flipped_and_clipped(&triangulation, stages);
                 if let Some(flipped) = flipped {
@@ -461,6 +462,51 @@ struct WallClip<'a> {
     /// clip: all in one ghost context ([`with_ghost_context`]), so a triangle's vertex is
     /// the same wherever it is asked for ([`VertexCache`]).
     vertices: RefCell<VertexCache>,
+    /// The facets' simplicity verdicts taken so far by the clips' shape checks
+    /// ([`mesh_shape`]), by facet and polygon.
+    shapes: RefCell<ShapeMemo>,
+}
+
+/// Whether a real facet's polygon is simple in its plane ([`crate::quality::facet_shape_into`]),
+/// per facet f the polygons judged so far with their verdicts: the verdict depends only on
+/// f's plane (the same in every clip of one [`WallClip`]) and the polygon's points, so a
+/// polygon found here bit for bit takes its verdict. Most facets of the closed and clipped
+/// meshes of the unflipped and flipped triangulations are one polygon. Only looked up: the
+/// memo changes no result.
+#[derive(Default)]
+struct ShapeMemo {
+    /// Per facet, (polygon points, simple).
+    seen: Vec<Vec<(Vec<DVec3>, bool)>>,
+}
+
+impl ShapeMemo {
+    /// Whether facet f of plane `plane` with the polygon `points` is simple, judged where
+    /// not yet judged.
+    fn simple(
+        &mut self,
+        f: usize,
+        plane: &Plane,
+        points: &[DVec3],
+        buffer: &mut Vec<glam::DVec2>,
+    ) -> bool {
+        if self.seen.len() <= f {
+            self.seen.resize_with(f + 1, Vec::new);
+        }
+        let same = |a: &[DVec3]| {
+            a.len() == points.len()
+                && a.iter().zip(points).all(|(x, y)| {
+                    x.x.to_bits() == y.x.to_bits()
+                        && x.y.to_bits() == y.y.to_bits()
+                        && x.z.to_bits() == y.z.to_bits()
+                })
+        };
+        if let Some(&(_, simple)) = self.seen[f].iter().find(|(p, _)| same(p)) {
+            return simple;
+        }
+        let simple = crate::quality::facet_shape_into(plane, points.iter().copied(), buffer).simple;
+        self.seen[f].push((points.to_vec(), simple));
+        simple
+    }
 }
 
 /// Triangle vertices and their extensions to the wall, all computed in one context, so that
@@ -566,6 +612,8 @@ struct WallOutcome {
     /// The facets among those marked that came out of the clip invalid (ascending), or
     /// whose extension to the wall was taken back.
     culprits: Vec<usize>,
+    /// The mesh's [`crate::sanity::edges`] (None: an edge held wrongly).
+    edges: Option<(usize, Vec<(u32, u32)>)>,
 }
 
 impl WallClip<'_> {
@@ -822,18 +870,29 @@ impl WallClip<'_> {
             )
         };
         let spacing = samples.diagonal / (2.0 * n as f64).sqrt();
-        // The clipped facets in their final form, if they keep the closed ones' shape.
+        // The closed facets' edges and shape, counted once for every clip compared with them.
+        let closed_edges = std::cell::OnceCell::new();
+        let closed_shape = std::cell::OnceCell::new();
+        let planes = &seeds.planes[..n];
+        // The clipped facets in their final form with their edges, if they keep the closed
+        // ones' shape.
         let finish = |mut clipped: FacetMesh| {
             weld_coincident_crossings(&mut clipped, params.weld_distance);
             drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
             start_loops_at_lowest_triangle(&mut clipped);
-            // One edge count serves both: marking changes kinds, not loops.
+            // One edge count serves all three: marking changes kinds, not loops.
             let clipped_edges = crate::sanity::edges(&clipped.offsets, &clipped.loops).ok();
             if let Some((_, boundary)) = &clipped_edges {
                 mark_boundary_vertices(&mut clipped, boundary);
             }
-            wall_clip_keeps_shape(&closed, &clipped, clipped_edges, &seeds.planes[..n])
-                .then_some(clipped)
+            let memo = &mut self.shapes.borrow_mut();
+            let before = closed_shape.get_or_init(|| {
+                let edges = closed_edges
+                    .get_or_init(|| crate::sanity::edges(&closed.offsets, &closed.loops).ok());
+                mesh_shape(&closed, edges, planes, memo)
+            });
+            let after = mesh_shape(&clipped, &clipped_edges, planes, memo);
+            wall_clip_keeps_shape(before.as_ref(), after).then_some((clipped, clipped_edges))
         };
         let mut blocked = vec![false; n];
         let (mut clipped, mut extended) = clip(&blocked, stages);
@@ -875,7 +934,7 @@ impl WallClip<'_> {
                 .flatten()
         });
         match kept {
-            Some(mut clipped) => {
+            Some((mut clipped, edges)) => {
                 // The count of coincident neighbour planes is the structure's, not the
                 // clip's: it is kept.
                 clipped.diagnostics.extend(
@@ -888,13 +947,20 @@ impl WallClip<'_> {
                     mesh: clipped,
                     clipped: true,
                     culprits,
+                    edges,
                 }
             }
-            None => WallOutcome {
-                mesh: closed,
-                clipped: false,
-                culprits,
-            },
+            None => {
+                let edges = closed_edges
+                    .into_inner()
+                    .unwrap_or_else(|| crate::sanity::edges(&closed.offsets, &closed.loops).ok());
+                WallOutcome {
+                    mesh: closed,
+                    clipped: false,
+                    culprits,
+                    edges,
+                }
+            }
         }
     }
 }
@@ -912,10 +978,10 @@ struct Measured {
 
 impl Measured {
     /// The clip `outcome`, no facet measured yet.
-    fn new(outcome: WallOutcome) -> Measured {
+    fn new(mut outcome: WallOutcome) -> Measured {
         let n = outcome.mesh.offsets.len().saturating_sub(1);
         Measured {
-            held: held_once(&outcome.mesh),
+            held: held_once(outcome.edges.take()),
             deviation: vec![0.0; n],
             notch: vec![None; n],
             outcome,
@@ -967,10 +1033,10 @@ fn corner_cut(
     })
 }
 
-/// The edges of `mesh` that one facet holds (the mesh's edge), each as (lower, higher) vertex;
-/// none where an edge is held wrongly.
-fn held_once(mesh: &FacetMesh) -> HashSet<(u32, u32)> {
-    crate::sanity::edges(&mesh.offsets, &mesh.loops)
+/// The edges of a mesh that one facet holds (the mesh's edge), each as (lower, higher) vertex,
+/// from its [`crate::sanity::edges`]; none where an edge is held wrongly (`edges` None).
+fn held_once(edges: Option<(usize, Vec<(u32, u32)>)>) -> HashSet<(u32, u32)> {
+    edges
         .map(|(_, edges)| {
             edges
                 .into_iter()
@@ -1011,26 +1077,17 @@ fn edge_segments<'m>(
         .map(move |(a, b)| (mesh.vertices[a as usize], mesh.vertices[b as usize]))
 }
 
-/// Whether the facets clipped on the wall (`clipped`) keep the shape of the facets closed by
-/// the ghosts' planes (`closed`), both over `planes` (the real seeds'): the same Euler
+/// Whether the facets clipped on the wall keep the shape of the facets closed by the ghosts'
+/// planes, given the two meshes' [`mesh_shape`]s (`closed`, `clipped`; None where an edge is
+/// held wrongly), both over the real seeds' planes: the same Euler
 /// characteristic and boundary loops, every edge held once or twice in opposite directions,
 /// no more facets open or non-simple, and no vertex farther from its facet's seed than the
 /// closed facets reach (a clipped facet is a part of its closed one; a corner's normal line
 /// that meets a non-convex facet's plane far away must not add a spike). On a saddle a boundary facet's edges can run past
 /// the wall all around it (its polygon, not its seed, beyond the boundary) and its neighbours'
 /// cuts then leave it apart: the closed facets, which the validity flips judged, are kept.
-/// `clipped_edges` are the clipped mesh's [`crate::sanity::edges`] (None: an edge held wrongly).
-fn wall_clip_keeps_shape(
-    closed: &FacetMesh,
-    clipped: &FacetMesh,
-    clipped_edges: Option<(usize, Vec<(u32, u32)>)>,
-    planes: &[Plane],
-) -> bool {
-    let closed_edges = crate::sanity::edges(&closed.offsets, &closed.loops).ok();
-    match (
-        mesh_shape(closed, closed_edges, planes),
-        mesh_shape(clipped, clipped_edges, planes),
-    ) {
+fn wall_clip_keeps_shape(closed: Option<&MeshShape>, clipped: Option<MeshShape>) -> bool {
+    match (closed, clipped) {
         (Some(before), Some(after)) => {
             after.euler == before.euler
                 && after.boundary_loops == before.boundary_loops
@@ -1195,15 +1252,19 @@ struct MeshShape {
 }
 
 /// The shape of a facet mesh with its [`crate::sanity::edges`], or `None` where an edge is held
-/// by more than two facets or twice in one direction (`edges` None).
+/// by more than two facets or twice in one direction (`edges` None). Facet f's simplicity is
+/// taken from `memo` where its polygon was judged before.
 fn mesh_shape(
     mesh: &FacetMesh,
-    edges: Option<(usize, Vec<(u32, u32)>)>,
+    edges: &Option<(usize, Vec<(u32, u32)>)>,
     planes: &[Plane],
+    memo: &mut ShapeMemo,
 ) -> Option<MeshShape> {
-    let (edges, boundary) = edges?;
+    let (edges, boundary) = edges.as_ref()?;
+    let edges = *edges;
     let mut used = vec![false; mesh.vertices.len()];
     let mut buffer = Vec::new();
+    let mut points = Vec::new();
     let mut bad_facets = 0;
     let mut reach = 0.0f64;
     for (f, w) in mesh.offsets.windows(2).enumerate() {
@@ -1212,8 +1273,9 @@ fn mesh_shape(
             used[v as usize] = true;
             reach = reach.max(mesh.vertices[v as usize].distance(planes[f].point));
         }
-        let points = lp.iter().map(|&v| mesh.vertices[v as usize]);
-        if !crate::quality::facet_shape_into(&planes[f], points, &mut buffer).simple {
+        points.clear();
+        points.extend(lp.iter().map(|&v| mesh.vertices[v as usize]));
+        if !memo.simple(f, &planes[f], &points, &mut buffer) {
             bad_facets += 1;
         }
     }
@@ -1221,7 +1283,7 @@ fn mesh_shape(
     let facets = mesh.offsets.len().saturating_sub(1) as i64;
     Some(MeshShape {
         euler: vertices - edges as i64 + facets,
-        boundary_loops: crate::sanity::boundary_loops(mesh.vertices.len(), &boundary),
+        boundary_loops: crate::sanity::boundary_loops(mesh.vertices.len(), boundary),
         bad_facets,
         reach,
     })
