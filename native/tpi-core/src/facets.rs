@@ -481,7 +481,7 @@ struct ShapeMemo {
 
 impl ShapeMemo {
     /// Whether facet f of plane `plane` with the polygon `points` is simple, judged where
-    /// not yet judged.
+    /// not yet judged (`seen` holds a list for f: [`mesh_shape`] sizes it).
     fn simple(
         &mut self,
         f: usize,
@@ -489,9 +489,6 @@ impl ShapeMemo {
         points: &[DVec3],
         buffer: &mut Vec<glam::DVec2>,
     ) -> bool {
-        if self.seen.len() <= f {
-            self.seen.resize_with(f + 1, Vec::new);
-        }
         let same = |a: &[DVec3]| {
             a.len() == points.len()
                 && a.iter().zip(points).all(|(x, y)| {
@@ -524,6 +521,9 @@ pub(crate) struct VertexCache {
     /// [`long_edge_crossings`] by [`crossing_key`] of the edge's two triangle vertices: it
     /// depends only on them.
     crossings: IndexMap<Bits<16>, Vec<Crossing>>,
+    /// The wall flips' notch of a chain segment ([`wall_flips`]) by the bits of its ends'
+    /// points, feet and inside measures: it depends only on them.
+    notches: IndexMap<Bits<12>, f64>,
 }
 
 /// Bits of floats as a hash key, hashed word by word.
@@ -1262,6 +1262,9 @@ fn mesh_shape(
 ) -> Option<MeshShape> {
     let (edges, boundary) = edges.as_ref()?;
     let edges = *edges;
+    if memo.seen.len() < planes.len() {
+        memo.seen.resize_with(planes.len(), Vec::new);
+    }
     let mut used = vec![false; mesh.vertices.len()];
     let mut buffer = Vec::new();
     let mut points = Vec::new();
@@ -1468,7 +1471,8 @@ fn walk_facets(
 
     // 1. Triangle vertices, their conditioning and whether they lie inside.
     let known = vertices.as_deref();
-    let mut triangle_vertices: Vec<TriangleVertex> = tri
+    // Each vertex, and whether it was computed now (not found in the cache).
+    let (mut triangle_vertices, computed): (Vec<TriangleVertex>, Vec<bool>) = tri
         .triangles
         .par_iter()
         .map_init(
@@ -1478,15 +1482,23 @@ fn walk_facets(
                 let mut key = ids;
                 key.sort_unstable();
                 match known.and_then(|known| known.vertices.get(&key)) {
-                    Some(&vertex) => vertex,
-                    None => triangle_vertex_ordered(ctx, key, params.far_vertex_factor),
+                    Some(&vertex) => (vertex, false),
+                    None => (
+                        triangle_vertex_ordered(ctx, key, params.far_vertex_factor),
+                        true,
+                    ),
                 }
             },
         )
-        .collect();
+        .unzip();
     let mut vertices = vertices;
     if let Some(cache) = vertices.as_deref_mut() {
-        for (&vertex, &ids) in triangle_vertices.iter().zip(&tri.triangles) {
+        for ((&vertex, &ids), _) in triangle_vertices
+            .iter()
+            .zip(&tri.triangles)
+            .zip(&computed)
+            .filter(|x| *x.1)
+        {
             let mut key = ids;
             key.sort_unstable();
             cache.vertices.entry(key).or_insert(vertex);

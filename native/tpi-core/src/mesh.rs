@@ -449,16 +449,20 @@ pub(crate) fn weld_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
     // A pair welds when one of them is a crossing, their x differ by at most `weld` and
     // their distance is at most `weld`; a vertex with a coordinate that is not finite never
     // does (its distance is not finite). So only the crossings are sorted by x, and each
-    // vertex looks up those whose x lies within `weld` of its own: fl(x_v - x_c) is
-    // monotone in x_c, so they are a run of the sorted crossings.
-    let x = |v: u32| mesh.vertices[v as usize].x;
+    // vertex looks up those whose x lies within `weld` of its own: fl(x_v - x_c) and
+    // fl(x_c - x_v) are monotone in x_c, so they are a run of the sorted crossings.
     let mut by_x: Vec<u32> = (0..mesh.vertices.len() as u32)
         .filter(|&v| is_crossing(v) && mesh.vertices[v as usize].is_finite())
         .collect();
     if by_x.is_empty() {
         return;
     }
-    by_x.sort_by(|&a, &b| x(a).total_cmp(&x(b)));
+    by_x.sort_by(|&a, &b| {
+        mesh.vertices[a as usize]
+            .x
+            .total_cmp(&mesh.vertices[b as usize].x)
+    });
+    let xs: Vec<f64> = by_x.iter().map(|&c| mesh.vertices[c as usize].x).collect();
     let mut merged: Vec<u32> = (0..mesh.vertices.len() as u32).collect();
     let mut any = false;
     for a in 0..mesh.vertices.len() as u32 {
@@ -466,9 +470,11 @@ pub(crate) fn weld_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
         if !pa.is_finite() {
             continue;
         }
-        let first = by_x.partition_point(|&c| pa.x - x(c) > weld);
-        let end = by_x.partition_point(|&c| x(c) - pa.x <= weld);
-        for &b in &by_x[first..end.max(first)] {
+        let first = xs.partition_point(|&cx| pa.x - cx > weld);
+        for (&b, &cx) in by_x[first..].iter().zip(&xs[first..]) {
+            if cx - pa.x > weld {
+                break;
+            }
             let pb = mesh.vertices[b as usize];
             if b == a || pa.distance(pb) > weld || pa.distance(pb).is_nan() {
                 continue;
