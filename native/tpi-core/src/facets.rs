@@ -411,7 +411,6 @@ pub(crate) fn build_stage(
                     seeds,
                     params,
                     vertices: RefCell::new(VertexCache::default()),
-                    shapes: RefCell::new(ShapeMemo::default()),
                 };
                 let (flipped, mesh) = wall.flipped_and_clipped(&triangulation, stages);
                 if let Some(flipped) = flipped {
@@ -462,49 +461,11 @@ struct WallClip<'a> {
     /// clip: all in one ghost context ([`with_ghost_context`]), so a triangle's vertex is
     /// the same wherever it is asked for ([`VertexCache`]).
     vertices: RefCell<VertexCache>,
-    /// The facets' simplicity verdicts taken so far by the clips' shape checks
-    /// ([`mesh_shape`]), by facet and polygon.
-    shapes: RefCell<ShapeMemo>,
 }
 
-/// Whether a real facet's polygon is simple in its plane ([`crate::quality::facet_shape_into`]),
-/// per facet f the polygons judged so far with their verdicts: the verdict depends only on
-/// f's plane (the same in every clip of one [`WallClip`]) and the polygon's points, so a
-/// polygon found here bit for bit takes its verdict. Most facets of the closed and clipped
-/// meshes of the unflipped and flipped triangulations are one polygon. Only looked up: the
-/// memo changes no result.
-#[derive(Default)]
-struct ShapeMemo {
-    /// Per facet, (polygon points, simple).
-    seen: Vec<Vec<(Vec<DVec3>, bool)>>,
-}
-
-impl ShapeMemo {
-    /// Whether facet f of plane `plane` with the polygon `points` is simple, judged where
-    /// not yet judged (`seen` holds a list for f: [`mesh_shape`] sizes it).
-    fn simple(
-        &mut self,
-        f: usize,
-        plane: &Plane,
-        points: &[DVec3],
-        buffer: &mut Vec<glam::DVec2>,
-    ) -> bool {
-        let same = |a: &[DVec3]| {
-            a.len() == points.len()
-                && a.iter().zip(points).all(|(x, y)| {
-                    x.x.to_bits() == y.x.to_bits()
-                        && x.y.to_bits() == y.y.to_bits()
-                        && x.z.to_bits() == y.z.to_bits()
-                })
-        };
-        if let Some(&(_, simple)) = self.seen[f].iter().find(|(p, _)| same(p)) {
-            return simple;
-        }
-        let simple = crate::quality::facet_shape_into(plane, points.iter().copied(), buffer).simple;
-        self.seen[f].push((points.to_vec(), simple));
-        simple
-    }
-}
+/// A mesh with its facets' simplicity verdicts ([`mesh_shape`]), from which another mesh's
+/// facet of the same polygon takes its verdict.
+type Judged<'m> = (&'m FacetMesh, &'m [bool]);
 
 /// Triangle vertices and their extensions to the wall, all computed in one context, so that
 /// a triangle that several triangulations share (the unflipped and flipped ones of the wall
@@ -614,6 +575,8 @@ struct WallOutcome {
     culprits: Vec<usize>,
     /// The mesh's [`crate::sanity::edges`] (None: an edge held wrongly).
     edges: Option<(usize, Vec<(u32, u32)>)>,
+    /// Per facet, whether it is simple in its plane ([`mesh_shape`]; None where not judged).
+    simple: Option<Vec<bool>>,
 }
 
 impl WallClip<'_> {
@@ -688,14 +651,21 @@ impl WallClip<'_> {
                 }
             }
             let before = unflipped.get_or_insert_with(|| {
-                let outcome = self.clip(tri, &vec![false; n], stages);
+                let outcome = self.clip(tri, &vec![false; n], None, stages);
                 reported = true;
                 Measured::new(outcome)
             });
             self.measure(before, &marked, &mut measures);
+            let before = &*before;
+            let reference = before
+                .outcome
+                .simple
+                .as_deref()
+                .map(|simple| (&before.outcome.mesh, simple));
             let outcome = self.clip(
                 &flipped,
                 &marked,
+                reference,
                 if reported { &unreported } else { stages },
             );
             reported = true;
@@ -754,6 +724,7 @@ impl WallClip<'_> {
             None => self.clip(
                 tri,
                 &vec![false; n],
+                None,
                 if reported { &unreported } else { stages },
             ),
         };
@@ -839,8 +810,15 @@ impl WallClip<'_> {
 
     /// The facets of `tri` clipped on the wall (module doc, the clip's retries included), or
     /// the closed facets where the clipped ones do not keep their shape; the culprits among
-    /// the facets `marked`.
-    fn clip(&self, tri: &DualTriangulation, marked: &[bool], stages: &Stages<'_>) -> WallOutcome {
+    /// the facets `marked`. The shape checks take a facet's simplicity from `reference` (an
+    /// earlier clip) where it has the facet's polygon.
+    fn clip(
+        &self,
+        tri: &DualTriangulation,
+        marked: &[bool],
+        reference: Option<Judged<'_>>,
+        stages: &Stages<'_>,
+    ) -> WallOutcome {
         let (samples, seeds, params) = (self.samples, self.seeds, self.params);
         let n = samples.uv.len();
         let unreported = Stages::new(&NoProgress);
@@ -885,14 +863,24 @@ impl WallClip<'_> {
             if let Some((_, boundary)) = &clipped_edges {
                 mark_boundary_vertices(&mut clipped, boundary);
             }
-            let memo = &mut self.shapes.borrow_mut();
-            let before = closed_shape.get_or_init(|| {
+            let before: &Option<(MeshShape, Vec<bool>)> = closed_shape.get_or_init(|| {
                 let edges = closed_edges
                     .get_or_init(|| crate::sanity::edges(&closed.offsets, &closed.loops).ok());
-                mesh_shape(&closed, edges, planes, memo)
+                mesh_shape(&closed, edges, planes, reference.as_slice())
             });
-            let after = mesh_shape(&clipped, &clipped_edges, planes, memo);
-            wall_clip_keeps_shape(before.as_ref(), after).then_some((clipped, clipped_edges))
+            let mut known: Vec<Judged<'_>> = Vec::with_capacity(2);
+            if let Some((_, verdicts)) = before {
+                known.push((&closed, verdicts));
+            }
+            known.extend(reference);
+            let after = mesh_shape(&clipped, &clipped_edges, planes, &known);
+            let (after, simple) =
+                after.map_or((None, None), |(shape, simple)| (Some(shape), Some(simple)));
+            wall_clip_keeps_shape(before.as_ref().map(|x| &x.0), after).then_some((
+                clipped,
+                clipped_edges,
+                simple,
+            ))
         };
         let mut blocked = vec![false; n];
         let (mut clipped, mut extended) = clip(&blocked, stages);
@@ -934,7 +922,7 @@ impl WallClip<'_> {
                 .flatten()
         });
         match kept {
-            Some((mut clipped, edges)) => {
+            Some((mut clipped, edges, simple)) => {
                 // The count of coincident neighbour planes is the structure's, not the
                 // clip's: it is kept.
                 clipped.diagnostics.extend(
@@ -948,17 +936,20 @@ impl WallClip<'_> {
                     clipped: true,
                     culprits,
                     edges,
+                    simple,
                 }
             }
             None => {
                 let edges = closed_edges
                     .into_inner()
                     .unwrap_or_else(|| crate::sanity::edges(&closed.offsets, &closed.loops).ok());
+                let simple = closed_shape.into_inner().flatten().map(|x| x.1);
                 WallOutcome {
                     mesh: closed,
                     clipped: false,
                     culprits,
                     edges,
+                    simple,
                 }
             }
         }
@@ -1252,44 +1243,63 @@ struct MeshShape {
 }
 
 /// The shape of a facet mesh with its [`crate::sanity::edges`], or `None` where an edge is held
-/// by more than two facets or twice in one direction (`edges` None). Facet f's simplicity is
-/// taken from `memo` where its polygon was judged before.
+/// by more than two facets or twice in one direction (`edges` None); also, per facet, whether
+/// it is simple in its plane. Facet f's verdict depends only on its plane (`planes[f]`, the
+/// same in every mesh compared) and its polygon's points, so where a mesh in `known` has
+/// f's polygon bit for bit it takes that mesh's verdict (most facets of the closed and
+/// clipped meshes, of the unflipped and flipped triangulations, are one polygon).
 fn mesh_shape(
     mesh: &FacetMesh,
     edges: &Option<(usize, Vec<(u32, u32)>)>,
     planes: &[Plane],
-    memo: &mut ShapeMemo,
-) -> Option<MeshShape> {
+    known: &[Judged<'_>],
+) -> Option<(MeshShape, Vec<bool>)> {
     let (edges, boundary) = edges.as_ref()?;
     let edges = *edges;
-    if memo.seen.len() < planes.len() {
-        memo.seen.resize_with(planes.len(), Vec::new);
-    }
     let mut used = vec![false; mesh.vertices.len()];
     let mut buffer = Vec::new();
-    let mut points = Vec::new();
+    let mut simple = Vec::with_capacity(mesh.offsets.len().saturating_sub(1));
     let mut bad_facets = 0;
     let mut reach = 0.0f64;
+    let same = |x: DVec3, y: DVec3| {
+        x.x.to_bits() == y.x.to_bits()
+            && x.y.to_bits() == y.y.to_bits()
+            && x.z.to_bits() == y.z.to_bits()
+    };
     for (f, w) in mesh.offsets.windows(2).enumerate() {
         let lp = &mesh.loops[w[0] as usize..w[1] as usize];
         for &v in lp {
             used[v as usize] = true;
             reach = reach.max(mesh.vertices[v as usize].distance(planes[f].point));
         }
-        points.clear();
-        points.extend(lp.iter().map(|&v| mesh.vertices[v as usize]));
-        if !memo.simple(f, &planes[f], &points, &mut buffer) {
+        let verdict = known
+            .iter()
+            .find_map(|&(other, verdicts)| {
+                let theirs = (f < verdicts.len()).then(|| other.facet_loop(f))?;
+                (theirs.len() == lp.len()
+                    && theirs.iter().zip(lp).all(|(&a, &b)| {
+                        same(other.vertices[a as usize], mesh.vertices[b as usize])
+                    }))
+                .then_some(verdicts[f])
+            })
+            .unwrap_or_else(|| {
+                let points = lp.iter().map(|&v| mesh.vertices[v as usize]);
+                crate::quality::facet_shape_into(&planes[f], points, &mut buffer).simple
+            });
+        if !verdict {
             bad_facets += 1;
         }
+        simple.push(verdict);
     }
     let vertices = used.iter().filter(|&&u| u).count() as i64;
     let facets = mesh.offsets.len().saturating_sub(1) as i64;
-    Some(MeshShape {
+    let shape = MeshShape {
         euler: vertices - edges as i64 + facets,
         boundary_loops: crate::sanity::boundary_loops(mesh.vertices.len(), boundary),
         bad_facets,
         reach,
-    })
+    };
+    Some((shape, simple))
 }
 
 /// Builds the facets of all pattern points from the dual triangulation, ending them on
