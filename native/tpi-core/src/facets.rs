@@ -463,9 +463,18 @@ struct WallClip<'a> {
     vertices: RefCell<VertexCache>,
 }
 
-/// A mesh with its facets' simplicity verdicts ([`mesh_shape`]), from which another mesh's
-/// facet of the same polygon takes its verdict.
-type Judged<'m> = (&'m FacetMesh, &'m [bool]);
+/// A mesh with its facets' verdicts ([`mesh_shape`]), from which another mesh's facet of
+/// the same polygon takes its verdict.
+type Judged<'m> = (&'m FacetMesh, &'m [Verdict]);
+
+/// A facet's simplicity in its plane, as [`crate::quality::facet_shape_into`] judges it:
+/// `simple` = at least 3 vertices, positive area and no two non-adjacent edges touching
+/// (`crossing`).
+#[derive(Clone, Copy, Debug)]
+struct Verdict {
+    simple: bool,
+    crossing: bool,
+}
 
 /// Triangle vertices and their extensions to the wall, all computed in one context, so that
 /// a triangle that several triangulations share (the unflipped and flipped ones of the wall
@@ -576,7 +585,7 @@ struct WallOutcome {
     /// The mesh's [`crate::sanity::edges`] (None: an edge held wrongly).
     edges: Option<(usize, Vec<(u32, u32)>)>,
     /// Per facet, whether it is simple in its plane ([`mesh_shape`]; None where not judged).
-    simple: Option<Vec<bool>>,
+    simple: Option<Vec<Verdict>>,
 }
 
 impl WallClip<'_> {
@@ -863,7 +872,7 @@ impl WallClip<'_> {
             if let Some((_, boundary)) = &clipped_edges {
                 mark_boundary_vertices(&mut clipped, boundary);
             }
-            let before: &Option<(MeshShape, Vec<bool>)> = closed_shape.get_or_init(|| {
+            let before: &Option<(MeshShape, Vec<Verdict>)> = closed_shape.get_or_init(|| {
                 let edges = closed_edges
                     .get_or_init(|| crate::sanity::edges(&closed.offsets, &closed.loops).ok());
                 mesh_shape(&closed, edges, planes, reference.as_slice())
@@ -1247,13 +1256,17 @@ struct MeshShape {
 /// it is simple in its plane. Facet f's verdict depends only on its plane (`planes[f]`, the
 /// same in every mesh compared) and its polygon's points, so where a mesh in `known` has
 /// f's polygon bit for bit it takes that mesh's verdict (most facets of the closed and
-/// clipped meshes, of the unflipped and flipped triangulations, are one polygon).
+/// clipped meshes, of the unflipped and flipped triangulations, are one polygon). Where it
+/// has the polygon started at another vertex (a clipped loop starts at its lowest
+/// triangle's vertex, a closed one where its fan starts), the crossing test's verdict holds
+/// ([`crate::quality::loop_crosses`]) and only the area, whose sum depends on the start, is
+/// taken again.
 fn mesh_shape(
     mesh: &FacetMesh,
     edges: &Option<(usize, Vec<(u32, u32)>)>,
     planes: &[Plane],
     known: &[Judged<'_>],
-) -> Option<(MeshShape, Vec<bool>)> {
+) -> Option<(MeshShape, Vec<Verdict>)> {
     let (edges, boundary) = edges.as_ref()?;
     let edges = *edges;
     let mut used = vec![false; mesh.vertices.len()];
@@ -1272,21 +1285,43 @@ fn mesh_shape(
             used[v as usize] = true;
             reach = reach.max(mesh.vertices[v as usize].distance(planes[f].point));
         }
-        let verdict = known
-            .iter()
-            .find_map(|&(other, verdicts)| {
-                let theirs = (f < verdicts.len()).then(|| other.facet_loop(f))?;
-                (theirs.len() == lp.len()
-                    && theirs.iter().zip(lp).all(|(&a, &b)| {
-                        same(other.vertices[a as usize], mesh.vertices[b as usize])
-                    }))
-                .then_some(verdicts[f])
-            })
-            .unwrap_or_else(|| {
+        let n = lp.len();
+        // A mesh in `known` with f's polygon started `shift` vertices on, and its verdict.
+        let found = known.iter().find_map(|&(other, verdicts)| {
+            let theirs = (f < verdicts.len()).then(|| other.facet_loop(f))?;
+            if theirs.len() != n || n == 0 {
+                return None;
+            }
+            let at = |k: usize| other.vertices[theirs[k] as usize];
+            let first = mesh.vertices[lp[0] as usize];
+            (0..n)
+                .find(|&shift| {
+                    same(at(shift), first)
+                        && (1..n).all(|k| same(at((shift + k) % n), mesh.vertices[lp[k] as usize]))
+                })
+                .map(|shift| (shift, verdicts[f]))
+        });
+        let verdict = match found {
+            Some((0, verdict)) => verdict,
+            Some((_, theirs)) => {
                 let points = lp.iter().map(|&v| mesh.vertices[v as usize]);
-                crate::quality::facet_shape_into(&planes[f], points, &mut buffer).simple
-            });
-        if !verdict {
+                crate::quality::project_loop_into(&planes[f], points, &mut buffer);
+                Verdict {
+                    simple: n >= 3 && crate::quality::loop_area(&buffer) > 0.0 && !theirs.crossing,
+                    crossing: theirs.crossing,
+                }
+            }
+            None => {
+                let points = lp.iter().map(|&v| mesh.vertices[v as usize]);
+                crate::quality::project_loop_into(&planes[f], points, &mut buffer);
+                let crossing = n >= 3 && crate::quality::loop_crosses(&buffer);
+                Verdict {
+                    simple: n >= 3 && crate::quality::loop_area(&buffer) > 0.0 && !crossing,
+                    crossing,
+                }
+            }
+        };
+        if !verdict.simple {
             bad_facets += 1;
         }
         simple.push(verdict);
