@@ -463,6 +463,19 @@ struct WallClip<'a> {
     vertices: RefCell<VertexCache>,
 }
 
+/// A mesh with its facets' verdicts ([`mesh_shape`]), from which another mesh's facet of
+/// the same polygon takes its verdict.
+type Judged<'m> = (&'m FacetMesh, &'m [Verdict]);
+
+/// A facet's simplicity in its plane, as [`crate::quality::facet_shape_into`] judges it:
+/// `simple` = at least 3 vertices, positive area and no two non-adjacent edges touching
+/// (`crossing`).
+#[derive(Clone, Copy, Debug)]
+struct Verdict {
+    simple: bool,
+    crossing: bool,
+}
+
 /// Triangle vertices and their extensions to the wall, all computed in one context, so that
 /// a triangle that several triangulations share (the unflipped and flipped ones of the wall
 /// flips, [`WallClip`]) is computed once. Only looked up, never iterated: the cache changes
@@ -478,6 +491,9 @@ pub(crate) struct VertexCache {
     /// [`long_edge_crossings`] by [`crossing_key`] of the edge's two triangle vertices: it
     /// depends only on them.
     crossings: IndexMap<Bits<16>, Vec<Crossing>>,
+    /// The wall flips' notch of a chain segment ([`wall_flips`]) by the bits of its ends'
+    /// points, feet and inside measures: it depends only on them.
+    notches: IndexMap<Bits<12>, f64>,
 }
 
 /// Bits of floats as a hash key, hashed word by word.
@@ -566,6 +582,10 @@ struct WallOutcome {
     /// The facets among those marked that came out of the clip invalid (ascending), or
     /// whose extension to the wall was taken back.
     culprits: Vec<usize>,
+    /// The mesh's [`crate::sanity::edges`] (None: an edge held wrongly).
+    edges: Option<(usize, Vec<(u32, u32)>)>,
+    /// Per facet, whether it is simple in its plane ([`mesh_shape`]; None where not judged).
+    simple: Option<Vec<Verdict>>,
 }
 
 impl WallClip<'_> {
@@ -640,14 +660,21 @@ impl WallClip<'_> {
                 }
             }
             let before = unflipped.get_or_insert_with(|| {
-                let outcome = self.clip(tri, &vec![false; n], stages);
+                let outcome = self.clip(tri, &vec![false; n], None, stages);
                 reported = true;
                 Measured::new(outcome)
             });
             self.measure(before, &marked, &mut measures);
+            let before = &*before;
+            let reference = before
+                .outcome
+                .simple
+                .as_deref()
+                .map(|simple| (&before.outcome.mesh, simple));
             let outcome = self.clip(
                 &flipped,
                 &marked,
+                reference,
                 if reported { &unreported } else { stages },
             );
             reported = true;
@@ -706,6 +733,7 @@ impl WallClip<'_> {
             None => self.clip(
                 tri,
                 &vec![false; n],
+                None,
                 if reported { &unreported } else { stages },
             ),
         };
@@ -791,8 +819,15 @@ impl WallClip<'_> {
 
     /// The facets of `tri` clipped on the wall (module doc, the clip's retries included), or
     /// the closed facets where the clipped ones do not keep their shape; the culprits among
-    /// the facets `marked`.
-    fn clip(&self, tri: &DualTriangulation, marked: &[bool], stages: &Stages<'_>) -> WallOutcome {
+    /// the facets `marked`. The shape checks take a facet's simplicity from `reference` (an
+    /// earlier clip) where it has the facet's polygon.
+    fn clip(
+        &self,
+        tri: &DualTriangulation,
+        marked: &[bool],
+        reference: Option<Judged<'_>>,
+        stages: &Stages<'_>,
+    ) -> WallOutcome {
         let (samples, seeds, params) = (self.samples, self.seeds, self.params);
         let n = samples.uv.len();
         let unreported = Stages::new(&NoProgress);
@@ -822,18 +857,39 @@ impl WallClip<'_> {
             )
         };
         let spacing = samples.diagonal / (2.0 * n as f64).sqrt();
-        // The clipped facets in their final form, if they keep the closed ones' shape.
+        // The closed facets' edges and shape, counted once for every clip compared with them.
+        let closed_edges = std::cell::OnceCell::new();
+        let closed_shape = std::cell::OnceCell::new();
+        let planes = &seeds.planes[..n];
+        // The clipped facets in their final form with their edges, if they keep the closed
+        // ones' shape.
         let finish = |mut clipped: FacetMesh| {
             weld_coincident_crossings(&mut clipped, params.weld_distance);
             drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
             start_loops_at_lowest_triangle(&mut clipped);
-            // One edge count serves both: marking changes kinds, not loops.
+            // One edge count serves all three: marking changes kinds, not loops.
             let clipped_edges = crate::sanity::edges(&clipped.offsets, &clipped.loops).ok();
             if let Some((_, boundary)) = &clipped_edges {
                 mark_boundary_vertices(&mut clipped, boundary);
             }
-            wall_clip_keeps_shape(&closed, &clipped, clipped_edges, &seeds.planes[..n])
-                .then_some(clipped)
+            let before: &Option<(MeshShape, Vec<Verdict>)> = closed_shape.get_or_init(|| {
+                let edges = closed_edges
+                    .get_or_init(|| crate::sanity::edges(&closed.offsets, &closed.loops).ok());
+                mesh_shape(&closed, edges, planes, reference.as_slice())
+            });
+            let mut known: Vec<Judged<'_>> = Vec::with_capacity(2);
+            if let Some((_, verdicts)) = before {
+                known.push((&closed, verdicts));
+            }
+            known.extend(reference);
+            let after = mesh_shape(&clipped, &clipped_edges, planes, &known);
+            let (after, simple) =
+                after.map_or((None, None), |(shape, simple)| (Some(shape), Some(simple)));
+            wall_clip_keeps_shape(before.as_ref().map(|x| &x.0), after).then_some((
+                clipped,
+                clipped_edges,
+                simple,
+            ))
         };
         let mut blocked = vec![false; n];
         let (mut clipped, mut extended) = clip(&blocked, stages);
@@ -875,7 +931,7 @@ impl WallClip<'_> {
                 .flatten()
         });
         match kept {
-            Some(mut clipped) => {
+            Some((mut clipped, edges, simple)) => {
                 // The count of coincident neighbour planes is the structure's, not the
                 // clip's: it is kept.
                 clipped.diagnostics.extend(
@@ -888,13 +944,23 @@ impl WallClip<'_> {
                     mesh: clipped,
                     clipped: true,
                     culprits,
+                    edges,
+                    simple,
                 }
             }
-            None => WallOutcome {
-                mesh: closed,
-                clipped: false,
-                culprits,
-            },
+            None => {
+                let edges = closed_edges
+                    .into_inner()
+                    .unwrap_or_else(|| crate::sanity::edges(&closed.offsets, &closed.loops).ok());
+                let simple = closed_shape.into_inner().flatten().map(|x| x.1);
+                WallOutcome {
+                    mesh: closed,
+                    clipped: false,
+                    culprits,
+                    edges,
+                    simple,
+                }
+            }
         }
     }
 }
@@ -912,10 +978,10 @@ struct Measured {
 
 impl Measured {
     /// The clip `outcome`, no facet measured yet.
-    fn new(outcome: WallOutcome) -> Measured {
+    fn new(mut outcome: WallOutcome) -> Measured {
         let n = outcome.mesh.offsets.len().saturating_sub(1);
         Measured {
-            held: held_once(&outcome.mesh),
+            held: held_once(outcome.edges.take()),
             deviation: vec![0.0; n],
             notch: vec![None; n],
             outcome,
@@ -967,10 +1033,10 @@ fn corner_cut(
     })
 }
 
-/// The edges of `mesh` that one facet holds (the mesh's edge), each as (lower, higher) vertex;
-/// none where an edge is held wrongly.
-fn held_once(mesh: &FacetMesh) -> HashSet<(u32, u32)> {
-    crate::sanity::edges(&mesh.offsets, &mesh.loops)
+/// The edges of a mesh that one facet holds (the mesh's edge), each as (lower, higher) vertex,
+/// from its [`crate::sanity::edges`]; none where an edge is held wrongly (`edges` None).
+fn held_once(edges: Option<(usize, Vec<(u32, u32)>)>) -> HashSet<(u32, u32)> {
+    edges
         .map(|(_, edges)| {
             edges
                 .into_iter()
@@ -1011,26 +1077,17 @@ fn edge_segments<'m>(
         .map(move |(a, b)| (mesh.vertices[a as usize], mesh.vertices[b as usize]))
 }
 
-/// Whether the facets clipped on the wall (`clipped`) keep the shape of the facets closed by
-/// the ghosts' planes (`closed`), both over `planes` (the real seeds'): the same Euler
+/// Whether the facets clipped on the wall keep the shape of the facets closed by the ghosts'
+/// planes, given the two meshes' [`mesh_shape`]s (`closed`, `clipped`; None where an edge is
+/// held wrongly), both over the real seeds' planes: the same Euler
 /// characteristic and boundary loops, every edge held once or twice in opposite directions,
 /// no more facets open or non-simple, and no vertex farther from its facet's seed than the
 /// closed facets reach (a clipped facet is a part of its closed one; a corner's normal line
 /// that meets a non-convex facet's plane far away must not add a spike). On a saddle a boundary facet's edges can run past
 /// the wall all around it (its polygon, not its seed, beyond the boundary) and its neighbours'
 /// cuts then leave it apart: the closed facets, which the validity flips judged, are kept.
-/// `clipped_edges` are the clipped mesh's [`crate::sanity::edges`] (None: an edge held wrongly).
-fn wall_clip_keeps_shape(
-    closed: &FacetMesh,
-    clipped: &FacetMesh,
-    clipped_edges: Option<(usize, Vec<(u32, u32)>)>,
-    planes: &[Plane],
-) -> bool {
-    let closed_edges = crate::sanity::edges(&closed.offsets, &closed.loops).ok();
-    match (
-        mesh_shape(closed, closed_edges, planes),
-        mesh_shape(clipped, clipped_edges, planes),
-    ) {
+fn wall_clip_keeps_shape(closed: Option<&MeshShape>, clipped: Option<MeshShape>) -> bool {
+    match (closed, clipped) {
         (Some(before), Some(after)) => {
             after.euler == before.euler
                 && after.boundary_loops == before.boundary_loops
@@ -1195,36 +1252,89 @@ struct MeshShape {
 }
 
 /// The shape of a facet mesh with its [`crate::sanity::edges`], or `None` where an edge is held
-/// by more than two facets or twice in one direction (`edges` None).
+/// by more than two facets or twice in one direction (`edges` None); also, per facet, whether
+/// it is simple in its plane. Facet f's verdict depends only on its plane (`planes[f]`, the
+/// same in every mesh compared) and its polygon's points, so where a mesh in `known` has
+/// f's polygon bit for bit it takes that mesh's verdict (most facets of the closed and
+/// clipped meshes, of the unflipped and flipped triangulations, are one polygon). Where it
+/// has the polygon started at another vertex (a clipped loop starts at its lowest
+/// triangle's vertex, a closed one where its fan starts), the crossing test's verdict holds
+/// ([`crate::quality::loop_crosses`]) and only the area, whose sum depends on the start, is
+/// taken again.
 fn mesh_shape(
     mesh: &FacetMesh,
-    edges: Option<(usize, Vec<(u32, u32)>)>,
+    edges: &Option<(usize, Vec<(u32, u32)>)>,
     planes: &[Plane],
-) -> Option<MeshShape> {
-    let (edges, boundary) = edges?;
+    known: &[Judged<'_>],
+) -> Option<(MeshShape, Vec<Verdict>)> {
+    let (edges, boundary) = edges.as_ref()?;
+    let edges = *edges;
     let mut used = vec![false; mesh.vertices.len()];
     let mut buffer = Vec::new();
+    let mut simple = Vec::with_capacity(mesh.offsets.len().saturating_sub(1));
     let mut bad_facets = 0;
     let mut reach = 0.0f64;
+    let same = |x: DVec3, y: DVec3| {
+        x.x.to_bits() == y.x.to_bits()
+            && x.y.to_bits() == y.y.to_bits()
+            && x.z.to_bits() == y.z.to_bits()
+    };
     for (f, w) in mesh.offsets.windows(2).enumerate() {
         let lp = &mesh.loops[w[0] as usize..w[1] as usize];
         for &v in lp {
             used[v as usize] = true;
             reach = reach.max(mesh.vertices[v as usize].distance(planes[f].point));
         }
-        let points = lp.iter().map(|&v| mesh.vertices[v as usize]);
-        if !crate::quality::facet_shape_into(&planes[f], points, &mut buffer).simple {
+        let n = lp.len();
+        // A mesh in `known` with f's polygon started `shift` vertices on, and its verdict.
+        let found = known.iter().find_map(|&(other, verdicts)| {
+            let theirs = (f < verdicts.len()).then(|| other.facet_loop(f))?;
+            if theirs.len() != n || n == 0 {
+                return None;
+            }
+            let at = |k: usize| other.vertices[theirs[k] as usize];
+            let first = mesh.vertices[lp[0] as usize];
+            (0..n)
+                .find(|&shift| {
+                    same(at(shift), first)
+                        && (1..n).all(|k| same(at((shift + k) % n), mesh.vertices[lp[k] as usize]))
+                })
+                .map(|shift| (shift, verdicts[f]))
+        });
+        let verdict = match found {
+            Some((0, verdict)) => verdict,
+            Some((_, theirs)) => {
+                let points = lp.iter().map(|&v| mesh.vertices[v as usize]);
+                crate::quality::project_loop_into(&planes[f], points, &mut buffer);
+                Verdict {
+                    simple: n >= 3 && crate::quality::loop_area(&buffer) > 0.0 && !theirs.crossing,
+                    crossing: theirs.crossing,
+                }
+            }
+            None => {
+                let points = lp.iter().map(|&v| mesh.vertices[v as usize]);
+                crate::quality::project_loop_into(&planes[f], points, &mut buffer);
+                let crossing = n >= 3 && crate::quality::loop_crosses(&buffer);
+                Verdict {
+                    simple: n >= 3 && crate::quality::loop_area(&buffer) > 0.0 && !crossing,
+                    crossing,
+                }
+            }
+        };
+        if !verdict.simple {
             bad_facets += 1;
         }
+        simple.push(verdict);
     }
     let vertices = used.iter().filter(|&&u| u).count() as i64;
     let facets = mesh.offsets.len().saturating_sub(1) as i64;
-    Some(MeshShape {
+    let shape = MeshShape {
         euler: vertices - edges as i64 + facets,
-        boundary_loops: crate::sanity::boundary_loops(mesh.vertices.len(), &boundary),
+        boundary_loops: crate::sanity::boundary_loops(mesh.vertices.len(), boundary),
         bad_facets,
         reach,
-    })
+    };
+    Some((shape, simple))
 }
 
 /// Builds the facets of all pattern points from the dual triangulation, ending them on
@@ -1406,7 +1516,8 @@ fn walk_facets(
 
     // 1. Triangle vertices, their conditioning and whether they lie inside.
     let known = vertices.as_deref();
-    let mut triangle_vertices: Vec<TriangleVertex> = tri
+    // Each vertex, and whether it was computed now (not found in the cache).
+    let (mut triangle_vertices, computed): (Vec<TriangleVertex>, Vec<bool>) = tri
         .triangles
         .par_iter()
         .map_init(
@@ -1416,15 +1527,23 @@ fn walk_facets(
                 let mut key = ids;
                 key.sort_unstable();
                 match known.and_then(|known| known.vertices.get(&key)) {
-                    Some(&vertex) => vertex,
-                    None => triangle_vertex_ordered(ctx, key, params.far_vertex_factor),
+                    Some(&vertex) => (vertex, false),
+                    None => (
+                        triangle_vertex_ordered(ctx, key, params.far_vertex_factor),
+                        true,
+                    ),
                 }
             },
         )
-        .collect();
+        .unzip();
     let mut vertices = vertices;
     if let Some(cache) = vertices.as_deref_mut() {
-        for (&vertex, &ids) in triangle_vertices.iter().zip(&tri.triangles) {
+        for ((&vertex, &ids), _) in triangle_vertices
+            .iter()
+            .zip(&tri.triangles)
+            .zip(&computed)
+            .filter(|x| *x.1)
+        {
             let mut key = ids;
             key.sort_unstable();
             cache.vertices.entry(key).or_insert(vertex);

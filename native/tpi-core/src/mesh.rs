@@ -386,13 +386,19 @@ pub(crate) fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
     if candidates.is_empty() {
         return;
     }
-    let mut holders: HashMap<u32, Vec<usize>> = HashMap::new();
+    // Per candidate v, the facets holding it (ascending, once per appearance): `slot[v]`
+    // indexes its list.
+    let mut slot = vec![u32::MAX; mesh.vertices.len()];
+    let mut holders: Vec<Vec<usize>> = Vec::new();
     for &(v, _) in &candidates {
-        holders.entry(v).or_default();
+        if slot[v as usize] == u32::MAX {
+            slot[v as usize] = holders.len() as u32;
+            holders.push(Vec::new());
+        }
     }
     for f in 0..facets {
-        for v in loop_of(mesh, f) {
-            if let Some(list) = holders.get_mut(&v) {
+        for &v in mesh.facet_loop(f) {
+            if let Some(list) = holders.get_mut(slot[v as usize] as usize) {
                 list.push(f);
             }
         }
@@ -403,7 +409,7 @@ pub(crate) fn drop_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
         if merged[v as usize] != v || merged[w as usize] != w {
             continue;
         }
-        let facets_of_v = &holders[&v];
+        let facets_of_v = &holders[slot[v as usize] as usize];
         let beside = |lp: &[u32]| {
             let n = lp.len();
             (0..n).any(|k| lp[k] == v && (lp[(k + 1) % n] == w || lp[(k + n - 1) % n] == w))
@@ -440,33 +446,50 @@ pub(crate) fn weld_coincident_crossings(mesh: &mut FacetMesh, weld: f64) {
         mesh.vertex_kinds[v as usize] == VertexKind::Boundary
             && mesh.vertex_source[v as usize] == u32::MAX
     };
-    let mut by_x: Vec<u32> = (0..mesh.vertices.len() as u32).collect();
+    // A pair welds when one of them is a crossing, their x differ by at most `weld` and
+    // their distance is at most `weld`; a vertex with a coordinate that is not finite never
+    // does (its distance is not finite). So only the crossings are sorted by x, and each
+    // vertex looks up those whose x lies within `weld` of its own: fl(x_v - x_c) and
+    // fl(x_c - x_v) are monotone in x_c, so they are a run of the sorted crossings.
+    let mut by_x: Vec<u32> = (0..mesh.vertices.len() as u32)
+        .filter(|&v| is_crossing(v) && mesh.vertices[v as usize].is_finite())
+        .collect();
+    if by_x.is_empty() {
+        return;
+    }
     by_x.sort_by(|&a, &b| {
         mesh.vertices[a as usize]
             .x
             .total_cmp(&mesh.vertices[b as usize].x)
     });
+    let xs: Vec<f64> = by_x.iter().map(|&c| mesh.vertices[c as usize].x).collect();
     let mut merged: Vec<u32> = (0..mesh.vertices.len() as u32).collect();
     let mut any = false;
-    for (k, &a) in by_x.iter().enumerate() {
+    for a in 0..mesh.vertices.len() as u32 {
         let pa = mesh.vertices[a as usize];
-        for &b in &by_x[k + 1..] {
-            let pb = mesh.vertices[b as usize];
-            if pb.x - pa.x > weld {
+        if !pa.is_finite() {
+            continue;
+        }
+        let first = xs.partition_point(|&cx| pa.x - cx > weld);
+        for (&b, &cx) in by_x[first..].iter().zip(&xs[first..]) {
+            if cx - pa.x > weld {
                 break;
             }
-            if (is_crossing(a) || is_crossing(b)) && pa.distance(pb) <= weld {
-                let (ra, rb) = (find(&mut merged, a), find(&mut merged, b));
-                if ra != rb {
-                    // A triangle vertex stays what it is: the crossings go into it.
-                    let (keep, gone) = match (is_crossing(ra), is_crossing(rb)) {
-                        (true, false) => (rb, ra),
-                        (false, true) => (ra, rb),
-                        _ => (ra.min(rb), ra.max(rb)),
-                    };
-                    merged[gone as usize] = keep;
-                    any = true;
-                }
+            let pb = mesh.vertices[b as usize];
+            if b == a || pa.distance(pb) > weld || pa.distance(pb).is_nan() {
+                continue;
+            }
+            let (ra, rb) = (find(&mut merged, a), find(&mut merged, b));
+            if ra != rb {
+                // A triangle vertex stays what it is: the crossings go into it. The vertex
+                // kept is the least by (crossing, index), whatever the order of the pairs.
+                let (keep, gone) = match (is_crossing(ra), is_crossing(rb)) {
+                    (true, false) => (rb, ra),
+                    (false, true) => (ra, rb),
+                    _ => (ra.min(rb), ra.max(rb)),
+                };
+                merged[gone as usize] = keep;
+                any = true;
             }
         }
     }

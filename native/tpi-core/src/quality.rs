@@ -493,6 +493,50 @@ pub(crate) struct FacetShape {
     pub convex: bool,
 }
 
+/// The loop `points` in `plane`'s frame ([`plane_frame`], origin at its point), into `p`.
+pub(crate) fn project_loop_into(
+    plane: &Plane,
+    points: impl Iterator<Item = DVec3>,
+    p: &mut Vec<DVec2>,
+) {
+    let (e1, e2) = plane_frame(plane);
+    p.clear();
+    p.extend(points.map(|x| {
+        let d = x - plane.point;
+        DVec2::new(d.dot(e1), d.dot(e2))
+    }));
+}
+
+/// The signed area of the loop `p`, half the sum of p_k x p_(k+1) from k = 0 in this order
+/// (as [`facet_shape_into`] sums it).
+pub(crate) fn loop_area(p: &[DVec2]) -> f64 {
+    let n = p.len();
+    let mut area = 0.0;
+    for k in 0..n {
+        area += p[k].perp_dot(p[(k + 1) % n]);
+    }
+    area * 0.5
+}
+
+/// Whether two non-adjacent edges of the loop `p` touch ([`crate::sanity::crosses`], the same
+/// test as `sanity_check`: touching counts, so the two never disagree). That test is
+/// symmetric in its two edges, so the verdict is the same for the loop started at any of its
+/// vertices.
+pub(crate) fn loop_crosses(p: &[DVec2]) -> bool {
+    let n = p.len();
+    for a in 0..n {
+        for b in a + 2..n {
+            if a == 0 && b == n - 1 {
+                continue;
+            }
+            if crate::sanity::crosses(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n]) {
+                return true;
+            }
+        }
+    }
+    false
+}
+
 /// Measures a polygon lying (nearly) in `plane`, with a caller's buffer for the 2D points (no
 /// allocation per facet).
 pub(crate) fn facet_shape_into(
@@ -500,12 +544,7 @@ pub(crate) fn facet_shape_into(
     points: impl Iterator<Item = DVec3>,
     p: &mut Vec<DVec2>,
 ) -> FacetShape {
-    let (e1, e2) = plane_frame(plane);
-    p.clear();
-    p.extend(points.map(|x| {
-        let d = x - plane.point;
-        DVec2::new(d.dot(e1), d.dot(e2))
-    }));
+    project_loop_into(plane, points, p);
     let n = p.len();
     if n < 3 {
         return FacetShape {
@@ -521,19 +560,7 @@ pub(crate) fn facet_shape_into(
         scale = scale.max((p[k] - p[(k + 1) % n]).length());
     }
     area *= 0.5;
-    let mut simple = area > 0.0;
-    'outer: for a in 0..n {
-        for b in a + 2..n {
-            if a == 0 && b == n - 1 {
-                continue;
-            }
-            // The same test as `sanity_check`: touching counts, so the two never disagree.
-            if crate::sanity::crosses(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n]) {
-                simple = false;
-                break 'outer;
-            }
-        }
-    }
+    let simple = area > 0.0 && !loop_crosses(p);
     let tolerance = 1e-12 * scale * scale;
     let convex = simple
         && (0..n).all(|k| {

@@ -231,19 +231,17 @@ pub(crate) fn edges(
     // in linear time. Entry: hi << 1 | (direction lo -> hi ? 0 : 1).
     let vertex_count = loops.iter().max().map_or(0, |&m| m as usize + 1);
     let mut start = vec![0usize; vertex_count + 1];
-    for (a, b) in directed_edges(offsets, loops) {
-        start[a.min(b) as usize + 1] += 1;
-    }
+    for_each_directed_edge(offsets, loops, |a, b| start[a.min(b) as usize + 1] += 1);
     for v in 0..vertex_count {
         start[v + 1] += start[v];
     }
     let mut filled = start.clone();
     let mut entries = vec![0u64; start[vertex_count]];
-    for (a, b) in directed_edges(offsets, loops) {
+    for_each_directed_edge(offsets, loops, |a, b| {
         let (lo, hi, reversed) = if a < b { (a, b, 0) } else { (b, a, 1) };
         entries[filled[lo as usize]] = u64::from(hi) << 1 | reversed;
         filled[lo as usize] += 1;
-    }
+    });
     let mut count = 0;
     let mut boundary = Vec::new();
     for lo in 0..vertex_count {
@@ -282,15 +280,20 @@ pub(crate) fn edges(
     Ok((count, boundary))
 }
 
-/// The directed edges (a, b) of every facet loop, facet by facet.
-fn directed_edges<'a>(
-    offsets: &'a [u32],
-    loops: &'a [u32],
-) -> impl Iterator<Item = (u32, u32)> + 'a {
-    offsets.windows(2).flat_map(move |w| {
+/// Calls `visit` on the directed edges (a, b) of every facet loop, facet by facet, each loop's
+/// closing edge first (the order within a facet does not matter to [`edges`], which sorts
+/// each end's entries).
+fn for_each_directed_edge(offsets: &[u32], loops: &[u32], mut visit: impl FnMut(u32, u32)) {
+    for w in offsets.windows(2) {
         let lp = &loops[w[0] as usize..w[1] as usize];
-        (0..lp.len()).map(move |k| (lp[k], lp[(k + 1) % lp.len()]))
-    })
+        if let Some(&last) = lp.last() {
+            let mut a = last;
+            for &b in lp {
+                visit(a, b);
+                a = b;
+            }
+        }
+    }
 }
 
 /// Connected components of the boundary edges.

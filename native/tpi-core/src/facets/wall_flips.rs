@@ -114,6 +114,22 @@ impl Notches<'_, '_> {
         if let Some(&area) = self.segments.get(&key) {
             return area;
         }
+        // Every field of P and Q the notch reads: a segment an earlier call sampled (the
+        // retries' flips share most of the chain) takes that area.
+        let mut words = [0u64; 12];
+        for (k, v) in [p, q].into_iter().enumerate() {
+            let fields = [
+                v.point.x, v.point.y, v.point.z, v.foot[0], v.foot[1], v.inside,
+            ];
+            for (j, w) in fields.into_iter().enumerate() {
+                words[6 * k + j] = w.to_bits();
+            }
+        }
+        let full = Bits(words);
+        if let Some(&area) = self.vertices.notches.get(&full) {
+            self.segments.insert(key, area);
+            return area;
+        }
         let boundary = self.ctx.boundary;
         let mut guess = p.foot;
         let mut previous = (p.inside.max(0.0), boundary.position(p.foot));
@@ -148,6 +164,7 @@ impl Notches<'_, '_> {
             previous = next;
         }
         self.segments.insert(key, area);
+        self.vertices.notches.insert(full, area);
         area
     }
 
