@@ -802,7 +802,10 @@ impl WallClip<'_> {
 
     /// The facets of `tri` clipped on the wall (module doc, the clip's retries included), or
     /// the closed facets where the clipped ones do not keep their shape; the culprits among
-    /// the facets `marked`.
+    /// the facets `marked`. A clip that does not keep the shape is retried with the enclosed
+    /// outside vertices kept ([`enclosed_outside`]), and that one is kept where it keeps the
+    /// shape with no more invalid facets ([`invalid_marked_facets`], all facets) than the
+    /// closed facets.
     fn clip(&self, tri: &DualTriangulation, marked: &[bool], stages: &Stages<'_>) -> WallOutcome {
         let (samples, seeds, params) = (self.samples, self.seeds, self.params);
         let n = samples.uv.len();
@@ -1672,7 +1675,8 @@ fn enclosed_outside(
 /// nearly one point) the notch stays: i and j cannot share an edge through it.
 ///
 /// With two ghosts, V is a vertex of one real facet i only; it moves within T_i along the
-/// bisector of the ghosts' wedge (the outside of i's corner at V). A vertex within
+/// bisector of the ghosts' wedge (the outside of i's corner at V), by at most
+/// [`WALL_EXTENSION_OWN_STEPS`] quarter sides. A vertex within
 /// [`WALL_EXTENSION_MIN_DEPTH`] of the wall, one the steps do not bring outside, and every
 /// vertex of a triangle holding a seed marked in `blocked` (the caller's retry for facets that
 /// came out invalid) stay where they are. Extensions found in `cache` are taken from it, and
