@@ -192,7 +192,8 @@ pub const WALL_EXTENSION_STEPS: usize = 3;
 /// saddle regions of mixed surfaces the first row of facets along a side can end in a spike
 /// reaching a spacing into the region; its vertex needs about a side to get out (a hex
 /// pattern of 2000 points on a seeded mixed surface: 3.2 quarter sides), and left inside
-/// the spike crosses its neighbour's edge (a non-simple facet).
+/// the spike crosses its neighbour's edge (a non-simple facet). Exact planes only (with
+/// adjusted ones such a vertex keeps [`WALL_EXTENSION_STEPS`]).
 pub const WALL_EXTENSION_OWN_STEPS: usize = 8;
 
 /// A vertex of a triangle with a ghost is moved out past the wall (`facets::extend_to_wall`)
