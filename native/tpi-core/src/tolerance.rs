@@ -185,6 +185,17 @@ pub const WALL_CLIP_SHORT_EDGE: f64 = 0.01;
 /// notch (on samples/saddle.json, moves of 2.5 and 3 sides sent facets around a corner).
 pub const WALL_EXTENSION_STEPS: usize = 3;
 
+/// Quarter-side steps a vertex of a triangle with two ghosts (a vertex of one real facet
+/// alone) that lies inside the region may be moved along the bisector of the ghosts' wedge,
+/// within that facet's plane, to get past the wall (`facets::extend_to_wall`): at most two
+/// of the triangle's longest sides. Only that facet's edges on the mesh's edge move. On
+/// saddle regions of mixed surfaces the first row of facets along a side can end in a spike
+/// reaching a spacing into the region; its vertex needs about a side to get out (a hex
+/// pattern of 2000 points on a seeded mixed surface: 3.2 quarter sides), and left inside
+/// the spike crosses its neighbour's edge (a non-simple facet). Exact planes only (with
+/// adjusted ones such a vertex keeps [`WALL_EXTENSION_STEPS`]).
+pub const WALL_EXTENSION_OWN_STEPS: usize = 8;
+
 /// A vertex of a triangle with a ghost is moved out past the wall (`facets::extend_to_wall`)
 /// only when its foot lies deeper inside than this fraction of the triangle's reach (the
 /// normalised distance of its points from the vertex's first-order foot, about one spacing):

@@ -522,6 +522,43 @@ fn mixed_surfaces_stay_discs_and_flag_every_invalid_facet() {
     }
 }
 
+/// The first row of facets along a side of a saddle region of a mixed surface, far from any
+/// parabolic line: on the seeded mixed surface 11 with a hex pattern of 2000 points, the
+/// |II| metric shears the rows so that each first-row seed keeps one real neighbour, its facet
+/// closed by ghost planes and ending in a spike a spacing deep into the region; the spike's
+/// vertex (a vertex of that facet alone) stayed inside, and the facet's edge with its real
+/// neighbour crossed the spike (five non-simple facets). Interior vertices that ran away
+/// near a parabolic line, feet beyond the wall, also cut holes in the clip, and the whole
+/// mesh fell back to its closed facets. By the independent check: a disc, every invalid facet
+/// flagged, and none farther than two spacings from a parabolic line.
+#[test]
+fn the_first_row_along_a_saddle_side_of_a_mixed_surface_is_valid() {
+    let surface = mixed_surface(11);
+    let pattern = rotated_hex(2000, 0.0);
+    let d = discretise(&surface, &pattern, &DiscretiseOptions::default()).expect("mixed11");
+    let v = check(&d);
+    assert!(v.is_disc(), "not a disc: {v:?}");
+    let spacing = 1.0 / (pattern.len() as f64).sqrt();
+    let far: Vec<usize> = v
+        .invalid_facets()
+        .into_iter()
+        .filter(|&i| !near_parabolic_line(&surface, pattern[i], 2.0 * spacing))
+        .collect();
+    assert!(
+        far.is_empty(),
+        "invalid facets far from parabolic lines: {far:?}"
+    );
+    let unflagged: Vec<usize> = v
+        .invalid_facets()
+        .into_iter()
+        .filter(|&i| d.facet_flags[i] & (FLAG_NON_SIMPLE | FLAG_OVERLAP) == 0)
+        .collect();
+    assert!(
+        unflagged.is_empty(),
+        "invalid facets not flagged: {unflagged:?}"
+    );
+}
+
 /// A seed a small fraction of a spacing from a corner of a mixed surface: its ghosts across
 /// both sides stand closer to it than any real seed, and in the |II| metric the flips once
 /// took every real neighbour from it, leaving its facet closed by ghost planes alone, a panel
