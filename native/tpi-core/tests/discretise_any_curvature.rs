@@ -1169,11 +1169,7 @@ fn overlaps_at_a_boundary_vertex_are_flagged() {
     .expect(&what);
     let v = check(&d);
     assert!(v.is_disc(), "{what}: not a disc: {v:?}");
-    let unflagged: Vec<usize> = v
-        .invalid_facets()
-        .into_iter()
-        .filter(|&i| d.facet_flags[i] & tpi_core::INVALID_FLAGS == 0)
-        .collect();
+    let unflagged = v.unflagged(&d);
     assert!(
         unflagged.is_empty(),
         "{what}: invalid by the check, not flagged: {unflagged:?} (overlapping pairs {:?})",

@@ -539,11 +539,7 @@ fn a_closed_surface_convex_at_every_seed_but_not_as_a_whole_closes() {
                 v.boundary_loops,
                 v.topology_problems
             );
-            let unflagged: Vec<usize> = v
-                .invalid_facets()
-                .into_iter()
-                .filter(|&i| d.facet_flags[i] & tpi_core::INVALID_FLAGS == 0)
-                .collect();
+            let unflagged = v.unflagged(&d);
             assert!(
                 unflagged.is_empty(),
                 "{name}: invalid, not flagged: {unflagged:?}"

@@ -46,6 +46,14 @@ impl Validity {
         out
     }
 
+    /// The facets this check finds invalid that `d`'s report does not flag invalid.
+    pub fn unflagged(&self, d: &Discretisation) -> Vec<usize> {
+        self.invalid_facets()
+            .into_iter()
+            .filter(|&i| d.facet_flags[i] & tpi_core::INVALID_FLAGS == 0)
+            .collect()
+    }
+
     /// A disc: Euler characteristic 1, one boundary loop, no topology problem.
     pub fn is_disc(&self) -> bool {
         self.euler == 1 && self.boundary_loops == 1 && self.topology_problems == 0
