@@ -865,23 +865,7 @@ fn adjusted_planes_leave_no_invalid_facet_where_a_first_decision_did() {
             .expect("a sweep pattern");
         let what = format!("mixed{seed} / {wanted}");
         let d = discretise(surface.as_ref(), &pattern, &options).expect(&what);
-        let v = check(&d);
-        assert!(v.is_disc(), "{what}: not a disc: {v:?}");
-        assert!(
-            v.invalid_facets().is_empty(),
-            "{what}: invalid facets {:?}",
-            v.invalid_facets()
-        );
-        let diagonal = seed_diagonal(&d);
-        for i in 0..d.facet_count() {
-            let (normal, flatness, _) = measured_plane(&d, i);
-            assert!(flatness <= 1e-9 * diagonal, "{what}: facet {i} not planar");
-            let tilt = normal.angle_between(d.seeds[i].normal).to_degrees();
-            assert!(
-                tilt <= 5.0 + 1e-4,
-                "{what}: facet {i} tilted {tilt} degrees"
-            );
-        }
+        assert_valid_planar_within_5_degrees(&d, &what);
     }
 }
 
@@ -1197,20 +1181,7 @@ fn adjusted_planes_reach_further_on_a_nearly_developable_band() {
         .find(|(name, _)| name == "grid300")
         .expect("a sweep pattern");
     let d = discretise(&surface, &pattern, &options).expect("mixed19 / grid300");
-    let v = check(&d);
-    assert!(v.is_disc(), "not a disc: {v:?}");
-    assert!(
-        v.invalid_facets().is_empty(),
-        "invalid facets {:?}",
-        v.invalid_facets()
-    );
-    let diagonal = seed_diagonal(&d);
-    for i in 0..d.facet_count() {
-        let (normal, flatness, _) = measured_plane(&d, i);
-        assert!(flatness <= 1e-9 * diagonal, "facet {i} not planar");
-        let tilt = normal.angle_between(d.seeds[i].normal).to_degrees();
-        assert!(tilt <= 5.0 + 1e-4, "facet {i} tilted {tilt} degrees");
-    }
+    assert_valid_planar_within_5_degrees(&d, "mixed19 / grid300");
     // The grid's spacing on the surface: the mean distance between seeds of neighbouring
     // facets.
     let pairs = d.neighbour_pairs();
@@ -1231,4 +1202,26 @@ fn adjusted_planes_reach_further_on_a_nearly_developable_band() {
         farthest <= 0.1 * spacing,
         "a vertex {farthest} from the surface (spacing {spacing})"
     );
+}
+
+/// The mesh is a disc with no invalid facet (the independent check), every facet planar
+/// (measured from its vertices) and within 5 degrees of its tangent plane.
+fn assert_valid_planar_within_5_degrees(d: &tpi_core::Discretisation, what: &str) {
+    let v = check(d);
+    assert!(v.is_disc(), "{what}: not a disc: {v:?}");
+    assert!(
+        v.invalid_facets().is_empty(),
+        "{what}: invalid facets {:?}",
+        v.invalid_facets()
+    );
+    let diagonal = seed_diagonal(d);
+    for i in 0..d.facet_count() {
+        let (normal, flatness, _) = measured_plane(d, i);
+        assert!(flatness <= 1e-9 * diagonal, "{what}: facet {i} not planar");
+        let tilt = normal.angle_between(d.seeds[i].normal).to_degrees();
+        assert!(
+            tilt <= 5.0 + 1e-4,
+            "{what}: facet {i} tilted {tilt} degrees"
+        );
+    }
 }
