@@ -41,6 +41,14 @@
 //! of the pairs tested for overlap), and the detours also stop at [`DETOUR_WORK_BUDGET`] per
 //! point plus [`DETOUR_WORK_BUDGET_FLOOR`].
 //!
+//! Last, a triangle whose vertex is *unreachable* (the planes of two of its points parallel,
+//! or all three parallel to one line: on a parabolic line of a symmetric surface, seeds
+//! mirrored about it have exactly parallel planes) is flipped away whatever the verdicts
+//! ([`State::flip_unreachable`]): the facet stage would replace its vertex by a stand-in per
+//! facet edge, which cuts a hole, and the mesh must stay a disc with its invalid facets
+//! flagged. Of its three edges the flip kept is the one that leaves the fewest unreachable
+//! triangles in its quad (fewer than before), then the fewest invalid facets around it.
+//!
 //! Facets on the hull (open fans) are built with the boundary later ([`crate::facets`]);
 //! they are not judged here.
 
@@ -164,6 +172,7 @@ pub(crate) fn validity_flips(
             break;
         }
     }
+    stats.flips += state.flip_unreachable();
     stats.unresolved = state.invalid.iter().filter(|&&x| x).count();
     stats
 }
@@ -507,6 +516,77 @@ impl<'a> State<'a> {
             }
         }
         (t1, t2)
+    }
+
+    /// Flips away the triangles whose vertex is unreachable (module doc: the planes of two of
+    /// their points are parallel, or all three nearly meet in a line), whatever that does to
+    /// the verdicts: the facet stage replaces such a vertex by a stand-in per edge, which
+    /// leaves a hole in the mesh, and a disc with invalid facets flagged is better than a
+    /// hole. For each such triangle with a judged point, its three edges are flipped in turn
+    /// and the flip kept that leaves the fewest unreachable triangles in its quad (fewer than
+    /// before), then the fewest invalid facets among those it can change; each kept flip
+    /// lowers the number of unreachable triangles, so the pass ends. Returns the flips kept.
+    pub(crate) fn flip_unreachable(&mut self) -> usize {
+        let judged = self.judged;
+        let unreachable = |state: &Self, t: u32| state.vertex[t as usize].is_nan();
+        let mut kept = 0;
+        let mut t = 0;
+        while t < self.tri.len() as u32 {
+            let v = self.tri.triangles[t as usize];
+            if !unreachable(self, t) || v.iter().all(|&x| x as usize >= judged) {
+                t += 1;
+                continue;
+            }
+            // (unreachable in the quad after, invalid facets around it after, the edge).
+            let mut best: Option<(usize, usize, (u32, u32))> = None;
+            for k in 0..3 {
+                let v = self.tri.triangles[t as usize];
+                let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+                let Some((t0, k0, quad)) = self.flippable(a, b) else {
+                    continue;
+                };
+                let other = self.tri.neighbours[t0][k0];
+                let before = usize::from(unreachable(self, t0 as u32))
+                    + usize::from(unreachable(self, other));
+                let (t1, t2) = self.flip(t0 as u32, k0);
+                let after = usize::from(unreachable(self, t1)) + usize::from(unreachable(self, t2));
+                if after < before && !self.breaks_ghost_run(&quad, judged) {
+                    let mut region = Vec::with_capacity(AFFECTED_CAPACITY);
+                    self.affected_into(&quad, &mut region);
+                    let invalid = region
+                        .iter()
+                        .filter(|&&x| (x as usize) < judged && self.facet_invalid(x))
+                        .count();
+                    if best.map_or(true, |(u, i, _)| (after, invalid) < (u, i)) {
+                        best = Some((after, invalid, (a, b)));
+                    }
+                }
+                // Undo: the new diagonal is the edge opposite position 1 of t1.
+                self.flip(t1, 1);
+            }
+            let Some((_, _, (a, b))) = best else {
+                t += 1;
+                continue;
+            };
+            let Some((t0, k0, quad)) = self.flippable(a, b) else {
+                t += 1;
+                continue;
+            };
+            self.flip(t0 as u32, k0);
+            let mut region = Vec::with_capacity(AFFECTED_CAPACITY);
+            self.affected_into(&quad, &mut region);
+            for x in region {
+                if (x as usize) < judged {
+                    let v = self.facet_invalid(x);
+                    self.set_verdict(x, v);
+                    self.known[x as usize] = true;
+                }
+            }
+            kept += 1;
+            // Triangle numbers were reused by the flip: look again from the start.
+            t = 0;
+        }
+        kept
     }
 
     /// Drops the cached facet of point v and every overlap verdict involving it.
