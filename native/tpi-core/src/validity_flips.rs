@@ -527,66 +527,75 @@ impl<'a> State<'a> {
     /// before), then the fewest invalid facets among those it can change; each kept flip
     /// lowers the number of unreachable triangles, so the pass ends. Returns the flips kept.
     pub(crate) fn flip_unreachable(&mut self) -> usize {
+        let mut kept = 0;
+        // Passes over the triangles until one keeps no flip: a flip reuses the numbers of
+        // its two triangles, so a triangle it made may be one this pass has passed.
+        loop {
+            let before = kept;
+            for t in 0..self.tri.len() as u32 {
+                if self.flip_unreachable_at(t) {
+                    kept += 1;
+                }
+            }
+            if kept == before {
+                return kept;
+            }
+        }
+    }
+
+    /// [`State::flip_unreachable`] for triangle t: whether a flip was kept.
+    fn flip_unreachable_at(&mut self, t: u32) -> bool {
         let judged = self.judged;
         let unreachable = |state: &Self, t: u32| state.vertex[t as usize].is_nan();
-        let mut kept = 0;
-        let mut t = 0;
-        while t < self.tri.len() as u32 {
-            let v = self.tri.triangles[t as usize];
-            if !unreachable(self, t) || v.iter().all(|&x| x as usize >= judged) {
-                t += 1;
-                continue;
-            }
-            // (unreachable in the quad after, invalid facets around it after, the edge).
-            let mut best: Option<(usize, usize, (u32, u32))> = None;
-            for k in 0..3 {
-                let v = self.tri.triangles[t as usize];
-                let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
-                let Some((t0, k0, quad)) = self.flippable(a, b) else {
-                    continue;
-                };
-                let other = self.tri.neighbours[t0][k0];
-                let before = usize::from(unreachable(self, t0 as u32))
-                    + usize::from(unreachable(self, other));
-                let (t1, t2) = self.flip(t0 as u32, k0);
-                let after = usize::from(unreachable(self, t1)) + usize::from(unreachable(self, t2));
-                if after < before && !self.breaks_ghost_run(&quad, judged) {
-                    let mut region = Vec::with_capacity(AFFECTED_CAPACITY);
-                    self.affected_into(&quad, &mut region);
-                    let invalid = region
-                        .iter()
-                        .filter(|&&x| (x as usize) < judged && self.facet_invalid(x))
-                        .count();
-                    if best.map_or(true, |(u, i, _)| (after, invalid) < (u, i)) {
-                        best = Some((after, invalid, (a, b)));
-                    }
-                }
-                // Undo: the new diagonal is the edge opposite position 1 of t1.
-                self.flip(t1, 1);
-            }
-            let Some((_, _, (a, b))) = best else {
-                t += 1;
-                continue;
-            };
-            let Some((t0, k0, quad)) = self.flippable(a, b) else {
-                t += 1;
-                continue;
-            };
-            self.flip(t0 as u32, k0);
-            let mut region = Vec::with_capacity(AFFECTED_CAPACITY);
-            self.affected_into(&quad, &mut region);
-            for x in region {
-                if (x as usize) < judged {
-                    let v = self.facet_invalid(x);
-                    self.set_verdict(x, v);
-                    self.known[x as usize] = true;
-                }
-            }
-            kept += 1;
-            // Triangle numbers were reused by the flip: look again from the start.
-            t = 0;
+        // The triangle's points: the slots of its edges' triangles change with each flip
+        // tried and undone, the points do not.
+        let v = self.tri.triangles[t as usize];
+        if !unreachable(self, t) || v.iter().all(|&x| x as usize >= judged) {
+            return false;
         }
-        kept
+        // (unreachable in the quad after, invalid facets around it after, the edge).
+        let mut best: Option<(usize, usize, (u32, u32))> = None;
+        for k in 0..3 {
+            let (a, b) = (v[(k + 1) % 3], v[(k + 2) % 3]);
+            let Some((t0, k0, quad)) = self.flippable(a, b) else {
+                continue;
+            };
+            let other = self.tri.neighbours[t0][k0];
+            let before =
+                usize::from(unreachable(self, t0 as u32)) + usize::from(unreachable(self, other));
+            let (t1, t2) = self.flip(t0 as u32, k0);
+            let after = usize::from(unreachable(self, t1)) + usize::from(unreachable(self, t2));
+            if after < before && !self.breaks_ghost_run(&quad, judged) {
+                let mut region = Vec::with_capacity(AFFECTED_CAPACITY);
+                self.affected_into(&quad, &mut region);
+                let invalid = region
+                    .iter()
+                    .filter(|&&x| (x as usize) < judged && self.facet_invalid(x))
+                    .count();
+                if best.map_or(true, |(u, i, _)| (after, invalid) < (u, i)) {
+                    best = Some((after, invalid, (a, b)));
+                }
+            }
+            // Undo: the new diagonal is the edge opposite position 1 of t1.
+            self.flip(t1, 1);
+        }
+        let Some((_, _, (a, b))) = best else {
+            return false;
+        };
+        let Some((t0, k0, quad)) = self.flippable(a, b) else {
+            return false;
+        };
+        self.flip(t0 as u32, k0);
+        let mut region = Vec::with_capacity(AFFECTED_CAPACITY);
+        self.affected_into(&quad, &mut region);
+        for x in region {
+            if (x as usize) < judged {
+                let v = self.facet_invalid(x);
+                self.set_verdict(x, v);
+                self.known[x as usize] = true;
+            }
+        }
+        true
     }
 
     /// Drops the cached facet of point v and every overlap verdict involving it.
