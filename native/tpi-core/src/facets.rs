@@ -433,7 +433,6 @@ pub(crate) fn build_stage(
                     seeds,
                     params,
                     vertices: RefCell::new(VertexCache::default()),
-                    closed: RefCell::new(ClosedVertices::default()),
                 };
                 let (flipped, mesh) = wall.flipped_and_clipped(&triangulation, stages);
                 if let Some(flipped) = flipped {
@@ -484,8 +483,6 @@ struct WallClip<'a> {
     /// clip: all in one ghost context ([`with_ghost_context`]), so a triangle's vertex is
     /// the same wherever it is asked for ([`VertexCache`]).
     vertices: RefCell<VertexCache>,
-    /// The closed facets' vertices computed so far, shared by every clip's closed facets.
-    closed: RefCell<ClosedVertices>,
 }
 
 /// A mesh with its facets' verdicts ([`mesh_shape`]), from which another mesh's facet of
@@ -880,14 +877,13 @@ impl WallClip<'_> {
         let (samples, seeds, params) = (self.samples, self.seeds, self.params);
         let n = samples.uv.len();
         let unreported = Stages::new(&NoProgress);
-        let closed = build_closed_facets_with(
+        let closed = build_closed_facets(
             tri,
             &seeds.planes,
             n,
             &seeds.source,
             false,
             params,
-            Some(&mut self.closed.borrow_mut()),
             &unreported,
         );
         // Only the first clip reports progress: the retries redo the same stage.
@@ -3103,42 +3099,11 @@ pub(crate) fn build_closed_facets(
     params: &FacetParams,
     stages: &Stages<'_>,
 ) -> FacetMesh {
-    build_closed_facets_with(
-        tri, planes, real_count, source, envelope, params, None, stages,
-    )
-}
-
-/// A closed facet vertex with its meeting point ([`build_closed_facets_with`]) by its
-/// triangle's points in ascending order: both depend only on those points' planes and on
-/// which of them are real, so the wall clips ([`WallClip`]), which build the closed facets of
-/// the unflipped and every flipped triangulation with the same planes, solve a triangle they
-/// share once. Only looked up, never iterated: the cache changes no result.
-type ClosedVertices = IndexMap<[u32; 3], (TriangleVertex, ThreePlanePoint)>;
-
-/// [`build_closed_facets`], taking the triangle vertices found in `known` from it and adding
-/// those computed to it.
-// The closed facets' inputs and the cache; a struct would only rename them.
-#[allow(clippy::too_many_arguments)]
-fn build_closed_facets_with(
-    tri: &DualTriangulation,
-    planes: &[Plane],
-    real_count: usize,
-    source: &[u32],
-    envelope: bool,
-    params: &FacetParams,
-    known: Option<&mut ClosedVertices>,
-    stages: &Stages<'_>,
-) -> FacetMesh {
     let observer = stages.observer();
     let real = |t: &[u32; 3]| t.iter().any(|&v| (v as usize) < real_count);
     // Each triangle's vertex with its meeting point (kept for the diagnostics below, so that
-    // the three planes are solved once), and whether it was computed now (not found in
-    // `known`).
-    let cached = known.as_deref();
-    let ((triangle_vertices, meetings), computed): (
-        (Vec<TriangleVertex>, Vec<ThreePlanePoint>),
-        Vec<bool>,
-    ) = tri
+    // the three planes are solved once).
+    let (triangle_vertices, meetings): (Vec<TriangleVertex>, Vec<ThreePlanePoint>) = tri
         .triangles
         .par_iter()
         .map_init(
@@ -3147,9 +3112,6 @@ fn build_closed_facets_with(
                 tally.add(1);
                 let mut ids = *ids;
                 ids.sort_unstable();
-                if let Some(&(vertex, meeting)) = cached.and_then(|c| c.get(&ids)) {
-                    return ((vertex, meeting), false);
-                }
                 let [a, b, c] = ids.map(|i| &planes[i as usize]);
                 let meeting = meeting_point(a, b, c);
                 let centroid = (a.point + b.point + c.point) / 3.0;
@@ -3171,24 +3133,10 @@ fn build_closed_facets_with(
                     measured: true,
                     newton_foot: false,
                 };
-                ((vertex, meeting), true)
+                (vertex, meeting)
             },
         )
         .unzip();
-    if let Some(cache) = known {
-        for (((ids, &vertex), &meeting), _) in tri
-            .triangles
-            .iter()
-            .zip(&triangle_vertices)
-            .zip(&meetings)
-            .zip(&computed)
-            .filter(|x| *x.1)
-        {
-            let mut key = *ids;
-            key.sort_unstable();
-            cache.entry(key).or_insert((vertex, meeting));
-        }
-    }
     let mut diagnostics: Vec<Diagnostic> = tri
         .triangles
         .iter()
