@@ -1258,15 +1258,35 @@ fn invalid_marked_facets(
     least_area: f64,
 ) -> Vec<usize> {
     let n = planes.len();
-    let mut holders: Vec<Vec<u32>> = vec![Vec::new(); mesh.vertices.len()];
+    // Each vertex's facets, ascending and each once, by a counting sort into one flat array
+    // (`holders[start[v]..start[v + 1]]`), not a list per vertex.
+    let vertex_count = mesh.vertices.len();
+    let mut start = vec![0u32; vertex_count + 1];
+    let mut last = vec![u32::MAX; vertex_count];
     for f in 0..n {
         for &v in mesh.facet_loop(f) {
-            let list = &mut holders[v as usize];
-            if list.last() != Some(&(f as u32)) {
-                list.push(f as u32);
+            if last[v as usize] != f as u32 {
+                last[v as usize] = f as u32;
+                start[v as usize + 1] += 1;
             }
         }
     }
+    for v in 0..vertex_count {
+        start[v + 1] += start[v];
+    }
+    let mut holders = vec![0u32; start[vertex_count] as usize];
+    let mut fill = start.clone();
+    last.fill(u32::MAX);
+    for f in 0..n {
+        for &v in mesh.facet_loop(f) {
+            if last[v as usize] != f as u32 {
+                last[v as usize] = f as u32;
+                holders[fill[v as usize] as usize] = f as u32;
+                fill[v as usize] += 1;
+            }
+        }
+    }
+    let holders_of = |v: u32| &holders[start[v as usize] as usize..start[v as usize + 1] as usize];
     let mut buffer = Vec::new();
     let mut simple = vec![None; n];
     let mut is_simple = |f: usize| {
@@ -1291,7 +1311,7 @@ fn invalid_marked_facets(
         let mut others: Vec<u32> = mesh.loops
             [mesh.offsets[f] as usize..mesh.offsets[f + 1] as usize]
             .iter()
-            .flat_map(|&v| holders[v as usize].iter().copied())
+            .flat_map(|&v| holders_of(v).iter().copied())
             .filter(|&g| g as usize != f)
             .collect();
         others.sort_unstable();

@@ -33,9 +33,20 @@ pub(crate) type IndexMap<K, V> = HashMap<K, V, std::hash::BuildHasherDefault<Ind
 pub(crate) struct IndexHasher(u64);
 
 impl std::hash::Hasher for IndexHasher {
+    /// Eight bytes a step (little-endian words, the last one padded with zeros): a key of
+    /// integer arrays (`[u32; 3]`, `Vec<u64>`) hashes its elements as one run of bytes.
     fn write(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.write_u64(u64::from(b));
+        let mut words = bytes.chunks_exact(8);
+        for word in &mut words {
+            let mut x = [0u8; 8];
+            x.copy_from_slice(word);
+            self.write_u64(u64::from_le_bytes(x));
+        }
+        let rest = words.remainder();
+        if !rest.is_empty() {
+            let mut x = [0u8; 8];
+            x[..rest.len()].copy_from_slice(rest);
+            self.write_u64(u64::from_le_bytes(x));
         }
     }
 

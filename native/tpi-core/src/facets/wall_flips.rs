@@ -178,6 +178,16 @@ impl Notches<'_, '_> {
         }
         triangles.sort_unstable();
         triangles.dedup();
+        // Each triangle's final vertex once per score: most are ends of two segments.
+        let mut finals: Vec<(u32, TriangleVertex)> = Vec::with_capacity(triangles.len());
+        let mut final_vertex = |notches: &mut Self, t: u32| match finals.iter().find(|x| x.0 == t) {
+            Some(&(_, v)) => v,
+            None => {
+                let v = notches.final_vertex(tri, t as usize);
+                finals.push((t, v));
+                v
+            }
+        };
         let mut total = 0.0;
         for &t in &triangles {
             let ids = tri.triangles[t as usize];
@@ -192,8 +202,8 @@ impl Notches<'_, '_> {
                 if other == NO_TRIANGLE {
                     continue;
                 }
-                let p = self.final_vertex(tri, t as usize);
-                let q = self.final_vertex(tri, other as usize);
+                let p = final_vertex(self, t);
+                let q = final_vertex(self, other);
                 total += self.segment_notch(&p, &q);
             }
         }
