@@ -74,6 +74,25 @@
 //! The answer is the smallest finished pattern or lattice that meets D (with no invalid facet
 //! when one was found without); when none meets D within [`FIT_REFINE_PASSES`] refinements,
 //! the result says so ([`FittedPattern::met`]) and carries the closest attempt.
+//!
+//! Last, the lattices of the search that missed D narrowly ([`FIT_NEAR_MISS`]) with fewer
+//! points than the best are relaxed towards a minimax covering ([`relax_near_misses`]). The
+//! vertices of a facet are the centres of the circles through its seed and two neighbours,
+//! so D is a covering condition: every vertex within its circumradius of the seeds, the
+//! deviation c R^2 with c about k / 2. A lattice's cells are the thinnest covering, but
+//! graded lattices cut by the walls leave their largest vertex deviation some per cent
+//! above their mean (samples/paraboloid.json at D = 0.01: 0.993 D against a mean 0.943 D).
+//! Lloyd's iteration evens the cells' areas, not their circumradii (the earlier sessions'
+//! Lloyd steps from the lattices raised the largest deviation); the relaxation here moves
+//! each seed towards the weighted 1-centre of its facet's vertices ([`minimax_step`]), the
+//! place where the largest of its vertices' modelled deviations c_v |x - x_v|_M^2 is least,
+//! which lowers the largest deviation towards the mean. Only near misses of mean deviation
+//! at most [`FIT_NEAR_MEAN`] D are relaxed (the mean does not fall), fewest points first,
+//! and a relaxation stops when its largest deviation falls too slowly to reach D. Besides
+//! the near misses the search measured, each lattice search offers the smaller lattices of
+//! its grading whose mean deviation, going as the inverse of the count, would be at most
+//! [`FIT_NEAR_MEAN`] D ([`FIT_SMALLER_STEPS`]; not on saddles), relaxed after the measured
+//! ones.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -240,6 +259,7 @@ pub fn fit_pattern_with_progress(
     let mut best: Option<FittedPattern> = None;
     let mut closest: Option<FittedPattern> = None;
     let mut runs = 0usize;
+    let mut near: Vec<NearMiss> = Vec::new();
     let margins = seam_margins(surface);
     // A lattice far larger than the field predicts is not worth discretising: across a
     // parabolic line a vertex runs away whatever the spacing (samples/mixed-roof.json).
@@ -317,10 +337,17 @@ pub fn fit_pattern_with_progress(
                 &options,
                 &mut runs,
                 progress,
+                &mut near,
             )?;
             if let Some(lattice) = lattice {
                 consider(&mut best, &mut closest, lattice);
             }
+        }
+        if saddle {
+            // On saddles the smaller lattices not yet measured relaxed to nothing
+            // (samples/hypar.json, samples/saddle.json at D = 0.003, 0.01, 0.03) and
+            // doubled the fit's time; their lattices are set by a few wall vertices.
+            near.retain(|n| n.1.is_finite());
         }
     }
     // Above FIT_ADAPTIVE_POINTS the rounds (each tens of discretisations) would take far
@@ -388,6 +415,20 @@ pub fn fit_pattern_with_progress(
             progress,
         )?;
         consider(&mut best, &mut closest, finished);
+    }
+    if margins == [0.0, 0.0] {
+        if let Some(b) = best.take() {
+            best = Some(relax_near_misses(
+                surface,
+                &base,
+                b,
+                near,
+                max_deviation,
+                &options,
+                &mut runs,
+                progress,
+            )?);
+        }
     }
     let mut result = best.or(closest).unwrap_or(FittedPattern {
         uv: Vec::new(),
@@ -857,6 +898,8 @@ struct Trial<'a> {
     options: &'a DiscretiseOptions,
     progress: &'a dyn Progress,
     tolerance: f64,
+    /// Patterns that missed the tolerance by at most [`FIT_NEAR_MISS`] with no invalid facet.
+    near: std::cell::RefCell<Vec<NearMiss>>,
 }
 
 impl Trial<'_> {
@@ -871,8 +914,14 @@ impl Trial<'_> {
     ) -> Result<Option<FittedPattern>, TpiError> {
         let d = discretise_with_progress(self.surface, &uv, self.options, self.progress)?;
         *runs += 1;
-        let (deviation, invalid) = judged(largest_vertex_deviation(self.surface, &d), &d);
+        let feet = vertex_feet(self.surface, &d);
+        let (deviation, invalid) = judged(largest_foot_deviation(&feet), &d);
         let met = deviation <= self.tolerance && (invalid == 0 || invalid_allowed);
+        if !met && invalid == 0 && deviation <= FIT_NEAR_MISS * self.tolerance {
+            self.near
+                .borrow_mut()
+                .push((deviation, mean_foot_deviation(&feet), uv.clone()));
+        }
         Ok(met.then_some(FittedPattern {
             uv,
             met: true,
@@ -904,6 +953,7 @@ fn wall_lattice(
     options: &DiscretiseOptions,
     runs: &mut usize,
     progress: &dyn Progress,
+    near: &mut Vec<NearMiss>,
 ) -> Result<Option<FittedPattern>, TpiError> {
     let (l_s, l_t) = (grading.s.total, grading.t.total);
     if !(l_s > 0.0 && l_t > 0.0 && l_s.is_finite() && l_t.is_finite()) {
@@ -927,6 +977,8 @@ fn wall_lattice(
     let mut met: Option<FittedPattern> = None;
     let mut failed_below = 1usize; // the most columns known to fail
     let mut met_columns = 0usize;
+    // The mean vertex deviation and the count of the lattice found by the search.
+    let (mut met_mean, mut met_count) = (f64::NAN, 0usize);
     // The columns at which all but the boundary's share of the vertices meet the tolerance
     // (from the last lattice discretised): see the refinement after the search.
     let mut bulk_columns: Option<usize> = None;
@@ -974,6 +1026,9 @@ fn wall_lattice(
         }
         let (deviation, invalid) = judged(own, &d);
         let ok = deviation <= tolerance;
+        if !ok && invalid == 0 && deviation <= FIT_NEAR_MISS * tolerance {
+            near.push((deviation, mean_foot_deviation(&feet), uv.clone()));
+        }
         let predicted = if deviation > 0.0 && deviation.is_finite() {
             (columns as f64 * (deviation / tolerance).sqrt()).ceil() as usize
         } else {
@@ -981,6 +1036,8 @@ fn wall_lattice(
         };
         if ok {
             met_columns = columns;
+            met_mean = mean_foot_deviation(&feet);
+            met_count = uv.len();
             met = Some(FittedPattern {
                 uv,
                 met: true,
@@ -1023,6 +1080,7 @@ fn wall_lattice(
         options,
         progress,
         tolerance,
+        near: std::cell::RefCell::new(Vec::new()),
     };
     // The rows follow the columns by a rounded aspect, so a lattice one row or one column
     // smaller than the one found may meet the tolerance too: on samples/rational-dome.json at
@@ -1075,6 +1133,39 @@ fn wall_lattice(
                 break;
             }
         }
+    }
+    near.append(&mut trial.near.into_inner());
+    // Smaller lattices of this grading for the relaxation (relax_near_misses), not yet
+    // measured: those whose mean deviation, going as the inverse of the count from the
+    // lattice found, would be at most FIT_NEAR_MEAN D.
+    if m.uv.len() <= FIT_NEIGHBOUR_POINTS && met_mean > 0.0 && met_mean.is_finite() {
+        let floor = (met_count as f64 * met_mean / (FIT_NEAR_MEAN * tolerance)).ceil() as usize;
+        let top = m.uv.len().min(beat);
+        let (c, r) = (met_columns, rows_of(met_columns));
+        let rows = r.saturating_sub(3).max(1)..=r + 1;
+        let mut extra = Vec::new();
+        if grading.row_field.is_some() {
+            for rows in rows {
+                for k in 1..=FIT_SMALLER_STEPS {
+                    let columns = c as f64 - k as f64 / FIT_SMALLER_STEPS as f64 * FIT_SMALLER_SPAN;
+                    if columns >= 1.0 {
+                        extra.push(rowwise_hex(columns, rows, grading));
+                    }
+                }
+            }
+        } else {
+            for columns in c.saturating_sub(2).max(2)..=c {
+                for rows in rows.clone() {
+                    extra.push(wall_hex(columns, rows, grading));
+                }
+            }
+        }
+        near.extend(
+            extra
+                .into_iter()
+                .filter(|uv| uv.len() >= floor && uv.len() < top)
+                .map(|uv| (f64::NAN, f64::NAN, uv)),
+        );
     }
     let Some(bulk) = bulk_columns else {
         return Ok(Some(m));
@@ -1558,3 +1649,291 @@ pub const HEX_BASELINE_SEARCH_FACTOR: usize = 8;
 
 /// Most columns [`hex_baseline`] tries (about 1.3 million points).
 pub const MAX_HEX_COLUMNS: usize = 1024;
+
+/// One step of the minimax relaxation (module doc): each point p moves towards the place x
+/// where the largest of its facet's vertex deviations, each modelled as
+/// c_v |x - x_v|_M^2 (x_v the vertex's foot, M the field's metric at p, c_v = dev_v /
+/// |p - x_v|_M^2 from the measured deviation), is least: a weighted 1-centre, found by
+/// steps towards the worst foot halved when they do not lower the largest; the point then
+/// moves [`FIT_MINIMAX_STEP`] times the way to it. Points on a wall slide along it, corners
+/// stay, the rest stay in the square.
+fn minimax_step(
+    field: &SizingField,
+    domain: &crate::surface::Domain,
+    d: &Discretisation,
+    feet: &[Option<(f64, [f64; 2])>],
+    points: &[[f64; 2]],
+) -> Vec<[f64; 2]> {
+    let damping = FIT_MINIMAX_STEP;
+    (0..points.len())
+        .map(|i| {
+            let p = points[i];
+            let m = field.metric_at(p);
+            let q = |a: [f64; 2], b: [f64; 2]| {
+                let (x, y) = (a[0] - b[0], a[1] - b[1]);
+                m[0] * x * x + 2.0 * m[1] * x * y + m[2] * y * y
+            };
+            let targets: Vec<([f64; 2], f64)> = d
+                .facet(i)
+                .iter()
+                .filter_map(|&v| feet[v as usize])
+                .filter_map(|(dev, foot)| {
+                    let st = domain.to_normalised(foot);
+                    let r = q(p, st);
+                    (r > 1e-18 && dev.is_finite()).then_some((st, dev / r))
+                })
+                .collect();
+            if targets.len() < 2 {
+                return p;
+            }
+            let f = |x: [f64; 2]| {
+                targets
+                    .iter()
+                    .map(|&(st, c)| c * q(x, st))
+                    .fold(0.0, f64::max)
+            };
+            let fixed = [p[0] <= 0.0 || p[0] >= 1.0, p[1] <= 0.0 || p[1] >= 1.0];
+            let constrain = |x: [f64; 2]| {
+                [
+                    if fixed[0] { p[0] } else { x[0].clamp(0.0, 1.0) },
+                    if fixed[1] { p[1] } else { x[1].clamp(0.0, 1.0) },
+                ]
+            };
+            let mut x = p;
+            let mut fx = f(x);
+            let mut gamma = 0.25;
+            for _ in 0..40 {
+                let worst = targets
+                    .iter()
+                    .max_by(|a, b| (a.1 * q(x, a.0)).total_cmp(&(b.1 * q(x, b.0))))
+                    .map(|t| t.0)
+                    .unwrap_or(x);
+                let y = constrain([
+                    x[0] + gamma * (worst[0] - x[0]),
+                    x[1] + gamma * (worst[1] - x[1]),
+                ]);
+                let fy = f(y);
+                if fy < fx {
+                    x = y;
+                    fx = fy;
+                } else {
+                    gamma *= 0.5;
+                    if gamma < 1e-4 {
+                        break;
+                    }
+                }
+            }
+            constrain([
+                p[0] + damping * (x[0] - p[0]),
+                p[1] + damping * (x[1] - p[1]),
+            ])
+        })
+        .collect()
+}
+
+/// A pattern of the lattice search that missed the tolerance by at most [`FIT_NEAR_MISS`]
+/// with no invalid facet: its largest and mean vertex deviation, and its points.
+type NearMiss = (f64, f64, Vec<[f64; 2]>);
+
+/// Largest deviation of a [`NearMiss`], over the tolerance: the lattices one column or a few
+/// points below the one found stand off 1.01 to 1.08 D on the domes of `fit_measure`.
+const FIT_NEAR_MISS: f64 = 1.08;
+
+/// Largest mean vertex deviation, over the tolerance, of a [`NearMiss`] that
+/// [`relax_near_misses`] relaxes: the relaxation evens the deviations but cannot lower their
+/// mean (the lattice is already the thinnest covering), and ends with the largest about 3 %
+/// above the mean (samples/paraboloid.json at D = 0.01: the 295-point lattice from 0.993 D,
+/// mean 0.943 D, to 0.952 D in 30 steps; a 285-point lattice of mean 0.966 D from 1.052 D
+/// to 0.9997 D in 40). The near misses of mean 0.98 to 1.0 D it relaxed to no better than
+/// 1.01 to 1.04 D in 80 steps.
+const FIT_NEAR_MEAN: f64 = 0.975;
+
+/// Real column counts below the one found, evenly spaced over [`FIT_SMALLER_SPAN`] columns,
+/// of the smaller [`Grading::rowwise`] lattices [`wall_lattice`] offers
+/// [`relax_near_misses`] unmeasured (each with the row counts from three less to one more;
+/// the separable lattices offer those of up to two columns less with the same rows); only
+/// those whose mean deviation, going as the inverse of the count from the lattice found,
+/// would be at most [`FIT_NEAR_MEAN`] D. On samples/rational-dome.json at D = 0.01 and
+/// 0.03 the search's own near misses gave 389 and 137 points, these 370 and 130.
+const FIT_SMALLER_STEPS: usize = 16;
+
+/// Columns below the one found spanned by [`FIT_SMALLER_STEPS`].
+const FIT_SMALLER_SPAN: f64 = 4.0;
+
+/// Most steps of [`minimax_step`] per near miss.
+const FIT_MINIMAX_ITERATIONS: usize = 80;
+
+/// Most discretisations [`relax_near_misses`] runs in all.
+const FIT_MINIMAX_BUDGET: usize = 300;
+
+/// Most pattern points [`relax_near_misses`] discretises in all (counted as the best
+/// pattern's points per discretisation; fewer discretisations than [`FIT_MINIMAX_BUDGET`]
+/// above 833 points): on samples/nurbs-dome.json at D = 0.001 (3,093 points) 300
+/// discretisations found nothing and took 2.2 -> 7.1 s of CPU.
+const FIT_MINIMAX_POINTS: usize = 250_000;
+
+/// Steps of [`minimax_step`] after which [`minimax_relax`] gives up a near miss whose largest
+/// deviation, falling at the rate of its last 5 steps, would not reach the tolerance within
+/// [`FIT_MINIMAX_ITERATIONS`].
+const FIT_MINIMAX_PATIENCE: usize = 10;
+
+/// How far each point of [`minimax_step`] moves, as a multiple of the way to its weighted
+/// 1-centre (over-relaxed: the step towards the 1-centre of a facet whose neighbours move
+/// too undershoots). On samples/paraboloid.json at D = 0.01 the 285-point near miss met D
+/// after 62 steps with 1.5 and 40 with 2; 0.6 and 1 fell 2 to 3 times slower.
+const FIT_MINIMAX_STEP: f64 = 2.0;
+
+/// The best pattern, or a smaller one: the near misses of the lattice search with fewer
+/// points and a mean vertex deviation of at most [`FIT_NEAR_MEAN`] D, fewest points first,
+/// each relaxed by [`minimax_relax`] until one meets the tolerance with no invalid facet
+/// (at most [`FIT_MINIMAX_BUDGET`] discretisations and [`FIT_MINIMAX_POINTS`] points in
+/// all; only while the best pattern has at most [`FIT_NEIGHBOUR_POINTS`] points).
+#[allow(clippy::too_many_arguments)]
+fn relax_near_misses(
+    surface: &dyn Surface,
+    field: &SizingField,
+    best: FittedPattern,
+    mut near: Vec<NearMiss>,
+    tolerance: f64,
+    options: &DiscretiseOptions,
+    runs: &mut usize,
+    progress: &dyn Progress,
+) -> Result<FittedPattern, TpiError> {
+    if !best.met || best.invalid_facets > 0 || best.uv.len() > FIT_NEIGHBOUR_POINTS {
+        return Ok(best);
+    }
+    let mean_limit = FIT_NEAR_MEAN * tolerance;
+    near.retain(|(_, mean, uv)| uv.len() < best.uv.len() && !(*mean > mean_limit));
+    // Fewest points first, each pattern once (measured before unmeasured).
+    let points_order = |a: &[[f64; 2]], b: &[[f64; 2]]| {
+        a.len().cmp(&b.len()).then_with(|| {
+            a.iter()
+                .flatten()
+                .zip(b.iter().flatten())
+                .map(|(x, y)| x.total_cmp(y))
+                .find(|o| o.is_ne())
+                .unwrap_or(std::cmp::Ordering::Equal)
+        })
+    };
+    near.sort_by(|a, b| points_order(&a.2, &b.2).then(a.1.total_cmp(&b.1)));
+    near.dedup_by(|a, b| a.2 == b.2);
+    near.sort_by(|a, b| a.2.len().cmp(&b.2.len()).then(a.1.total_cmp(&b.1)));
+    let iterations = FIT_MINIMAX_ITERATIONS;
+    let mut budget = FIT_MINIMAX_BUDGET.min(FIT_MINIMAX_POINTS / best.uv.len().max(1));
+    let mut best = best;
+    let mut found = false;
+    // The measured near misses first, then the smaller lattices not yet measured (each
+    // pass up to its first success).
+    let (measured, unmeasured): (Vec<NearMiss>, Vec<NearMiss>) =
+        near.into_iter().partition(|n| n.1.is_finite());
+    for (_, _, uv) in measured
+        .into_iter()
+        .chain([(f64::NAN, f64::NAN, Vec::new())])
+        .chain(unmeasured)
+    {
+        if uv.is_empty() {
+            // Between the passes.
+            found = false;
+            continue;
+        }
+        if budget == 0 {
+            break;
+        }
+        if found {
+            continue;
+        }
+        if uv.len() >= best.uv.len() {
+            continue;
+        }
+        let before = *runs;
+        let relaxed = minimax_relax(
+            surface,
+            field,
+            uv,
+            tolerance,
+            iterations.min(budget),
+            options,
+            runs,
+            progress,
+        )?;
+        budget = budget.saturating_sub(*runs - before);
+        if let Some(f) = relaxed {
+            best = f;
+            found = true;
+        }
+    }
+    Ok(best)
+}
+
+/// `points` moved by up to `iterations` steps of [`minimax_step`] until their mesh meets
+/// the tolerance with no invalid facet (None when it does not, or when the largest deviation
+/// falls too slowly to get there).
+#[allow(clippy::too_many_arguments)]
+fn minimax_relax(
+    surface: &dyn Surface,
+    field: &SizingField,
+    mut points: Vec<[f64; 2]>,
+    tolerance: f64,
+    iterations: usize,
+    options: &DiscretiseOptions,
+    runs: &mut usize,
+    progress: &dyn Progress,
+) -> Result<Option<FittedPattern>, TpiError> {
+    let domain = surface.domain();
+    let mut history: Vec<f64> = Vec::new();
+    for it in 0..=iterations {
+        // A pattern the discretisation refuses (points moved onto each other, a lattice of
+        // few columns with coinciding points) is no candidate; a cancellation ends the fit.
+        let d = match discretise_with_progress(surface, &points, options, progress) {
+            Ok(d) => d,
+            Err(e @ TpiError::Cancelled { .. }) => return Err(e),
+            Err(_) => {
+                *runs += 1;
+                return Ok(None);
+            }
+        };
+        *runs += 1;
+        if !d.pattern_indices.is_empty() || d.seeds.len() != points.len() {
+            return Ok(None);
+        }
+        let feet = vertex_feet(surface, &d);
+        let (deviation, invalid) = judged(largest_foot_deviation(&feet), &d);
+        if it == 0 && mean_foot_deviation(&feet) > FIT_NEAR_MEAN * tolerance {
+            return Ok(None);
+        }
+        if deviation <= tolerance && invalid == 0 {
+            return Ok(Some(FittedPattern {
+                uv: points,
+                met: true,
+                max_deviation: deviation,
+                invalid_facets: 0,
+                discretisations: 0,
+            }));
+        }
+        history.push(deviation);
+        if it == iterations || !deviation.is_finite() {
+            return Ok(None);
+        }
+        if it >= FIT_MINIMAX_PATIENCE {
+            let rate = (history[it - 5] - history[it]) / 5.0;
+            if deviation - rate * (iterations - it) as f64 > tolerance {
+                return Ok(None);
+            }
+        }
+        points = minimax_step(field, &domain, &d, &feet, &points);
+    }
+    Ok(None)
+}
+
+/// The mean deviation of the vertices of [`vertex_feet`] (0 without any).
+fn mean_foot_deviation(feet: &[Option<(f64, [f64; 2])>]) -> f64 {
+    let (sum, count) = feet
+        .iter()
+        .filter_map(|f| f.map(|(dev, _)| dev))
+        .fold((0.0, 0usize), |(s, c), d| (s + d, c + 1));
+    if count == 0 {
+        0.0
+    } else {
+        sum / count as f64
+    }
+}

@@ -291,8 +291,9 @@ const SADDLE: TurnedQuadric = TurnedQuadric {
 fn a_turned_anisotropic_dome_needs_at_most_60_percent_of_the_uniform_hex_points() {
     for tolerance in [0.01, 0.003] {
         let ratios = fit_and_compare_by("turned dome", &DOME, tolerance, &quadric_distance(&DOME));
-        // Measured 0.419 / 0.438 (D = 0.01) and 0.386 / 0.467 (0.003): the 0.60 with
-        // room, tightened to catch a loss.
+        // Measured 0.395 / 0.412 (D = 0.01) and 0.378 / 0.458 (0.003) since the near misses
+        // are relaxed (0.419 / 0.438 and 0.386 / 0.467 before): the 0.60 with room,
+        // tightened to catch a loss.
         assert!(ratios.iter().all(|&r| r <= 0.5), "{tolerance}: {ratios:?}");
     }
 }
@@ -353,8 +354,9 @@ fn aligned_hypars_need_at_most_60_percent_of_the_uniform_hex_points() {
 #[test]
 fn a_free_form_dome_needs_at_most_60_percent_of_the_uniform_hex_points() {
     let ratios = fit_and_compare("nurbs-dome.json", 0.01);
-    // Measured 0.395 / 0.454 (331 points against 837 and 729).
-    assert!(ratios.iter().all(|&r| r <= 0.5), "{ratios:?}");
+    // Measured 0.375 / 0.431 (314 points against 837 and 729; 331 points, 0.395 / 0.454,
+    // before the near misses relaxed towards a minimax covering).
+    assert!(ratios.iter().all(|&r| r <= 0.47), "{ratios:?}");
 }
 
 #[test]
@@ -369,10 +371,11 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 /// by its corners and boundary vertices). On the hypar the 60 % holds since the
 /// lattices refined at their walls and the lattices with other row densities on saddles
 /// (`fit.rs`): 0.431 (110 points against 255; 0.702 with 179 before) at D = 0.01. On the
-/// paraboloid it holds against hex:spacing only just: 0.585 (295 points against 504; 0.593
-/// before the lattices with rows inset from the walls, 0.659 before the lattices with
-/// sparser sides, 0.623 before the steeper grading), and against hex:NxN not (0.610 against
-/// 484; 0.618 before the inset rows). On the paraboloid the lattice's
+/// paraboloid it holds against both since the near misses of the lattice search are relaxed
+/// towards a minimax covering (`fit.rs`): 0.565 and 0.589 (285 points against 504 and 484;
+/// 295 before, 0.585 and 0.610; 0.593 and 0.618 before the lattices with rows inset from the
+/// walls, 0.659 against hex:spacing before the lattices with sparser sides, 0.623 before the
+/// steeper grading). On the paraboloid the lattice's
 /// cells are already as regular as cells can be (a hexagonal lattice is the thinnest
 /// covering: at a given count no pattern has smaller circumcircles); what is left is the
 /// fall of the curvature away from the apex (sqrt(k1 k2) dA goes as
@@ -383,13 +386,14 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 /// their irregular cells). Asserted: the measured ratios, with a little room.
 #[test]
 fn on_nearly_uniform_surfaces_the_pattern_still_beats_uniform_hex() {
-    // Bounds against hex:spacing and hex:NxN: measured 0.585 and 0.610 on the paraboloid
-    // (295 points against 504 and 484; 299, 0.593 and 0.618, before the rows inset from the
-    // walls; 312, 0.619 and 0.645, before the steeper grading of
+    // Bounds against hex:spacing and hex:NxN: measured 0.565 and 0.589 on the paraboloid
+    // (285 points against 504 and 484, since the near misses relaxed towards a minimax
+    // covering; 295, 0.585 and 0.610, before; 299, 0.593 and 0.618, before the rows inset
+    // from the walls; 312, 0.619 and 0.645, before the steeper grading of
     // FIT_STEEP_GRADING), 0.431 and 0.561 on the hypar (110 against 255 and
     // 196; 135 points, 0.529 and 0.689, before the lattices of other row densities:
     // hex:NxN's rows a column apart suit the hypar's walls).
-    for (name, bounds) in [("paraboloid.json", [0.6, 0.62]), ("hypar.json", [0.5, 0.6])] {
+    for (name, bounds) in [("paraboloid.json", [0.58, 0.6]), ("hypar.json", [0.5, 0.6])] {
         let ratios = fit_and_compare(name, 0.01);
         assert!(
             ratios.iter().zip(bounds).all(|(&r, b)| r <= b),
