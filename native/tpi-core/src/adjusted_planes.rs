@@ -52,7 +52,8 @@
 //! pulled in, not only folds repaired. Where facets are still invalid after the second
 //! decisions, the whole adjustment runs again with
 //! [`FALLBACK_REACH`](crate::tolerance::FALLBACK_REACH) and is kept only if it leaves none
-//! (`structure.rs`): on a nearly developable band the facets run along the rulings by
+//! (`structure.rs`; one weight after another, up to one that leaves more than
+//! [`FALLBACK_GIVE_UP`](crate::tolerance::FALLBACK_GIVE_UP)): on a nearly developable band the facets run along the rulings by
 //! several spacings, and the shorter reach forbids the simple, long facet that is there.
 //!
 //! Facets stay exactly planar: every vertex is the meeting point of three (adjusted) planes,

@@ -53,8 +53,8 @@ use crate::rulings;
 use crate::samples::Samples;
 use crate::surface::Surface;
 use crate::tolerance::{
-    FALLBACK_REACH, MAX_REACH, METRIC_REGULARISATION, METRIC_REGULARISATION_RETRIES,
-    RETRY_MAX_INVALID, STRIP_TRIM_MARGIN,
+    FALLBACK_GIVE_UP, FALLBACK_REACH, MAX_REACH, METRIC_REGULARISATION,
+    METRIC_REGULARISATION_RETRIES, RETRY_MAX_INVALID, STRIP_TRIM_MARGIN,
 };
 use crate::triangulation::{real_pairs, DualTriangulation};
 
@@ -434,8 +434,10 @@ impl Attempt {
 /// metric is strongly anisotropic, the isotropic term decides how far the facets run along
 /// the flat direction, and a facet that neither flips nor tilts within 5 degrees repair with
 /// one weight is often valid with another. Returns the attempt that left the fewest facets
-/// invalid (the first of equals; it stops at none), or None without weights. A cancellation
-/// seen by `stages` is answered between attempts.
+/// invalid (the first of equals; it stops at none, and after an attempt that left more than
+/// `give_up` where given), or None without weights. A cancellation seen by `stages` is
+/// answered between attempts.
+#[allow(clippy::too_many_arguments)]
 fn decide_again(
     augmented: &Augmented,
     exact: Vec<Plane>,
@@ -443,6 +445,7 @@ fn decide_again(
     n: usize,
     adjust: Option<f64>,
     weights: &[f64],
+    give_up: Option<usize>,
     stages: &Stages<'_>,
 ) -> Result<Option<Attempt>, TpiError> {
     let mut best: Option<Attempt> = None;
@@ -466,12 +469,16 @@ fn decide_again(
             neighbours,
             adjusted,
         };
+        let hopeless = give_up.is_some_and(|most| attempt.left() > most);
         if best.as_ref().map_or(true, |b| attempt.left() < b.left()) {
             let done = attempt.left() == 0;
             best = Some(attempt);
             if done {
                 break;
             }
+        }
+        if hopeless {
+            break;
         }
     }
     Ok(best)
@@ -639,6 +646,7 @@ fn any_curvature(
             n,
             adjusted.then_some(MAX_REACH),
             METRIC_REGULARISATION_RETRIES,
+            None,
             stages,
         )?;
         if let Some(attempt) = retried.filter(|a| a.left() < left) {
@@ -664,6 +672,7 @@ fn any_curvature(
             n,
             Some(FALLBACK_REACH),
             &weights,
+            Some(FALLBACK_GIVE_UP),
             stages,
         )?;
         if let Some(attempt) = retried.filter(|a| a.left() == 0) {
