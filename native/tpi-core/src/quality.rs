@@ -85,7 +85,8 @@ pub struct QualityReport {
     pub invalid_facets: usize,
     /// V - E + F (1 for a disc).
     pub euler_characteristic: i64,
-    /// Number of boundary loops (1 for a disc).
+    /// Number of boundary loops (1 for a disc); a boundary pinched at a vertex of 2k boundary
+    /// edges counts k loops there (two discs touching at a vertex: 2).
     pub boundary_loops: usize,
     /// Edges shared by more than two facets.
     pub non_manifold_edges: usize,
@@ -229,7 +230,9 @@ pub(crate) fn report(
     // At most one shared edge per two entries: sized once, not grown by doubling (at a
     // million facets the doubling's copies were the report's peak of memory).
     let mut shared_edges: Vec<(u32, u32, u32, u32)> = Vec::with_capacity(edges.len() / 2);
-    let mut on_boundary = vec![false; input.vertices.len()];
+    // Per vertex, its boundary edges (saturating): 2 on a boundary loop, 4 or more where the
+    // boundary pinches (two facets touching at a boundary vertex only).
+    let mut on_boundary = vec![0u8; input.vertices.len()];
     let mut boundary_parent: Vec<u32> = (0..input.vertices.len() as u32).collect();
     let mut k = 0;
     while k < edges.len() {
@@ -244,8 +247,8 @@ pub(crate) fn report(
         r.max_edge_length = r.max_edge_length.max(length);
         match m - k {
             1 => {
-                on_boundary[a as usize] = true;
-                on_boundary[b as usize] = true;
+                on_boundary[a as usize] = on_boundary[a as usize].saturating_add(1);
+                on_boundary[b as usize] = on_boundary[b as usize].saturating_add(1);
                 let (ra, rb) = (find(&mut boundary_parent, a), find(&mut boundary_parent, b));
                 if ra != rb {
                     boundary_parent[ra.max(rb) as usize] = ra.min(rb);
@@ -296,10 +299,15 @@ pub(crate) fn report(
         used
     };
     let mut roots = std::collections::BTreeSet::new();
-    for (v, _) in on_boundary.iter().enumerate().filter(|(_, &b)| b) {
+    // A boundary pinched at a vertex of 2k boundary edges is k loops there, not one: walked
+    // along the facets' turn, each pair of edges closes its own loop (two discs touching at
+    // a vertex have Euler characteristic 1 and two loops).
+    let mut pinches = 0usize;
+    for (v, &edges) in on_boundary.iter().enumerate().filter(|(_, &b)| b > 0) {
         roots.insert(find(&mut boundary_parent, v as u32));
+        pinches += usize::from(edges / 2).saturating_sub(1);
     }
-    r.boundary_loops = roots.len();
+    r.boundary_loops = roots.len() + pinches;
     let used_count = used.iter().filter(|&&u| u).count();
     r.euler_characteristic = used_count as i64 - r.edge_count as i64 + facet_count as i64;
 
@@ -309,7 +317,7 @@ pub(crate) fn report(
         valence[v as usize] += 1;
     }
     for v in 0..input.vertices.len() {
-        if used[v] && !on_boundary[v] {
+        if used[v] && on_boundary[v] == 0 {
             r.interior_vertex_count += 1;
             if valence[v] == 3 {
                 r.trivalent_fraction += 1.0;
