@@ -25,11 +25,11 @@ use glam::{DVec2, DVec3};
 use serde::{Deserialize, Serialize};
 
 use crate::facets::{accept_newton, FootHint, FootHints};
-use crate::mesh::find;
 use crate::neighbours::NeighbourStats;
 use crate::planes::Plane;
 use crate::progress::{NoProgress, Progress, Stage, Tally};
 use crate::projection::{deviation_at, distance_foot, Wrap};
+use crate::sanity::BoundaryLoops;
 use crate::surface::Surface;
 use crate::tolerance::SEPARATION_MARGIN;
 use crate::validity_flips::polygons_overlap;
@@ -230,10 +230,7 @@ pub(crate) fn report(
     // At most one shared edge per two entries: sized once, not grown by doubling (at a
     // million facets the doubling's copies were the report's peak of memory).
     let mut shared_edges: Vec<(u32, u32, u32, u32)> = Vec::with_capacity(edges.len() / 2);
-    // Per vertex, its boundary edges (saturating): 2 on a boundary loop, 4 or more where the
-    // boundary pinches (two facets touching at a boundary vertex only).
-    let mut on_boundary = vec![0u8; input.vertices.len()];
-    let mut boundary_parent: Vec<u32> = (0..input.vertices.len() as u32).collect();
+    let mut boundary = BoundaryLoops::new(input.vertices.len());
     let mut k = 0;
     while k < edges.len() {
         let mut m = k + 1;
@@ -246,14 +243,7 @@ pub(crate) fn report(
         r.min_edge_length = r.min_edge_length.min(length);
         r.max_edge_length = r.max_edge_length.max(length);
         match m - k {
-            1 => {
-                on_boundary[a as usize] = on_boundary[a as usize].saturating_add(1);
-                on_boundary[b as usize] = on_boundary[b as usize].saturating_add(1);
-                let (ra, rb) = (find(&mut boundary_parent, a), find(&mut boundary_parent, b));
-                if ra != rb {
-                    boundary_parent[ra.max(rb) as usize] = ra.min(rb);
-                }
-            }
+            1 => boundary.add_edge(a, b),
             2 => shared_edges.push((edges[k].2, edges[k + 1].2, a, b)),
             _ => r.non_manifold_edges += 1,
         }
@@ -298,16 +288,8 @@ pub(crate) fn report(
         }
         used
     };
-    let mut roots = std::collections::BTreeSet::new();
-    // A boundary pinched at a vertex of 2k boundary edges is k loops there, not one: walked
-    // along the facets' turn, each pair of edges closes its own loop (two discs touching at
-    // a vertex have Euler characteristic 1 and two loops).
-    let mut pinches = 0usize;
-    for (v, &edges) in on_boundary.iter().enumerate().filter(|(_, &b)| b > 0) {
-        roots.insert(find(&mut boundary_parent, v as u32));
-        pinches += usize::from(edges / 2).saturating_sub(1);
-    }
-    r.boundary_loops = roots.len() + pinches;
+    // A boundary pinched at a vertex counts a loop per pair of its edges there.
+    r.boundary_loops = boundary.count();
     let used_count = used.iter().filter(|&&u| u).count();
     r.euler_characteristic = used_count as i64 - r.edge_count as i64 + facet_count as i64;
 
@@ -317,7 +299,7 @@ pub(crate) fn report(
         valence[v as usize] += 1;
     }
     for v in 0..input.vertices.len() {
-        if used[v] && on_boundary[v] == 0 {
+        if used[v] && !boundary.on_boundary(v) {
             r.interior_vertex_count += 1;
             if valence[v] == 3 {
                 r.trivalent_fraction += 1.0;
@@ -353,14 +335,7 @@ pub(crate) fn report(
         }
     }
     // Freed before the deviations' projections, the report's largest allocation.
-    drop((
-        shapes,
-        used,
-        valence,
-        on_boundary,
-        boundary_parent,
-        overlapping,
-    ));
+    drop((shapes, used, valence, boundary, overlapping));
     r.non_simple_facets = flags.iter().filter(|&&f| f & FLAG_NON_SIMPLE != 0).count();
     r.invalid_facets = flags.iter().filter(|&&f| f & INVALID_FLAGS != 0).count();
     r.flagged_facets = flags.iter().filter(|&&f| f != 0).count();

@@ -296,23 +296,92 @@ fn for_each_directed_edge(offsets: &[u32], loops: &[u32], mut visit: impl FnMut(
     }
 }
 
-/// Connected components of the boundary edges.
+/// The boundary loops of the boundary edges `boundary` ([`BoundaryLoops`]).
 pub(crate) fn boundary_loops(vertex_count: usize, boundary: &[(u32, u32)]) -> usize {
-    let mut parent: Vec<u32> = (0..vertex_count as u32).collect();
-    let mut components = 0usize;
-    let mut on_boundary = vec![false; vertex_count];
+    let mut loops = BoundaryLoops::new(vertex_count);
     for &(a, b) in boundary {
-        for v in [a, b] {
-            if !on_boundary[v as usize] {
-                on_boundary[v as usize] = true;
-                components += 1;
-            }
-        }
-        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
-        if ra != rb {
-            parent[ra.max(rb) as usize] = ra.min(rb);
-            components -= 1;
+        loops.add_edge(a, b);
+    }
+    loops.count()
+}
+
+/// Counts the boundary loops that a walk along the facets' turn finds, from the boundary
+/// edges (edges held by one facet) given one by one: the connected components of those
+/// edges, plus k - 1 at a vertex with 2k boundary edges. There the boundary is pinched (two
+/// facets touch at a boundary vertex only), and the walk closes one loop per pair of edges:
+/// two discs touching at a vertex have Euler characteristic 1 and two loops. The quality
+/// report and [`crate::Discretisation::sanity_check`] count with it, and so does the facet
+/// stage when it compares the wall-clipped facets' shape with the closed ones'.
+pub(crate) struct BoundaryLoops {
+    parent: Vec<u32>,
+    /// Boundary edges at each vertex (saturating: a vertex with 255 is pinched many times
+    /// over, and the count is a diagnostic).
+    edges_at: Vec<u8>,
+}
+
+impl BoundaryLoops {
+    /// A counter for a mesh of `vertex_count` vertices, no edge given yet.
+    pub(crate) fn new(vertex_count: usize) -> Self {
+        Self {
+            parent: (0..vertex_count as u32).collect(),
+            edges_at: vec![0; vertex_count],
         }
     }
-    components
+
+    /// Adds the boundary edge between vertices `a` and `b`.
+    pub(crate) fn add_edge(&mut self, a: u32, b: u32) {
+        for v in [a, b] {
+            self.edges_at[v as usize] = self.edges_at[v as usize].saturating_add(1);
+        }
+        let (ra, rb) = (find(&mut self.parent, a), find(&mut self.parent, b));
+        if ra != rb {
+            self.parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+    }
+
+    /// Whether vertex `v` has a boundary edge.
+    pub(crate) fn on_boundary(&self, v: usize) -> bool {
+        self.edges_at[v] > 0
+    }
+
+    /// The number of boundary loops.
+    pub(crate) fn count(&mut self) -> usize {
+        let mut loops = 0;
+        for v in 0..self.edges_at.len() {
+            let edges = self.edges_at[v];
+            if edges > 0 {
+                loops += usize::from(find(&mut self.parent, v as u32) == v as u32);
+                loops += usize::from(edges / 2).saturating_sub(1);
+            }
+        }
+        loops
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::boundary_loops;
+
+    /// The edges of the triangles' loops, each once: all are boundary edges when no two
+    /// triangles share an edge.
+    fn loop_edges(triangles: &[[u32; 3]]) -> Vec<(u32, u32)> {
+        triangles
+            .iter()
+            .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])])
+            .collect()
+    }
+
+    #[test]
+    fn a_pinched_boundary_counts_a_loop_per_pair_of_edges_at_the_pinch() {
+        assert_eq!(boundary_loops(3, &loop_edges(&[[0, 1, 2]])), 1);
+        // Two triangles apart: two loops, as before the pinch count.
+        assert_eq!(boundary_loops(6, &loop_edges(&[[0, 1, 2], [3, 4, 5]])), 2);
+        // Touching at vertex 0 (4 boundary edges there): the walk closes two loops.
+        assert_eq!(boundary_loops(5, &loop_edges(&[[0, 1, 2], [0, 3, 4]])), 2);
+        // Three touching at vertex 0 (6 edges): three loops.
+        let three = loop_edges(&[[0, 1, 2], [0, 3, 4], [0, 5, 6]]);
+        assert_eq!(boundary_loops(7, &three), 3);
+        // A square of two triangles sharing the edge 0-2: its four outer edges, one loop.
+        assert_eq!(boundary_loops(4, &[(0, 1), (1, 2), (2, 3), (3, 0)]), 1);
+    }
 }
