@@ -38,7 +38,7 @@ use crate::predicates::{orient2d, power_illegal};
 use crate::progress::{NoProgress, Stage, Stages, Tally};
 use crate::tolerance::{
     COMPENSATION_TIE_TOLERANCE, CONVEX_METRIC_REGULARISATION, DEGENERATE_SLIVER_FACTOR,
-    DEVELOPABLE_METRIC_REGULARISATION, ENVELOPE_FLIP_TOLERANCE, GRADIENT_MIN_COS,
+    DEVELOPABLE_METRIC_REGULARISATION, ENVELOPE_FLIP_TOLERANCE, GRADIENT_MIN_COS, REAL_LINK_SEARCH,
     SLOPE_FRAME_SAMPLES,
 };
 
@@ -111,7 +111,7 @@ pub(crate) fn decide(
         tri,
         uv,
         |tri, t, k| {
-            compensation_illegal(tri, input, t, k) && !isolates_real_point(tri, t, k, real_count)
+            compensation_illegal(tri, input, t, k) && !isolates_real_points(tri, t, k, real_count)
         },
         None,
     )
@@ -121,7 +121,7 @@ pub(crate) fn decide(
             tri,
             uv,
             |tri, t, k| {
-                envelope_illegal(tri, input, t, k) && !isolates_real_point(tri, t, k, real_count)
+                envelope_illegal(tri, input, t, k) && !isolates_real_points(tri, t, k, real_count)
             },
             None,
         );
@@ -826,26 +826,54 @@ pub(crate) fn three_plane_vertex(planes: &[Plane], mut ids: [u32; 3]) -> DVec3 {
     .point
 }
 
-/// Whether flipping the edge opposite vertex k of triangle t would leave one of its ends, a
-/// real point (below `real_count`), without a real neighbour: the quad's other two points
-/// are ghosts and the edge is the point's last link to a real one. Such a flip is not made,
-/// whatever the criterion says: a seed near a corner, whose ghosts across both sides stand a
-/// fraction of a spacing away, is near all of them in the |II| metric, and flips towards
-/// them would close its facet by ghost planes alone, a panel apart from the mesh (a mixed
-/// roof with a hex pattern whose seed sits 0.0014 and 0.0054 from a corner in parameters).
-fn isolates_real_point(tri: &DualTriangulation, t: usize, k: usize, real_count: usize) -> bool {
+/// Whether flipping the edge opposite vertex k of triangle t would cut real points (below
+/// `real_count`) off from the others: the edge joins two real points a and b, the quad's
+/// other two points are ghosts (a real one would keep a and b linked through it), and a
+/// search over real edges from a, not using the edge, does not reach b before it has visited
+/// all the real points it can reach (a or b cut off with at most [`REAL_LINK_SEARCH`] real
+/// points). Such a flip is not made, whatever the criterion says: a seed near a corner, whose
+/// ghosts across both sides stand a fraction of a spacing away, is near all of them in the
+/// |II| metric, and flips towards them would close its facet by ghost planes alone, a panel
+/// apart from the mesh (a mixed roof with a hex pattern whose seed sits 0.0014 and 0.0054
+/// from a corner in parameters); two seeds of a top row near a corner went apart together,
+/// an island of two facets (an unseen mixed surface, seed 55, hex 300).
+fn isolates_real_points(tri: &DualTriangulation, t: usize, k: usize, real_count: usize) -> bool {
     let [c, a, b, d] = quad(tri, t, k);
     let real = |x: u32| (x as usize) < real_count;
     if !(real(a) && real(b)) || real(c) || real(d) {
         return false;
     }
+    // Each end's real component without the edge, searched up to REAL_LINK_SEARCH points:
+    // Some(true) where it is exhausted without meeting the other end, Some(false) where it
+    // meets it, None where the search stops first.
     let mut fan = Vec::new();
-    [(a, b), (b, a)].into_iter().any(|(x, other)| {
-        tri.fan(x, t as u32, &mut fan);
-        !fan.iter().any(|&s| {
-            tri.triangles[s as usize]
-                .iter()
-                .any(|&y| y != x && y != other && real(y))
-        })
-    })
+    let mut cut_off = |from: u32, to: u32| {
+        let mut visited: Vec<u32> = vec![from];
+        let mut queue: std::collections::VecDeque<(u32, u32)> =
+            std::iter::once((from, t as u32)).collect();
+        while let Some((x, start)) = queue.pop_front() {
+            tri.fan(x, start, &mut fan);
+            for &s in &fan {
+                for &y in &tri.triangles[s as usize] {
+                    let the_edge = (x, y) == (from, to);
+                    if y == x || !real(y) || the_edge || visited.contains(&y) {
+                        continue;
+                    }
+                    if y == to {
+                        return Some(false);
+                    }
+                    if visited.len() >= REAL_LINK_SEARCH {
+                        return None;
+                    }
+                    visited.push(y);
+                    queue.push_back((y, s));
+                }
+            }
+        }
+        Some(true)
+    };
+    match cut_off(a, b) {
+        Some(cut) => cut,
+        None => cut_off(b, a) == Some(true),
+    }
 }

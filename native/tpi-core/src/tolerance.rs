@@ -276,6 +276,12 @@ pub const GHOST_FLAT_MIRROR: f64 = 0.02;
 
 // ---- read by neighbours.rs ----
 
+/// Real points a Lawson flip's connectivity guard visits at most from each end of the edge it
+/// would remove (`neighbours::isolates_real_points`): a group of real points cut off by ghosts
+/// near a corner is a few seeds, while an end that reaches this many real points lies in the
+/// body of the mesh.
+pub const REAL_LINK_SEARCH: usize = 64;
+
 /// Weight of the isotropic term that keeps the compensation metric definite: each point
 /// contributes |II| + METRIC_REGULARISATION max(|k1|, |k2|) I (largest |k| over the quad), so
 /// that the metric never degenerates where one principal curvature vanishes.

@@ -1281,6 +1281,36 @@ fn assert_valid_planar_within_5_degrees(d: &tpi_core::Discretisation, what: &str
     }
 }
 
+/// Near a corner a seed's ghosts across both sides stand a fraction of a spacing away, and
+/// the Lawson flips in the |II| metric can link two seeds of the top row to ghosts only: on
+/// the unseen mixed surface 55 (hex 300, random 300 and 2000, hex 2000 at 30 degrees) their
+/// two facets were an island apart from the mesh (Euler characteristic 2, two loops). The
+/// flips now keep every real seed linked to the others by real edges
+/// (`neighbours::isolates_real_points`): each mesh of the surface is a disc by the
+/// independent check, and its report agrees.
+#[test]
+fn the_flips_cut_no_group_of_seeds_off_the_mesh() {
+    let seed = 55;
+    let surface = mixed_surface(seed);
+    for n in [300, 2000] {
+        for (name, pattern) in sweep_patterns(n, seed) {
+            let d = discretise(&surface, &pattern, &DiscretiseOptions::default()).unwrap();
+            let v = check(&d);
+            assert!(v.is_disc(), "mixed{seed} / {name}: not a disc: {v:?}");
+            let q = d.quality.as_ref().expect("a report");
+            assert_eq!(
+                (q.euler_characteristic, q.boundary_loops),
+                (v.euler, v.boundary_loops),
+                "mixed{seed} / {name}"
+            );
+            assert!(
+                v.unflagged(&d).is_empty(),
+                "mixed{seed} / {name}: invalid facets not flagged"
+            );
+        }
+    }
+}
+
 /// A boundary pinched at a vertex (two boundary facets touching there only) is two loops by
 /// the independent check's walk. On the unseen mixed surfaces 28 (random, 2000 points) and 44
 /// (grid, 300 points) the wall clip cut a runaway boundary facet in two and left out the part
