@@ -46,9 +46,13 @@ pub(crate) fn to_obj(result: &Discretisation, source: &str) -> String {
         }
         out.push('\n');
     }
+    // One buffer for every facet's distinct vertices (a vector per facet was a third of the
+    // writer's instructions).
+    let mut distinct = Vec::new();
     for i in 0..result.facet_count() {
         let facet = result.facet(i);
-        let mut distinct = facet.to_vec();
+        distinct.clear();
+        distinct.extend_from_slice(facet);
         distinct.sort_unstable();
         distinct.dedup();
         if distinct.len() < 3 {
