@@ -656,8 +656,9 @@ impl WallClip<'_> {
         let spacing = self.samples.diagonal / (2.0 * n as f64).sqrt();
         // The unflipped clip, made once where a flip is kept, with its marked facets measured.
         let mut unflipped: Option<Measured> = None;
-        // The measures taken so far, by facet and shape ([`measure_key`]).
-        let mut measures = IndexMap::default();
+        // The measures taken so far, by facet and shape ([`measure_key`]), and the vertices'
+        // distances from the surface, by facet and vertex.
+        let mut measures = Measures::default();
         // The boundary's corners on the surface.
         let corners: Vec<DVec3> = self
             .boundary
@@ -784,13 +785,9 @@ impl WallClip<'_> {
     /// f's seed ([`crate::projection::distance_foot`], as the report's deviation), and the
     /// notch of its edges that no other facet holds ([`Notch`]). A facet of the same seed,
     /// polygon and edges held once as one measured before (in `measures`, by
-    /// [`measure_key`]) takes that one's measure: it depends on nothing else.
-    fn measure(
-        &self,
-        m: &mut Measured,
-        marked: &[bool],
-        measures: &mut IndexMap<Vec<u64>, (f64, Notch)>,
-    ) {
+    /// [`measure_key`]) takes that one's measure: it depends on nothing else. So does a
+    /// vertex's distance, which depends only on the vertex and f's seed.
+    fn measure(&self, m: &mut Measured, marked: &[bool], measures: &mut Measures) {
         let wrap = crate::projection::Wrap {
             domain: self.surface.domain(),
             periodic: self.boundary.periodic(),
@@ -803,7 +800,7 @@ impl WallClip<'_> {
                 continue;
             }
             let key = measure_key(mesh, &m.held, f);
-            if let Some(&(deviation, notch)) = measures.get(&key) {
+            if let Some(&(deviation, notch)) = measures.facets.get(&key) {
                 m.deviation[f] = deviation;
                 m.notch[f] = Some(notch);
                 continue;
@@ -813,8 +810,15 @@ impl WallClip<'_> {
                 .polygon(f)
                 .into_iter()
                 .map(|x| {
-                    let foot = crate::projection::distance_foot(self.surface, &wrap, x, seed);
-                    crate::projection::deviation_at(self.surface, &wrap.domain, x, foot).0
+                    let [a, b, c] = x.to_array().map(f64::to_bits);
+                    *measures
+                        .vertices
+                        .entry(Bits([f as u64, a, b, c]))
+                        .or_insert_with(|| {
+                            let foot =
+                                crate::projection::distance_foot(self.surface, &wrap, x, seed);
+                            crate::projection::deviation_at(self.surface, &wrap.domain, x, foot).0
+                        })
                 })
                 .fold(0.0, f64::max);
             let mut total = Notch::default();
@@ -843,7 +847,7 @@ impl WallClip<'_> {
                 }
             }
             m.notch[f] = Some(total);
-            measures.insert(key, (m.deviation[f], total));
+            measures.facets.insert(key, (m.deviation[f], total));
         }
     }
 
@@ -1046,6 +1050,14 @@ impl WallClip<'_> {
             }
         }
     }
+}
+
+/// What [`WallClip::measure`] has measured: each facet's deviation and notch by
+/// [`measure_key`], and each vertex's distance from the surface by its facet and bits.
+#[derive(Default)]
+struct Measures {
+    facets: IndexMap<Vec<u64>, (f64, Notch)>,
+    vertices: IndexMap<Bits<4>, f64>,
 }
 
 /// A clip on the wall with its marked facets measured ([`WallClip::measure`]).
