@@ -1348,9 +1348,11 @@ fn crossing_edge_pairs(p: &[DVec2]) -> usize {
         }
         let mut count = 0;
         for a in 0..n {
-            for b in a + 2..n {
-                if !adjacent(a, b)
-                    && !boxes_apart(boxes[a], boxes[b])
+            // The pairs (a, b > a + 1) but (0, n - 1), which are adjacent.
+            let end = if a == 0 { n - 1 } else { n };
+            let box_a = boxes[a];
+            for b in a + 2..end {
+                if !boxes_apart(box_a, boxes[b])
                     && edges_meet_near(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n])
                 {
                     count += 1;
