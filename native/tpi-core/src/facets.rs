@@ -656,9 +656,8 @@ impl WallClip<'_> {
         let spacing = self.samples.diagonal / (2.0 * n as f64).sqrt();
         // The unflipped clip, made once where a flip is kept, with its marked facets measured.
         let mut unflipped: Option<Measured> = None;
-        // The measures taken so far, by facet and shape ([`measure_key`]), and the vertices'
-        // distances from the surface, by facet and vertex.
-        let mut measures = Measures::default();
+        // The measures taken so far, by facet and shape ([`measure_key`]).
+        let mut measures = IndexMap::default();
         // The boundary's corners on the surface.
         let corners: Vec<DVec3> = self
             .boundary
@@ -785,9 +784,13 @@ impl WallClip<'_> {
     /// f's seed ([`crate::projection::distance_foot`], as the report's deviation), and the
     /// notch of its edges that no other facet holds ([`Notch`]). A facet of the same seed,
     /// polygon and edges held once as one measured before (in `measures`, by
-    /// [`measure_key`]) takes that one's measure: it depends on nothing else. So does a
-    /// vertex's distance, which depends only on the vertex and f's seed.
-    fn measure(&self, m: &mut Measured, marked: &[bool], measures: &mut Measures) {
+    /// [`measure_key`]) takes that one's measure: it depends on nothing else.
+    fn measure(
+        &self,
+        m: &mut Measured,
+        marked: &[bool],
+        measures: &mut IndexMap<Vec<u64>, (f64, Notch)>,
+    ) {
         let wrap = crate::projection::Wrap {
             domain: self.surface.domain(),
             periodic: self.boundary.periodic(),
@@ -800,7 +803,7 @@ impl WallClip<'_> {
                 continue;
             }
             let key = measure_key(mesh, &m.held, f);
-            if let Some(&(deviation, notch)) = measures.facets.get(&key) {
+            if let Some(&(deviation, notch)) = measures.get(&key) {
                 m.deviation[f] = deviation;
                 m.notch[f] = Some(notch);
                 continue;
@@ -810,15 +813,8 @@ impl WallClip<'_> {
                 .polygon(f)
                 .into_iter()
                 .map(|x| {
-                    let [a, b, c] = x.to_array().map(f64::to_bits);
-                    *measures
-                        .vertices
-                        .entry(Bits([f as u64, a, b, c]))
-                        .or_insert_with(|| {
-                            let foot =
-                                crate::projection::distance_foot(self.surface, &wrap, x, seed);
-                            crate::projection::deviation_at(self.surface, &wrap.domain, x, foot).0
-                        })
+                    let foot = crate::projection::distance_foot(self.surface, &wrap, x, seed);
+                    crate::projection::deviation_at(self.surface, &wrap.domain, x, foot).0
                 })
                 .fold(0.0, f64::max);
             let mut total = Notch::default();
@@ -847,7 +843,7 @@ impl WallClip<'_> {
                 }
             }
             m.notch[f] = Some(total);
-            measures.facets.insert(key, (m.deviation[f], total));
+            measures.insert(key, (m.deviation[f], total));
         }
     }
 
@@ -1050,14 +1046,6 @@ impl WallClip<'_> {
             }
         }
     }
-}
-
-/// What [`WallClip::measure`] has measured: each facet's deviation and notch by
-/// [`measure_key`], and each vertex's distance from the surface by its facet and bits.
-#[derive(Default)]
-struct Measures {
-    facets: IndexMap<Vec<u64>, (f64, Notch)>,
-    vertices: IndexMap<Bits<4>, f64>,
 }
 
 /// A clip on the wall with its marked facets measured ([`WallClip::measure`]).
@@ -1726,10 +1714,10 @@ fn walk_facets(
         let held = |t: u32| t != NO_TRIANGLE && enclosed[t as usize];
         edges.retain(|e| !(held(e.left) || held(e.right)));
     }
-    // Crossings found in the cache are taken from it; those computed are added to it, by
-    // the key they were looked up with (None: found, or no key).
+    // Crossings found in the cache are taken from it; those computed (flagged: a key per
+    // edge would hold 128 bytes an edge through the walk) are added to it.
     let known = vertices.as_deref();
-    let per_edge: Vec<(Vec<Crossing>, Option<Diagnostic>, Option<Bits<16>>)> = edges
+    let per_edge: Vec<(Vec<Crossing>, Option<Diagnostic>, bool)> = edges
         .par_iter()
         .map(|edge| {
             if ctx.long_edges {
@@ -1737,13 +1725,16 @@ fn walk_facets(
                 (list, None, computed)
             } else {
                 let (list, diagnostic) = edge_crossings(ctx, tri, edge, &triangle_vertices);
-                (list, diagnostic, None)
+                (list, diagnostic, false)
             }
         })
         .collect();
     if let Some(cache) = vertices.filter(|_| ctx.long_edges) {
-        for (list, _, computed) in &per_edge {
-            if let Some(key) = *computed {
+        for (edge, (list, _, computed)) in edges.iter().zip(&per_edge) {
+            if !*computed {
+                continue;
+            }
+            if let Some(key) = long_edge_key(ctx, edge, &triangle_vertices) {
                 cache.crossings.entry(key).or_insert_with(|| list.clone());
             }
         }
@@ -2612,24 +2603,21 @@ fn edge_crossings(
 /// ends' feet crosses a boundary loop in parameter space, and each change of side between
 /// samples is refined on the segment itself.
 /// With `known`, the crossings are taken from its cache where there ([`long_edge_key`]).
-/// Also the key of crossings computed here (None where found or the edge has no key), for
-/// the caller to add them to the cache.
+/// Also whether they were computed here with a key (not found in the cache), for the
+/// caller to add them to it.
 fn long_edge_crossings(
     ctx: &Context<'_>,
     edge: &Edge,
     triangle_vertices: &[TriangleVertex],
     known: Option<&VertexCache>,
-) -> (Vec<Crossing>, Option<Bits<16>>) {
+) -> (Vec<Crossing>, bool) {
     let Some(key) = long_edge_key(ctx, edge, triangle_vertices) else {
-        return (Vec::new(), None);
+        return (Vec::new(), false);
     };
     if let Some(found) = known.and_then(|known| known.crossings.get(&key)) {
-        return (found.clone(), None);
+        return (found.clone(), false);
     }
-    (
-        long_edge_crossings_of(ctx, edge, triangle_vertices),
-        Some(key),
-    )
+    (long_edge_crossings_of(ctx, edge, triangle_vertices), true)
 }
 
 /// [`long_edge_crossings`] computed.
