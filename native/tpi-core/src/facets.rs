@@ -402,13 +402,17 @@ pub(crate) fn build_stage(
             strips,
         } => {
             let mesh = if boundary.is_trim() {
+                let seeds = GhostSeeds {
+                    uv: &samples.uv,
+                    tangents: &samples.tangents,
+                    planes,
+                    source,
+                    all: None,
+                };
                 build_ghost_clipped_facets(
                     surface,
                     boundary,
-                    &samples.uv,
-                    &samples.tangents,
-                    planes,
-                    source,
+                    &seeds,
                     &triangulation,
                     params,
                     None,
@@ -433,6 +437,7 @@ pub(crate) fn build_stage(
                     seeds,
                     params,
                     vertices: RefCell::new(VertexCache::default()),
+                    ghost_arrays: std::cell::OnceCell::new(),
                 };
                 let (flipped, mesh) = wall.flipped_and_clipped(&triangulation, stages);
                 if let Some(flipped) = flipped {
@@ -483,6 +488,9 @@ struct WallClip<'a> {
     /// clip: all in one ghost context ([`with_ghost_context`]), so a triangle's vertex is
     /// the same wherever it is asked for ([`VertexCache`]).
     vertices: RefCell<VertexCache>,
+    /// Every point's parameters and tangents in the ghost context ([`ghost_arrays`]), made
+    /// at the first clip or flips' try.
+    ghost_arrays: std::cell::OnceCell<GhostArrays>,
 }
 
 /// A mesh with its facets' verdicts ([`mesh_shape`]), from which another mesh's facet of
@@ -851,13 +859,21 @@ impl WallClip<'_> {
         }
     }
 
+    /// The ghost seeds of every clip and flips' try, with their points' parameters and
+    /// tangents made once ([`ghost_arrays`]).
     fn ghost_seeds(&self) -> GhostSeeds<'_> {
-        GhostSeeds {
+        let mut seeds = GhostSeeds {
             uv: &self.samples.uv,
             tangents: &self.samples.tangents,
             planes: &self.seeds.planes,
             source: &self.seeds.source,
-        }
+            all: None,
+        };
+        seeds.all = Some(
+            self.ghost_arrays
+                .get_or_init(|| ghost_arrays(self.surface, self.boundary, &seeds)),
+        );
+        seeds
     }
 
     /// The facets of `tri` clipped on the wall (module doc, the clip's retries included), or
@@ -891,10 +907,7 @@ impl WallClip<'_> {
             build_ghost_clipped_facets(
                 self.surface,
                 self.boundary,
-                &samples.uv,
-                &samples.tangents,
-                &seeds.planes,
-                &seeds.source,
+                &self.ghost_seeds(),
                 tri,
                 params,
                 Some(blocked),
@@ -1468,19 +1481,16 @@ fn build_facets(
     assemble_walk(walk, tri, &samples.planes, params, slopes, stages)
 }
 
-/// The facets of the real seeds `0..uv.len()` of a triangulation closed by ghosts beyond the
-/// domain (the strips of a trimmed developable surface, [`crate::rulings`]), each its closed
-/// fan clipped on `boundary` as in [`build_facets`]. `planes` and `source` (the real seed of
-/// every point) cover the ghosts too. Every vertex is a crossing of a bisector with the line
+/// The facets of the real seeds `0..seeds.uv.len()` of a triangulation closed by ghosts beyond
+/// the domain (the strips of a trimmed developable surface, [`crate::rulings`]), each its
+/// closed fan clipped on `boundary` as in [`build_facets`]. `seeds.planes` and `seeds.source`
+/// (the real seed of every point) cover the ghosts too. Every vertex is a crossing of a bisector with the line
 /// of two planes, exact however far from its points, so none is replaced by a stand-in.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn build_ghost_clipped_facets(
+fn build_ghost_clipped_facets(
     surface: &dyn Surface,
     boundary: &Boundary,
-    uv: &[[f64; 2]],
-    tangents: &[[DVec3; 2]],
-    planes: &[Plane],
-    source: &[u32],
+    seeds: &GhostSeeds<'_>,
     tri: &DualTriangulation,
     params: &FacetParams,
     extend_to_wall: Option<&[bool]>,
@@ -1488,14 +1498,8 @@ pub(crate) fn build_ghost_clipped_facets(
     vertices: Option<&mut VertexCache>,
     stages: &Stages<'_>,
 ) -> (FacetMesh, Vec<bool>) {
-    let real_count = uv.len();
-    let seeds = GhostSeeds {
-        uv,
-        tangents,
-        planes,
-        source,
-    };
-    with_ghost_context(surface, boundary, &seeds, extend_to_wall, wall, |ctx| {
+    let (real_count, source) = (seeds.uv.len(), seeds.source);
+    with_ghost_context(surface, boundary, seeds, extend_to_wall, wall, |ctx| {
         let (mut mesh, extended) = clip_facets(ctx, real_count, tri, params, vertices, stages);
         // Diagnostics name pattern points: a ghost stands for its seed.
         for diagnostic in &mut mesh.diagnostics {
@@ -1512,6 +1516,48 @@ struct GhostSeeds<'a> {
     tangents: &'a [[DVec3; 2]],
     planes: &'a [Plane],
     source: &'a [u32],
+    /// All points' parameters and tangents as [`ghost_arrays`] gives them, where already
+    /// made (they depend only on the fields above and the surface).
+    all: Option<&'a GhostArrays>,
+}
+
+/// Every point's parameters and tangents in the clip's [`Context`] of a triangulation closed
+/// by ghosts ([`ghost_arrays`]).
+type GhostArrays = (Vec<[f64; 2]>, Vec<[DVec3; 2]>);
+
+/// The parameters and tangents of all points of `seeds`: the real seeds' own, and for a
+/// ghost the first-order foot of its point seen from its seed (only a start for the
+/// projections of the vertices around it) and its seed's tangents.
+fn ghost_arrays(surface: &dyn Surface, boundary: &Boundary, seeds: &GhostSeeds<'_>) -> GhostArrays {
+    let GhostSeeds {
+        uv,
+        tangents,
+        planes,
+        source,
+        ..
+    } = *seeds;
+    let mut all_uv = uv.to_vec();
+    let mut all_tangents = tangents.to_vec();
+    let convex_side = vec![0i8; planes.len()];
+    let ctx = Context {
+        surface,
+        domain: surface.domain(),
+        boundary,
+        planes,
+        uv,
+        tangents,
+        convex_side: &convex_side,
+        regular: true,
+        long_edges: true,
+        extend_to_wall: None,
+        wall: WallMoves::PLAIN,
+    };
+    for (g, plane) in planes.iter().enumerate().skip(uv.len()) {
+        let seed = source[g];
+        all_uv.push(ctx.linear_foot(seed, plane.point));
+        all_tangents.push(tangents[seed as usize]);
+    }
+    (all_uv, all_tangents)
 }
 
 /// Runs `f` with the clip's [`Context`] of a triangulation closed by ghosts: a ghost's
@@ -1525,37 +1571,28 @@ fn with_ghost_context<R>(
     wall: WallMoves,
     f: impl FnOnce(&Context<'_>) -> R,
 ) -> R {
-    let GhostSeeds {
-        uv,
-        tangents,
-        planes,
-        source,
-    } = *seeds;
-    let mut all_uv = uv.to_vec();
-    let mut all_tangents = tangents.to_vec();
-    let convex_side = vec![0i8; planes.len()];
-    let mut ctx = Context {
+    let made;
+    let (all_uv, all_tangents) = match seeds.all {
+        Some(all) => all,
+        None => {
+            made = ghost_arrays(surface, boundary, seeds);
+            &made
+        }
+    };
+    let convex_side = vec![0i8; seeds.planes.len()];
+    let ctx = Context {
         surface,
         domain: surface.domain(),
         boundary,
-        planes,
-        uv,
-        tangents,
+        planes: seeds.planes,
+        uv: all_uv,
+        tangents: all_tangents,
         convex_side: &convex_side,
         regular: true,
         long_edges: true,
         extend_to_wall,
         wall,
     };
-    // A ghost's parameters are the first-order foot of its point seen from its seed: only a
-    // start for the projections of the vertices around it.
-    for (g, plane) in planes.iter().enumerate().skip(uv.len()) {
-        let seed = source[g];
-        all_uv.push(ctx.linear_foot(seed, plane.point));
-        all_tangents.push(tangents[seed as usize]);
-    }
-    ctx.uv = &all_uv;
-    ctx.tangents = &all_tangents;
     f(&ctx)
 }
 
@@ -1677,23 +1714,26 @@ fn walk_facets(
         let held = |t: u32| t != NO_TRIANGLE && enclosed[t as usize];
         edges.retain(|e| !(held(e.left) || held(e.right)));
     }
-    // Crossings found in the cache are taken from it; those computed are added to it.
+    // Crossings found in the cache are taken from it; those computed (flagged: a key per
+    // edge would hold 128 bytes an edge through the walk) are added to it.
     let known = vertices.as_deref();
-    let per_edge: Vec<(Vec<Crossing>, Option<Diagnostic>)> = edges
+    let per_edge: Vec<(Vec<Crossing>, Option<Diagnostic>, bool)> = edges
         .par_iter()
         .map(|edge| {
             if ctx.long_edges {
-                (
-                    long_edge_crossings(ctx, edge, &triangle_vertices, known),
-                    None,
-                )
+                let (list, computed) = long_edge_crossings(ctx, edge, &triangle_vertices, known);
+                (list, None, computed)
             } else {
-                edge_crossings(ctx, tri, edge, &triangle_vertices)
+                let (list, diagnostic) = edge_crossings(ctx, tri, edge, &triangle_vertices);
+                (list, diagnostic, false)
             }
         })
         .collect();
     if let Some(cache) = vertices.filter(|_| ctx.long_edges) {
-        for (edge, (list, _)) in edges.iter().zip(&per_edge) {
+        for (edge, (list, _, computed)) in edges.iter().zip(&per_edge) {
+            if !*computed {
+                continue;
+            }
             if let Some(key) = long_edge_key(ctx, edge, &triangle_vertices) {
                 cache.crossings.entry(key).or_insert_with(|| list.clone());
             }
@@ -1702,7 +1742,7 @@ fn walk_facets(
     let mut crossing_ranges: IndexMap<(u32, u32), (u32, u32)> =
         IndexMap::with_capacity_and_hasher(edges.len(), Default::default());
     let mut crossings = Vec::new();
-    for (edge, (list, diagnostic)) in edges.iter().zip(per_edge) {
+    for (edge, (list, diagnostic, _)) in edges.iter().zip(per_edge) {
         let first = crossings.len() as u32;
         crossings.extend(list);
         if crossings.len() as u32 > first {
@@ -2563,18 +2603,29 @@ fn edge_crossings(
 /// ends' feet crosses a boundary loop in parameter space, and each change of side between
 /// samples is refined on the segment itself.
 /// With `known`, the crossings are taken from its cache where there ([`long_edge_key`]).
+/// Also whether they were computed here with a key (not found in the cache), for the
+/// caller to add them to it.
 fn long_edge_crossings(
     ctx: &Context<'_>,
     edge: &Edge,
     triangle_vertices: &[TriangleVertex],
     known: Option<&VertexCache>,
-) -> Vec<Crossing> {
+) -> (Vec<Crossing>, bool) {
     let Some(key) = long_edge_key(ctx, edge, triangle_vertices) else {
-        return Vec::new();
+        return (Vec::new(), false);
     };
     if let Some(found) = known.and_then(|known| known.crossings.get(&key)) {
-        return found.clone();
+        return (found.clone(), false);
     }
+    (long_edge_crossings_of(ctx, edge, triangle_vertices), true)
+}
+
+/// [`long_edge_crossings`] computed.
+fn long_edge_crossings_of(
+    ctx: &Context<'_>,
+    edge: &Edge,
+    triangle_vertices: &[TriangleVertex],
+) -> Vec<Crossing> {
     let end_of = |t: u32| {
         let v = &triangle_vertices[t as usize];
         let (guess, inside) = v.measured_foot(ctx);

@@ -388,11 +388,18 @@ impl DualTriangulation {
             return Fan::Broken;
         }
         // Counter-clockwise from `start`: a closed fan comes back to it. Its loop then starts
-        // at the triangle after `start` (where the clockwise search below would stop).
+        // at the triangle after `start` (where the clockwise search below would stop), so
+        // `start` is written last; where the fan does not close it is put in front. `walked`
+        // counts the triangles walked, `start` included.
         let mut current = start;
-        while out.len() <= self.triangles.len() {
-            out.push(current);
+        let mut walked = 0;
+        while walked <= self.triangles.len() {
+            if walked > 0 {
+                out.push(current);
+            }
+            walked += 1;
             let Some(k) = self.position_of(current, v) else {
+                out.insert(0, start);
                 return Fan::Broken;
             };
             // Counter-clockwise neighbour: across edge (v, v(k+2)), opposite v(k+1).
@@ -401,11 +408,12 @@ impl DualTriangulation {
                 break;
             }
             if next == start {
-                out.rotate_left(1);
+                out.push(start);
                 return Fan::Closed;
             }
             current = next;
         }
+        out.insert(0, start);
         if out.len() > self.triangles.len() {
             return Fan::Broken;
         }

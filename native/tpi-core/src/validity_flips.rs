@@ -1287,8 +1287,15 @@ fn flatten_into<'b>(
 /// Longest edge of a closed polygon. One square root, of the largest squared length: the
 /// same value as the largest length (the square root is monotonic and correctly rounded).
 fn size(p: &[DVec2]) -> f64 {
-    (0..p.len())
-        .map(|k| (p[next(k, p.len())] - p[k]).length_squared())
+    // Edges as (previous, this) vertex: the largest is the same in any order.
+    let mut previous = p.len().wrapping_sub(1);
+    p.iter()
+        .enumerate()
+        .map(|(k, &x)| {
+            let edge = (p[previous] - x).length_squared();
+            previous = k;
+            edge
+        })
         .fold(0.0, f64::max)
         .sqrt()
 }
@@ -1341,9 +1348,11 @@ fn crossing_edge_pairs(p: &[DVec2]) -> usize {
         }
         let mut count = 0;
         for a in 0..n {
-            for b in a + 2..n {
-                if !adjacent(a, b)
-                    && !boxes_apart(boxes[a], boxes[b])
+            // The pairs (a, b > a + 1) but (0, n - 1), which are adjacent.
+            let end = if a == 0 { n - 1 } else { n };
+            let box_a = boxes[a];
+            for b in a + 2..end {
+                if !boxes_apart(box_a, boxes[b])
                     && edges_meet_near(p[a], p[(a + 1) % n], p[b], p[(b + 1) % n])
                 {
                     count += 1;
@@ -1458,9 +1467,11 @@ pub(crate) fn polygons_overlap(a: &[DVec3], b: &[DVec3], normal: DVec3) -> bool 
         heap_boxes.resize(nb, (DVec2::ZERO, DVec2::ZERO));
         &mut heap_boxes
     };
-    for (y, edge) in edge_boxes_b.iter_mut().enumerate() {
-        let (r, t) = (pb[y], pb[next(y, nb)]);
-        *edge = (r.min(t), r.max(t));
+    let mut previous = nb.wrapping_sub(1);
+    for (y, &t) in pb.iter().enumerate() {
+        let r = pb[previous];
+        edge_boxes_b[previous] = (r.min(t), r.max(t));
+        previous = y;
     }
     for x in 0..na {
         let x1 = next(x, na);
@@ -1562,22 +1573,30 @@ fn point_strictly_inside(p: DVec2, poly: &[DVec2], tolerance: f64) -> bool {
 
 /// Whether a ray from `p` along +x crosses the closed polygon an odd number of times.
 fn odd_crossing_number(p: DVec2, poly: &[DVec2]) -> bool {
-    let n = poly.len();
+    // Each edge (a, b) from its previous vertex: the parity is the same in any order.
+    let Some(&last) = poly.last() else {
+        return false;
+    };
+    let mut a = last;
     let mut inside = false;
-    for k in 0..n {
-        let (a, b) = (poly[k], poly[next(k, n)]);
+    for &b in poly {
         if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
             inside = !inside;
         }
+        a = b;
     }
     inside
 }
 
 /// Whether `p` lies farther than `tolerance` from every edge of the closed polygon.
 fn clear_of_edges(p: DVec2, poly: &[DVec2], tolerance: f64) -> bool {
-    let n = poly.len();
-    (0..n).all(|k| {
-        let (a, b) = (poly[k], poly[next(k, n)]);
+    // Each edge (a, b) from its previous vertex: `all` is the same in any order.
+    let Some(&last) = poly.last() else {
+        return true;
+    };
+    let mut a = last;
+    poly.iter().all(|&b| {
+        let a = std::mem::replace(&mut a, b);
         let ab = b - a;
         let t = ((p - a).dot(ab) / ab.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
         (a + ab * t - p).length_squared() > tolerance * tolerance

@@ -57,6 +57,24 @@ struct Notches<'c, 'a> {
     vertices: &'c mut VertexCache,
     /// The notch of every segment sampled, by its ends' bits.
     segments: IndexMap<Bits<6>, f64>,
+    /// Every final vertex computed ([`Notches::final_vertex`]), by [`final_key`].
+    finals: IndexMap<[u32; 12], TriangleVertex>,
+}
+
+/// What triangle t's final vertex depends on: its points in order, and the points of the
+/// triangles across its edges in ascending order (`u32::MAX` where there is none), which
+/// give their vertices.
+fn final_key(tri: &DualTriangulation, t: usize) -> [u32; 12] {
+    let mut key = [u32::MAX; 12];
+    key[..3].copy_from_slice(&tri.triangles[t]);
+    for (k, &other) in tri.neighbours[t].iter().enumerate() {
+        if other != NO_TRIANGLE {
+            let mut ids = tri.triangles[other as usize];
+            ids.sort_unstable();
+            key[3 + 3 * k..6 + 3 * k].copy_from_slice(&ids);
+        }
+    }
+    key
 }
 
 impl Notches<'_, '_> {
@@ -73,8 +91,20 @@ impl Notches<'_, '_> {
     }
 
     /// Triangle t's vertex as the walk leaves it: extended to the wall where
-    /// [`extension`] moves it.
+    /// [`extension`] moves it. Taken from `finals` where there: it depends only on
+    /// [`final_key`].
     fn final_vertex(&mut self, tri: &DualTriangulation, t: usize) -> TriangleVertex {
+        let key = final_key(tri, t);
+        if let Some(&v) = self.finals.get(&key) {
+            return v;
+        }
+        let v = self.final_vertex_of(tri, t);
+        self.finals.insert(key, v);
+        v
+    }
+
+    /// [`Notches::final_vertex`] computed.
+    fn final_vertex_of(&mut self, tri: &DualTriangulation, t: usize) -> TriangleVertex {
         let ids = tri.triangles[t];
         let v = self.vertex(ids);
         let across: [Option<DVec3>; 3] = std::array::from_fn(|k| {
@@ -237,6 +267,7 @@ pub(super) fn wall_flips(
         far_factor,
         vertices,
         segments: IndexMap::default(),
+        finals: IndexMap::default(),
     };
     let targets: Vec<[u32; 3]> = (0..tri.len())
         .filter(|&t| notches.notched(tri, t))
