@@ -93,6 +93,22 @@
 //! its grading whose mean deviation, going as the inverse of the count, would be at most
 //! [`FIT_NEAR_MEAN`] D ([`FIT_SMALLER_STEPS`]; not on saddles), relaxed after the measured
 //! ones.
+//!
+//! How far this is from the best any pattern can do, on the two samples closest to uniform
+//! (docs/performance.md, branch fit22). A hexagonal covering sized everywhere by its own
+//! curvature puts a point on every (3 sqrt(3) / 2) R^2 of area, R^2 = D / (c w): on
+//! samples/paraboloid.json (z = -0.08 r^2, every vertex exactly 0.08 R^2 / sqrt(1 + k^2 r^2)
+//! off the surface, R the circumradius of its seeds in the plane) that is 871 points at
+//! D = 0.003, on samples/rational-dome.json (a sphere of radius 10, 179.5 of area,
+//! R^2 = 2 rho D) 1,151; the strip the wall cells waste (0.144 a wide, the walls' rows inset
+//! by a / sqrt(12)) adds 17 and 19. Against the smallest hex:NxN meeting D (1,521 and 2,025)
+//! those bounds are 0.584 and 0.578: 0.60 with room is out of reach there for any pattern
+//! (the fits, 937 and 1,268 points, are 5.5 % and 8.3 % above them). With regular cells the
+//! mean vertex deviation is set by the count wherever the points go (a point of area A_p
+//! carries two vertices of deviation c w A_p / (3 sqrt(3) / 2), so the mean is the integral
+//! of c w over the area divided by 3 sqrt(3) N / 2): a relaxation only evens the largest
+//! towards the mean (0.967 D and 0.965 D on these two fits), and the rest is the cells'
+//! irregularity where the rows cannot follow the curvature.
 
 use glam::DVec3;
 use rayon::prelude::*;

@@ -383,7 +383,10 @@ fn a_free_form_saddle_needs_at_most_60_percent_of_the_uniform_hex_points() {
 /// its own curvature, would have 0.848 of a uniform lattice's points and 0.928 of a lattice
 /// graded along s and t, i.e. a ratio of 0.53..0.58, which only a varying yet regular
 /// lattice could approach (the relaxed Poisson patterns of the rounds lose about 30 % to
-/// their irregular cells). Asserted: the measured ratios, with a little room.
+/// their irregular cells). With the walls' waste counted that bound is 271 points at
+/// D = 0.01 (0.559 against hex:NxN) and 888 at 0.003 (0.584 against the 1,521 of hex:39x39;
+/// docs/performance.md, branch fit22), so on this surface 0.60 with room is out of reach for
+/// any pattern at 0.003. Asserted: the measured ratios, with a little room.
 #[test]
 fn on_nearly_uniform_surfaces_the_pattern_still_beats_uniform_hex() {
     // Bounds against hex:spacing and hex:NxN: measured 0.565 and 0.589 on the paraboloid
