@@ -101,8 +101,9 @@
 //! How far this is from the best any pattern can do, on the two samples closest to uniform
 //! (docs/performance.md, branch fit22). A hexagonal covering sized everywhere by its own
 //! curvature puts a point on every (3 sqrt(3) / 2) R^2 of area, R^2 = D / (c w): on
-//! samples/paraboloid.json (z = -0.08 r^2, every vertex exactly 0.08 R^2 / sqrt(1 + k^2 r^2)
-//! off the surface, R the circumradius of its seeds in the plane) that is 871 points at
+//! samples/paraboloid.json (z = -0.08 r^2: every vertex exactly 0.08 R^2 above or below the
+//! surface, R the circumradius of its seeds in the plane, about 0.08 R^2 / sqrt(1 + k^2 r^2)
+//! off it along the normal, k = 0.16) that is 871 points at
 //! D = 0.003, on samples/rational-dome.json (a sphere of radius 10, 179.5 of area,
 //! R^2 = 2 rho D) 1,151; the strip the wall cells waste (0.144 a wide, the walls' rows inset
 //! by a / sqrt(12)) adds 17 and 19. Against the smallest hex:NxN meeting D (1,521 and 2,025)
