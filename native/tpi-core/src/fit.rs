@@ -38,8 +38,12 @@
 //! more graded lattices have their outer rows and columns [`FIT_WALL_INSET`] columns inside
 //! the walls (a dome's wall vertex between two seeds a apart at e from the
 //! wall is at R^2 = a^2 / 4 + e^2, the interior's a^2 / 3 at e = a / sqrt(12)); where the
-//! surface has negative Gaussian curvature, four more have [`FIT_SADDLE_ROW_DENSITY`] times
-//! the rows. On a saddle the vertex of three seeds is their circumcentre c in the indefinite
+//! surface has negative Gaussian curvature, six more have [`FIT_SADDLE_ROW_DENSITY`] times
+//! the rows, the last two uniform with the sparser sides and inset from the walls (all four,
+//! or only t = 0, 1: a saddle's wall of positive normal curvature puts the vertex between two
+//! wall seeds a apart at a^2 / 4, three times the interior's a^2 / 12 below; samples/hypar.json
+//! at D = 0.01 110 -> 71 points, samples/saddle.json at 0.01 and 0.03 149, 57 -> 132, 48).
+//! On a saddle the vertex of three seeds is their circumcentre c in the indefinite
 //! II and stands off |II(c)| / 2: in the metric |II| along the principal directions
 //! (II = diag(1, -1)) the triangle 0, (a, 0), (a / 2, h) gives |II(c)| = (h^2 - a^2 / 4)^2 /
 //! (4 h^2), a^2 / 12 for the regular hexagon (h = sqrt(3) a / 2, a quarter of a dome's a^2 / 3)
@@ -93,6 +97,23 @@
 //! its grading whose mean deviation, going as the inverse of the count, would be at most
 //! [`FIT_NEAR_MEAN`] D ([`FIT_SMALLER_STEPS`]; not on saddles), relaxed after the measured
 //! ones.
+//!
+//! How far this is from the best any pattern can do, on the two samples closest to uniform
+//! (docs/performance.md, branch fit22). A hexagonal covering sized everywhere by its own
+//! curvature puts a point on every (3 sqrt(3) / 2) R^2 of area, R^2 = D / (c w): on
+//! samples/paraboloid.json (z = -0.08 r^2: every vertex exactly 0.08 R^2 above or below the
+//! surface, R the circumradius of its seeds in the plane, about 0.08 R^2 / sqrt(1 + k^2 r^2)
+//! off it along the normal, k = 0.16) that is 871 points at
+//! D = 0.003, on samples/rational-dome.json (a sphere of radius 10, 179.5 of area,
+//! R^2 = 2 rho D) 1,151; the strip the wall cells waste (0.144 a wide, the walls' rows inset
+//! by a / sqrt(12)) adds 17 and 19. Against the smallest hex:NxN meeting D (1,521 and 2,025)
+//! those bounds are 0.584 and 0.578: 0.60 with room is out of reach there for any pattern
+//! (the fits, 937 and 1,268 points, are 5.5 % and 8.3 % above them). With regular cells the
+//! mean vertex deviation is set by the count wherever the points go (a point of area A_p
+//! carries two vertices of deviation c w A_p / (3 sqrt(3) / 2), so the mean is the integral
+//! of c w over the area divided by 3 sqrt(3) N / 2): a relaxation only evens the largest
+//! towards the mean (0.967 D and 0.965 D on these two fits), and the rest is the cells'
+//! irregularity where the rows cannot follow the curvature.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -300,6 +321,16 @@ pub fn fit_pattern_with_progress(
             variants.push(Grading::of(&base).sparse().saddle_rows());
             variants.push(Grading::uniform(&base).saddle_rows());
             variants.push(Grading::uniform(&base).sparse().saddle_rows());
+            // The sparser sides with the saddle rows inset from the walls (all four, or
+            // only t = 0, 1): a saddle's walls of positive normal curvature put the vertex
+            // between two wall seeds a apart at a^2 / 4, three times its interior's
+            // a^2 / 12, and the inset moves those seeds off the walls (Grading::inset).
+            // samples/hypar.json at D = 0.01 110 -> 71 points, samples/saddle.json at 0.01
+            // and 0.03 149, 57 -> 132, 48 (the same with every row closed, or uniform
+            // lattices inset without the saddle rows, gained less: at best 142 and 56 on
+            // the saddle, nothing on the hypar).
+            variants.push(Grading::uniform(&base).sparse().saddle_rows().inset());
+            variants.push(Grading::uniform(&base).sparse().saddle_rows().inset_rows());
         }
         // Lattices from here on only while the best is small (FIT_NEIGHBOUR_POINTS).
         let small_only = variants.len();
