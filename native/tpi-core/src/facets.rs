@@ -269,18 +269,10 @@ impl Context<'_> {
         (uv, self.boundary.inside_measure(uv))
     }
 
-    /// First-order foot of x seen from pattern point i: uv_i + (J^T J)^-1 J^T (x - p_i).
+    /// First-order foot of x seen from pattern point i ([`first_order_foot`]).
     fn linear_foot(&self, i: u32, x: DVec3) -> [f64; 2] {
-        let [su, sv] = self.tangents[i as usize];
-        let r = x - self.planes[i as usize].point;
-        let (e, f, g) = (su.dot(su), su.dot(sv), sv.dot(sv));
-        let (a, b) = (su.dot(r), sv.dot(r));
-        let det = e * g - f * f;
-        let uv = self.uv[i as usize];
-        if !(det > 0.0) {
-            return uv;
-        }
-        [uv[0] + (g * a - f * b) / det, uv[1] + (e * b - f * a) / det]
+        let i = i as usize;
+        first_order_foot(self.uv[i], self.tangents[i], self.planes[i].point, x)
     }
 
     /// The mean first-order foot of x from the three points, and the largest normalised
@@ -869,10 +861,7 @@ impl WallClip<'_> {
             source: &self.seeds.source,
             all: None,
         };
-        seeds.all = Some(
-            self.ghost_arrays
-                .get_or_init(|| ghost_arrays(self.surface, self.boundary, &seeds)),
-        );
+        seeds.all = Some(self.ghost_arrays.get_or_init(|| ghost_arrays(&seeds)));
         seeds
     }
 
@@ -1517,7 +1506,7 @@ struct GhostSeeds<'a> {
     planes: &'a [Plane],
     source: &'a [u32],
     /// All points' parameters and tangents as [`ghost_arrays`] gives them, where already
-    /// made (they depend only on the fields above and the surface).
+    /// made (they depend only on the fields above).
     all: Option<&'a GhostArrays>,
 }
 
@@ -1528,7 +1517,7 @@ type GhostArrays = (Vec<[f64; 2]>, Vec<[DVec3; 2]>);
 /// The parameters and tangents of all points of `seeds`: the real seeds' own, and for a
 /// ghost the first-order foot of its point seen from its seed (only a start for the
 /// projections of the vertices around it) and its seed's tangents.
-fn ghost_arrays(surface: &dyn Surface, boundary: &Boundary, seeds: &GhostSeeds<'_>) -> GhostArrays {
+fn ghost_arrays(seeds: &GhostSeeds<'_>) -> GhostArrays {
     let GhostSeeds {
         uv,
         tangents,
@@ -1538,26 +1527,30 @@ fn ghost_arrays(surface: &dyn Surface, boundary: &Boundary, seeds: &GhostSeeds<'
     } = *seeds;
     let mut all_uv = uv.to_vec();
     let mut all_tangents = tangents.to_vec();
-    let convex_side = vec![0i8; planes.len()];
-    let ctx = Context {
-        surface,
-        domain: surface.domain(),
-        boundary,
-        planes,
-        uv,
-        tangents,
-        convex_side: &convex_side,
-        regular: true,
-        long_edges: true,
-        extend_to_wall: None,
-        wall: WallMoves::PLAIN,
-    };
     for (g, plane) in planes.iter().enumerate().skip(uv.len()) {
-        let seed = source[g];
-        all_uv.push(ctx.linear_foot(seed, plane.point));
-        all_tangents.push(tangents[seed as usize]);
+        let seed = source[g] as usize;
+        all_uv.push(first_order_foot(
+            uv[seed],
+            tangents[seed],
+            planes[seed].point,
+            plane.point,
+        ));
+        all_tangents.push(tangents[seed]);
     }
     (all_uv, all_tangents)
+}
+
+/// First-order foot of x seen from a point p with parameters `uv` and tangents S_u, S_v
+/// (J = [S_u S_v]): uv + (J^T J)^-1 J^T (x - p), or `uv` where J^T J is singular.
+fn first_order_foot(uv: [f64; 2], [su, sv]: [DVec3; 2], p: DVec3, x: DVec3) -> [f64; 2] {
+    let r = x - p;
+    let (e, f, g) = (su.dot(su), su.dot(sv), sv.dot(sv));
+    let (a, b) = (su.dot(r), sv.dot(r));
+    let det = e * g - f * f;
+    if !(det > 0.0) {
+        return uv;
+    }
+    [uv[0] + (g * a - f * b) / det, uv[1] + (e * b - f * a) / det]
 }
 
 /// Runs `f` with the clip's [`Context`] of a triangulation closed by ghosts: a ghost's
@@ -1575,7 +1568,7 @@ fn with_ghost_context<R>(
     let (all_uv, all_tangents) = match seeds.all {
         Some(all) => all,
         None => {
-            made = ghost_arrays(surface, boundary, seeds);
+            made = ghost_arrays(seeds);
             &made
         }
     };
