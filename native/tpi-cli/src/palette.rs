@@ -67,7 +67,19 @@ pub(crate) const EDGE_COLOUR: [u8; 3] = [0x22, 0x22, 0x22];
 
 /// `#rrggbb`.
 pub(crate) fn hex(c: [u8; 3]) -> String {
-    format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
+    let mut text = String::with_capacity(7);
+    push_hex(&mut text, c);
+    text
+}
+
+/// Appends `#rrggbb` to `out` ([`hex`] without its own string, for writers of many facets).
+pub(crate) fn push_hex(out: &mut String, c: [u8; 3]) {
+    const DIGITS: &[u8; 16] = b"0123456789abcdef";
+    out.push('#');
+    for byte in c {
+        out.push(char::from(DIGITS[usize::from(byte >> 4)]));
+        out.push(char::from(DIGITS[usize::from(byte & 15)]));
+    }
 }
 
 /// The vertices the pictures are framed on: every finite vertex within a quarter of the
@@ -95,5 +107,26 @@ pub(crate) fn framing_points(result: &tpi_core::Discretisation) -> Vec<glam::DVe
         finite.collect()
     } else {
         kept
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn colours_read_as_the_standard_formatter_writes_them() {
+        for c in [
+            [0, 0, 0],
+            [255, 255, 255],
+            [0x59, 0xa1, 0x4f],
+            [0x0a, 0xb0, 0x0c],
+        ] {
+            let expected = format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
+            assert_eq!(hex(c), expected);
+            let mut appended = String::from("x");
+            push_hex(&mut appended, c);
+            assert_eq!(appended, format!("x{expected}"));
+        }
     }
 }

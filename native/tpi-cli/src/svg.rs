@@ -5,7 +5,9 @@ use std::fmt::Write;
 
 use tpi_core::Discretisation;
 
-use crate::palette::{hex, side_class, side_colour, side_label, EDGE_COLOUR, FLAG_COLOUR};
+use crate::palette::{
+    hex, push_hex, side_class, side_colour, side_label, EDGE_COLOUR, FLAG_COLOUR,
+};
 
 /// Longest side of the drawing area, in SVG user units (pixels).
 const DRAWING: f64 = 1000.0;
@@ -69,7 +71,7 @@ pub(crate) fn mesh_top_view(result: &Discretisation, title: &str) -> String {
         out.push_str("\" data-sides=\"");
         out.push_str(integers.format(facet.len()));
         out.push_str("\" fill=\"");
-        push_hex_colour(&mut out, side_colour(facet.len()));
+        push_hex(&mut out, side_colour(facet.len()));
         out.push('"');
         if flagged(i) {
             any_flagged = true;
@@ -80,16 +82,13 @@ pub(crate) fn mesh_top_view(result: &Discretisation, title: &str) -> String {
             out.push_str("\" stroke-width=\"1.6\"");
         }
         out.push_str(" points=\"");
-        for (k, &vi) in facet.iter().enumerate() {
-            let v = result.vertices[vi as usize];
-            let (x, y) = map(v.x, v.y);
-            if k > 0 {
-                out.push(' ');
-            }
-            push_fixed2(&mut out, x);
-            out.push(',');
-            push_fixed2(&mut out, y);
-        }
+        push_points(
+            &mut out,
+            facet.iter().map(|&vi| {
+                let v = result.vertices[vi as usize];
+                map(v.x, v.y)
+            }),
+        );
         out.push_str("\"/>\n");
     }
     out.push_str("</g>\n");
@@ -134,13 +133,16 @@ pub(crate) fn mesh_top_view(result: &Discretisation, title: &str) -> String {
     out
 }
 
-/// Appends `#rrggbb`, as [`hex`] writes it.
-fn push_hex_colour(out: &mut String, c: [u8; 3]) {
-    const DIGITS: &[u8; 16] = b"0123456789abcdef";
-    out.push('#');
-    for byte in c {
-        out.push(DIGITS[usize::from(byte >> 4)] as char);
-        out.push(DIGITS[usize::from(byte & 15)] as char);
+/// Appends an SVG point list, `x,y` pairs apart by spaces, each coordinate as `{:.2}`
+/// writes it ([`push_fixed2`]).
+fn push_points(out: &mut String, points: impl Iterator<Item = (f64, f64)>) {
+    for (k, (x, y)) in points.enumerate() {
+        if k > 0 {
+            out.push(' ');
+        }
+        push_fixed2(out, x);
+        out.push(',');
+        push_fixed2(out, y);
     }
 }
 
@@ -203,13 +205,7 @@ pub(crate) fn pattern_preview(points: &[[f64; 2]], cells: &[Vec<[f64; 2]>], titl
     let _ = writeln!(out, "<g id=\"voronoi\" fill=\"none\" stroke=\"#4e79a7\" stroke-width=\"0.8\" stroke-linejoin=\"round\">");
     for (i, cell) in cells.iter().enumerate() {
         let _ = write!(out, "<polygon data-point=\"{i}\" points=\"");
-        for (k, &p) in cell.iter().enumerate() {
-            let (x, y) = map(p);
-            if k > 0 {
-                out.push(' ');
-            }
-            let _ = write!(out, "{x:.2},{y:.2}");
-        }
+        push_points(&mut out, cell.iter().map(|&p| map(p)));
         out.push_str("\"/>\n");
     }
     out.push_str("</g>\n");
@@ -286,20 +282,6 @@ mod tests {
             let mut fast = String::new();
             push_fixed2(&mut fast, x);
             assert_eq!(fast, format!("{x:.2}"), "{x:e}");
-        }
-    }
-
-    #[test]
-    fn colours_read_as_hex_writes_them() {
-        for c in [
-            [0, 0, 0],
-            [255, 255, 255],
-            [0x59, 0xa1, 0x4f],
-            [0x0a, 0xb0, 0x0c],
-        ] {
-            let mut fast = String::new();
-            push_hex_colour(&mut fast, c);
-            assert_eq!(fast, hex(c));
         }
     }
 }
