@@ -1290,24 +1290,8 @@ fn assert_valid_planar_within_5_degrees(d: &tpi_core::Discretisation, what: &str
 /// independent check, and its report agrees.
 #[test]
 fn the_flips_cut_no_group_of_seeds_off_the_mesh() {
-    let seed = 55;
-    let surface = mixed_surface(seed);
     for n in [300, 2000] {
-        for (name, pattern) in sweep_patterns(n, seed) {
-            let d = discretise(&surface, &pattern, &DiscretiseOptions::default()).unwrap();
-            let v = check(&d);
-            assert!(v.is_disc(), "mixed{seed} / {name}: not a disc: {v:?}");
-            let q = d.quality.as_ref().expect("a report");
-            assert_eq!(
-                (q.euler_characteristic, q.boundary_loops),
-                (v.euler, v.boundary_loops),
-                "mixed{seed} / {name}"
-            );
-            assert!(
-                v.unflagged(&d).is_empty(),
-                "mixed{seed} / {name}: invalid facets not flagged"
-            );
-        }
+        assert_mixed_meshes_are_discs(55, n);
     }
 }
 
@@ -1321,17 +1305,29 @@ fn the_flips_cut_no_group_of_seeds_off_the_mesh() {
 #[test]
 fn the_wall_clip_leaves_no_pinched_boundary_and_the_report_agrees() {
     for (seed, n) in [(28, 2000), (44, 300)] {
-        let surface = mixed_surface(seed);
-        for (name, pattern) in sweep_patterns(n, seed) {
-            let d = discretise(&surface, &pattern, &DiscretiseOptions::default()).unwrap();
-            let v = check(&d);
-            let q = d.quality.as_ref().expect("a report");
-            assert_eq!(
-                (q.euler_characteristic, q.boundary_loops),
-                (v.euler, v.boundary_loops),
-                "mixed{seed} / {name}: the report's topology differs from the check's"
-            );
-            assert!(v.is_disc(), "mixed{seed} / {name}: not a disc: {v:?}");
-        }
+        assert_mixed_meshes_are_discs(seed, n);
+    }
+}
+
+/// Every mesh of the mixed surface `seed` with the sweep's patterns of about `n` points and
+/// exact planes: a disc by the independent check, the report's Euler characteristic and
+/// boundary loops the check's, and every invalid facet flagged.
+fn assert_mixed_meshes_are_discs(seed: u64, n: usize) {
+    let surface = mixed_surface(seed);
+    for (name, pattern) in sweep_patterns(n, seed) {
+        let d = discretise(&surface, &pattern, &DiscretiseOptions::default()).unwrap();
+        let v = check(&d);
+        assert!(v.is_disc(), "mixed{seed} / {name}: not a disc: {v:?}");
+        let q = d.quality.as_ref().expect("a report");
+        assert_eq!(
+            (q.euler_characteristic, q.boundary_loops),
+            (v.euler, v.boundary_loops),
+            "mixed{seed} / {name}: the report's topology differs from the check's"
+        );
+        assert!(
+            v.unflagged(&d).is_empty(),
+            "mixed{seed} / {name}: invalid facets not flagged: {:?}",
+            v.unflagged(&d)
+        );
     }
 }
