@@ -34,7 +34,8 @@ use rayon::prelude::*;
 use crate::boundary::{Boundary, Position};
 use crate::diagnostics::Diagnostic;
 use crate::mesh::{
-    assemble, drop_coincident_crossings, weld_coincident_crossings, Assembly, FacetMesh, SlopeView,
+    assemble, drop_coincident_crossings, find, weld_coincident_crossings, Assembly, FacetMesh,
+    SlopeView,
 };
 use crate::neighbours::SlopeFrame;
 use crate::planes::{coincident, meeting_point, regularised_meeting_point, Plane, ThreePlanePoint};
@@ -46,10 +47,10 @@ use crate::surface::{Domain, Surface};
 use crate::tolerance::{
     CORNER_ON_CROSSING, CROSSING_ACCEPTANCE, CROSSING_ITERATIONS, CROSSING_TOLERANCE,
     DEFAULT_FAR_VERTEX_FACTOR, GRAZING_CROSSING_SLACK, NEAR_SURFACE_RATIO, OUTSIDE_SEGMENT_SAMPLES,
-    RAY_DOUBLINGS, RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR, WALL_CLIP_SHORT_EDGE,
-    WALL_EXTENSION_MIN_DEPTH, WALL_EXTENSION_OWN_STEPS, WALL_EXTENSION_ROUNDS,
-    WALL_EXTENSION_STEPS, WALL_FLIP_CORNER_REACH, WALL_FLIP_DEVIATION_SLACK, WALL_FLIP_MIN_AREA,
-    WALL_FLIP_NOTCH_SAMPLES, WALL_FLIP_NOTCH_SLACK, WALL_FLIP_RETRIES,
+    RAY_DOUBLINGS, RAY_FAR_FACTOR, UNREACHABLE_VERTEX_FACTOR, WALL_CLIP_HYBRID_ROUNDS,
+    WALL_CLIP_SHORT_EDGE, WALL_EXTENSION_MIN_DEPTH, WALL_EXTENSION_OWN_STEPS,
+    WALL_EXTENSION_ROUNDS, WALL_EXTENSION_STEPS, WALL_FLIP_CORNER_REACH, WALL_FLIP_DEVIATION_SLACK,
+    WALL_FLIP_MIN_AREA, WALL_FLIP_NOTCH_SAMPLES, WALL_FLIP_NOTCH_SLACK, WALL_FLIP_RETRIES,
 };
 use crate::triangulation::{
     real_pairs, triangle_edges, DualTriangulation, Edge, Fan, IndexMap, NO_TRIANGLE,
@@ -217,6 +218,10 @@ struct Context<'a> {
     extend_to_wall: Option<&'a [bool]>,
     /// How the any-curvature path's clip treats the wall ([`WallMoves::PLAIN`] elsewhere).
     wall: WallMoves,
+    /// Real seeds whose facets keep their closed fan, with the crossings of their edges
+    /// inserted, while the others are clipped ([`closed_fan_items`]; Some: the hybrid clip of
+    /// [`WallClip::clip`]).
+    keep_closed: Option<&'a [bool]>,
 }
 
 /// How the any-curvature path's clip on the wall moves and keeps vertices ([`Context`]).
@@ -410,6 +415,7 @@ pub(crate) fn build_stage(
                     None,
                     WallMoves::PLAIN,
                     None,
+                    None,
                     stages,
                 )
                 .0
@@ -430,6 +436,7 @@ pub(crate) fn build_stage(
                     params,
                     vertices: RefCell::new(VertexCache::default()),
                     ghost_arrays: std::cell::OnceCell::new(),
+                    hybrid_keep: RefCell::new(Vec::new()),
                 };
                 let (flipped, mesh) = wall.flipped_and_clipped(&triangulation, stages);
                 if let Some(flipped) = flipped {
@@ -483,6 +490,9 @@ struct WallClip<'a> {
     /// Every point's parameters and tangents in the ghost context ([`ghost_arrays`]), made
     /// at the first clip or flips' try.
     ghost_arrays: std::cell::OnceCell<GhostArrays>,
+    /// The real seeds whose facets the last hybrid clip that kept its shape left closed
+    /// (empty before one; [`WallClip::clip`]).
+    hybrid_keep: RefCell<Vec<bool>>,
 }
 
 /// A mesh with its facets' verdicts ([`mesh_shape`]), from which another mesh's facet of
@@ -669,6 +679,7 @@ impl WallClip<'_> {
                     keep_enclosed: false,
                     own_steps: self.own_steps(),
                 },
+                None,
                 |ctx| {
                     wall_flips::wall_flips(
                         ctx,
@@ -892,7 +903,10 @@ impl WallClip<'_> {
             &unreported,
         );
         // Only the first clip reports progress: the retries redo the same stage.
-        let clip = |blocked: &[bool], keep_enclosed: bool, stages: &Stages<'_>| {
+        let clip = |blocked: &[bool],
+                    keep_enclosed: bool,
+                    keep_closed: Option<&[bool]>,
+                    stages: &Stages<'_>| {
             build_ghost_clipped_facets(
                 self.surface,
                 self.boundary,
@@ -904,6 +918,7 @@ impl WallClip<'_> {
                     keep_enclosed,
                     own_steps: self.own_steps(),
                 },
+                keep_closed,
                 Some(&mut self.vertices.borrow_mut()),
                 stages,
             )
@@ -914,7 +929,7 @@ impl WallClip<'_> {
         let closed_shape = std::cell::OnceCell::new();
         let planes = &seeds.planes[..n];
         // The clipped facets in their final form with their edges, if they keep the closed
-        // ones' shape.
+        // ones' shape; else the facets to keep closed in a hybrid clip ([`clip_suspects`]).
         let finish = |mut clipped: FacetMesh| {
             weld_coincident_crossings(&mut clipped, params.weld_distance);
             drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
@@ -937,16 +952,32 @@ impl WallClip<'_> {
             let after = mesh_shape(&clipped, &clipped_edges, planes, &known);
             let (after, simple) =
                 after.map_or((None, None), |(shape, simple)| (Some(shape), Some(simple)));
-            wall_clip_keeps_shape(before.as_ref().map(|x| &x.0), after).then_some((
-                clipped,
-                clipped_edges,
-                simple,
-            ))
+            let suspects = |reach: f64| {
+                let closed_simple = before.as_ref().map(|x| x.1.as_slice());
+                clip_suspects(
+                    &clipped,
+                    &clipped_edges,
+                    simple.as_deref(),
+                    closed_simple,
+                    planes,
+                    reach,
+                )
+            };
+            match (before, &after) {
+                (_, None) => Err(Vec::new()),
+                (Some((before, _)), after)
+                    if !wall_clip_keeps_shape(Some(before), after.as_ref()) =>
+                {
+                    Err(suspects(before.reach))
+                }
+                _ => Ok((clipped, clipped_edges, simple)),
+            }
         };
-        // One clip with its retries: the clipped facets if kept, and the culprits.
-        let attempt = |keep_enclosed: bool, stages: &Stages<'_>| {
+        // One clip with its retries: the clipped facets if kept (else the suspects of the
+        // first clip), and the culprits.
+        let attempt = |keep_enclosed: bool, keep_closed: Option<&[bool]>, stages: &Stages<'_>| {
             let mut blocked = vec![false; n];
-            let (mut clipped, mut extended) = clip(&blocked, keep_enclosed, stages);
+            let (mut clipped, mut extended) = clip(&blocked, keep_enclosed, keep_closed, stages);
             let mut culprits = Vec::new();
             // Facets extended to the wall that came out invalid keep their ghost's end.
             for _ in 0..WALL_EXTENSION_ROUNDS {
@@ -958,7 +989,7 @@ impl WallClip<'_> {
                 for f in invalid {
                     blocked[f] = true;
                 }
-                (clipped, extended) = clip(&blocked, keep_enclosed, &unreported);
+                (clipped, extended) = clip(&blocked, keep_enclosed, keep_closed, &unreported);
             }
             if marked.contains(&true) {
                 culprits.extend(invalid_marked_facets(
@@ -978,28 +1009,68 @@ impl WallClip<'_> {
             }
             culprits.sort_unstable();
             culprits.dedup();
-            let kept = finish(clipped).or_else(|| {
-                extended
-                    .contains(&true)
-                    .then(|| finish(clip(&vec![true; n], keep_enclosed, &unreported).0))
-                    .flatten()
+            let kept = finish(clipped).or_else(|suspects| {
+                if extended.contains(&true) {
+                    finish(clip(&vec![true; n], keep_enclosed, keep_closed, &unreported).0)
+                        .map_err(|_| suspects)
+                } else {
+                    Err(suspects)
+                }
             });
             (kept, culprits)
         };
-        let (mut kept, mut culprits) = attempt(false, stages);
+        let (first, mut culprits) = attempt(false, None, stages);
+        let (mut kept, suspects) = match first {
+            Ok(mesh) => (Some(mesh), Vec::new()),
+            Err(suspects) => (None, suspects),
+        };
+        let all = vec![true; n];
+        let invalid =
+            |mesh: &FacetMesh| invalid_marked_facets(mesh, &seeds.planes[..n], &all, 0.0).len();
         if kept.is_none() {
             // Vertices that ran away from their points near a parabolic line and whose
             // feet fell beyond the wall cut holes in the clip (on seeded mixed surfaces,
             // holes in 8 of 8 hex and Poisson runs checked, and the whole boundary then
             // kept its closed facets): they are kept, as the closed facets keep them, where
             // that leaves no more invalid facets than the closed facets have.
-            let all = vec![true; n];
-            let invalid =
-                |mesh: &FacetMesh| invalid_marked_facets(mesh, &seeds.planes[..n], &all, 0.0).len();
-            let (retry, retry_culprits) = attempt(true, &unreported);
-            if let Some(mesh) = retry.filter(|(mesh, _, _)| invalid(mesh) <= invalid(&closed)) {
+            let (retry, retry_culprits) = attempt(true, None, &unreported);
+            if let Some(mesh) = retry
+                .ok()
+                .filter(|(mesh, _, _)| invalid(mesh) <= invalid(&closed))
+            {
                 kept = Some(mesh);
                 culprits = retry_culprits;
+            }
+        }
+        if kept.is_none() && suspects.contains(&true) {
+            // Where the clip fails only in places (a facet left beyond the wall, a facet the
+            // clip turns non-simple), those facets keep their closed fans and the rest of the
+            // mesh's edge stays on the wall: a ring of neighbours more each round, up to the
+            // closed facets everywhere. The facets an earlier clip of this wall kept closed
+            // join the first round: the unflipped and flipped triangulations of the wall
+            // flips mostly fail alike.
+            let mut keep = suspects;
+            for (k, &earlier) in keep.iter_mut().zip(self.hybrid_keep.borrow().iter()) {
+                *k |= earlier;
+            }
+            for _ in 0..WALL_CLIP_HYBRID_ROUNDS {
+                let (retry, retry_culprits) = attempt(false, Some(&keep), &unreported);
+                // Away from the kept facets and their neighbours the clip is the first one,
+                // which failed only on its shape: overlaps are counted near them.
+                let near = with_neighbours(tri, &keep);
+                let local = |mesh: &FacetMesh| {
+                    invalid_marked_facets(mesh, &seeds.planes[..n], &near, 0.0).len()
+                };
+                if let Some(mesh) = retry
+                    .ok()
+                    .filter(|(mesh, _, _)| local(mesh) <= local(&closed))
+                {
+                    kept = Some(mesh);
+                    culprits = retry_culprits;
+                    *self.hybrid_keep.borrow_mut() = keep;
+                    break;
+                }
+                keep = near;
             }
         }
         match kept {
@@ -1158,7 +1229,7 @@ fn edge_segments<'m>(
 /// that meets a non-convex facet's plane far away must not add a spike). On a saddle a boundary facet's edges can run past
 /// the wall all around it (its polygon, not its seed, beyond the boundary) and its neighbours'
 /// cuts then leave it apart: the closed facets, which the validity flips judged, are kept.
-fn wall_clip_keeps_shape(closed: Option<&MeshShape>, clipped: Option<MeshShape>) -> bool {
+fn wall_clip_keeps_shape(closed: Option<&MeshShape>, clipped: Option<&MeshShape>) -> bool {
     match (closed, clipped) {
         (Some(before), Some(after)) => {
             after.euler == before.euler
@@ -1169,6 +1240,87 @@ fn wall_clip_keeps_shape(closed: Option<&MeshShape>, clipped: Option<MeshShape>)
         (None, Some(_)) => true,
         (_, None) => false,
     }
+}
+
+/// The facets to blame where a clip does not keep the closed facets' shape, to be kept closed
+/// in a hybrid clip ([`WallClip::clip`]), per facet of `clipped`: those apart from the largest
+/// group of facets joined by shared edges (a facet the wall leaves nothing of keeps its
+/// closed fan beyond the wall, alone), those holding a vertex where the mesh's edge pinches
+/// (four or more boundary edges), those not simple in their plane that are simple closed
+/// (`closed_simple`), and those with a vertex farther than `reach` (the closed facets'
+/// largest) from their seed (a facet whose edges cross the wall far from its seed and that
+/// follows the wall round several corners). None where `edges` is (an edge held wrongly).
+fn clip_suspects(
+    clipped: &FacetMesh,
+    edges: &Option<(usize, Vec<(u32, u32)>)>,
+    simple: Option<&[Verdict]>,
+    closed_simple: Option<&[Verdict]>,
+    planes: &[Plane],
+    reach: f64,
+) -> Vec<bool> {
+    let Some((_, boundary)) = edges else {
+        return Vec::new();
+    };
+    let facets = clipped.offsets.len().saturating_sub(1);
+    let mut suspect = vec![false; facets];
+    // Groups of facets joined by shared edges (union-find over the sorted edge list).
+    let mut held: Vec<(u32, u32, u32)> = Vec::with_capacity(clipped.loops.len());
+    for f in 0..facets {
+        let lp = clipped.facet_loop(f);
+        for k in 0..lp.len() {
+            let (a, b) = (lp[k], lp[(k + 1) % lp.len()]);
+            held.push((a.min(b), a.max(b), f as u32));
+        }
+    }
+    held.sort_unstable();
+    let mut parent: Vec<u32> = (0..facets as u32).collect();
+    for w in held.windows(2) {
+        if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
+            let (a, b) = (find(&mut parent, w[0].2), find(&mut parent, w[1].2));
+            parent[a.max(b) as usize] = a.min(b);
+        }
+    }
+    let roots: Vec<u32> = (0..facets as u32).map(|f| find(&mut parent, f)).collect();
+    let mut size = vec![0usize; facets];
+    for &r in &roots {
+        size[r as usize] += 1;
+    }
+    // The largest group, the lowest root on a tie.
+    let main = (0..facets).max_by_key(|&r| (size[r], std::cmp::Reverse(r)));
+    let mut boundary_edges = vec![0u32; clipped.vertices.len()];
+    for &(a, b) in boundary {
+        boundary_edges[a as usize] += 1;
+        boundary_edges[b as usize] += 1;
+    }
+    for f in 0..facets {
+        let lp = clipped.facet_loop(f);
+        let apart = main.is_some_and(|m| roots[f] as usize != m);
+        let pinched = lp.iter().any(|&v| boundary_edges[v as usize] >= 4);
+        let turned = simple.zip(closed_simple).is_some_and(|(after, before)| {
+            !after[f].simple && before.get(f).is_some_and(|x| x.simple)
+        });
+        let far = lp
+            .iter()
+            .any(|&v| clipped.vertices[v as usize].distance(planes[f].point) > reach);
+        suspect[f] = apart || pinched || turned || far;
+    }
+    suspect
+}
+
+/// `marked` with every real neighbour of a marked point in `tri` marked too.
+fn with_neighbours(tri: &DualTriangulation, marked: &[bool]) -> Vec<bool> {
+    let mut grown = marked.to_vec();
+    let real = marked.len();
+    for t in &tri.triangles {
+        if t.iter().any(|&p| (p as usize) < real && marked[p as usize]) {
+            for &p in t {
+                if (p as usize) < real {
+                    grown[p as usize] = true;
+                }
+            }
+        }
+    }
+    grown
 }
 
 /// Gives every vertex on an edge held by one facet, other than a corner, the kind
@@ -1454,6 +1606,7 @@ fn build_facets(
         long_edges: false,
         extend_to_wall: None,
         wall: WallMoves::PLAIN,
+        keep_closed: None,
     };
     let walk = walk_facets(&ctx, samples.uv.len(), tri, params, None, stages);
     if release_tangents {
@@ -1484,18 +1637,27 @@ fn build_ghost_clipped_facets(
     params: &FacetParams,
     extend_to_wall: Option<&[bool]>,
     wall: WallMoves,
+    keep_closed: Option<&[bool]>,
     vertices: Option<&mut VertexCache>,
     stages: &Stages<'_>,
 ) -> (FacetMesh, Vec<bool>) {
     let (real_count, source) = (seeds.uv.len(), seeds.source);
-    with_ghost_context(surface, boundary, seeds, extend_to_wall, wall, |ctx| {
-        let (mut mesh, extended) = clip_facets(ctx, real_count, tri, params, vertices, stages);
-        // Diagnostics name pattern points: a ghost stands for its seed.
-        for diagnostic in &mut mesh.diagnostics {
-            diagnostic.map_points(|p| source[p as usize]);
-        }
-        (mesh, extended)
-    })
+    with_ghost_context(
+        surface,
+        boundary,
+        seeds,
+        extend_to_wall,
+        wall,
+        keep_closed,
+        |ctx| {
+            let (mut mesh, extended) = clip_facets(ctx, real_count, tri, params, vertices, stages);
+            // Diagnostics name pattern points: a ghost stands for its seed.
+            for diagnostic in &mut mesh.diagnostics {
+                diagnostic.map_points(|p| source[p as usize]);
+            }
+            (mesh, extended)
+        },
+    )
 }
 
 /// The real seeds (`uv`, `tangents`) and the planes and sources of all points, ghosts
@@ -1562,6 +1724,7 @@ fn with_ghost_context<R>(
     seeds: &GhostSeeds<'_>,
     extend_to_wall: Option<&[bool]>,
     wall: WallMoves,
+    keep_closed: Option<&[bool]>,
     f: impl FnOnce(&Context<'_>) -> R,
 ) -> R {
     let made;
@@ -1585,6 +1748,7 @@ fn with_ghost_context<R>(
         long_edges: true,
         extend_to_wall,
         wall,
+        keep_closed,
     };
     f(&ctx)
 }
@@ -1773,6 +1937,7 @@ fn walk_facets(
     let corners = corner_samples(surface, &corner_list);
     let incident = tri.incident_triangles(ctx.uv.len());
     let lookup = ItemContext {
+        keep_closed: ctx.keep_closed,
         tri,
         incident: &incident,
         crossing_ranges: &crossing_ranges,
@@ -2147,6 +2312,8 @@ struct ItemContext<'a> {
     /// With long edges ([`Context::long_edges`]): the seeds' parameters (each facet is
     /// clipped by itself, and one cut in several parts keeps the part around its seed).
     long_edges: Option<&'a [[f64; 2]]>,
+    /// [`Context::keep_closed`].
+    keep_closed: Option<&'a [bool]>,
 }
 
 /// The edges that can hold boundary crossings, in triangle order (each edge once, from its lower triangle):
@@ -2344,6 +2511,7 @@ pub(crate) fn single_triangle_vertex(
         long_edges: false,
         extend_to_wall: None,
         wall: WallMoves::PLAIN,
+        keep_closed: None,
     };
     triangle_vertex_ordered(&ctx, ids, far_factor)
 }
@@ -2923,6 +3091,10 @@ fn facet_items(
         ));
         return false;
     }
+    if kind == Fan::Closed && cx.keep_closed.is_some_and(|keep| keep[i as usize]) {
+        closed_fan_items(i, cx, fan, items);
+        return false;
+    }
     // Fast path: an interior point whose fan vertices are all exact and inside has no
     // boundary crossing on any of its edges (crossings need an outside end): its loop is its fan.
     if kind == Fan::Closed
@@ -3037,6 +3209,47 @@ fn facet_items(
         }
     }
     false
+}
+
+/// The loop of facet i kept closed in a hybrid clip ([`WallClip::clip`]): every vertex of its
+/// closed fan, inside or out, with the crossings of its edges with other real seeds between
+/// them. Its clipped neighbours end their shared edge at those crossings, so the two facets
+/// still share the edge's part inside the region, and the part beyond is the closed facet's
+/// own edge on the mesh's edge; the crossings lie on the edge, so the loop stays in its plane.
+/// An ill-conditioned vertex gives the edge points the walk gives it.
+fn closed_fan_items(i: u32, cx: &ItemContext<'_>, fan: &[u32], items: &mut PackedItems) {
+    let real = cx.keep_closed.map_or(0, <[bool]>::len) as u32;
+    for &t in fan {
+        let vertices = cx.tri.triangles[t as usize];
+        let p = vertices.iter().position(|&v| v == i).unwrap_or(0);
+        let incoming = vertices[(p + 1) % 3];
+        if incoming < real {
+            if let Some(&(first, last)) =
+                cx.crossing_ranges.get(&(i.min(incoming), i.max(incoming)))
+            {
+                // Stored from the edge's lower point to its higher one.
+                if i < incoming {
+                    (first..last).for_each(|c| items.push(Item::Crossing(c)));
+                } else {
+                    (first..last)
+                        .rev()
+                        .for_each(|c| items.push(Item::Crossing(c)));
+                }
+            }
+        }
+        if cx.triangle_vertices[t as usize].exact {
+            items.push(Item::Triangle(t));
+        } else {
+            let outgoing = vertices[(p + 2) % 3];
+            for j in [incoming, outgoing] {
+                items.push(Item::EdgePoint {
+                    triangle: t,
+                    lo: i.min(j),
+                    hi: i.max(j),
+                });
+            }
+        }
+    }
 }
 
 /// The part of a facet's loop (`raw`, its walk with the crossings of its edges) around its

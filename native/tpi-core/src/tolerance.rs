@@ -209,6 +209,12 @@ pub const WALL_EXTENSION_MIN_DEPTH: f64 = 0.05;
 /// and clips again.
 pub const WALL_EXTENSION_ROUNDS: usize = 3;
 
+/// Tries of a hybrid clip on the wall (`facets::WallClip::clip`) where the whole clip does
+/// not keep the closed facets' shape: the facets to blame keep their closed fans, with a ring
+/// of neighbours more after each try that fails; after the last the closed facets are kept
+/// everywhere.
+pub const WALL_CLIP_HYBRID_ROUNDS: usize = 4;
+
 /// Rounds of wall flips (`facets::wall_flips`): each visits every triangle with a ghost whose
 /// vertex stays inside the region.
 pub const WALL_FLIP_ROUNDS: usize = 4;

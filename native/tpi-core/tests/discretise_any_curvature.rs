@@ -1331,3 +1331,45 @@ fn assert_mixed_meshes_are_discs(seed: u64, n: usize) {
         );
     }
 }
+
+/// Where clipping the whole mesh on the wall fails only in places (on these mixed surfaces
+/// with adjusted planes: a facet the wall leaves nothing of, standing alone beyond it, which
+/// made an island), only the facets to blame and a ring or so of neighbours keep their closed
+/// fans: the rest of the mesh's edge stays on the wall. Before, the whole edge kept its
+/// closed facets, every boundary vertex beyond the wall. By the independent projection
+/// ([`wall_place`]): at most a tenth of the boundary vertices lie beyond the wall; every mesh
+/// is a disc with no invalid facet, its planes within 5 degrees.
+#[test]
+fn a_clip_that_fails_in_places_keeps_the_rest_of_the_edge_on_the_wall() {
+    let options = DiscretiseOptions {
+        planes: PlaneMode::Adjusted,
+        ..DiscretiseOptions::default()
+    };
+    for (seed, wanted) in [(13, "hex300@0"), (13, "poisson300"), (22, "hex300@72")] {
+        let surface = mixed_surface(seed);
+        let (_, pattern) = sweep_patterns(300, seed)
+            .into_iter()
+            .find(|(name, _)| name == wanted)
+            .expect("a sweep pattern");
+        let what = format!("mixed{seed} / {wanted}");
+        let d = discretise(&surface, &pattern, &options).expect(&what);
+        assert_valid_planar_within_5_degrees(&d, &what);
+        let spacing = seed_diagonal(&d) / (2.0 * d.facet_count() as f64).sqrt();
+        let t = topology(&d);
+        let (mut beyond, mut total) = (0usize, 0usize);
+        for (v, _) in t.on_boundary.iter().enumerate().filter(|(_, &b)| b) {
+            total += 1;
+            if matches!(
+                wall_place(&surface, d.vertices[v], spacing),
+                WallPlace::Beyond
+            ) {
+                beyond += 1;
+            }
+        }
+        eprintln!("{what}: {beyond} of {total} boundary vertices beyond the wall");
+        assert!(
+            beyond * 10 <= total,
+            "{what}: {beyond} of {total} boundary vertices beyond the wall"
+        );
+    }
+}
