@@ -1027,7 +1027,10 @@ impl WallClip<'_> {
         let all = vec![true; n];
         let invalid =
             |mesh: &FacetMesh| invalid_marked_facets(mesh, &seeds.planes[..n], &all, 0.0).len();
-        if kept.is_none() {
+        // Where an earlier clip of this wall needed the hybrid below, that one is tried
+        // next: the retry with enclosed vertices kept failed there.
+        let hybrid_before = self.hybrid_keep.borrow().contains(&true);
+        if kept.is_none() && !hybrid_before {
             // Vertices that ran away from their points near a parabolic line and whose
             // feet fell beyond the wall cut holes in the clip (on seeded mixed surfaces,
             // holes in 8 of 8 hex and Poisson runs checked, and the whole boundary then
