@@ -1231,7 +1231,8 @@ fn edge_segments<'m>(
 /// closed facets reach (a clipped facet is a part of its closed one; a corner's normal line
 /// that meets a non-convex facet's plane far away must not add a spike). On a saddle a boundary facet's edges can run past
 /// the wall all around it (its polygon, not its seed, beyond the boundary) and its neighbours'
-/// cuts then leave it apart: the closed facets, which the validity flips judged, are kept.
+/// cuts then leave it apart: that facet and a ring of neighbours then keep their closed fans,
+/// which the validity flips judged ([`clip_suspects`], the hybrid clip of [`WallClip::clip`]).
 fn wall_clip_keeps_shape(closed: Option<&MeshShape>, clipped: Option<&MeshShape>) -> bool {
     match (closed, clipped) {
         (Some(before), Some(after)) => {
