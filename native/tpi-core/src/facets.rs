@@ -929,8 +929,9 @@ impl WallClip<'_> {
         let closed_shape = std::cell::OnceCell::new();
         let planes = &seeds.planes[..n];
         // The clipped facets in their final form with their edges, if they keep the closed
-        // ones' shape; else the facets to keep closed in a hybrid clip ([`clip_suspects`]).
-        let finish = |mut clipped: FacetMesh| {
+        // ones' shape; else, where `blame`, the facets to keep closed in a hybrid clip
+        // ([`clip_suspects`]; only the first clip's are used).
+        let finish = |mut clipped: FacetMesh, blame: bool| {
             weld_coincident_crossings(&mut clipped, params.weld_distance);
             drop_coincident_crossings(&mut clipped, WALL_CLIP_SHORT_EDGE * spacing);
             start_loops_at_lowest_triangle(&mut clipped);
@@ -952,23 +953,25 @@ impl WallClip<'_> {
             let after = mesh_shape(&clipped, &clipped_edges, planes, &known);
             let (after, simple) =
                 after.map_or((None, None), |(shape, simple)| (Some(shape), Some(simple)));
-            let suspects = |reach: f64| {
-                let closed_simple = before.as_ref().map(|x| x.1.as_slice());
-                clip_suspects(
-                    &clipped,
-                    &clipped_edges,
-                    simple.as_deref(),
-                    closed_simple,
-                    planes,
-                    reach,
-                )
-            };
             match (before, &after) {
                 (_, None) => Err(Vec::new()),
-                (Some((before, _)), after)
+                (Some((before, closed_simple)), after)
                     if !wall_clip_keeps_shape(Some(before), after.as_ref()) =>
                 {
-                    Err(suspects(before.reach))
+                    Err(if blame {
+                        let simple = simple.as_deref();
+                        let reach = before.reach;
+                        clip_suspects(
+                            &clipped,
+                            &clipped_edges,
+                            simple,
+                            closed_simple,
+                            planes,
+                            reach,
+                        )
+                    } else {
+                        Vec::new()
+                    })
                 }
                 _ => Ok((clipped, clipped_edges, simple)),
             }
@@ -1009,10 +1012,14 @@ impl WallClip<'_> {
             }
             culprits.sort_unstable();
             culprits.dedup();
-            let kept = finish(clipped).or_else(|suspects| {
+            let blame = !keep_enclosed && keep_closed.is_none();
+            let kept = finish(clipped, blame).or_else(|suspects| {
                 if extended.contains(&true) {
-                    finish(clip(&vec![true; n], keep_enclosed, keep_closed, &unreported).0)
-                        .map_err(|_| suspects)
+                    finish(
+                        clip(&vec![true; n], keep_enclosed, keep_closed, &unreported).0,
+                        false,
+                    )
+                    .map_err(|_| suspects)
                 } else {
                     Err(suspects)
                 }
@@ -1024,9 +1031,6 @@ impl WallClip<'_> {
             Ok(mesh) => (Some(mesh), Vec::new()),
             Err(suspects) => (None, suspects),
         };
-        let all = vec![true; n];
-        let invalid =
-            |mesh: &FacetMesh| invalid_marked_facets(mesh, &seeds.planes[..n], &all, 0.0).len();
         // Where an earlier clip of this wall needed the hybrid below, that one is tried
         // next: the retry with enclosed vertices kept failed there.
         let hybrid_before = self.hybrid_keep.borrow().contains(&true);
@@ -1036,6 +1040,9 @@ impl WallClip<'_> {
             // holes in 8 of 8 hex and Poisson runs checked, and the whole boundary then
             // kept its closed facets): they are kept, as the closed facets keep them, where
             // that leaves no more invalid facets than the closed facets have.
+            let all = vec![true; n];
+            let invalid =
+                |mesh: &FacetMesh| invalid_marked_facets(mesh, &seeds.planes[..n], &all, 0.0).len();
             let (retry, retry_culprits) = attempt(true, None, &unreported);
             if let Some(mesh) = retry
                 .ok()
@@ -1258,7 +1265,7 @@ fn clip_suspects(
     clipped: &FacetMesh,
     edges: &Option<(usize, Vec<(u32, u32)>)>,
     simple: Option<&[Verdict]>,
-    closed_simple: Option<&[Verdict]>,
+    closed_simple: &[Verdict],
     planes: &[Plane],
     reach: f64,
 ) -> Vec<bool> {
@@ -1300,8 +1307,8 @@ fn clip_suspects(
         let lp = clipped.facet_loop(f);
         let apart = main.is_some_and(|m| roots[f] as usize != m);
         let pinched = lp.iter().any(|&v| boundary_edges[v as usize] >= 4);
-        let turned = simple.zip(closed_simple).is_some_and(|(after, before)| {
-            !after[f].simple && before.get(f).is_some_and(|x| x.simple)
+        let turned = simple.is_some_and(|after| {
+            !after[f].simple && closed_simple.get(f).is_some_and(|x| x.simple)
         });
         let far = lp
             .iter()
@@ -3113,19 +3120,10 @@ fn facet_items(
     // Raw walk: crossings of each incoming edge, then the triangle's vertex if inside.
     let mut raw: Vec<(Item, Option<(bool, Position)>)> = Vec::with_capacity(fan.len() * 2 + 4);
     let push_edge = |j: u32, raw: &mut Vec<(Item, Option<(bool, Position)>)>| {
-        let Some(&(first, last)) = cx.crossing_ranges.get(&(i.min(j), i.max(j))) else {
-            return;
-        };
-        let forward = i < j;
-        let mut push = |c: u32| {
+        for c in crossings_along(cx, i, j) {
             let crossing = cx.crossings[c as usize];
-            let exit = crossing.exit == forward;
+            let exit = crossing.exit == (i < j);
             raw.push((Item::Crossing(c), Some((exit, crossing.wall))));
-        };
-        if forward {
-            (first..last).for_each(&mut push);
-        } else {
-            (first..last).rev().for_each(&mut push);
         }
     };
     for &t in fan.iter() {
@@ -3135,21 +3133,10 @@ fn facet_items(
         push_edge(incoming, &mut raw);
         let vertex = &cx.triangle_vertices[t as usize];
         if vertex.inside > 0.0 {
-            if vertex.exact {
-                raw.push((Item::Triangle(t), None));
-            } else {
-                let outgoing = vertices[(p + 2) % 3];
-                for j in [incoming, outgoing] {
-                    raw.push((
-                        Item::EdgePoint {
-                            triangle: t,
-                            lo: i.min(j),
-                            hi: i.max(j),
-                        },
-                        None,
-                    ));
-                }
-            }
+            let outgoing = vertices[(p + 2) % 3];
+            push_vertex_items(t, i, [incoming, outgoing], vertex.exact, |item| {
+                raw.push((item, None));
+            });
         }
     }
     if kind == Fan::Open {
@@ -3226,33 +3213,50 @@ fn closed_fan_items(i: u32, cx: &ItemContext<'_>, fan: &[u32], items: &mut Packe
     for &t in fan {
         let vertices = cx.tri.triangles[t as usize];
         let p = vertices.iter().position(|&v| v == i).unwrap_or(0);
-        let incoming = vertices[(p + 1) % 3];
+        let [incoming, outgoing] = [vertices[(p + 1) % 3], vertices[(p + 2) % 3]];
         if incoming < real {
-            if let Some(&(first, last)) =
-                cx.crossing_ranges.get(&(i.min(incoming), i.max(incoming)))
-            {
-                // Stored from the edge's lower point to its higher one.
-                if i < incoming {
-                    (first..last).for_each(|c| items.push(Item::Crossing(c)));
-                } else {
-                    (first..last)
-                        .rev()
-                        .for_each(|c| items.push(Item::Crossing(c)));
-                }
+            for c in crossings_along(cx, i, incoming) {
+                items.push(Item::Crossing(c));
             }
         }
-        if cx.triangle_vertices[t as usize].exact {
-            items.push(Item::Triangle(t));
-        } else {
-            let outgoing = vertices[(p + 2) % 3];
-            for j in [incoming, outgoing] {
-                items.push(Item::EdgePoint {
-                    triangle: t,
-                    lo: i.min(j),
-                    hi: i.max(j),
-                });
-            }
-        }
+        let exact = cx.triangle_vertices[t as usize].exact;
+        push_vertex_items(t, i, [incoming, outgoing], exact, |item| items.push(item));
+    }
+}
+
+/// The crossings of the edge between points i and j, in the order facet i's loop meets them
+/// (they are stored from the edge's lower point to its higher one).
+fn crossings_along(cx: &ItemContext<'_>, i: u32, j: u32) -> impl Iterator<Item = u32> {
+    let (first, last) = cx
+        .crossing_ranges
+        .get(&(i.min(j), i.max(j)))
+        .copied()
+        .unwrap_or((0, 0));
+    let forward = i < j;
+    (0..last - first).map(move |k| if forward { first + k } else { last - 1 - k })
+}
+
+/// Triangle t's vertex on facet i's loop, which reaches it along the edge with point
+/// `incoming` and leaves along the edge with `outgoing`: the vertex itself, or where it is a
+/// stand-in (not `exact`) the points on the lines of those two edges, each shared with the
+/// facet across it.
+fn push_vertex_items(
+    t: u32,
+    i: u32,
+    [incoming, outgoing]: [u32; 2],
+    exact: bool,
+    mut push: impl FnMut(Item),
+) {
+    if exact {
+        push(Item::Triangle(t));
+        return;
+    }
+    for j in [incoming, outgoing] {
+        push(Item::EdgePoint {
+            triangle: t,
+            lo: i.min(j),
+            hi: i.max(j),
+        });
     }
 }
 
