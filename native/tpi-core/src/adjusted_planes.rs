@@ -60,6 +60,7 @@
 //! computed once and shared by the three facets.
 
 use std::borrow::Cow;
+use std::sync::atomic::AtomicBool;
 
 use glam::DVec3;
 
@@ -88,16 +89,19 @@ pub(crate) struct PlaneAdjustStats {
 /// `planes` holds the planes of every point of the triangulation (ghosts from `judged` on)
 /// and is replaced by the adjusted planes. A facet with a vertex farther than `reach` local
 /// spacings from its seed counts as invalid ([`crate::tolerance::MAX_REACH`], or
-/// [`crate::tolerance::FALLBACK_REACH`] on a second try).
+/// [`crate::tolerance::FALLBACK_REACH`] on a second try). Once `stop` is set the search ends
+/// at its next step (a speculative adjustment whose result will be dropped).
 pub(crate) fn adjust_planes(
     tri: &mut DualTriangulation,
     planes: &mut Vec<Plane>,
     judged: usize,
     reach: f64,
+    stop: Option<&AtomicBool>,
 ) -> PlaneAdjustStats {
     let exact = planes.clone();
     let points = planes.len();
     let mut state = State::new(tri, points, Cow::Owned(std::mem::take(planes)), judged);
+    state.stop = stop;
     let spacing = local_spacing(&state, points);
     state.impose_reach_limit(spacing.iter().map(|&h| reach * h).collect());
     let mut stats = PlaneAdjustStats::default();
@@ -119,7 +123,7 @@ pub(crate) fn adjust_planes(
         retry.iter_mut().for_each(|r| *r = false);
         let mut kept = 0;
         for i in queue {
-            if state.plane_changes > budget {
+            if state.spent(budget) {
                 stats.tilts += kept;
                 break 'rounds;
             }
@@ -143,7 +147,7 @@ pub(crate) fn adjust_planes(
     'kicks: for _ in 0..KICK_ROUNDS {
         let mut kept = false;
         for i in 0..judged as u32 {
-            if state.plane_changes > budget {
+            if state.spent(budget) {
                 break 'kicks;
             }
             if state.invalid[i as usize] && kick(&mut state, &exact, &spacing, i, budget, &KICK) {
@@ -424,7 +428,7 @@ fn kick(
 ) -> bool {
     let mut rng = SplitMix64::new(0x7469_6c74 ^ u64::from(i) ^ plan.salt);
     for _ in 0..plan.kicks {
-        if state.plane_changes > budget {
+        if state.spent(budget) {
             return false;
         }
         let ring = polygons_of_plane(state, i);
@@ -473,7 +477,7 @@ fn judge_and_repair(
         .collect();
     commit(state, verdicts);
     for _ in 0..KICK_REPAIR_PASSES {
-        if state.plane_changes > budget {
+        if state.spent(budget) {
             break;
         }
         let mut any = false;
@@ -540,7 +544,7 @@ fn escalate(state: &mut State<'_>, exact: &[Plane], spacing: &[f64], stats: &mut
             return;
         }
         for i in queue {
-            if state.plane_changes > budget {
+            if state.spent(budget) {
                 return;
             }
             if state.invalid[i as usize] && restructure(state, exact, spacing, i) {

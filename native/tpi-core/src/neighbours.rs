@@ -30,6 +30,8 @@
 //!    four points are strictly convex, and it wins: the flips it makes are counted as
 //!    "envelope repairs" in the report.
 
+use std::sync::atomic::AtomicBool;
+
 use glam::DVec3;
 
 use crate::diffgeo::{flat_curvatures, LocalGeometry};
@@ -94,6 +96,9 @@ pub(crate) struct NeighbourInput<'a> {
     /// [`crate::tolerance::METRIC_REGULARISATION_RETRIES`] when a first decision left a few
     /// facets invalid (`structure::decide_again`).
     pub metric_regularisation: f64,
+    /// Where Some and set, the validity flips end at their next step: a speculative
+    /// decision whose result will be dropped (`structure::decide_again`).
+    pub stop: Option<&'a AtomicBool>,
 }
 
 /// Runs both criteria to convergence, then the validity flips of the facets of points
@@ -129,7 +134,7 @@ pub(crate) fn decide(
         stats.envelope_unresolved = unresolved;
     }
     if input.any_curvature {
-        let validity = validity_flips(tri, uv, input.planes, real_count);
+        let validity = validity_flips(tri, uv, input.planes, real_count, input.stop);
         stats.validity_flips = validity.flips;
         stats.validity_unresolved = validity.unresolved;
     }

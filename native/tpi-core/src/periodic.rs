@@ -127,6 +127,7 @@ pub(crate) fn decide_folded(
         convex_side: &augmented.convex_side,
         any_curvature: true,
         metric_regularisation: METRIC_REGULARISATION,
+        stop: None,
     };
     // No facet judged yet: the validity flips, greedy in facet order, would decide the two
     // sides of the seam differently; they run on the fold.
@@ -141,7 +142,7 @@ pub(crate) fn decide_folded(
         (poles, pole_from),
     )
     .map(|(mut folded, points)| {
-        let again = validity_flips(&mut folded, &points.plane_uv, &points.planes, n);
+        let again = validity_flips(&mut folded, &points.plane_uv, &points.planes, n, None);
         stats.validity_flips += again.flips;
         stats.validity_unresolved = again.unresolved;
         (folded, points, stats)

@@ -31,7 +31,8 @@
 //! A trimmed developable surface whose strips cannot be built, and live editing of a trim,
 //! are refused ([`TpiError::TrimUnsupported`]).
 
-use std::time::Instant;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::{Duration, Instant};
 
 use crate::adjusted_planes::{adjust_planes, PlaneAdjustStats};
 use crate::boundary::Boundary;
@@ -54,7 +55,7 @@ use crate::samples::Samples;
 use crate::surface::Surface;
 use crate::tolerance::{
     FALLBACK_GIVE_UP, FALLBACK_REACH, MAX_REACH, METRIC_REGULARISATION,
-    METRIC_REGULARISATION_RETRIES, RETRY_MAX_INVALID, STRIP_TRIM_MARGIN,
+    METRIC_REGULARISATION_RETRIES, RETRY_MAX_INVALID, SPECULATION_DELAY_MS, STRIP_TRIM_MARGIN,
 };
 use crate::triangulation::{real_pairs, DualTriangulation};
 
@@ -275,6 +276,7 @@ pub(crate) fn decide_structure(
         convex_side: &samples.convex_side,
         any_curvature: false,
         metric_regularisation: METRIC_REGULARISATION,
+        stop: None,
     };
     // Each path with whether it closed the seam of a closed surface.
     let (structure, seam_closed) = match (&samples.slopes, &samples.lifted) {
@@ -437,6 +439,12 @@ impl Attempt {
 /// invalid (the first of equals; it stops at none, and after an attempt that left more than
 /// `give_up` where given), or None without weights. A cancellation seen by `stages` is
 /// answered between attempts.
+///
+/// `first`, where given, is the attempt with `weights[0]`, already made. The attempts are
+/// independent searches, so each is made beside the one before it (`rayon::join`; on two
+/// cores the wall time of a chain of attempts about halves): the later one is told to stop
+/// as soon as the earlier ends the search, and is dropped then. The result is the
+/// sequential one's, attempt for attempt.
 #[allow(clippy::too_many_arguments)]
 fn decide_again(
     augmented: &Augmented,
@@ -446,42 +454,116 @@ fn decide_again(
     adjust: Option<f64>,
     weights: &[f64],
     give_up: Option<usize>,
+    first: Option<Result<Attempt, TpiError>>,
     stages: &Stages<'_>,
 ) -> Result<Option<Attempt>, TpiError> {
+    let run = |weight: f64, stop: Option<&AtomicBool>| {
+        attempt(
+            &Reseed {
+                plane_uv: &augmented.plane_uv,
+                geometry: &augmented.geometry,
+                convex_side: &augmented.convex_side,
+                exact: &exact,
+            },
+            envelope_repair,
+            n,
+            adjust,
+            weight,
+            stop,
+        )
+    };
+    // Whether the search ends after this attempt, whatever came before: none left (then it
+    // is the best), or more than `give_up`.
+    let ends = |attempt: &Attempt| {
+        attempt.left() == 0 || give_up.is_some_and(|most| attempt.left() > most)
+    };
     let mut best: Option<Attempt> = None;
-    for &weight in weights {
+    // The attempt with weights[k], where made beside the one before it.
+    let mut known = first;
+    for (k, &weight) in weights.iter().enumerate() {
         stages.check()?;
-        let mut triangulation = DualTriangulation::delaunay(&augmented.plane_uv)?;
-        let input = NeighbourInput {
-            plane_uv: &augmented.plane_uv,
-            geometry: &augmented.geometry,
-            planes: &exact,
-            convex_side: &augmented.convex_side,
-            any_curvature: true,
-            metric_regularisation: weight,
-        };
-        let neighbours = decide(&mut triangulation, &input, envelope_repair, n);
-        let mut planes = exact.clone();
-        let adjusted = adjust.map(|reach| adjust_planes(&mut triangulation, &mut planes, n, reach));
-        let attempt = Attempt {
-            triangulation,
-            planes,
-            neighbours,
-            adjusted,
-        };
-        let hopeless = give_up.is_some_and(|most| attempt.left() > most);
-        if best.as_ref().map_or(true, |b| attempt.left() < b.left()) {
-            let done = attempt.left() == 0;
-            best = Some(attempt);
-            if done {
-                break;
+        let (current, next) = match (known.take(), weights.get(k + 1)) {
+            (Some(current), _) => (current, None),
+            (None, Some(&later)) => {
+                let stop = AtomicBool::new(false);
+                rayon::join(
+                    || {
+                        let current = run(weight, None);
+                        if current.as_ref().map_or(true, ends) {
+                            stop.store(true, Ordering::Relaxed);
+                        }
+                        current
+                    },
+                    || speculate(&stop, || run(later, Some(&stop))),
+                )
             }
+            (None, None) => (run(weight, None), None),
+        };
+        let attempt = current?;
+        let done = ends(&attempt);
+        if best.as_ref().map_or(true, |b| attempt.left() < b.left()) {
+            best = Some(attempt);
         }
-        if hopeless {
+        if done {
             break;
         }
+        // Made beside this one, which did not end the search: never stopped.
+        known = next;
     }
     Ok(best)
+}
+
+/// What a decision from scratch reads: the seeds' and ghosts' embedding, local geometry and
+/// convex sides, and their exact planes.
+struct Reseed<'a> {
+    plane_uv: &'a [[f64; 2]],
+    geometry: &'a [LocalGeometry],
+    convex_side: &'a [i8],
+    exact: &'a [Plane],
+}
+
+/// `make()` unless `stop` is set before it starts, and its result unless `stop` was set by
+/// the time it ends (then it may have been cut short): a speculative computation whose
+/// result is wanted only if the one beside it did not end the search.
+fn speculate<T>(stop: &AtomicBool, make: impl FnOnce() -> T) -> Option<T> {
+    if stop.load(Ordering::Relaxed) {
+        return None;
+    }
+    let made = make();
+    (!stop.load(Ordering::Relaxed)).then_some(made)
+}
+
+/// One attempt of [`decide_again`]: the neighbours decided from the Delaunay triangulation
+/// with the isotropic term `weight`, then with `adjust` the planes adjusted with that reach.
+/// Once `stop` is set the searches end early and the attempt is to be dropped.
+fn attempt(
+    seeds: &Reseed<'_>,
+    envelope_repair: bool,
+    n: usize,
+    adjust: Option<f64>,
+    weight: f64,
+    stop: Option<&AtomicBool>,
+) -> Result<Attempt, TpiError> {
+    let mut triangulation = DualTriangulation::delaunay(seeds.plane_uv)?;
+    let input = NeighbourInput {
+        plane_uv: seeds.plane_uv,
+        geometry: seeds.geometry,
+        planes: seeds.exact,
+        convex_side: seeds.convex_side,
+        any_curvature: true,
+        metric_regularisation: weight,
+        stop,
+    };
+    let neighbours = decide(&mut triangulation, &input, envelope_repair, n);
+    let mut planes = seeds.exact.to_vec();
+    let adjusted =
+        adjust.map(|reach| adjust_planes(&mut triangulation, &mut planes, n, reach, stop));
+    Ok(Attempt {
+        triangulation,
+        planes,
+        neighbours,
+        adjusted,
+    })
 }
 
 /// The real seeds' own planes as the ghosts' plan of a structure without ghosts.
@@ -615,6 +697,7 @@ fn any_curvature(
                 convex_side: &augmented.convex_side,
                 any_curvature: true,
                 metric_regularisation: METRIC_REGULARISATION,
+                stop: None,
             };
             let neighbours = decide(
                 &mut triangulation,
@@ -632,8 +715,67 @@ fn any_curvature(
     let adjust = Instant::now();
     // The exact planes, kept where the adjustment may need them again.
     let exact = (adjusted && !seam_closed).then(|| augmented.planes.clone());
-    let mut stats =
-        adjusted.then(|| adjust_planes(&mut triangulation, &mut augmented.planes, n, MAX_REACH));
+    // Where a second decision may follow, its first attempt is made beside the adjustment
+    // ([`decide_again`]), and dropped as soon as the adjustment leaves none or too many.
+    let (mut stats, first_retry) = match (&exact, METRIC_REGULARISATION_RETRIES.first()) {
+        (Some(exact), Some(&weight)) => {
+            let (stop, adjusted) = (AtomicBool::new(false), AtomicBool::new(false));
+            let (stats, retry) = rayon::join(
+                || {
+                    let stats = adjust_planes(
+                        &mut triangulation,
+                        &mut augmented.planes,
+                        n,
+                        MAX_REACH,
+                        None,
+                    );
+                    if !(1..=RETRY_MAX_INVALID).contains(&stats.unresolved) {
+                        stop.store(true, Ordering::Relaxed);
+                    }
+                    adjusted.store(true, Ordering::Release);
+                    stats
+                },
+                || {
+                    // Only beside an adjustment that runs long: most end sooner.
+                    let start = Instant::now();
+                    let delay = Duration::from_millis(SPECULATION_DELAY_MS);
+                    while !adjusted.load(Ordering::Acquire) && start.elapsed() < delay {
+                        std::thread::sleep(Duration::from_millis(1));
+                    }
+                    let seeds = Reseed {
+                        plane_uv: &augmented.plane_uv,
+                        geometry: &augmented.geometry,
+                        convex_side: &augmented.convex_side,
+                        exact,
+                    };
+                    let envelope_repair = options.envelope_repair;
+                    speculate(&stop, || {
+                        attempt(
+                            &seeds,
+                            envelope_repair,
+                            n,
+                            Some(MAX_REACH),
+                            weight,
+                            Some(&stop),
+                        )
+                    })
+                },
+            );
+            (Some(stats), retry)
+        }
+        _ => (
+            adjusted.then(|| {
+                adjust_planes(
+                    &mut triangulation,
+                    &mut augmented.planes,
+                    n,
+                    MAX_REACH,
+                    None,
+                )
+            }),
+            None,
+        ),
+    };
     let mut left = stats.map_or(neighbours.validity_unresolved, |s| s.unresolved);
     // Many left (a nearly developable surface, where neither flips nor tilts help) are not
     // decided again; folded structures are decided with the fold, and not again.
@@ -647,6 +789,7 @@ fn any_curvature(
             adjusted.then_some(MAX_REACH),
             METRIC_REGULARISATION_RETRIES,
             None,
+            first_retry,
             stages,
         )?;
         if let Some(attempt) = retried.filter(|a| a.left() < left) {
@@ -673,6 +816,7 @@ fn any_curvature(
             Some(FALLBACK_REACH),
             &weights,
             Some(FALLBACK_GIVE_UP),
+            None,
             stages,
         )?;
         if let Some(attempt) = retried.filter(|a| a.left() == 0) {

@@ -56,6 +56,7 @@
 #![allow(clippy::neg_cmp_op_on_partial_ord)]
 
 use std::borrow::Cow;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::{DVec2, DVec3};
 
@@ -89,9 +90,11 @@ pub(crate) fn validity_flips(
     embedding: &[[f64; 2]],
     planes: &[Plane],
     judged: usize,
+    stop: Option<&AtomicBool>,
 ) -> ValidityFlipStats {
     let n = judged;
     let mut state = State::new(tri, embedding.len(), Cow::Borrowed(planes), judged);
+    state.stop = stop;
     let mut stats = ValidityFlipStats::default();
     // A facet whose repair failed is tried again only after a kept flip changed its
     // neighbourhood.
@@ -106,6 +109,9 @@ pub(crate) fn validity_flips(
         changed.iter_mut().for_each(|c| *c = false);
         let mut kept = 0;
         for i in queue {
+            if state.stopped() {
+                break;
+            }
             if !state.invalid[i as usize] {
                 continue;
             }
@@ -132,7 +138,7 @@ pub(crate) fn validity_flips(
     'detours: for _ in 0..MAX_VALIDITY_ROUNDS {
         let mut kept = 0;
         for i in 0..n as u32 {
-            if state.detours >= budget || state.work >= state.work_budget {
+            if state.detours >= budget || state.work >= state.work_budget || state.stopped() {
                 stats.flips += kept;
                 break 'detours;
             }
@@ -159,7 +165,7 @@ pub(crate) fn validity_flips(
     'pairs: for _ in 0..rounds {
         let mut kept = 0;
         for i in 0..n as u32 {
-            if tried >= pairs || state.work >= state.work_budget {
+            if tried >= pairs || state.work >= state.work_budget || state.stopped() {
                 stats.flips += kept;
                 break 'pairs;
             }
@@ -210,6 +216,9 @@ pub(crate) struct State<'a> {
     /// How many planes [`State::set_plane`] replaced (tried or kept): the plane adjustment's
     /// measure of work.
     pub(crate) plane_changes: usize,
+    /// Where Some and set, the search ends at its next step ([`State::stopped`]): a
+    /// speculative decision whose result is no longer wanted.
+    pub(crate) stop: Option<&'a AtomicBool>,
     /// Detour flips tried ([`State::try_detour`]): the measure of their work.
     detours: usize,
     /// Work spent judging facets: the edges of every polygon built and the products of the
@@ -314,6 +323,7 @@ impl<'a> State<'a> {
             journal: None,
             reach_limit: None,
             plane_changes: 0,
+            stop: None,
             detours: 0,
             work: 0,
             work_budget: u64::MAX,
@@ -337,6 +347,17 @@ impl<'a> State<'a> {
         state.invalid = vec![false; judged];
         state.known = vec![false; judged];
         state
+    }
+
+    /// Whether the search was told to stop (`stop` set): its result will be dropped, so it
+    /// may end wherever it is.
+    pub(crate) fn stopped(&self) -> bool {
+        self.stop.is_some_and(|stop| stop.load(Ordering::Relaxed))
+    }
+
+    /// Whether the plane changes passed `budget` or the search was told to stop.
+    pub(crate) fn spent(&self, budget: usize) -> bool {
+        self.plane_changes > budget || self.stopped()
     }
 
     /// Facet x's verdict, judged now if it is not known.

@@ -11,7 +11,7 @@
 mod common;
 
 use common::*;
-use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, Surface};
+use tpi_core::{discretise, AnalyticSurface, DiscretiseOptions, PlaneMode, Surface};
 
 fn pool(threads: usize) -> rayon::ThreadPool {
     rayon::ThreadPoolBuilder::new()
@@ -121,5 +121,40 @@ fn hyperbolic_paraboloid_is_deterministic() {
         "hyperbolic paraboloid n=700",
         &s,
         &uniform_pattern(&mut rng, 700),
+    );
+}
+
+/// With adjusted planes a second decision's attempts are made two at a time, the later one
+/// told to stop once the earlier ends the search (`structure::decide_again`): with one thread
+/// the later starts only after the earlier and stops at once, with two they run side by
+/// side. Both must give the result of the attempts taken in order. Mixed surface 13 with its
+/// 300-point grid (the example `mixed_sweep`): the first adjustment leaves one facet invalid,
+/// the attempt made beside it (isotropic weight 0.15) one, of the next pair 0.3 none, so the
+/// attempt beside the adjustment is used and 0.5 is stopped.
+#[test]
+fn adjusted_planes_decided_again_side_by_side_are_deterministic() {
+    let surface = mixed_surface(13);
+    let (_, pattern) = sweep_patterns(300, 13)
+        .into_iter()
+        .find(|(name, _)| name == "grid300")
+        .expect("the sweep's grid");
+    let options = DiscretiseOptions {
+        planes: PlaneMode::Adjusted,
+        ..DiscretiseOptions::default()
+    };
+    let run = |threads: usize| {
+        pool(threads).install(|| match discretise(&surface, &pattern, &options) {
+            Ok(d) => d.to_json(false),
+            Err(e) => format!("error: {e}"),
+        })
+    };
+    let one = run(1);
+    assert!(one.starts_with('{'), "{one}");
+    let two = run(2);
+    assert!(
+        one == two,
+        "1 and 2 threads differ (lengths {} / {})",
+        one.len(),
+        two.len()
     );
 }
