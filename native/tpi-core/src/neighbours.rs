@@ -99,6 +99,10 @@ pub(crate) struct NeighbourInput<'a> {
     /// Where Some and set, the validity flips end at their next step: a speculative
     /// decision whose result will be dropped (`structure::decide_again`).
     pub stop: Option<&'a AtomicBool>,
+    /// Exact planes: after the validity flips, flips that bring in facets reaching beyond
+    /// [`crate::tolerance::RUNAWAY_REACH`] times the seeds' diagonal without making any facet
+    /// invalid.
+    pub runaway_limit: bool,
 }
 
 /// Runs both criteria to convergence, then the validity flips of the facets of points
@@ -134,7 +138,14 @@ pub(crate) fn decide(
         stats.envelope_unresolved = unresolved;
     }
     if input.any_curvature {
-        let validity = validity_flips(tri, uv, input.planes, real_count, input.stop);
+        let validity = validity_flips(
+            tri,
+            uv,
+            input.planes,
+            real_count,
+            input.stop,
+            input.runaway_limit,
+        );
         stats.validity_flips = validity.flips;
         stats.validity_unresolved = validity.unresolved;
     }

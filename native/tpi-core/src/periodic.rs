@@ -128,6 +128,7 @@ pub(crate) fn decide_folded(
         any_curvature: true,
         metric_regularisation: METRIC_REGULARISATION,
         stop: None,
+        runaway_limit: false,
     };
     // No facet judged yet: the validity flips, greedy in facet order, would decide the two
     // sides of the seam differently; they run on the fold.
@@ -142,7 +143,14 @@ pub(crate) fn decide_folded(
         (poles, pole_from),
     )
     .map(|(mut folded, points)| {
-        let again = validity_flips(&mut folded, &points.plane_uv, &points.planes, n, None);
+        let again = validity_flips(
+            &mut folded,
+            &points.plane_uv,
+            &points.planes,
+            n,
+            None,
+            false,
+        );
         stats.validity_flips += again.flips;
         stats.validity_unresolved = again.unresolved;
         (folded, points, stats)

@@ -277,6 +277,7 @@ pub(crate) fn decide_structure(
         any_curvature: false,
         metric_regularisation: METRIC_REGULARISATION,
         stop: None,
+        runaway_limit: false,
     };
     // Each path with whether it closed the seam of a closed surface.
     let (structure, seam_closed) = match (&samples.slopes, &samples.lifted) {
@@ -553,6 +554,8 @@ fn attempt(
         any_curvature: true,
         metric_regularisation: weight,
         stop,
+        // Exact planes (no adjustment follows): runaway facets are brought in.
+        runaway_limit: adjust.is_none(),
     };
     let neighbours = decide(&mut triangulation, &input, envelope_repair, n);
     let mut planes = seeds.exact.to_vec();
@@ -698,6 +701,7 @@ fn any_curvature(
                 any_curvature: true,
                 metric_regularisation: METRIC_REGULARISATION,
                 stop: None,
+                runaway_limit: options.planes == PlaneMode::Exact,
             };
             let neighbours = decide(
                 &mut triangulation,

@@ -65,7 +65,7 @@ use crate::planes::{meeting_point, Plane};
 use crate::tolerance::{
     DETOUR_BUDGET, DETOUR_BUDGET_FLOOR, DETOUR_REPAIR_PASSES, DETOUR_WORK_BUDGET,
     DETOUR_WORK_BUDGET_FLOOR, ISOTROPIC_FLIP_TIE, MAX_VALIDITY_ROUNDS, PAIR_DETOUR_BUDGET,
-    PAIR_DETOUR_BUDGET_FLOOR, PAIR_DETOUR_MAX_INVALID, VALIDITY_TOLERANCE,
+    PAIR_DETOUR_BUDGET_FLOOR, PAIR_DETOUR_MAX_INVALID, RUNAWAY_REACH, VALIDITY_TOLERANCE,
 };
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
@@ -84,17 +84,77 @@ pub(crate) struct ValidityFlipStats {
 
 /// Repairs invalid interior facets of the points `0..judged` by flips (module doc).
 /// `embedding` holds the triangulation's points (ghosts included); `planes` the tangent
-/// planes of all of them.
+/// planes of all of them. Once `stop` is set the search ends at its next step.
+///
+/// With `runaway_limit` (exact planes), where the repairs leave facets reaching farther from
+/// their seeds than [`RUNAWAY_REACH`] times the seeds' diagonal (runaway vertices of nearly
+/// parallel planes, which the repairs make as often as they meet them), the search runs
+/// again from the same triangulation with such facets counted as invalid, and that outcome
+/// is kept if it leaves no more facets invalid (judged without the limit) and fewer
+/// runaways: a runaway never buys back a facet's validity.
 pub(crate) fn validity_flips(
     tri: &mut DualTriangulation,
     embedding: &[[f64; 2]],
     planes: &[Plane],
     judged: usize,
     stop: Option<&AtomicBool>,
+    runaway_limit: bool,
 ) -> ValidityFlipStats {
+    let limit = (runaway_limit && judged > 0).then(|| {
+        let (lo, hi) = crate::samples::bounding_box(planes[..judged].iter().map(|p| p.point));
+        RUNAWAY_REACH * (hi - lo).length()
+    });
+    let Some(limit) = limit else {
+        return search(tri, embedding, planes, judged, stop, None, None).stats;
+    };
+    let original = tri.clone();
+    let plain = search(tri, embedding, planes, judged, stop, None, Some(limit));
+    if plain.runaways == 0 || stop.is_some_and(|stop| stop.load(Ordering::Relaxed)) {
+        return plain.stats;
+    }
+    let mut limited_tri = original;
+    let limited = search(
+        &mut limited_tri,
+        embedding,
+        planes,
+        judged,
+        stop,
+        Some(limit),
+        Some(limit),
+    );
+    if limited.invalid <= plain.invalid && limited.runaways < plain.runaways {
+        *tri = limited_tri;
+        limited.stats
+    } else {
+        plain.stats
+    }
+}
+
+/// What a validity search leaves: its statistics, the facets invalid judged without a reach
+/// limit, and the facets reaching beyond the limit measured (0 where none was given).
+struct Outcome {
+    stats: ValidityFlipStats,
+    invalid: usize,
+    runaways: usize,
+}
+
+/// The validity search of [`validity_flips`]: with `reach_limit` facets reaching farther
+/// from their seeds count as invalid; the outcome's runaways are measured against `measure`.
+fn search(
+    tri: &mut DualTriangulation,
+    embedding: &[[f64; 2]],
+    planes: &[Plane],
+    judged: usize,
+    stop: Option<&AtomicBool>,
+    reach_limit: Option<f64>,
+    measure: Option<f64>,
+) -> Outcome {
     let n = judged;
     let mut state = State::new(tri, embedding.len(), Cow::Borrowed(planes), judged);
     state.stop = stop;
+    if let Some(limit) = reach_limit {
+        state.impose_reach_limit(vec![limit; embedding.len()]);
+    }
     let mut stats = ValidityFlipStats::default();
     // A facet whose repair failed is tried again only after a kept flip changed its
     // neighbourhood.
@@ -180,7 +240,21 @@ pub(crate) fn validity_flips(
     }
     stats.flips += state.flip_unreachable();
     stats.unresolved = state.invalid.iter().filter(|&&x| x).count();
-    stats
+    // With a limit the verdicts count runaways as invalid: the search's outcome is judged
+    // without it.
+    let mut outcome = Outcome {
+        stats,
+        invalid: stats.unresolved,
+        runaways: 0,
+    };
+    if let Some(limit) = measure {
+        state.reach_limit = None;
+        outcome.invalid = (0..n as u32).filter(|&i| state.facet_invalid(i)).count();
+        outcome.runaways = (0..n as u32)
+            .filter(|&i| state.reach(i, limit) > 1.0)
+            .count();
+    }
+    outcome
 }
 
 /// The triangulation being repaired with what the tests read: an incident triangle per point,
