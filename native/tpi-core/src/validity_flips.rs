@@ -250,6 +250,7 @@ fn search(
     if let Some(limit) = measure {
         state.reach_limit = None;
         outcome.invalid = (0..n as u32).filter(|&i| state.facet_invalid(i)).count();
+        outcome.stats.unresolved = outcome.invalid;
         outcome.runaways = (0..n as u32)
             .filter(|&i| state.reach(i, limit) > 1.0)
             .count();
