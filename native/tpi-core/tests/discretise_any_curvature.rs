@@ -205,15 +205,7 @@ fn run_with(
         eprintln!("interior-kind boundary edges: {interior:?}");
     }
     // Every facet the independent check finds invalid must be flagged by the report.
-    let flagged_missing = validity
-        .invalid_facets()
-        .into_iter()
-        .filter(|&i| {
-            d.facet_flags
-                .get(i)
-                .map_or(true, |f| f & (FLAG_NON_SIMPLE | FLAG_OVERLAP) == 0)
-        })
-        .count();
+    let flagged_missing = unflagged_invalid(&d, &validity);
     if std::env::var_os("TPI_DEBUG").is_some() {
         let q = d.quality.as_ref().unwrap();
         eprintln!("{surface_name} {pattern_name}: {:?}", q.neighbours);
@@ -1400,15 +1392,24 @@ fn runaway_vertices_at_parabolic_lines_are_brought_in_with_exact_planes() {
         );
         let validity = check(&d);
         assert!(validity.is_disc(), "{spec}: not a disc: {validity:?}");
-        let unflagged = validity
-            .invalid_facets()
-            .into_iter()
-            .filter(|&i| {
-                d.facet_flags
-                    .get(i)
-                    .map_or(true, |f| f & (FLAG_NON_SIMPLE | FLAG_OVERLAP) == 0)
-            })
-            .count();
-        assert_eq!(unflagged, 0, "{spec}: invalid facets not flagged");
+        assert_eq!(
+            unflagged_invalid(&d, &validity),
+            0,
+            "{spec}: invalid facets not flagged"
+        );
     }
+}
+
+/// The facets the independent check finds invalid that the report does not flag as
+/// non-simple or overlapping.
+fn unflagged_invalid(d: &Discretisation, validity: &Validity) -> usize {
+    validity
+        .invalid_facets()
+        .into_iter()
+        .filter(|&i| {
+            d.facet_flags
+                .get(i)
+                .map_or(true, |f| f & (FLAG_NON_SIMPLE | FLAG_OVERLAP) == 0)
+        })
+        .count()
 }
