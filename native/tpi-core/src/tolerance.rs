@@ -266,8 +266,9 @@ pub const RAY_FAR_FACTOR: f64 = 16.0;
 /// lines instead (leaving a small hole); nearer far vertices stay exact and are diagnosed.
 pub const UNREACHABLE_VERTEX_FACTOR: f64 = 1e6;
 
-/// With exact planes on the any-curvature path, a facet whose vertices lie farther from its
-/// seed than this many times the seeds' bounding-box diagonal has run away (no facet of the
+/// With exact planes on the any-curvature path, a facet of real points alone (one closed by a
+/// ghost is clipped at the wall later) whose vertices lie farther from its seed than this
+/// many times the seeds' bounding-box diagonal has run away (no facet of the
 /// surface reaches beyond the whole surface; a strip along the rulings of a nearly
 /// developable band spans it at most). Where the validity flips leave such facets, they run
 /// again from the same triangulation counting them as invalid, and that outcome is kept if it

@@ -150,10 +150,26 @@ fn search(
     measure: Option<f64>,
 ) -> Outcome {
     let n = judged;
+    // Facets closed by a ghost reach beyond the wall, where the facet stage clips them: only
+    // those of real points alone can run away.
+    let mut walled = vec![false; embedding.len()];
+    if reach_limit.is_some() || measure.is_some() {
+        for t in &tri.triangles {
+            if t.iter().any(|&x| x as usize >= judged) {
+                for &x in t {
+                    walled[x as usize] = true;
+                }
+            }
+        }
+    }
     let mut state = State::new(tri, embedding.len(), Cow::Borrowed(planes), judged);
     state.stop = stop;
     if let Some(limit) = reach_limit {
-        state.impose_reach_limit(vec![limit; embedding.len()]);
+        let limits = walled
+            .iter()
+            .map(|&w| if w { f64::INFINITY } else { limit })
+            .collect();
+        state.impose_reach_limit(limits);
     }
     let mut stats = ValidityFlipStats::default();
     // A facet whose repair failed is tried again only after a kept flip changed its
@@ -252,7 +268,7 @@ fn search(
         outcome.invalid = (0..n as u32).filter(|&i| state.facet_invalid(i)).count();
         outcome.stats.unresolved = outcome.invalid;
         outcome.runaways = (0..n as u32)
-            .filter(|&i| state.reach(i, limit) > 1.0)
+            .filter(|&i| !walled[i as usize] && state.reach(i, limit) > 1.0)
             .count();
     }
     outcome
