@@ -99,9 +99,9 @@ pub(crate) struct NeighbourInput<'a> {
     /// Where Some and set, the validity flips end at their next step: a speculative
     /// decision whose result will be dropped (`structure::decide_again`).
     pub stop: Option<&'a AtomicBool>,
-    /// Exact planes: after the validity flips, flips that bring in facets reaching beyond
-    /// [`crate::tolerance::RUNAWAY_REACH`] times the seeds' diagonal without making any facet
-    /// invalid.
+    /// Exact planes: where the validity flips leave facets reaching beyond
+    /// [`crate::tolerance::RUNAWAY_REACH`] times the seeds' diagonal, they run again counting
+    /// those invalid, kept if no more facets are invalid ([`validity_flips`]).
     pub runaway_limit: bool,
 }
 

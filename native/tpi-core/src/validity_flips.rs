@@ -100,16 +100,13 @@ pub(crate) fn validity_flips(
     stop: Option<&AtomicBool>,
     runaway_limit: bool,
 ) -> ValidityFlipStats {
-    let limit = (runaway_limit && judged > 0).then(|| {
-        let (lo, hi) = crate::samples::bounding_box(planes[..judged].iter().map(|p| p.point));
-        RUNAWAY_REACH * (hi - lo).length()
-    });
-    let Some(limit) = limit else {
-        return search(tri, embedding, planes, judged, stop, None, None).stats;
-    };
+    if !runaway_limit || judged == 0 {
+        return search(tri, embedding, planes, judged, stop, None, false).stats;
+    }
+    let runaways = Runaways::of(tri, planes, judged, embedding.len());
     let original = tri.clone();
-    let plain = search(tri, embedding, planes, judged, stop, None, Some(limit));
-    if plain.runaways == 0 || stop.is_some_and(|stop| stop.load(Ordering::Relaxed)) {
+    let plain = search(tri, embedding, planes, judged, stop, Some(&runaways), false);
+    if plain.runaways == 0 || is_set(stop) {
         return plain.stats;
     }
     let mut limited_tri = original;
@@ -119,8 +116,8 @@ pub(crate) fn validity_flips(
         planes,
         judged,
         stop,
-        Some(limit),
-        Some(limit),
+        Some(&runaways),
+        true,
     );
     if limited.invalid <= plain.invalid && limited.runaways < plain.runaways {
         *tri = limited_tri;
@@ -130,44 +127,68 @@ pub(crate) fn validity_flips(
     }
 }
 
+/// Whether `stop` is given and set.
+fn is_set(stop: Option<&AtomicBool>) -> bool {
+    stop.is_some_and(|stop| stop.load(Ordering::Relaxed))
+}
+
+/// What makes a facet a runaway ([`validity_flips`]): the reach beyond which it has run away,
+/// and the points whose facets are exempt, those closed by a ghost in the triangulation the
+/// search starts from (they reach beyond the wall, where the facet stage clips them).
+struct Runaways {
+    limit: f64,
+    walled: Vec<bool>,
+}
+
+impl Runaways {
+    /// [`RUNAWAY_REACH`] times the diagonal of the seeds `0..judged`, and the points of
+    /// triangles with a ghost among the `points` of `tri`.
+    fn of(tri: &DualTriangulation, planes: &[Plane], judged: usize, points: usize) -> Self {
+        let (lo, hi) = crate::samples::bounding_box(planes[..judged].iter().map(|p| p.point));
+        let mut walled = vec![false; points];
+        for t in tri
+            .triangles
+            .iter()
+            .filter(|t| t.iter().any(|&x| x as usize >= judged))
+        {
+            for &x in t {
+                walled[x as usize] = true;
+            }
+        }
+        Runaways {
+            limit: RUNAWAY_REACH * (hi - lo).length(),
+            walled,
+        }
+    }
+}
+
 /// What a validity search leaves: its statistics, the facets invalid judged without a reach
-/// limit, and the facets reaching beyond the limit measured (0 where none was given).
+/// limit, and the runaways (0 where none were measured).
 struct Outcome {
     stats: ValidityFlipStats,
     invalid: usize,
     runaways: usize,
 }
 
-/// The validity search of [`validity_flips`]: with `reach_limit` facets reaching farther
-/// from their seeds count as invalid; the outcome's runaways are measured against `measure`.
+/// The validity search of [`validity_flips`]. With `runaways` the outcome counts them, and
+/// with `limited` they also count as invalid during the search.
 fn search(
     tri: &mut DualTriangulation,
     embedding: &[[f64; 2]],
     planes: &[Plane],
     judged: usize,
     stop: Option<&AtomicBool>,
-    reach_limit: Option<f64>,
-    measure: Option<f64>,
+    runaways: Option<&Runaways>,
+    limited: bool,
 ) -> Outcome {
     let n = judged;
-    // Facets closed by a ghost reach beyond the wall, where the facet stage clips them: only
-    // those of real points alone can run away.
-    let mut walled = vec![false; embedding.len()];
-    if reach_limit.is_some() || measure.is_some() {
-        for t in &tri.triangles {
-            if t.iter().any(|&x| x as usize >= judged) {
-                for &x in t {
-                    walled[x as usize] = true;
-                }
-            }
-        }
-    }
     let mut state = State::new(tri, embedding.len(), Cow::Borrowed(planes), judged);
     state.stop = stop;
-    if let Some(limit) = reach_limit {
-        let limits = walled
+    if let Some(r) = runaways.filter(|_| limited) {
+        let limits = r
+            .walled
             .iter()
-            .map(|&w| if w { f64::INFINITY } else { limit })
+            .map(|&w| if w { f64::INFINITY } else { r.limit })
             .collect();
         state.impose_reach_limit(limits);
     }
@@ -263,12 +284,12 @@ fn search(
         invalid: stats.unresolved,
         runaways: 0,
     };
-    if let Some(limit) = measure {
+    if let Some(r) = runaways {
         state.reach_limit = None;
         outcome.invalid = (0..n as u32).filter(|&i| state.facet_invalid(i)).count();
         outcome.stats.unresolved = outcome.invalid;
         outcome.runaways = (0..n as u32)
-            .filter(|&i| !walled[i as usize] && state.reach(i, limit) > 1.0)
+            .filter(|&i| !r.walled[i as usize] && state.reach(i, r.limit) > 1.0)
             .count();
     }
     outcome
@@ -443,7 +464,7 @@ impl<'a> State<'a> {
     /// Whether the search was told to stop (`stop` set): its result will be dropped, so it
     /// may end wherever it is.
     pub(crate) fn stopped(&self) -> bool {
-        self.stop.is_some_and(|stop| stop.load(Ordering::Relaxed))
+        is_set(self.stop)
     }
 
     /// Whether the plane changes passed `budget` or the search was told to stop.
