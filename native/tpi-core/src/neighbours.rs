@@ -45,7 +45,7 @@ use crate::tolerance::{
 };
 
 use crate::triangulation::{orient, DualTriangulation, IndexMap, NO_TRIANGLE};
-use crate::validity_flips::validity_flips;
+use crate::validity_flips::{gaussian_signs, validity_flips};
 
 /// Counts of what the neighbour decision did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
@@ -143,6 +143,7 @@ pub(crate) fn decide(
             uv,
             input.planes,
             real_count,
+            &gaussian_signs(input.geometry),
             input.stop,
             input.runaway_limit,
         );

@@ -42,7 +42,7 @@ use crate::tolerance::{
     POLE_CAP_COSINE, POLE_CAP_FLIPS,
 };
 use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
-use crate::validity_flips::validity_flips;
+use crate::validity_flips::{gaussian_signs, validity_flips};
 
 /// The seeds as the general path holds them.
 pub(crate) struct Points<'a> {
@@ -148,6 +148,7 @@ pub(crate) fn decide_folded(
             &points.plane_uv,
             &points.planes,
             n,
+            &gaussian_signs(&points.geometry),
             None,
             false,
         );

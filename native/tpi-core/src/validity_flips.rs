@@ -41,6 +41,13 @@
 //! of the pairs tested for overlap), and the detours also stop at [`DETOUR_WORK_BUDGET`] per
 //! point plus [`DETOUR_WORK_BUDGET_FLOOR`].
 //!
+//! Where the single detours leave at most [`PAIR_DETOUR_MAX_INVALID`] facets, *pair
+//! detours* flip two star or link edges of a facet together before the repairs. A facet
+//! whose ring holds seeds of both signs of Gaussian curvature (a parabolic line runs through
+//! it: neighbouring planes nearly parallel, often beyond repair with exact planes) gets at
+//! most [`PAIR_DETOUR_PARABOLIC_TRIES`] of them, so that the budget goes to the facets that
+//! can be repaired. On a surface of one sign of K (a saddle) no facet is limited.
+//!
 //! Last, a triangle whose vertex is *unreachable* (the planes of two of its points parallel,
 //! or all three parallel to one line: on a parabolic line of a symmetric surface, seeds
 //! mirrored about it have exactly parallel planes) is flipped away whatever the verdicts
@@ -60,12 +67,14 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::{DVec2, DVec3};
 
+use crate::diffgeo::LocalGeometry;
 use crate::facets::reachable;
 use crate::planes::{meeting_point, Plane};
 use crate::tolerance::{
     DETOUR_BUDGET, DETOUR_BUDGET_FLOOR, DETOUR_REPAIR_PASSES, DETOUR_WORK_BUDGET,
     DETOUR_WORK_BUDGET_FLOOR, ISOTROPIC_FLIP_TIE, MAX_VALIDITY_ROUNDS, PAIR_DETOUR_BUDGET,
-    PAIR_DETOUR_BUDGET_FLOOR, PAIR_DETOUR_MAX_INVALID, RUNAWAY_REACH, VALIDITY_TOLERANCE,
+    PAIR_DETOUR_BUDGET_FLOOR, PAIR_DETOUR_MAX_INVALID, PAIR_DETOUR_PARABOLIC_TRIES, RUNAWAY_REACH,
+    VALIDITY_TOLERANCE,
 };
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
 
@@ -84,7 +93,9 @@ pub(crate) struct ValidityFlipStats {
 
 /// Repairs invalid interior facets of the points `0..judged` by flips (module doc).
 /// `embedding` holds the triangulation's points (ghosts included); `planes` the tangent
-/// planes of all of them. Once `stop` is set the search ends at its next step.
+/// planes of all of them; `gaussian_signs` the sign of the Gaussian curvature at each of
+/// them ([`gaussian_signs`]; empty: unknown, no facet's pair detours limited). Once `stop`
+/// is set the search ends at its next step.
 ///
 /// With `runaway_limit` (exact planes), where the repairs leave facets reaching farther from
 /// their seeds than [`RUNAWAY_REACH`] times the seeds' diagonal (runaway vertices of nearly
@@ -97,34 +108,55 @@ pub(crate) fn validity_flips(
     embedding: &[[f64; 2]],
     planes: &[Plane],
     judged: usize,
+    gaussian_signs: &[i8],
     stop: Option<&AtomicBool>,
     runaway_limit: bool,
 ) -> ValidityFlipStats {
+    let input = SearchInput {
+        embedding,
+        planes,
+        gaussian_signs,
+        judged,
+        stop,
+    };
     if !runaway_limit || judged == 0 {
-        return search(tri, embedding, planes, judged, stop, None, false).stats;
+        return search(tri, &input, None, false).stats;
     }
     let runaways = Runaways::of(tri, planes, judged, embedding.len());
     let original = tri.clone();
-    let plain = search(tri, embedding, planes, judged, stop, Some(&runaways), false);
+    let plain = search(tri, &input, Some(&runaways), false);
     if plain.runaways == 0 || is_set(stop) {
         return plain.stats;
     }
     let mut limited_tri = original;
-    let limited = search(
-        &mut limited_tri,
-        embedding,
-        planes,
-        judged,
-        stop,
-        Some(&runaways),
-        true,
-    );
+    let limited = search(&mut limited_tri, &input, Some(&runaways), true);
     if limited.invalid <= plain.invalid && limited.runaways < plain.runaways {
         *tri = limited_tri;
         limited.stats
     } else {
         plain.stats
     }
+}
+
+/// The sign of the Gaussian curvature k1 k2 at each point (1, -1, or 0 where it vanishes).
+pub(crate) fn gaussian_signs(geometry: &[LocalGeometry]) -> Vec<i8> {
+    geometry
+        .iter()
+        .map(|g| match g.gaussian() {
+            k if k > 0.0 => 1,
+            k if k < 0.0 => -1,
+            _ => 0,
+        })
+        .collect()
+}
+
+/// What a validity search reads ([`validity_flips`]'s arguments).
+struct SearchInput<'a> {
+    embedding: &'a [[f64; 2]],
+    planes: &'a [Plane],
+    gaussian_signs: &'a [i8],
+    judged: usize,
+    stop: Option<&'a AtomicBool>,
 }
 
 /// Whether `stop` is given and set.
@@ -174,16 +206,13 @@ struct Outcome {
 /// with `limited` they also count as invalid during the search.
 fn search(
     tri: &mut DualTriangulation,
-    embedding: &[[f64; 2]],
-    planes: &[Plane],
-    judged: usize,
-    stop: Option<&AtomicBool>,
+    input: &SearchInput<'_>,
     runaways: Option<&Runaways>,
     limited: bool,
 ) -> Outcome {
-    let n = judged;
-    let mut state = State::new(tri, embedding.len(), Cow::Borrowed(planes), judged);
-    state.stop = stop;
+    let n = input.judged;
+    let mut state = State::new(tri, input.embedding.len(), Cow::Borrowed(input.planes), n);
+    state.stop = input.stop;
     if let Some(r) = runaways.filter(|_| limited) {
         let limits = r
             .walled
@@ -266,7 +295,15 @@ fn search(
                 stats.flips += kept;
                 break 'pairs;
             }
-            if state.invalid[i as usize] && state.try_pair_detour(i, n, pairs, &mut tried) {
+            if !state.invalid[i as usize] {
+                continue;
+            }
+            let most = if state.straddles_parabolic_line(i, input.gaussian_signs) {
+                PAIR_DETOUR_PARABOLIC_TRIES
+            } else {
+                usize::MAX
+            };
+            if state.try_pair_detour(i, n, [pairs, most], &mut tried) {
                 kept += 1;
             }
         }
@@ -949,6 +986,23 @@ impl<'a> State<'a> {
         false
     }
 
+    /// Whether the ring of point i (the points of its triangles) holds a point whose Gaussian
+    /// curvature has another sign than i's (`signs`; false where empty).
+    fn straddles_parabolic_line(&mut self, i: u32, signs: &[i8]) -> bool {
+        let Some(&own) = signs.get(i as usize) else {
+            return false;
+        };
+        let mut fan = std::mem::take(&mut self.fan);
+        self.tri.fan(i, self.incident[i as usize], &mut fan);
+        let straddles = fan.iter().any(|&t| {
+            self.tri.triangles[t as usize]
+                .iter()
+                .any(|&x| signs.get(x as usize).is_some_and(|&s| s != own))
+        });
+        self.fan = fan;
+        straddles
+    }
+
     /// The edges a repair of interior facet i tries, as point pairs: its star edges, then its
     /// link edges; None where its fan does not close.
     fn repair_candidates(&mut self, i: u32) -> Option<Vec<(u32, u32)>> {
@@ -1058,11 +1112,18 @@ impl<'a> State<'a> {
     /// second chosen among the edges of i after the first), then single-flip repairs of the
     /// invalid facets around both quads ([`DETOUR_REPAIR_PASSES`] passes); kept when the whole
     /// leaves fewer invalid facets than before, undone otherwise. Each pair tried counts
-    /// against `budget` (through `tried`).
-    fn try_pair_detour(&mut self, i: u32, judged: usize, budget: usize, tried: &mut usize) -> bool {
+    /// against `budget` (through `tried`), and at most `most` are tried for i.
+    fn try_pair_detour(
+        &mut self,
+        i: u32,
+        judged: usize,
+        [budget, most]: [usize; 2],
+        tried: &mut usize,
+    ) -> bool {
         let Some(firsts) = self.repair_candidates(i) else {
             return false;
         };
+        let before = *tried;
         for (a, b) in firsts {
             // The edges of i once (a, b) is flipped.
             let Some((t, k, _)) = self.flippable(a, b) else {
@@ -1076,7 +1137,7 @@ impl<'a> State<'a> {
                 continue;
             };
             for (c, d) in seconds {
-                if *tried >= budget || self.work >= self.work_budget {
+                if *tried >= budget || *tried - before >= most || self.work >= self.work_budget {
                     return false;
                 }
                 if (c, d) == (a, b) || (d, c) == (a, b) {
@@ -1792,6 +1853,33 @@ fn proper_crossing(a: DVec2, b: DVec2, c: DVec2, d: DVec2, eps: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A facet is limited as beside a parabolic line exactly where a point of its ring has
+    /// another sign of K: on a 5 x 5 grid with K > 0 for x <= 1 and K < 0 beyond, the point
+    /// (1, 2) has (2, 2) beside it, the point (3, 2) only points with K < 0; with one sign
+    /// everywhere, or none known, no point is.
+    #[test]
+    fn only_facets_with_both_signs_of_curvature_in_their_ring_straddle_a_parabolic_line() {
+        let uv: Vec<[f64; 2]> = (0..25).map(|k| [(k % 5) as f64, (k / 5) as f64]).collect();
+        let planes: Vec<Plane> = uv
+            .iter()
+            .map(|&[x, y]| Plane {
+                point: DVec3::new(x, y, 0.0),
+                normal: DVec3::Z,
+            })
+            .collect();
+        let mut tri = DualTriangulation::delaunay(&uv).expect("a grid triangulates");
+        let mut state = State::new(&mut tri, uv.len(), Cow::Borrowed(&planes), uv.len());
+        let mixed: Vec<i8> = uv.iter().map(|p| if p[0] <= 1.0 { 1 } else { -1 }).collect();
+        let at = |x: u32, y: u32| 5 * y + x;
+        assert!(state.straddles_parabolic_line(at(1, 2), &mixed));
+        assert!(state.straddles_parabolic_line(at(2, 2), &mixed));
+        assert!(!state.straddles_parabolic_line(at(3, 2), &mixed));
+        assert!(!state.straddles_parabolic_line(at(0, 2), &mixed));
+        let saddle = vec![-1i8; uv.len()];
+        assert!((0..25).all(|i| !state.straddles_parabolic_line(i, &saddle)));
+        assert!((0..25).all(|i| !state.straddles_parabolic_line(i, &[])));
+    }
 
     /// The sweep counts the same crossing pairs as testing every pair of non-adjacent edges:
     /// star polygons (many crossings), random walks (some) and convex polygons (none), with
