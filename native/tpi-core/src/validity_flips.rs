@@ -101,8 +101,10 @@ pub(crate) struct ValidityFlipStats {
 /// their seeds than [`RUNAWAY_REACH`] times the seeds' diagonal (runaway vertices of nearly
 /// parallel planes, which the repairs make as often as they meet them), the search runs
 /// again from the same triangulation with such facets counted as invalid, and that outcome
-/// is kept if it leaves no more facets invalid (judged without the limit) and fewer
-/// runaways: a runaway never buys back a facet's validity.
+/// is kept if it leaves fewer runaways and no more facets invalid (judged without the
+/// limit), or fewer facets flawed (invalid or runaway or both): a facet reaching beyond the
+/// whole patch (up to 2e4 times its diagonal was seen) is no more use to a builder than a
+/// self-intersecting one, both are flagged, and trading one for the other is no loss.
 pub(crate) fn validity_flips(
     tri: &mut DualTriangulation,
     embedding: &[[f64; 2]],
@@ -130,7 +132,8 @@ pub(crate) fn validity_flips(
     }
     let mut limited_tri = original;
     let limited = search(&mut limited_tri, &input, Some(&runaways), true);
-    if limited.invalid <= plain.invalid && limited.runaways < plain.runaways {
+    let fewer_runaways = limited.invalid <= plain.invalid && limited.runaways < plain.runaways;
+    if fewer_runaways || limited.flawed < plain.flawed {
         *tri = limited_tri;
         limited.stats
     } else {
@@ -195,11 +198,12 @@ impl Runaways {
 }
 
 /// What a validity search leaves: its statistics, the facets invalid judged without a reach
-/// limit, and the runaways (0 where none were measured).
+/// limit, the runaways and the facets that are either (0 where none were measured).
 struct Outcome {
     stats: ValidityFlipStats,
     invalid: usize,
     runaways: usize,
+    flawed: usize,
 }
 
 /// The validity search of [`validity_flips`]. With `runaways` the outcome counts them, and
@@ -320,14 +324,22 @@ fn search(
         stats,
         invalid: stats.unresolved,
         runaways: 0,
+        flawed: stats.unresolved,
     };
     if let Some(r) = runaways {
         state.reach_limit = None;
-        outcome.invalid = (0..n as u32).filter(|&i| state.facet_invalid(i)).count();
-        outcome.stats.unresolved = outcome.invalid;
-        outcome.runaways = (0..n as u32)
-            .filter(|&i| !r.walled[i as usize] && state.reach(i, r.limit) > 1.0)
-            .count();
+        let (mut invalid, mut runaway, mut flawed) = (0, 0, 0);
+        for i in 0..n as u32 {
+            let bad = state.facet_invalid(i);
+            let far = !r.walled[i as usize] && state.reach(i, r.limit) > 1.0;
+            invalid += usize::from(bad);
+            runaway += usize::from(far);
+            flawed += usize::from(bad || far);
+        }
+        outcome.invalid = invalid;
+        outcome.stats.unresolved = invalid;
+        outcome.runaways = runaway;
+        outcome.flawed = flawed;
     }
     outcome
 }
