@@ -1882,7 +1882,10 @@ mod tests {
             .collect();
         let mut tri = DualTriangulation::delaunay(&uv).expect("a grid triangulates");
         let mut state = State::new(&mut tri, uv.len(), Cow::Borrowed(&planes), uv.len());
-        let mixed: Vec<i8> = uv.iter().map(|p| if p[0] <= 1.0 { 1 } else { -1 }).collect();
+        let mixed: Vec<i8> = uv
+            .iter()
+            .map(|p| if p[0] <= 1.0 { 1 } else { -1 })
+            .collect();
         let at = |x: u32, y: u32| 5 * y + x;
         assert!(state.straddles_parabolic_line(at(1, 2), &mixed));
         assert!(state.straddles_parabolic_line(at(2, 2), &mixed));

@@ -1424,7 +1424,11 @@ fn runaway_vertices_are_traded_for_flagged_invalid_facets_with_exact_planes() {
     );
     let validity = check(&d);
     assert!(validity.is_disc(), "not a disc: {validity:?}");
-    assert_eq!(unflagged_invalid(&d, &validity), 0, "invalid facets not flagged");
+    assert_eq!(
+        unflagged_invalid(&d, &validity),
+        0,
+        "invalid facets not flagged"
+    );
 }
 
 /// The facets the independent check finds invalid that the report does not flag as
