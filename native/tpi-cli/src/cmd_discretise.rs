@@ -22,9 +22,9 @@ at least 3 distinct vertices) and then written through temporary files renamed t
 a failing or interrupted run leaves no output file (and no half-written one); an output that
 is also an input is refused. A summary of the quality report goes to stderr; progress bars
 too (one per stage that runs, with count, percentage and time left) when stderr is a terminal
-and the run takes more than a second. When the report finds invalid facets or an unexpected
-topology, the surface intersects itself (sampled) or a seam stays open, a `warning:` line
-goes to stderr. Exit code 0 on success, 1 for bad input or output, 2 for usage, 3 for
+and the run takes more than a second. When the report finds invalid facets, an unexpected
+topology or a vertex more than 3 pattern spacings off the surface, the surface intersects
+itself (sampled) or a seam stays open, a `warning:` line goes to stderr. Exit code 0 on success, 1 for bad input or output, 2 for usage, 3 for
 invalid facets or an unexpected topology with --strict.
 
 PATTERN SPECS made on the surface (the same grammar as the C ABI's
@@ -444,6 +444,13 @@ pub(crate) fn run(args: DiscretiseArgs) -> Result<(), CliError> {
             }
             _ => {}
         }
+    }
+    if let Some(far) = result
+        .quality
+        .as_ref()
+        .and_then(summary::far_vertex_warning)
+    {
+        eprintln!("{far}");
     }
     if let Some(q) = result.quality.as_ref().filter(|q| q.invalid_facets > 0) {
         eprintln!("{}", summary::invalid_warning(q));

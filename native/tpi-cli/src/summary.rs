@@ -2,6 +2,7 @@
 
 use std::fmt::Write;
 
+use tpi_core::tolerance::FAR_VERTEX_SPACINGS;
 use tpi_core::Discretisation;
 
 /// At most this many diagnostics are listed by name.
@@ -13,6 +14,22 @@ pub(crate) fn invalid_warning(q: &tpi_core::QualityReport) -> String {
         "warning: {} invalid facets (open {}, non-simple {}, overlapping pairs {}); they are flagged in the outputs",
         q.invalid_facets, q.open_facets, q.non_simple_facets, q.overlapping_pairs
     )
+}
+
+/// The warning printed on stderr when a vertex stands farther from the surface than
+/// [`FAR_VERTEX_SPACINGS`] pattern spacings (the seeds' diagonal over the square root of the
+/// facet count), or None.
+pub(crate) fn far_vertex_warning(q: &tpi_core::QualityReport) -> Option<String> {
+    let spacing = q.bounding_box_diagonal / (q.facet_count.max(1) as f64).sqrt();
+    let spacings = q.max_deviation / spacing;
+    (spacings > FAR_VERTEX_SPACINGS).then(|| {
+        format!(
+            "warning: a vertex stands {} off the surface, {:.0} pattern spacings of about {}: where neighbouring tangent planes are nearly parallel (at a parabolic line, K = 0, or at seeds close together) they meet far from it; --planes adjusted holds facets near their seeds",
+            sig(q.max_deviation),
+            spacings,
+            sig(spacing)
+        )
+    })
 }
 
 /// The warning printed on stderr when the mesh's Euler characteristic and boundary loops
@@ -198,7 +215,7 @@ fn plane_summary(result: &Discretisation) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::{sig, summary, topology_warning};
+    use super::{far_vertex_warning, sig, summary, topology_warning};
     use tpi_core::{Discretisation, QualityReport};
 
     /// The area line of the summary of a mesh whose smallest facet area is `min`.
@@ -236,6 +253,23 @@ mod tests {
             "{positive}"
         );
         assert!(!positive.contains("signed"), "{positive}");
+    }
+
+    #[test]
+    fn a_vertex_farther_than_three_spacings_off_the_surface_is_warned_about() {
+        // 100 facets on a diagonal of 10: a spacing of 1.
+        let report = |max_deviation| QualityReport {
+            facet_count: 100,
+            bounding_box_diagonal: 10.0,
+            max_deviation,
+            ..QualityReport::default()
+        };
+        assert_eq!(far_vertex_warning(&report(2.9)), None);
+        let far = far_vertex_warning(&report(49.7)).expect("a warning");
+        assert!(
+            far.starts_with("warning: a vertex stands 49.70 off the surface, 50 pattern spacings of about 1.000"),
+            "{far}"
+        );
     }
 
     #[test]

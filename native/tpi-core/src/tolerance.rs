@@ -504,6 +504,15 @@ pub const RESTRUCTURE_FLIPS: usize = 24;
 /// up to rounding (a square grid), where a flip would only follow rounding.
 pub const ISOTROPIC_FLIP_TIE: f64 = 1e-9;
 
+/// The CLI warns when a vertex stands farther from the surface than this many pattern
+/// spacings (the seeds' bounding-box diagonal over the square root of the facet count). A
+/// TPI vertex deviates about k r^2 / 2 for a facet of circumradius r, so on a convex patch a
+/// vertex stays within about one spacing even where a facet spans a radian of the surface;
+/// farther ones are runaways of nearly parallel planes, at a parabolic line or at seeds close
+/// together, with exact planes (samples/mixed-roof.json with `random:2500`: 49.7 units off a
+/// diagonal of 23.6; samples/saddle.json with samples/random-1000.json: 4.0, 8 spacings).
+pub const FAR_VERTEX_SPACINGS: f64 = 3.0;
+
 // ---- read by validity_flips.rs ----
 
 /// Rounds of validity flips at most (each round visits every invalid facet once).
