@@ -221,6 +221,8 @@ namespace Tpi.Logic
                         output.QualityJson = data.QualityJson ?? string.Empty;
                         int flagged = data.Flags.Count(f => f != FacetFlags.None);
                         if (flagged > 0) output.Warnings.Add(flagged + " of " + data.FacetCount + " facets are flagged (see TPI Quality)");
+                        string far = data.Quality.HasValue ? QualityWarnings.FarVertex(data.Quality.Value) : null;
+                        if (far != null) output.Warnings.Add(far);
                         if (data.Diagnostics.Length > 0)
                             output.Warnings.Add(data.Diagnostics.Select(d => d.Diagnostic).Distinct().Count() + " diagnostics: " + data.DiagnosticsJson);
                     }

@@ -496,6 +496,21 @@ namespace Tpi.Tests
         }
 
         [Test]
+        public void AVertexFarOffTheSurfaceIsWarnedAbout()
+        {
+            // 100 facets on a diagonal of 10: a spacing of 1.
+            var q = new QualityReport { FacetCount = 100, BoundingBoxDiagonal = 10, MaxDeviation = 2.9 };
+            Assert.IsNull(QualityWarnings.FarVertex(q));
+            q.MaxDeviation = 49.7;
+            StringAssert.StartsWith("a vertex stands 49.7 off the surface, 50 pattern spacings of about 1: ", QualityWarnings.FarVertex(q));
+            Assert.IsNull(QualityWarnings.FarVertex(new QualityReport()), "no facets, no warning");
+            // A strictly convex dome: every vertex near the surface, no such warning.
+            var dome = ComponentSolvers.Discretise(new DiscretiseInput { Surface = LogicData.Dome(), Points = LogicData.Hex(6, 6) });
+            Assert.IsTrue(dome.Success, string.Join("; ", dome.Errors));
+            Assert.IsFalse(dome.Warnings.Any(w => w.StartsWith("a vertex stands")), string.Join("; ", dome.Warnings));
+        }
+
+        [Test]
         public void QualityPerFacet()
         {
             var saddle = new AnalyticSurfaceSpec(AnalyticKind.HyperbolicParaboloid, 1, 1, -1, 1, -1, 1);
