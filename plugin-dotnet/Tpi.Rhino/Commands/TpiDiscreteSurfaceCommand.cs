@@ -137,6 +137,8 @@ namespace Tpi.RhinoPlugIn
                     DiscreteSurfaceObject.Add(doc, state, document);
                     RhinoApp.WriteLine("TPI: {0} planar panels, max deviation {1:G4}.", state.Mesh.FacetCount,
                         state.Mesh.Quality.HasValue ? state.Mesh.Quality.Value.MaxDeviation : double.NaN);
+                    string far = state.Mesh.Quality.HasValue ? QualityWarnings.FarVertex(state.Mesh.Quality.Value) : null;
+                    if (far != null) RhinoApp.WriteLine("TPI: " + far);
                 }
             }
             catch (Tpi.Native.TpiException e)
