@@ -101,7 +101,8 @@ pub(crate) struct NeighbourInput<'a> {
     pub stop: Option<&'a AtomicBool>,
     /// Exact planes: where the validity flips leave facets reaching beyond
     /// [`crate::tolerance::RUNAWAY_REACH`] times the seeds' diagonal, they run again counting
-    /// those invalid, kept if no more facets are invalid ([`validity_flips`]).
+    /// those invalid, kept if that leaves fewer runaways and no more facets invalid, or fewer
+    /// facets invalid or runaway ([`validity_flips`]).
     pub runaway_limit: bool,
 }
 

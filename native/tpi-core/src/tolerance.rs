@@ -272,7 +272,8 @@ pub const UNREACHABLE_VERTEX_FACTOR: f64 = 1e6;
 /// surface reaches beyond the whole surface; a strip along the rulings of a nearly
 /// developable band spans it at most). Where the validity flips leave such facets, they run
 /// again from the same triangulation counting them as invalid, and that outcome is kept if it
-/// leaves no more invalid facets and fewer runaways (`validity_flips`). Not with adjusted
+/// leaves no more invalid facets and fewer runaways, or fewer facets invalid or runaway
+/// (`validity_flips`). Not with adjusted
 /// planes, whose adjustment holds every facet within [`MAX_REACH`] local spacings.
 pub const RUNAWAY_REACH: f64 = 1.0;
 

@@ -132,7 +132,8 @@ pub(crate) fn validity_flips(
     }
     let mut limited_tri = original;
     let limited = search(&mut limited_tri, &input, Some(&runaways), true);
-    let fewer_runaways = limited.invalid <= plain.invalid && limited.runaways < plain.runaways;
+    let fewer_runaways =
+        limited.stats.unresolved <= plain.stats.unresolved && limited.runaways < plain.runaways;
     if fewer_runaways || limited.flawed < plain.flawed {
         *tri = limited_tri;
         limited.stats
@@ -197,11 +198,11 @@ impl Runaways {
     }
 }
 
-/// What a validity search leaves: its statistics, the facets invalid judged without a reach
-/// limit, the runaways and the facets that are either (0 where none were measured).
+/// What a validity search leaves: its statistics (with runaways measured, the facets
+/// invalid judged without a reach limit), the runaways and the facets that are either (0
+/// where none were measured).
 struct Outcome {
     stats: ValidityFlipStats,
-    invalid: usize,
     runaways: usize,
     flawed: usize,
 }
@@ -322,7 +323,6 @@ fn search(
     // without it.
     let mut outcome = Outcome {
         stats,
-        invalid: stats.unresolved,
         runaways: 0,
         flawed: stats.unresolved,
     };
@@ -336,7 +336,6 @@ fn search(
             runaway += usize::from(far);
             flawed += usize::from(bad || far);
         }
-        outcome.invalid = invalid;
         outcome.stats.unresolved = invalid;
         outcome.runaways = runaway;
         outcome.flawed = flawed;
