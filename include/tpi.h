@@ -139,6 +139,14 @@
 #define TPI_FACET_OPEN 16
 
 /**
+ * Per-facet flag: a vertex of the facet stands farther from the surface than 3 times the
+ * facet's local spacing (the mean distance from its seed to the seeds of the facets it
+ * shares an edge with): exact tangent planes nearly parallel (at a parabolic line, or at
+ * seeds close together) met far from it. Not invalid by itself.
+ */
+#define TPI_FACET_FAR_VERTEX 32
+
+/**
  * The `point` of a diagnostic entry that concerns no single pattern point (a domain corner
  * claimed by no facet or by several).
  */
@@ -155,6 +163,12 @@
  * `open_facets`, `validity_flips` and `validity_unresolved`).
  */
 #define TPI_QUALITY_REPORT_SIZE_V2 232
+
+/**
+ * Size in bytes of the third version of `TpiQualityReport` (V2 plus `far_vertex_facets` and
+ * `max_deviation_spacings`).
+ */
+#define TPI_QUALITY_REPORT_SIZE_V3 248
 
 /**
  * Stage of a discretisation reported to a `TpiProgressCallback`: evaluation and curvature at
@@ -742,6 +756,16 @@ typedef struct TpiQualityReport {
      * Facets the validity repair could not make valid. Since V2.
      */
     uint64_t validity_unresolved;
+    /**
+     * Facets with a vertex farther from the surface than 3 local spacings
+     * (`TPI_FACET_FAR_VERTEX`). Since V3.
+     */
+    uint64_t far_vertex_facets;
+    /**
+     * The largest, over the facets, of the deviation of a facet's farthest vertex over the
+     * facet's local spacing: below 1 on a mesh that hugs its surface. Since V3.
+     */
+    double max_deviation_spacings;
 } TpiQualityReport;
 
 /**

@@ -10,24 +10,16 @@ namespace Tpi.Logic
     /// <summary>Warnings read from a quality report.</summary>
     public static class QualityWarnings
     {
-        /// <summary>Pattern spacings (the seeds' bounding-box diagonal over the square root of the
-        /// facet count) beyond which a vertex's distance from the surface is warned about: the
-        /// native library's tpi_core::tolerance::FAR_VERTEX_SPACINGS, which the CLI uses. A TPI
-        /// vertex of a convex patch stays within about one spacing.</summary>
-        public const double FarVertexSpacings = 3.0;
-
-        /// <summary>The warning when a vertex stands farther than <see cref="FarVertexSpacings"/>
-        /// pattern spacings off the surface (exact tangent planes that are nearly parallel meet
-        /// far away), or null.</summary>
+        /// <summary>The warning when the native report flags facets with a vertex far off the
+        /// surface (<see cref="FacetFlags.FarVertex"/>: more than tpi_core::tolerance::FAR_VERTEX_SPACINGS
+        /// local pattern spacings; exact tangent planes that are nearly parallel meet far away),
+        /// or null. The library judges; this only words it.</summary>
         public static string FarVertex(QualityReport q)
         {
-            if (q.FacetCount == 0 || !(q.BoundingBoxDiagonal > 0)) return null;
-            double spacing = q.BoundingBoxDiagonal / Math.Sqrt(q.FacetCount);
-            double spacings = q.MaxDeviation / spacing;
-            if (!(spacings > FarVertexSpacings)) return null;
+            if (q.FarVertexFacets == 0) return null;
             return string.Format(CultureInfo.InvariantCulture,
-                "a vertex stands {0:G4} off the surface, {1:F0} pattern spacings of about {2:G4}: where neighbouring tangent planes are nearly parallel (at a parabolic line, K = 0, or at seeds close together) they meet far from it; adjusted planes hold facets near their seeds",
-                q.MaxDeviation, spacings, spacing);
+                "{0} facets have a vertex far off the surface (the largest deviation {1:G4}, {2:F0} local pattern spacings): where neighbouring tangent planes are nearly parallel (at a parabolic line, K = 0, or at seeds close together) they meet far from it; the facets are flagged FarVertex, and adjusted planes hold facets near their seeds",
+                q.FarVertexFacets, q.MaxDeviation, q.MaxDeviationSpacings);
         }
     }
 }

@@ -257,7 +257,7 @@ namespace Tpi.Native
         {
             get
             {
-                var report = new QualityReport { StructSize = QualityReport.SizeV2 };
+                var report = new QualityReport { StructSize = QualityReport.SizeV3 };
                 TpiLibrary.Check(UnsafeNativeMethods.tpi_discretisation_quality(Handle, ref report), "tpi_discretisation_quality");
                 return report;
             }
@@ -266,7 +266,7 @@ namespace Tpi.Native
         /// <summary>The quality report, or false when it was switched off.</summary>
         public bool TryGetQuality(out QualityReport report)
         {
-            report = new QualityReport { StructSize = QualityReport.SizeV2 };
+            report = new QualityReport { StructSize = QualityReport.SizeV3 };
             var status = UnsafeNativeMethods.tpi_discretisation_quality(Handle, ref report);
             if (status == Status.Unavailable) return false;
             TpiLibrary.Check(status, "tpi_discretisation_quality");

@@ -498,16 +498,33 @@ namespace Tpi.Tests
         [Test]
         public void AVertexFarOffTheSurfaceIsWarnedAbout()
         {
-            // 100 facets on a diagonal of 10: a spacing of 1.
-            var q = new QualityReport { FacetCount = 100, BoundingBoxDiagonal = 10, MaxDeviation = 2.9 };
+            var q = new QualityReport { FacetCount = 100, MaxDeviation = 2.9, MaxDeviationSpacings = 2.9 };
             Assert.IsNull(QualityWarnings.FarVertex(q));
+            q.FarVertexFacets = 4;
             q.MaxDeviation = 49.7;
-            StringAssert.StartsWith("a vertex stands 49.7 off the surface, 50 pattern spacings of about 1: ", QualityWarnings.FarVertex(q));
+            q.MaxDeviationSpacings = 50.2;
+            StringAssert.StartsWith("4 facets have a vertex far off the surface (the largest deviation 49.7, 50 local pattern spacings): ", QualityWarnings.FarVertex(q));
             Assert.IsNull(QualityWarnings.FarVertex(new QualityReport()), "no facets, no warning");
             // A strictly convex dome: every vertex near the surface, no such warning.
             var dome = ComponentSolvers.Discretise(new DiscretiseInput { Surface = LogicData.Dome(), Points = LogicData.Hex(6, 6) });
             Assert.IsTrue(dome.Success, string.Join("; ", dome.Errors));
-            Assert.IsFalse(dome.Warnings.Any(w => w.StartsWith("a vertex stands")), string.Join("; ", dome.Warnings));
+            Assert.IsFalse(dome.Warnings.Any(w => w.Contains("far off the surface")), string.Join("; ", dome.Warnings));
+            // An egg crate (bumps, dips and parabolic lines between) with a hex pattern: exact
+            // planes meet far off the surface at the parabolic lines; the library flags those
+            // facets, the component names them, and adjusted planes hold every vertex near.
+            var egg = new AnalyticSurfaceSpec(AnalyticKind.EggCrate, 0.6, 0.3, 6.0, -0.4, 5.5);
+            var exact = ComponentSolvers.Discretise(new DiscretiseInput { Surface = egg, Points = LogicData.Hex(12, 12) });
+            Assert.IsTrue(exact.Success, string.Join("; ", exact.Errors));
+            var quality = ComponentSolvers.Quality(exact.Mesh);
+            int far = quality.Flags.Count(f => (f & (int)FacetFlags.FarVertex) != 0);
+            Assert.Greater(far, 0, "far vertices on the egg crate");
+            Assert.IsTrue(exact.Warnings.Any(w => w.StartsWith(far + " facets have a vertex far off the surface")), string.Join("; ", exact.Warnings));
+            var adjusted = DiscretisationOptions.Default();
+            adjusted.Planes = PlaneMode.Adjusted;
+            var held = ComponentSolvers.Discretise(new DiscretiseInput { Surface = egg, Points = LogicData.Hex(12, 12), Options = adjusted });
+            Assert.IsTrue(held.Success, string.Join("; ", held.Errors));
+            Assert.IsFalse(ComponentSolvers.Quality(held.Mesh).Flags.Any(f => (f & (int)FacetFlags.FarVertex) != 0), "adjusted planes");
+            Assert.IsFalse(held.Warnings.Any(w => w.Contains("far off the surface")), string.Join("; ", held.Warnings));
         }
 
         [Test]

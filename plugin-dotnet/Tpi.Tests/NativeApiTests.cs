@@ -164,7 +164,10 @@ namespace Tpi.Tests
                 for (int f = 0; f < mesh.FacetCount; f++)
                     foreach (var v in mesh.GetFacet(f))
                         Assert.AreEqual(0.0, mesh.Planes[f].SignedDistance(mesh.Vertices[v]), 1e-9 * q.BoundingBoxDiagonal);
-                Assert.AreEqual(QualityReport.SizeV2, (int)q.StructSize);
+                Assert.AreEqual(QualityReport.SizeV3, (int)q.StructSize);
+                Assert.AreEqual(0ul, q.FarVertexFacets);
+                Assert.Greater(q.MaxDeviationSpacings, 0.0);
+                Assert.Less(q.MaxDeviationSpacings, 1.0);
                 Assert.AreEqual(1u, q.AllFinite);
                 Assert.AreEqual(0ul, q.InvalidFacets);
                 Assert.AreEqual(0ul, q.OpenFacets);

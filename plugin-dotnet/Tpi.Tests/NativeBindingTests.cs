@@ -55,7 +55,8 @@ namespace Tpi.Tests
         {
             Assert.AreEqual(48, Marshal.SizeOf(typeof(NativeOptions)), "TpiOptions (TPI_OPTIONS_SIZE_V2)");
             Assert.AreEqual(40, (int)Marshal.OffsetOf(typeof(NativeOptions), "PlaneMode"), "TpiOptions.plane_mode (TPI_OPTIONS_SIZE_V1)");
-            Assert.AreEqual(232, Marshal.SizeOf(typeof(QualityReport)), "TpiQualityReport (TPI_QUALITY_REPORT_SIZE_V2)");
+            Assert.AreEqual(248, Marshal.SizeOf(typeof(QualityReport)), "TpiQualityReport (TPI_QUALITY_REPORT_SIZE_V3)");
+            Assert.AreEqual(232, (int)Marshal.OffsetOf(typeof(QualityReport), "FarVertexFacets"), "TpiQualityReport.far_vertex_facets (TPI_QUALITY_REPORT_SIZE_V2)");
             Assert.AreEqual(32, Marshal.SizeOf(typeof(Domain)), "TpiDomain");
             Assert.AreEqual(120, Marshal.SizeOf(typeof(Sample)), "TpiSample");
             Assert.AreEqual(80, Marshal.SizeOf(typeof(Seed)), "TpiSeed");

@@ -134,9 +134,10 @@ static void test_version_and_status_names(void) {
     CHECK(sizeof(TpiOptions) == TPI_OPTIONS_SIZE_V2);
     CHECK(offsetof(TpiOptions, plane_mode) == TPI_OPTIONS_SIZE_V1);
     CHECK(TPI_PLANES_EXACT == 0 && TPI_PLANES_ADJUSTED == 1);
-    CHECK(sizeof(TpiQualityReport) == TPI_QUALITY_REPORT_SIZE_V2);
+    CHECK(sizeof(TpiQualityReport) == TPI_QUALITY_REPORT_SIZE_V3);
     CHECK(offsetof(TpiQualityReport, invalid_facets) == TPI_QUALITY_REPORT_SIZE_V1);
-    CHECK(TPI_FACET_OPEN == 16);
+    CHECK(offsetof(TpiQualityReport, far_vertex_facets) == TPI_QUALITY_REPORT_SIZE_V2);
+    CHECK(TPI_FACET_OPEN == 16 && TPI_FACET_FAR_VERTEX == 32);
     CHECK(sizeof(TpiSample) == 120 && sizeof(TpiSeed) == 80 && sizeof(TpiPlane) == 48);
     CHECK(sizeof(TpiDiagnosticEntry) == 12 && sizeof(TpiDomain) == 32);
 }
@@ -613,6 +614,14 @@ static void test_dome_discretisation(void) {
     CHECK(quality.max_planarity_error == EXPECTED_MAX_PLANARITY_ERROR);
     CHECK(quality.bounding_box_diagonal == EXPECTED_BOUNDING_BOX_DIAGONAL);
     CHECK(quality.all_finite == 1);
+    /* The far-vertex count is the number of facets flagged so (V3). */
+    size_t far = 0;
+    for (size_t k = 0; k < EXPECTED_FACET_FLAGS_LEN; k++) {
+        far += (expected_facet_flags[k] & TPI_FACET_FAR_VERTEX) != 0;
+    }
+    CHECK(quality.far_vertex_facets == far);
+    CHECK(quality.max_deviation_spacings > 0.0);
+    CHECK((quality.max_deviation_spacings > 3.0) == (far > 0));
     TpiQualityReport too_small;
     memset(&too_small, 0, sizeof too_small);
     too_small.struct_size = 8;

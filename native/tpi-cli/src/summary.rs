@@ -16,18 +16,16 @@ pub(crate) fn invalid_warning(q: &tpi_core::QualityReport) -> String {
     )
 }
 
-/// The warning printed on stderr when a vertex stands farther from the surface than
-/// [`FAR_VERTEX_SPACINGS`] pattern spacings (the seeds' diagonal over the square root of the
-/// facet count), or None.
+/// The warning printed on stderr when the report flags facets with a vertex farther from the
+/// surface than [`FAR_VERTEX_SPACINGS`] local spacings (`tpi_core::FLAG_FAR_VERTEX`), or None.
 pub(crate) fn far_vertex_warning(q: &tpi_core::QualityReport) -> Option<String> {
-    let spacing = q.bounding_box_diagonal / (q.facet_count.max(1) as f64).sqrt();
-    let spacings = q.max_deviation / spacing;
-    (spacings > FAR_VERTEX_SPACINGS).then(|| {
+    (q.far_vertex_facets > 0).then(|| {
         format!(
-            "warning: a vertex stands {} off the surface, {:.0} pattern spacings of about {}: where neighbouring tangent planes are nearly parallel (at a parabolic line, K = 0, or at seeds close together) they meet far from it; --planes adjusted holds facets near their seeds",
+            "warning: {} facets have a vertex more than {} local pattern spacings off the surface (the largest deviation {}, {:.0} spacings): where neighbouring tangent planes are nearly parallel (at a parabolic line, K = 0, or at seeds close together) they meet far from it; the facets are flagged in the outputs, and --planes adjusted holds facets near their seeds",
+            q.far_vertex_facets,
+            FAR_VERTEX_SPACINGS,
             sig(q.max_deviation),
-            spacings,
-            sig(spacing)
+            q.max_deviation_spacings
         )
     })
 }
@@ -256,18 +254,18 @@ mod tests {
     }
 
     #[test]
-    fn a_vertex_farther_than_three_spacings_off_the_surface_is_warned_about() {
-        // 100 facets on a diagonal of 10: a spacing of 1.
-        let report = |max_deviation| QualityReport {
+    fn facets_with_a_far_vertex_are_warned_about() {
+        let report = |far_vertex_facets, max_deviation_spacings| QualityReport {
             facet_count: 100,
-            bounding_box_diagonal: 10.0,
-            max_deviation,
+            far_vertex_facets,
+            max_deviation: 49.7,
+            max_deviation_spacings,
             ..QualityReport::default()
         };
-        assert_eq!(far_vertex_warning(&report(2.9)), None);
-        let far = far_vertex_warning(&report(49.7)).expect("a warning");
+        assert_eq!(far_vertex_warning(&report(0, 2.9)), None);
+        let far = far_vertex_warning(&report(4, 50.2)).expect("a warning");
         assert!(
-            far.starts_with("warning: a vertex stands 49.70 off the surface, 50 pattern spacings of about 1.000"),
+            far.starts_with("warning: 4 facets have a vertex more than 3 local pattern spacings off the surface (the largest deviation 49.70, 50 spacings)"),
             "{far}"
         );
     }

@@ -235,8 +235,9 @@ const PATTERNS: [&str; 3] = ["hex-24x20.json", "random-1000.json", "poisson-0.03
 
 /// With exact planes near a parabolic line nearly parallel tangent planes can meet far off
 /// the surface: on the mixed roof with 2,500 uniform random points a vertex stands about 50
-/// units off a roof of diagonal 23.6 (the report's largest deviation), and the CLI warns;
-/// with a hex pattern of 45 x 45, whose vertices stay within about 1.2, it does not.
+/// units off a roof of diagonal 23.6 (the report's largest deviation), the facets holding
+/// such vertices are flagged (bit 32) and the CLI warns; with a hex pattern of 45 x 45, whose
+/// vertices stay within about 1.2, none is and it does not.
 #[test]
 fn a_vertex_far_off_the_surface_is_warned_about() {
     let dir = scratch("far-vertex");
@@ -256,10 +257,18 @@ fn a_vertex_far_off_the_surface_is_warned_about() {
         let quality = |key: &str| json["quality"][key].as_f64().expect(key);
         let summary = text(&run.stderr);
         assert_eq!(
-            summary.contains("warning: a vertex stands"),
+            summary.contains("local pattern spacings off the surface"),
             far,
             "{pattern}: {summary}"
         );
+        let flagged = json["facets"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|f| f["flags"].as_u64().unwrap() & 32 != 0)
+            .count();
+        assert_eq!(flagged as f64, quality("far_vertex_facets"), "{pattern}");
+        assert_eq!(flagged > 0, far, "{pattern}");
         assert_eq!(
             quality("max_deviation") > quality("bounding_box_diagonal"),
             far,
@@ -291,7 +300,7 @@ fn every_sample_discretises_with_every_sample_pattern() {
                 // Strictly convex: every vertex near the surface, no far-vertex warning.
                 let summary = text(&run.stderr);
                 assert!(
-                    !summary.contains("warning: a vertex stands"),
+                    !summary.contains("local pattern spacings off the surface"),
                     "{surface} with {pattern}: {summary}"
                 );
             }

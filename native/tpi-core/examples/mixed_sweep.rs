@@ -52,8 +52,19 @@ fn main() {
         ..DiscretiseOptions::default()
     };
     println!(
-        "{:<8} {:<12} {:>6} {:>6} {:>6} {:>5} {:>6} {:>6} {:>7} {:>7}",
-        "surface", "pattern", "facets", "exact", "adjust", "disc", "max", "median", "t_ex", "t_adj"
+        "{:<8} {:<12} {:>6} {:>6} {:>6} {:>5} {:>6} {:>6} {:>7} {:>7} {:>7} {:>7}",
+        "surface",
+        "pattern",
+        "facets",
+        "exact",
+        "adjust",
+        "disc",
+        "max",
+        "median",
+        "t_ex",
+        "t_adj",
+        "far_ex",
+        "far_adj"
     );
     let (mut total_exact, mut total_adjusted, mut time_adjusted) = (0, 0, 0.0);
     let mut total_unflagged = 0;
@@ -137,7 +148,7 @@ fn main() {
                 total_adjusted += invalid.len();
                 time_adjusted += t_adjusted;
                 println!(
-                    "mixed{seed:<3} {name:<12} {:>6} {:>6} {:>6} {:>5} {:>6.2} {:>6.2} {:>7.3} {:>7.3}",
+                    "mixed{seed:<3} {name:<12} {:>6} {:>6} {:>6} {:>5} {:>6.2} {:>6.2} {:>7.3} {:>7.3} {:>7.2} {:>7.2}",
                     d.facet_count(),
                     v_exact.invalid_facets().len(),
                     invalid.len(),
@@ -145,7 +156,9 @@ fn main() {
                     tilted.last().copied().unwrap_or(0.0),
                     tilted.get(tilted.len() / 2).copied().unwrap_or(0.0),
                     t_exact,
-                    t_adjusted
+                    t_adjusted,
+                    far_spacings(&exact),
+                    far_spacings(&d)
                 );
                 if detail {
                     for &i in &invalid {
@@ -181,6 +194,15 @@ fn main() {
         "total invalid exact {total_exact}, adjusted {total_adjusted}; adjusted time {time_adjusted:.2} s; \
          invalid by the check but not flagged by the report: {total_unflagged}"
     );
+}
+
+/// The report's largest vertex deviation in pattern spacings (the seeds' bounding-box
+/// diagonal over the square root of the facet count, as the CLI's far-vertex warning).
+fn far_spacings(d: &tpi_core::Discretisation) -> f64 {
+    let Some(q) = &d.quality else {
+        return f64::NAN;
+    };
+    q.max_deviation / (q.bounding_box_diagonal / (q.facet_count.max(1) as f64).sqrt())
 }
 
 /// Distance (in pattern spacings, normalised parameters) from `st` to the nearest place where

@@ -101,8 +101,8 @@ pub use pattern::{
 pub use polysurface::{Polysurface, MAX_POLYSURFACE_FACES};
 pub use progress::{NoProgress, Progress, Stage, PROGRESS_CHUNK};
 pub use quality::{
-    QualityReport, FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
-    INVALID_FLAGS,
+    QualityReport, FLAG_DIAGNOSTIC, FLAG_FAR_VERTEX, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN,
+    FLAG_OVERLAP, INVALID_FLAGS,
 };
 pub use relax::{relax, relax_with_progress, MAX_RELAX_ITERATIONS};
 pub use rulings::ruling_direction;

@@ -31,7 +31,7 @@ use crate::progress::{NoProgress, Progress, Stage, Tally};
 use crate::projection::{deviation_at, distance_foot, Wrap};
 use crate::sanity::BoundaryLoops;
 use crate::surface::Surface;
-use crate::tolerance::SEPARATION_MARGIN;
+use crate::tolerance::{FAR_VERTEX_SPACINGS, SEPARATION_MARGIN};
 use crate::validity_flips::polygons_overlap;
 
 /// Per-facet flag: not convex.
@@ -44,6 +44,11 @@ pub const FLAG_OVERLAP: u8 = 4;
 pub const FLAG_DIAGNOSTIC: u8 = 8;
 /// Per-facet flag: fewer than three distinct vertices.
 pub const FLAG_OPEN: u8 = 16;
+/// Per-facet flag: a vertex stands farther from the surface than [`FAR_VERTEX_SPACINGS`]
+/// times the facet's local spacing (the mean distance from its seed to the seeds of the
+/// facets it shares an edge with). Not invalid by itself: exact tangent planes nearly
+/// parallel (at a parabolic line, or at seeds close together) meet far from the surface.
+pub const FLAG_FAR_VERTEX: u8 = 32;
 /// The flags that make a facet invalid (DESIGN.md, item 8).
 pub const INVALID_FLAGS: u8 = FLAG_NON_SIMPLE | FLAG_OVERLAP | FLAG_OPEN;
 
@@ -74,8 +79,8 @@ pub struct QualityReport {
     pub non_simple_facets: usize,
     /// Pairs of neighbouring facets that overlap.
     pub overlapping_pairs: usize,
-    /// Facets with any flag (non-convex where K > 0, non-simple, overlapping, open, or named
-    /// by a diagnostic).
+    /// Facets with any flag (non-convex where K > 0, non-simple, overlapping, open, named
+    /// by a diagnostic, or with a far vertex).
     pub flagged_facets: usize,
     /// Facets with fewer than three distinct vertices.
     #[serde(default)]
@@ -83,6 +88,14 @@ pub struct QualityReport {
     /// Open, non-simple or overlapping facets (each once): 0 for a valid mesh.
     #[serde(default)]
     pub invalid_facets: usize,
+    /// Facets with a vertex farther from the surface than [`FAR_VERTEX_SPACINGS`] local
+    /// spacings ([`FLAG_FAR_VERTEX`]).
+    #[serde(default)]
+    pub far_vertex_facets: usize,
+    /// The largest, over the facets, of the deviation of a facet's farthest vertex over the
+    /// facet's local spacing ([`FLAG_FAR_VERTEX`]): below 1 on a mesh that hugs its surface.
+    #[serde(default)]
+    pub max_deviation_spacings: f64,
     /// V - E + F (1 for a disc).
     pub euler_characteristic: i64,
     /// Number of boundary loops (1 for a disc); a boundary pinched at a vertex of 2k boundary
@@ -190,6 +203,16 @@ pub(crate) fn report(
         r.max_deviation = used().fold(0.0, f64::max);
         r.mean_deviation = used().sum::<f64>() / used_count as f64;
     }
+    // Per facet, its farthest vertex's deviation (judged against its local spacing once the
+    // shared edges are known).
+    let facet_deviation: Vec<f64> = (0..facet_count)
+        .map(|i| {
+            facet(input, i)
+                .iter()
+                .map(|&v| deviations[v as usize])
+                .fold(0.0, f64::max)
+        })
+        .collect();
     drop(deviations);
 
     // Edges: (lo, hi, facet) sorted, by a counting sort on lo and a sort of each (short) run.
@@ -274,6 +297,18 @@ pub(crate) fn report(
         pairs.dedup();
         pairs
     };
+    let spacing = local_spacings(input, facet_count, &shared_edges);
+    for (i, (&deviation, &h)) in facet_deviation.iter().zip(&spacing).enumerate() {
+        let spacings = deviation / h;
+        if spacings > FAR_VERTEX_SPACINGS {
+            flags[i] |= FLAG_FAR_VERTEX;
+            r.far_vertex_facets += 1;
+        }
+        if spacings.is_finite() {
+            r.max_deviation_spacings = r.max_deviation_spacings.max(spacings);
+        }
+    }
+    drop((facet_deviation, spacing));
     drop(shared_edges);
     drop(simple);
     r.overlapping_pairs = overlapping.len();
@@ -347,6 +382,39 @@ pub(crate) fn report(
         r.min_edge_length = 0.0;
     }
     (r, flags)
+}
+
+/// Per facet, the mean distance from its seed to the seeds of the facets it shares an edge
+/// with; where it shares none, the pattern spacing (the diagonal over the square root of the
+/// facet count).
+fn local_spacings(
+    input: &ReportInput<'_>,
+    facet_count: usize,
+    shared_edges: &[(u32, u32, u32, u32)],
+) -> Vec<f64> {
+    let mut sum = vec![0.0f64; facet_count];
+    let mut count = vec![0u32; facet_count];
+    for &(f, g, _, _) in shared_edges {
+        let d = input.planes[f as usize]
+            .point
+            .distance(input.planes[g as usize].point);
+        for x in [f, g] {
+            sum[x as usize] += d;
+            count[x as usize] += 1;
+        }
+    }
+    let pattern = input.diagonal / (facet_count.max(1) as f64).sqrt();
+    sum.iter()
+        .zip(&count)
+        .map(|(&s, &c)| {
+            let mean = s / f64::from(c);
+            if c > 0 && mean > 0.0 {
+                mean
+            } else {
+                pattern
+            }
+        })
+        .collect()
 }
 
 /// Whether `l` holds at least three distinct vertices (one pass, no copy of the loop).

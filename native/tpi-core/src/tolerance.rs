@@ -505,8 +505,10 @@ pub const RESTRUCTURE_FLIPS: usize = 24;
 /// up to rounding (a square grid), where a flip would only follow rounding.
 pub const ISOTROPIC_FLIP_TIE: f64 = 1e-9;
 
-/// The CLI warns when a vertex stands farther from the surface than this many pattern
-/// spacings (the seeds' bounding-box diagonal over the square root of the facet count). A
+/// A facet whose farthest vertex stands farther from the surface than this many times its
+/// local spacing (the mean distance from its seed to the seeds of the facets it shares an
+/// edge with) is flagged `FLAG_FAR_VERTEX` by the quality report, which counts such facets;
+/// the CLI, the Grasshopper component and the Rhino command warn about them. A
 /// TPI vertex deviates about k r^2 / 2 for a facet of circumradius r, so on a convex patch a
 /// vertex stays within about one spacing even where a facet spans a radian of the surface;
 /// farther ones are runaways of nearly parallel planes, at a parabolic line or at seeds close

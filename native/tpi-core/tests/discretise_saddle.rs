@@ -14,7 +14,11 @@
 //!   the seed (K from the surface's derivatives, own formula);
 //! - overlap: two simple facets sharing a vertex whose projections along their mean normal
 //!   intersect in more than a 1e-6 fraction of the smaller one's area (the `geo` crate);
-//! - the diagnostic flag marks every facet whose pattern point a diagnostic names.
+//! - the diagnostic flag marks every facet whose pattern point a diagnostic names;
+//! - the far-vertex flag marks every facet whose farthest vertex stands farther from the
+//!   surface (own projection) than 3 local spacings (`common::deviation_spacings`); within
+//!   5 % of that threshold either verdict is accepted (the two projections differ in their
+//!   last digits, and a far vertex's closest point need not be unique).
 // NaN-safe negated comparisons are intended; index loops read better in geometry checks.
 #![allow(
     clippy::neg_cmp_op_on_partial_ord,
@@ -27,9 +31,15 @@ mod common;
 use common::*;
 
 use tpi_core::{discretise, AnalyticSurface, Discretisation, DiscretiseOptions, Surface};
-use tpi_core::{FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP};
+use tpi_core::{
+    FLAG_DIAGNOSTIC, FLAG_FAR_VERTEX, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
+};
 
 const TOL: f64 = 1e-9;
+
+/// The far-vertex threshold, in local spacings (issue 10, item 3; the report's
+/// `FAR_VERTEX_SPACINGS`, restated).
+const FAR_VERTEX_SPACINGS: f64 = 3.0;
 
 /// Own flags per facet and own overlap count.
 fn independent_flags(surface: &dyn Surface, d: &Discretisation) -> (Vec<u8>, usize) {
@@ -56,6 +66,16 @@ fn independent_flags(surface: &dyn Surface, d: &Discretisation) -> (Vec<u8>, usi
     for diagnostic in &d.diagnostics {
         for p in diagnostic.points() {
             flags[p as usize] |= FLAG_DIAGNOSTIC;
+        }
+    }
+    for (i, spacings) in deviation_spacings(surface, d).into_iter().enumerate() {
+        let reported = d
+            .facet_flags
+            .get(i)
+            .is_some_and(|&f| f & FLAG_FAR_VERTEX != 0);
+        let borderline = (spacings / FAR_VERTEX_SPACINGS - 1.0).abs() < 0.05;
+        if spacings > FAR_VERTEX_SPACINGS && !borderline || borderline && reported {
+            flags[i] |= FLAG_FAR_VERTEX;
         }
     }
     (flags, validity.overlapping_pairs.len())

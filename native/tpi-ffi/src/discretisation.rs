@@ -31,6 +31,11 @@ pub const TPI_FACET_OVERLAP: u8 = 4;
 pub const TPI_FACET_DIAGNOSTIC: u8 = 8;
 /// Per-facet flag: fewer than three distinct vertices. Invalid.
 pub const TPI_FACET_OPEN: u8 = 16;
+/// Per-facet flag: a vertex of the facet stands farther from the surface than 3 times the
+/// facet's local spacing (the mean distance from its seed to the seeds of the facets it
+/// shares an edge with): exact tangent planes nearly parallel (at a parabolic line, or at
+/// seeds close together) met far from it. Not invalid by itself.
+pub const TPI_FACET_FAR_VERTEX: u8 = 32;
 
 /// The `point` of a diagnostic entry that concerns no single pattern point (a domain corner
 /// claimed by no facet or by several).
@@ -43,6 +48,10 @@ pub const TPI_QUALITY_REPORT_SIZE_V1: u32 = 200;
 /// Size in bytes of the second version of `TpiQualityReport` (V1 plus `invalid_facets`,
 /// `open_facets`, `validity_flips` and `validity_unresolved`).
 pub const TPI_QUALITY_REPORT_SIZE_V2: u32 = 232;
+
+/// Size in bytes of the third version of `TpiQualityReport` (V2 plus `far_vertex_facets` and
+/// `max_deviation_spacings`).
+pub const TPI_QUALITY_REPORT_SIZE_V3: u32 = 248;
 
 /// The result of a discretisation: an indexed polygon mesh with one planar facet per pattern
 /// point (facet i belongs to pattern point i), the dual triangulation, the quality report and
@@ -305,6 +314,12 @@ pub struct TpiQualityReport {
     pub validity_flips: u64,
     /// Facets the validity repair could not make valid. Since V2.
     pub validity_unresolved: u64,
+    /// Facets with a vertex farther from the surface than 3 local spacings
+    /// (`TPI_FACET_FAR_VERTEX`). Since V3.
+    pub far_vertex_facets: u64,
+    /// The largest, over the facets, of the deviation of a facet's farthest vertex over the
+    /// facet's local spacing: below 1 on a mesh that hugs its surface. Since V3.
+    pub max_deviation_spacings: f64,
 }
 
 impl TpiQualityReport {
@@ -341,6 +356,8 @@ impl TpiQualityReport {
             open_facets: n(q.open_facets),
             validity_flips: n(q.neighbours.validity_flips),
             validity_unresolved: n(q.neighbours.validity_unresolved),
+            far_vertex_facets: n(q.far_vertex_facets),
+            max_deviation_spacings: q.max_deviation_spacings,
         }
     }
 }

@@ -70,8 +70,11 @@ fn status_numbers_are_fixed() {
 
 #[test]
 fn flag_and_kind_numbers_match_the_core() {
-    use tpi_core::{FLAG_DIAGNOSTIC, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP};
+    use tpi_core::{
+        FLAG_DIAGNOSTIC, FLAG_FAR_VERTEX, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
+    };
     assert_eq!(TPI_FACET_OPEN, FLAG_OPEN);
+    assert_eq!(TPI_FACET_FAR_VERTEX, FLAG_FAR_VERTEX);
     assert_eq!(TPI_FACET_NON_CONVEX, FLAG_NON_CONVEX);
     assert_eq!(TPI_FACET_NON_SIMPLE, FLAG_NON_SIMPLE);
     assert_eq!(TPI_FACET_OVERLAP, FLAG_OVERLAP);
@@ -99,11 +102,15 @@ fn struct_layouts_are_fixed() {
     );
     assert_eq!(
         size_of::<TpiQualityReport>(),
-        TPI_QUALITY_REPORT_SIZE_V2 as usize
+        TPI_QUALITY_REPORT_SIZE_V3 as usize
     );
     assert_eq!(
         offset_of!(TpiQualityReport, invalid_facets),
         TPI_QUALITY_REPORT_SIZE_V1 as usize
+    );
+    assert_eq!(
+        offset_of!(TpiQualityReport, far_vertex_facets),
+        TPI_QUALITY_REPORT_SIZE_V2 as usize
     );
     assert_eq!(align_of::<TpiOptions>(), 8);
     assert_eq!(offset_of!(TpiOptions, far_vertex_factor), 16);
@@ -678,7 +685,7 @@ fn a_bigger_quality_struct_gets_this_librarys_fields_and_their_size() {
     };
     // SAFETY: `newer` holds struct_size bytes.
     ok(unsafe { tpi_discretisation_quality(d, &mut newer.report) });
-    assert_eq!(newer.report.struct_size, TPI_QUALITY_REPORT_SIZE_V2);
+    assert_eq!(newer.report.struct_size, TPI_QUALITY_REPORT_SIZE_V3);
     assert_eq!(newer.report.facet_count, 49);
     assert_eq!(newer.future, [7, 7]);
     // SAFETY: our handles.
@@ -718,6 +725,48 @@ fn a_first_version_quality_struct_gets_only_its_bytes() {
             q.validity_unresolved
         ],
         [sentinel; 4]
+    );
+    // SAFETY: our handles.
+    unsafe {
+        tpi_discretisation_free(d);
+        tpi_pattern_free(p);
+        tpi_surface_free(surface);
+    }
+}
+
+#[test]
+fn a_second_version_quality_struct_gets_only_its_bytes() {
+    let surface = dome(3.0);
+    let p = pattern(&jittered_grid(6));
+    let mut d = std::ptr::null_mut();
+    // SAFETY: live handles, valid out pointer.
+    ok(unsafe { tpi_discretise(surface, p, std::ptr::null(), &mut d) });
+    // A caller compiled against the second header: the V3 fields must stay untouched.
+    let mut q = TpiQualityReport {
+        struct_size: TPI_QUALITY_REPORT_SIZE_V2,
+        far_vertex_facets: 77,
+        max_deviation_spacings: -1.0,
+        ..Default::default()
+    };
+    // SAFETY: live handle; the struct holds more than struct_size bytes.
+    ok(unsafe { tpi_discretisation_quality(d, &mut q) });
+    assert_eq!(q.struct_size, TPI_QUALITY_REPORT_SIZE_V2);
+    assert_eq!(q.facet_count, 36);
+    assert_eq!(q.invalid_facets, 0);
+    assert_eq!((q.far_vertex_facets, q.max_deviation_spacings), (77, -1.0));
+    // The full struct: a dome's vertices stay well within a spacing of the surface.
+    let mut full = TpiQualityReport {
+        struct_size: TPI_QUALITY_REPORT_SIZE_V3,
+        far_vertex_facets: 77,
+        ..Default::default()
+    };
+    // SAFETY: as above.
+    ok(unsafe { tpi_discretisation_quality(d, &mut full) });
+    assert_eq!(full.far_vertex_facets, 0);
+    assert!(
+        full.max_deviation_spacings > 0.0 && full.max_deviation_spacings < 1.0,
+        "{}",
+        full.max_deviation_spacings
     );
     // SAFETY: our handles.
     unsafe {

@@ -119,6 +119,9 @@ namespace Tpi.Native
         Diagnostic = 8,
         /// <summary>TPI_FACET_OPEN: fewer than three distinct vertices (invalid).</summary>
         Open = 16,
+        /// <summary>TPI_FACET_FAR_VERTEX: a vertex stands farther from the surface than 3 local
+        /// pattern spacings (exact tangent planes nearly parallel met far away; not invalid).</summary>
+        FarVertex = 32,
     }
 
     /// <summary>Three doubles x, y, z: the layout of a C <c>double[3]</c>.</summary>
@@ -306,7 +309,7 @@ namespace Tpi.Native
         public ulong Discretisations;
     }
 
-    /// <summary>TpiQualityReport (second version, 232 bytes). See include/tpi.h for each field.</summary>
+    /// <summary>TpiQualityReport (third version, 248 bytes). See include/tpi.h for each field.</summary>
     [StructLayout(LayoutKind.Sequential)]
     public struct QualityReport
     {
@@ -314,6 +317,8 @@ namespace Tpi.Native
         public const int SizeV1 = 200;
         /// <summary>TPI_QUALITY_REPORT_SIZE_V2.</summary>
         public const int SizeV2 = 232;
+        /// <summary>TPI_QUALITY_REPORT_SIZE_V3.</summary>
+        public const int SizeV3 = 248;
         /// <summary>On return: how many bytes the library filled in.</summary>
         public uint StructSize;
         /// <summary>1 if every vertex coordinate is finite.</summary>
@@ -374,6 +379,12 @@ namespace Tpi.Native
         public ulong ValidityFlips;
         /// <summary>Facets the validity repair could not make valid (V2).</summary>
         public ulong ValidityUnresolved;
+        /// <summary>Facets with a vertex farther from the surface than 3 local pattern spacings,
+        /// flagged <see cref="FacetFlags.FarVertex"/> (V3).</summary>
+        public ulong FarVertexFacets;
+        /// <summary>The largest, over the facets, of the farthest vertex's deviation over the
+        /// facet's local spacing: below 1 on a mesh that hugs its surface (V3).</summary>
+        public double MaxDeviationSpacings;
     }
 
     /// <summary>TpiOptions as it crosses the boundary (second version, 48 bytes).</summary>

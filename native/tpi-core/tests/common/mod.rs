@@ -536,6 +536,60 @@ pub fn closest_parameters(surface: &dyn Surface, x: DVec3, grid: usize) -> [f64;
     [u, v]
 }
 
+/// Per facet, the distance of its farthest vertex from the surface (`closest_parameters`
+/// on a 24 x 24 grid) over its local spacing: the mean distance from its seed to the seeds of
+/// the facets it shares a mesh edge with (edges found from the loops here), or the seeds'
+/// diagonal over the square root of the facet count where it shares none. What the report's
+/// far-vertex flag judges, computed independently.
+pub fn deviation_spacings(surface: &dyn Surface, d: &Discretisation) -> Vec<f64> {
+    let n = d.facet_count();
+    let mut deviation = vec![f64::NAN; d.vertices.len()];
+    let mut by_edge: std::collections::HashMap<(u32, u32), Vec<usize>> = Default::default();
+    for i in 0..n {
+        let l = d.facet(i);
+        for k in 0..l.len() {
+            let (a, b) = (l[k], l[(k + 1) % l.len()]);
+            if a != b {
+                by_edge.entry((a.min(b), a.max(b))).or_default().push(i);
+            }
+        }
+    }
+    let mut sum = vec![0.0; n];
+    let mut count = vec![0usize; n];
+    for facets in by_edge.values() {
+        if let [f, g] = facets[..] {
+            if f != g {
+                let h = d.seeds[f].point.distance(d.seeds[g].point);
+                for x in [f, g] {
+                    sum[x] += h;
+                    count[x] += 1;
+                }
+            }
+        }
+    }
+    let pattern = seed_diagonal(d) / (n.max(1) as f64).sqrt();
+    (0..n)
+        .map(|i| {
+            let mut farthest = 0.0f64;
+            for &v in d.facet(i) {
+                let v = v as usize;
+                if deviation[v].is_nan() {
+                    let x = d.vertices[v];
+                    let [u, w] = closest_parameters(surface, x, 24);
+                    deviation[v] = surface.point_at(u, w).distance(x);
+                }
+                farthest = farthest.max(deviation[v]);
+            }
+            let spacing = if count[i] > 0 && sum[i] > 0.0 {
+                sum[i] / count[i] as f64
+            } else {
+                pattern
+            };
+            farthest / spacing
+        })
+        .collect()
+}
+
 /// min(s, 1 - s, t, 1 - t) of the normalised parameters.
 pub fn inside_measure(surface: &dyn Surface, uv: [f64; 2]) -> f64 {
     let [s, t] = surface.domain().to_normalised(uv);
