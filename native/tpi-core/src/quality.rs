@@ -4,6 +4,11 @@
 //!   the bounding-box diagonal of the pattern's surface points (0 up to rounding, since every
 //!   vertex is built in its facets' planes);
 //! - deviation: distance of each mesh vertex from its closest surface point (max and mean);
+//!   a facet whose farthest vertex stands more than [`FAR_VERTEX_SPACINGS`] times its local
+//!   spacing h_i = mean over the facets j sharing an edge with it of |p_i - p_j| off the
+//!   surface is flagged [`FLAG_FAR_VERTEX`] (a TPI vertex stands about k r^2 / 2 off, r the
+//!   facet's circumradius, so well within one spacing wherever three neighbouring tangent
+//!   planes are not nearly parallel); the largest ratio is `max_deviation_spacings`;
 //! - convexity and simplicity of each facet, in 2D coordinates of its tangent plane; a facet
 //!   whose loop runs clockwise seen from its normal counts as not simple; a facet with fewer
 //!   than three distinct vertices is open;
@@ -394,7 +399,7 @@ fn local_spacings(
 ) -> Vec<f64> {
     let mut sum = vec![0.0f64; facet_count];
     let mut count = vec![0u32; facet_count];
-    for &(f, g, _, _) in shared_edges {
+    for &(f, g, _, _) in shared_edges.iter().filter(|e| e.0 != e.1) {
         let d = input.planes[f as usize]
             .point
             .distance(input.planes[g as usize].point);
