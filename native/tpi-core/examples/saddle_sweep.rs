@@ -17,7 +17,7 @@
 //! cargo run --release -p tpi-core --example saddle_sweep -- 300,2000 hp hex
 //! ```
 //!
-//! `SWEEP_MIXED=N` sets the number of random mixed surfaces in the adjusted part (default 3,
+//! `SWEEP_ANGLES=7,22` replaces the hex rotations (degrees). `SWEEP_MIXED=N` sets the number of random mixed surfaces in the adjusted part (default 3,
 //! plus the sample roof); with `SWEEP_DETAIL=1` each invalid facet is listed with its seed,
 //! whether it touches the boundary and what is wrong with it.
 #![allow(
@@ -38,7 +38,12 @@ use tpi_core::{discretise, Discretisation, DiscretiseOptions, PlaneMode, Surface
 
 /// The exact-plane patterns at size `n`: hex at several rotations, a grid and Poisson disks.
 fn exact_patterns(n: usize, seed: u64) -> Vec<(String, Vec<[f64; 2]>)> {
-    let mut out: Vec<(String, Vec<[f64; 2]>)> = [0.0, 13.0, 30.0, 47.0, 60.0]
+    // SWEEP_ANGLES=a,b,... replaces the hex rotations (degrees).
+    let angles: Vec<f64> = std::env::var("SWEEP_ANGLES")
+        .ok()
+        .map(|a| a.split(',').filter_map(|x| x.parse().ok()).collect())
+        .unwrap_or_else(|| vec![0.0, 13.0, 30.0, 47.0, 60.0]);
+    let mut out: Vec<(String, Vec<[f64; 2]>)> = angles
         .iter()
         .map(|&a| (format!("hex{n}@{a}"), rotated_hex(n, a)))
         .collect();
