@@ -17,7 +17,8 @@
 //! cargo run --release -p tpi-core --example saddle_sweep -- 300,2000 hp hex
 //! ```
 //!
-//! `SWEEP_ANGLES=7,22` replaces the hex rotations (degrees). `SWEEP_MIXED=N` sets the number of random mixed surfaces in the adjusted part (default 3,
+//! `SWEEP_ANGLES=7,22` replaces the hex rotations (degrees); `SWEEP_ADJUST_ALL=1` runs the
+//! first part (hex, grid, Poisson) with adjusted planes too. `SWEEP_MIXED=N` sets the number of random mixed surfaces in the adjusted part (default 3,
 //! plus the sample roof); with `SWEEP_DETAIL=1` each invalid facet is listed with its seed,
 //! whether it touches the boundary and what is wrong with it.
 #![allow(
@@ -135,13 +136,28 @@ fn main() {
         .ok()
         .and_then(|m| m.parse().ok())
         .unwrap_or(3);
-    let exact = DiscretiseOptions::default();
+    // SWEEP_ADJUST_ALL=1: the first part (hex, grid, Poisson) with adjusted planes too.
+    let exact = DiscretiseOptions {
+        planes: if std::env::var_os("SWEEP_ADJUST_ALL").is_some() {
+            PlaneMode::Adjusted
+        } else {
+            PlaneMode::Exact
+        },
+        ..DiscretiseOptions::default()
+    };
     let adjusted = DiscretiseOptions {
         planes: PlaneMode::Adjusted,
         ..DiscretiseOptions::default()
     };
 
-    println!("# exact planes");
+    println!(
+        "# {} planes",
+        if exact.planes == PlaneMode::Adjusted {
+            "adjusted"
+        } else {
+            "exact"
+        }
+    );
     println!(
         "{:<12} {:<14} {:>6} {:>7} {:>5} {:>7}   K range",
         "surface", "pattern", "facets", "invalid", "disc", "t"
