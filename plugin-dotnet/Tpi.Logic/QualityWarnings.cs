@@ -1,7 +1,6 @@
 // Warnings read from a discretisation's quality report, worded as the CLI's (tpi discretise):
 // shown by the Grasshopper component beside the flagged facets and the diagnostics.
 // Rhino-free, so the Mono tests check it.
-using System;
 using System.Globalization;
 using Tpi.Native;
 
@@ -18,7 +17,7 @@ namespace Tpi.Logic
         {
             if (q.FarVertexFacets == 0) return null;
             return string.Format(CultureInfo.InvariantCulture,
-                "{0} facets have a vertex far off the surface (the largest deviation {1:G4}, {2:F0} local pattern spacings): where neighbouring tangent planes are nearly parallel (at a parabolic line, K = 0, or at seeds close together) they meet far from it; the facets are flagged FarVertex, and adjusted planes hold facets near their seeds",
+                "{0} facets have a vertex far off the surface (largest deviation {1:G4}; up to {2:F0} local pattern spacings): where neighbouring tangent planes are nearly parallel (at a parabolic line, K = 0, or at seeds close together) they meet far from it; the facets are flagged FarVertex, and adjusted planes hold facets near their seeds",
                 q.FarVertexFacets, q.MaxDeviation, q.MaxDeviationSpacings);
         }
     }

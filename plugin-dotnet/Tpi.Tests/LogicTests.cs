@@ -503,7 +503,7 @@ namespace Tpi.Tests
             q.FarVertexFacets = 4;
             q.MaxDeviation = 49.7;
             q.MaxDeviationSpacings = 50.2;
-            StringAssert.StartsWith("4 facets have a vertex far off the surface (the largest deviation 49.7, 50 local pattern spacings): ", QualityWarnings.FarVertex(q));
+            StringAssert.StartsWith("4 facets have a vertex far off the surface (largest deviation 49.7; up to 50 local pattern spacings): ", QualityWarnings.FarVertex(q));
             Assert.IsNull(QualityWarnings.FarVertex(new QualityReport()), "no facets, no warning");
             // A strictly convex dome: every vertex near the surface, no such warning.
             var dome = ComponentSolvers.Discretise(new DiscretiseInput { Surface = LogicData.Dome(), Points = LogicData.Hex(6, 6) });

@@ -21,7 +21,7 @@ pub(crate) fn invalid_warning(q: &tpi_core::QualityReport) -> String {
 pub(crate) fn far_vertex_warning(q: &tpi_core::QualityReport) -> Option<String> {
     (q.far_vertex_facets > 0).then(|| {
         format!(
-            "warning: {} facets have a vertex more than {} local pattern spacings off the surface (the largest deviation {}, {:.0} spacings): where neighbouring tangent planes are nearly parallel (at a parabolic line, K = 0, or at seeds close together) they meet far from it; the facets are flagged in the outputs, and --planes adjusted holds facets near their seeds",
+            "warning: {} facets have a vertex more than {} local pattern spacings off the surface (largest deviation {}; up to {:.0} local spacings): where neighbouring tangent planes are nearly parallel (at a parabolic line, K = 0, or at seeds close together) they meet far from it; the facets are flagged in the outputs, and --planes adjusted holds facets near their seeds",
             q.far_vertex_facets,
             FAR_VERTEX_SPACINGS,
             sig(q.max_deviation),
@@ -86,11 +86,14 @@ pub(crate) fn summary(
             );
             let _ = writeln!(
                 s,
-                "  planarity {:.1e} (max, relative to diagonal {})   deviation max {}  mean {}",
+                "  planarity {:.1e} (max, relative to diagonal {})   deviation max {}  mean {}  (up to {:.2} local spacings; {} facets beyond {})",
                 q.max_planarity_error,
                 sig(q.bounding_box_diagonal),
                 sig(q.max_deviation),
-                sig(q.mean_deviation)
+                sig(q.mean_deviation),
+                q.max_deviation_spacings,
+                q.far_vertex_facets,
+                FAR_VERTEX_SPACINGS
             );
             let _ = writeln!(
                 s,
@@ -265,7 +268,7 @@ mod tests {
         assert_eq!(far_vertex_warning(&report(0, 2.9)), None);
         let far = far_vertex_warning(&report(4, 50.2)).expect("a warning");
         assert!(
-            far.starts_with("warning: 4 facets have a vertex more than 3 local pattern spacings off the surface (the largest deviation 49.70, 50 spacings)"),
+            far.starts_with("warning: 4 facets have a vertex more than 3 local pattern spacings off the surface (largest deviation 49.70; up to 50 local spacings)"),
             "{far}"
         );
     }
