@@ -17,7 +17,8 @@
 //! counted by their distance from the nearest parabolic line (in pattern spacings), and those
 //! beyond 2 spacings listed; with `SWEEP_EXACT_ONLY=1` the adjusted run is skipped (its
 //! columns repeat the exact one). With `SWEEP_DETAIL=1` each facet still invalid after adjustment is listed with its seed,
-//! the Gaussian curvature there and the tilts of its plane and its neighbours'.
+//! the Gaussian curvature there and the tilts of its plane and its neighbours'. The last two
+//! columns are the exact and adjusted meshes' largest vertex deviation in pattern spacings.
 #![allow(
     dead_code,
     clippy::needless_range_loop,
@@ -196,8 +197,9 @@ fn main() {
     );
 }
 
-/// The report's largest vertex deviation in pattern spacings (the seeds' bounding-box
-/// diagonal over the square root of the facet count, as the CLI's far-vertex warning).
+/// The report's largest vertex deviation in pattern spacings: the seeds' bounding-box
+/// diagonal over the square root of the facet count, one global spacing (the report's
+/// `max_deviation_spacings` divides by each facet's local one instead).
 fn far_spacings(d: &tpi_core::Discretisation) -> f64 {
     let Some(q) = &d.quality else {
         return f64::NAN;
