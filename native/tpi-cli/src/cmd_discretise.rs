@@ -23,10 +23,10 @@ a failing or interrupted run leaves no output file (and no half-written one); an
 is also an input is refused. A summary of the quality report goes to stderr; progress bars
 too (one per stage that runs, with count, percentage and time left) when stderr is a terminal
 and the run takes more than a second. When the report finds invalid facets, an unexpected
-topology or a vertex more than 3 pattern spacings off the surface, the surface intersects
-itself (sampled) or a seam stays open, a `warning:` line goes to stderr. Exit code 0 on
-success, 1 for bad input or output, 2 for usage, 3 for invalid facets or an unexpected
-topology with --strict.
+topology or facets with a vertex more than 3 local pattern spacings off the surface, the
+surface intersects itself (sampled) or a seam stays open, a `warning:` line goes to stderr.
+Exit code 0 on success, 1 for bad input or output, 2 for usage, 3 for invalid facets or an
+unexpected topology with --strict.
 
 PATTERN SPECS made on the surface (the same grammar as the C ABI's
 tpi_pattern_new_for_surface and the Grasshopper component; tpi_core::SurfacePatternSpec):

@@ -538,25 +538,15 @@ pub fn closest_parameters(surface: &dyn Surface, x: DVec3, grid: usize) -> [f64;
 
 /// Per facet, the distance of its farthest vertex from the surface (`closest_parameters`
 /// on a 24 x 24 grid) over its local spacing: the mean distance from its seed to the seeds of
-/// the facets it shares a mesh edge with (edges found from the loops here), or the seeds'
+/// the facets it shares a mesh edge with (the edges of [`topology`]), or the seeds'
 /// diagonal over the square root of the facet count where it shares none. What the report's
 /// far-vertex flag judges, computed independently.
 pub fn deviation_spacings(surface: &dyn Surface, d: &Discretisation) -> Vec<f64> {
     let n = d.facet_count();
     let mut deviation = vec![f64::NAN; d.vertices.len()];
-    let mut by_edge: std::collections::HashMap<(u32, u32), Vec<usize>> = Default::default();
-    for i in 0..n {
-        let l = d.facet(i);
-        for k in 0..l.len() {
-            let (a, b) = (l[k], l[(k + 1) % l.len()]);
-            if a != b {
-                by_edge.entry((a.min(b), a.max(b))).or_default().push(i);
-            }
-        }
-    }
     let mut sum = vec![0.0; n];
     let mut count = vec![0usize; n];
-    for facets in by_edge.values() {
+    for facets in topology(d).edge_facets.values() {
         if let [f, g] = facets[..] {
             if f != g {
                 let h = d.seeds[f].point.distance(d.seeds[g].point);
