@@ -111,8 +111,10 @@
 #define TPI_VERSION_PATCH 0
 
 /**
- * Per-facet flag: the facet is not convex where its seed is strictly convex (K > 0); on
- * saddle-shaped regions non-convex facets are expected and not flagged.
+ * Per-facet flag: the facet is not convex where the envelope of tangent planes makes facets
+ * convex (its seed and the seeds of the facets sharing an edge with it strictly convex, K > 0,
+ * on one side); on saddle-shaped regions and next to parabolic lines non-convex facets are
+ * expected and not flagged.
  */
 #define TPI_FACET_NON_CONVEX 1
 

@@ -37,7 +37,7 @@ namespace Tpi.GhComponents
         {
             pManager.AddNumberParameter("Planarity", "Pl", "Largest distance of each panel's vertices from its plane (model units).", GH_ParamAccess.list);
             pManager.AddIntegerParameter("Sides", "N", "Number of sides of each panel.", GH_ParamAccess.list);
-            pManager.AddIntegerParameter("Flags", "F", "Flag bits per panel: 1 non-convex, 2 non-simple, 4 overlap, 8 diagnostic.", GH_ParamAccess.list);
+            pManager.AddIntegerParameter("Flags", "F", "Flag bits per panel: 1 non-convex where K > 0 around it, 2 non-simple, 4 overlap, 8 diagnostic, 16 open, 32 far vertex.", GH_ParamAccess.list);
             pManager.AddTextParameter("Flag names", "FN", "Flag names per panel.", GH_ParamAccess.list);
             pManager.AddTextParameter("Diagnostics", "D", "Diagnostic kinds per panel.", GH_ParamAccess.list);
             pManager.AddNumberParameter("Areas", "A", "Area of each panel.", GH_ParamAccess.list);

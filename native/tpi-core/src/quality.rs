@@ -18,9 +18,13 @@
 //!   is first tried by the separating line through a and b: all other vertices of one on one
 //!   side and of the other on the other side means no overlap;
 //! - validity: open, non-simple and overlapping facets are invalid (`invalid_facets`) and
-//!   flagged. Non-convex facets are counted but flagged only where the seed is strictly
-//!   convex (K > 0), where the envelope makes every facet convex; on K < 0 non-convex is the
-//!   expected shape (paper, figure 6), not a defect;
+//!   flagged. Non-convex facets are counted but flagged only where the envelope makes every
+//!   facet convex: the seed and the seeds of all the facets sharing an edge with it strictly
+//!   convex (K > 0) on the same side, and the loop turning clockwise at a corner off the
+//!   boundary (the corners on the boundary follow the surface's boundary curve). On K < 0
+//!   non-convex is the expected shape (paper, figure 6), not a defect, and so it is next to a
+//!   parabolic line, where the planes meeting at a facet's vertices are not all on the
+//!   envelope;
 //! - topology: Euler characteristic V - E + F, boundary loops, valence of interior vertices
 //!   (a vertex is interior when no boundary edge, i.e. an edge of only one facet, touches it).
 
@@ -84,7 +88,7 @@ pub struct QualityReport {
     pub non_simple_facets: usize,
     /// Pairs of neighbouring facets that overlap.
     pub overlapping_pairs: usize,
-    /// Facets with any flag (non-convex where K > 0, non-simple, overlapping, open, named
+    /// Facets with any flag (non-convex where the envelope makes facets convex, non-simple, overlapping, open, named
     /// by a diagnostic, or with a far vertex).
     pub flagged_facets: usize,
     /// Facets with fewer than three distinct vertices.
@@ -302,6 +306,7 @@ pub(crate) fn report(
         pairs.dedup();
         pairs
     };
+    let enveloped = enveloped_facets(input.convex_side, facet_count, &shared_edges);
     let spacing = local_spacings(input, facet_count, &shared_edges);
     for (i, (&deviation, &h)) in facet_deviation.iter().zip(&spacing).enumerate() {
         let spacings = deviation / h;
@@ -366,7 +371,10 @@ pub(crate) fn report(
         }
         if !shape.convex {
             r.non_convex_facets += 1;
-            if input.convex_side.get(i).is_some_and(|&s| s != 0) {
+            if enveloped[i]
+                && (!shape.simple
+                    || reflex_at_interior_corner(input, i, |v| boundary.on_boundary(v)))
+            {
                 flags[i] |= FLAG_NON_CONVEX;
             }
         }
@@ -387,6 +395,54 @@ pub(crate) fn report(
         r.min_edge_length = 0.0;
     }
     (r, flags)
+}
+
+/// Per facet, whether the envelope makes it convex, so that a non-convex shape is a defect:
+/// its seed and the seeds of every facet it shares an edge with (the planes that meet at its
+/// vertices) are strictly convex on the same side. Next to a parabolic line a seed with K > 0
+/// has neighbours with K <= 0, its vertices are not the envelope's, and a non-convex facet
+/// there is the expected shape, as on K < 0.
+fn enveloped_facets(
+    convex_side: &[i8],
+    facet_count: usize,
+    shared_edges: &[(u32, u32, u32, u32)],
+) -> Vec<bool> {
+    let side = |i: u32| convex_side.get(i as usize).copied().unwrap_or(0);
+    let mut enveloped: Vec<bool> = (0..facet_count as u32).map(|i| side(i) != 0).collect();
+    for &(f, g, _, _) in shared_edges {
+        if side(f) != side(g) {
+            enveloped[f as usize] = false;
+            enveloped[g as usize] = false;
+        }
+    }
+    enveloped
+}
+
+/// Whether facet `i` turns clockwise (seen from its plane's normal) at a corner off the
+/// boundary, where three of the envelope's planes meet. Its corners on the boundary follow the
+/// surface's boundary curve, whose bends the envelope does not decide.
+fn reflex_at_interior_corner(
+    input: &ReportInput<'_>,
+    i: usize,
+    on_boundary: impl Fn(usize) -> bool,
+) -> bool {
+    let l = facet(input, i);
+    let mut p = Vec::with_capacity(l.len());
+    project_loop_into(
+        &input.planes[i],
+        l.iter().map(|&v| input.vertices[v as usize]),
+        &mut p,
+    );
+    let n = p.len();
+    // The tolerance of `facet_shape_into`'s convexity.
+    let scale = (0..n)
+        .map(|k| (p[(k + 1) % n] - p[k]).length())
+        .fold(0.0, f64::max);
+    let tolerance = 1e-12 * scale * scale;
+    (0..n).any(|k| {
+        let (a, b, c) = (p[k], p[(k + 1) % n], p[(k + 2) % n]);
+        (b - a).perp_dot(c - b) < -tolerance && !on_boundary(l[(k + 1) % n] as usize)
+    })
 }
 
 /// Per facet, the mean distance from its seed to the seeds of the facets it shares an edge

@@ -56,10 +56,38 @@ fn independent_flags(surface: &dyn Surface, d: &Discretisation) -> (Vec<u8>, usi
         flags[f] |= FLAG_OVERLAP;
         flags[g] |= FLAG_OVERLAP;
     }
+    // Non-convex is a defect only where the envelope makes facets convex: the seed and the
+    // seeds of every facet sharing an edge with it have K > 0, their mean curvature of one
+    // sign (one convex side).
+    let side: Vec<i8> = (0..n)
+        .map(|i| {
+            let [u, v] = d.seeds[i].uv;
+            let (k, h) = gaussian_and_mean(surface, u, v);
+            if k > 0.0 {
+                if h > 0.0 {
+                    1
+                } else {
+                    -1
+                }
+            } else {
+                0
+            }
+        })
+        .collect();
+    // And only at corners off the boundary: the boundary's corners follow its curve.
+    let topology = topology(d);
     for i in 0..n {
         let p = to_2d(d.seeds[i].point, d.seeds[i].normal, &facet_points(d, i));
-        let [u, v] = d.seeds[i].uv;
-        if !is_convex(&p) && gaussian_and_mean(surface, u, v).0 > 0.0 {
+        let enveloped = side[i] != 0 && topology.neighbours[i].iter().all(|&j| side[j] == side[i]);
+        let m = p.len();
+        let scale = (0..m)
+            .map(|k| (p[(k + 1) % m] - p[k]).length())
+            .fold(0.0, f64::max);
+        let reflex_inside = (0..m).any(|k| {
+            let turn = cross2(p[(k + 1) % m] - p[k], p[(k + 2) % m] - p[(k + 1) % m]);
+            turn < -1e-12 * scale * scale && !topology.on_boundary[d.facet(i)[(k + 1) % m] as usize]
+        });
+        if enveloped && (!is_simple(&p) || reflex_inside) {
             flags[i] |= FLAG_NON_CONVEX;
         }
     }

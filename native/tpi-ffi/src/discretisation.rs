@@ -18,8 +18,10 @@ use crate::options::{read_options, TpiOptions};
 use crate::pattern::TpiPattern;
 use crate::surface::TpiSurface;
 
-/// Per-facet flag: the facet is not convex where its seed is strictly convex (K > 0); on
-/// saddle-shaped regions non-convex facets are expected and not flagged.
+/// Per-facet flag: the facet is not convex where the envelope of tangent planes makes facets
+/// convex (its seed and the seeds of the facets sharing an edge with it strictly convex, K > 0,
+/// on one side); on saddle-shaped regions and next to parabolic lines non-convex facets are
+/// expected and not flagged.
 pub const TPI_FACET_NON_CONVEX: u8 = 1;
 /// Per-facet flag: the facet is not a simple polygon (self-intersecting, clockwise seen from
 /// its normal, or degenerate). Invalid.
