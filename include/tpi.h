@@ -113,8 +113,8 @@
 /**
  * Per-facet flag: the facet is not convex where the envelope of tangent planes makes facets
  * convex (its seed and the seeds of the facets sharing an edge with it strictly convex, K > 0,
- * on one side); on saddle-shaped regions and next to parabolic lines non-convex facets are
- * expected and not flagged.
+ * on one side, and none of their planes adjusted); on saddle-shaped regions, next to
+ * parabolic lines and beside adjusted planes non-convex facets are expected and not flagged.
  */
 #define TPI_FACET_NON_CONVEX 1
 

@@ -15,7 +15,8 @@
 //! With `SWEEP_SAVE=DIR` each surface and pattern is also written to DIR/mixedSEED.json and
 //! DIR/mixedSEED-PATTERN.json (surface and pattern files for `tpi discretise`); with `SWEEP_PARABOLIC=1` the invalid facets of the exact planes are
 //! counted by their distance from the nearest parabolic line (in pattern spacings), and those
-//! beyond 2 spacings listed; with `SWEEP_EXACT_ONLY=1` the adjusted run is skipped (its
+//! beyond 2 spacings listed, and so are the facets flagged non-convex (where K > 0 around
+//! them the envelope makes facets convex) of both runs; with `SWEEP_EXACT_ONLY=1` the adjusted run is skipped (its
 //! columns repeat the exact one). With `SWEEP_DETAIL=1` each facet still invalid after adjustment is listed with its seed,
 //! the Gaussian curvature there and the tilts of its plane and its neighbours'. The last two
 //! columns are the exact and adjusted meshes' largest vertex deviation in pattern spacings.
@@ -32,7 +33,7 @@ use std::time::Instant;
 
 use common::validity::check;
 use common::*;
-use tpi_core::{discretise, DiscretiseOptions, PlaneMode, Surface, INVALID_FLAGS};
+use tpi_core::{discretise, DiscretiseOptions, PlaneMode, Surface, FLAG_NON_CONVEX, INVALID_FLAGS};
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -48,6 +49,9 @@ fn main() {
     let exact_only = std::env::var_os("SWEEP_EXACT_ONLY").is_some();
     let bands = [0.5, 1.0, 1.5, 2.0, 3.0, 4.0];
     let mut histogram = [0usize; 7];
+    // Facets flagged non-convex (K > 0 around them, the envelope's region), exact and
+    // adjusted, by the same bands.
+    let mut non_convex = [[0usize; 7]; 2];
     let adjusted = DiscretiseOptions {
         planes: PlaneMode::Adjusted,
         ..DiscretiseOptions::default()
@@ -129,6 +133,15 @@ fn main() {
                 total_unflagged += unflagged.len();
                 if parabolic {
                     let spacing = 1.0 / (n as f64).sqrt();
+                    for (k, mesh) in [&exact, &d].into_iter().enumerate() {
+                        for i in 0..mesh.facet_count() {
+                            if mesh.facet_flags[i] & FLAG_NON_CONVEX != 0 {
+                                let r = parabolic_distance(surface, pattern[i], spacing);
+                                let band = bands.iter().position(|&b| r <= b);
+                                non_convex[k][band.unwrap_or(bands.len())] += 1;
+                            }
+                        }
+                    }
                     for i in v_exact.invalid_facets() {
                         let r = parabolic_distance(surface, pattern[i], spacing);
                         let band = bands.iter().position(|&b| r <= b).unwrap_or(bands.len());
@@ -190,6 +203,10 @@ fn main() {
     }
     if parabolic {
         println!("exact planes' invalid facets by distance from a parabolic line (spacings): <= {bands:?}, beyond: {histogram:?}");
+        println!(
+            "facets flagged non-convex by the same bands: exact {:?}, adjusted {:?}",
+            non_convex[0], non_convex[1]
+        );
     }
     println!(
         "total invalid exact {total_exact}, adjusted {total_adjusted}; adjusted time {time_adjusted:.2} s; \

@@ -21,6 +21,7 @@
 //! The result is bit-identical for any number of threads: parallel stages are order-preserving
 //! maps, and every shared vertex is computed by one canonical expression.
 
+use std::borrow::Cow;
 use std::time::Instant;
 
 use glam::DVec3;
@@ -821,6 +822,17 @@ fn measure(
     stages: &Stages<'_>,
 ) {
     let diagnosed = diagnosed_points(&result.diagnostics, samples.uv.len());
+    // The envelope of tangent planes decides a facet's shape only where its plane is the
+    // tangent plane: a seed whose plane was adjusted counts as not strictly convex.
+    let convex_side: Cow<'_, [i8]> = match &samples.tangent_planes {
+        Some(tangent) => samples
+            .convex_side
+            .iter()
+            .zip(samples.planes.iter().zip(tangent))
+            .map(|(&side, (plane, tangent))| if plane == tangent { side } else { 0 })
+            .collect(),
+        None => Cow::Borrowed(&samples.convex_side),
+    };
     let (quality, flags) = report(
         &ReportInput {
             surface,
@@ -833,7 +845,7 @@ fn measure(
             diagnosed: &diagnosed,
             neighbours,
             diagnostic_count: result.diagnostics.len(),
-            convex_side: &samples.convex_side,
+            convex_side: &convex_side,
             wrap,
         },
         feet,

@@ -20,7 +20,8 @@
 //! - validity: open, non-simple and overlapping facets are invalid (`invalid_facets`) and
 //!   flagged. Non-convex facets are counted but flagged only where the envelope makes every
 //!   facet convex: the seed and the seeds of all the facets sharing an edge with it strictly
-//!   convex (K > 0) on the same side, and the loop turning clockwise at a corner off the
+//!   convex (K > 0) on the same side, each facet's plane its seed's tangent plane (not an
+//!   adjusted one), and the loop turning clockwise at a corner off the
 //!   boundary (the corners on the boundary follow the surface's boundary curve). On K < 0
 //!   non-convex is the expected shape (paper, figure 6), not a defect, and so it is next to a
 //!   parabolic line, where the planes meeting at a facet's vertices are not all on the
@@ -152,8 +153,8 @@ pub(crate) struct ReportInput<'a> {
     pub neighbours: NeighbourStats,
     /// Number of diagnostics.
     pub diagnostic_count: usize,
-    /// Per seed, +1/-1 where strictly convex (K > 0), 0 elsewhere: where a non-convex facet is
-    /// a defect (empty: nowhere).
+    /// Per seed, +1/-1 where strictly convex (K > 0) and the facet's plane is the tangent
+    /// plane, 0 elsewhere: where a non-convex facet is a defect (empty: nowhere).
     pub convex_side: &'a [i8],
     /// How the projections continue past the domain's sides (seams, poles).
     pub wrap: &'a Wrap,

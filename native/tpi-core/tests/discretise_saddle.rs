@@ -30,7 +30,9 @@ mod common;
 
 use common::*;
 
-use tpi_core::{discretise, AnalyticSurface, Discretisation, DiscretiseOptions, Surface};
+use tpi_core::{
+    discretise, AnalyticSurface, Discretisation, DiscretiseOptions, PlaneMode, Surface,
+};
 use tpi_core::{
     FLAG_DIAGNOSTIC, FLAG_FAR_VERTEX, FLAG_NON_CONVEX, FLAG_NON_SIMPLE, FLAG_OPEN, FLAG_OVERLAP,
 };
@@ -56,11 +58,18 @@ fn independent_flags(surface: &dyn Surface, d: &Discretisation) -> (Vec<u8>, usi
         flags[f] |= FLAG_OVERLAP;
         flags[g] |= FLAG_OVERLAP;
     }
-    // Non-convex is a defect only where the envelope makes facets convex: the seed and the
-    // seeds of every facet sharing an edge with it have K > 0, their mean curvature of one
-    // sign (one convex side).
+    // Non-convex is a defect only where the envelope of tangent planes makes facets convex:
+    // the seed and the seeds of every facet sharing an edge with it have K > 0, their mean
+    // curvature of one sign (one convex side), and their facets lie in their tangent planes
+    // (none adjusted).
     let side: Vec<i8> = (0..n)
         .map(|i| {
+            if d.plane_adjustments
+                .get(i)
+                .is_some_and(|a| a.tilt_degrees != 0.0 || a.offset != 0.0)
+            {
+                return 0;
+            }
             let [u, v] = d.seeds[i].uv;
             let (k, h) = gaussian_and_mean(surface, u, v);
             if k > 0.0 {
@@ -116,12 +125,22 @@ enum Part {
     Flags,
     /// Planarity <= 1e-9 relative on every facet.
     Planarity,
+    /// As `Flags`, with adjusted planes.
+    AdjustedFlags,
 }
 
 fn check(name: &str, surface: &dyn Surface, pattern: &[[f64; 2]], part: Part) -> Vec<String> {
     let mut fail = Vec::new();
     let n = pattern.len();
-    let d = match discretise(surface, pattern, &DiscretiseOptions::default()) {
+    let options = DiscretiseOptions {
+        planes: if part == Part::AdjustedFlags {
+            PlaneMode::Adjusted
+        } else {
+            PlaneMode::Exact
+        },
+        ..DiscretiseOptions::default()
+    };
+    let d = match discretise(surface, pattern, &options) {
         Ok(d) => d,
         Err(e) => return vec![format!("{name}: discretise failed: {e}")],
     };
@@ -277,6 +296,14 @@ fn egg_crate_flags_match_independent_check() {
 #[test]
 fn egg_crate_planarity() {
     run(egg_crate_cases(), Part::Planarity);
+}
+
+#[test]
+fn egg_crate_flags_match_independent_check_with_adjusted_planes() {
+    // The tilted facets and their neighbours are not judged by the envelope.
+    let mut cases = egg_crate_cases();
+    cases.truncate(2);
+    run(cases, Part::AdjustedFlags);
 }
 
 #[test]

@@ -109,7 +109,7 @@ namespace Tpi.Native
     {
         /// <summary>No flag.</summary>
         None = 0,
-        /// <summary>TPI_FACET_NON_CONVEX: not convex where the envelope makes facets convex (K &gt; 0 at the seed and its neighbours' seeds).</summary>
+        /// <summary>TPI_FACET_NON_CONVEX: not convex where the envelope makes facets convex (K &gt; 0 at the seed and its neighbours' seeds, none of their planes adjusted).</summary>
         NonConvex = 1,
         /// <summary>TPI_FACET_NON_SIMPLE: not a simple polygon (invalid).</summary>
         NonSimple = 2,
