@@ -178,19 +178,22 @@ fn main() {
                     for &i in &invalid {
                         let [s, t] = pattern[i];
                         let (gauss, mean) = gaussian_and_mean(surface, s, t);
+                        // Exact planes (SWEEP_EXACT_ONLY) have no adjustments: tilt 0.
+                        let tilt =
+                            |j: usize| d.plane_adjustments.get(j).map_or(0.0, |a| a.tilt_degrees);
                         let ring: Vec<String> = d
                             .neighbour_pairs()
                             .into_iter()
                             .filter(|p| p[0] as usize == i || p[1] as usize == i)
                             .map(|p| {
                                 let j = if p[0] as usize == i { p[1] } else { p[0] } as usize;
-                                format!("{j}:{:.2}", d.plane_adjustments[j].tilt_degrees)
+                                format!("{j}:{:.2}", tilt(j))
                             })
                             .collect();
                         println!(
                             "    facet {i} at ({s:.3}, {t:.3}) K {gauss:+.2e} H {mean:+.2e} \
                              tilt {:.2} sides {} open {} nonsimple {} ring {}",
-                            d.plane_adjustments[i].tilt_degrees,
+                            tilt(i),
                             d.facet(i).len(),
                             v.open.contains(&i),
                             v.non_simple.contains(&i),

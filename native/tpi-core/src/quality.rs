@@ -21,11 +21,10 @@
 //!   flagged. Non-convex facets are counted but flagged only where the envelope makes every
 //!   facet convex: the seed and the seeds of all the facets sharing an edge with it strictly
 //!   convex (K > 0) on the same side, each facet's plane its seed's tangent plane (not an
-//!   adjusted one), and the loop turning clockwise at a corner off the
-//!   boundary (the corners on the boundary follow the surface's boundary curve). On K < 0
-//!   non-convex is the expected shape (paper, figure 6), not a defect, and so it is next to a
-//!   parabolic line, where the planes meeting at a facet's vertices are not all on the
-//!   envelope;
+//!   adjusted one), and the loop turning clockwise at a corner off the boundary (the corners
+//!   on the boundary follow the surface's boundary curve). On K < 0 non-convex is the
+//!   expected shape (paper, figure 6), not a defect, and so it is next to a parabolic line,
+//!   where the planes meeting at a facet's vertices are not all on the envelope;
 //! - topology: Euler characteristic V - E + F, boundary loops, valence of interior vertices
 //!   (a vertex is interior when no boundary edge, i.e. an edge of only one facet, touches it).
 
@@ -89,8 +88,8 @@ pub struct QualityReport {
     pub non_simple_facets: usize,
     /// Pairs of neighbouring facets that overlap.
     pub overlapping_pairs: usize,
-    /// Facets with any flag (non-convex where the envelope makes facets convex, non-simple, overlapping, open, named
-    /// by a diagnostic, or with a far vertex).
+    /// Facets with any flag (non-convex where the envelope makes facets convex, non-simple,
+    /// overlapping, open, named by a diagnostic, or with a far vertex).
     pub flagged_facets: usize,
     /// Facets with fewer than three distinct vertices.
     #[serde(default)]
