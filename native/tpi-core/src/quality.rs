@@ -433,16 +433,8 @@ fn reflex_at_interior_corner(
         l.iter().map(|&v| input.vertices[v as usize]),
         &mut p,
     );
-    let n = p.len();
-    // The tolerance of `facet_shape_into`'s convexity.
-    let scale = (0..n)
-        .map(|k| (p[(k + 1) % n] - p[k]).length())
-        .fold(0.0, f64::max);
-    let tolerance = 1e-12 * scale * scale;
-    (0..n).any(|k| {
-        let (a, b, c) = (p[k], p[(k + 1) % n], p[(k + 2) % n]);
-        (b - a).perp_dot(c - b) < -tolerance && !on_boundary(l[(k + 1) % n] as usize)
-    })
+    let reflex_inside = reflex_corners(&p).any(|k| !on_boundary(l[k] as usize));
+    reflex_inside
 }
 
 /// Per facet, the mean distance from its seed to the seeds of the facets it shares an edge
@@ -666,23 +658,32 @@ pub(crate) fn facet_shape_into(
         };
     }
     let mut area = 0.0;
-    let mut scale = 0.0f64;
     for k in 0..n {
         area += p[k].perp_dot(p[(k + 1) % n]);
-        scale = scale.max((p[k] - p[(k + 1) % n]).length());
     }
     area *= 0.5;
     let simple = area > 0.0 && !loop_crosses(p);
-    let tolerance = 1e-12 * scale * scale;
-    let convex = simple
-        && (0..n).all(|k| {
-            (p[(k + 1) % n] - p[k]).perp_dot(p[(k + 2) % n] - p[(k + 1) % n]) >= -tolerance
-        });
+    let convex = simple && reflex_corners(p).next().is_none();
     FacetShape {
         area,
         simple,
         convex,
     }
+}
+
+/// The corners k of the loop `p` (at least 3 points) where it does not turn
+/// counter-clockwise: the turn (p_k - p_(k-1)) x (p_(k+1) - p_k) is below -1e-12 times the
+/// longest edge squared, or not a number.
+fn reflex_corners(p: &[DVec2]) -> impl Iterator<Item = usize> + '_ {
+    let n = p.len();
+    let scale = (0..n)
+        .map(|k| (p[(k + 1) % n] - p[k]).length())
+        .fold(0.0, f64::max);
+    let tolerance = 1e-12 * scale * scale;
+    (0..n).filter(move |&k| {
+        let (a, b, c) = (p[(k + n - 1) % n], p[k], p[(k + 1) % n]);
+        !((b - a).perp_dot(c - b) >= -tolerance)
+    })
 }
 
 /// Reusable buffers for the loop points of the two facets of a pair.
