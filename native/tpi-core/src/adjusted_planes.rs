@@ -102,7 +102,7 @@ pub(crate) fn adjust_planes(
     let points = planes.len();
     let mut state = State::new(tri, points, Cow::Owned(std::mem::take(planes)), judged);
     state.stop = stop;
-    let spacing = local_spacing(&state, points);
+    let spacing = local_spacing(state.tri, &state.planes, points);
     state.impose_reach_limit(spacing.iter().map(|&h| reach * h).collect());
     let mut stats = PlaneAdjustStats::default();
     // A facet whose repair failed is tried again only after a kept move changed its
@@ -167,13 +167,13 @@ pub(crate) fn adjust_planes(
 
 /// Per point, the mean distance from its seed to its neighbours' seeds (1 for an isolated
 /// point).
-fn local_spacing(state: &State<'_>, points: usize) -> Vec<f64> {
+pub(crate) fn local_spacing(tri: &DualTriangulation, planes: &[Plane], points: usize) -> Vec<f64> {
     let mut sum = vec![0.0; points];
     let mut count = vec![0u32; points];
-    for t in &state.tri.triangles {
+    for t in &tri.triangles {
         for k in 0..3 {
             let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
-            let d = state.planes[a].point.distance(state.planes[b].point);
+            let d = planes[a].point.distance(planes[b].point);
             for x in [a, b] {
                 sum[x] += d;
                 count[x] += 1;

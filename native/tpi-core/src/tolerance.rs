@@ -268,14 +268,33 @@ pub const UNREACHABLE_VERTEX_FACTOR: f64 = 1e6;
 
 /// With exact planes on the any-curvature path, a facet of real points alone (one closed by a
 /// ghost is clipped at the wall later) whose vertices lie farther from its seed than this
-/// many times the seeds' bounding-box diagonal has run away (no facet of the
-/// surface reaches beyond the whole surface; a strip along the rulings of a nearly
-/// developable band spans it at most). Where the validity flips leave such facets, they run
-/// again from the same triangulation counting them as invalid, and that outcome is kept if it
-/// leaves no more invalid facets and fewer runaways, or fewer facets invalid or runaway
-/// (`validity_flips`). Not with adjusted
+/// many times the seeds' bounding-box diagonal, or than [`RUNAWAY_SPACINGS`] local spacings,
+/// has run away (no facet of the surface reaches beyond the whole surface; a strip along the
+/// rulings of a nearly developable band spans it at most). Where the validity flips leave
+/// such facets, they run again from the same triangulation counting them as invalid, and that
+/// outcome is kept if it leaves no more invalid facets and fewer runaways, or fewer facets
+/// invalid or runaway, and no facet reaching farther (`validity_flips`). Not with adjusted
 /// planes, whose adjustment holds every facet within [`MAX_REACH`] local spacings.
 pub const RUNAWAY_REACH: f64 = 1.0;
+
+/// With exact planes on the any-curvature path, a triangle whose vertex T_i ∩ T_j ∩ T_k lies
+/// farther than this many local spacings (the mean distance from a seed to its neighbours'
+/// seeds) from one of its seeds has run away: the validity search's facets reaching farther
+/// count as runaways, and the last pass of the search flips such triangles away where the
+/// summed excess over this limit drops and no more facets are invalid
+/// (`validity_flips::bring_in_runaways`). A valid facet reaches about one spacing (its
+/// vertices are the circumcentres of its seed and two neighbours); the quality report flags a
+/// vertex beyond [`FAR_VERTEX_SPACINGS`] (the same 3) off the surface. The mixed roof's
+/// showcase (samples/mixed-roof.json, hex:30x24) went from a vertex 18 spacings off to 0.5.
+pub const RUNAWAY_SPACINGS: f64 = 3.0;
+
+/// The excess in spacings counted for a triangle whose vertex is unreachable (parallel planes):
+/// finite, so that sums of excess stay comparable.
+pub const UNREACHABLE_RUNAWAY_SPACINGS: f64 = 1e6;
+
+/// A flip that brings runaway vertices in is kept only when their summed excess (in local
+/// spacings) drops by more than this: rounding never keeps a flip.
+pub const RUNAWAY_EXCESS_MARGIN: f64 = 1e-9;
 
 // ---- read by ghosts.rs ----
 

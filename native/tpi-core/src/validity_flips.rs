@@ -56,6 +56,11 @@
 //! flagged. Of its three edges the flip kept is the one that leaves the fewest unreachable
 //! triangles in its quad (fewer than before), then the fewest invalid facets around it.
 //!
+//! With exact planes a search ends with a pass over the triangles whose vertex has run away
+//! (beyond [`RUNAWAY_SPACINGS`] local spacings from one of its seeds): an edge of such a
+//! triangle is flipped where the summed excess over that limit drops and no more facets are
+//! invalid around it ([`bring_in_runaways`]).
+//!
 //! Facets on the hull (open fans) are built with the boundary later ([`crate::facets`]);
 //! they are not judged here.
 
@@ -67,13 +72,15 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::{DVec2, DVec3};
 
+use crate::adjusted_planes::local_spacing;
 use crate::diffgeo::LocalGeometry;
 use crate::facets::reachable;
 use crate::planes::{meeting_point, Plane};
 use crate::tolerance::{
     DETOUR_BUDGET, DETOUR_BUDGET_FLOOR, DETOUR_REPAIR_PASSES, DETOUR_WORK_BUDGET,
     DETOUR_WORK_BUDGET_FLOOR, ISOTROPIC_FLIP_TIE, MAX_VALIDITY_ROUNDS, PAIR_DETOUR_BUDGET,
-    PAIR_DETOUR_BUDGET_FLOOR, PAIR_DETOUR_MAX_INVALID, PAIR_DETOUR_PARABOLIC_TRIES, RUNAWAY_REACH,
+    PAIR_DETOUR_BUDGET_FLOOR, PAIR_DETOUR_MAX_INVALID, PAIR_DETOUR_PARABOLIC_TRIES,
+    RUNAWAY_EXCESS_MARGIN, RUNAWAY_REACH, RUNAWAY_SPACINGS, UNREACHABLE_RUNAWAY_SPACINGS,
     VALIDITY_TOLERANCE,
 };
 use crate::triangulation::{DualTriangulation, Fan, NO_TRIANGLE};
@@ -98,13 +105,15 @@ pub(crate) struct ValidityFlipStats {
 /// is set the search ends at its next step.
 ///
 /// With `runaway_limit` (exact planes), where the repairs leave facets reaching farther from
-/// their seeds than [`RUNAWAY_REACH`] times the seeds' diagonal (runaway vertices of nearly
-/// parallel planes, which the repairs make as often as they meet them), the search runs
-/// again from the same triangulation with such facets counted as invalid, and that outcome
-/// is kept if it leaves fewer runaways and no more facets invalid (judged without the
-/// limit), or fewer facets flawed (invalid or runaway or both): a facet reaching beyond the
-/// whole patch (up to 2e4 times its diagonal was seen) is no more use to a builder than a
-/// self-intersecting one, both are flagged, and trading one for the other is no loss.
+/// their seeds than [`RUNAWAY_REACH`] times the seeds' diagonal or [`RUNAWAY_SPACINGS`] local
+/// spacings (runaway vertices of nearly parallel planes, which the repairs make as often as
+/// they meet them), the search runs again from the same triangulation with such facets
+/// counted as invalid, and that outcome is kept if it leaves fewer runaways and no more
+/// facets invalid (judged without the limit), or fewer facets flawed (invalid or runaway or
+/// both), and in either case no facet reaching farther: a facet reaching beyond the whole
+/// patch (up to 2e4 times its diagonal was seen) is no more use to a builder than a
+/// self-intersecting one, both are flagged, and trading one for the other is no loss. Each
+/// search then ends with [`bring_in_runaways`].
 pub(crate) fn validity_flips(
     tri: &mut DualTriangulation,
     embedding: &[[f64; 2]],
@@ -134,7 +143,10 @@ pub(crate) fn validity_flips(
     let limited = search(&mut limited_tri, &input, Some(&runaways), true);
     let fewer_runaways =
         limited.stats.unresolved <= plain.stats.unresolved && limited.runaways < plain.runaways;
-    if fewer_runaways || limited.flawed < plain.flawed {
+    // Fewer facets flawed, but not at the price of one reaching farther (a count does not see
+    // a facet traded for one a hundred times as far).
+    let no_farther = limited.farthest <= plain.farthest.max(1.0);
+    if (fewer_runaways || limited.flawed < plain.flawed) && no_farther {
         *tri = limited_tri;
         limited.stats
     } else {
@@ -168,17 +180,20 @@ fn is_set(stop: Option<&AtomicBool>) -> bool {
     stop.is_some_and(|stop| stop.load(Ordering::Relaxed))
 }
 
-/// What makes a facet a runaway ([`validity_flips`]): the reach beyond which it has run away,
-/// and the points whose facets are exempt, those closed by a ghost in the triangulation the
-/// search starts from (they reach beyond the wall, where the facet stage clips them).
+/// What makes a facet a runaway ([`validity_flips`]): per point the reach beyond which it has
+/// run away, the points whose facets are exempt, those closed by a ghost in the triangulation
+/// the search starts from (they reach beyond the wall, where the facet stage clips them), and
+/// the local spacing of every point.
 struct Runaways {
-    limit: f64,
+    limits: Vec<f64>,
     walled: Vec<bool>,
+    spacing: Vec<f64>,
 }
 
 impl Runaways {
-    /// [`RUNAWAY_REACH`] times the diagonal of the seeds `0..judged`, and the points of
-    /// triangles with a ghost among the `points` of `tri`.
+    /// Per point the lesser of [`RUNAWAY_REACH`] times the diagonal of the seeds `0..judged`
+    /// and [`RUNAWAY_SPACINGS`] local spacings, and the points of triangles with a ghost among
+    /// the `points` of `tri`.
     fn of(tri: &DualTriangulation, planes: &[Plane], judged: usize, points: usize) -> Self {
         let (lo, hi) = crate::samples::bounding_box(planes[..judged].iter().map(|p| p.point));
         let mut walled = vec![false; points];
@@ -191,9 +206,16 @@ impl Runaways {
                 walled[x as usize] = true;
             }
         }
+        let global = RUNAWAY_REACH * (hi - lo).length();
+        let spacing = local_spacing(tri, planes, points);
+        let limits = spacing
+            .iter()
+            .map(|&h| global.min(RUNAWAY_SPACINGS * h))
+            .collect();
         Runaways {
-            limit: RUNAWAY_REACH * (hi - lo).length(),
+            limits,
             walled,
+            spacing,
         }
     }
 }
@@ -205,6 +227,8 @@ struct Outcome {
     stats: ValidityFlipStats,
     runaways: usize,
     flawed: usize,
+    /// The largest reach of a facet not exempt, over its limit.
+    farthest: f64,
 }
 
 /// The validity search of [`validity_flips`]. With `runaways` the outcome counts them, and
@@ -222,7 +246,8 @@ fn search(
         let limits = r
             .walled
             .iter()
-            .map(|&w| if w { f64::INFINITY } else { r.limit })
+            .zip(&r.limits)
+            .map(|(&w, &l)| if w { f64::INFINITY } else { l })
             .collect();
         state.impose_reach_limit(limits);
     }
@@ -318,6 +343,10 @@ fn search(
         }
     }
     stats.flips += state.flip_unreachable();
+    if let Some(r) = runaways {
+        state.reach_limit = None;
+        stats.flips += bring_in_runaways(&mut state, input.planes, &r.spacing);
+    }
     stats.unresolved = state.invalid.iter().filter(|&&x| x).count();
     // With a limit the verdicts count runaways as invalid: the search's outcome is judged
     // without it.
@@ -325,13 +354,20 @@ fn search(
         stats,
         runaways: 0,
         flawed: stats.unresolved,
+        farthest: 0.0,
     };
     if let Some(r) = runaways {
         state.reach_limit = None;
         let (mut invalid, mut runaway, mut flawed) = (0, 0, 0);
         for i in 0..n as u32 {
             let bad = state.facet_invalid(i);
-            let far = !r.walled[i as usize] && state.reach(i, r.limit) > 1.0;
+            let reach = if r.walled[i as usize] {
+                0.0
+            } else {
+                state.reach(i, r.limits[i as usize])
+            };
+            let far = reach > 1.0;
+            outcome.farthest = outcome.farthest.max(reach);
             invalid += usize::from(bad);
             runaway += usize::from(far);
             flawed += usize::from(bad || far);
@@ -1251,13 +1287,15 @@ impl<'a> State<'a> {
     /// Flips the edge (a, b) where it can be flipped and keeps the flip when `score` (of the
     /// triangulation, the incident triangles and the quad's points (c, a, b, d)) drops by
     /// more than `margin` and no judged facet among those the flip can change turns invalid
-    /// (verdicts renewed); otherwise the flip is undone. A flip touching a ghost must leave
+    /// (with `trade`: no more of them are invalid than before) (verdicts renewed); otherwise
+    /// the flip is undone. A flip touching a ghost must leave
     /// the ghosts in one run around every point of the quad. Returns whether it was kept.
     pub(crate) fn try_flip_scored(
         &mut self,
         a: u32,
         b: u32,
         margin: f64,
+        trade: bool,
         blocked: &[bool],
         score: &mut FlipScore<'_>,
     ) -> Option<([u32; 4], Vec<u32>)> {
@@ -1290,11 +1328,18 @@ impl<'a> State<'a> {
         let mut verdicts = Vec::with_capacity(region.len());
         for &x in &region {
             let v = self.facet_invalid(x);
-            if v && !self.invalid[x as usize] {
+            if !trade && v && !self.invalid[x as usize] {
                 self.undo();
                 return None;
             }
             verdicts.push(v);
+        }
+        if trade {
+            let before = region.iter().filter(|&&x| self.invalid[x as usize]).count();
+            if verdicts.iter().filter(|&&v| v).count() > before {
+                self.undo();
+                return None;
+            }
         }
         self.journal = None;
         for (&x, v) in region.iter().zip(verdicts) {
@@ -1378,6 +1423,83 @@ impl<'a> State<'a> {
         }
         None
     }
+}
+
+/// How far the vertex of triangle t lies beyond [`RUNAWAY_SPACINGS`] local spacings from its
+/// farthest seed, in spacings (0 within, and for a triangle with a ghost: the facet stage
+/// clips those at the wall; [`UNREACHABLE_RUNAWAY_SPACINGS`] where the vertex is
+/// unreachable).
+fn runaway_excess(planes: &[Plane], spacing: &[f64], judged: usize, t: [u32; 3]) -> f64 {
+    if t.iter().any(|&x| x as usize >= judged) {
+        return 0.0;
+    }
+    let x = triangle_vertex(planes, t);
+    let reach = t
+        .iter()
+        .map(|&i| x.distance(planes[i as usize].point) / spacing[i as usize])
+        .fold(0.0, |a: f64, r| {
+            if r.is_finite() {
+                a.max(r)
+            } else {
+                f64::INFINITY
+            }
+        });
+    (reach.min(UNREACHABLE_RUNAWAY_SPACINGS) - RUNAWAY_SPACINGS).max(0.0)
+}
+
+/// The last pass of a validity search with exact planes: flips an edge of a triangle whose
+/// vertex has run away ([`runaway_excess`]) where that lowers the excess summed over the
+/// triangles around the flip's quad (only the flip's two triangles change) and leaves no
+/// more invalid facets among those the flip can change. The summed excess drops with every
+/// kept flip, so the pass ends; it is bounded by [`MAX_VALIDITY_ROUNDS`] rounds in any case.
+/// `spacing` holds every point's local spacing. Returns the flips kept.
+fn bring_in_runaways(state: &mut State<'_>, planes: &[Plane], spacing: &[f64]) -> usize {
+    let judged = state.judged;
+    let blocked = vec![false; judged];
+    let (mut fan, mut around) = (Vec::new(), Vec::new());
+    let mut kept = 0;
+    for _ in 0..MAX_VALIDITY_ROUNDS {
+        let targets: Vec<[u32; 3]> = state
+            .tri
+            .triangles
+            .iter()
+            .copied()
+            .filter(|&t| runaway_excess(planes, spacing, judged, t) > 0.0)
+            .collect();
+        let mut kept_now = 0;
+        for t in targets {
+            for k in 0..3 {
+                let mut score = |tri: &DualTriangulation, incident: &[u32], quad: &[u32; 4]| {
+                    around.clear();
+                    for &v in quad {
+                        tri.fan(v, incident[v as usize], &mut fan);
+                        around.extend_from_slice(&fan);
+                    }
+                    around.sort_unstable();
+                    around.dedup();
+                    around
+                        .iter()
+                        .map(|&x| {
+                            runaway_excess(planes, spacing, judged, tri.triangles[x as usize])
+                        })
+                        .sum::<f64>()
+                };
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                if state
+                    .try_flip_scored(a, b, RUNAWAY_EXCESS_MARGIN, true, &blocked, &mut score)
+                    .is_some()
+                {
+                    kept_now += 1;
+                    break;
+                }
+            }
+        }
+        kept += kept_now;
+        if kept_now == 0 {
+            break;
+        }
+    }
+    kept
 }
 
 /// The vertex T_i ∩ T_j ∩ T_k of a triangle (coincident planes separated by bisectors:

@@ -298,7 +298,8 @@ pub(super) fn wall_flips(
                 let mut score = |tri: &DualTriangulation, incident: &[u32], quad: &[u32; 4]| {
                     notches.score(tri, incident, quad)
                 };
-                if let Some((quad, region)) = state.try_flip_scored(a, b, 0.0, blocked, &mut score)
+                if let Some((quad, region)) =
+                    state.try_flip_scored(a, b, 0.0, false, blocked, &mut score)
                 {
                     kept.push(WallFlip { quad, region });
                     kept_now += 1;
