@@ -215,7 +215,7 @@ namespace Tpi.Tests
             Assert.AreEqual(PlaneMode.Exact, options.Planes, "exact planes by default");
             options.Planes = PlaneMode.Adjusted;
             using (var hypar = Surface.HyperbolicParaboloid(0.1, 0.1, -3, 3, -3, 3))
-            using (var pattern = Pattern.Random(2000, 3))
+            using (var pattern = Pattern.Random(2000, 7))
             using (var exact = Discretisation.Create(hypar, pattern))
             using (var adjusted = Discretisation.Create(hypar, pattern, options))
             {
