@@ -74,7 +74,7 @@ use crate::tolerance::{
     RESTRUCTURE_FLIPS,
 };
 use crate::triangulation::DualTriangulation;
-use crate::validity_flips::{affected_points, Journal, State};
+use crate::validity_flips::{affected_points, local_spacing, Journal, State};
 
 /// What the plane adjustment did.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -163,33 +163,6 @@ pub(crate) fn adjust_planes(
     stats.unresolved = state.invalid.iter().filter(|&&x| x).count();
     *planes = state.planes.into_owned();
     stats
-}
-
-/// Per point, the mean distance from its seed to its neighbours' seeds (1 for an isolated
-/// point).
-pub(crate) fn local_spacing(tri: &DualTriangulation, planes: &[Plane], points: usize) -> Vec<f64> {
-    let mut sum = vec![0.0; points];
-    let mut count = vec![0u32; points];
-    for t in &tri.triangles {
-        for k in 0..3 {
-            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
-            let d = planes[a].point.distance(planes[b].point);
-            for x in [a, b] {
-                sum[x] += d;
-                count[x] += 1;
-            }
-        }
-    }
-    sum.iter()
-        .zip(&count)
-        .map(|(&s, &c)| {
-            if c > 0 && s > 0.0 {
-                s / f64::from(c)
-            } else {
-                1.0
-            }
-        })
-        .collect()
 }
 
 /// The exact plane of a point tilted by `degrees` towards direction `phi` (radians) of its

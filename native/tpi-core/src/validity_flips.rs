@@ -72,7 +72,6 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use glam::{DVec2, DVec3};
 
-use crate::adjusted_planes::local_spacing;
 use crate::diffgeo::LocalGeometry;
 use crate::facets::reachable;
 use crate::planes::{meeting_point, Plane};
@@ -344,12 +343,12 @@ fn search(
     }
     stats.flips += state.flip_unreachable();
     if let Some(r) = runaways {
+        // With a limit the verdicts count runaways as invalid: the last pass and the
+        // search's outcome are judged without it.
         state.reach_limit = None;
         stats.flips += bring_in_runaways(&mut state, input.planes, &r.spacing);
     }
     stats.unresolved = state.invalid.iter().filter(|&&x| x).count();
-    // With a limit the verdicts count runaways as invalid: the search's outcome is judged
-    // without it.
     let mut outcome = Outcome {
         stats,
         runaways: 0,
@@ -357,7 +356,6 @@ fn search(
         farthest: 0.0,
     };
     if let Some(r) = runaways {
-        state.reach_limit = None;
         let (mut invalid, mut runaway, mut flawed) = (0, 0, 0);
         for i in 0..n as u32 {
             let bad = state.facet_invalid(i);
@@ -1423,6 +1421,33 @@ impl<'a> State<'a> {
         }
         None
     }
+}
+
+/// Per point, the mean distance from its seed to its neighbours' seeds (1 for an isolated
+/// point).
+pub(crate) fn local_spacing(tri: &DualTriangulation, planes: &[Plane], points: usize) -> Vec<f64> {
+    let mut sum = vec![0.0; points];
+    let mut count = vec![0u32; points];
+    for t in &tri.triangles {
+        for k in 0..3 {
+            let (a, b) = (t[k] as usize, t[(k + 1) % 3] as usize);
+            let d = planes[a].point.distance(planes[b].point);
+            for x in [a, b] {
+                sum[x] += d;
+                count[x] += 1;
+            }
+        }
+    }
+    sum.iter()
+        .zip(&count)
+        .map(|(&s, &c)| {
+            if c > 0 && s > 0.0 {
+                s / f64::from(c)
+            } else {
+                1.0
+            }
+        })
+        .collect()
 }
 
 /// How far the vertex of triangle t lies beyond [`RUNAWAY_SPACINGS`] local spacings from its
