@@ -48,6 +48,7 @@ mod predicates;
 mod progress;
 mod projection;
 mod quality;
+mod regular;
 mod relax;
 mod rulings;
 mod samples;

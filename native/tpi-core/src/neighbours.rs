@@ -37,7 +37,7 @@ use glam::DVec3;
 use crate::diffgeo::{flat_curvatures, LocalGeometry};
 use crate::planes::{intersect_three, Plane};
 use crate::predicates::{orient2d, power_illegal};
-use crate::progress::{NoProgress, Stage, Stages, Tally};
+use crate::progress::{NoProgress, Stage, Stages, Tally, PROGRESS_CHUNK};
 use crate::tolerance::{
     COMPENSATION_TIE_TOLERANCE, CONVEX_METRIC_REGULARISATION, DEGENERATE_SLIVER_FACTOR,
     DEVELOPABLE_METRIC_REGULARISATION, ENVELOPE_FLIP_TOLERANCE, GRADIENT_MIN_COS, REAL_LINK_SEARCH,
@@ -255,22 +255,37 @@ pub(crate) fn slope_frame(surface: &dyn crate::surface::Surface) -> Option<DVec3
 /// `envelope_repairs` counts the interior edges of the result that are not locally Delaunay
 /// in slope space ([`slope_repairs`]): where the envelope departs from the plain Delaunay
 /// candidates. It depends on the result alone, not on the order of the flips.
+///
+/// `regular` says that `tri` is that regular triangulation already
+/// ([`crate::regular::regular_triangulation`]): no edge is tested.
 pub(crate) fn decide_convex(
     tri: &mut DualTriangulation,
     slopes: &[[f64; 2]],
     lifted: &[[f64; 3]],
+    regular: bool,
     input: &NeighbourInput<'_>,
     stages: &Stages<'_>,
 ) -> NeighbourStats {
-    let (_flips, unresolved) = flip_until_stable(
-        tri,
-        slopes,
-        |tri, t, k| {
-            let ids = quad(tri, t, k);
-            power_illegal(ids.map(|i| lifted[i as usize]), ids)
-        },
-        Some(stages),
-    );
+    let unresolved = if regular {
+        // Nothing to flip: the stage's items (the interior edges the flips would test) are
+        // done at once.
+        let edges = (3 * tri.len()
+            - tri
+                .neighbours
+                .iter()
+                .flatten()
+                .filter(|&&n| n == NO_TRIANGLE)
+                .count())
+            / 2;
+        stages.enter(Stage::Neighbours, Some(edges));
+        let mut tally = Tally::new(stages.observer(), Stage::Neighbours);
+        for done in (0..edges).step_by(PROGRESS_CHUNK) {
+            tally.add((edges - done).min(PROGRESS_CHUNK));
+        }
+        0
+    } else {
+        flip_to_regular(tri, slopes, lifted, Some(stages))
+    };
     orient_like(tri, input.plane_uv);
     tri.canonicalise(input.plane_uv.len());
     // Rounding can leave slivers along a straight stretch of the hull.
@@ -283,6 +298,28 @@ pub(crate) fn decide_convex(
         hull_trims,
         ..NeighbourStats::default()
     }
+}
+
+/// Flips `tri` (a triangulation of `slopes`) towards the regular triangulation of the
+/// `lifted` points by the exact power test, each flip only where its quadrilateral is strictly
+/// convex in slope space; returns the illegal edges left unflipped (0 where the result is the
+/// regular triangulation).
+pub(crate) fn flip_to_regular(
+    tri: &mut DualTriangulation,
+    slopes: &[[f64; 2]],
+    lifted: &[[f64; 3]],
+    stages: Option<&Stages<'_>>,
+) -> usize {
+    let (_flips, unresolved) = flip_until_stable(
+        tri,
+        slopes,
+        |tri, t, k| {
+            let ids = quad(tri, t, k);
+            power_illegal(ids.map(|i| lifted[i as usize]), ids)
+        },
+        stages,
+    );
+    unresolved
 }
 
 /// Makes the triangles counter-clockwise in `uv` (the orientation the facet loops inherit),

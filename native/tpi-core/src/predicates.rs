@@ -48,6 +48,19 @@ pub(crate) fn power_illegal(lifted: [[f64; 3]; 4], keys: [u32; 4]) -> bool {
     sign * turn > 0.0
 }
 
+/// [`power_illegal`] for (c, a, b) known to turn counter-clockwise: whether P_d lies strictly
+/// below the plane through P_c, P_a, P_b (ties broken as there).
+pub(crate) fn power_below(lifted: [[f64; 3]; 4], keys: [u32; 4]) -> bool {
+    let [c, a, b, d] = lifted;
+    let below = robust::orient3d(xyz(c), xyz(a), xyz(b), xyz(d));
+    let sign = if below != 0.0 {
+        below
+    } else {
+        tie_sign(lifted, keys)
+    };
+    sign > 0.0
+}
+
 /// The sign of orient3d(P_c, P_a, P_b, P_d) under the symbolic raising of the heights.
 fn tie_sign(lifted: [[f64; 3]; 4], keys: [u32; 4]) -> f64 {
     let mut order = [0usize, 1, 2, 3];

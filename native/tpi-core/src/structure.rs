@@ -13,7 +13,9 @@
 //!    [`FacetPlan::Ghosts`] (clipped on a trim).
 //! 3. **Convex, within the slope frame**: the regular triangulation of the slopes
 //!    s_i = (n_i . e1, n_i . e2) / (n_i . N) lifted to heights h_i = -sigma (n_i . p_i) /
-//!    (n_i . N) ([`crate::neighbours::decide_convex`]: Delaunay, then exact power flips).
+//!    (n_i . N), built directly ([`crate::regular`]; on degenerate input Delaunay, then
+//!    exact power flips), then oriented, ordered and trimmed
+//!    ([`crate::neighbours::decide_convex`]).
 //!    This is the envelope's structure exactly. Facets: [`FacetPlan::Clipped`].
 //! 4. **Convex but too steep** for the slope frame: parameter-space Delaunay candidates,
 //!    repaired against the envelope ([`crate::neighbours::decide`]). [`FacetPlan::Clipped`].
@@ -50,6 +52,7 @@ use crate::neighbours::{decide, decide_convex, NeighbourInput, NeighbourStats};
 use crate::periodic;
 use crate::planes::{coincident, Plane};
 use crate::progress::{Stage, Stages};
+use crate::regular::regular_triangulation;
 use crate::rulings;
 use crate::samples::Samples;
 use crate::surface::Surface;
@@ -284,12 +287,24 @@ pub(crate) fn decide_structure(
         // Path 3: convex everywhere, the envelope's own structure in slope space.
         (Some(slopes), Some(lifted)) => {
             stages.enter(Stage::Delaunay, None);
-            let mut triangulation = DualTriangulation::delaunay(slopes)?;
+            // The regular triangulation directly; on degenerate input Delaunay, then flips.
+            let direct = regular_triangulation(slopes, lifted);
+            let regular = direct.is_some();
+            let mut triangulation = match direct {
+                Some(triangulation) => triangulation,
+                None => DualTriangulation::delaunay(slopes)?,
+            };
             stages.check()?;
             timings.delaunay = ms(stage);
             let stage = Instant::now();
-            let neighbours =
-                decide_convex(&mut triangulation, slopes, lifted, &neighbour_input, stages);
+            let neighbours = decide_convex(
+                &mut triangulation,
+                slopes,
+                lifted,
+                regular,
+                &neighbour_input,
+                stages,
+            );
             timings.neighbours = ms(stage);
             (
                 clipped(triangulation, neighbours, None, MeshTopology::DISC),
