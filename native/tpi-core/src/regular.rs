@@ -12,13 +12,15 @@
 //! so that each point is found by a short walk from the last one. The hull is closed by *ghost*
 //! triangles (b, a, oo), one beyond each hull edge a -> b, so that a point outside the hull
 //! falls in a ghost. A point p is located by a visibility walk (orient2d), inserted by
-//! splitting its triangle in three, and the edges opposite p are made legal by flips:
+//! splitting its triangle in three (or, exactly on an edge, as in grids and lattices, the two
+//! triangles beside the edge in four), and the edges opposite p are made legal by flips:
 //! - between two real triangles (p, a, b) and (b, a, d), by the exact power test with its
 //!   symbolic tie-break ([`crate::predicates::power_illegal`], the envelope flips' test): the
 //!   edge (a, b) is illegal when P_d lies below the plane through P_p, P_a, P_b;
-//! - between two ghosts (p, a, oo) and (a, d, oo) (p outside the hull), when p sees the hull
-//!   edge d -> a: orient2d(p, a, d) > 0, the flip making the real triangle (p, a, d); likewise
-//!   (p, oo, b) and (b, oo, d) with orient2d(p, d, b) > 0;
+//! - between two ghosts (p, a, oo) and (a, d, oo) (p outside the hull), when p strictly sees
+//!   the hull edge d -> a: orient2d(p, a, d) > 0, the flip making the real triangle (p, a, d);
+//!   likewise (p, oo, b) and (b, oo, d) with orient2d(p, d, b) > 0 (p on the edge's line,
+//!   beyond it, makes its end a hull vertex between collinear hull edges: no flip);
 //! - a hull edge between a real triangle and a ghost stays.
 //!
 //! The power test's tie-break is one generic lifting, so the result is the unique regular
@@ -26,10 +28,10 @@
 //! ([`crate::neighbours::decide_convex`]) reaches whatever its flip order: the two paths give
 //! the same triangles. Where that uniqueness argument does not hold or the input is
 //! degenerate, the builder gives up (None) and the caller takes the Delaunay-then-flip path:
-//! fewer than three points, a point exactly on an edge or collinear with a hull edge (an exact
-//! orientation of 0), a redundant point (P_p on or above its triangle's plane, or an illegal
-//! edge whose quadrilateral is not convex: a flip could not remove it), a walk or a flip count
-//! beyond its budget.
+//! fewer than three points, all of them collinear, two with the same slopes, a redundant point
+//! (P_p on or above its triangle's plane or lifted edge, or an illegal edge whose
+//! quadrilateral is not convex: a flip could not remove it), a walk or a flip count beyond
+//! its budget.
 
 #[cfg(test)]
 use crate::predicates::power_illegal;
@@ -149,7 +151,9 @@ fn hilbert_key(p: [f64; 2]) -> u64 {
 enum Located {
     /// Strictly inside this real triangle, or strictly beyond this ghost's hull edge.
     In(u32),
-    /// On an edge, collinear with a hull edge, or the walk ran out of steps.
+    /// Inside the edge opposite vertex k of this real triangle (between its ends).
+    OnEdge(u32, usize),
+    /// On an edge (a hull edge included), or the walk ran out of steps.
     Degenerate,
 }
 
@@ -230,15 +234,15 @@ impl Builder<'_> {
                 if side > 0.0 {
                     return Located::In(t);
                 }
-                if side == 0.0 {
-                    return Located::Degenerate;
-                }
+                // Inside, or on the edge's line: on to the real triangle, which q leaves across
+                // another edge (beyond the edge's ends) or holds on its edge.
                 t = self.tri.neighbours[t as usize][j];
                 continue;
             }
             // Real: cross the first edge (starting at a rotating one, so that the walk cannot
             // repeat a cycle for ever) that has q strictly on its far side.
-            let mut on_edge = false;
+            let mut on_edges = 0;
+            let mut on = 0;
             let mut next = None;
             for r in 0..3 {
                 let k = (r + step) % 3;
@@ -247,12 +251,17 @@ impl Builder<'_> {
                     next = Some(self.tri.neighbours[t as usize][k]);
                     break;
                 }
-                on_edge |= side == 0.0;
+                if side == 0.0 {
+                    on_edges += 1;
+                    on = k;
+                }
             }
-            match next {
-                Some(other) => t = other,
-                None if on_edge => return Located::Degenerate,
-                None => return Located::In(t),
+            match (next, on_edges) {
+                (Some(other), _) => t = other,
+                (None, 0) => return Located::In(t),
+                // On two edges: at a vertex, the same slopes as a point inserted before.
+                (None, 1) => return Located::OnEdge(t, on),
+                (None, _) => return Located::Degenerate,
             }
         }
         Located::Degenerate
@@ -260,22 +269,31 @@ impl Builder<'_> {
 
     /// Inserts point `p`, walking from triangle `last`; returns a triangle holding `p`.
     fn insert(&mut self, p: u32, last: u32) -> Option<u32> {
-        let t = match self.locate(p, last) {
-            Located::In(t) => t,
+        self.stack.clear();
+        let parts = match self.locate(p, last) {
+            Located::In(t) => {
+                let [x, y, z] = self.tri.triangles[t as usize];
+                // P_p strictly below the plane of its triangle's lifted points, else
+                // redundant.
+                if !self.is_ghost(t) && !self.below([x, y, z, p]) {
+                    return None;
+                }
+                let [t1, t2] = self.split(t, p);
+                // (triangle, position of p in it): p is last in the three parts.
+                self.stack.extend([(t, 2), (t1, 2), (t2, 2)]);
+                [t, t1, t2, t]
+            }
+            Located::OnEdge(t, k) => {
+                let parts = self.split_edge(t, k, p)?;
+                // p is last in the first part of each side, second in the other.
+                let [t0, t1, u0, u1] = parts;
+                self.stack.extend([(t0, 2), (t1, 1), (u0, 2), (u1, 1)]);
+                parts
+            }
             Located::Degenerate => return None,
         };
-        let [x, y, z] = self.tri.triangles[t as usize];
-        if !self.is_ghost(t) {
-            // P_p strictly below the plane of its triangle's lifted points, else redundant.
-            if !self.below([x, y, z, p]) {
-                return None;
-            }
-        }
-        let [t1, t2] = self.split(t, p);
-        // (triangle, position of p in it): p is last in the three parts, and after a flip of
-        // (p, a, b) against (b, a, d) first in (p, a, d) and last in (d, b, p).
-        self.stack.clear();
-        self.stack.extend([(t, 2), (t1, 2), (t2, 2)]);
+        // After a flip of (p, a, b) against (b, a, d), p is first in (p, a, d) and last in
+        // (d, b, p).
         while let Some((t, k)) = self.stack.pop() {
             if self.illegal(t, k)? {
                 if self.flips_left == 0 {
@@ -286,11 +304,45 @@ impl Builder<'_> {
                 self.stack.extend([(t1, 0), (t2, 2)]);
             }
         }
-        // A real triangle at p, to start the next walk from (the last one split is p's).
-        let start = [t, t1, t2]
+        // A real triangle at p, to start the next walk from (flips keep p in the parts).
+        let start = parts
             .into_iter()
             .find(|&s| !self.is_ghost(s) && self.tri.triangles[s as usize].contains(&p));
-        Some(start.unwrap_or(t))
+        Some(start.unwrap_or(parts[0]))
+    }
+
+    /// Splits the edge (a, b) opposite vertex k of the real triangle t = (c, a, b) at the
+    /// point p inside it, and the triangle (d, b, a) across it (a ghost where the edge is on
+    /// the hull): (c, a, p) (kept as t), (c, p, b), (d, b, p) (kept as the one across) and
+    /// (d, p, a). None where P_p is not strictly below the lifted edge (redundant), judged
+    /// against each real side's plane (which contains the edge) and agreeing.
+    fn split_edge(&mut self, t: u32, k: usize, p: u32) -> Option<[u32; 4]> {
+        let tv = self.tri.triangles[t as usize];
+        let (c, a, b) = (tv[k], tv[(k + 1) % 3], tv[(k + 2) % 3]);
+        let u = self.tri.neighbours[t as usize][k];
+        let d = self.tri.opposite(u as usize, t)?;
+        if !self.below([c, a, b, p]) || (d != self.infinite && !self.below([d, b, a, p])) {
+            return None;
+        }
+        let nt = self.tri.neighbours[t as usize];
+        let (n_a, n_b) = (nt[(k + 1) % 3], nt[(k + 2) % 3]);
+        let ku = self.tri.position_of(u, d)?;
+        let nu = self.tri.neighbours[u as usize];
+        // In (d, b, a): opposite b the edge (a, d), opposite a the edge (d, b).
+        let (m_b, m_a) = (nu[(ku + 1) % 3], nu[(ku + 2) % 3]);
+        let t1 = self.tri.triangles.len() as u32;
+        let u1 = t1 + 1;
+        self.tri.triangles[t as usize] = [c, a, p];
+        self.tri.neighbours[t as usize] = [u1, t1, n_b];
+        self.tri.triangles.push([c, p, b]);
+        self.tri.neighbours.push([u, n_a, t]);
+        self.tri.triangles[u as usize] = [d, b, p];
+        self.tri.neighbours[u as usize] = [t1, u1, m_a];
+        self.tri.triangles.push([d, p, a]);
+        self.tri.neighbours.push([t, m_b, u]);
+        self.replace_neighbour(n_a, t, t1);
+        self.replace_neighbour(m_b, u, u1);
+        Some([t, t1, u, u1])
     }
 
     /// Splits triangle t = (x, y, z) at point p into (x, y, p) (kept as t), (y, z, p) and
@@ -331,14 +383,16 @@ impl Builder<'_> {
         let d = self.tri.opposite(t2 as usize, t)?;
         let oo = self.infinite;
         let turn = |u: u32, v: u32, w: u32| orient2d(self.at(u), self.at(v), self.at(w));
-        let decided = |o: f64| (o != 0.0).then_some(o > 0.0);
+        // A ghost edge flips when p strictly sees the next hull edge. On that edge's line
+        // (beyond it: p on the segment was refused by the walk) the edge's end becomes a
+        // hull vertex between two collinear hull edges, and nothing flips.
         if a == oo {
             // (p, oo, b) against (b, oo, d): flip when (p, d, b) turns counter-clockwise.
-            return decided(turn(p, d, b));
+            return Some(turn(p, d, b) > 0.0);
         }
         if b == oo {
             // (p, a, oo) against (a, d, oo) (as (d, oo, a)): flip when (p, a, d) does.
-            return decided(turn(p, a, d));
+            return Some(turn(p, a, d) > 0.0);
         }
         if d == oo {
             return Some(false);
@@ -478,17 +532,13 @@ mod tests {
 
     #[test]
     fn degenerate_inputs_are_left_to_the_delaunay_path() {
-        // Collinear points, a duplicate, and a point on an edge of an exact grid.
+        // Collinear points, a duplicate, a redundant point.
         let collinear: Vec<[f64; 2]> = (0..5).map(|i| [i as f64, 2.0 * i as f64]).collect();
         let lifted: Vec<[f64; 3]> = collinear.iter().map(|&s| lift(s)).collect();
         assert!(regular_triangulation(&collinear, &lifted).is_none());
-        let grid: Vec<[f64; 2]> = (0..25).map(|i| [(i % 5) as f64, (i / 5) as f64]).collect();
-        let lifted: Vec<[f64; 3]> = grid.iter().map(|&s| lift(s)).collect();
-        // The grid's hull has collinear points: the builder gives up, or agrees.
-        if let Some(mut tri) = regular_triangulation(&grid, &lifted) {
-            tri.canonicalise(grid.len());
-            assert_eq!(tri, by_delaunay_and_flips(&grid, &lifted));
-        }
+        let duplicate = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 0.0]];
+        let lifted = duplicate.map(lift);
+        assert!(regular_triangulation(&duplicate, &lifted).is_none());
         // A redundant point: lifted above its neighbours' plane.
         let slopes = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.25, 0.25]];
         let lifted = [
@@ -498,6 +548,37 @@ mod tests {
             [0.25, 0.25, 1.0],
         ];
         assert!(regular_triangulation(&slopes, &lifted).is_none());
+    }
+
+    #[test]
+    fn grids_and_lattices_with_exact_ties_agree_too() {
+        // Points on edges and on the hull's lines (rows and columns of an exact grid, a hex
+        // lattice), and every quad cocircular on the paraboloid of revolution (exact power
+        // ties, broken by the pattern indices), in pattern order and shuffled.
+        let paraboloid = |s: [f64; 2]| [s[0], s[1], s[0] * s[0] + s[1] * s[1]];
+        let grid: Vec<[f64; 2]> = (0..400)
+            .map(|i| [(i % 20) as f64, (i / 20) as f64])
+            .collect();
+        let hex: Vec<[f64; 2]> = (0..400)
+            .map(|i| {
+                [
+                    (i % 20) as f64 + 0.5 * ((i / 20) % 2) as f64,
+                    (i / 20) as f64,
+                ]
+            })
+            .collect();
+        let mut shuffled = grid.clone();
+        let mut random = Random(5);
+        for i in (1..shuffled.len()).rev() {
+            shuffled.swap(i, (random.next() * (i + 1) as f64) as usize);
+        }
+        for (name, slopes) in [("grid", &grid), ("hex", &hex), ("shuffled grid", &shuffled)] {
+            for lifting in [lift, paraboloid] {
+                let lifted: Vec<[f64; 3]> = slopes.iter().map(|&s| lifting(s)).collect();
+                let built = directly(slopes, &lifted).unwrap_or_else(|| panic!("{name}"));
+                assert_eq!(built, by_delaunay_and_flips(slopes, &lifted), "{name}");
+            }
+        }
     }
 
     fn hull_size(tri: &DualTriangulation) -> usize {
