@@ -25,8 +25,48 @@
 use robust::{Coord, Coord3D};
 
 /// Twice the signed area of (a, b, c), exact in sign: positive when counter-clockwise.
+///
+/// The `robust` crate's filter inlined (its expression and its error bound, so the same value
+/// where it decides), the call to the crate only where the filter cannot decide.
+#[inline]
 pub(crate) fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    robust::orient2d(xy(a), xy(b), xy(c))
+    let detleft = (a[0] - c[0]) * (b[1] - c[1]);
+    let detright = (a[1] - c[1]) * (b[0] - c[0]);
+    let det = detleft - detright;
+    let errbound = ORIENT2D_THETA * (detleft + detright).abs();
+    if det >= errbound || -det >= errbound {
+        det
+    } else {
+        robust::orient2d(xy(a), xy(b), xy(c))
+    }
+}
+
+/// The `robust` crate's orient2d filter constant (Ozaki et al.'s bound).
+const ORIENT2D_THETA: f64 = 3.330_669_062_177_372_2e-16;
+
+/// The `robust` crate's first orient3d error bound, (7 + 56 eps) eps.
+const ORIENT3D_BOUND_A: f64 = (7.0 + 56.0 * f64::EPSILON / 2.0) * (f64::EPSILON / 2.0);
+
+/// orient3d(a, b, c, d), exact in sign: the `robust` crate's filter inlined (its expression
+/// and its first error bound), the call to the crate only where the filter cannot decide.
+#[inline]
+fn orient3d(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3], d: &[f64; 3]) -> f64 {
+    let (adx, bdx, cdx) = (a[0] - d[0], b[0] - d[0], c[0] - d[0]);
+    let (ady, bdy, cdy) = (a[1] - d[1], b[1] - d[1], c[1] - d[1]);
+    let (adz, bdz, cdz) = (a[2] - d[2], b[2] - d[2], c[2] - d[2]);
+    let (bdxcdy, cdxbdy) = (bdx * cdy, cdx * bdy);
+    let (cdxady, adxcdy) = (cdx * ady, adx * cdy);
+    let (adxbdy, bdxady) = (adx * bdy, bdx * ady);
+    let det = adz * (bdxcdy - cdxbdy) + bdz * (cdxady - adxcdy) + cdz * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * adz.abs()
+        + (cdxady.abs() + adxcdy.abs()) * bdz.abs()
+        + (adxbdy.abs() + bdxady.abs()) * cdz.abs();
+    let errbound = ORIENT3D_BOUND_A * permanent;
+    if det > errbound || -det > errbound {
+        det
+    } else {
+        robust::orient3d(xyz(*a), xyz(*b), xyz(*c), xyz(*d))
+    }
 }
 
 /// Whether the edge (a, b) of the quad (c, a, b, d) is illegal in the regular triangulation
@@ -39,7 +79,7 @@ pub(crate) fn power_illegal(lifted: [[f64; 3]; 4], keys: [u32; 4]) -> bool {
     if turn == 0.0 {
         return false;
     }
-    let below = robust::orient3d(xyz(c), xyz(a), xyz(b), xyz(d));
+    let below = orient3d(&c, &a, &b, &d);
     let sign = if below != 0.0 {
         below
     } else {
@@ -50,13 +90,15 @@ pub(crate) fn power_illegal(lifted: [[f64; 3]; 4], keys: [u32; 4]) -> bool {
 
 /// [`power_illegal`] for (c, a, b) known to turn counter-clockwise: whether P_d lies strictly
 /// below the plane through P_c, P_a, P_b (ties broken as there).
-pub(crate) fn power_below(lifted: [[f64; 3]; 4], keys: [u32; 4]) -> bool {
+/// The points are passed by reference: copied into an array of arrays on the stack, they were
+/// read back before their stores completed (a stall of this hot test).
+pub(crate) fn power_below(lifted: [&[f64; 3]; 4], keys: [u32; 4]) -> bool {
     let [c, a, b, d] = lifted;
-    let below = robust::orient3d(xyz(c), xyz(a), xyz(b), xyz(d));
+    let below = orient3d(c, a, b, d);
     let sign = if below != 0.0 {
         below
     } else {
-        tie_sign(lifted, keys)
+        tie_sign([*c, *a, *b, *d], keys)
     };
     sign > 0.0
 }

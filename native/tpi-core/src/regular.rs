@@ -214,7 +214,7 @@ impl Builder<'_> {
         let [c, a, b, d] = ids.map(|i| i as usize);
         let l = self.lifted;
         let k = self.keys;
-        power_below([l[c], l[a], l[b], l[d]], [k[c], k[a], k[b], k[d]])
+        power_below([&l[c], &l[a], &l[b], &l[d]], [k[c], k[a], k[b], k[d]])
     }
 
     fn is_ghost(&self, t: u32) -> bool {
