@@ -90,6 +90,7 @@ pub(crate) fn power_illegal(lifted: [[f64; 3]; 4], keys: [u32; 4]) -> bool {
 
 /// [`power_illegal`] for (c, a, b) known to turn counter-clockwise: whether P_d lies strictly
 /// below the plane through P_c, P_a, P_b (ties broken as there).
+///
 /// The points are passed by reference: copied into an array of arrays on the stack, they were
 /// read back before their stores completed (a stall of this hot test).
 pub(crate) fn power_below(lifted: [&[f64; 3]; 4], keys: [u32; 4]) -> bool {

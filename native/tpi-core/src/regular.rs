@@ -15,8 +15,9 @@
 //! splitting its triangle in three (or, exactly on an edge, as in grids and lattices, the two
 //! triangles beside the edge in four), and the edges opposite p are made legal by flips:
 //! - between two real triangles (p, a, b) and (b, a, d), by the exact power test with its
-//!   symbolic tie-break ([`crate::predicates::power_illegal`], the envelope flips' test): the
-//!   edge (a, b) is illegal when P_d lies below the plane through P_p, P_a, P_b;
+//!   symbolic tie-break ([`crate::predicates::power_below`], the envelope flips' test for a
+//!   counter-clockwise triangle): the edge (a, b) is illegal when P_d lies below the plane
+//!   through P_p, P_a, P_b, and is flipped where the quadrilateral is strictly convex;
 //! - between two ghosts (p, a, oo) and (a, d, oo) (p outside the hull), when p strictly sees
 //!   the hull edge d -> a: orient2d(p, a, d) > 0, the flip making the real triangle (p, a, d);
 //!   likewise (p, oo, b) and (b, oo, d) with orient2d(p, d, b) > 0 (p on the edge's line,
@@ -383,9 +384,9 @@ impl Builder<'_> {
         let d = self.tri.opposite(t2 as usize, t)?;
         let oo = self.infinite;
         let turn = |u: u32, v: u32, w: u32| orient2d(self.at(u), self.at(v), self.at(w));
-        // A ghost edge flips when p strictly sees the next hull edge. On that edge's line
-        // (beyond it: p on the segment was refused by the walk) the edge's end becomes a
-        // hull vertex between two collinear hull edges, and nothing flips.
+        // A ghost edge flips when p strictly sees the next hull edge. Where p is on that
+        // edge's line (beyond it, or p on the hull itself after an edge split) nothing flips:
+        // the hull keeps collinear edges.
         if a == oo {
             // (p, oo, b) against (b, oo, d): flip when (p, d, b) turns counter-clockwise.
             return Some(turn(p, d, b) > 0.0);
