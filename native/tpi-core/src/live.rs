@@ -65,6 +65,7 @@ use crate::predicates::{orient2d, power_illegal};
 use crate::progress::NoProgress;
 use crate::projection::Wrap;
 use crate::quality::{report, resolve_foot, ReportInput};
+use crate::regular::hilbert_key;
 use crate::samples::curvature_class;
 use crate::surface::Surface;
 use crate::tolerance::DUPLICATE_UV_TOLERANCE;
@@ -519,7 +520,7 @@ impl State {
         let n = points.len();
         // perm: internal -> pattern index; rank: pattern index -> internal.
         let mut perm: Vec<u32> = (0..n as u32).collect();
-        perm.sort_by_key(|&i| hilbert(points[i as usize]));
+        perm.sort_by_key(|&i| hilbert_key(points[i as usize]));
         let mut rank = vec![0u32; n];
         for (internal, &i) in perm.iter().enumerate() {
             rank[i as usize] = internal as u32;
@@ -1691,29 +1692,6 @@ fn seed(g: &LocalGeometry, uv: [f64; 2]) -> Seed {
         normal: g.normal,
         curvatures: [g.k1, g.k2],
     }
-}
-
-/// Position of a pattern point along a Hilbert curve over the unit square (2^16 cells a side).
-fn hilbert(p: [f64; 2]) -> u64 {
-    const N: u32 = 1 << 16;
-    let cell = |t: f64| ((t.clamp(0.0, 1.0) * f64::from(N)) as u32).min(N - 1);
-    let (mut x, mut y) = (cell(p[0]), cell(p[1]));
-    let mut d = 0u64;
-    let mut s = N / 2;
-    while s > 0 {
-        let rx = u32::from(x & s > 0);
-        let ry = u32::from(y & s > 0);
-        d += u64::from(s) * u64::from(s) * u64::from((3 * rx) ^ ry);
-        if ry == 0 {
-            if rx == 1 {
-                x = N - 1 - x;
-                y = N - 1 - y;
-            }
-            std::mem::swap(&mut x, &mut y);
-        }
-        s /= 2;
-    }
-    d
 }
 
 /// Whether x attains a coordinate of the box (it may bound it).

@@ -125,8 +125,9 @@ fn hilbert_order(slopes: &[[f64; 2]]) -> Option<Vec<u32>> {
     Some(keyed.into_iter().map(|(_, i)| i).collect())
 }
 
-/// Position of a point of the unit square along a Hilbert curve of 2^16 cells a side.
-fn hilbert_key(p: [f64; 2]) -> u64 {
+/// Position of a point of the unit square along a Hilbert curve of 2^16 cells a side (also
+/// the live state's point order).
+pub(crate) fn hilbert_key(p: [f64; 2]) -> u64 {
     const N: u32 = 1 << 16;
     let cell = |t: f64| ((t.clamp(0.0, 1.0) * f64::from(N)) as u32).min(N - 1);
     let (mut x, mut y) = (cell(p[0]), cell(p[1]));
