@@ -37,7 +37,9 @@
 #[cfg(test)]
 use crate::predicates::power_illegal;
 use crate::predicates::{orient2d, power_below};
-use crate::triangulation::{DualTriangulation, NO_TRIANGLE};
+use crate::triangulation::DualTriangulation;
+#[cfg(test)]
+use crate::triangulation::NO_TRIANGLE;
 
 /// Walk steps allowed per inserted point before the builder gives up (a visibility walk in a
 /// regular triangulation may cycle; a Hilbert-ordered walk takes a few steps).
@@ -46,27 +48,17 @@ const WALK_STEPS_PER_POINT: usize = 10_000;
 /// Flips allowed per point (amortised: an insertion flips about three edges on average).
 const FLIPS_PER_POINT: usize = 64;
 
-/// The regular triangulation of `slopes` lifted to `lifted` (whose first two coordinates are
-/// the slopes): counter-clockwise in slope space, hull edges [`NO_TRIANGLE`]; None where the
-/// module doc says the builder gives up.
-pub(crate) fn regular_triangulation(
-    slopes: &[[f64; 2]],
-    lifted: &[[f64; 3]],
-) -> Option<DualTriangulation> {
-    let n = slopes.len();
-    if n < 3 || lifted.len() != n || n >= u32::MAX as usize / 2 {
-        return None;
-    }
-    if lifted
-        .iter()
-        .zip(slopes)
-        .any(|(l, s)| l[0] != s[0] || l[1] != s[1])
-    {
+/// The regular triangulation of the `lifted` points (slopes, then height) in slope space:
+/// counter-clockwise, hull edges [`crate::triangulation::NO_TRIANGLE`]; None where the module
+/// doc says the builder gives up.
+pub(crate) fn regular_triangulation(lifted: &[[f64; 3]]) -> Option<DualTriangulation> {
+    let n = lifted.len();
+    if n < 3 || n >= u32::MAX as usize / 2 {
         return None;
     }
     // The builder numbers the points in Hilbert order (consecutive points near in memory
     // too); the tie-break keys stay the pattern indices.
-    let order = hilbert_order(slopes)?;
+    let order = hilbert_order(lifted)?;
     let local: Vec<[f64; 3]> = order.iter().map(|&i| lifted[i as usize]).collect();
     let mut builder = Builder {
         lifted: &local,
@@ -97,10 +89,10 @@ pub(crate) fn regular_triangulation(
 
 /// Point indices sorted along a Hilbert curve over the slopes' bounding box (ties by index);
 /// None where a slope is not finite.
-fn hilbert_order(slopes: &[[f64; 2]]) -> Option<Vec<u32>> {
+fn hilbert_order(lifted: &[[f64; 3]]) -> Option<Vec<u32>> {
     let mut lo = [f64::INFINITY; 2];
     let mut hi = [f64::NEG_INFINITY; 2];
-    for s in slopes {
+    for s in lifted {
         for k in 0..2 {
             if !s[k].is_finite() {
                 return None;
@@ -113,7 +105,7 @@ fn hilbert_order(slopes: &[[f64; 2]]) -> Option<Vec<u32>> {
     if !(size > 0.0) || !size.is_finite() {
         return None;
     }
-    let mut keyed: Vec<(u64, u32)> = slopes
+    let mut keyed: Vec<(u64, u32)> = lifted
         .iter()
         .enumerate()
         .map(|(i, s)| {
@@ -342,8 +334,8 @@ impl Builder<'_> {
         self.tri.neighbours[u as usize] = [t1, u1, m_a];
         self.tri.triangles.push([d, p, a]);
         self.tri.neighbours.push([t, m_b, u]);
-        self.replace_neighbour(n_a, t, t1);
-        self.replace_neighbour(m_b, u, u1);
+        self.tri.replace_neighbour(n_a, t, t1);
+        self.tri.replace_neighbour(m_b, u, u1);
         Some([t, t1, u, u1])
     }
 
@@ -360,20 +352,9 @@ impl Builder<'_> {
         self.tri.neighbours.push([t2, t, n_x]);
         self.tri.triangles.push([z, x, p]);
         self.tri.neighbours.push([t, t1, n_y]);
-        self.replace_neighbour(n_x, t, t1);
-        self.replace_neighbour(n_y, t, t2);
+        self.tri.replace_neighbour(n_x, t, t1);
+        self.tri.replace_neighbour(n_y, t, t2);
         [t1, t2]
-    }
-
-    fn replace_neighbour(&mut self, t: u32, old: u32, new: u32) {
-        if t == NO_TRIANGLE {
-            return;
-        }
-        for n in self.tri.neighbours[t as usize].iter_mut() {
-            if *n == old {
-                *n = new;
-            }
-        }
     }
 
     /// Whether the edge opposite the new point (vertex k of triangle t) must be flipped;
@@ -411,19 +392,7 @@ impl Builder<'_> {
 mod tests {
     use super::*;
     use crate::neighbours::flip_to_regular;
-
-    /// A deterministic generator (SplitMix64) of numbers in [0, 1).
-    struct Random(u64);
-
-    impl Random {
-        fn next(&mut self) -> f64 {
-            self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-            ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-        }
-    }
+    use crate::pattern::SplitMix64;
 
     /// Spade's Delaunay triangulation flipped by the power test (the path this one replaces),
     /// in canonical order.
@@ -436,7 +405,7 @@ mod tests {
     }
 
     fn directly(slopes: &[[f64; 2]], lifted: &[[f64; 3]]) -> Option<DualTriangulation> {
-        let mut tri = regular_triangulation(slopes, lifted)?;
+        let mut tri = regular_triangulation(lifted)?;
         tri.canonicalise(slopes.len());
         Some(tri)
     }
@@ -462,9 +431,9 @@ mod tests {
             (5, 1000),
             (6, 5000),
         ] {
-            let mut random = Random(seed);
+            let mut random = SplitMix64::new(seed);
             let slopes: Vec<[f64; 2]> = (0..n)
-                .map(|_| [2.0 * random.next() - 1.0, 2.0 * random.next() - 1.0])
+                .map(|_| [2.0 * random.next_f64() - 1.0, 2.0 * random.next_f64() - 1.0])
                 .collect();
             let lifted: Vec<[f64; 3]> = slopes.iter().map(|&s| lift(s)).collect();
             let built = directly(&slopes, &lifted).expect("generic input");
@@ -481,16 +450,16 @@ mod tests {
     fn clustered_and_sheared_slopes_agree_too() {
         // Points in two tight clusters far apart, and a thin sheared band: long walks and
         // slivers.
-        let mut random = Random(9);
+        let mut random = SplitMix64::new(9);
         let mut slopes: Vec<[f64; 2]> = (0..400)
             .map(|i| {
                 let c = if i % 2 == 0 { 0.0 } else { 100.0 };
-                [c + 1e-3 * random.next(), c + 1e-3 * random.next()]
+                [c + 1e-3 * random.next_f64(), c + 1e-3 * random.next_f64()]
             })
             .collect();
         slopes.extend((0..400).map(|_| {
-            let t = random.next();
-            [50.0 + 40.0 * t, 50.0 + 40.0 * t + 1e-2 * random.next()]
+            let t = random.next_f64();
+            [50.0 + 40.0 * t, 50.0 + 40.0 * t + 1e-2 * random.next_f64()]
         }));
         let lifted: Vec<[f64; 3]> = slopes.iter().map(|&s| lift(s)).collect();
         let built = directly(&slopes, &lifted).expect("generic input");
@@ -501,10 +470,12 @@ mod tests {
     fn every_edge_is_locally_regular_and_the_hull_is_convex() {
         // Independent of both builders: the power test on every interior edge, and every hull
         // edge with all points on its left or on it.
-        let mut random = Random(11);
-        let slopes: Vec<[f64; 2]> = (0..300).map(|_| [random.next(), random.next()]).collect();
+        let mut random = SplitMix64::new(11);
+        let slopes: Vec<[f64; 2]> = (0..300)
+            .map(|_| [random.next_f64(), random.next_f64()])
+            .collect();
         let lifted: Vec<[f64; 3]> = slopes.iter().map(|&s| lift(s)).collect();
-        let tri = regular_triangulation(&slopes, &lifted).expect("generic input");
+        let tri = regular_triangulation(&lifted).expect("generic input");
         for (t, tv) in tri.triangles.iter().enumerate() {
             assert!(
                 orient2d(
@@ -537,19 +508,18 @@ mod tests {
         // Collinear points, a duplicate, a redundant point.
         let collinear: Vec<[f64; 2]> = (0..5).map(|i| [i as f64, 2.0 * i as f64]).collect();
         let lifted: Vec<[f64; 3]> = collinear.iter().map(|&s| lift(s)).collect();
-        assert!(regular_triangulation(&collinear, &lifted).is_none());
+        assert!(regular_triangulation(&lifted).is_none());
         let duplicate = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [1.0, 0.0]];
         let lifted = duplicate.map(lift);
-        assert!(regular_triangulation(&duplicate, &lifted).is_none());
+        assert!(regular_triangulation(&lifted).is_none());
         // A redundant point: lifted above its neighbours' plane.
-        let slopes = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.25, 0.25]];
         let lifted = [
             [0.0, 0.0, 0.0],
             [1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],
             [0.25, 0.25, 1.0],
         ];
-        assert!(regular_triangulation(&slopes, &lifted).is_none());
+        assert!(regular_triangulation(&lifted).is_none());
     }
 
     #[test]
@@ -570,9 +540,9 @@ mod tests {
             })
             .collect();
         let mut shuffled = grid.clone();
-        let mut random = Random(5);
+        let mut random = SplitMix64::new(5);
         for i in (1..shuffled.len()).rev() {
-            shuffled.swap(i, (random.next() * (i + 1) as f64) as usize);
+            shuffled.swap(i, random.below(i + 1));
         }
         for (name, slopes) in [("grid", &grid), ("hex", &hex), ("shuffled grid", &shuffled)] {
             for lifting in [lift, paraboloid] {

@@ -288,7 +288,7 @@ pub(crate) fn decide_structure(
         (Some(slopes), Some(lifted)) => {
             stages.enter(Stage::Delaunay, None);
             // The regular triangulation directly; on degenerate input Delaunay, then flips.
-            let direct = regular_triangulation(slopes, lifted);
+            let direct = regular_triangulation(lifted);
             let regular = direct.is_some();
             let mut triangulation = match direct {
                 Some(triangulation) => triangulation,

@@ -355,7 +355,8 @@ impl DualTriangulation {
         self.remove_triangles(&removed);
     }
 
-    fn replace_neighbour(&mut self, t: u32, old: u32, new: u32) {
+    /// Points triangle t's neighbour `old` to `new` (nothing for [`NO_TRIANGLE`]).
+    pub(crate) fn replace_neighbour(&mut self, t: u32, old: u32, new: u32) {
         if t == NO_TRIANGLE {
             return;
         }
